@@ -1,0 +1,17 @@
+"""What a lint run hands to the reporters."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from .diagnostics import Diagnostic
+from .rules.catalogue import Rule
+
+
+@dataclass(slots=True)
+class LintResult:
+    diagnostics: list[Diagnostic]  # severity filled in, sorted by Diagnostic.sort_key
+    files: list[str]  # every file examined (display paths), sorted
+    applications: list[str]  # every application checked (display paths), sorted
+    rules: dict[str, Rule] = field(default_factory=dict)  # the catalogue, by code
+    tool_version: str = ""

@@ -1,0 +1,105 @@
+"""The rule catalogue: one TOML file per rule code in the top-level `rules/` folder.
+
+A rule file holds the code, name, default severity, manual section, summary, explanation, and
+at least one failing (`[[bad]]`) and one passing (`[[good]]`) example; see `rules/README.md`.
+The catalogue is data, read at run time, so that `val3check rule CODE`, the SARIF rule
+metadata and the example tests all come from the same text.
+"""
+
+from __future__ import annotations
+
+import tomllib
+from dataclasses import dataclass, field
+from functools import cache
+from pathlib import Path
+
+from ..diagnostics import Severity
+from ..resources import resource_dir
+
+# Code scheme: a family letter, then three digits (rules/README.md).
+FAMILIES: dict[str, str] = {
+    "F": "syntax and files",
+    "N": "names and declarations",
+    "T": "types and containers",
+    "L": "libraries and user types",
+    "S": "suspicious patterns",
+    "R": "runtime and simulation",
+}
+
+
+@dataclass(frozen=True, slots=True)
+class Example:
+    description: str
+    code: str | None  # body of start() in a generated application
+    files: dict[str, str]  # or: files of an application tree, relative paths -> text
+    target: str  # what to lint, relative to the example root
+    expect: tuple[str, ...]  # "line:col" (of `code`) or "file:line:col" (of `files`)
+
+
+@dataclass(frozen=True, slots=True)
+class Rule:
+    code: str
+    name: str
+    severity: Severity
+    manual: str
+    summary: str
+    explanation: str
+    bad: tuple[Example, ...] = field(default=())
+    good: tuple[Example, ...] = field(default=())
+
+    @property
+    def family(self) -> str:
+        return self.code[0]
+
+    @property
+    def family_name(self) -> str:
+        return FAMILIES.get(self.family, "")
+
+
+class CatalogueError(Exception):
+    pass
+
+
+def _example(raw: dict, where: str) -> Example:
+    code = raw.get("code")
+    files = raw.get("files", {})
+    if (code is None) == (not files):
+        raise CatalogueError(f"{where}: an example needs exactly one of 'code' or 'files'")
+    return Example(
+        description=raw.get("description", ""),
+        code=code,
+        files=dict(files),
+        target=raw.get("target", "."),
+        expect=tuple(raw.get("expect", ())),
+    )
+
+
+def load_rule(path: Path) -> Rule:
+    try:
+        raw = tomllib.loads(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
+        raise CatalogueError(f"{path}: {exc}") from None
+    try:
+        code = raw["code"]
+        if path.stem != code:
+            raise CatalogueError(f"{path}: file name must be the rule code {code!r}")
+        return Rule(
+            code=code,
+            name=raw["name"],
+            severity=Severity.parse(raw["severity"]),
+            manual=raw.get("manual", ""),
+            summary=raw["summary"],
+            explanation=raw.get("explanation", "").strip(),
+            bad=tuple(_example(e, f"{path} [[bad]]") for e in raw.get("bad", ())),
+            good=tuple(_example(e, f"{path} [[good]]") for e in raw.get("good", ())),
+        )
+    except (KeyError, ValueError) as exc:
+        raise CatalogueError(f"{path}: missing or invalid field {exc}") from None
+
+
+@cache
+def catalogue() -> dict[str, Rule]:
+    """Every rule, by code, in code order."""
+    folder = resource_dir("rules")
+    rules = [load_rule(p) for p in sorted(folder.glob("*.toml"))]
+    return {r.code: r for r in rules}
