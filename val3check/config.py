@@ -1,0 +1,160 @@
+"""Configuration: `[tool.val3check]` in pyproject.toml, or a val3check.toml, like ruff's.
+
+The file is found by walking up from the first target (or the current directory). Command-line
+options override it. Keys (kebab-case, as ruff):
+
+    select = ["F", "L"]             # codes or prefixes to enable (default: every rule)
+    extend-select = ["S101"]        # added to `select`
+    ignore = ["S1"]                 # codes or prefixes to disable
+    per-file-ignores = { "legacy/**" = ["S"] }   # glob, relative to the config file's folder
+    severity = { S101 = "error" }   # change a rule's severity
+    fail-on = "error"               # error | warning | info | never
+    disk-roots = ["../controller/usr/usrapp"]    # where `Disk://` libraries are also searched
+    exclude = ["build/**"]          # applications whose path matches are skipped
+"""
+
+from __future__ import annotations
+
+import fnmatch
+import os
+import tomllib
+from dataclasses import dataclass, field
+
+from .diagnostics import Severity
+
+CONFIG_NAMES = ("val3check.toml", "pyproject.toml")
+FAIL_ON_CHOICES = ("error", "warning", "info", "never")
+
+
+class ConfigError(Exception):
+    """A configuration file or option that cannot be used (exit code 2)."""
+
+
+@dataclass(slots=True)
+class Settings:
+    select: list[str] = field(default_factory=lambda: [""])  # "" is the prefix of every code
+    extend_select: list[str] = field(default_factory=list)
+    ignore: list[str] = field(default_factory=list)
+    per_file_ignores: dict[str, list[str]] = field(default_factory=dict)
+    severity: dict[str, Severity] = field(default_factory=dict)
+    fail_on: str = "error"
+    disk_roots: list[str] = field(default_factory=list)
+    exclude: list[str] = field(default_factory=list)
+    root: str = ""  # folder of the configuration file, "" when none was found
+    source: str = ""  # path of the configuration file that was read
+
+    def enabled(self, code: str, path: str | None = None) -> bool:
+        """Ruff's rule: the longest matching prefix among select and ignore wins."""
+        best_sel = max((len(p) for p in self.select + self.extend_select if code.startswith(p)), default=-1)
+        best_ign = max((len(p) for p in self.ignore if code.startswith(p)), default=-1)
+        if best_sel < 0 or best_ign >= best_sel:
+            return False
+        if path is not None and self.per_file_ignores:
+            rel = self._relative(path)
+            for pattern, codes in self.per_file_ignores.items():
+                if _glob_match(rel, pattern) and any(code.startswith(c) for c in codes):
+                    return False
+        return True
+
+    def unknown_codes(self, known: list[str]) -> list[str]:
+        """Codes or prefixes that match no rule: a typo must not silently select nothing."""
+        asked = set(self.select + self.extend_select + self.ignore) | set(self.severity)
+        for values in self.per_file_ignores.values():
+            asked.update(values)
+        return sorted(p for p in asked if p and not any(c.startswith(p) for c in known))
+
+    def excluded(self, path: str) -> bool:
+        rel = self._relative(path)
+        return any(_glob_match(rel, p) for p in self.exclude)
+
+    def _relative(self, path: str) -> str:
+        base = self.root or os.getcwd()
+        rel = os.path.relpath(os.path.abspath(path), base)
+        return rel.replace(os.sep, "/")
+
+
+def _glob_match(rel: str, pattern: str) -> bool:
+    pattern = pattern.rstrip("/")
+    if fnmatch.fnmatchcase(rel, pattern):
+        return True
+    # a folder pattern covers everything below it
+    return fnmatch.fnmatchcase(rel, pattern + "/*")
+
+
+def find_config(start: str) -> str | None:
+    folder = os.path.abspath(start)
+    if not os.path.isdir(folder):
+        folder = os.path.dirname(folder)
+    while True:
+        for name in CONFIG_NAMES:
+            candidate = os.path.join(folder, name)
+            if os.path.isfile(candidate) and _has_section(candidate, name):
+                return candidate
+        parent = os.path.dirname(folder)
+        if parent == folder:
+            return None
+        folder = parent
+
+
+def _read_toml(path: str) -> dict:
+    try:
+        with open(path, "rb") as fh:
+            return tomllib.load(fh)
+    except (OSError, tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        raise ConfigError(f"{path}: cannot read configuration: {exc}") from None
+
+
+def _has_section(path: str, name: str) -> bool:
+    if name != "pyproject.toml":
+        return True
+    try:
+        data = _read_toml(path)
+    except ConfigError:
+        return False
+    return "val3check" in data.get("tool", {})
+
+
+def _str_list(value, key: str, path: str) -> list[str]:
+    if isinstance(value, str):
+        value = [value]
+    if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
+        raise ConfigError(f"{path}: '{key}' must be a list of strings")
+    return [v.strip().upper() if key in ("select", "extend-select", "ignore") else v for v in value]
+
+
+KNOWN_KEYS = {"select", "extend-select", "ignore", "per-file-ignores", "severity", "fail-on", "disk-roots", "exclude"}
+
+
+def load_settings(path: str) -> Settings:
+    data = _read_toml(path)
+    if os.path.basename(path) == "pyproject.toml":
+        data = data.get("tool", {}).get("val3check", {})
+    elif "tool" in data and "val3check" in data["tool"]:
+        data = data["tool"]["val3check"]
+    unknown = sorted(set(data) - KNOWN_KEYS)
+    if unknown:
+        raise ConfigError(f"{path}: unknown option(s): {', '.join(unknown)} (known: {', '.join(sorted(KNOWN_KEYS))})")
+    root = os.path.dirname(os.path.abspath(path))
+    s = Settings(root=root, source=path)
+    if "select" in data:
+        s.select = _str_list(data["select"], "select", path)
+    s.extend_select = _str_list(data.get("extend-select", []), "extend-select", path)
+    s.ignore = _str_list(data.get("ignore", []), "ignore", path)
+    pfi = data.get("per-file-ignores", {})
+    if not isinstance(pfi, dict):
+        raise ConfigError(f"{path}: 'per-file-ignores' must be a table of glob = [codes]")
+    s.per_file_ignores = {k: [c.upper() for c in _str_list(v, "per-file-ignores", path)] for k, v in pfi.items()}
+    sev = data.get("severity", {})
+    if not isinstance(sev, dict):
+        raise ConfigError(f"{path}: 'severity' must be a table of CODE = \"error|warning|info\"")
+    try:
+        s.severity = {k.upper(): Severity.parse(str(v)) for k, v in sev.items()}
+    except ValueError as exc:
+        raise ConfigError(f"{path}: severity: {exc}") from None
+    fail_on = str(data.get("fail-on", "error")).lower()
+    if fail_on not in FAIL_ON_CHOICES:
+        raise ConfigError(f"{path}: 'fail-on' must be one of {', '.join(FAIL_ON_CHOICES)}")
+    s.fail_on = fail_on
+    s.disk_roots = [os.path.normpath(os.path.join(root, d)) for d in _str_list(data.get("disk-roots", []), "disk-roots", path)]
+    s.exclude = _str_list(data.get("exclude", []), "exclude", path)
+    return s

@@ -1,0 +1,95 @@
+"""The lint pipeline: load files -> parse programs -> (semantic checks) -> filtered findings.
+
+Each phase lives in its own package and only hands data forward; this module wires them and
+applies the user's configuration (rule selection, severities, suppressions).
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+
+from . import __version__, suppression
+from .config import Settings
+from .diagnostics import Diagnostic, Severity
+from .loading import LoadOptions, load
+from .loading.model import Workspace
+from .parsing.parser import parse_program
+from .result import LintResult
+from .rules.catalogue import catalogue
+
+
+@dataclass(slots=True)
+class LintRun:
+    result: LintResult
+    workspace: Workspace
+    unreadable: bool  # nothing could be read at all: exit code 2
+
+
+def display_path(path: str) -> str:
+    """Relative to the current directory when inside it, POSIX slashes: stable across machines."""
+    if not path:
+        return path
+    absolute = os.path.abspath(path)
+    try:
+        rel = os.path.relpath(absolute, os.getcwd())
+    except ValueError:  # another drive on Windows
+        rel = absolute
+    chosen = absolute if rel == ".." or rel.startswith(".." + os.sep) else rel
+    return chosen.replace(os.sep, "/")
+
+
+def run(paths: list[str], settings: Settings) -> LintRun:
+    rules = catalogue()
+    workspace, found = load(paths, LoadOptions(disk_roots=list(settings.disk_roots)))
+    targets = [workspace.apps[key] for key in workspace.targets]
+    targets = [app for app in targets if not settings.excluded(app.path)]
+
+    suppressed: dict[tuple[str, int], set[str]] = {}
+    files: set[str] = set()
+    for app in targets:
+        files.update(app.files)
+        suppressed.update(suppression.collect(app))
+        for program in app.programs.values():
+            found.extend(parse_program(program))
+
+    kept: dict[tuple, Diagnostic] = {}
+    for d in found:
+        if not settings.enabled(d.code, d.path):
+            continue
+        if suppression.is_suppressed(d.code, d.path, d.line, suppressed):
+            continue
+        rule = rules.get(d.code)
+        severity = settings.severity.get(d.code) or (rule.severity if rule else Severity.ERROR)
+        shown = Diagnostic(
+            code=d.code,
+            message=d.message,
+            path=display_path(d.path),
+            line=d.line,
+            col=d.col,
+            end_line=d.end_line,
+            end_col=d.end_col,
+            severity=severity,
+        )
+        kept.setdefault(shown.sort_key(), shown)  # a library shared by two targets reports once
+        files.add(d.path)
+
+    result = LintResult(
+        diagnostics=[kept[k] for k in sorted(kept)],
+        files=sorted({display_path(f) for f in files if f}),
+        applications=sorted(display_path(app.path) for app in targets),
+        rules=rules,
+        tool_version=__version__,
+    )
+    missing_arg = any(not os.path.exists(p) for p in paths)
+    return LintRun(result=result, workspace=workspace, unreadable=missing_arg or not targets)
+
+
+def exit_code(run_: LintRun, fail_on: str) -> int:
+    """0: nothing at or above `fail_on`; 1: findings; 2: input that could not be read at all."""
+    if run_.unreadable:
+        return 2
+    if fail_on == "never":
+        return 0
+    threshold = Severity.parse(fail_on)
+    return 1 if any(d.severity is not None and d.severity >= threshold for d in run_.result.diagnostics) else 0

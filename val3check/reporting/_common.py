@@ -1,0 +1,84 @@
+"""Helpers shared by the output formats (stdlib only, imported lazily by the formats)."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from ..diagnostics import Diagnostic, Severity
+
+if TYPE_CHECKING:
+    from ..result import LintResult
+
+TOOL_NAME = "val3check"
+
+
+def tool_version(result: "LintResult") -> str:
+    if result.tool_version:
+        return result.tool_version
+    from .. import __version__
+
+    return __version__
+
+
+def severity_of(diag: Diagnostic, result: "LintResult") -> Severity:
+    """The diagnostic's severity; the pipeline always sets it, the fallbacks are defensive."""
+    if diag.severity is not None:
+        return Severity(diag.severity)
+    rule = result.rules.get(diag.code)
+    return rule.severity if rule is not None else Severity.WARNING
+
+
+def rule_name(code: str, result: "LintResult") -> str:
+    rule = result.rules.get(code)
+    return rule.name if rule is not None else ""
+
+
+def severity_counts(result: "LintResult") -> dict[Severity, int]:
+    counts = {s: 0 for s in Severity}
+    for diag in result.diagnostics:
+        counts[severity_of(diag, result)] += 1
+    return counts
+
+
+def plural(n: int, word: str) -> str:
+    return f"{n} {word}" if n == 1 else f"{n} {word}s"
+
+
+# C0 controls (other than tab) and DEL would move the cursor or colour a terminal, and are not
+# allowed in XML 1.0: show them as U+FFFD, which keeps the column count unchanged.
+_CONTROL = {c: "\ufffd" for c in (*range(0x00, 0x09), *range(0x0A, 0x20), 0x7F)}
+
+
+def printable(text: str) -> str:
+    return text.translate(_CONTROL)
+
+
+class SourceCache:
+    """Lines of source files, each file read at most once per render.
+
+    Lines are split on "\\n" only (as the positions in diagnostics count them), with a trailing
+    "\\r" removed. A missing or unreadable file gives None: the reporters then omit the snippet.
+    """
+
+    def __init__(self) -> None:
+        self._files: dict[str, list[str] | None] = {}
+
+    def lines(self, path: str) -> list[str] | None:
+        if path not in self._files:
+            try:
+                with open(path, encoding="utf-8-sig", errors="replace", newline="") as fh:
+                    text = fh.read()
+            except (OSError, ValueError):
+                self._files[path] = None
+            else:
+                self._files[path] = [ln[:-1] if ln.endswith("\r") else ln for ln in text.split("\n")]
+        return self._files[path]
+
+    def line(self, path: str, line: int) -> str | None:
+        """The text of 1-based `line`, or None if unknown."""
+        if line < 1:
+            return None
+        lines = self.lines(path)
+        if lines is None or line > len(lines):
+            return None
+        return lines[line - 1]
