@@ -49,8 +49,11 @@ def plural(n: int, word: str) -> str:
 _CONTROL = {c: "\ufffd" for c in (*range(0x00, 0x09), *range(0x0A, 0x20), 0x7F)}
 
 
-def printable(text: str) -> str:
-    return text.translate(_CONTROL)
+_CONTROL_KEEP_NEWLINE = {c: r for c, r in _CONTROL.items() if c != 0x0A}
+
+
+def printable(text: str, *, keep_newlines: bool = False) -> str:
+    return text.translate(_CONTROL_KEEP_NEWLINE if keep_newlines else _CONTROL)
 
 
 class SourceCache:

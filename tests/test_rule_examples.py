@@ -1,0 +1,62 @@
+"""Every example of every rule in rules/ behaves: bad ones trigger the rule, good ones do not."""
+
+from __future__ import annotations
+
+import pytest
+
+from val3check.rules.catalogue import FAMILIES, catalogue
+from support import code_position, lint, write_app, write_files
+
+RULES = catalogue()
+
+
+def _cases():
+    for rule in RULES.values():
+        for kind, examples in (("bad", rule.bad), ("good", rule.good)):
+            for i, ex in enumerate(examples):
+                yield pytest.param(rule, kind, ex, id=f"{rule.code}-{kind}{i}")
+
+
+def _run(tmp_path, ex):
+    if ex.code is not None:
+        folder = write_app(tmp_path, ex.code)
+        target = folder
+    else:
+        write_files(tmp_path, ex.files)
+        target = tmp_path / ex.target
+    return lint([target], cwd=tmp_path)
+
+
+@pytest.mark.parametrize("rule,kind,ex", list(_cases()))
+def test_example(tmp_path, rule, kind, ex):
+    outcome = _run(tmp_path, ex)
+    hits = [d for d in outcome.result.diagnostics if d.code == rule.code]
+    if kind == "good":
+        assert not hits, f"{rule.code} fired on its good example: {hits}"
+        return
+    assert hits, f"{rule.code} did not fire on its bad example; got {outcome.result.diagnostics}"
+    for spec in ex.expect:
+        parts = spec.split(":")
+        if ex.code is not None:
+            line, col = code_position(int(parts[0]), int(parts[1]))
+            where = ("Example/start.pgx", line, col)
+        else:
+            where = (parts[0], int(parts[1]), int(parts[2]))
+        got = [(d.path, d.line, d.col) for d in hits]
+        assert where in got, f"{rule.code}: expected at {where}, got {got}"
+
+
+def test_every_rule_has_both_examples():
+    for rule in RULES.values():
+        assert rule.bad, f"{rule.code} has no failing example"
+        assert rule.good, f"{rule.code} has no passing example"
+
+
+def test_codes_names_and_families():
+    names = [r.name for r in RULES.values()]
+    assert len(names) == len(set(names)), "rule names must be unique"
+    for rule in RULES.values():
+        assert rule.family in FAMILIES, rule.code
+        assert len(rule.code) == 4 and rule.code[1:].isdigit(), rule.code
+        assert rule.name == rule.name.lower() and " " not in rule.name, rule.code
+        assert rule.summary.strip() and rule.explanation.strip(), rule.code

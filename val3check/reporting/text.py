@@ -1,0 +1,171 @@
+"""The default, human-readable format (ruff-like).
+
+    App/start.pgx:12:5: F101 [error] unexpected 'endWhile'
+       |
+    12 |     endWhile
+       |     ^^^^^^^^
+
+    Found 1 error in 1 file (5 files checked).
+
+A whole-file finding (line 0) prints only the header `path: CODE [severity] message`; a finding
+without a column (col 0) prints `path:line:` and underlines the whole line. Tabs in the source
+line are expanded to TAB_SIZE columns, in the caret line too, so the caret stays aligned.
+With `statistics=True` a table of counts per code replaces the findings (as ruff --statistics).
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from typing import TYPE_CHECKING
+
+from ..diagnostics import Diagnostic, Severity
+from ._common import SourceCache, plural, printable, rule_name, severity_counts, severity_of
+
+if TYPE_CHECKING:
+    from ..result import LintResult
+
+TAB_SIZE = 4
+
+_RESET = "\x1b[0m"
+_BOLD = "\x1b[1m"
+_SEVERITY_COLOR = {
+    Severity.ERROR: "\x1b[31m",  # red
+    Severity.WARNING: "\x1b[33m",  # yellow
+    Severity.INFO: "\x1b[36m",  # cyan
+}
+_GUTTER = "\x1b[1;34m"  # bold blue
+_PASS = "\x1b[1;32m"  # bold green
+
+
+class _Style:
+    def __init__(self, color: bool) -> None:
+        self.color = color
+
+    def __call__(self, text: str, *codes: str) -> str:
+        if not self.color or not text:
+            return text
+        return "".join(codes) + text + _RESET
+
+
+def _width(text: str) -> int:
+    """Display width of a prefix of a source line (tabs expanded from the start of the line)."""
+    return len(text.expandtabs(TAB_SIZE))
+
+
+def _column_offset(source: str, col: int) -> int:
+    """Display offset of 1-based code-point column `col` of `source` (may lie past the end)."""
+    index = col - 1
+    if index <= len(source):
+        return _width(source[:index])
+    return _width(source) + (index - len(source))
+
+
+def _underline(diag: Diagnostic, source: str) -> tuple[int, int] | None:
+    """(start, end) display offsets of the caret run under `source`, or None for no caret line."""
+    display = source.expandtabs(TAB_SIZE)
+    if diag.col <= 0:  # no column: underline the whole (non-blank) line
+        stripped = display.strip()
+        if not stripped:
+            return None
+        start = len(display) - len(display.lstrip())
+        return start, start + len(stripped)
+    start = _column_offset(source, diag.col)
+    end = start + 1
+    if diag.end_line is not None and diag.end_line == diag.line:
+        if diag.end_col is not None and diag.end_col > diag.col:
+            end = _column_offset(source, diag.end_col)  # end_col is exclusive
+    elif diag.end_line is not None and diag.end_line > diag.line:
+        end = max(end, len(display.rstrip()))  # span continues below: underline to end of line
+    return start, max(end, start + 1)
+
+
+def _header(diag: Diagnostic, severity: Severity, style: _Style) -> str:
+    where = style(diag.path, _BOLD)
+    if diag.line > 0:
+        where += f":{diag.line}"
+        if diag.col > 0:
+            where += f":{diag.col}"
+    colour = _SEVERITY_COLOR[severity]
+    code = style(diag.code, _BOLD, colour)
+    label = style(f"[{severity.label}]", colour)
+    return f"{where}: {code} {label} {printable(diag.message, keep_newlines=True)}"
+
+
+def _snippet(diag: Diagnostic, severity: Severity, sources: SourceCache, style: _Style) -> list[str]:
+    if diag.line <= 0:
+        return []
+    source = sources.line(diag.path, diag.line)
+    if source is None:
+        return []
+    source = printable(source)
+    number = str(diag.line)
+    pad = " " * len(number)
+    bar = style("|", _GUTTER)
+    display = source.expandtabs(TAB_SIZE)
+    lines = [f"{pad} {bar}", f"{style(number, _GUTTER)} {bar}" + (f" {display}" if display else "")]
+    span = _underline(diag, source)
+    if span is not None:
+        start, end = span
+        carets = style("^" * (end - start), _BOLD, _SEVERITY_COLOR[severity])
+        lines.append(f"{pad} {bar} {' ' * start}{carets}")
+    return lines
+
+
+def _statistics(result: "LintResult", style: _Style) -> list[str]:
+    counts = Counter(d.code for d in result.diagnostics)
+    severities: dict[str, Severity] = {}
+    for diag in result.diagnostics:
+        sev = severity_of(diag, result)
+        severities[diag.code] = max(sev, severities.get(diag.code, sev))
+    rows = sorted(counts.items(), key=lambda item: (-item[1], item[0]))
+    count_width = max(len(str(n)) for _, n in rows)
+    code_width = max(len(code) for code, _ in rows)
+    label_width = max(len(f"[{severities[code].label}]") for code, _ in rows)
+    lines = []
+    for code, n in rows:
+        sev = severities[code]
+        label = f"[{sev.label}]".ljust(label_width)
+        name = rule_name(code, result)
+        row = (
+            f"{str(n).rjust(count_width)}  "
+            f"{style(code.ljust(code_width), _BOLD, _SEVERITY_COLOR[sev])}  "
+            f"{style(label, _SEVERITY_COLOR[sev])}"
+        )
+        row = f"{row}  {name}" if name else row.rstrip()
+        lines.append(row)
+    return lines
+
+
+def summary(result: "LintResult") -> str:
+    checked = plural(len(result.files), "file") + " checked"
+    if not result.diagnostics:
+        return f"All checks passed ({checked})."
+    counts = severity_counts(result)
+    parts = []
+    if counts[Severity.ERROR]:
+        parts.append(plural(counts[Severity.ERROR], "error"))
+    if counts[Severity.WARNING]:
+        parts.append(plural(counts[Severity.WARNING], "warning"))
+    if counts[Severity.INFO]:
+        parts.append(f"{counts[Severity.INFO]} info")
+    files = len({d.path for d in result.diagnostics})
+    return f"Found {', '.join(parts)} in {plural(files, 'file')} ({checked})."
+
+
+def render(result: "LintResult", *, color: bool = False, statistics: bool = False) -> str:
+    style = _Style(color)
+    out: list[str] = []
+    if statistics:
+        if result.diagnostics:
+            out.extend(_statistics(result, style))
+            out.append("")
+    else:
+        sources = SourceCache()
+        for diag in result.diagnostics:
+            severity = severity_of(diag, result)
+            out.append(_header(diag, severity, style))
+            out.extend(_snippet(diag, severity, sources, style))
+            out.append("")
+    line = summary(result)
+    out.append(style(line, _PASS if not result.diagnostics else _BOLD))
+    return "\n".join(out) + "\n"
