@@ -1,0 +1,49 @@
+"""Cold start of `val3check lint` on one small application, whole process.
+
+Goal (issue 2): under 0.4 s. Also prints the import-time budget (python -X importtime), the
+largest imports first, and checks that no robotics package is imported on the lint path.
+Run: python bench/bench_startup.py
+"""
+
+from __future__ import annotations
+
+import os
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+APP = ROOT / "fixtures" / "valid" / "Palletizer"
+FORBIDDEN = ("pinocchio", "toppra", "trimesh", "fcl", "mcap", "numpy", "scipy")
+
+
+def main() -> None:
+    env = dict(os.environ, PYTHONPATH=str(ROOT), PYTHONDONTWRITEBYTECODE="")
+    cmd = [sys.executable, "-m", "val3check", "lint", str(APP)]
+    subprocess.run(cmd, capture_output=True, env=env, cwd=ROOT)  # warm the .pyc files once
+    times = []
+    for _ in range(10):
+        t0 = time.perf_counter()
+        r = subprocess.run(cmd, capture_output=True, env=env, cwd=ROOT)
+        times.append(time.perf_counter() - t0)
+    print(f"val3check lint {APP.relative_to(ROOT)}: exit {r.returncode}, median {statistics.median(times)*1000:.0f} ms, "
+          f"max {max(times)*1000:.0f} ms over {len(times)} runs; goal < 400 ms")
+    r = subprocess.run([sys.executable, "-X", "importtime", *cmd[1:]], capture_output=True, text=True, env=env, cwd=ROOT)
+    rows = []
+    for line in r.stderr.splitlines():
+        if line.startswith("import time:") and "|" in line and "self" not in line:
+            _, cumulative, name = (part.strip() for part in line[len("import time:"):].split("|"))
+            rows.append((int(cumulative), name))
+    top = [row for row in rows if not row[1].startswith(" ")]
+    total = sum(c for c, _ in top)
+    print(f"import time, top-level modules: {total/1000:.0f} ms in all; largest:")
+    for cumulative, name in sorted(top, reverse=True)[:12]:
+        print(f"  {cumulative/1000:7.1f} ms  {name}")
+    heavy = [name.strip() for _, name in rows if name.strip().split(".")[0] in FORBIDDEN]
+    print("robotics stack imported on the lint path:", ", ".join(heavy) if heavy else "none")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,76 @@
+"""Configuration discovery and rule selection, ruff-style."""
+
+from __future__ import annotations
+
+import pytest
+
+from val3check.config import ConfigError, Settings, find_config, load_settings
+from val3check.diagnostics import Severity
+
+
+def test_longest_prefix_wins():
+    s = Settings(select=["F"], ignore=["F1"], extend_select=["F101"])
+    assert s.enabled("F001")
+    assert not s.enabled("F102")
+    assert s.enabled("F101")  # the more specific select beats the family ignore
+    assert not s.enabled("L001")
+
+
+def test_default_selects_everything():
+    assert Settings().enabled("S123")
+
+
+def test_pyproject_section_found_walking_up(tmp_path):
+    (tmp_path / "pyproject.toml").write_text('[tool.val3check]\nignore = ["l001"]\nfail-on = "warning"\n')
+    deep = tmp_path / "a" / "b"
+    deep.mkdir(parents=True)
+    found = find_config(str(deep))
+    assert found == str(tmp_path / "pyproject.toml")
+    s = load_settings(found)
+    assert s.ignore == ["L001"] and s.fail_on == "warning"
+    assert not s.enabled("L001")
+
+
+def test_pyproject_without_section_is_skipped(tmp_path):
+    (tmp_path / "pyproject.toml").write_text('[project]\nname = "x"\n')
+    sub = tmp_path / "app"
+    sub.mkdir()
+    (sub / "val3check.toml").write_text('select = ["F"]\n')
+    assert find_config(str(sub)) == str(sub / "val3check.toml")
+    assert find_config(str(tmp_path)) is None or find_config(str(tmp_path)) != str(tmp_path / "pyproject.toml")
+
+
+def test_per_file_ignores_are_relative_to_the_config(tmp_path):
+    (tmp_path / "val3check.toml").write_text('[per-file-ignores]\n"legacy/**" = ["F1"]\n')
+    s = load_settings(str(tmp_path / "val3check.toml"))
+    assert not s.enabled("F101", str(tmp_path / "legacy" / "App" / "start.pgx"))
+    assert s.enabled("F101", str(tmp_path / "new" / "App" / "start.pgx"))
+    assert s.enabled("F004", str(tmp_path / "legacy" / "App" / "start.pgx"))
+
+
+def test_severity_override_and_disk_roots(tmp_path):
+    (tmp_path / "val3check.toml").write_text('disk-roots = ["libs"]\n[severity]\nL001 = "error"\n')
+    s = load_settings(str(tmp_path / "val3check.toml"))
+    assert s.severity == {"L001": Severity.ERROR}
+    assert s.disk_roots == [str(tmp_path / "libs")]
+
+
+@pytest.mark.parametrize(
+    "text,fragment",
+    [
+        ("select = 3\n", "list of strings"),
+        ('fail-on = "sometimes"\n', "fail-on"),
+        ('colour = "red"\n', "unknown option"),
+        ("select = [\n", "cannot read"),
+        ('[severity]\nF101 = "fatal"\n', "severity"),
+    ],
+)
+def test_bad_configuration_is_a_clear_error(tmp_path, text, fragment):
+    (tmp_path / "val3check.toml").write_text(text)
+    with pytest.raises(ConfigError, match=fragment):
+        load_settings(str(tmp_path / "val3check.toml"))
+
+
+def test_unknown_selection_is_reported():
+    s = Settings(select=["F", "Q9"], ignore=["F1"])
+    assert s.unknown_codes(["F001", "F101"]) == ["Q9"]

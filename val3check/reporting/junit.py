@@ -1,0 +1,96 @@
+"""`--format junit`: JUnit XML for the test tabs of CI systems (GitLab, Jenkins, Azure DevOps).
+
+Layout: `<testsuites>` holding one `<testsuite name="val3check">`.
+
+Many JUnit consumers show only the first `<failure>` of a test case, so every finding at or
+above warning gets a test case of its own (classname = file path, name = "CODE name at L:C"),
+holding exactly one `<failure>`; each file examined without such a finding gets one passing test
+case (classname = file path, name = "val3check"). Info findings never fail: they are listed in
+the `<system-out>` of the file's passing test case. So `tests` = passing files + failing
+findings, `failures` = failing findings, `errors` = `skipped` = 0, and a clean file still shows
+up as a passed test.
+
+Escaping is done by ElementTree; characters that XML 1.0 cannot hold (C0 controls) become
+U+FFFD and non-ASCII characters become character references, so the output is pure ASCII.
+"""
+
+from __future__ import annotations
+
+import xml.etree.ElementTree as ET
+from typing import TYPE_CHECKING
+
+from ..diagnostics import Diagnostic, Severity
+from ._common import TOOL_NAME, printable, rule_name, severity_of
+
+if TYPE_CHECKING:
+    from ..result import LintResult
+
+
+def _xml(text: str) -> str:
+    """Text XML 1.0 can hold: controls other than tab/newline and lone surrogates replaced."""
+    text = printable(text, keep_newlines=True).replace("\ufffe", "\ufffd").replace("\uffff", "\ufffd")
+    return text.encode("utf-8", "replace").decode("utf-8") if _has_surrogate(text) else text
+
+
+def _has_surrogate(text: str) -> bool:
+    return any("\ud800" <= ch <= "\udfff" for ch in text)
+
+
+def _position(diag: Diagnostic) -> str:
+    if diag.line <= 0:
+        return diag.path
+    if diag.col <= 0:
+        return f"{diag.path}:{diag.line}"
+    return f"{diag.path}:{diag.line}:{diag.col}"
+
+
+def _case_name(diag: Diagnostic, result: "LintResult") -> str:
+    name = rule_name(diag.code, result)
+    label = f"{diag.code} {name}" if name else diag.code
+    if diag.line <= 0:
+        return label
+    if diag.col <= 0:
+        return f"{label} at {diag.line}"
+    return f"{label} at {diag.line}:{diag.col}"
+
+
+def _finding_line(diag: Diagnostic, severity: Severity) -> str:
+    return f"{_position(diag)}: {diag.code} [{severity.label}] {diag.message}"
+
+
+def render(result: "LintResult") -> str:
+    paths = sorted(set(result.files) | {d.path for d in result.diagnostics})
+    failing: dict[str, list[tuple[Diagnostic, Severity]]] = {p: [] for p in paths}
+    infos: dict[str, list[tuple[Diagnostic, Severity]]] = {p: [] for p in paths}
+    for diag in result.diagnostics:
+        severity = severity_of(diag, result)
+        (failing if severity >= Severity.WARNING else infos)[diag.path].append((diag, severity))
+
+    cases: list[ET.Element] = []
+    n_failures = 0
+    for path in paths:
+        for diag, severity in failing[path]:
+            case = ET.Element("testcase", {"classname": _xml(path), "name": _xml(_case_name(diag, result)), "time": "0"})
+            failure = ET.SubElement(
+                case, "failure", {"message": _xml(f"{diag.code}: {diag.message}"), "type": _xml(diag.code)}
+            )
+            text = _finding_line(diag, severity)
+            summary = result.rules[diag.code].summary if diag.code in result.rules else ""
+            failure.text = _xml(f"{text}\n{summary}" if summary else text)
+            cases.append(case)
+            n_failures += 1
+        if not failing[path]:
+            case = ET.Element("testcase", {"classname": _xml(path), "name": TOOL_NAME, "time": "0"})
+            if infos[path]:
+                out = ET.SubElement(case, "system-out")
+                out.text = _xml("\n".join(_finding_line(d, s) for d, s in infos[path]))
+            cases.append(case)
+
+    counts = {"tests": str(len(cases)), "failures": str(n_failures), "errors": "0", "skipped": "0", "time": "0"}
+    root = ET.Element("testsuites", {"name": TOOL_NAME, **counts})
+    suite = ET.SubElement(root, "testsuite", {"name": TOOL_NAME, **counts})
+    suite.extend(cases)
+    ET.indent(root, space="  ")
+    body = ET.tostring(root, encoding="unicode")
+    body = body.encode("ascii", "xmlcharrefreplace").decode("ascii")
+    return '<?xml version="1.0" encoding="UTF-8"?>\n' + body + "\n"

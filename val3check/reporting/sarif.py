@@ -1,0 +1,148 @@
+"""`--format sarif`: SARIF 2.1.0 as GitHub code scanning reads it.
+
+One run; `tool.driver.rules` holds the catalogue entry of every rule referenced by a result (in
+code order), results point at it with `ruleId` and `ruleIndex`. Relative paths become URIs with
+`uriBaseId: "%SRCROOT%"`; absolute paths become `file://` URIs. Whole-file findings (line 0) have
+no `region` (GitHub requires startLine >= 1). Columns count Unicode code points, as val3check's do.
+
+`partialFingerprints["val3check/v1"]` hashes the code, path, message and the text of the flagged
+line with all whitespace removed, not its number, so that an alert keeps its identity when
+unrelated lines are inserted above it or the line is re-indented; a ":N" suffix numbers
+otherwise identical findings in the same file.
+
+Output is deterministic: sorted keys, 2-space indent, ASCII only, trailing newline.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import re
+from typing import TYPE_CHECKING, Any
+from urllib.parse import quote
+
+from ..diagnostics import Diagnostic, Severity
+from ._common import TOOL_NAME, SourceCache, severity_of, tool_version
+
+if TYPE_CHECKING:
+    from ..result import LintResult
+    from ..rules.catalogue import Rule
+
+SCHEMA_URI = "https://docs.oasis-open.org/sarif/sarif/v2.1.0/errata01/os/schemas/sarif-schema-2.1.0.json"
+SRCROOT = "%SRCROOT%"
+FINGERPRINT_KEY = "val3check/v1"
+
+LEVELS = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO: "note"}
+
+_DRIVE = re.compile(r"^[A-Za-z]:[/\\]")
+_SEMVER = re.compile(r"^\d+\.\d+\.\d+(?:[-+].*)?$")
+
+
+def _manual_line(rule: "Rule") -> str:
+    return f"VAL 3 reference manual, section {rule.manual}." if rule.manual else ""
+
+
+def _rule_descriptor(code: str, rule: "Rule | None") -> dict[str, Any]:
+    if rule is None:  # a code missing from the catalogue: still a valid descriptor
+        return {"id": code}
+    summary = rule.summary.strip() or rule.name
+    explanation = rule.explanation.strip()
+    manual = _manual_line(rule)
+    help_text = "\n\n".join(p for p in (summary, explanation, manual) if p)
+    help_markdown = "\n\n".join(
+        p for p in (f"**{rule.code} {rule.name}**: {summary}", explanation, manual and f"*{manual}*") if p
+    )
+    descriptor: dict[str, Any] = {
+        "id": rule.code,
+        "name": rule.name,
+        "shortDescription": {"text": summary},
+        "fullDescription": {"text": explanation or summary},
+        "help": {"text": help_text, "markdown": help_markdown},
+        "defaultConfiguration": {"level": LEVELS[rule.severity]},
+        "properties": {"tags": [t for t in ("val3", rule.family_name) if t]},
+    }
+    if explanation:
+        descriptor["fullDescription"]["markdown"] = explanation
+    if rule.manual:
+        descriptor["properties"]["manual"] = rule.manual
+    return descriptor
+
+
+def artifact_location(path: str) -> dict[str, str]:
+    posix = path.replace("\\", "/")
+    if posix.startswith("//"):  # UNC path
+        return {"uri": "file:" + quote(posix)}
+    if posix.startswith("/"):
+        return {"uri": "file://" + quote(posix)}
+    if _DRIVE.match(path):
+        return {"uri": "file:///" + quote(posix, safe="/:")}
+    return {"uri": quote(posix), "uriBaseId": SRCROOT}
+
+
+def _region(diag: Diagnostic) -> dict[str, int] | None:
+    if diag.line < 1:
+        return None
+    region = {"startLine": diag.line}
+    end_line = diag.end_line if diag.end_line is not None and diag.end_line >= diag.line else diag.line
+    region["endLine"] = end_line
+    if diag.col >= 1:
+        region["startColumn"] = diag.col
+        end_col = diag.end_col
+        if end_col is not None and end_col >= 1 and (end_line > diag.line or end_col > diag.col):
+            region["endColumn"] = end_col
+    return region
+
+
+def _fingerprint(diag: Diagnostic, sources: SourceCache) -> str:
+    content = sources.line(diag.path, diag.line) or ""
+    normalized = "".join(content.split())
+    data = "\0".join((diag.code, diag.path, diag.message, normalized))
+    return hashlib.sha256(data.encode("utf-8", "surrogatepass")).hexdigest()
+
+
+def report(result: "LintResult") -> dict[str, Any]:
+    codes = sorted({d.code for d in result.diagnostics})
+    index = {code: i for i, code in enumerate(codes)}
+    sources = SourceCache()
+    seen: dict[str, int] = {}
+    results = []
+    for diag in result.diagnostics:
+        physical: dict[str, Any] = {"artifactLocation": artifact_location(diag.path)}
+        region = _region(diag)
+        if region is not None:
+            physical["region"] = region
+        digest = _fingerprint(diag, sources)
+        seen[digest] = seen.get(digest, 0) + 1
+        results.append(
+            {
+                "ruleId": diag.code,
+                "ruleIndex": index[diag.code],
+                "level": LEVELS[severity_of(diag, result)],
+                "message": {"text": diag.message or diag.code},
+                "locations": [{"physicalLocation": physical}],
+                "partialFingerprints": {FINGERPRINT_KEY: f"{digest}:{seen[digest]}"},
+            }
+        )
+    version = tool_version(result)
+    driver: dict[str, Any] = {
+        "name": TOOL_NAME,
+        "version": version,
+        "rules": [_rule_descriptor(code, result.rules.get(code)) for code in codes],
+    }
+    if _SEMVER.match(version):
+        driver["semanticVersion"] = version
+    return {
+        "$schema": SCHEMA_URI,
+        "version": "2.1.0",
+        "runs": [
+            {
+                "tool": {"driver": driver},
+                "columnKind": "unicodeCodePoints",
+                "results": results,
+            }
+        ],
+    }
+
+
+def render(result: "LintResult") -> str:
+    return json.dumps(report(result), indent=2, sort_keys=True, ensure_ascii=True) + "\n"
