@@ -29,11 +29,7 @@ if TYPE_CHECKING:
 def _xml(text: str) -> str:
     """Text XML 1.0 can hold: controls other than tab/newline and lone surrogates replaced."""
     text = printable(text, keep_newlines=True).replace("\ufffe", "\ufffd").replace("\uffff", "\ufffd")
-    return text.encode("utf-8", "replace").decode("utf-8") if _has_surrogate(text) else text
-
-
-def _has_surrogate(text: str) -> bool:
-    return any("\ud800" <= ch <= "\udfff" for ch in text)
+    return text.encode("utf-8", "replace").decode("utf-8")  # lone surrogates -> "?"
 
 
 def _position(diag: Diagnostic) -> str:
