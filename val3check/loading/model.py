@@ -73,6 +73,8 @@ class Value:
     `fields` holds every field of the type with defaults filled in (manual 2.4 and the type's
     chapter), converted: num -> float, bool -> bool, others -> str. `given` lists the field
     names that the file actually wrote. User-type values keep their fields in `members`.
+    Field keys are those of `loading.types.DEFAULTS` (mdesc: `tmax`/`rmax` for the manual's
+    `tvel`/`rvel`, see `loading.types.field_key`).
     """
 
     key: str
@@ -80,11 +82,16 @@ class Value:
     given: tuple[str, ...]
     origin: Origin
     members: dict[str, "Data"] = field(default_factory=dict)
+    father: str | None = None  # this value's frame/tool parent ("fPallet[0]"), from fatherId
 
 
 @dataclass(slots=True)
 class Data:
-    """A global variable (manual 2.5), or a field of a user-type value."""
+    """A global variable (manual 2.5), or a field of a user-type value.
+
+    `values` lists the values the file writes, in file order; indices or keys it does not
+    write take the type's defaults (or, for user types, the type application's defaults).
+    """
 
     name: str
     type: str

@@ -101,7 +101,7 @@ def _snippet(diag: Diagnostic, severity: Severity, sources: SourceCache, style: 
     number = str(diag.line)
     pad = " " * len(number)
     bar = style("|", _GUTTER)
-    display = source.expandtabs(TAB_SIZE)
+    display = source.expandtabs(TAB_SIZE).rstrip()
     lines = [f"{pad} {bar}", f"{style(number, _GUTTER)} {bar}" + (f" {display}" if display else "")]
     span = _underline(diag, source)
     if span is not None:
