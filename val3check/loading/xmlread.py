@@ -110,6 +110,7 @@ def _init_plain() -> None:
 _init_plain()
 _CODE_NO_ELEMENTS = expat.errors.codes[expat.errors.XML_ERROR_NO_ELEMENTS]
 _CODE_TAG_MISMATCH = expat.errors.codes[expat.errors.XML_ERROR_TAG_MISMATCH]
+_CODE_UNCLOSED_CDATA = expat.errors.codes[expat.errors.XML_ERROR_UNCLOSED_CDATA_SECTION]
 _CODE_UNDEFINED_ENTITY = expat.errors.codes[expat.errors.XML_ERROR_UNDEFINED_ENTITY]
 _CODE_ASYNC_ENTITY = expat.errors.codes.get(getattr(expat.errors, "XML_ERROR_ASYNC_ENTITY", ""), -1)
 _CODE_RECURSIVE = expat.errors.codes[expat.errors.XML_ERROR_RECURSIVE_ENTITY_REF]
@@ -473,11 +474,19 @@ def _expat_diagnostic(exc: expat.ExpatError, parser, data: bytes, path: str, sta
             line,
             col,
         )
+    if code == _CODE_UNCLOSED_CDATA:
+        start = data.rfind(b"<![CDATA[", 0, max(parser.ErrorByteIndex, 0) + 1)
+        if start >= 0:
+            line, col = _line_col_of_offset(data[:start].decode("utf-8", "replace"))
+        return Diagnostic("F004", "malformed XML: " + _PLAIN[code], path, line, col)
     if code == _CODE_NO_ELEMENTS:
         if not data.strip():
             return Diagnostic("F004", "malformed XML: the file is empty", path, 0, 0)
         if stack:
-            msg = f"the file ends before the element <{stack[-1].tag}> is closed (is it truncated?)"
+            msg = (
+                f"the file ends before the element <{stack[-1].tag}> opened on line"
+                f" {stack[-1].line} is closed (is it truncated?)"
+            )
         else:
             msg = "the file contains no XML element"
         return Diagnostic("F004", f"malformed XML: {msg}", path, line, col)

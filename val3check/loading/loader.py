@@ -1,0 +1,570 @@
+"""Discovery of applications, loading of their files, libraries and user types."""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+
+from ..diagnostics import Diagnostic
+from . import reader as rd
+from . import resolve as rs
+from .model import Application, LibraryRef, Origin, Program, TypeRef, Workspace
+from .xmlread import Node, read_xml
+
+# Folders never searched for applications (besides hidden ones such as .git).
+SKIP_DIRS = frozenset({"node_modules", "__pycache__", "site-packages", "venv", "virtualenv", "bower_components"})
+
+_EXT_PROJECT = ".pjx"
+_EXT_PROGRAM = ".pgx"
+_EXT_DATA = ".dtx"
+
+
+@dataclass
+class LoadOptions:
+    disk_roots: list[str] = field(default_factory=list)  # --disk-root DIR / config entry, searched after the defaults
+    max_file_size: int = 16 * 1024 * 1024  # bytes; larger files get a diagnostic and are skipped
+
+
+def _key(path: str) -> str:
+    return os.path.normcase(os.path.abspath(path))
+
+
+def _ext(path: str) -> str:
+    return os.path.splitext(path)[1].lower()
+
+
+@dataclass
+class _Folder:
+    path: str
+    projects: list[str]
+    programs: list[str]
+
+
+class Loader:
+    def __init__(self, options: LoadOptions) -> None:
+        self.options = options
+        self.ws = Workspace()
+        self.diags: list[Diagnostic] = []
+        self.claimed: set[str] = set()  # program files listed by a loaded project
+        self.failed: set[str] = set()  # project files that could not be loaded
+        self.lines_read = 0
+        self.bytes_read = 0
+
+    # -- reading ------------------------------------------------------------------------------
+
+    def _read(self, path: str) -> Node | None:
+        res = read_xml(path, self.options.max_file_size)
+        self.diags.extend(res.diagnostics)
+        self.lines_read += res.lines
+        self.bytes_read += res.size
+        return res.root
+
+    def _add_target(self, key: str) -> None:
+        if key not in self.ws.targets:
+            self.ws.targets.append(key)
+
+    # -- projects -----------------------------------------------------------------------------
+
+    def load_project(self, pjx: str) -> Application | None:
+        pjx = os.path.abspath(pjx)
+        if pjx in self.ws.apps:
+            return self.ws.apps[pjx]
+        if pjx in self.failed:
+            return None
+        root = self._read(pjx)
+        layout = None
+        if root is not None:
+            layout, d = rd.check_root(root, "project", pjx)
+            self.diags.extend(d)
+        if root is None or layout is None:
+            self.failed.add(pjx)
+            return None
+        sink = rd.Sink(pjx)
+        pf = rd.read_project(root, sink)
+        app = Application(
+            name=os.path.splitext(os.path.basename(pjx))[0],
+            path=pjx,
+            layout=layout,
+            version=pf.version,
+            stack_size=pf.stack_size,
+            millimeter_unit=pf.millimeter_unit,
+        )
+        app.files.append(pjx)
+        self.ws.apps[pjx] = app
+        folder = os.path.dirname(pjx)
+        seen: dict[str, Node] = {}
+        for kind, entries in (("program", pf.programs), ("data", pf.data)):
+            for rel, node in entries:
+                path = self._listed_file(rel, node, folder, kind, sink)
+                if path is None:
+                    continue
+                k = _key(path)
+                if k in seen:
+                    sink.add("F011", node, f"{kind} file '{rel}' is listed twice (first on line {seen[k].line}); read once")
+                    continue
+                seen[k] = node
+                if kind == "program":
+                    self.claimed.add(k)
+                    self._read_program_file(app, path)
+                else:
+                    self._read_data_file(app, path)
+        for alias, path, auto, node in pf.libraries:
+            if alias in app.libraries:
+                first = app.libraries[alias].origin
+                sink.add("F011", node, f"library alias {alias} is declared twice (first on line {first.line}); the first is used")
+                continue
+            app.libraries[alias] = LibraryRef(alias, path, auto, Origin(pjx, node.line, node.col))
+        for name, path, node in pf.types:
+            if name in app.types:
+                first = app.types[name].origin
+                sink.add("F011", node, f"user type {name} is declared twice (first on line {first.line}); the first is used")
+                continue
+            app.types[name] = TypeRef(name, path, Origin(pjx, node.line, node.col))
+        self.diags.extend(sink.diagnostics)
+        return app
+
+    def _listed_file(self, rel: str, node: Node, folder: str, kind: str, sink: rd.Sink) -> str | None:
+        path = rs.find_path(folder, rel)
+        if path is not None and os.path.isfile(path):
+            return path
+        if path is not None and os.path.isdir(path):
+            sink.add("F001", node, f"{kind} file '{rel}' listed here is a folder, not a file")
+        elif path is not None and os.path.lexists(path):
+            sink.add("F001", node, f"{kind} file '{rel}' listed here cannot be read (broken or looping symbolic link?)")
+        else:
+            sink.add("F001", node, f"{kind} file '{rel}' listed here was not found")
+        return None
+
+    def _read_program_file(self, app: Application, path: str) -> None:
+        app.files.append(path)
+        root = self._read(path)
+        if root is None:
+            return
+        layout, d = rd.check_root(root, "programs", path)
+        self.diags.extend(d)
+        if layout is None:
+            return
+        sink = rd.Sink(path)
+        for prog in rd.read_programs(root, sink):
+            self._add_program(app, prog, sink)
+        self.diags.extend(sink.diagnostics)
+
+    def _add_program(self, app: Application, prog: Program, sink: rd.Sink) -> None:
+        first = app.programs.get(prog.name)
+        if first is not None:
+            where = os.path.basename(first.origin.path)
+            sink.diagnostics.append(
+                Diagnostic(
+                    "F011",
+                    f"program {prog.name} is declared twice in application {app.name} (first in {where}"
+                    f" line {first.origin.line}); the first one is used",
+                    prog.origin.path,
+                    prog.origin.line,
+                    prog.origin.col,
+                )
+            )
+            return
+        app.programs[prog.name] = prog
+
+    def _read_data_file(self, app: Application, path: str) -> None:
+        app.files.append(path)
+        root = self._read(path)
+        if root is None:
+            return
+        layout, d = rd.check_root(root, "data", path)
+        self.diags.extend(d)
+        if layout is None:
+            return
+        sink = rd.Sink(path)
+        datas = rd.read_data_s6(root, sink) if layout == "s6" else rd.read_data_s7(root, sink)
+        for data in datas:
+            first = app.data.get(data.name)
+            if first is not None:
+                sink.diagnostics.append(
+                    Diagnostic(
+                        "F011",
+                        f"global {data.name} is declared twice in application {app.name} (first in"
+                        f" {os.path.basename(first.origin.path)} line {first.origin.line}); the first one is used",
+                        data.origin.path,
+                        data.origin.line,
+                        data.origin.col,
+                    )
+                )
+                continue
+            app.data[data.name] = data
+        self.diags.extend(sink.diagnostics)
+
+    # -- .pgx without project -----------------------------------------------------------------
+
+    def load_pgx_only(self, folder: str, files: list[str]) -> Application:
+        folder = os.path.abspath(folder)
+        app = self.ws.apps.get(folder)
+        if app is None:
+            app = Application(
+                name=os.path.basename(folder) or folder,
+                path=folder,
+                layout="pgx-only",
+                globals_known=False,
+            )
+            self.ws.apps[folder] = app
+            self.diags.append(
+                Diagnostic(
+                    "F009",
+                    "no project file (.pjx): global data, libraries and user types are unknown;"
+                    " undefined-name checks are relaxed and the application parameters"
+                    " (version, stack size, length unit) take their defaults",
+                    folder,
+                )
+            )
+        for f in files:
+            f = os.path.abspath(f)
+            if f in app.files:
+                continue
+            self._read_program_file(app, f)
+        return app
+
+    def _project_listing(self, pjx: str, target: str) -> bool:
+        """Does this project list `target` among its programs or data? (no diagnostics)"""
+        res = read_xml(pjx, self.options.max_file_size)
+        if res.root is None or rd.classify(res.root) is None or rd.classify(res.root)[0] != "project":
+            return False
+        pf = rd.read_project(res.root, rd.Sink(pjx))
+        folder = os.path.dirname(pjx)
+        want = _key(target)
+        for rel, _node in pf.programs + pf.data:
+            p = rs.find_path(folder, rel)
+            if p is not None and _key(p) == want:
+                return True
+        return False
+
+    # -- discovery ----------------------------------------------------------------------------
+
+    def add_path(self, raw: str) -> None:
+        path = os.path.abspath(raw)
+        if not os.path.lexists(path):
+            self.diags.append(Diagnostic("F001", "file or folder not found", path))
+            return
+        try:
+            os.stat(path)
+        except OSError as exc:
+            reason = "too many levels of symbolic links" if getattr(exc, "errno", 0) == 40 else (exc.strerror or str(exc)).lower()
+            self.diags.append(Diagnostic("F001", f"cannot open: {reason}", path))
+            return
+        if os.path.isdir(path):
+            self._add_folder(path)
+        else:
+            self._add_file(path)
+
+    def _add_file(self, path: str) -> None:
+        ext = _ext(path)
+        if ext == _EXT_PROJECT:
+            app = self.load_project(path)
+            if app is not None:
+                self._add_target(app.path)
+            return
+        if ext in (_EXT_PROGRAM, _EXT_DATA):
+            self._add_member_file(path, ext)
+            return
+        # Any other name: look at the content.
+        res = read_xml(path, self.options.max_file_size)
+        if res.root is None:
+            self.diags.extend(res.diagnostics)
+            return
+        got = rd.classify(res.root)
+        if got is not None and got[0] == "project":
+            app = self.load_project(path)
+            if app is not None:
+                self._add_target(app.path)
+        elif got is not None:
+            self._add_member_file(path, _EXT_PROGRAM if got[0] == "programs" else _EXT_DATA)
+        else:
+            self.diags.append(
+                Diagnostic(
+                    "F006",
+                    f"unexpected document: not a VAL 3 file (root <{res.root.tag}>); expected a .pjx"
+                    " project, a .pgx program file or an application folder",
+                    path,
+                    res.root.line,
+                    res.root.col,
+                )
+            )
+
+    def _add_member_file(self, path: str, ext: str) -> None:
+        """A .pgx (or .dtx) given directly.
+
+        If a project file in the same folder lists it, the whole application is loaded and
+        becomes the target (its globals, libraries and types are needed to check the file);
+        otherwise a .pgx is loaded alone as a "pgx-only" application (globals unknown).
+        """
+        folder = os.path.dirname(path)
+        found = False
+        for name in sorted(os.listdir(folder)) if os.path.isdir(folder) else []:
+            if _ext(name) != _EXT_PROJECT:
+                continue
+            pjx = os.path.join(folder, name)
+            if os.path.isfile(pjx) and self._project_listing(pjx, path):
+                app = self.load_project(pjx)
+                if app is not None:
+                    self._add_target(app.path)
+                    found = True
+        if found:
+            return
+        if ext == _EXT_DATA:
+            self.diags.append(
+                Diagnostic(
+                    "F008",
+                    "no VAL 3 application found for this data file: no .pjx in its folder lists it;"
+                    " give the application folder or its .pjx",
+                    path,
+                )
+            )
+            return
+        app = self.load_pgx_only(folder, [path])
+        self._add_target(app.path)
+
+    def _walk(self, top: str) -> list[_Folder]:
+        out: list[_Folder] = []
+        visited: set[tuple[int, int]] = set()
+        stack = [top]
+        while stack:
+            folder = stack.pop()
+            try:
+                st = os.stat(folder)
+            except OSError:
+                continue
+            ident = (st.st_dev, st.st_ino)
+            if ident in visited:
+                continue  # a symbolic link back to a folder already searched
+            visited.add(ident)
+            try:
+                names = sorted(os.listdir(folder))
+            except OSError as exc:
+                reason = "permission denied" if isinstance(exc, PermissionError) else (exc.strerror or str(exc)).lower()
+                self.diags.append(Diagnostic("F001", f"cannot list the folder: {reason}", folder))
+                continue
+            projects, programs, subdirs = [], [], []
+            for n in names:
+                p = os.path.join(folder, n)
+                if os.path.isdir(p):
+                    if n.startswith(".") or n in SKIP_DIRS or os.path.isfile(os.path.join(p, "pyvenv.cfg")):
+                        continue
+                    subdirs.append(p)
+                elif os.path.isfile(p):
+                    e = _ext(n)
+                    if e == _EXT_PROJECT:
+                        projects.append(p)
+                    elif e == _EXT_PROGRAM:
+                        programs.append(p)
+            if projects or programs:
+                out.append(_Folder(folder, projects, programs))
+            stack.extend(reversed(subdirs))  # pre-order, sorted
+        return out
+
+    def _add_folder(self, top: str) -> None:
+        folders = self._walk(top)
+        if not folders:
+            self.diags.append(
+                Diagnostic("F008", "no VAL 3 application (.pjx project or .pgx program file) found in this folder", top)
+            )
+            return
+        loaded: dict[str, list[str]] = {}
+        for f in folders:
+            if not f.projects:
+                continue
+            main = rs.project_in_folder(f.path)
+            chosen = [main] if main is not None else f.projects
+            keys = []
+            for pjx in chosen:
+                app = self.load_project(pjx)
+                if app is not None:
+                    keys.append(app.path)
+            loaded[f.path] = keys
+        for f in folders:
+            keys = loaded.get(f.path)
+            if keys:
+                for k in keys:
+                    self._add_target(k)
+                continue
+            # No project here, or none could be read: the programs alone.
+            free = [p for p in f.programs if _key(p) not in self.claimed]
+            if free:
+                app = self.load_pgx_only(f.path, free)
+                self._add_target(app.path)
+
+    # -- libraries and user types -------------------------------------------------------------
+
+    def resolve_all(self) -> None:
+        queue = list(self.ws.apps.values())
+        i = 0
+        while i < len(queue):
+            app = queue[i]
+            i += 1
+            if app.layout == "pgx-only":
+                continue
+            for ref in app.libraries.values():
+                lib = self._resolve(app, ref, "library")
+                if lib is not None and lib not in queue:
+                    queue.append(lib)
+            for tref in app.types.values():
+                lib = self._resolve(app, tref, "type")
+                if lib is not None and lib not in queue:
+                    queue.append(lib)
+        self._cycles("library")
+        self._cycles("type")
+
+    def _resolve(self, app: Application, ref: LibraryRef | TypeRef, kind: str) -> Application | None:
+        resolved = rs.resolve_library(ref.path, app.path, self.options.disk_roots)
+        if resolved is None:
+            self.diags.append(self._not_found(ref, kind))
+            return None
+        ref.resolved = resolved
+        if resolved in self.ws.apps:
+            return None
+        return self.load_project(resolved)
+
+    def _not_found(self, ref: LibraryRef | TypeRef, kind: str) -> Diagnostic:
+        o = ref.origin
+        tail = ref.path.replace("\\", "/").rstrip("/").rsplit("/", 1)[-1]
+        stem = tail[:-4] if tail.lower().endswith(".pjx") else tail
+        where = (
+            "relative to the project folder" if ref.path.startswith(("./", "../", ".\\", "..\\"))
+            else "in the folder that contains the application folder, in each --disk-root and in the controller's usr/usrapp"
+        )
+        if isinstance(ref, LibraryRef):
+            if ref.alias.lower() == "io" or stem.lower() == "io":
+                return Diagnostic(
+                    "L003",
+                    f"library {ref.alias} ('{ref.path}') is the controller's own I/O library: its"
+                    f" contents come from the controller's configuration, so {ref.alias}: symbols are not checked",
+                    o.path,
+                    o.line,
+                    o.col,
+                )
+            return Diagnostic(
+                "L001",
+                f"library {ref.alias} not found: '{ref.path}' (searched {where}); uses of"
+                f" {ref.alias}: symbols are not checked",
+                o.path,
+                o.line,
+                o.col,
+            )
+        return Diagnostic(
+            "L002",
+            f"user type {ref.name} not found: '{ref.path}' (searched {where}); its fields are not checked",
+            o.path,
+            o.line,
+            o.col,
+        )
+
+    def _edges(self, app: Application, kind: str) -> list[tuple[LibraryRef | TypeRef, str]]:
+        refs = app.libraries.values() if kind == "library" else app.types.values()
+        return [(r, r.resolved) for r in refs if r.resolved is not None and r.resolved in self.ws.apps]
+
+    def _cycles(self, kind: str) -> None:
+        """Manual 6.6: "Il ne peut pas y avoir de références circulaires entre les librairies."
+        Each reference that belongs to a cycle is reported at its declaration, once."""
+        apps = self.ws.apps
+        order = {k: n for n, k in enumerate(apps)}
+        # Tarjan's strongly connected components, iterative, deterministic (insertion order).
+        index: dict[str, int] = {}
+        low: dict[str, int] = {}
+        on_stack: set[str] = set()
+        stack: list[str] = []
+        comp_of: dict[str, int] = {}
+        comps: list[list[str]] = []
+        counter = 0
+        for start in apps:
+            if start in index:
+                continue
+            work = [(start, 0)]
+            while work:
+                v, pi = work.pop()
+                if pi == 0:
+                    index[v] = low[v] = counter
+                    counter += 1
+                    stack.append(v)
+                    on_stack.add(v)
+                succ = [w for _, w in self._edges(apps[v], kind)]
+                recurse = False
+                for j in range(pi, len(succ)):
+                    w = succ[j]
+                    if w not in index:
+                        work.append((v, j + 1))
+                        work.append((w, 0))
+                        recurse = True
+                        break
+                    if w in on_stack:
+                        low[v] = min(low[v], index[w])
+                if recurse:
+                    continue
+                if low[v] == index[v]:
+                    comp = []
+                    while True:
+                        w = stack.pop()
+                        on_stack.discard(w)
+                        comp_of[w] = len(comps)
+                        comp.append(w)
+                        if w == v:
+                            break
+                    comps.append(comp)
+                if work:
+                    parent = work[-1][0]
+                    low[parent] = min(low[parent], low[v])
+        for key in apps:
+            app = apps[key]
+            for ref, target in self._edges(app, kind):
+                if comp_of.get(target) != comp_of.get(key):
+                    continue
+                comp = comps[comp_of[key]]
+                if len(comp) == 1 and target != key:
+                    continue
+                path = self._cycle_path(key, target, comp_of, kind, order)
+                names = " -> ".join(apps[k].name for k in path)
+                o = ref.origin
+                if kind == "library":
+                    msg = (
+                        f"circular library reference: {names} (manual 6.6: if library A uses"
+                        " library B, library B cannot use library A)"
+                    )
+                    self.diags.append(Diagnostic("L004", msg, o.path, o.line, o.col))
+                else:
+                    label = ref.name  # type: ignore[union-attr]
+                    msg = f"circular user type: type {label} ends up containing itself ({names})"
+                    self.diags.append(Diagnostic("L005", msg, o.path, o.line, o.col))
+
+    def _cycle_path(self, start: str, first: str, comp_of: dict[str, int], kind: str, order: dict[str, int]) -> list[str]:
+        """Shortest path start -> first -> ... -> start inside the component (BFS)."""
+        if first == start:
+            return [start, start]
+        prev: dict[str, str] = {first: start}
+        frontier = [first]
+        while frontier:
+            nxt = []
+            for v in frontier:
+                for _, w in self._edges(self.ws.apps[v], kind):
+                    if comp_of.get(w) != comp_of.get(start):
+                        continue
+                    if w == start:
+                        path = [start]
+                        cur = v
+                        chain = []
+                        while cur != start:
+                            chain.append(cur)
+                            cur = prev[cur]
+                        return path + chain[::-1] + [start]
+                    if w not in prev:
+                        prev[w] = v
+                        nxt.append(w)
+            frontier = nxt
+        return [start, first, start]  # pragma: no cover
+
+
+def load_paths(paths: list[str], options: LoadOptions) -> tuple[Workspace, list[Diagnostic], Loader]:
+    loader = Loader(options)
+    for p in paths:
+        try:
+            loader.add_path(p)
+        except OSError as exc:  # pragma: no cover - a race with the file system
+            loader.diags.append(Diagnostic("F001", f"cannot read: {exc.strerror or exc}", os.path.abspath(p)))
+    loader.resolve_all()
+    return loader.ws, loader.diags, loader

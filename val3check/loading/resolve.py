@@ -1,0 +1,132 @@
+"""Find files on disk the way a controller would: case-insensitively, with `\\` or `/`.
+
+Library and user-type paths (manual 6.6, "Chemin d'accès": `racine://Chemin/Nom`, "Par défaut,
+la racine est Disk et le chemin vide") are resolved by `resolve_library`:
+
+- `Disk://X` (or any other root such as `USB0://`): X relative to the folder that contains the
+  application folder (the controller's `usr/usrapp`), then to each `--disk-root`, then to the
+  `usr/usrapp` folder of the controller tree that holds the application, if any;
+- `./X`, `../X`: relative to the folder of the declaring `.pjx`;
+- a bare `X` or `X/Y.pjx`: relative to the `.pjx` folder first, then as `Disk://X`;
+- a path that names a folder means the application of that name inside it (`<dir>/<dir>.pjx`,
+  or the only `.pjx` there); a path without extension that is not a folder gets `.pjx`.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+
+_ROOT = re.compile(r"^([A-Za-z][A-Za-z0-9_\-]*):/+(.*)$")
+
+
+def _listdir(folder: str) -> list[str]:
+    try:
+        return sorted(os.listdir(folder))
+    except OSError:
+        return []
+
+
+def find_path(base: str, rel: str) -> str | None:
+    """`rel` (with `/` or `\\`) under `base`, each component matched exactly first, then
+    ignoring case; the existing path, absolute and normalised, or None."""
+    rel = rel.replace("\\", "/")
+    if rel.startswith("/"):
+        cur = "/"
+    else:
+        cur = base
+    for comp in rel.split("/"):
+        if comp in ("", "."):
+            continue
+        if comp == "..":
+            cur = os.path.dirname(cur.rstrip("/")) or "/"
+            continue
+        nxt = os.path.join(cur, comp)
+        if os.path.lexists(nxt):
+            cur = nxt
+            continue
+        low = comp.lower()
+        match = next((n for n in _listdir(cur) if n.lower() == low), None)
+        if match is None:
+            return None
+        cur = os.path.join(cur, match)
+    return os.path.abspath(cur)
+
+
+def find_file(base: str, rel: str) -> str | None:
+    """A listed file (`<Program file=...>`): like find_path, but only regular files."""
+    p = find_path(base, rel)
+    return p if p is not None and os.path.isfile(p) else None
+
+
+def project_in_folder(folder: str) -> str | None:
+    """The application in a folder: `<folder>.pjx` (any case), else the only .pjx there."""
+    names = [n for n in _listdir(folder) if n.lower().endswith(".pjx") and os.path.isfile(os.path.join(folder, n))]
+    want = os.path.basename(os.path.normpath(folder)).lower() + ".pjx"
+    for n in names:
+        if n.lower() == want:
+            return os.path.abspath(os.path.join(folder, n))
+    if len(names) == 1:
+        return os.path.abspath(os.path.join(folder, names[0]))
+    return None
+
+
+def controller_usrapp(folder: str) -> str | None:
+    """The `<ctrl>/usr/usrapp` folder that contains `folder`, if any."""
+    cur = os.path.abspath(folder)
+    while True:
+        parent = os.path.dirname(cur)
+        if parent == cur:
+            return None
+        if os.path.basename(cur).lower() == "usrapp" and os.path.basename(parent).lower() == "usr":
+            return cur
+        cur = parent
+
+
+def _as_project(candidate: str | None) -> str | None:
+    if candidate is None:
+        return None
+    if os.path.isdir(candidate):
+        return project_in_folder(candidate)
+    if os.path.isfile(candidate):
+        return candidate
+    return None
+
+
+def _try(base: str, rel: str) -> str | None:
+    found = _as_project(find_path(base, rel))
+    if found is None and not rel.lower().endswith(".pjx"):
+        found = _as_project(find_path(base, rel.rstrip("/\\") + ".pjx"))
+    return found
+
+
+def resolve_library(path_text: str, pjx_path: str, disk_roots: list[str]) -> str | None:
+    """The absolute path of the `.pjx` named by a Library/Type path, or None."""
+    text = path_text.strip().replace("\\", "/")
+    pjx_dir = os.path.dirname(os.path.abspath(pjx_path))
+    app_parent = os.path.dirname(pjx_dir)
+    disk_bases = [app_parent] + [os.path.abspath(r) for r in disk_roots]
+    ctrl = controller_usrapp(pjx_dir)
+    if ctrl is not None:
+        disk_bases.append(ctrl)
+    m = _ROOT.match(text)
+    if m:
+        rel = m.group(2)
+        bases = disk_bases
+    elif text.startswith(("./", "../")) or text in (".", ".."):
+        rel, bases = text, [pjx_dir]
+    elif text.startswith("/"):
+        rel, bases = text, ["/"]
+    else:
+        rel, bases = text, [pjx_dir] + disk_bases
+    if not rel.strip("/"):
+        return None
+    seen: set[str] = set()
+    for base in bases:
+        if base in seen:
+            continue
+        seen.add(base)
+        found = _try(base, rel)
+        if found is not None:
+            return os.path.abspath(found)
+    return None
