@@ -79,7 +79,7 @@ class Loader:
         if root is None or layout is None:
             self.failed.add(pjx)
             return None
-        sink = rd.Sink(pjx)
+        sink = rd.Sink(pjx, self.diags)
         pf = rd.read_project(root, sink)
         app = Application(
             name=os.path.splitext(os.path.basename(pjx))[0],
@@ -120,7 +120,6 @@ class Loader:
                 sink.add("F011", node, f"user type {name} is declared twice (first on line {first.line}); the first is used")
                 continue
             app.types[name] = TypeRef(name, path, Origin(pjx, node.line, node.col))
-        self.diags.extend(sink.diagnostics)
         return app
 
     def _listed_file(self, rel: str, node: Node, folder: str, kind: str, sink: rd.Sink) -> str | None:
@@ -144,10 +143,9 @@ class Loader:
         self.diags.extend(d)
         if layout is None:
             return
-        sink = rd.Sink(path)
+        sink = rd.Sink(path, self.diags)
         for prog in rd.read_programs(root, sink):
             self._add_program(app, prog, sink)
-        self.diags.extend(sink.diagnostics)
 
     def _add_program(self, app: Application, prog: Program, sink: rd.Sink) -> None:
         first = app.programs.get(prog.name)
@@ -175,7 +173,7 @@ class Loader:
         self.diags.extend(d)
         if layout is None:
             return
-        sink = rd.Sink(path)
+        sink = rd.Sink(path, self.diags)
         datas = rd.read_data_s6(root, sink) if layout == "s6" else rd.read_data_s7(root, sink)
         for data in datas:
             first = app.data.get(data.name)
@@ -192,7 +190,6 @@ class Loader:
                 )
                 continue
             app.data[data.name] = data
-        self.diags.extend(sink.diagnostics)
 
     # -- .pgx without project -----------------------------------------------------------------
 

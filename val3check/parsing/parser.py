@@ -427,7 +427,10 @@ def _runtime_options() -> dict[str, Any]:
     return dict(
         transformer=_Builder(),
         postlex=_PostLex(),
-        lexer_callbacks={"NAME": _on_name, "BADSTRING": _on_badstring, "BADNUMBER": _on_badnumber},
+        # NAME must be the LAST key: Lark (1.3.1) chains a user callback after its keyword
+        # callback (here for `to`/`step`) with a lambda that reads the loop variable late, so
+        # only the last key's chain runs as it should.
+        lexer_callbacks={"BADSTRING": _on_badstring, "BADNUMBER": _on_badnumber, "NAME": _on_name},
     )
 
 
