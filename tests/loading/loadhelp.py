@@ -22,8 +22,19 @@ def write(path: Path, text: str, *, bom: bool = False, crlf: bool = False) -> Pa
     return path
 
 
-def pjx(programs=("start.pgx", "stop.pgx"), data=(), libraries=(), types=(), params='version="s7.11" stackSize="5000" millimeterUnit="true"') -> str:
-    lines = ['<?xml version="1.0" encoding="utf-8"?>', f'<Project xmlns="{PJX_NS}">', f"  <Parameters {params} />", "  <Programs>"]
+def pjx(
+    programs=("start.pgx", "stop.pgx"),
+    data=(),
+    libraries=(),
+    types=(),
+    params='version="s7.11" stackSize="5000" millimeterUnit="true"',
+) -> str:
+    lines = [
+        '<?xml version="1.0" encoding="utf-8"?>',
+        f'<Project xmlns="{PJX_NS}">',
+        f"  <Parameters {params} />",
+        "  <Programs>",
+    ]
     lines += [f'    <Program file="{p}" />' for p in programs]
     lines += ["  </Programs>", "  <Database>"]
     lines += [f'    <Data file="{d}" />' for d in data]
@@ -58,7 +69,16 @@ def dtx(body: str) -> str:
     )
 
 
-def make_app(folder: Path, name: str | None = None, *, programs=("start", "stop"), data_body: str | None = None, libraries=(), types=(), **kw) -> Path:
+def make_app(
+    folder: Path,
+    name: str | None = None,
+    *,
+    programs=("start", "stop"),
+    data_body: str | None = None,
+    libraries=(),
+    types=(),
+    **kw,
+) -> Path:
     """An s7 application `folder/<name>.pjx` with empty start/stop programs."""
     name = name or folder.name
     files = [f"{p}.pgx" for p in programs]

@@ -71,7 +71,7 @@ def test_escaped_text_with_entities(tmp_path):
     assert prog.code_map.to_file(2, amp + 2) == Position(5, file_line.index("b") + 1)
     line3 = '    x = "\u00e9" // y'
     slash = line3.index("/") + 1
-    assert prog.code_map.to_file(3, slash) == Position(6, '    x = &quot;&#233;&quot; // y'.index("/") + 1)
+    assert prog.code_map.to_file(3, slash) == Position(6, "    x = &quot;&#233;&quot; // y".index("/") + 1)
     # lines without entities need no column map
     assert 0 not in prog.code_map.col_maps and 3 not in prog.code_map.col_maps
     _check_all(text, prog)
@@ -100,7 +100,9 @@ def test_crlf_escaped_text(tmp_path):
 
 
 def test_columns_count_code_points(tmp_path):
-    text, prog = _load_code(tmp_path, "    <Description>\u00e9\u00e9</Description><Code><![CDATA[begin\n  s = \"\u00e9\" x\nend]]></Code>")
+    text, prog = _load_code(
+        tmp_path, '    <Description>\u00e9\u00e9</Description><Code><![CDATA[begin\n  s = "\u00e9" x\nend]]></Code>'
+    )
     start = "    <Description>\u00e9\u00e9</Description><Code><![CDATA[".__len__() + 1
     assert prog.code_map.to_file(1, 1) == Position(4, start)
     assert prog.code_map.to_file(2, 10) == Position(5, 10)  # "x" after a 1-code-point "é"

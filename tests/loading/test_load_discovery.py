@@ -111,7 +111,13 @@ def test_pgx_only_folder(tmp_path):
     assert [(d.code, d.path, d.line) for d in diags] == [("F009", str(folder), 0)]
     assert "global data, libraries and user types are unknown" in diags[0].message
     app = ws.apps[str(folder)]
-    assert (app.name, app.layout, app.globals_known, app.path, app.folder) == ("loose", "pgx-only", False, str(folder), str(folder))
+    assert (app.name, app.layout, app.globals_known, app.path, app.folder) == (
+        "loose",
+        "pgx-only",
+        False,
+        str(folder),
+        str(folder),
+    )
     assert list(app.programs) == ["a", "b"] and app.files == [str(folder / "a.pgx"), str(folder / "b.pgx")]
 
 
@@ -145,6 +151,7 @@ def test_folder_with_pjx_ignores_unlisted_pgx_but_broken_pjx_falls_back(tmp_path
     write(folder / "Cell.pjx", "<Project")
     ws, diags = load([str(folder)])
     assert [d.code for d in diags] == ["F004", "F009"]
+    assert "could not be read" in diags[1].message
     assert set(ws.apps[str(folder)].programs) == {"extra", "start", "stop"}
 
 

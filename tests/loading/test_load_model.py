@@ -3,11 +3,17 @@
 from __future__ import annotations
 
 import pytest
-from loadhelp import DTX_NS, PGX_NS, PJX_NS, XSI, codes, dtx, make_app, pgx, pjx, write
+from loadhelp import DTX_NS, PGX_NS, PJX_NS, XSI, dtx, make_app, pgx, pjx, write
 
 from val3check.loading import load
 from val3check.loading.model import Container
-from val3check.loading.types import BUILTIN_TYPES, arm_family, base_type, defaults, field_key
+from val3check.loading.types import (
+    BUILTIN_TYPES,
+    arm_family,
+    base_type,
+    defaults,
+    field_key,
+)
 
 PICK_CODE = """begin
   // pick a part
@@ -251,10 +257,21 @@ def _dump(app):
 
     def data(d):
         return (
-            d.name, d.type, d.container, d.sizes, d.access, d.father, d.link,
+            d.name,
+            d.type,
+            d.container,
+            d.sizes,
+            d.access,
+            d.father,
+            d.link,
             sorted(
-                (v.key, tuple(sorted(v.fields.items())), tuple(sorted(v.given)), v.father,
-                 tuple((k, data(m)) for k, m in sorted(v.members.items())))
+                (
+                    v.key,
+                    tuple(sorted(v.fields.items())),
+                    tuple(sorted(v.given)),
+                    v.father,
+                    tuple((k, data(m)) for k, m in sorted(v.members.items())),
+                )
                 for v in d.values
             ),
         )
@@ -262,9 +279,14 @@ def _dump(app):
     return {
         "params": (app.stack_size, app.millimeter_unit, app.globals_known),
         "programs": {
-            n: (p.name, p.access, p.description, p.code,
+            n: (
+                p.name,
+                p.access,
+                p.description,
+                p.code,
                 [(q.name, q.type, q.container, q.dimensions, q.by_reference) for q in p.parameters],
-                [(q.name, q.type, q.container, q.sizes) for q in p.locals])
+                [(q.name, q.type, q.container, q.sizes) for q in p.locals],
+            )
             for n, p in sorted(app.programs.items())
         },
         "data": {n: data(d) for n, d in sorted(app.data.items())},
@@ -294,7 +316,11 @@ def test_s7_application(s7_app):
     assert app.programs["start"].access == "private"
     params = {p.name: p for p in pick.parameters}
     assert [p.name for p in pick.parameters] == ["x_pTarget", "x_nCount", "x_nBuf", "x_sColl", "x_bOld"]
-    assert (params["x_pTarget"].container, params["x_pTarget"].by_reference, params["x_pTarget"].dimensions) == (Container.ELEMENT, False, 0)
+    assert (params["x_pTarget"].container, params["x_pTarget"].by_reference, params["x_pTarget"].dimensions) == (
+        Container.ELEMENT,
+        False,
+        0,
+    )
     assert params["x_nCount"].by_reference
     assert (params["x_nBuf"].container, params["x_nBuf"].dimensions) == (Container.ARRAY, 2)
     assert params["x_sColl"].container is Container.COLLECTION
@@ -315,22 +341,52 @@ def test_s7_data(s7_app):
     app = ws.apps[ws.targets[0]]
     d = app.data
     assert list(d) == ["nCount", "fPallet", "pPick", "tGrip", "mFast", "jHome", "sName", "bOk", "diValve", "nCodes"]
-    assert (d["nCount"].container, d["nCount"].sizes, d["nCount"].values[0].fields) == (Container.ARRAY, (1,), {"value": 3.0})
+    assert (d["nCount"].container, d["nCount"].sizes, d["nCount"].values[0].fields) == (
+        Container.ARRAY,
+        (1,),
+        {"value": 3.0},
+    )
     assert d["nCount"].origin.line == 4 and d["nCount"].values[0].origin.line == 5
     p = d["pPick"]
     assert (p.type, p.sizes, p.father, p.access) == ("pointRx", (2,), "fPallet[0]", "public")
     v0, v1 = p.values
-    assert v0.fields == {"x": 500.0, "y": -40.0, "z": 200.0, "rx": 0.0, "ry": 180.0, "rz": 55.0,
-                         "shoulder": "lefty", "elbow": "esame", "wrist": "wsame"}
+    assert v0.fields == {
+        "x": 500.0,
+        "y": -40.0,
+        "z": 200.0,
+        "rx": 0.0,
+        "ry": 180.0,
+        "rz": 55.0,
+        "shoulder": "lefty",
+        "elbow": "esame",
+        "wrist": "wsame",
+    }
     assert v0.given == ("x", "y", "z", "ry", "rz", "shoulder")
     assert v1.fields["shoulder"] == "ssame" and v1.father == "fPallet[0]"
     assert d["fPallet"].father == "world[0]"
     t = d["tGrip"]
-    assert t.values[0].fields == {"x": 0.0, "y": 0.0, "z": 120.5, "rx": 0.0, "ry": 0.0, "rz": 0.0,
-                                  "ioLink": "valve1", "otime": 0.2, "ctime": 0.0}
+    assert t.values[0].fields == {
+        "x": 0.0,
+        "y": 0.0,
+        "z": 120.5,
+        "rx": 0.0,
+        "ry": 0.0,
+        "rz": 0.0,
+        "ioLink": "valve1",
+        "otime": 0.2,
+        "ctime": 0.0,
+    }
     assert (t.father, t.link, t.access) == ("flange[0]", "valve1", "private")
-    assert d["mFast"].values[0].fields == {"accel": 100.0, "vel": 50.0, "decel": 100.0, "tmax": 1000.0,
-                                           "rmax": 9999.0, "blend": "off", "leave": 50.0, "reach": 50.0}
+    assert d["mFast"].values[0].fields == {
+        "accel": 100.0,
+        "vel": 50.0,
+        "decel": 100.0,
+        "tmax": 1000.0,
+        "rmax": 9999.0,
+        "blend": "off",
+        "leave": 50.0,
+        "reach": 50.0,
+    }
     assert d["jHome"].values[0].fields == {"j1": 0.0, "j2": -30.0, "j3": 120.0, "j4": 0.0, "j5": 0.0, "j6": 0.0}
     assert d["sName"].values[0].fields == {"value": "caf\u00e9"}
     assert d["bOk"].values[0].fields == {"value": True}
@@ -458,8 +514,13 @@ def test_bad_program_declarations(tmp_path):
     ws, diags = load([str(folder)])
     start = str(folder / "start.pgx")
     assert [(d.code, d.path, d.line) for d in diags] == [
-        ("F007", start, 5), ("F007", start, 6), ("F007", start, 7), ("F007", start, 8),
-        ("F007", start, 11), ("F007", start, 12), ("F007", start, 13),
+        ("F007", start, 5),
+        ("F007", start, 6),
+        ("F007", start, 7),
+        ("F007", start, 8),
+        ("F007", start, 11),
+        ("F007", start, 12),
+        ("F007", start, 13),
     ], diags
     prog = ws.apps[str(folder / "App.pjx")].programs["start"]
     assert [p.name for p in prog.parameters] == ["x_a", "x_b", "x_c"]
@@ -498,7 +559,10 @@ def test_duplicates_are_f011(tmp_path):
     <Data name="n" access="public" xsi:type="array" type="bool" size="1" />
 """
     write(folder / "App.dtx", dtx(body))
-    write(folder / "App.pjx", pjx(["start.pgx", "stop.pgx", "start2.pgx", "stop.pgx"], ["App.dtx"], [("lib", "./x"), ("lib", "./y")]))
+    write(
+        folder / "App.pjx",
+        pjx(["start.pgx", "stop.pgx", "start2.pgx", "stop.pgx"], ["App.dtx"], [("lib", "./x"), ("lib", "./y")]),
+    )
     ws, diags = load([str(folder)])
     got = [(d.code, d.path.rsplit("/", 1)[1], d.line) for d in diags if d.code == "F011"]
     # in reading order: the program (start2.pgx), the listing (pjx line 8: stop.pgx twice),
@@ -524,7 +588,22 @@ def test_types_helpers():
     assert base_type("configRx") == "config" and base_type("configRs") == "config"
     assert base_type("num") == "num" and base_type("Part") == "Part"
     assert arm_family("pointRs") == "Rs" and arm_family("jointRx") == "Rx" and arm_family("num") is None
-    assert set(BUILTIN_TYPES) >= {"num", "bool", "string", "trsf", "frame", "tool", "point", "joint", "config", "mdesc", "dio", "aio", "sio", "screen"}
+    assert set(BUILTIN_TYPES) >= {
+        "num",
+        "bool",
+        "string",
+        "trsf",
+        "frame",
+        "tool",
+        "point",
+        "joint",
+        "config",
+        "mdesc",
+        "dio",
+        "aio",
+        "sio",
+        "screen",
+    }
     # manual 10.5.1 defaults
     assert list(defaults("mdesc").values()) == [100.0, 100.0, 100.0, 9999.0, 9999.0, "joint", 50.0, 50.0]
     assert field_key("mdesc", "tvel") == "tmax" and field_key("mdesc", "rvel") == "rmax"

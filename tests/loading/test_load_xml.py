@@ -54,7 +54,7 @@ def test_billion_laughs_is_rejected_quickly(tmp_path):
     f, ws, diags = _single(tmp_path, BILLION_LAUGHS)
     f005 = codes(diags, "F005")
     assert len(f005) == 1
-    assert (f005[0].path, f005[0].line) == (str(f), 3)  # the first <!ENTITY
+    assert (f005[0].path, f005[0].line, f005[0].col) == (str(f), 2, 1)  # the <!DOCTYPE that declares them
     assert "lol" in f005[0].message
     # nothing was loaded from the file
     app = ws.apps[ws.targets[0]]
@@ -159,7 +159,12 @@ def test_lone_cr_line_ends(tmp_path):
 @pytest.mark.parametrize(
     "text, line, col, words",
     [
-        ('<?xml version="1.0"?>\n<Programs>\n  <Program name="a">\n</Programs>\n', 4, 3, "does not match the open element <Program>"),
+        (
+            '<?xml version="1.0"?>\n<Programs>\n  <Program name="a">\n</Programs>\n',
+            4,
+            3,
+            "does not match the open element <Program>",
+        ),
         ('<?xml version="1.0"?>\n<Programs>\n  <Program name="a">\n    <Code>begin', 4, 16, "truncated"),
         ('<?xml version="1.0"?>\n<Programs>\n  <Program name="a" name="b"/>\n</Programs>\n', 3, 21, "twice"),
         ('<?xml version="1.0"?>\n<Programs>\n  <Code>if a < b</Code>\n</Programs>\n', 3, 15, "&lt;"),
@@ -250,7 +255,9 @@ def test_utf16_with_bom_is_accepted(tmp_path):
 
 
 def test_declared_encoding_is_ignored_in_favour_of_utf8(tmp_path):
-    f = write(tmp_path / "A" / "start.pgx", pgx("start", "begin\n  // \u00e9t\u00e9\nend").replace("utf-8", "iso-8859-1"))
+    f = write(
+        tmp_path / "A" / "start.pgx", pgx("start", "begin\n  // \u00e9t\u00e9\nend").replace("utf-8", "iso-8859-1")
+    )
     ws, diags = load([str(f)])
     assert "\u00e9t\u00e9" in ws.apps[ws.targets[0]].programs["start"].code
 

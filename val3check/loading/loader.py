@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import errno
 import os
 from dataclasses import dataclass, field
 
@@ -100,7 +101,9 @@ class Loader:
                     continue
                 k = _key(path)
                 if k in seen:
-                    sink.add("F011", node, f"{kind} file '{rel}' is listed twice (first on line {seen[k].line}); read once")
+                    sink.add(
+                        "F011", node, f"{kind} file '{rel}' is listed twice (first on line {seen[k].line}); read once"
+                    )
                     continue
                 seen[k] = node
                 if kind == "program":
@@ -111,13 +114,19 @@ class Loader:
         for alias, path, auto, node in pf.libraries:
             if alias in app.libraries:
                 first = app.libraries[alias].origin
-                sink.add("F011", node, f"library alias {alias} is declared twice (first on line {first.line}); the first is used")
+                sink.add(
+                    "F011",
+                    node,
+                    f"library alias {alias} is declared twice (first on line {first.line}); the first is used",
+                )
                 continue
             app.libraries[alias] = LibraryRef(alias, path, auto, Origin(pjx, node.line, node.col))
         for name, path, node in pf.types:
             if name in app.types:
                 first = app.types[name].origin
-                sink.add("F011", node, f"user type {name} is declared twice (first on line {first.line}); the first is used")
+                sink.add(
+                    "F011", node, f"user type {name} is declared twice (first on line {first.line}); the first is used"
+                )
                 continue
             app.types[name] = TypeRef(name, path, Origin(pjx, node.line, node.col))
         return app
@@ -193,7 +202,8 @@ class Loader:
 
     # -- .pgx without project -----------------------------------------------------------------
 
-    def load_pgx_only(self, folder: str, files: list[str]) -> Application:
+    def load_pgx_only(self, folder: str, files: list[str], unreadable_project: bool = False) -> Application:
+        """The .pgx files of a folder (or one given alone) as an application without project."""
         folder = os.path.abspath(folder)
         app = self.ws.apps.get(folder)
         if app is None:
@@ -207,9 +217,14 @@ class Loader:
             self.diags.append(
                 Diagnostic(
                     "F009",
-                    "no project file (.pjx): global data, libraries and user types are unknown;"
-                    " undefined-name checks are relaxed and the application parameters"
-                    " (version, stack size, length unit) take their defaults",
+                    (
+                        "the project file (.pjx) could not be read, so the programs are checked without it"
+                        if unreadable_project
+                        else "no project file (.pjx)"
+                    )
+                    + ": global data, libraries and user types are unknown; undefined-name checks are"
+                    " relaxed and the application parameters (version, stack size, length unit) take"
+                    " their defaults",
                     folder,
                 )
             )
@@ -244,7 +259,11 @@ class Loader:
         try:
             os.stat(path)
         except OSError as exc:
-            reason = "too many levels of symbolic links" if getattr(exc, "errno", 0) == 40 else (exc.strerror or str(exc)).lower()
+            reason = (
+                "too many levels of symbolic links"
+                if exc.errno == errno.ELOOP
+                else (exc.strerror or str(exc)).lower()
+            )
             self.diags.append(Diagnostic("F001", f"cannot open: {reason}", path))
             return
         if os.path.isdir(path):
@@ -295,7 +314,7 @@ class Loader:
         """
         folder = os.path.dirname(path)
         found = False
-        for name in sorted(os.listdir(folder)) if os.path.isdir(folder) else []:
+        for name in rs.listdir(folder):
             if _ext(name) != _EXT_PROJECT:
                 continue
             pjx = os.path.join(folder, name)
@@ -385,7 +404,7 @@ class Loader:
             # No project here, or none could be read: the programs alone.
             free = [p for p in f.programs if _key(p) not in self.claimed]
             if free:
-                app = self.load_pgx_only(f.path, free)
+                app = self.load_pgx_only(f.path, free, unreadable_project=bool(f.projects))
                 self._add_target(app.path)
 
     # -- libraries and user types -------------------------------------------------------------
@@ -424,7 +443,8 @@ class Loader:
         tail = ref.path.replace("\\", "/").rstrip("/").rsplit("/", 1)[-1]
         stem = tail[:-4] if tail.lower().endswith(".pjx") else tail
         where = (
-            "relative to the project folder" if ref.path.startswith(("./", "../", ".\\", "..\\"))
+            "relative to the project folder"
+            if ref.path.startswith(("./", "../", ".\\", "..\\"))
             else "in the folder that contains the application folder, in each --disk-root and in the controller's usr/usrapp"
         )
         if isinstance(ref, LibraryRef):
@@ -529,7 +549,9 @@ class Loader:
                     msg = f"circular user type: type {label} ends up containing itself ({names})"
                     self.diags.append(Diagnostic("L005", msg, o.path, o.line, o.col))
 
-    def _cycle_path(self, start: str, first: str, comp_of: dict[str, int], kind: str, order: dict[str, int]) -> list[str]:
+    def _cycle_path(
+        self, start: str, first: str, comp_of: dict[str, int], kind: str, order: dict[str, int]
+    ) -> list[str]:
         """Shortest path start -> first -> ... -> start inside the component (BFS)."""
         if first == start:
             return [start, start]
@@ -561,7 +583,8 @@ def load_paths(paths: list[str], options: LoadOptions) -> tuple[Workspace, list[
     for p in paths:
         try:
             loader.add_path(p)
-        except OSError as exc:  # pragma: no cover - a race with the file system
-            loader.diags.append(Diagnostic("F001", f"cannot read: {exc.strerror or exc}", os.path.abspath(p)))
+        except (OSError, ValueError) as exc:  # pragma: no cover - a race with the file system
+            reason = getattr(exc, "strerror", None) or str(exc)
+            loader.diags.append(Diagnostic("F001", f"cannot read: {reason}", os.path.abspath(p)))
     loader.resolve_all()
     return loader.ws, loader.diags, loader

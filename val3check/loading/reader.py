@@ -36,7 +36,11 @@ _S7_NAMES = {
     "programs": "<Programs> in namespace http://www.staubli.com/robotics/VAL3/Program/2",
     "data": "<Database> in namespace http://www.staubli.com/robotics/VAL3/Data/2",
 }
-_WHAT = {"project": "a VAL 3 project file (.pjx)", "programs": "a VAL 3 program file (.pgx)", "data": "a VAL 3 data file (.dtx)"}
+_WHAT = {
+    "project": "a VAL 3 project file (.pjx)",
+    "programs": "a VAL 3 program file (.pgx)",
+    "data": "a VAL 3 data file (.dtx)",
+}
 
 
 def classify(root: Node) -> tuple[str, str] | None:
@@ -100,7 +104,7 @@ def parse_bool(text: str) -> bool | None:
 
 
 def parse_sizes(text: str) -> tuple[int, ...] | None:
-    """"3 4" -> (3, 4); None when not 1 to 3 positive integers."""
+    """ "3 4" -> (3, 4); None when not 1 to 3 positive integers."""
     parts = text.replace(",", " ").split()
     if not 1 <= len(parts) <= 3:
         return None
@@ -136,7 +140,9 @@ def _container(node: Node, sink: Sink, default: Container, what: str) -> Contain
         return default
     c = _CONTAINERS.get(raw.strip().lower())
     if c is None:
-        sink.f007(node, f'{what}: unknown xsi:type "{raw}" (expected element, array or collection); read as {default.value}')
+        sink.f007(
+            node, f'{what}: unknown xsi:type "{raw}" (expected element, array or collection); read as {default.value}'
+        )
         return default
     return c
 
@@ -281,7 +287,9 @@ def _read_local(node: Node, sink: Sink, prog: str) -> Local | None:
         if raw is not None:
             parsed = parse_sizes(raw)
             if parsed is None:
-                sink.f007(node, f'{what}: invalid size "{raw}" (expected 1 to 3 positive integers such as "3 4"); read as 1')
+                sink.f007(
+                    node, f'{what}: invalid size "{raw}" (expected 1 to 3 positive integers such as "3 4"); read as 1'
+                )
             else:
                 sizes = parsed
         if container is Container.ELEMENT:
@@ -330,7 +338,10 @@ def read_data_node(node: Node, sink: Sink, access: str | None, owner: str = "") 
         if raw_size is not None:
             parsed = parse_sizes(raw_size)
             if parsed is None:
-                sink.f007(node, f'{what}: invalid size "{raw_size}" (expected 1 to 3 positive integers such as "3 4"); read as 1')
+                sink.f007(
+                    node,
+                    f'{what}: invalid size "{raw_size}" (expected 1 to 3 positive integers such as "3 4"); read as 1',
+                )
             else:
                 sizes = parsed
     values = []
@@ -362,7 +373,7 @@ def _check_key(node: Node, sink: Sink, key: str, container: Container, sizes: tu
     if len(parts) != len(dims):
         sink.f007(node, f'{what}: key "{key}" has {len(parts)} indices but the array has {len(dims)} dimensions')
         return
-    for p, n in zip(parts, dims):
+    for p, n in zip(parts, dims, strict=True):
         if int(p) >= n:
             sink.f007(node, f'{what}: index "{key}" is outside the array (size "{" ".join(map(str, dims))}")')
             return
@@ -395,7 +406,9 @@ def read_value(node: Node, sink: Sink, typ: str, container: Container, sizes: tu
     return Value(key, fields, given, _origin(sink, node), members, father)
 
 
-def convert_fields(node: Node, sink: Sink, typ: str, attrs: dict[str, str], what: str) -> tuple[dict[str, Any], tuple[str, ...]]:
+def convert_fields(
+    node: Node, sink: Sink, typ: str, attrs: dict[str, str], what: str
+) -> tuple[dict[str, Any], tuple[str, ...]]:
     """Fields of a built-in type with defaults filled in; the names the file gave."""
     if t.is_user_type(typ):
         return {}, ()
@@ -535,7 +548,9 @@ def read_project(root: Node, sink: Sink) -> ProjectFile:
             if raw.strip().isdigit():
                 pf.stack_size = int(raw)
             else:
-                sink.f007(params, f'invalid stackSize "{raw}" (expected a number of bytes); read as 5000 (manual 2.1.4.2)')
+                sink.f007(
+                    params, f'invalid stackSize "{raw}" (expected a number of bytes); read as 5000 (manual 2.1.4.2)'
+                )
         raw = params.get("millimeterUnit")
         if raw is not None:
             b = parse_bool(raw)
@@ -558,7 +573,9 @@ def read_project(root: Node, sink: Sink) -> ProjectFile:
             alias = n.get("alias") if n.ltag == "library" else n.get("name")
             alias = (alias or "").strip()
             if not alias:
-                sink.f007(n, f"<{n.tag}> entry without an {'alias' if n.ltag == 'library' else 'name'} attribute: ignored")
+                sink.f007(
+                    n, f"<{n.tag}> entry without an {'alias' if n.ltag == 'library' else 'name'} attribute: ignored"
+                )
                 continue
             path = (n.get("path") or "").strip()
             if not path and n.ltag == "alias":

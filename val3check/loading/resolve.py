@@ -20,7 +20,8 @@ import re
 _ROOT = re.compile(r"^([A-Za-z][A-Za-z0-9_\-]*):/+(.*)$")
 
 
-def _listdir(folder: str) -> list[str]:
+def listdir(folder: str) -> list[str]:
+    """Sorted names in a folder; [] when it cannot be listed."""
     try:
         return sorted(os.listdir(folder))
     except OSError:
@@ -46,7 +47,7 @@ def find_path(base: str, rel: str) -> str | None:
             cur = nxt
             continue
         low = comp.lower()
-        match = next((n for n in _listdir(cur) if n.lower() == low), None)
+        match = next((n for n in listdir(cur) if n.lower() == low), None)
         if match is None:
             return None
         cur = os.path.join(cur, match)
@@ -61,7 +62,7 @@ def find_file(base: str, rel: str) -> str | None:
 
 def project_in_folder(folder: str) -> str | None:
     """The application in a folder: `<folder>.pjx` (any case), else the only .pjx there."""
-    names = [n for n in _listdir(folder) if n.lower().endswith(".pjx") and os.path.isfile(os.path.join(folder, n))]
+    names = [n for n in listdir(folder) if n.lower().endswith(".pjx") and os.path.isfile(os.path.join(folder, n))]
     want = os.path.basename(os.path.normpath(folder)).lower() + ".pjx"
     for n in names:
         if n.lower() == want:

@@ -33,11 +33,11 @@ def base_type(name: str) -> str:
 
 
 def arm_family(name: str) -> str | None:
-    """"Rx" for `pointRx`, "Rs" for `jointRs`...; None for types that do not depend on the arm."""
+    """ "Rx" for `pointRx`, "Rs" for `jointRs`...; None for types that do not depend on the arm."""
     low = name.lower()
     for base in _ARM_BASES:
         if low.startswith(base) and len(low) == len(base) + 2:
-            suffix = name[len(base):]
+            suffix = name[len(base) :]
             if suffix.lower() in ("rx", "rs"):
                 return suffix[0].upper() + suffix[1].lower()
     return None
@@ -129,7 +129,7 @@ def field_key(type_name: str, field: str) -> str:
 
 
 def field_kind(type_name: str, field: str) -> str:
-    """"num", "bool" or "str": how the field's text is converted."""
+    """ "num", "bool" or "str": how the field's text is converted."""
     base = base_type(type_name)
     default = DEFAULTS.get(base, {}).get(field)
     if isinstance(default, bool):

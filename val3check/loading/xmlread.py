@@ -19,7 +19,11 @@ import stat
 from dataclasses import dataclass, field
 from xml.parsers import expat
 
-from defusedxml.common import DTDForbidden, EntitiesForbidden, ExternalReferenceForbidden
+from defusedxml.common import (
+    DTDForbidden,
+    EntitiesForbidden,
+    ExternalReferenceForbidden,
+)
 
 from ..diagnostics import Diagnostic
 from ..positions import Position, SourceMap
@@ -114,15 +118,23 @@ _CODE_UNCLOSED_CDATA = expat.errors.codes[expat.errors.XML_ERROR_UNCLOSED_CDATA_
 _CODE_UNDEFINED_ENTITY = expat.errors.codes[expat.errors.XML_ERROR_UNDEFINED_ENTITY]
 _CODE_ASYNC_ENTITY = expat.errors.codes.get(getattr(expat.errors, "XML_ERROR_ASYNC_ENTITY", ""), -1)
 _CODE_RECURSIVE = expat.errors.codes[expat.errors.XML_ERROR_RECURSIVE_ENTITY_REF]
-_CODE_AMPLIFICATION = expat.errors.codes.get(
-    getattr(expat.errors, "XML_ERROR_AMPLIFICATION_LIMIT_BREACH", ""), -1
-)
+_CODE_AMPLIFICATION = expat.errors.codes.get(getattr(expat.errors, "XML_ERROR_AMPLIFICATION_LIMIT_BREACH", ""), -1)
 
 
 class _CodeCollector:
     """Builds the text of a code element and its SourceMap from expat's character chunks."""
 
-    __slots__ = ("parts", "starts", "col_maps", "cur_line", "cur_start_col", "cur_len", "next_col", "cur_cols", "pending_cr")
+    __slots__ = (
+        "parts",
+        "starts",
+        "col_maps",
+        "cur_line",
+        "cur_start_col",
+        "cur_len",
+        "next_col",
+        "cur_cols",
+        "pending_cr",
+    )
 
     def __init__(self, line: int, col: int) -> None:
         self.parts: list[str] = []
@@ -280,7 +292,9 @@ def decode(data: bytes, path: str) -> tuple[bytes | None, list[Diagnostic]]:
         try:
             return data.decode("utf-16").encode("utf-8"), []
         except UnicodeDecodeError:
-            return None, [Diagnostic("F003", "the file starts with a UTF-16 byte-order mark but is not valid UTF-16", path)]
+            return None, [
+                Diagnostic("F003", "the file starts with a UTF-16 byte-order mark but is not valid UTF-16", path)
+            ]
     try:
         data.decode("utf-8")
     except UnicodeDecodeError as exc:
@@ -314,7 +328,14 @@ def parse(data: bytes, path: str) -> tuple[Node | None, list[Diagnostic]]:
     collectors: list[_CodeCollector | None] = []
     texts: list[list[str] | None] = []
 
-    def where() -> tuple[int, int]:
+    def where(back_to: bytes | None = None) -> tuple[int, int]:
+        """The current position, or that of the last `back_to` before it (the start of the
+        declaration expat has just read, rather than its end)."""
+        if back_to is not None:
+            bi = parser.CurrentByteIndex
+            start = data.rfind(back_to, 0, max(bi, 0) + len(back_to))
+            if start >= 0:
+                return _line_col_of_offset(data[:start].decode("utf-8", "replace"))
         return parser.CurrentLineNumber, parser.CurrentColumnNumber + 1
 
     def start(name: str, attrs: dict[str, str]) -> None:
@@ -383,7 +404,7 @@ def parse(data: bytes, path: str) -> tuple[Node | None, list[Diagnostic]]:
         state["cdata"] = False
 
     def entity_decl(name, is_param, value, base, sysid, pubid, notation):  # noqa: ANN001
-        line, col = where()
+        line, col = where(b"<!DOCTYPE")
         kind = "parameter entity" if is_param else "entity"
         raise _Forbidden(
             f"the document declares the {kind} '{name}'; entity declarations are not allowed in"
@@ -393,7 +414,7 @@ def parse(data: bytes, path: str) -> tuple[Node | None, list[Diagnostic]]:
         )
 
     def unparsed_decl(name, base, sysid, pubid, notation):  # noqa: ANN001
-        line, col = where()
+        line, col = where(b"<!DOCTYPE")
         raise _Forbidden(
             f"the document declares the unparsed entity '{name}'; entity declarations are not"
             " allowed in VAL 3 files: the file was not read",
@@ -412,7 +433,7 @@ def parse(data: bytes, path: str) -> tuple[Node | None, list[Diagnostic]]:
 
     def doctype(name, sysid, pubid, has_internal):  # noqa: ANN001
         if sysid or pubid:
-            line, col = where()
+            line, col = where(b"<!DOCTYPE")
             raise _Forbidden(
                 "the document type declaration refers to an external DTD; external DTDs are never"
                 " fetched or read: the file was not read",
@@ -492,10 +513,7 @@ def _expat_diagnostic(exc: expat.ExpatError, parser, data: bytes, path: str, sta
         return Diagnostic("F004", f"malformed XML: {msg}", path, line, col)
     if code == _CODE_TAG_MISMATCH and stack:
         open_el = stack[-1]
-        msg = (
-            f"this closing tag does not match the open element <{open_el.tag}>"
-            f" (opened on line {open_el.line})"
-        )
+        msg = f"this closing tag does not match the open element <{open_el.tag}> (opened on line {open_el.line})"
         return Diagnostic("F004", f"malformed XML: {msg}", path, line, col)
     msg = _PLAIN.get(code) or expat.ErrorString(code)
     return Diagnostic("F004", f"malformed XML: {msg}", path, line, col)

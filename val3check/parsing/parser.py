@@ -1,19 +1,27 @@
 """Parse the code of a VAL 3 program into the typed tree of `val3check.parsing.ast`.
 
-The grammar is `grammars/val3.lark` (LALR(1), contextual lexer). Building the LALR tables from
-it takes ~70 ms, so the tables are shipped pre-built in `_tables.py` (regenerate with
+The grammar is `grammars/val3.lark`, compiled by Lark into LALR(1) tables. Building the tables
+takes ~70 ms, so they are shipped pre-built in `_tables.py` (regenerate with
 `python -m val3check.parsing.build_parser`); when the grammar file no longer matches them
-(while editing the grammar) the parser is built from the grammar instead. Everything is built
+(while editing the grammar) they are built from the grammar instead. Everything is built
 lazily, on the first parse.
 
-Syntax errors are diagnostics, never exceptions: F101 (syntax error), F102 (invalid character,
-unterminated string), F103 (invalid number), F104 (nesting too deep). After an error the parser
+The tables are run by a small LALR driver of our own (`_Engine`) rather than by Lark's, for
+speed (about 3x) and for line-based error recovery; it uses Lark's tables, Lark's terminal
+definitions and Lark's tree-building callbacks (child filtering, `?rule` inlining, `[x]`
+placeholders), with `_Builder` as the transformer that makes the ast nodes. Its lexer is
+contextual where the grammar needs it: `to` and `step` are keywords only in a parser state that
+accepts them (inside `for`); the other terminals never compete for the same text.
+
+Syntax errors are diagnostics, never exceptions: F101 (syntax error), F102 (invalid character),
+F103 (invalid number), F104 (unterminated string), F105 (nesting too deep to analyse). After an error the parser
 resynchronises on the next line and goes on, so that independent errors of other lines are
 reported too; errors that could be consequences of an earlier one are not reported.
 """
 
 from __future__ import annotations
 
+import gc
 import hashlib
 import re
 import threading
@@ -25,7 +33,7 @@ from . import ast as A
 
 __all__ = ["parse_code", "parse_program", "scan_comments", "MAX_BLOCK_DEPTH", "MAX_EXPR_DEPTH"]
 
-MAX_ERRORS = 10  # syntax errors reported per program
+MAX_ERRORS = 10  # diagnostics reported per program
 MAX_BLOCK_DEPTH = 64  # nested if/while/do/for/switch blocks
 MAX_EXPR_DEPTH = 100  # nested operations in one expression
 
@@ -45,6 +53,7 @@ KEYWORDS = {
     "true": "TRUE", "false": "FALSE",
     "and": "AND", "or": "OR", "xor": "XOR",
 }
+_CONTEXT_KEYWORDS = {"to": "TO", "step": "STEP"}
 
 # The spelling the manual and the SRS editor use, for messages.
 _SPELLING = {
@@ -56,11 +65,11 @@ _SPELLING = {
     "TO": "to", "STEP": "step",
 }
 _OPENERS = {"IF", "WHILE", "DO", "FOR", "SWITCH"}
+_CLOSERS = {"ENDIF", "ENDWHILE", "UNTIL", "ENDFOR", "ENDSWITCH"}
 _CLOSER_OF = {"IF": "ENDIF", "WHILE": "ENDWHILE", "DO": "UNTIL", "FOR": "ENDFOR", "SWITCH": "ENDSWITCH"}
 _OPENER_OF = {"ELSEIF": "IF", "ELSE": "IF", "ENDIF": "IF", "ENDWHILE": "WHILE", "UNTIL": "DO",
               "ENDFOR": "FOR", "CASE": "SWITCH", "DEFAULT": "SWITCH", "ENDSWITCH": "SWITCH"}
 _STRUCTURAL = set(_OPENER_OF) | {"END", "BEGIN"}
-_CLOSERS = {"ENDIF", "ENDWHILE", "UNTIL", "ENDFOR", "ENDSWITCH"}
 
 _PUNCT = {
     "EQUAL": "'='", "PLUS": "'+'", "MINUS": "'-'", "BANG": "'!'", "LBRACE": "'{'",
@@ -68,29 +77,56 @@ _PUNCT = {
     "_COMMA": "','", "_DOT": "'.'", "_COLON": "':'",
 }
 _EXPR_START = {"NAME", "SYSNAME", "NUMBER", "BADNUMBER", "STRING", "BADSTRING", "TRUE", "FALSE",
-               "_LPAR", "MINUS", "BANG", "LBRACE"}
-_STMT_START = {"CALL", "RETURN", "BREAK", "IF", "WHILE", "DO", "FOR", "SWITCH"}
+               "_LPAR", "MINUS", "BANG", "LBRACE", "ERROR"}
+_STMT_START = {"CALL", "RETURN", "BREAK", "IF", "WHILE", "DO", "FOR", "SWITCH", "NAME", "SYSNAME"}
 _BINOPS = {"EQUAL", "EQOP", "RELOP", "PLUS", "MINUS", "MULOP", "AND", "OR", "XOR"}
 _CLOSING = {"_RPAR": ("_LPAR", "')'", "'('"), "_RSQB": ("_LSQB", "']'", "'['"),
             "_RBRACE": ("LBRACE", "'}'", "'{'")}
 
 
-# ---------------------------------------------------------------- per-parse state
+class Tok:
+    """A token. `line`/`column` are 1-based positions in the CODE text (not the file)."""
+
+    __slots__ = ("type", "value", "line", "column")
+
+    def __init__(self, type_: str, value: str, line: int, column: int) -> None:
+        self.type = type_
+        self.value = value
+        self.line = line
+        self.column = column
+
+    @property
+    def end_line(self) -> int:
+        return self.line
+
+    @property
+    def end_column(self) -> int:
+        return self.column + len(self.value)
+
+    def __repr__(self) -> str:
+        return f"Tok({self.type}, {self.value!r}, {self.line}:{self.column})"
 
 
-class _Context:
-    """What one parse needs: the code, the position mapping, the diagnostics so far."""
+# ---------------------------------------------------------------- tree builder
 
-    def __init__(self, code: str, source_map: SourceMap, path: str) -> None:
-        self.code = code
-        self.sm = source_map
-        self.path = path
-        self.diags: list[Diagnostic] = []
-        self.error_lines: set[int] = set()  # code lines that already have an error
-        self.n_syntax = 0  # F101 reported
-        self.stopped = False
-        self.depth = 0
-        self.deep_token: Any = None  # the opener that went past MAX_BLOCK_DEPTH
+
+def _clip(text: str, n: int = 30) -> str:
+    return text if len(text) <= n else text[: n - 3] + "..."
+
+
+class _Builder:
+    """Tree-building callbacks, one per grammar rule or alias (Lark calls them through its
+    child filters with the list of the rule's kept children: tokens and nodes).
+
+    Positions: `setup()` gives, for each code line, the file line and the column offset, so
+    that the common case (code copied verbatim from a CDATA block) maps with two list reads;
+    lines with a column map (escaped XML text) go through `SourceMap.to_file`.
+    """
+
+    def __init__(self) -> None:
+        self.setup("", SourceMap())
+
+    def setup(self, code: str, source_map: SourceMap) -> None:
         n_lines = code.count("\n") + 1
         starts = source_map.line_starts
         if starts:
@@ -105,154 +141,69 @@ class _Context:
         self.lines = lines
         self.offs = offs
         self.col_maps = source_map.col_maps
+        self.sm = source_map
 
     def fpos(self, line: int, col: int) -> tuple[int, int]:
         """Code (line, col) -> file (line, col)."""
         k = line - 1
-        if self.col_maps and k in self.col_maps or not 0 <= k < len(self.lines):
+        if k in self.col_maps or not 0 <= k < len(self.lines):
             p = self.sm.to_file(line, col)
             return p.line, p.col
         return self.lines[k], self.offs[k] + col
 
-    def report(self, code: str, message: str, line: int, col: int,
-               end_line: int | None = None, end_col: int | None = None) -> None:
-        fl, fc = self.fpos(line, col)
-        fel = fec = None
-        if end_line is not None and end_col is not None:
-            fel, fec = self.fpos(end_line, end_col)
-        self.diags.append(Diagnostic(code, message, self.path, fl, fc, fel, fec))
-        self.error_lines.add(line)
-
-
-_local = threading.local()
-
-
-def _ctx() -> _Context:
-    return _local.ctx
-
-
-# ---------------------------------------------------------------- lexer callbacks
-
-
-def _on_name(tok):
-    """Rename reserved words (any case) to their keyword terminal; count block nesting."""
-    kw = KEYWORDS.get(tok.value.lower())
-    if kw is not None:
-        tok.type = kw
-        if kw in _OPENERS:
-            ctx = _local.ctx
-            ctx.depth += 1
-            if ctx.depth > MAX_BLOCK_DEPTH and ctx.deep_token is None:
-                ctx.deep_token = tok
-        elif kw in _CLOSERS:
-            _local.ctx.depth -= 1
-    return tok
-
-
-def _on_badstring(tok):
-    ctx = _local.ctx
-    if tok.line not in ctx.error_lines:
-        ctx.report("F102", "unterminated string: a string ends with '\"' on the same line",
-                   tok.line, tok.column, tok.end_line, tok.end_column)
-    return tok
-
-
-def _on_badnumber(tok):
-    ctx = _local.ctx
-    text = tok.value
-    if text[:2].lower() in ("0x", "0b"):
-        why = "hexadecimal and binary constants are not VAL 3 numbers (manual 3.2.1)"
-    elif text[:1].isdigit() and re.match(r"[0-9]+[A-Za-z_]", text):
-        why = "a number cannot be followed by letters; names start with a letter"
-    else:
-        why = "numbers are written <digits>[.<digits>][e[-]<digits>] (manual 3.2.1)"
-    if tok.line not in ctx.error_lines:
-        ctx.report("F103", f"invalid number '{_clip(text)}': {why}",
-                   tok.line, tok.column, tok.end_line, tok.end_column)
-    return tok
-
-
-class _PostLex:
-    """Lets the contextual lexer read a NAME in every state, so that `and`, `or`, `xor` (read
-    as names, then renamed) are found after an expression too."""
-
-    always_accept = ("NAME",)
-
-    def process(self, stream):
-        return stream
-
-
-# ---------------------------------------------------------------- tree builder
-
-
-def _clip(text: str, n: int = 30) -> str:
-    return text if len(text) <= n else text[: n - 3] + "..."
-
-
-class _Builder:
-    """Lark callbacks, one per grammar rule (or alias): build the ast nodes during parsing.
-
-    Each callback receives the list of the rule's kept children (tokens and nodes)."""
+    def _span(self, t) -> tuple[int, int, int, int]:
+        k = t.line - 1
+        if k in self.col_maps:
+            l, c = self.fpos(t.line, t.column)
+            el, ec = self.fpos(t.line, t.column + len(t.value))
+            return l, c, el, ec
+        l = self.lines[k]
+        c = self.offs[k] + t.column
+        return l, c, l, c + len(t.value)
 
     # leaves ----------------------------------------------------------
 
     def name(self, c):
         t = c[0]
-        fp = _local.ctx.fpos
-        l, k = fp(t.line, t.column)
-        el, ec = fp(t.end_line, t.end_column)
-        return A.Name(t.value, l, k, el, ec)
+        k = t.line - 1
+        if k in self.col_maps:
+            return A.Name(t.value, *self._span(t))
+        l = self.lines[k]
+        col = self.offs[k] + t.column
+        return A.Name(t.value, l, col, l, col + len(t.value))
 
     def lib_name(self, c):
         a, n = c
-        fp = _local.ctx.fpos
-        l, k = fp(a.line, a.column)
-        el, ec = fp(n.end_line, n.end_column)
+        l, k, _, _ = self._span(a)
+        _, _, el, ec = self._span(n)
         return A.LibraryName(a.value, n.value, l, k, el, ec)
 
     def sys_name(self, c):
         t = c[0]
-        fp = _local.ctx.fpos
-        l, k = fp(t.line, t.column)
-        el, ec = fp(t.end_line, t.end_column)
-        return A.SystemName(t.value, l, k, el, ec)
+        return A.SystemName(t.value, *self._span(t))
 
     def number(self, c):
         t = c[0]
-        fp = _local.ctx.fpos
-        l, k = fp(t.line, t.column)
-        el, ec = fp(t.end_line, t.end_column)
         try:
             value = float(t.value)
         except ValueError:  # BADNUMBER, already reported
             value = float("nan")
-        return A.Number(value, t.value, l, k, el, ec)
+        return A.Number(value, t.value, *self._span(t))
 
     def string(self, c):
         t = c[0]
-        fp = _local.ctx.fpos
-        l, k = fp(t.line, t.column)
-        el, ec = fp(t.end_line, t.end_column)
         v = t.value
-        return A.String(v[1:-1] if t.type == "STRING" else v[1:].rstrip("\r"), l, k, el, ec)
+        return A.String(v[1:-1] if t.type == "STRING" else v[1:], *self._span(t))
 
     def true(self, c):
-        t = c[0]
-        fp = _local.ctx.fpos
-        l, k = fp(t.line, t.column)
-        el, ec = fp(t.end_line, t.end_column)
-        return A.Bool(True, l, k, el, ec)
+        return A.Bool(True, *self._span(c[0]))
 
     def false(self, c):
-        t = c[0]
-        fp = _local.ctx.fpos
-        l, k = fp(t.line, t.column)
-        el, ec = fp(t.end_line, t.end_column)
-        return A.Bool(False, l, k, el, ec)
+        return A.Bool(False, *self._span(c[0]))
 
     def error_expr(self, c):
         t = c[0]
-        return A.ErrorExpr(*_local.ctx.fpos(t.line, t.column))
+        return A.ErrorExpr(*self.fpos(t.line, t.column))
 
     # expressions -----------------------------------------------------
 
@@ -261,7 +212,7 @@ class _Builder:
         fields = c[1:]
         if len(fields) == 1 and fields[0] is None:
             fields = []
-        return A.Struct(fields, *_local.ctx.fpos(t.line, t.column))
+        return A.Struct(fields, *self.fpos(t.line, t.column))
 
     def args(self, c):
         return c
@@ -276,11 +227,11 @@ class _Builder:
 
     def field(self, c):
         base, t = c
-        return A.Field(base, t.value, base.line, base.col, *_local.ctx.fpos(t.line, t.column))
+        return A.Field(base, t.value, base.line, base.col, *self.fpos(t.line, t.column))
 
     def unary(self, c):
         t, operand = c
-        l, k = _local.ctx.fpos(t.line, t.column)
+        l, k = self.fpos(t.line, t.column)
         if t.value == "-" and type(operand) is A.Number and not operand.text.startswith("-"):
             # fold `-3` into a constant (3.2.1: `[-]<digits>...`)
             return A.Number(-operand.value, "-" + operand.text, l, k, operand.end_line, operand.end_col)
@@ -291,11 +242,11 @@ class _Builder:
         op = t.value
         if t.type in ("AND", "OR", "XOR"):
             op = op.lower()
-        return A.Binary(op, left, right, left.line, left.col, *_local.ctx.fpos(t.line, t.column))
+        return A.Binary(op, left, right, left.line, left.col, *self.fpos(t.line, t.column))
 
     def assign_expr(self, c):
         target, t, value = c
-        return A.AssignExpr(target, value, target.line, target.col, *_local.ctx.fpos(t.line, t.column))
+        return A.AssignExpr(target, value, target.line, target.col, *self.fpos(t.line, t.column))
 
     # statements ------------------------------------------------------
 
@@ -304,7 +255,7 @@ class _Builder:
 
     def assign(self, c):
         target, t, value = c
-        return A.Assign(target, value, target.line, target.col, *_local.ctx.fpos(t.line, t.column))
+        return A.Assign(target, value, target.line, target.col, *self.fpos(t.line, t.column))
 
     def expr_stmt(self, c):
         call = c[0]
@@ -312,29 +263,28 @@ class _Builder:
 
     def call_stmt(self, c):
         t, target, args = c
-        return A.Call(target, args if args is not None else [], *_local.ctx.fpos(t.line, t.column))
+        return A.Call(target, args if args is not None else [], *self.fpos(t.line, t.column))
 
     def return_stmt(self, c):
         t = c[0]
-        return A.Return(*_local.ctx.fpos(t.line, t.column))
+        return A.Return(*self.fpos(t.line, t.column))
 
     def break_stmt(self, c):
         t = c[0]
-        return A.Break(*_local.ctx.fpos(t.line, t.column))
+        return A.Break(*self.fpos(t.line, t.column))
 
     def error_stmt(self, c):
         t = c[0]
-        return A.ErrorStatement(*_local.ctx.fpos(t.line, t.column))
+        return A.ErrorStatement(*self.fpos(t.line, t.column))
 
     def if_stmt(self, c):
-        fp = _local.ctx.fpos
         t, cond, body = c[0], c[1], c[2]
         end = c[-1]
         orelse = c[-2]
-        l, k = fp(t.line, t.column)
+        l, k = self.fpos(t.line, t.column)
         branches = [A.Branch(cond, body, l, k)]
         branches.extend(c[3:-2])
-        el, ec = fp(end.end_line, end.end_column)
+        el, ec = self.fpos(end.line, end.column + len(end.value))
         if orelse is None:
             return A.If(branches, None, l, k, 0, 0, el, ec)
         ol, oc, obody = orelse
@@ -342,70 +292,62 @@ class _Builder:
 
     def elseif_clause(self, c):
         t, cond, body = c
-        return A.Branch(cond, body, *_local.ctx.fpos(t.line, t.column))
+        return A.Branch(cond, body, *self.fpos(t.line, t.column))
 
     def else_clause(self, c):
         t, body = c
-        l, k = _local.ctx.fpos(t.line, t.column)
+        l, k = self.fpos(t.line, t.column)
         return (l, k, body)
 
     def while_stmt(self, c):
-        fp = _local.ctx.fpos
         t, cond, body, end = c
-        l, k = fp(t.line, t.column)
-        el, ec = fp(end.end_line, end.end_column)
+        l, k = self.fpos(t.line, t.column)
+        el, ec = self.fpos(end.line, end.column + len(end.value))
         return A.While(cond, body, l, k, el, ec)
 
     def do_stmt(self, c):
-        fp = _local.ctx.fpos
         t, body, u, cond = c
-        l, k = fp(t.line, t.column)
-        ul, uc = fp(u.line, u.column)
+        l, k = self.fpos(t.line, t.column)
+        ul, uc = self.fpos(u.line, u.column)
         return A.DoUntil(body, cond, l, k, ul, uc)
 
     def for_header(self, c):
         if len(c) == 1:  # ERROR (recovery)
-            e = A.ErrorExpr(*_local.ctx.fpos(c[0].line, c[0].column))
+            e = A.ErrorExpr(*self.fpos(c[0].line, c[0].column))
             return (e, e, e, None)
         counter, _eq, start, _to, stop, _step, step = c
         return (counter, start, stop, step)
 
     def for_stmt(self, c):
-        fp = _local.ctx.fpos
         t, (counter, start, stop, step), body, end = c
-        l, k = fp(t.line, t.column)
-        el, ec = fp(end.end_line, end.end_column)
+        l, k = self.fpos(t.line, t.column)
+        el, ec = self.fpos(end.line, end.column + len(end.value))
         return A.For(counter, start, stop, step, body, l, k, el, ec)
 
     def case_clause(self, c):
         t = c[0]
-        return A.Case(c[1:-1], c[-1], *_local.ctx.fpos(t.line, t.column))
+        return A.Case(c[1:-1], c[-1], *self.fpos(t.line, t.column))
 
     def default_clause(self, c):
         t, body = c
-        return A.Default(body, *_local.ctx.fpos(t.line, t.column))
+        return A.Default(body, *self.fpos(t.line, t.column))
 
     def switch_stmt(self, c):
-        fp = _local.ctx.fpos
         t, subject = c[0], c[1]
         end = c[-1]
         default = c[-2]
-        l, k = fp(t.line, t.column)
-        el, ec = fp(end.end_line, end.end_column)
+        l, k = self.fpos(t.line, t.column)
+        el, ec = self.fpos(end.line, end.column + len(end.value))
         return A.Switch(subject, c[2:-2], default, l, k, el, ec)
 
     def start(self, c):
-        fp = _local.ctx.fpos
         b, stmts, e = c
-        l, k = fp(b.line, b.column)
-        el, ec = fp(e.end_line, e.end_column)
+        l, k = self.fpos(b.line, b.column)
+        el, ec = self.fpos(e.line, e.column + len(e.value))
         return A.ProgramBody(stmts, [], l, k, el, ec)
 
 
-# ---------------------------------------------------------------- building the Lark parser
-
-_build_lock = threading.Lock()
-_parser: Any = None
+# ---------------------------------------------------------------- the grammar and its tables
 
 
 def grammar_text() -> str | None:
@@ -423,53 +365,336 @@ def grammar_hash(text: str) -> str:
     return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
 
-def _runtime_options() -> dict[str, Any]:
-    return dict(
-        transformer=_Builder(),
-        postlex=_PostLex(),
-        # NAME must be the LAST key: Lark (1.3.1) chains a user callback after its keyword
-        # callback (here for `to`/`step`) with a lambda that reads the loop variable late, so
-        # only the last key's chain runs as it should.
-        lexer_callbacks={"BADSTRING": _on_badstring, "BADNUMBER": _on_badnumber, "NAME": _on_name},
-    )
-
-
-def build_from_grammar(text: str):
+def build_from_grammar(text: str, transformer: Any = None):
     """A Lark parser built from the grammar text (slow: ~70 ms)."""
     from lark import Lark
 
-    return Lark(text, **LARK_OPTIONS, **_runtime_options())
+    return Lark(text, **LARK_OPTIONS, transformer=transformer)
 
 
-def _load_shipped():
+def _load_shipped(transformer: Any = None):
     from lark import Lark
 
     from . import _tables
 
-    return Lark._load_from_dict(_tables.DATA, _tables.MEMO, **_runtime_options())
+    return Lark._load_from_dict(_tables.DATA, _tables.MEMO, transformer=transformer)
 
 
-def get_parser():
-    """The Lark parser, built on first use: from the shipped tables when they match the grammar
-    file, else from the grammar file itself."""
-    global _parser
-    if _parser is None:
-        with _build_lock:
-            if _parser is None:
-                text = grammar_text()
-                parser = None
-                try:
-                    from . import _tables
+def _load_lark(transformer: Any):
+    """The Lark object: from the shipped tables when they match the grammar file, else from
+    the grammar file itself."""
+    text = grammar_text()
+    try:
+        from . import _tables
 
-                    if text is None or _tables.GRAMMAR_SHA256 == grammar_hash(text):
-                        parser = _load_shipped()
-                except Exception:  # missing/incompatible tables: fall back on the grammar
-                    if text is None:
-                        raise
-                if parser is None:
-                    parser = build_from_grammar(text)  # type: ignore[arg-type]
-                _parser = parser
-    return _parser
+        if text is None or _tables.GRAMMAR_SHA256 == grammar_hash(text):
+            return _load_shipped(transformer)
+    except Exception:  # missing or incompatible tables: fall back on the grammar
+        if text is None:
+            raise
+    return build_from_grammar(text, transformer)  # type: ignore[arg-type]
+
+
+# ---------------------------------------------------------------- the engine
+
+
+def _is_unit(rule: Any) -> bool:
+    """A `?rule` alternative made of one other rule: Lark's callback returns the child."""
+    if len(rule.expansion) != 1 or not rule.options.expand1 or rule.alias:
+        return False
+    sym = rule.expansion[0]
+    return not sym.is_term and not sym.name.startswith("_")
+
+
+class _Stop(Exception):
+    """Internal: parsing ends here (an error that cannot be recovered from)."""
+
+
+class _Engine:
+    """LALR(1) driver over Lark's tables, with its own lexer and line-based error recovery."""
+
+    def __init__(self) -> None:
+        self.builder = _Builder()
+        lk = _load_lark(self.builder)
+        lalr = lk.parser.parser  # LALR_Parser
+        table = lalr._parse_table
+        callbacks = lalr.parser.callbacks
+        # actions[state][symbol]: int = shift to (or goto) that state;
+        # tuple = reduce (number of children, rule name, callback)
+        actions: list[dict[str, Any]] = [dict() for _ in range(len(table.states))]
+        for state, row in table.states.items():
+            acts = actions[state]
+            for sym, (_kind, arg) in row.items():
+                if type(arg) is int:
+                    acts[sym] = arg
+                elif _is_unit(arg):  # `?rule: other_rule`: the value passes through unchanged
+                    acts[sym] = (1, arg.origin.name, None)
+                else:
+                    acts[sym] = (len(arg.expansion), arg.origin.name, callbacks[arg])
+        self.actions = actions
+        self.start_state = table.start_states["start"]
+        self.end_state = table.end_states["start"]
+        self.unit_memo: dict[tuple[int, int, str], int] = {}
+        self.expected = [frozenset(k for k in acts if k.isupper()) for acts in actions]
+
+        # One regex for all the terminals, in Lark's order (priority, then longest possible
+        # match, then longest pattern); leading blanks are skipped by the regex itself.
+        terms = [t for t in lk.terminals if t.name not in ("WS", "TO", "STEP")]
+        terms.sort(key=lambda t: (-t.priority, -t.pattern.max_width, -len(t.pattern.value), t.name))
+        alts = "|".join(f"(?P<{t.name}>{t.pattern.to_regexp()})" for t in terms)
+        self.regex = re.compile(r"[ \t\f\r]*(?:" + alts + r"|(?P<EOF>\Z))")
+
+    # -------------------------------------------------------------- driver
+
+    def parse(self, ctx: "_Context") -> Any:
+        text = ctx.code
+        match = self.regex.match
+        actions = self.actions
+        end_state = self.end_state
+        keywords = KEYWORDS
+        ctx_keywords = _CONTEXT_KEYWORDS
+        openers = _OPENERS
+        closers = _CLOSERS
+        unit_memo = self.unit_memo
+        state_stack = [self.start_state]
+        value_stack: list = []
+        ctx.state_stack = state_stack
+        ctx.value_stack = value_stack
+        pos = 0
+        line = 1
+        line_start = 0
+        depth = 0
+        while True:
+            m = match(text, pos)
+            if m is None:
+                # no terminal matches: an invalid character
+                p = pos
+                while text[p] in " \t\f\r":
+                    p += 1
+                ch = text[p]
+                col = p - line_start + 1
+                ctx.report("F102", _char_message(ch), line, col, line, col + 1)
+                pos = self._recover(ctx, None, line, col, p)
+                continue
+            typ = m.lastgroup
+            start = m.start(typ)
+            end = m.end()
+            value = text[start:end]
+            tok = Tok(typ, value, line, start - line_start + 1)
+            pos = end
+            if typ == "NAME":
+                low = value.lower()
+                kw = keywords.get(low)
+                if kw is not None:
+                    tok.type = kw
+                    if kw in openers:
+                        depth += 1
+                        if depth > MAX_BLOCK_DEPTH and ctx.deep_token is None:
+                            ctx.deep_token = tok
+                    elif kw in closers:
+                        depth -= 1
+                elif low in ctx_keywords and ctx_keywords[low] in actions[state_stack[-1]]:
+                    tok.type = ctx_keywords[low]
+            elif typ == "_NL":
+                line += value.count("\n")
+                line_start = start + value.rindex("\n") + 1
+            elif typ == "COMMENT":
+                continue
+            elif typ == "EOF":
+                tok.type = "$END"
+            elif typ == "BADSTRING":
+                ctx.report("F104", "unterminated string: a string ends with '\"' on the same line",
+                           tok.line, tok.column, tok.line, tok.column + len(value))
+            elif typ == "BADNUMBER":
+                ctx.report("F103", _number_message(value), tok.line, tok.column, tok.line, tok.column + len(value))
+
+            # feed the token to the LALR automaton
+            ttype = tok.type
+            while True:
+                act = actions[state_stack[-1]].get(ttype)
+                if act is None:
+                    pos = self._recover(ctx, tok, tok.line, tok.column, pos)
+                    break
+                if act.__class__ is int:
+                    state_stack.append(act)
+                    value_stack.append(tok)
+                    break
+                size, origin, callback = act
+                if callback is None:  # unit rules: only the state changes; chains are memoised
+                    key = (state_stack[-2], state_stack[-1], ttype)
+                    new_state = unit_memo.get(key)
+                    if new_state is None:
+                        new_state = unit_memo[key] = self._unit_chain(key)
+                    state_stack[-1] = new_state
+                    continue
+                if size:
+                    children = value_stack[-size:]
+                    del value_stack[-size:]
+                    del state_stack[-size:]
+                else:
+                    children = []
+                value_stack.append(callback(children))
+                new_state = actions[state_stack[-1]][origin]
+                state_stack.append(new_state)
+                if new_state == end_state and ttype == "$END":
+                    return value_stack[-1]
+
+    def _unit_chain(self, key: tuple[int, int, str]) -> int:
+        """The state reached from `top` (above `below`) by the unit reductions that the
+        lookahead triggers."""
+        below, state, ttype = key
+        actions = self.actions
+        while True:
+            act = actions[state].get(ttype)
+            if act.__class__ is not tuple or act[2] is not None:
+                return state
+            state = actions[below][act[1]]
+
+    def accepts(self, state_stack: list[int]) -> frozenset[str]:
+        """The terminals that can really come next (LALR lookahead sets of merged states are
+        wider): each candidate is tried on a copy of the state stack."""
+        actions = self.actions
+        end_state = self.end_state
+        out = set()
+        for t in self.expected[state_stack[-1]]:
+            states = list(state_stack)
+            while True:
+                act = actions[states[-1]].get(t)
+                if act is None:
+                    break
+                if act.__class__ is int:
+                    out.add(t)
+                    break
+                size, origin = act[0], act[1]
+                if size:
+                    del states[-size:]
+                states.append(actions[states[-1]][origin])
+                if states[-1] == end_state and t == "$END":
+                    out.add(t)
+                    break
+        return frozenset(out)
+
+    @staticmethod
+    def _feed(actions, end_state, state_stack, value_stack, tok) -> bool:
+        """Feed one token (error recovery); False when the automaton rejects it."""
+        ttype = tok.type
+        while True:
+            act = actions[state_stack[-1]].get(ttype)
+            if act is None:
+                return False
+            if act.__class__ is int:
+                state_stack.append(act)
+                value_stack.append(tok)
+                return True
+            size, origin, callback = act
+            if callback is None:
+                state_stack[-1] = actions[state_stack[-2]][origin]
+                continue
+            if size:
+                children = value_stack[-size:]
+                del value_stack[-size:]
+                del state_stack[-size:]
+            else:
+                children = []
+            value_stack.append(callback(children))
+            new_state = actions[state_stack[-1]][origin]
+            state_stack.append(new_state)
+            if new_state == end_state and ttype == "$END":
+                return True
+
+    # -------------------------------------------------------------- errors
+
+    def _recover(self, ctx: "_Context", bad: Tok | None, line: int, col: int, pos: int) -> int:
+        """Report a syntax error at `bad` (None: an invalid character, already reported), then
+        resynchronise: skip the rest of the line and bring the automaton to a state that
+        accepts the line end, by popping states until an ERROR placeholder (an expression, a
+        statement or a `for` header) can complete the line. Returns the position to lex from.
+        Raises _Stop when the parse cannot go on usefully."""
+        state_stack = ctx.state_stack
+        value_stack = ctx.value_stack
+        if bad is not None:
+            expected = self.accepts(state_stack)
+            msg = _syntax_message(ctx, bad, expected, value_stack)
+            if msg.structural and ctx.n_syntax:
+                raise _Stop  # probably a consequence of an earlier error
+            if bad.type in ("_NL", "$END"):
+                ctx.report("F101", msg.text, line, col)
+            else:
+                ctx.report("F101", msg.text, line, col, line, col + len(bad.value))
+            ctx.n_syntax += 1
+            if msg.structural or bad.type == "$END":
+                raise _Stop
+        if len(ctx.diags) >= MAX_ERRORS:
+            raise _Stop
+
+        text = ctx.code
+        nl_consumed = bad is not None and bad.type == "_NL"
+        if not nl_consumed:
+            nl = text.find("\n", pos)
+            pos = nl if nl >= 0 else len(text)
+        nl_tok = bad if nl_consumed else Tok("_NL", "\n", line, col)
+        err_tok = Tok("ERROR", "", line, col)
+        actions = self.actions
+        end_state = self.end_state
+        feed = self._feed
+        for n_pop in range(min(len(state_stack) - 1, 100) + 1):
+            keep = len(state_stack) - n_pop
+            for seq in ((nl_tok,), (err_tok, nl_tok)):
+                states, values = state_stack[:keep], value_stack[: keep - 1]
+                if not all(feed(actions, end_state, states, values, t) for t in seq):
+                    continue
+                # it works: do it for real; the lexer reads the line end next, unless the
+                # error was at the line end itself
+                states, values = state_stack[:keep], value_stack[: keep - 1]
+                for t in seq if nl_consumed else seq[:-1]:
+                    feed(actions, end_state, states, values, t)
+                state_stack[:] = states
+                value_stack[:] = values
+                return pos
+        raise _Stop
+
+
+# ---------------------------------------------------------------- per-parse state
+
+
+class _Context:
+    """What one parse needs besides the engine: the code, the diagnostics so far."""
+
+    def __init__(self, code: str, path: str, builder: _Builder) -> None:
+        self.code = code
+        self.path = path
+        self.builder = builder
+        self.diags: list[Diagnostic] = []
+        self.error_lines: set[int] = set()  # code lines that already have an error
+        self.n_syntax = 0  # F101 reported
+        self.deep_token: Tok | None = None  # the opener that went past MAX_BLOCK_DEPTH
+        self.state_stack: list = []
+        self.value_stack: list = []
+
+    def report(self, code: str, message: str, line: int, col: int,
+               end_line: int | None = None, end_col: int | None = None) -> None:
+        """Report at a code position, unless the line already has an error."""
+        if line in self.error_lines:
+            return
+        fl, fc = self.builder.fpos(line, col)
+        fel = fec = None
+        if end_line is not None and end_col is not None:
+            fel, fec = self.builder.fpos(end_line, end_col)
+        self.diags.append(Diagnostic(code, message, self.path, fl, fc, fel, fec))
+        self.error_lines.add(line)
+
+
+_engine: _Engine | None = None
+_lock = threading.RLock()  # one parse at a time (the builder holds per-parse state)
+
+
+def get_engine() -> _Engine:
+    global _engine
+    if _engine is None:
+        with _lock:
+            if _engine is None:
+                _engine = _Engine()
+    return _engine
 
 
 # ---------------------------------------------------------------- comments
@@ -479,7 +704,7 @@ _COMMENT_SCAN = re.compile(r'"[^"\n]*"?|//[^\n]*')
 
 def scan_comments(code: str, source_map: SourceMap | None = None) -> list[A.Comment]:
     """Every `//` comment of `code` (outside strings), with file positions. Works on code with
-    syntax errors too (the lint driver reads suppression comments there)."""
+    syntax errors too: the lint driver can read suppression comments there."""
     sm = source_map if source_map is not None else SourceMap()
     out: list[A.Comment] = []
     line = 1
@@ -505,7 +730,7 @@ def scan_comments(code: str, source_map: SourceMap | None = None) -> list[A.Comm
 # ---------------------------------------------------------------- error messages
 
 
-def _describe(tok) -> str:
+def _describe(tok: Tok) -> str:
     """A found token, in words."""
     t = tok.type
     if t == "NAME":
@@ -520,17 +745,20 @@ def _describe(tok) -> str:
         return "end of line"
     if t == "$END":
         return "end of the program"
-    if t in KEYWORDS.values() or t in ("TO", "STEP"):
-        return f"'{tok.value}'"
     return f"'{tok.value}'"
 
 
-def _expected_words(expected: set[str]) -> list[str]:
-    exp = set(expected) - {"ERROR", "BADNUMBER", "BADSTRING", "COMMENT", "WS"}
+def _expected_order(t: str) -> tuple[int, str]:
+    order = ["EQUAL", "_LPAR", "_RPAR", "_RSQB", "_RBRACE", "_COMMA", "TO", "STEP", "_NL", "$END"]
+    return (order.index(t) if t in order else len(order), t)
+
+
+def _expected_words(expected: frozenset[str] | set[str]) -> list[str]:
+    exp = set(expected) - {"ERROR", "BADNUMBER", "BADSTRING", "COMMENT"}
     words: list[str] = []
     if exp >= {"IF", "WHILE", "CALL"}:
         words.append("a statement")
-        exp -= _STMT_START | {"NAME", "SYSNAME"}
+        exp -= _STMT_START
     elif exp >= {"NAME", "NUMBER", "STRING"}:
         words.append("an expression")
         exp -= _EXPR_START
@@ -561,13 +789,8 @@ def _expected_words(expected: set[str]) -> list[str]:
         elif t == "MULOP":
             words.append("'*', '/' or '%'")
         else:
-            words.append(t.lower())
+            words.append(t.lower().strip("_"))
     return words
-
-
-def _expected_order(t: str) -> tuple[int, str]:
-    order = ["EQUAL", "_LPAR", "_RPAR", "_RSQB", "_RBRACE", "_COMMA", "TO", "STEP", "_NL", "$END"]
-    return (order.index(t) if t in order else len(order), t)
 
 
 def _join(words: list[str]) -> str:
@@ -578,102 +801,100 @@ def _join(words: list[str]) -> str:
     return ", ".join(words[:-1]) + " or " + words[-1]
 
 
-def _open_blocks(value_stack: list) -> list:
-    """Keyword tokens still on the parser stack: the blocks (and clauses) not yet closed."""
-    out = []
-    for v in value_stack:
-        if getattr(v, "type", None) in _OPENERS or getattr(v, "type", None) in ("ELSE", "DEFAULT", "BEGIN"):
-            out.append(v)
-    return out
-
-
-def _token_before(value_stack: list):
-    """The last token shifted, when the top of the stack is a token."""
-    if value_stack:
-        v = value_stack[-1]
-        if hasattr(v, "type") and hasattr(v, "column"):
-            return v
-    return None
-
-
 class _Message:
-    def __init__(self, text: str, structural: bool, tok=None):
+    def __init__(self, text: str, structural: bool) -> None:
         self.text = text
-        self.structural = structural  # stop after this error: the block structure is unknown
-        self.tok = tok  # where to report, when not at the found token
+        self.structural = structural  # stop after this error: the block structure is unclear
 
 
-def _syntax_message(tok, expected: set[str], value_stack: list) -> _Message:
-    ctx = _local.ctx
+def _syntax_message(ctx: _Context, tok: Tok, expected: frozenset[str], value_stack: list) -> _Message:
+    """Say what was found and what was expected, in words, like a compiler would."""
     t = tok.type
     found = _describe(tok)
-    blocks = _open_blocks(value_stack)
+    # keyword tokens still on the stack: the blocks and clauses not closed yet
+    blocks = [v for v in value_stack if v.__class__ is Tok and v.type in _OPENERS | {"ELSE", "DEFAULT"}]
     inner = blocks[-1] if blocks else None
-    opener = None
-    for b in reversed(blocks):
-        if b.type in _OPENERS:
-            opener = b
-            break
+    opener = next((b for b in reversed(blocks) if b.type in _OPENERS), None)
+    top = value_stack[-1] if value_stack and value_stack[-1].__class__ is Tok else None
 
-    def line_of(b) -> int:
-        return ctx.fpos(b.line, b.column)[0]
+    def line_of(b: Tok) -> int:
+        return ctx.builder.fpos(b.line, b.column)[0]
 
-    def opened(b) -> str:
-        return f"the '{_SPELLING[b.type]}' opened on line {line_of(b)} is not closed (expected '{_SPELLING[_CLOSER_OF[b.type]]}')"
+    def opened(b: Tok, before: str = "") -> str:
+        return (f"the '{_SPELLING[b.type]}' opened on line {line_of(b)} is not closed "
+                f"(expected '{_SPELLING[_CLOSER_OF[b.type]]}'{before})")
 
     # beginning and end of the program
     if "BEGIN" in expected:
         if t == "$END":
             return _Message("empty program: expected 'begin'", True)
         return _Message(f"unexpected {found}: a program starts with 'begin'", True)
-    top = _token_before(value_stack)
-    if top is not None and top.type == "END" and t not in expected:
+    if any(v.__class__ is Tok and v.type == "END" for v in value_stack[-2:]):
         return _Message(f"unexpected {found} after 'end': the program ends with 'end'", True)
-    if top is not None and top.type == "BEGIN" and t != "_NL":
+    if top is not None and top.type == "BEGIN" and t != "$END":
         return _Message(f"unexpected {found} after 'begin': statements start on the next line", False)
 
     # block structure (2.2.5)
     if t in _STRUCTURAL or t == "$END":
         if t in ("END", "$END"):
             if opener is not None:
-                where = "'end'" if t == "END" else "the end of the program"
-                return _Message(f"unexpected {found}: {opened(opener)} before {where}", True)
+                if t == "END":
+                    return _Message(f"unexpected 'end': {opened(opener, ' before it')}", True)
+                return _Message(f"unexpected end of the program: {opened(opener)}", True)
             if t == "$END":
                 return _Message("missing 'end' at the end of the program", True)
             return _Message(f"unexpected {found}: expected {_join(_expected_words(expected))}", True)
-        want = _OPENER_OF.get(t)
         if inner is not None and inner.type == "ELSE" and t in ("ELSE", "ELSEIF"):
             return _Message(f"unexpected {found}: the 'if' already has an 'else' on line {line_of(inner)}", True)
         if inner is not None and inner.type == "DEFAULT" and t in ("CASE", "DEFAULT"):
             return _Message(f"unexpected {found}: the 'switch' already has a 'default' on line {line_of(inner)}", True)
+        want = _OPENER_OF.get(t)
         if opener is None:
             if want is not None:
                 return _Message(f"'{tok.value}' without '{_SPELLING[want]}'", True)
             return _Message(f"unexpected {found}: expected {_join(_expected_words(expected))}", True)
-        if opener.type == "SWITCH" and expected <= {"CASE", "DEFAULT", "ENDSWITCH"}:
-            return _Message(f"unexpected {found}: expected 'case', 'default' or 'endSwitch' in the 'switch' of line {line_of(opener)}", True)
+        if expected and expected <= {"CASE", "DEFAULT", "ENDSWITCH"}:
+            return _Message(f"unexpected {found}: expected 'case', 'default' or 'endSwitch' "
+                            f"in the 'switch' of line {line_of(opener)}", True)
+        if opener.type == want or (top is not None and top.type not in _OPENERS and tok.line == top.line):
+            # right block, wrong place: `if x endIf`
+            return _Message(f"unexpected {found}: expected {_join(_expected_words(expected))}", True)
         return _Message(f"unexpected {found}: {opened(opener)}", True)
     if expected and expected <= {"CASE", "DEFAULT", "ENDSWITCH"}:
         where = f" of line {line_of(opener)}" if opener is not None else ""
-        return _Message(f"unexpected {found}: a 'switch'{where} holds 'case' or 'default' clauses (expected 'case', 'default' or 'endSwitch')", True)
+        return _Message(f"unexpected {found}: the statements of a 'switch'{where} go in its 'case' "
+                        "or 'default' clauses (expected 'case', 'default' or 'endSwitch')", True)
 
     # inside a line
-    if t in ("_NL", "$END") or (t in _STMT_START and "NAME" in expected):
-        if expected & {"NAME", "NUMBER"} and top is not None:
-            what = "a condition" if top.type in ("IF", "ELSEIF", "WHILE", "UNTIL") else "an expression"
-            return _Message(f"expected {what} after '{top.value}'", False)
+    if t == "_NL":
+        if "NAME" in expected and top is not None:
+            if top.type in ("IF", "ELSEIF", "WHILE", "UNTIL"):
+                return _Message(f"expected a condition after '{top.value}'", False)
+            return _Message(f"expected an expression after '{top.value}'", False)
         for closing, (opening, cname, oname) in _CLOSING.items():
             if closing in expected:
                 for v in reversed(value_stack):
-                    if getattr(v, "type", None) == opening:
-                        fl, fc = ctx.fpos(v.line, v.column)
-                        return _Message(f"missing {cname}: the {oname} at line {fl}, column {fc} is not closed", False)
+                    if v.__class__ is Tok and v.type == opening:
+                        fl, fc = ctx.builder.fpos(v.line, v.column)
+                        return _Message(f"missing {cname}: the {oname} at line {fl}, column {fc} "
+                                        "is not closed", False)
         if top is not None and top.type in ("NAME", "SYSNAME") and "EQUAL" in expected:
-            return _Message(f"incomplete statement: expected '=' (assignment) or '(' (call) after '{_clip(top.value)}'", False)
-        if top is not None and "NAME" in expected and top.type in _SPELLING:
-            return _Message(f"expected an expression after '{top.value}'", False)
+            return _Message("incomplete statement: expected '=' (assignment) or '(' (call) "
+                            f"after '{_clip(top.value)}'", False)
+    if (top is not None and top.type == "NAME" and t in ("NAME", "NUMBER", "STRING", "_LPAR")
+            and len(value_stack) >= 2 and value_stack[-2].__class__ is Tok and value_stack[-2].type == "_NL"):
+        # `whlie x`: a misspelt keyword at the start of a line
+        import difflib
+
+        close = difflib.get_close_matches(top.value.lower(), list(KEYWORDS), n=1, cutoff=0.75)
+        if close:
+            return _Message(f"unexpected {found} after '{_clip(top.value)}': did you mean "
+                            f"'{_SPELLING[KEYWORDS[close[0]]]}'?", False)
     if t == "EQOP" and "EQUAL" in expected and "NAME" not in expected:
-        return _Message(f"unexpected {found}: a statement cannot be a comparison (to assign a value, write '=')", False)
+        return _Message(f"unexpected {found}: a statement cannot be a comparison "
+                        "(to assign a value, write '=')", False)
+    if t in ("TRUE", "FALSE", "AND", "OR", "XOR", "CALL", "RETURN", "BREAK") or t in _OPENERS:
+        found = f"keyword {found}"
     return _Message(f"unexpected {found}: expected {_join(_expected_words(expected))}", False)
 
 
@@ -694,98 +915,35 @@ def _char_message(ch: str) -> str:
     return f"invalid character '{shown}'" + (f": {hint}" if hint else "")
 
 
-# ---------------------------------------------------------------- error handling and recovery
-
-
-def _on_error(e) -> bool:
-    """Lark's on_error hook: report `e`, then resynchronise on the next line. Returns False to
-    stop parsing."""
-    from lark.exceptions import UnexpectedCharacters, UnexpectedToken
-    from lark.lexer import Token
-
-    ctx = _local.ctx
-    ip = e.interactive_parser
-    ps = ip.parser_state
-    expected = {s for s in ps.parse_conf.states[ps.position] if s.isupper()}
-    if isinstance(e, UnexpectedCharacters):
-        line, col = e.line, e.column
-        ch = ctx.code[e.pos_in_stream] if e.pos_in_stream < len(ctx.code) else ""
-        if line not in ctx.error_lines:
-            ctx.report("F102", _char_message(ch), line, col, line, col + 1)
-        bad = None
-    elif isinstance(e, UnexpectedToken):
-        bad = e.token
-        line, col = bad.line or 1, bad.column or 1
-        msg = _syntax_message(bad, expected, ps.value_stack)
-        if msg.structural and ctx.n_syntax:
-            return False  # probably a consequence of an earlier error
-        if line not in ctx.error_lines:
-            end_line = getattr(bad, "end_line", None) if bad.type not in ("_NL", "$END") else None
-            end_col = getattr(bad, "end_column", None) if end_line else None
-            ctx.report("F101", msg.text, line, col, end_line, end_col)
-            ctx.n_syntax += 1
-        if msg.structural or bad.type == "$END":
-            return False
+def _number_message(text: str) -> str:
+    if re.fullmatch(r"(?:[0-9]+\.?[0-9]*|\.[0-9]+)[eE][+-]?", text):
+        why = "the exponent has no digits"
+    elif text[:2].lower() in ("0x", "0b"):
+        why = "hexadecimal and binary constants are not VAL 3 numbers (manual 3.2.1)"
+    elif re.match(r"[0-9]+[A-Za-z_]", text) and not re.match(r"[0-9]+[eE][+-]?[0-9]", text):
+        why = "a number cannot be followed by letters, and a name starts with a letter"
     else:
-        return False
-    if len(ctx.diags) >= MAX_ERRORS:
-        return False
-
-    # Skip the rest of the broken line (the lexer then reads its line end), and put the parser
-    # in a state that accepts a line end: pop states until an ERROR placeholder (an expression,
-    # a statement or a `for` header) can complete the line.
-    lex_state = ip.lexer_thread.state
-    text = lex_state.text.text if hasattr(lex_state.text, "text") else lex_state.text
-    nl_consumed = bad is not None and bad.type == "_NL"
-    if not nl_consumed:
-        p = lex_state.line_ctr.char_pos
-        nl = text.find("\n", p)
-        if nl < 0:
-            nl = len(text)
-        if nl > p:
-            lex_state.line_ctr.feed(text[p:nl])
-    nl_tok = bad if nl_consumed else Token("_NL", "\n", 0, line, col)
-    err_tok = Token("ERROR", "", 0, line, col, line, col)
-    stack_len = len(ps.state_stack)
-    for n_pop in range(min(stack_len - 1, 80) + 1):
-        for seq in ((nl_tok,), (err_tok, nl_tok)):
-            trial = ps.copy(deepcopy_values=False)
-            if n_pop:
-                del trial.state_stack[-n_pop:]
-                del trial.value_stack[-n_pop:]
-            try:
-                for tk in seq:
-                    trial.feed_token(tk)
-            except UnexpectedToken:
-                continue
-            # apply to the real parser state
-            if n_pop:
-                del ps.state_stack[-n_pop:]
-                del ps.value_stack[-n_pop:]
-            for tk in seq[:-1]:
-                ps.feed_token(tk)
-            if nl_consumed:
-                ps.feed_token(nl_tok)
-            return True
-    return False
+        why = "numbers are written <digits>[.<digits>][e[-]<digits>] (manual 3.2.1)"
+    return f"invalid number '{_clip(text)}': {why}"
 
 
-# ---------------------------------------------------------------- depth checks
+# ---------------------------------------------------------------- depth check
 
 
 def _expr_too_deep(body: A.ProgramBody):
-    """The first node nested more than MAX_EXPR_DEPTH levels inside a statement, or None."""
-    stack: list[tuple[Any, int]] = [(s, 0) for s in reversed(body.statements)]
+    """The first statement with an expression nested more than MAX_EXPR_DEPTH levels."""
     stmt_types = (A.Assign, A.ExprStatement, A.Call, A.Return, A.Break, A.If, A.While,
                   A.DoUntil, A.For, A.Switch, A.Branch, A.Case, A.Default)
+    stack: list[tuple[Any, int, Any]] = [(s, 0, s) for s in reversed(body.statements)]
     while stack:
-        node, depth = stack.pop()
+        node, depth, stmt = stack.pop()
         if type(node) in stmt_types:
             depth = 0
+            stmt = node
         elif depth > MAX_EXPR_DEPTH:
-            return node
+            return stmt
         for ch in reversed(A.children(node)):
-            stack.append((ch, depth + 1))
+            stack.append((ch, depth + 1, stmt))
     return None
 
 
@@ -794,54 +952,64 @@ def _expr_too_deep(body: A.ProgramBody):
 
 def parse_code(code: str, source_map: SourceMap, path: str) -> tuple[A.ProgramBody | None, list[Diagnostic]]:
     """Parse a program's code (`begin` ... `end`). Returns the body (None when the code has
-    syntax errors) and the diagnostics, with positions in the file `path` through `source_map`.
+    syntax errors) and the diagnostics, positioned in the file `path` through `source_map`.
     Never raises."""
     try:
-        ctx = _Context(code, source_map, path)
-    except Exception as exc:  # noqa: BLE001 - a broken source map must not stop the run
-        return None, [Diagnostic("F101", f"could not parse this program ({exc.__class__.__name__})", path, 0, 0)]
-    prev = getattr(_local, "ctx", None)
-    _local.ctx = ctx
+        with _lock:
+            return _parse_locked(code, source_map, path)
+    except Exception as exc:  # noqa: BLE001 - never raise
+        return None, [Diagnostic("F101", f"could not parse this program (internal error: "
+                                 f"{exc.__class__.__name__}: {_clip(str(exc), 80)})", path, 1, 1)]
+
+
+def _parse_locked(code: str, source_map: SourceMap, path: str) -> tuple[A.ProgramBody | None, list[Diagnostic]]:
+    gc_enabled = gc.isenabled()
+    gc.disable()  # the parse allocates many small acyclic objects: the cyclic GC only slows it
+    try:
+        return _parse_nogc(code, source_map, path)
+    finally:
+        if gc_enabled:
+            gc.enable()
+
+
+def _parse_nogc(code: str, source_map: SourceMap, path: str) -> tuple[A.ProgramBody | None, list[Diagnostic]]:
+    engine = get_engine()
+    builder = engine.builder
+    builder.setup(code, source_map)
+    ctx = _Context(code, path, builder)
     body = None
     try:
-        try:
-            parser = get_parser()
-            body = parser.parse(code, on_error=_on_error)
-        except RecursionError:
-            ctx.diags.append(Diagnostic("F104", "the program is nested too deeply to be analysed", path, 1, 1))
-        except MemoryError:
-            ctx.diags.append(Diagnostic("F104", "the program is too large to be analysed", path, 1, 1))
-        except Exception as exc:  # noqa: BLE001
-            from lark.exceptions import UnexpectedInput
-
-            if not isinstance(exc, UnexpectedInput):
-                ctx.diags.append(Diagnostic("F101", f"could not parse this program (internal error: {exc.__class__.__name__}: {_clip(str(exc), 80)})", path, 1, 1))
-            elif not ctx.diags:  # stopped without a report: should not happen
-                ctx.diags.append(Diagnostic("F101", "syntax error", path, *ctx.fpos(getattr(exc, "line", 1) or 1, getattr(exc, "column", 1) or 1)))
-        if ctx.diags or not isinstance(body, A.ProgramBody):
-            if not ctx.diags:
-                ctx.diags.append(Diagnostic("F101", "could not parse this program", path, 1, 1))
-            return None, sorted(ctx.diags, key=Diagnostic.sort_key)
-        if ctx.deep_token is not None:
-            t = ctx.deep_token
-            ctx.report("F104", f"blocks nested more than {MAX_BLOCK_DEPTH} deep", t.line, t.column)
-            return None, ctx.diags
-        if len(code) > MAX_EXPR_DEPTH and max(map(len, code.split("\n"))) > MAX_EXPR_DEPTH:
-            node = _expr_too_deep(body)
-            if node is not None:
-                ctx.diags.append(Diagnostic("F104", f"expression nested more than {MAX_EXPR_DEPTH} deep", path, node.line, node.col))
-                return None, ctx.diags
-        body.comments = scan_comments(code, source_map)
-        return body, []
-    except Exception as exc:  # noqa: BLE001 - never raise
-        return None, [Diagnostic("F101", f"could not parse this program (internal error: {exc.__class__.__name__})", path, 1, 1)]
+        body = engine.parse(ctx)
+    except _Stop:
+        pass
+    except RecursionError:
+        ctx.diags.append(Diagnostic("F105", "the program is nested too deeply to be analysed", path, *builder.fpos(1, 1)))
+    except MemoryError:
+        ctx.diags.append(Diagnostic("F105", "the program is too large to be analysed", path, *builder.fpos(1, 1)))
     finally:
-        _local.ctx = prev
+        ctx.state_stack = ctx.value_stack = []
+    if ctx.diags or not isinstance(body, A.ProgramBody):
+        if not ctx.diags:
+            ctx.diags.append(Diagnostic("F101", "could not parse this program", path, *builder.fpos(1, 1)))
+        return None, sorted(ctx.diags, key=Diagnostic.sort_key)
+    if ctx.deep_token is not None:
+        t = ctx.deep_token
+        ctx.report("F105", f"blocks nested more than {MAX_BLOCK_DEPTH} deep: "
+                   "split the program into sub-programs", t.line, t.column)
+        return None, ctx.diags
+    if len(code) > MAX_EXPR_DEPTH and max(map(len, code.split("\n"))) > MAX_EXPR_DEPTH:
+        node = _expr_too_deep(body)
+        if node is not None:
+            ctx.diags.append(Diagnostic("F105", f"expression nested more than {MAX_EXPR_DEPTH} deep: "
+                                        "split it with intermediate variables", path, node.line, node.col))
+            return None, ctx.diags
+    body.comments = scan_comments(code, source_map)
+    return body, []
 
 
-def parse_program(program) -> list[Diagnostic]:
-    """Parse `program.code` and set `program.body`. A missing code element (None) is the
-    loader's to report: nothing to do."""
+def parse_program(program: Any) -> list[Diagnostic]:
+    """Parse `program.code` and set `program.body` (None when there are syntax errors). A
+    missing code element (`code is None`) is the loader's to report: nothing to do."""
     if program.code is None:
         return []
     body, diags = parse_code(program.code, program.code_map, program.origin.path)
