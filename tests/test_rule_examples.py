@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import re
+
 import pytest
 
+from val3check.config import Settings, load_settings
 from val3check.rules.catalogue import FAMILIES, catalogue
 from support import code_position, lint, write_app, write_files
 
@@ -17,14 +20,22 @@ def _cases():
                 yield pytest.param(rule, kind, ex, id=f"{rule.code}-{kind}{i}")
 
 
+def _bytes(text: str) -> bytes:
+    return re.sub(rb"\\x([0-9A-Fa-f]{2})", lambda m: bytes([int(m.group(1), 16)]), text.encode("utf-8"))
+
+
 def _run(tmp_path, ex):
     if ex.code is not None:
         folder = write_app(tmp_path, ex.code)
         target = folder
     else:
-        write_files(tmp_path, ex.files)
+        write_files(tmp_path, {k: _bytes(v) if ex.byte_escapes else v for k, v in ex.files.items()})
         target = tmp_path / ex.target
-    return lint([target], cwd=tmp_path)
+    settings = Settings()
+    if ex.config is not None:
+        (tmp_path / "val3check.toml").write_text(ex.config, encoding="utf-8")
+        settings = load_settings(str(tmp_path / "val3check.toml"))
+    return lint([target], settings, cwd=tmp_path)
 
 
 @pytest.mark.parametrize("rule,kind,ex", list(_cases()))

@@ -11,6 +11,7 @@ options override it. Keys (kebab-case, as ruff):
     fail-on = "error"               # error | warning | info | never
     disk-roots = ["../controller/usr/usrapp"]    # where `Disk://` libraries are also searched
     exclude = ["build/**"]          # applications whose path matches are skipped
+    max-file-size = 16777216        # bytes; larger files are reported (F002) and skipped
 """
 
 from __future__ import annotations
@@ -40,6 +41,7 @@ class Settings:
     fail_on: str = "error"
     disk_roots: list[str] = field(default_factory=list)
     exclude: list[str] = field(default_factory=list)
+    max_file_size: int = 16 * 1024 * 1024
     root: str = ""  # folder of the configuration file, "" when none was found
     source: str = ""  # path of the configuration file that was read
 
@@ -122,7 +124,9 @@ def _str_list(value, key: str, path: str) -> list[str]:
     return [v.strip().upper() if key in ("select", "extend-select", "ignore") else v for v in value]
 
 
-KNOWN_KEYS = {"select", "extend-select", "ignore", "per-file-ignores", "severity", "fail-on", "disk-roots", "exclude"}
+KNOWN_KEYS = {
+    "select", "extend-select", "ignore", "per-file-ignores", "severity", "fail-on", "disk-roots", "exclude", "max-file-size",
+}
 
 
 def load_settings(path: str) -> Settings:
@@ -157,4 +161,8 @@ def load_settings(path: str) -> Settings:
     s.fail_on = fail_on
     s.disk_roots = [os.path.normpath(os.path.join(root, d)) for d in _str_list(data.get("disk-roots", []), "disk-roots", path)]
     s.exclude = _str_list(data.get("exclude", []), "exclude", path)
+    size = data.get("max-file-size", s.max_file_size)
+    if not isinstance(size, int) or isinstance(size, bool) or size <= 0:
+        raise ConfigError(f"{path}: 'max-file-size' must be a positive number of bytes")
+    s.max_file_size = size
     return s

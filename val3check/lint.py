@@ -41,7 +41,7 @@ def display_path(path: str) -> str:
 
 def run(paths: list[str], settings: Settings) -> LintRun:
     rules = catalogue()
-    workspace, found = load(paths, LoadOptions(disk_roots=list(settings.disk_roots)))
+    workspace, found = load(paths, LoadOptions(disk_roots=list(settings.disk_roots), max_file_size=settings.max_file_size))
     targets = [workspace.apps[key] for key in workspace.targets]
     targets = [app for app in targets if not settings.excluded(app.path)]
 

@@ -201,7 +201,7 @@ def test_case_without_break_is_visible():
     (sw,) = stmts("switch n\ncase 1\n  x = 1\ncase 2\n  if a\n    break\n  endIf\nendSwitch")
     assert sw.default is None
     assert [c.has_break for c in sw.cases] == [False, False]  # a nested break does not count
-    assert isinstance(sw.cases[1].body[0].body if False else sw.cases[1].body[0], A.If)
+    assert isinstance(sw.cases[1].body[0], A.If) and isinstance(sw.cases[1].body[0].branches[0].body[0], A.Break)
 
 
 def test_empty_switch_and_default_only():
@@ -279,3 +279,18 @@ def test_walk_visits_every_node():
     kinds = [type(n).__name__ for n in A.walk(body)]
     assert kinds == ["ProgramBody", "If", "Branch", "Name", "Assign", "Name", "CallExpr", "Name", "Index",
                      "Name", "Number", "Struct", "Number", "Number"]
+
+
+def test_manual_task_creation():
+    # 5.10 taskCreate / taskCreateSync: the program is written as a call, without `call`
+    a, w, b, c = stmts("""
+taskCreate "t1", 10, read(sMessage)
+wait(taskStatus("t1") == -1)
+taskCreateSync "supervisor", 0.02, bSupervisor, supervisor()
+TASKCREATE sName + "x", nPrio, lib:prog(a, b[1])
+""")
+    assert isinstance(a, A.TaskCreate) and (sx(a.task), sx(a.priority), sx(a.target)) == ('"t1"', "10", "read")
+    assert [sx(x) for x in a.args] == ["sMessage"] and (a.line, a.col) == (2, 1)
+    assert isinstance(b, A.TaskCreateSync)
+    assert (sx(b.task), sx(b.period), sx(b.overrun), sx(b.target), b.args) == ('"supervisor"', "0.02", "bSupervisor", "supervisor", [])
+    assert isinstance(c.target, A.LibraryName) and sx(c.task) == '(+ sName "x")'

@@ -222,6 +222,31 @@ class Call:
 
 
 @dataclass(slots=True)
+class TaskCreate:
+    """`taskCreate task, priority, prog(args)` (5.10): runs `prog(args)` in a new task."""
+
+    task: Expr
+    priority: Expr
+    target: Union[Name, LibraryName]
+    args: list[Expr]
+    line: int
+    col: int
+
+
+@dataclass(slots=True)
+class TaskCreateSync:
+    """`taskCreateSync task, period, bOverrun, prog(args)` (5.10): a synchronous task."""
+
+    task: Expr
+    period: Expr
+    overrun: Expr
+    target: Union[Name, LibraryName]
+    args: list[Expr]
+    line: int
+    col: int
+
+
+@dataclass(slots=True)
 class Return:
     """`return` (2.2.5)."""
 
@@ -353,7 +378,8 @@ class ErrorStatement:
 
 
 Statement = Union[
-    Assign, ExprStatement, Call, Return, Break, If, While, DoUntil, For, Switch, ErrorStatement
+    Assign, ExprStatement, Call, TaskCreate, TaskCreateSync, Return, Break, If, While, DoUntil, For,
+    Switch, ErrorStatement,
 ]
 
 # ---------------------------------------------------------------- program
@@ -396,6 +422,8 @@ _CHILDREN: dict[type, tuple[str, ...]] = {
     Assign: ("target", "value"),
     ExprStatement: ("call",),
     Call: ("target", "args"),
+    TaskCreate: ("task", "priority", "target", "args"),
+    TaskCreateSync: ("task", "period", "overrun", "target", "args"),
     Return: (), Break: (), ErrorStatement: (),
     Branch: ("cond", "body"),
     If: ("branches", "orelse"),

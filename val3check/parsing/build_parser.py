@@ -1,15 +1,18 @@
 """Regenerate `_tables.py`, the pre-built LALR tables of `grammars/val3.lark`.
 
-    python -m val3check.parsing.build_parser [--check]
+    python -m val3check.parsing.build_parser [--check | --print]
 
 Building the tables from the grammar takes longer than the start-up budget of the tool, so
 they are shipped. `--check` exits 1 when the shipped tables do not match the grammar (the
-test suite checks the same).
+test suite checks the same); `--print` writes the file's content to standard output. The output
+is stable (the build runs with PYTHONHASHSEED=0) for a given Lark version.
 """
 
 from __future__ import annotations
 
+import os
 import pprint
+import subprocess
 import sys
 from pathlib import Path
 
@@ -28,6 +31,7 @@ def render() -> str:
     if text is None:
         raise SystemExit("grammars/val3.lark not found")
     parser = Lark(text, **LARK_OPTIONS)
+    _canonical_numbering(parser.parser.parser._parse_table)
     data, memo = parser.memo_serialize([TerminalDef, Rule])
     return (
         '"""Pre-built LALR tables of grammars/val3.lark. GENERATED: do not edit; run\n'
@@ -38,6 +42,32 @@ def render() -> str:
         f"DATA = {pprint.pformat(data, width=120, compact=True)}\n"
         f"MEMO = {pprint.pformat(memo, width=120, compact=True)}\n"
     )
+
+
+def _canonical_numbering(table) -> None:
+    """Renumber the LALR states breadth-first from the start state, symbols in sorted order:
+    Lark numbers them in set order, which changes from one run to the next."""
+    from lark.parsers.lalr_analysis import Shift
+
+    states = table.states
+    (start,) = table.start_states.values()
+    number = {start: 0}
+    queue = [start]
+    for state in queue:
+        for _sym, (action, arg) in sorted(states.get(state, {}).items()):
+            if action is Shift and arg not in number:
+                number[arg] = len(number)
+                queue.append(arg)
+    for state in sorted(states):  # unreachable states, if any, keep their relative order
+        if state not in number:
+            number[state] = len(number)
+    table.states = {
+        number[state]: {sym: ((action, number[arg]) if action is Shift else (action, arg))
+                        for sym, (action, arg) in sorted(states[state].items())}
+        for state in sorted(states, key=number.__getitem__)
+    }
+    table.start_states = {k: number[v] for k, v in table.start_states.items()}
+    table.end_states = {k: number[v] for k, v in table.end_states.items()}
 
 
 def is_current() -> bool:
@@ -53,6 +83,13 @@ def is_current() -> bool:
 
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
+    if "--check" not in argv and os.environ.get("PYTHONHASHSEED") != "0":
+        # Lark numbers the LALR states in set order: fix the hash seed for a stable output
+        env = dict(os.environ, PYTHONHASHSEED="0")
+        return subprocess.call([sys.executable, "-m", "val3check.parsing.build_parser", *argv], env=env)
+    if "--print" in argv:
+        sys.stdout.write(render())
+        return 0
     if "--check" in argv:
         ok = is_current()
         print("up to date" if ok else "out of date: run python -m val3check.parsing.build_parser")

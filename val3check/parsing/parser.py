@@ -13,8 +13,8 @@ placeholders), with `_Builder` as the transformer that makes the ast nodes. Its 
 contextual where the grammar needs it: `to` and `step` are keywords only in a parser state that
 accepts them (inside `for`); the other terminals never compete for the same text.
 
-Syntax errors are diagnostics, never exceptions: F101 (syntax error), F102 (invalid character),
-F103 (invalid number), F104 (unterminated string), F105 (nesting too deep to analyse). After an error the parser
+Syntax errors are diagnostics, never exceptions: F101 (syntax error, unterminated string), F102
+(invalid character), F103 (invalid number), F104 (nesting too deep to analyse). After an error the parser
 resynchronises on the next line and goes on, so that independent errors of other lines are
 reported too; errors that could be consequences of an earlier one are not reported.
 """
@@ -52,6 +52,8 @@ KEYWORDS = {
     "break": "BREAK", "return": "RETURN", "call": "CALL",
     "true": "TRUE", "false": "FALSE",
     "and": "AND", "or": "OR", "xor": "XOR",
+    # task creation (5.10) has its own syntax: the program is written as a call
+    "taskcreate": "TASKCREATE", "taskcreatesync": "TASKCREATESYNC",
 }
 _CONTEXT_KEYWORDS = {"to": "TO", "step": "STEP"}
 
@@ -62,7 +64,7 @@ _SPELLING = {
     "FOR": "for", "ENDFOR": "endFor", "SWITCH": "switch", "CASE": "case", "DEFAULT": "default",
     "ENDSWITCH": "endSwitch", "BREAK": "break", "RETURN": "return", "CALL": "call",
     "TRUE": "true", "FALSE": "false", "AND": "and", "OR": "or", "XOR": "xor",
-    "TO": "to", "STEP": "step",
+    "TO": "to", "STEP": "step", "TASKCREATE": "taskCreate", "TASKCREATESYNC": "taskCreateSync",
 }
 _OPENERS = {"IF", "WHILE", "DO", "FOR", "SWITCH"}
 _CLOSERS = {"ENDIF", "ENDWHILE", "UNTIL", "ENDFOR", "ENDSWITCH"}
@@ -78,7 +80,8 @@ _PUNCT = {
 }
 _EXPR_START = {"NAME", "SYSNAME", "NUMBER", "BADNUMBER", "STRING", "BADSTRING", "TRUE", "FALSE",
                "_LPAR", "MINUS", "BANG", "LBRACE", "ERROR"}
-_STMT_START = {"CALL", "RETURN", "BREAK", "IF", "WHILE", "DO", "FOR", "SWITCH", "NAME", "SYSNAME"}
+_STMT_START = {"CALL", "RETURN", "BREAK", "IF", "WHILE", "DO", "FOR", "SWITCH", "NAME", "SYSNAME",
+               "TASKCREATE", "TASKCREATESYNC"}
 _BINOPS = {"EQUAL", "EQOP", "RELOP", "PLUS", "MINUS", "MULOP", "AND", "OR", "XOR"}
 _CLOSING = {"_RPAR": ("_LPAR", "')'", "'('"), "_RSQB": ("_LSQB", "']'", "'['"),
             "_RBRACE": ("LBRACE", "'}'", "'{'")}
@@ -111,7 +114,11 @@ class Tok:
 
 
 def _clip(text: str, n: int = 30) -> str:
-    return text if len(text) <= n else text[: n - 3] + "..."
+    """`text` shortened to `n` characters, invisible characters shown as U+XXXX."""
+    text = text if len(text) <= n else text[: n - 3] + "..."
+    if not text.isprintable():
+        text = "".join(c if c.isprintable() else f"U+{ord(c):04X}" for c in text)
+    return text
 
 
 class _Builder:
@@ -154,12 +161,12 @@ class _Builder:
     def _span(self, t) -> tuple[int, int, int, int]:
         k = t.line - 1
         if k in self.col_maps:
-            l, c = self.fpos(t.line, t.column)
+            ln, c = self.fpos(t.line, t.column)
             el, ec = self.fpos(t.line, t.column + len(t.value))
-            return l, c, el, ec
-        l = self.lines[k]
+            return ln, c, el, ec
+        ln = self.lines[k]
         c = self.offs[k] + t.column
-        return l, c, l, c + len(t.value)
+        return ln, c, ln, c + len(t.value)
 
     # leaves ----------------------------------------------------------
 
@@ -168,15 +175,15 @@ class _Builder:
         k = t.line - 1
         if k in self.col_maps:
             return A.Name(t.value, *self._span(t))
-        l = self.lines[k]
+        ln = self.lines[k]
         col = self.offs[k] + t.column
-        return A.Name(t.value, l, col, l, col + len(t.value))
+        return A.Name(t.value, ln, col, ln, col + len(t.value))
 
     def lib_name(self, c):
         a, n = c
-        l, k, _, _ = self._span(a)
+        ln, k, _, _ = self._span(a)
         _, _, el, ec = self._span(n)
-        return A.LibraryName(a.value, n.value, l, k, el, ec)
+        return A.LibraryName(a.value, n.value, ln, k, el, ec)
 
     def sys_name(self, c):
         t = c[0]
@@ -231,11 +238,11 @@ class _Builder:
 
     def unary(self, c):
         t, operand = c
-        l, k = self.fpos(t.line, t.column)
+        ln, k = self.fpos(t.line, t.column)
         if t.value == "-" and type(operand) is A.Number and not operand.text.startswith("-"):
             # fold `-3` into a constant (3.2.1: `[-]<digits>...`)
-            return A.Number(-operand.value, "-" + operand.text, l, k, operand.end_line, operand.end_col)
-        return A.Unary(t.value, operand, l, k)
+            return A.Number(-operand.value, "-" + operand.text, ln, k, operand.end_line, operand.end_col)
+        return A.Unary(t.value, operand, ln, k)
 
     def binary(self, c):
         left, t, right = c
@@ -265,6 +272,16 @@ class _Builder:
         t, target, args = c
         return A.Call(target, args if args is not None else [], *self.fpos(t.line, t.column))
 
+    def task_create(self, c):
+        t, task, priority, target, args = c
+        return A.TaskCreate(task, priority, target, args if args is not None else [],
+                            *self.fpos(t.line, t.column))
+
+    def task_create_sync(self, c):
+        t, task, period, overrun, target, args = c
+        return A.TaskCreateSync(task, period, overrun, target, args if args is not None else [],
+                                *self.fpos(t.line, t.column))
+
     def return_stmt(self, c):
         t = c[0]
         return A.Return(*self.fpos(t.line, t.column))
@@ -281,14 +298,14 @@ class _Builder:
         t, cond, body = c[0], c[1], c[2]
         end = c[-1]
         orelse = c[-2]
-        l, k = self.fpos(t.line, t.column)
-        branches = [A.Branch(cond, body, l, k)]
+        ln, k = self.fpos(t.line, t.column)
+        branches = [A.Branch(cond, body, ln, k)]
         branches.extend(c[3:-2])
         el, ec = self.fpos(end.line, end.column + len(end.value))
         if orelse is None:
-            return A.If(branches, None, l, k, 0, 0, el, ec)
+            return A.If(branches, None, ln, k, 0, 0, el, ec)
         ol, oc, obody = orelse
-        return A.If(branches, obody, l, k, ol, oc, el, ec)
+        return A.If(branches, obody, ln, k, ol, oc, el, ec)
 
     def elseif_clause(self, c):
         t, cond, body = c
@@ -296,20 +313,20 @@ class _Builder:
 
     def else_clause(self, c):
         t, body = c
-        l, k = self.fpos(t.line, t.column)
-        return (l, k, body)
+        ln, k = self.fpos(t.line, t.column)
+        return (ln, k, body)
 
     def while_stmt(self, c):
         t, cond, body, end = c
-        l, k = self.fpos(t.line, t.column)
+        ln, k = self.fpos(t.line, t.column)
         el, ec = self.fpos(end.line, end.column + len(end.value))
-        return A.While(cond, body, l, k, el, ec)
+        return A.While(cond, body, ln, k, el, ec)
 
     def do_stmt(self, c):
         t, body, u, cond = c
-        l, k = self.fpos(t.line, t.column)
+        ln, k = self.fpos(t.line, t.column)
         ul, uc = self.fpos(u.line, u.column)
-        return A.DoUntil(body, cond, l, k, ul, uc)
+        return A.DoUntil(body, cond, ln, k, ul, uc)
 
     def for_header(self, c):
         if len(c) == 1:  # ERROR (recovery)
@@ -320,9 +337,9 @@ class _Builder:
 
     def for_stmt(self, c):
         t, (counter, start, stop, step), body, end = c
-        l, k = self.fpos(t.line, t.column)
+        ln, k = self.fpos(t.line, t.column)
         el, ec = self.fpos(end.line, end.column + len(end.value))
-        return A.For(counter, start, stop, step, body, l, k, el, ec)
+        return A.For(counter, start, stop, step, body, ln, k, el, ec)
 
     def case_clause(self, c):
         t = c[0]
@@ -336,15 +353,15 @@ class _Builder:
         t, subject = c[0], c[1]
         end = c[-1]
         default = c[-2]
-        l, k = self.fpos(t.line, t.column)
+        ln, k = self.fpos(t.line, t.column)
         el, ec = self.fpos(end.line, end.column + len(end.value))
-        return A.Switch(subject, c[2:-2], default, l, k, el, ec)
+        return A.Switch(subject, c[2:-2], default, ln, k, el, ec)
 
     def start(self, c):
         b, stmts, e = c
-        l, k = self.fpos(b.line, b.column)
+        ln, k = self.fpos(b.line, b.column)
         el, ec = self.fpos(e.line, e.column + len(e.value))
-        return A.ProgramBody(stmts, [], l, k, el, ec)
+        return A.ProgramBody(stmts, [], ln, k, el, ec)
 
 
 # ---------------------------------------------------------------- the grammar and its tables
@@ -503,7 +520,7 @@ class _Engine:
             elif typ == "EOF":
                 tok.type = "$END"
             elif typ == "BADSTRING":
-                ctx.report("F104", "unterminated string: a string ends with '\"' on the same line",
+                ctx.report("F101", "unterminated string: a string ends with '\"' on the same line",
                            tok.line, tok.column, tok.line, tok.column + len(value))
             elif typ == "BADNUMBER":
                 ctx.report("F103", _number_message(value), tok.line, tok.column, tok.line, tok.column + len(value))
@@ -615,13 +632,12 @@ class _Engine:
         if bad is not None:
             expected = self.accepts(state_stack)
             msg = _syntax_message(ctx, bad, expected, value_stack)
-            if msg.structural and ctx.n_syntax:
-                raise _Stop  # probably a consequence of an earlier error
+            if msg.structural and ctx.recovered:
+                raise _Stop  # probably a consequence of an earlier error and its recovery
             if bad.type in ("_NL", "$END"):
                 ctx.report("F101", msg.text, line, col)
             else:
                 ctx.report("F101", msg.text, line, col, line, col + len(bad.value))
-            ctx.n_syntax += 1
             if msg.structural or bad.type == "$END":
                 raise _Stop
         if len(ctx.diags) >= MAX_ERRORS:
@@ -650,6 +666,7 @@ class _Engine:
                     feed(actions, end_state, states, values, t)
                 state_stack[:] = states
                 value_stack[:] = values
+                ctx.recovered = True
                 return pos
         raise _Stop
 
@@ -666,7 +683,7 @@ class _Context:
         self.builder = builder
         self.diags: list[Diagnostic] = []
         self.error_lines: set[int] = set()  # code lines that already have an error
-        self.n_syntax = 0  # F101 reported
+        self.recovered = False  # a broken line was skipped: the block structure may be off
         self.deep_token: Tok | None = None  # the opener that went past MAX_BLOCK_DEPTH
         self.state_stack: list = []
         self.value_stack: list = []
@@ -745,7 +762,7 @@ def _describe(tok: Tok) -> str:
         return "end of line"
     if t == "$END":
         return "end of the program"
-    return f"'{tok.value}'"
+    return f"'{_clip(tok.value)}'"
 
 
 def _expected_order(t: str) -> tuple[int, str]:
@@ -867,6 +884,9 @@ def _syntax_message(ctx: _Context, tok: Tok, expected: frozenset[str], value_sta
 
     # inside a line
     if t == "_NL":
+        if top is not None and expected and expected - {"ERROR"} <= {"NAME"}:
+            what = {"CALL": "a program name", "FOR": "the counter variable", "_DOT": "a field name"}
+            return _Message(f"expected {what.get(top.type, 'a name')} after '{top.value}'", False)
         if "NAME" in expected and top is not None:
             if top.type in ("IF", "ELSEIF", "WHILE", "UNTIL"):
                 return _Message(f"expected a condition after '{top.value}'", False)
@@ -878,7 +898,7 @@ def _syntax_message(ctx: _Context, tok: Tok, expected: frozenset[str], value_sta
                         fl, fc = ctx.builder.fpos(v.line, v.column)
                         return _Message(f"missing {cname}: the {oname} at line {fl}, column {fc} "
                                         "is not closed", False)
-        if top is not None and top.type in ("NAME", "SYSNAME") and "EQUAL" in expected:
+        if top is not None and top.type in ("NAME", "SYSNAME") and {"EQUAL", "_LPAR"} <= expected:
             return _Message("incomplete statement: expected '=' (assignment) or '(' (call) "
                             f"after '{_clip(top.value)}'", False)
     if (top is not None and top.type == "NAME" and t in ("NAME", "NUMBER", "STRING", "_LPAR")
@@ -890,6 +910,13 @@ def _syntax_message(ctx: _Context, tok: Tok, expected: frozenset[str], value_sta
         if close:
             return _Message(f"unexpected {found} after '{_clip(top.value)}': did you mean "
                             f"'{_SPELLING[KEYWORDS[close[0]]]}'?", False)
+    for i, v in enumerate(value_stack[:-1]):
+        if (v.__class__ is Tok and v.type in ("TASKCREATE", "TASKCREATESYNC")
+                and value_stack[i + 1].__class__ is Tok and value_stack[i + 1].type == "_LPAR"):
+            form = ('taskCreate "name", priority, program(...)' if v.type == "TASKCREATE"
+                    else 'taskCreateSync "name", period, bOverrun, program(...)')
+            return _Message(f"unexpected {found}: '{v.value}' takes its arguments without "
+                            f"parentheses: {form}", False)
     if t == "EQOP" and "EQUAL" in expected and "NAME" not in expected:
         return _Message(f"unexpected {found}: a statement cannot be a comparison "
                         "(to assign a value, write '=')", False)
@@ -932,7 +959,7 @@ def _number_message(text: str) -> str:
 
 def _expr_too_deep(body: A.ProgramBody):
     """The first statement with an expression nested more than MAX_EXPR_DEPTH levels."""
-    stmt_types = (A.Assign, A.ExprStatement, A.Call, A.Return, A.Break, A.If, A.While,
+    stmt_types = (A.Assign, A.ExprStatement, A.Call, A.TaskCreate, A.TaskCreateSync, A.Return, A.Break, A.If, A.While,
                   A.DoUntil, A.For, A.Switch, A.Branch, A.Case, A.Default)
     stack: list[tuple[Any, int, Any]] = [(s, 0, s) for s in reversed(body.statements)]
     while stack:
@@ -983,9 +1010,10 @@ def _parse_nogc(code: str, source_map: SourceMap, path: str) -> tuple[A.ProgramB
     except _Stop:
         pass
     except RecursionError:
-        ctx.diags.append(Diagnostic("F105", "the program is nested too deeply to be analysed", path, *builder.fpos(1, 1)))
+        ctx.diags.append(Diagnostic("F104", "the program is nested too deeply to be analysed", path,
+                                    *builder.fpos(1, 1)))
     except MemoryError:
-        ctx.diags.append(Diagnostic("F105", "the program is too large to be analysed", path, *builder.fpos(1, 1)))
+        ctx.diags.append(Diagnostic("F104", "the program is too large to be analysed", path, *builder.fpos(1, 1)))
     finally:
         ctx.state_stack = ctx.value_stack = []
     if ctx.diags or not isinstance(body, A.ProgramBody):
@@ -994,13 +1022,13 @@ def _parse_nogc(code: str, source_map: SourceMap, path: str) -> tuple[A.ProgramB
         return None, sorted(ctx.diags, key=Diagnostic.sort_key)
     if ctx.deep_token is not None:
         t = ctx.deep_token
-        ctx.report("F105", f"blocks nested more than {MAX_BLOCK_DEPTH} deep: "
+        ctx.report("F104", f"blocks nested more than {MAX_BLOCK_DEPTH} deep: "
                    "split the program into sub-programs", t.line, t.column)
         return None, ctx.diags
     if len(code) > MAX_EXPR_DEPTH and max(map(len, code.split("\n"))) > MAX_EXPR_DEPTH:
         node = _expr_too_deep(body)
         if node is not None:
-            ctx.diags.append(Diagnostic("F105", f"expression nested more than {MAX_EXPR_DEPTH} deep: "
+            ctx.diags.append(Diagnostic("F104", f"expression nested more than {MAX_EXPR_DEPTH} deep: "
                                         "split it with intermediate variables", path, node.line, node.col))
             return None, ctx.diags
     body.comments = scan_comments(code, source_map)

@@ -34,6 +34,8 @@ class Example:
     files: dict[str, str]  # or: files of an application tree, relative paths -> text
     target: str  # what to lint, relative to the example root
     expect: tuple[str, ...]  # "line:col" (of `code`) or "file:line:col" (of `files`)
+    config: str | None = None  # a val3check.toml written at the example root and used
+    byte_escapes: bool = False  # `\xHH` in `files` stands for the byte HH (for encoding rules)
 
 
 @dataclass(frozen=True, slots=True)
@@ -71,6 +73,8 @@ def _example(raw: dict, where: str) -> Example:
         files=dict(files),
         target=raw.get("target", "."),
         expect=tuple(raw.get("expect", ())),
+        config=raw.get("config"),
+        byte_escapes=bool(raw.get("byte-escapes", False)),
     )
 
 
