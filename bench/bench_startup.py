@@ -15,7 +15,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-APP = ROOT / "fixtures" / "valid" / "Palletizer"
+APP = ROOT / "fixtures" / "valid" / "Cell"
 FORBIDDEN = ("pinocchio", "toppra", "trimesh", "fcl", "mcap", "numpy", "scipy")
 
 
@@ -34,8 +34,8 @@ def main() -> None:
     rows = []
     for line in r.stderr.splitlines():
         if line.startswith("import time:") and "|" in line and "self" not in line:
-            _, cumulative, name = (part.strip() for part in line[len("import time:"):].split("|"))
-            rows.append((int(cumulative), name))
+            _, cumulative, name = line[len("import time:"):].split("|")
+            rows.append((int(cumulative.strip()), name.rstrip()[1:]))  # keep the indentation: nesting
     top = [row for row in rows if not row[1].startswith(" ")]
     total = sum(c for c, _ in top)
     print(f"import time, top-level modules: {total/1000:.0f} ms in all; largest:")
