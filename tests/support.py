@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import re
 from pathlib import Path
 
 from val3check.config import Settings
@@ -10,10 +11,9 @@ from val3check.lint import LintRun, run
 
 PJX = """<?xml version="1.0" encoding="utf-8"?>
 <Project xmlns="http://www.staubli.com/robotics/VAL3/Project/3">
-  <Parameters version="s7.11" stackSize="5000" millimeterUnit="true" />
+  <Parameters version="{version}" stackSize="5000" millimeterUnit="true" />
   <Programs>
-    <Program file="start.pgx" />
-    <Program file="stop.pgx" />
+{programs}
   </Programs>
   <Database>
     <Data file="{name}.dtx" />
@@ -24,13 +24,15 @@ PJX = """<?xml version="1.0" encoding="utf-8"?>
 
 DTX = """<?xml version="1.0" encoding="utf-8"?>
 <Database xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance" xmlns="http://www.staubli.com/robotics/VAL3/Data/2">
-  <Datas />
+  <Datas>
+{datas}
+  </Datas>
 </Database>
 """
 
 PGX_HEAD = """<?xml version="1.0" encoding="utf-8"?>
 <Programs xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance" xmlns="http://www.staubli.com/robotics/VAL3/Program/2">
-  <Program name="{name}" access="public">
+  <Program name="{name}" access="{access}">
 """
 CODE_OPEN = "    <Code><![CDATA["
 PGX_TAIL = """]]></Code>
@@ -43,18 +45,86 @@ CODE_FIRST_LINE = PGX_HEAD.count("\n") + 1
 CODE_FIRST_COL = len(CODE_OPEN) + 1
 
 
-def program_file(name: str, code: str) -> str:
-    return PGX_HEAD.format(name=name) + CODE_OPEN + code.rstrip("\n") + PGX_TAIL
+_DECL = re.compile(r"^\s*(?:(public|private)\s+)?(\w+)\s*(&?)\s*(\w+)\s*(\[[^\]]*\])?\s*$")
 
 
-def write_app(root: Path, code: str, name: str = "Example") -> Path:
-    """An s7 application whose start() holds `code`; returns its folder."""
+def parse_declaration(text: str) -> dict:
+    """"private num nGrid[3,4]", "string sColl[\"\"]", "num& x_n", "num& x_a[]", "point x_p[,]".
+
+    Returns name, type, access, by_reference, container ("element"/"array"/"collection") and
+    sizes (array sizes; empty strings for the dimensions of an array parameter).
+    """
+    m = _DECL.match(text)
+    if not m:
+        raise ValueError(f"bad declaration {text!r}")
+    access, vtype, ref, name, brackets = m.groups()
+    container, sizes = "element", []
+    if brackets is not None:
+        inner = brackets[1:-1].strip()
+        if inner.startswith('"'):
+            container = "collection"
+        else:
+            container = "array"
+            sizes = [x.strip() for x in inner.split(",")] if inner else [""]
+    return {"name": name, "type": vtype, "access": access or "public", "by_reference": bool(ref),
+            "container": container, "sizes": sizes}
+
+
+def _data_xml(decl: str) -> str:
+    d = parse_declaration(decl)
+    if d["container"] == "collection":
+        return f'    <Data name="{d["name"]}" access="{d["access"]}" xsi:type="collection" type="{d["type"]}" />'
+    size = " ".join(d["sizes"]) if d["container"] == "array" else "1"
+    return f'    <Data name="{d["name"]}" access="{d["access"]}" xsi:type="array" type="{d["type"]}" size="{size}" />'
+
+
+def _local_xml(decl: str) -> str:
+    d = parse_declaration(decl)
+    if d["container"] == "collection":
+        return f'      <Local name="{d["name"]}" type="{d["type"]}" xsi:type="collection" />'
+    size = " ".join(d["sizes"]) if d["container"] == "array" else "1"
+    return f'      <Local name="{d["name"]}" type="{d["type"]}" xsi:type="array" size="{size}" />'
+
+
+def _param_xml(decl: str) -> str:
+    d = parse_declaration(decl)
+    use = ' use="reference"' if d["by_reference"] else ""
+    dims = f' dimensions="{len(d["sizes"])}"' if d["container"] == "array" else ""
+    return f'      <Parameter name="{d["name"]}" type="{d["type"]}" xsi:type="{d["container"]}"{use}{dims} />'
+
+
+def program_file(name: str, code: str, params=(), locals_=(), access: str = "public") -> str:
+    head = PGX_HEAD.format(name=name, access=access)
+    if params:
+        head += '    <Parameters xmlns="http://www.staubli.com/robotics/VAL3/Param/1">\n'
+        head += "\n".join(_param_xml(p) for p in params) + "\n    </Parameters>\n"
+    if locals_:
+        head += "    <Locals>\n" + "\n".join(_local_xml(x) for x in locals_) + "\n    </Locals>\n"
+    return head + CODE_OPEN + code.rstrip("\n") + PGX_TAIL
+
+
+def write_app(root: Path, code: str, name: str = "Example", *, globals_=(), locals_=(), programs=None,
+              version: str = "s7.11") -> Path:
+    """An application whose start() holds `code` (its locals: `locals_`); returns its folder.
+
+    `globals_` are declarations for the .dtx; `programs` maps other program names to
+    {"params": [...], "locals": [...], "code": "...", "access": "public"}.
+    """
     folder = root / name
     folder.mkdir(parents=True, exist_ok=True)
-    (folder / f"{name}.pjx").write_text(PJX.format(name=name), encoding="utf-8")
-    (folder / f"{name}.dtx").write_text(DTX, encoding="utf-8")
-    (folder / "start.pgx").write_text(program_file("start", code), encoding="utf-8")
-    (folder / "stop.pgx").write_text(program_file("stop", "begin\nend\n"), encoding="utf-8")
+    others = dict(programs or {})
+    names = ["start", "stop"] + [p for p in others if p not in ("start", "stop")]
+    entries = "\n".join(f'    <Program file="{p}.pgx" />' for p in names)
+    (folder / f"{name}.pjx").write_text(PJX.format(name=name, programs=entries, version=version), encoding="utf-8")
+    datas = "\n".join(_data_xml(g) for g in globals_)
+    (folder / f"{name}.dtx").write_text(DTX.format(datas=datas), encoding="utf-8")
+    (folder / "start.pgx").write_text(program_file("start", code, locals_=locals_), encoding="utf-8")
+    if "stop" not in others:
+        (folder / "stop.pgx").write_text(program_file("stop", "begin\nend\n"), encoding="utf-8")
+    for prog, spec in others.items():
+        text = program_file(prog, spec.get("code", "begin\nend\n"), spec.get("params", ()), spec.get("locals", ()),
+                            spec.get("access", "public"))
+        (folder / f"{prog}.pgx").write_text(text, encoding="utf-8")
     return folder
 
 

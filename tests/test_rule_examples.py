@@ -26,7 +26,8 @@ def _bytes(text: str) -> bytes:
 
 def _run(tmp_path, ex):
     if ex.code is not None:
-        folder = write_app(tmp_path, ex.code)
+        folder = write_app(tmp_path, ex.code, globals_=ex.globals, locals_=ex.locals, programs=ex.programs,
+                           version=ex.version)
         target = folder
     else:
         write_files(tmp_path, {k: _bytes(v) if ex.byte_escapes else v for k, v in ex.files.items()})

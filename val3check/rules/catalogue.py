@@ -34,6 +34,10 @@ class Example:
     files: dict[str, str]  # or: files of an application tree, relative paths -> text
     target: str  # what to lint, relative to the example root
     expect: tuple[str, ...]  # "line:col" (of `code`) or "file:line:col" (of `files`)
+    globals: tuple[str, ...] = ()  # declarations for `code` examples: "num nX", "private point pA[3]"
+    locals: tuple[str, ...] = ()  # locals of start(): "num l_i", "string l_s[\"\"]"
+    programs: dict[str, dict] = field(default_factory=dict)  # other programs: name -> {params, locals, code, access}
+    version: str = "s7.11"  # the application's VAL 3 version
     config: str | None = None  # a val3check.toml written at the example root and used
     byte_escapes: bool = False  # `\xHH` in `files` stands for the byte HH (for encoding rules)
 
@@ -73,6 +77,10 @@ def _example(raw: dict, where: str) -> Example:
         files=dict(files),
         target=raw.get("target", "."),
         expect=tuple(raw.get("expect", ())),
+        globals=tuple(raw.get("globals", ())),
+        locals=tuple(raw.get("locals", ())),
+        programs=dict(raw.get("programs", {})),
+        version=raw.get("version", "s7.11"),
         config=raw.get("config"),
         byte_escapes=bool(raw.get("byte-escapes", False)),
     )

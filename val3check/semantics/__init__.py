@@ -1,0 +1,21 @@
+"""Semantic analysis of a loaded and parsed application (manual chapters 2-11).
+
+`analyse(workspace, app)` returns the findings of every semantic rule family:
+- `checker`  : what the controller's compiler refuses: names, types, containers, parameters,
+               libraries and user types (N, T and L codes);
+- `patterns` : what compiles but is probably wrong (S codes).
+Programs whose code did not parse (`program.body is None`) are skipped.
+"""
+
+from __future__ import annotations
+
+from ..diagnostics import Diagnostic
+from ..loading.model import Application, Workspace
+
+
+def analyse(workspace: Workspace, app: Application) -> list[Diagnostic]:
+    from . import checker, patterns
+
+    found = checker.check_application(workspace, app)
+    found.extend(patterns.check_application(workspace, app))
+    return found
