@@ -395,17 +395,38 @@ class Loader:
                 if app is not None:
                     keys.append(app.path)
             loaded[f.path] = keys
+        app_folders = [path for path, keys in loaded.items() if keys]
         for f in folders:
             keys = loaded.get(f.path)
-            if keys:
-                for k in keys:
-                    self._add_target(k)
-                continue
-            # No project here, or none could be read: the programs alone.
             free = [p for p in f.programs if _key(p) not in self.claimed]
+            owner = self._owning_project(f.path, app_folders, loaded)
+            if owner is not None:
+                # Inside an application folder: program files its project does not list are
+                # not part of the application (the controller never loads them).
+                for k in keys or ():
+                    self._add_target(k)
+                for p in free:
+                    self.diags.append(Diagnostic(
+                        "F012",
+                        f"program file not listed in {os.path.basename(owner)}: it is not part of the"
+                        " application and is not checked",
+                        p,
+                    ))
+                continue
+            # No project here or above, or none could be read: the programs alone.
             if free:
                 app = self.load_pgx_only(f.path, free, unreadable_project=bool(f.projects))
                 self._add_target(app.path)
+
+    @staticmethod
+    def _owning_project(folder: str, app_folders: list[str], loaded: dict[str, list[str]]) -> str | None:
+        """The project of the nearest application folder that contains `folder` (or is it)."""
+        best = None
+        for candidate in app_folders:
+            if folder == candidate or folder.startswith(candidate.rstrip(os.sep) + os.sep):
+                if best is None or len(candidate) > len(best):
+                    best = candidate
+        return loaded[best][0] if best is not None else None
 
     # -- libraries and user types -------------------------------------------------------------
 

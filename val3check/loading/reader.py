@@ -260,7 +260,10 @@ def _read_parameter(node: Node, sink: Sink, prog: str) -> Parameter | None:
         sink.f007(node, f'{what}: invalid dimensions "{raw}" (expected a number)')
     use = node.get("use")
     by_ref = False
-    if use is not None:
+    by_val = node.get("byVal")  # s6 files: byVal="false" means by reference
+    if use is None and by_val is not None:
+        by_ref = by_val.strip().lower() == "false"
+    elif use is not None:
         low = use.strip().lower()
         if low == "reference":
             by_ref = True
@@ -365,7 +368,7 @@ def _check_key(node: Node, sink: Sink, key: str, container: Container, sizes: tu
         if key == "":
             sink.f007(node, f"{what}: a collection key cannot be empty (manual 2.3.4)")
         return
-    parts = key.split()
+    parts = key.replace(",", " ").split()  # SRS writes "1 2"; some tools write "1,2"
     if not parts or not all(p.isdigit() for p in parts):
         sink.f007(node, f'{what}: invalid key "{key}" (expected an index such as "0" or "1 2")')
         return
@@ -388,6 +391,8 @@ def read_value(node: Node, sink: Sink, typ: str, container: Container, sizes: tu
         key = node.get("index", "0") or "0"
     what = f"{owner}[{key}]"
     _check_key(node, sink, key, container, sizes, what)
+    if container is not Container.COLLECTION:
+        key = " ".join(key.replace(",", " ").split())
     father = node.get("fatherId")
     if father is not None:
         father = father.strip() or None

@@ -110,6 +110,12 @@ def resolve_library(path_text: str, pjx_path: str, disk_roots: list[str]) -> str
     ctrl = controller_usrapp(pjx_dir)
     if ctrl is not None:
         disk_bases.append(ctrl)
+    # Last resort: a project checked on its own from deep inside a repository (a user type
+    # under `App/Types/T/`) names `Disk://App/...` relative to a folder further up.
+    ancestor = os.path.dirname(app_parent)
+    while ancestor and ancestor != os.path.dirname(ancestor):
+        disk_bases.append(ancestor)
+        ancestor = os.path.dirname(ancestor)
     m = _ROOT.match(text)
     if m:
         rel = m.group(2)
