@@ -55,7 +55,7 @@ BLOCKS = [
     "  switch nCount\n    case 1, 2\n      sLog = \"low\"\n    break\n    case 3\n      sLog = \"mid\"\n    break\n    default\n      sLog = \"high\"\n    break\n  endSwitch",
     "  l_i = 0\n  while l_i < 5\n    l_i = l_i + 1\n    nCount = nCount + sin(l_i * 10) * cos(30) / 2\n  endWhile",
     "  do\n    l_j = l_j + 1.5e-1\n  until l_j >= 3 xor bReady",
-    "  l_s = first(sNames)\n  while l_s != \"\"\n    sLog = sNames[l_s]\n    l_s = next(sNames, l_s)\n  endWhile",
+    "  l_s = first(sNames)\n  while l_s != \"\"\n    sLog = sNames[l_s]\n    l_s = next(sNames[l_s])\n  endWhile",
 ]
 
 
@@ -79,10 +79,9 @@ def generate(folder: Path, min_lines: int = 20_000, seed: int = 3) -> int:
         index += 1
     for special in ("start", "stop"):
         code = "begin\n  call prog0000(1)\nend" if special == "start" else "begin\nend"
-        text = PGX.format(name=special, code=code).replace(
-            '    <Parameters xmlns="http://www.staubli.com/robotics/VAL3/Param/1">\n      <Parameter name="x_nIn" type="num" xsi:type="element" />\n    </Parameters>\n',
-            "",
-        )
+        text = PGX.format(name=special, code=code)
+        head, _, rest = text.partition("    <Parameters")
+        text = head + rest[rest.index("    <Code>"):]  # start() and stop() take no parameter and no local
         (folder / f"{special}.pgx").write_text(text, encoding="utf-8")
         programs.append(special)
         total += code.count("\n") + 1

@@ -138,9 +138,12 @@ def write_files(root: Path, files: dict[str, str | bytes]) -> None:
             target.write_bytes(content.encode("utf-8"))
 
 
-def code_position(line: int, col: int) -> tuple[int, int]:
-    """Where line/col of a `write_app` snippet land in start.pgx."""
-    return CODE_FIRST_LINE + line - 1, (CODE_FIRST_COL + col - 1) if line == 1 else col
+def code_position(line: int, col: int, pgx_text: str | None = None) -> tuple[int, int]:
+    """Where line/col of a `write_app` snippet land in the .pgx file (`pgx_text`: its content)."""
+    first = CODE_FIRST_LINE
+    if pgx_text is not None:  # parameters and locals come before the code
+        first = next(k for k, text in enumerate(pgx_text.split("\n"), start=1) if CODE_OPEN in text)
+    return first + line - 1, (CODE_FIRST_COL + col - 1) if line == 1 else col
 
 
 def lint(paths: list[str | Path], settings: Settings | None = None, cwd: Path | None = None) -> LintRun:

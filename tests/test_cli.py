@@ -29,7 +29,7 @@ BAD = "begin\n  if true\n    nX = 1\nend\n"
 
 
 def test_clean_application_exits_0(tmp_path):
-    write_app(tmp_path, GOOD)
+    write_app(tmp_path, GOOD, globals_=["num nX"])
     r = val3check("lint", "Example", cwd=tmp_path)
     assert r.returncode == 0, r.stdout + r.stderr
     assert "All checks passed" in r.stdout

@@ -1,7 +1,9 @@
-"""Command line: `val3check lint`, `val3check rules`, `val3check rule CODE`.
+"""Command line: `val3check lint`, `val3check sim`, `val3check rules`, `val3check rule CODE`.
 
 Exit codes (README): 0 nothing at or above --fail-on; 1 findings; 2 usage error, bad
-configuration, or input that could not be read at all.
+configuration, or input that could not be read at all. `sim` (docs/sim.md): 0 the run raised
+no runtime diagnostic at or above --fail-on; 1 it did; 2 the application was not run (usage,
+unreadable input, lint errors, bad scenario).
 """
 
 from __future__ import annotations
@@ -46,6 +48,19 @@ def build_parser() -> argparse.ArgumentParser:
     lint.add_argument("--statistics", action="store_true", help="show counts per rule instead of each finding")
     lint.add_argument("--color", choices=("auto", "always", "never"), default="auto")
 
+    sim = sub.add_parser("sim", help="run an application in the virtual controller (docs/sim.md)")
+    sim.add_argument("app", metavar="APP", help="the application: its folder or .pjx")
+    sim.add_argument("--duration", type=float, default=60.0, metavar="S", help="simulated seconds to run at most (default: 60)")
+    sim.add_argument("--report", choices=("text", "json"), default="text", help="report format (default: text)")
+    sim.add_argument("-o", "--output", metavar="FILE", help="write the report to FILE instead of standard output")
+    sim.add_argument("--scenario", metavar="FILE", help="I/O scenario (TOML, docs/scenario.md)")
+    sim.add_argument("--max-wall", type=float, default=60.0, metavar="S", help="wall-clock budget in seconds (default: 60)")
+    sim.add_argument("--max-lines", type=int, default=50_000_000, metavar="N", help="budget of executed VAL 3 lines")
+    sim.add_argument("--fail-on", choices=("error", "warning", "info", "never"), help="lowest runtime diagnostic severity that makes the exit code 1 (default: error)")
+    sim.add_argument("--disk-root", action="append", default=[], metavar="DIR", help="folder where Disk:// libraries are also searched (repeatable)")
+    sim.add_argument("--config", metavar="FILE", help="configuration file (default: val3check.toml or pyproject.toml found upwards)")
+    sim.add_argument("--isolated", action="store_true", help="ignore every configuration file")
+
     rules = sub.add_parser("rules", help="list the rule catalogue")
     rules.add_argument("--format", choices=("text", "json"), default="text")
     rule = sub.add_parser("rule", help="explain one rule")
@@ -58,6 +73,8 @@ def main(argv: list[str] | None = None) -> int:
     try:
         if args.command == "lint":
             return _lint(args)
+        if args.command == "sim":
+            return _sim(args)
         if args.command == "rules":
             return _rules(args)
         if args.command == "rule":
@@ -80,6 +97,104 @@ def _targets(paths: list[str]) -> list[str]:
         if path not in out:
             out.append(path)
     return out
+
+
+def _settings(args: argparse.Namespace, first_path: str):
+    from .config import ConfigError, Settings, find_config, load_settings
+
+    try:
+        settings = Settings()
+        if args.config:
+            if not os.path.isfile(args.config):
+                raise ConfigError(f"{args.config}: configuration file not found")
+            settings = load_settings(args.config)
+        elif not args.isolated:
+            found = find_config(first_path)
+            if found:
+                settings = load_settings(found)
+    except ConfigError as exc:
+        print(f"val3check: error: {exc}", file=sys.stderr)
+        return None
+    return settings
+
+
+def _write(text: str, output: str | None) -> bool:
+    if output is None:
+        sys.stdout.write(text)
+        sys.stdout.flush()
+        return True
+    try:
+        with open(output, "w", encoding="utf-8", newline="\n") as fh:
+            fh.write(text)
+    except OSError as exc:
+        print(f"val3check: error: cannot write {output}: {exc.strerror or exc}", file=sys.stderr)
+        return False
+    return True
+
+
+def _sim(args: argparse.Namespace) -> int:
+    """Lint first (in-process); run only an application without error-level findings."""
+    settings = _settings(args, args.app)
+    if settings is None:
+        return EXIT_USAGE
+    if args.fail_on:
+        settings.fail_on = args.fail_on
+    settings.disk_roots = [os.path.abspath(d) for d in args.disk_root] + settings.disk_roots
+    if not args.duration > 0 or not args.max_wall > 0 or args.max_lines < 1:
+        print("val3check: error: --duration, --max-wall and --max-lines must be positive", file=sys.stderr)
+        return EXIT_USAGE
+
+    from .diagnostics import Severity
+    from .lint import run
+    from .reporting import render
+
+    outcome = run([args.app], settings)
+    apps = [outcome.workspace.apps[k] for k in outcome.workspace.targets]
+    if outcome.unreadable or not apps:
+        sys.stdout.write(render("text", outcome.result))
+        print(f"val3check sim: error: no application could be read at {args.app}", file=sys.stderr)
+        return EXIT_USAGE
+    if len(apps) != 1:
+        print(f"val3check sim: error: {args.app} holds {len(apps)} applications; name one of them", file=sys.stderr)
+        return EXIT_USAGE
+    errors = [d for d in outcome.result.diagnostics if d.severity is not None and d.severity >= Severity.ERROR]
+    if errors:
+        sys.stderr.write(render("text", outcome.result))
+        print(f"val3check sim: not run: the application has {len(errors)} error(s) (val3check lint); fix them first",
+              file=sys.stderr)
+        return EXIT_USAGE
+    app = apps[0]
+    if not any(n.lower() == "start" for n in app.programs):
+        print(f"val3check sim: not run: {app.name} has no start() program (2.1.2)", file=sys.stderr)
+        return EXIT_USAGE
+
+    from . import __version__
+    from .interpretation.report import build_report
+    from .interpretation.scenario import ScenarioError, load_scenario
+    from .interpretation.simulate import SimOptions, simulate
+    from .rules.catalogue import catalogue
+
+    scenario = None
+    try:
+        if args.scenario:
+            scenario = load_scenario(args.scenario)
+        options = SimOptions(duration=args.duration, max_wall=args.max_wall, max_lines=args.max_lines,
+                             disk_roots=list(settings.disk_roots))
+        result = simulate(outcome.workspace, app, options, scenario)
+    except ScenarioError as exc:
+        print(f"val3check sim: bad scenario: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    report = build_report(result, settings, catalogue(), __version__, result.link_names)
+    if args.report == "json":
+        from .reporting.sim_json import render as render_sim
+    else:
+        from .reporting.sim_text import render as render_sim
+    if not _write(render_sim(report), args.output):
+        return EXIT_USAGE
+    if settings.fail_on == "never":
+        return EXIT_OK
+    threshold = Severity.parse(settings.fail_on)
+    return EXIT_FINDINGS if any(Severity.parse(d["severity"]) >= threshold for d in report.diagnostics) else EXIT_OK
 
 
 def _lint(args: argparse.Namespace) -> int:

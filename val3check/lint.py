@@ -17,6 +17,7 @@ from .loading.model import Workspace
 from .parsing.parser import parse_program
 from .result import LintResult
 from .rules.catalogue import catalogue
+from .semantics import analyse
 
 
 @dataclass(slots=True)
@@ -52,6 +53,7 @@ def run(paths: list[str], settings: Settings) -> LintRun:
         suppressed.update(suppression.collect(app))
         for program in app.programs.values():
             found.extend(parse_program(program))
+        found.extend(analyse(workspace, app))
 
     kept: dict[tuple, Diagnostic] = {}
     for d in found:

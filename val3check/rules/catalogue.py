@@ -38,6 +38,8 @@ class Example:
     locals: tuple[str, ...] = ()  # locals of start(): "num l_i", "string l_s[\"\"]"
     programs: dict[str, dict] = field(default_factory=dict)  # other programs: name -> {params, locals, code, access}
     version: str = "s7.11"  # the application's VAL 3 version
+    duration: float = 10.0  # runtime (R) examples: simulated seconds
+    scenario: str | None = None  # runtime (R) examples: the text of an I/O scenario file
     config: str | None = None  # a val3check.toml written at the example root and used
     byte_escapes: bool = False  # `\xHH` in `files` stands for the byte HH (for encoding rules)
 
@@ -81,6 +83,8 @@ def _example(raw: dict, where: str) -> Example:
         locals=tuple(raw.get("locals", ())),
         programs=dict(raw.get("programs", {})),
         version=raw.get("version", "s7.11"),
+        duration=float(raw.get("duration", 10.0)),
+        scenario=raw.get("scenario"),
         config=raw.get("config"),
         byte_escapes=bool(raw.get("byte-escapes", False)),
     )

@@ -1,0 +1,142 @@
+"""N codes: names and declarations (manual 2.2.3, 2.2.4, 2.5.1, 2.5.2, 6.3)."""
+
+from __future__ import annotations
+
+from checkhelp import codes, collect, findings, messages, write_app, write_files
+
+
+def test_undefined_variable_at_its_position_with_a_suggestion(tmp_path):
+    code = "begin\n  nCount = nCont + 1\nend"
+    assert findings(tmp_path, code, globals_=["num nCount"]) == [("N001", 2, 12)]
+    assert "did you mean nCount?" in messages(tmp_path / "Example")[0]
+
+
+def test_locals_parameters_globals_and_constants_resolve(tmp_path):
+    code = """begin
+  nX = 1
+  pP.config.shoulder = RIGHTY
+  pP.config.elbow = efree
+  mD.blend = Cartesian
+  mD.blend = joint
+  mD.blend = off
+  movej(pP, flange, mD)
+  link(fF, world)
+  bB = true or false
+end"""
+    assert codes(tmp_path, code, globals_=["num nX", "point pP", "mdesc mD", "frame fF", "bool bB"]) == []
+
+
+def test_a_local_hides_a_global_of_another_type(tmp_path):
+    progs = {"show": {"locals": ["string x_s"], "code": "begin\n  x_s = \"text\"\nend"}}
+    folder = write_app(tmp_path, "begin\n  call show()\n  x_s = 3\nend", globals_=["num x_s"], programs=progs)
+    assert collect(folder) == []
+
+
+def test_case_mismatch_is_a_warning_of_its_own_and_not_undefined(tmp_path):
+    code = "begin\n  ncount = nCount + 1\n  call Pick()\nend"
+    found = findings(tmp_path, code, globals_=["num nCount"], programs={"pick": {}})
+    assert found == [("N006", 2, 3), ("N006", 3, 8)]
+
+
+def test_pgx_only_application_does_not_report_unknown_globals_nor_programs(tmp_path):
+    files = {"Loose/start.pgx": """<?xml version="1.0" encoding="utf-8"?>
+<Programs xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance" xmlns="http://www.staubli.com/robotics/VAL3/Program/2">
+  <Program name="start" access="public">
+    <Code><![CDATA[begin
+  nGlobal = nOther + 1
+  call helper(nGlobal)
+  x = lib:nValue
+  waitEndMov()
+end]]></Code>
+  </Program>
+</Programs>
+"""}
+    write_files(tmp_path, files)
+    # globals, programs and libraries are unknown; an instruction typo is still certain
+    assert [c[0] for c in collect(tmp_path / "Loose")] == ["N003"]
+
+
+def test_undefined_program_and_program_suggestion(tmp_path):
+    code = "begin\n  call pik(1)\n  taskCreate \"t\", 10, pik(1)\nend"
+    found = findings(tmp_path, code, programs={"pick": {"params": ["num x_n"]}})
+    assert found == [("N002", 2, 8), ("N002", 3, 23)]
+    assert "did you mean pick?" in messages(tmp_path / "Example")[0]
+
+
+def test_unknown_instructions_typo_error_far_name_warning_s8_warning_system_never(tmp_path):
+    code = "begin\n  waitEndMov()\n  setPayload(flange, 2)\n  $anything(1, 2)\n  println(\"x\")\nend"
+    assert codes(tmp_path, code) == ["N003", "N004", "N003"]
+
+
+def test_unknown_instruction_in_s8_is_a_warning_even_when_close(tmp_path):
+    assert codes(tmp_path, "begin\n  waitEndMov()\n  userPageSet(1)\nend", version="s8.3") == ["N004", "N004"]
+
+
+def test_variable_called_like_a_function(tmp_path):
+    assert codes(tmp_path, "begin\n  nX = nArr(2)\nend", globals_=["num nX", "num nArr[3]"]) == ["N003"]
+
+
+def test_undefined_alias_but_io_is_never_reported(tmp_path):
+    code = "begin\n  nX = lb:nX\n  bB = io:bIn1\n  call io:init()\nend"
+    assert findings(tmp_path, code, globals_=["num nX", "bool bB"]) == [("N005", 2, 8)]
+
+
+def _app_with_program(tmp_path, params=(), locals_=(), name="helper", version="s7.11", globals_=()):
+    progs = {name: {"params": list(params), "locals": list(locals_), "code": "begin\nend"}}
+    return write_app(tmp_path, "begin\nend", programs=progs, version=version, globals_=globals_)
+
+
+def test_duplicate_local_and_parameter(tmp_path):
+    folder = _app_with_program(tmp_path, params=["num x_n", "num x_n"], locals_=["num l_i", "num x_n", "num l_i"])
+    found = collect(folder, "N007", with_path=True)
+    assert len(found) == 3 and {f[1] for f in found} == {"helper.pgx"}
+
+
+def test_invalid_names_of_globals_locals_parameters_programs(tmp_path):
+    folder = _app_with_program(tmp_path, params=["num x_ThisNameIsTooLong"], locals_=["num _l"],
+                               name="helperWithALongName", globals_=["num nOk", "num nAVeryLongGlobalName"])
+    found = collect(folder, "N008", with_path=True)
+    assert sorted(f[1] for f in found) == ["Example.dtx", "helperWithALongName.pgx", "helperWithALongName.pgx",
+                                          "helperWithALongName.pgx"]
+
+
+def test_s8_names_are_not_limited_to_15_characters(tmp_path):
+    folder = _app_with_program(tmp_path, locals_=["num l_aLongLocalVariable"], version="s8.3")
+    assert collect(folder, "N008") == []
+
+
+def test_start_and_stop_without_parameters(tmp_path):
+    folder = write_app(tmp_path, "begin\nend", programs={"stop": {"params": ["num x_n"], "code": "begin\nend"}})
+    assert [f[:2] for f in collect(folder, "N009", with_path=True)] == [("N009", "stop.pgx")]
+
+
+def test_undefined_type_but_declared_unresolved_user_type_is_left_to_the_loader(tmp_path):
+    folder = write_app(tmp_path, "begin\nend", globals_=["Pose pHome", "num nX"])
+    assert [f[0] for f in collect(folder, "N010")] == ["N010"]
+    pjx = folder / "Example.pjx"
+    text = pjx.read_text().replace("<Libraries />", '<Libraries />\n  <Types>\n    <Type name="Pose" path="Disk://Nowhere/Pose.pjx" />\n  </Types>')
+    pjx.write_text(text)
+    assert collect(folder, "N010") == []
+
+
+def test_mixed_arm_families_reports_the_minority(tmp_path):
+    folder = write_app(tmp_path, "begin\nend", globals_=["pointRx pA", "jointRx jB", "configRs cC"])
+    found = collect(folder, "N011", with_path=True)
+    assert len(found) == 1 and found[0][1] == "Example.dtx"
+    assert "cC" in messages(folder)[0]
+
+
+def test_program_with_a_syntax_error_is_skipped_but_still_callable(tmp_path):
+    progs = {"broken": {"params": ["num x_n"], "code": "begin\n  if true\nend"}}
+    folder = write_app(tmp_path, "begin\n  call broken(1)\n  call broken()\nend", programs=progs)
+    assert [f[0] for f in collect(folder)] == ["T005"]
+
+
+def test_unreadable_data_or_program_file_relaxes_undefined_names(tmp_path):
+    folder = write_app(tmp_path, "begin\n  nX = nY + 1\n  call helper()\nend", globals_=["num nX"])
+    assert [f[0] for f in collect(folder)] == ["N001", "N002"]
+    (folder / "Example.dtx").write_text("<Database><Datas>", encoding="utf-8")  # malformed: F004
+    assert [f[0] for f in collect(folder)] == ["N002"]
+    pjx = folder / "Example.pjx"
+    pjx.write_text(pjx.read_text().replace('<Program file="stop.pgx" />', '<Program file="stop.pgx" />\n    <Program file="gone.pgx" />'))
+    assert collect(folder) == []

@@ -1,0 +1,311 @@
+"""The cell around the program: the I/O scenario file (TOML, docs/scenario.md).
+
+A scenario gives initial input values, inputs that change at given times, reactions of the
+cell to outputs, key presses on the pendant, bytes sent by serial/socket peers, and the
+controller state of chapter 8. Signals are named by a global dio/aio/sio variable of the
+application (`diPart`, `diCode[2]`) or by their physical link (`"BasicIO-1\\%I2"`). An unknown
+signal, key or a value of the wrong type is an error that names the line.
+"""
+
+from __future__ import annotations
+
+import datetime
+import re
+import tomllib
+from dataclasses import dataclass, field
+from typing import Any
+
+from .values import Arr, IOPoint
+
+SCENARIO_VERSION = 1
+
+
+class ScenarioError(Exception):
+    def __init__(self, path: str, line: int, message: str) -> None:
+        super().__init__(f"{path}:{line}: {message}" if line else f"{path}: {message}")
+        self.path, self.line, self.message = path, line, message
+
+
+@dataclass
+class Scenario:
+    path: str
+    text: str
+    data: dict = field(default_factory=dict)
+
+
+def load_scenario(path: str) -> Scenario:
+    try:
+        with open(path, "rb") as fh:
+            raw = fh.read()
+    except OSError as exc:
+        raise ScenarioError(path, 0, f"cannot read: {exc.strerror or exc}") from None
+    try:
+        text = raw.decode("utf-8")
+        data = tomllib.loads(text)
+    except UnicodeDecodeError:
+        raise ScenarioError(path, 0, "not UTF-8") from None
+    except tomllib.TOMLDecodeError as exc:
+        m = re.search(r"line (\d+)", str(exc))
+        raise ScenarioError(path, int(m.group(1)) if m else 0, f"invalid TOML: {exc}") from None
+    return Scenario(path, text, data)
+
+
+class _Lines:
+    """Find the line of a key: tomllib does not keep positions."""
+
+    def __init__(self, text: str) -> None:
+        self.lines = text.splitlines()
+
+    def section(self, header: str, index: int = 0) -> int:
+        if not hasattr(self, "_headers"):
+            self._headers: dict[str, list[int]] = {}
+            pat = re.compile(r"^\s*\[\[?\s*([^\]]+?)\s*\]\]?\s*(#.*)?$")
+            for i, line in enumerate(self.lines, 1):
+                m = pat.match(line)
+                if m:
+                    self._headers.setdefault(m.group(1).strip().strip('"'), []).append(i)
+        found = self._headers.get(header, [])
+        return found[index] if index < len(found) else 0
+
+    def key(self, key: str, start: int = 0) -> int:
+        k = re.escape(key)
+        pat = re.compile(r'(^|[\s{,])("' + k + r'"|\'' + k + r"'|" + k + r")\s*=")
+        for i in range(max(start, 1), len(self.lines) + 1):
+            line = self.lines[i - 1]
+            if i > start and start and re.match(r"^\s*\[", line):
+                break
+            if pat.search(line):
+                return i
+        return start
+
+
+def _seconds(v: Any) -> int | None:
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or v < 0:
+        return None
+    return int(round(v * 1_000_000))
+
+
+class Applier:
+    def __init__(self, machine, scenario: Scenario) -> None:
+        self.M = machine
+        self.sc = scenario
+        self.lines = _Lines(scenario.text)
+        self.signals = self._signals()
+
+    def fail(self, line: int, message: str) -> None:
+        raise ScenarioError(self.sc.path, line, message)
+
+    def _signals(self) -> dict[str, IOPoint]:
+        out: dict[str, IOPoint] = {}
+        main = self.M.main
+        for name, c in main.globals.items():
+            if type(c) is Arr and c.t in ("dio", "aio", "sio"):
+                for i, io in enumerate(c.data):
+                    if type(io) is IOPoint:
+                        if i == 0:
+                            out[name] = io
+                        out[f"{name}[{i}]"] = io
+        for (kind, link), io in self.M.cell.points.items():
+            out.setdefault(link, io)
+        return out
+
+    def signal(self, name: str, line: int, kinds=("dio", "aio")) -> IOPoint:
+        io = self.signals.get(name)
+        if io is None:
+            self.fail(line, f"unknown signal {name!r} (a global dio/aio/sio of the application, or a link of its data)")
+        if not io.link:
+            self.fail(line, f"signal {name!r} is not linked to an input/output (its link is empty in the data file)")
+        if io.kind not in kinds:
+            self.fail(line, f"signal {name!r} is a {io.kind}, expected {' or '.join(kinds)}")
+        return io
+
+    def value(self, io: IOPoint, v: Any, line: int, name: str) -> Any:
+        if io.kind == "dio":
+            if not isinstance(v, bool):
+                self.fail(line, f"{name}: a dio takes true or false, not {v!r}")
+            return v
+        if isinstance(v, bool) or not isinstance(v, (int, float)):
+            self.fail(line, f"{name}: an aio takes a number, not {v!r}")
+        return float(v)
+
+    def settings(self, table: Any, line: int, what: str) -> list[tuple[IOPoint, Any]]:
+        if not isinstance(table, dict):
+            self.fail(line, f"{what}: expected a table of signal = value")
+        out = []
+        for name, v in table.items():
+            ln = self.lines.key(name, line) or line
+            io = self.signal(name, ln)
+            out.append((io, self.value(io, v, ln, name)))
+            io.driven = True  # driven by the scenario: an input (writing it is error 122)
+        return out
+
+    def apply(self) -> None:
+        d = self.sc.data
+        known = {"version", "description", "inputs", "events", "reactions", "keys", "serial", "controller"}
+        for k in d:
+            if k not in known:
+                self.fail(self.lines.key(k) or self.lines.section(k), f"unknown table or key {k!r}")
+        version = d.get("version", SCENARIO_VERSION)
+        if version != SCENARIO_VERSION:
+            self.fail(self.lines.key("version"), f"unsupported scenario version {version!r} (expected 1)")
+        M = self.M
+        if "inputs" in d:
+            line = self.lines.section("inputs")
+            for io, v in self.settings(d["inputs"], line, "[inputs]"):
+                io.value = v
+                M.log_io(0, io, v, "scenario")
+        for i, ev in enumerate(_list(d, "events", self)):
+            line = self.lines.section("events", i)
+            self._keys(ev, {"at", "set"}, line, "[[events]]")
+            at = _seconds(ev.get("at"))
+            if at is None:
+                self.fail(self.lines.key("at", line) or line, "[[events]] needs at = seconds (a number >= 0)")
+            M.push_event(at, "set", self.settings(ev.get("set", {}), line, "[[events]] set"))
+        for i, r in enumerate(_list(d, "reactions", self)):
+            line = self.lines.section("reactions", i)
+            self._keys(r, {"when", "becomes", "after", "set"}, line, "[[reactions]]")
+            name = r.get("when")
+            if not isinstance(name, str):
+                self.fail(line, "[[reactions]] needs when = \"output\"")
+            io = self.signal(name, self.lines.key("when", line) or line)
+            becomes = self.value(io, r.get("becomes", True), self.lines.key("becomes", line) or line, name)
+            after = _seconds(r.get("after", 0))
+            if after is None:
+                self.fail(self.lines.key("after", line) or line, "after = seconds (a number >= 0)")
+            M.reactions.append((io, becomes, after, self.settings(r.get("set", {}), line, "[[reactions]] set")))
+        from .machine import Key
+
+        keys = []
+        for i, k in enumerate(_list(d, "keys", self)):
+            line = self.lines.section("keys", i)
+            self._keys(k, {"at", "key", "text", "hold"}, line, "[[keys]]")
+            at = _seconds(k.get("at", 0))
+            if at is None:
+                self.fail(self.lines.key("at", line) or line, "[[keys]] at = seconds (a number >= 0)")
+            code = k.get("key", 270 if "text" in k else None)
+            if isinstance(code, bool) or not isinstance(code, int) or not -1 < code < 1000:
+                self.fail(self.lines.key("key", line) or line, "[[keys]] key = a key code (4.3), e.g. 270 for Return")
+            text = k.get("text")
+            if text is not None and not isinstance(text, str):
+                self.fail(self.lines.key("text", line) or line, "[[keys]] text = \"what the operator types\"")
+            hold = _seconds(k.get("hold", 0.2))
+            if hold is None:
+                self.fail(self.lines.key("hold", line) or line, "[[keys]] hold = seconds")
+            keys.append(Key(at, code, text, hold))
+            M.push_event(at, "key", None)
+        M.keys = sorted(keys, key=lambda k: k.at)
+        for i, s in enumerate(_list(d, "serial", self)):
+            line = self.lines.section("serial", i)
+            self._keys(s, {"sio", "at", "send", "bytes", "when_sent", "after"}, line, "[[serial]]")
+            name = s.get("sio")
+            if not isinstance(name, str):
+                self.fail(line, "[[serial]] needs sio = \"siVariable\"")
+            io = self.signal(name, self.lines.key("sio", line) or line, kinds=("sio",))
+            data = self._bytes(s, line, io)
+            if "when_sent" in s:
+                pat = s["when_sent"]
+                if not isinstance(pat, str) or not pat:
+                    self.fail(self.lines.key("when_sent", line) or line, "when_sent = \"text the program sends\"")
+                after = _seconds(s.get("after", 0))
+                if after is None:
+                    self.fail(self.lines.key("after", line) or line, "after = seconds")
+                M.sio_replies.append((io, pat, after, data))
+            else:
+                at = _seconds(s.get("at", 0))
+                if at is None:
+                    self.fail(self.lines.key("at", line) or line, "[[serial]] at = seconds (a number >= 0)")
+                M.push_event(at, "sio", (io, data))
+        if "controller" in d:
+            self._controller(d["controller"])
+
+    def _bytes(self, s: dict, line: int, io: IOPoint) -> bytes:
+        if "send" in s:
+            if not isinstance(s["send"], str):
+                self.fail(self.lines.key("send", line) or line, "send = \"text\" (sent with the end-of-string character)")
+            return s["send"].encode("utf-8") + bytes([io.eos])
+        if "bytes" in s:
+            b = s["bytes"]
+            if not isinstance(b, list) or not all(isinstance(x, int) and not isinstance(x, bool) and 0 <= x <= 255 for x in b):
+                self.fail(self.lines.key("bytes", line) or line, "bytes = [numbers from 0 to 255]")
+            return bytes(b)
+        self.fail(line, "[[serial]] needs send = \"text\" or bytes = [...]")
+        return b""
+
+    def _keys(self, table: Any, allowed: set[str], line: int, what: str) -> None:
+        if not isinstance(table, dict):
+            self.fail(line, f"{what}: expected a table")
+        for k in table:
+            if k not in allowed:
+                self.fail(self.lines.key(k, line) or line, f"{what}: unknown key {k!r} (allowed: {', '.join(sorted(allowed))})")
+
+    def _controller(self, c: Any) -> None:
+        line = self.lines.section("controller")
+        if not isinstance(c, dict):
+            self.fail(line, "[controller] must be a table")
+        ctl = self.M.ctl
+        spec = {
+            "working_mode": (int, range(0, 5)), "working_state": (int, range(0, 7)), "es_status": (int, range(0, 3)),
+            "powered": (bool, None), "power_delay": ((int, float), None), "calibrated": (bool, None),
+            "monitor_speed": ((int, float), None), "operator_speed": (bool, None), "safety_fault": (str, None),
+            "profile": (str, None), "profiles": (dict, None), "language": (str, None), "languages": (list, None),
+            "date": ((str, datetime.datetime, datetime.date), None), "versions": (dict, None), "changes": (list, None),
+        }
+        for k, v in c.items():
+            ln = self.lines.key(k, line) or line
+            if k not in spec:
+                self.fail(ln, f"[controller]: unknown key {k!r}")
+            types, rng = spec[k]
+            if isinstance(v, bool) and types is not bool:
+                self.fail(ln, f"[controller] {k}: bad value {v!r}")
+            if not isinstance(v, types) or (rng is not None and v not in rng):
+                self.fail(ln, f"[controller] {k}: bad value {v!r}")
+            if k == "power_delay":
+                if v < 0:
+                    self.fail(ln, "[controller] power_delay: seconds >= 0")
+                ctl.power_delay_us = int(round(v * 1_000_000))
+            elif k == "monitor_speed":
+                if not 0 <= v <= 100:
+                    self.fail(ln, "[controller] monitor_speed: 0 to 100")
+                ctl.monitor_speed = float(v)
+            elif k == "date":
+                try:
+                    ctl.date = v if isinstance(v, datetime.datetime) else (
+                        datetime.datetime(v.year, v.month, v.day) if isinstance(v, datetime.date)
+                        else datetime.datetime.fromisoformat(v))
+                    ctl.date = ctl.date.replace(tzinfo=None)
+                except ValueError:
+                    self.fail(ln, f"[controller] date: not an ISO date {v!r}")
+            elif k == "profiles":
+                if not all(isinstance(x, str) for x in v.values()):
+                    self.fail(ln, "[controller] profiles = { login = \"password\" }")
+                ctl.profiles = dict(v)
+            elif k == "languages":
+                ctl.languages = tuple(str(x) for x in v)
+            elif k == "versions":
+                ctl.versions.update({str(a): str(b) for a, b in v.items()})
+            elif k == "changes":
+                for i, ch in enumerate(v):
+                    if not isinstance(ch, dict) or _seconds(ch.get("at")) is None:
+                        self.fail(ln, "[controller] changes = [{ at = seconds, working_mode = 3, ... }]")
+                    payload = {}
+                    for ck, cv in ch.items():
+                        if ck == "at":
+                            continue
+                        if ck not in ("working_mode", "working_state", "es_status", "powered", "monitor_speed",
+                                      "safety_fault", "calibrated"):
+                            self.fail(ln, f"[controller] changes: cannot change {ck!r}")
+                        payload[ck] = cv
+                    self.M.push_event(_seconds(ch["at"]), "ctl", payload)
+            else:
+                setattr(ctl, k, v)
+
+
+def _list(d: dict, key: str, ap: Applier) -> list:
+    v = d.get(key, [])
+    if not isinstance(v, list):
+        ap.fail(ap.lines.section(key) or ap.lines.key(key), f"{key} must be an array of tables ([[{key}]])")
+    return v
+
+
+def apply_scenario(machine, scenario: Scenario) -> None:
+    Applier(machine, scenario).apply()

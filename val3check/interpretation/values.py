@@ -1,0 +1,201 @@
+"""Run-time values of the virtual controller.
+
+Representation (chosen for speed of the generated code, see `compiler.py`):
+
+- `num` is a Python float, `bool` a bool, `string` a str (at most 128 UTF-8 bytes, 3.4.1);
+- a built-in structured value (2.3.3) is a plain dict of its fields, nested as the manual
+  nests them: a point is ``{"trsf": {x, y, z, rx, ry, rz}, "config": {shoulder, elbow, wrist}}``,
+  an mdesc ``{accel, vel, decel, tvel, rvel, blend, leave, reach}``; enum fields (`sfree`,
+  `joint`...) are strings;
+- a user-type value (chapter 7) is a dict of field name -> container, since every field of a
+  user type has its own container (7.1);
+- `dio`/`aio`/`sio` values are links (3.5.1): the variable holds the `IOPoint` object of the
+  physical input/output, shared by every variable linked to it; `screen` values are `Screen`s;
+- containers (2.3.4): `Arr` for arrays of 1 to 3 dimensions (a global "element" is an array
+  of size 1), `Coll` for collections (keys iterated in alphabetical = code point order, 2.5.6).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ..loading.types import base_type
+from .errors import Val3RuntimeError
+
+MAX_CONTAINER = 9999  # 2.5.4: insert/append/resize limit a variable to 9999 values
+MAX_STRING_BYTES = 128  # 3.4.1
+
+TRSF_FIELDS = ("x", "y", "z", "rx", "ry", "rz")
+CONFIG_FIELDS = ("shoulder", "elbow", "wrist")
+MDESC_FIELDS = ("accel", "vel", "decel", "tvel", "rvel", "blend", "leave", "reach")
+JOINT_FIELDS = ("j1", "j2", "j3", "j4", "j5", "j6")
+
+# Field types of the built-in structured types (types.toml), used by the compiler.
+STRUCT_FIELDS: dict[str, dict[str, str]] = {
+    "trsf": {f: "num" for f in TRSF_FIELDS},
+    "frame": {"trsf": "trsf"},
+    "tool": {"trsf": "trsf", "gripper": "dio", "otime": "num", "ctime": "num"},
+    "point": {"trsf": "trsf", "config": "config"},
+    "joint": {f: "num" for f in JOINT_FIELDS},
+    "config": {"shoulder": "shoulder", "elbow": "elbow", "wrist": "wrist"},
+    "mdesc": {"accel": "num", "vel": "num", "decel": "num", "tvel": "num", "rvel": "num", "blend": "blend",
+              "leave": "num", "reach": "num"},
+}
+# Literal order of the fields ({a, b, ...} initialisers, 2.4.2).
+STRUCT_ORDER: dict[str, tuple[str, ...]] = {t: tuple(f) for t, f in STRUCT_FIELDS.items()}
+ENUMS: dict[str, tuple[str, ...]] = {
+    "shoulder": ("righty", "lefty", "ssame", "sfree"),
+    "elbow": ("epositive", "enegative", "esame", "efree"),
+    "wrist": ("wpositive", "wnegative", "wsame", "wfree"),
+    "blend": ("off", "joint", "Cartesian"),
+}
+ENUM_CONSTANTS: dict[str, str] = {v.lower(): t for t, vs in ENUMS.items() for v in vs}
+ENUM_SPELLING: dict[str, str] = {v.lower(): v for vs in ENUMS.values() for v in vs}
+SIMPLE = frozenset({"num", "bool", "string", "dio", "aio", "sio", "screen"})
+IO_TYPES = frozenset({"dio", "aio", "sio"})
+
+
+def clip_string(s: str) -> str:
+    """3.4.1/3.4.2: a string holds at most 128 bytes of UTF-8 (cut on a character boundary)."""
+    if len(s) <= 32:
+        return s
+    b = s.encode("utf-8")
+    if len(b) <= MAX_STRING_BYTES:
+        return s
+    return b[:MAX_STRING_BYTES].decode("utf-8", "ignore")
+
+
+class IOPoint:
+    """A physical input/output of the simulated cell (3.5-3.7), identified by its link.
+
+    `kind` is "dio", "aio" or "sio". `value` is a bool (dio) or a float (aio). `driven` is True
+    when the scenario drives it (an input): writing it is error 122. For sio: `rx` holds the
+    bytes received and not read yet, `tx` what the program sent; `eos` is the end-of-string
+    character (sioCtrl "endOfString"), `timeout` the communication timeout (0 = none).
+    """
+
+    __slots__ = ("kind", "link", "value", "driven", "rx", "tx", "eos", "timeout", "closed", "params")
+
+    def __init__(self, kind: str, link: str) -> None:
+        self.kind = kind
+        self.link = link
+        self.value: Any = False if kind == "dio" else 0.0
+        self.driven = False
+        self.rx: bytearray = bytearray()
+        self.tx: bytearray = bytearray()
+        self.eos = 13
+        self.timeout = 0.0
+        self.closed = False
+        self.params: dict[str, Any] = {}
+
+    @property
+    def linked(self) -> bool:
+        return bool(self.link)
+
+    def __repr__(self) -> str:  # pragma: no cover - debugging aid
+        return f"IOPoint({self.kind}, {self.link!r})"
+
+
+class Screen:
+    """A user page of the pendant (chapter 4): 14 lines of 40 columns and a title."""
+
+    __slots__ = ("name", "lines", "x", "y", "title", "mode")
+
+    ROWS, COLS = 14, 40
+
+    def __init__(self, name: str = "") -> None:
+        self.name = name
+        self.lines = [[" "] * self.COLS for _ in range(self.ROWS)]
+        self.x = 0
+        self.y = 0
+        self.title = ""
+        self.mode = 0
+
+    def cls(self) -> None:
+        self.lines = [[" "] * self.COLS for _ in range(self.ROWS)]
+        self.x = self.y = 0
+
+    def _newline(self) -> None:
+        self.x = 0
+        self.y += 1
+        if self.y >= self.ROWS:  # 4.3 put: at the end of the page the page scrolls up one line
+            self.lines.pop(0)
+            self.lines.append([" "] * self.COLS)
+            self.y = self.ROWS - 1
+
+    def write(self, text: str, newline: bool) -> None:
+        for ch in text:
+            if ch == "\n":
+                self._newline()
+                continue
+            self.lines[self.y][self.x] = ch
+            self.x += 1
+            if self.x >= self.COLS:  # 4.3: at the end of a line the display goes on with the next
+                self._newline()
+        if newline:
+            self._newline()
+
+    def text(self) -> list[str]:
+        return ["".join(row).rstrip() for row in self.lines]
+
+
+class Arr:
+    """An array (2.3.4). 1-D arrays keep their values in `data`; `off` > 0 for the part of an
+    array passed from an index (2.6.3: `call f(a[23])` gives f the values from index 23 on).
+    2-D/3-D arrays keep a flat row-major `data` and their sizes in `dims`.
+    `local` arrays cannot change size (insert/delete/append/resize, 2.5.4-2.5.5)."""
+
+    __slots__ = ("t", "data", "dims", "off", "local")
+
+    def __init__(self, t: str, data: list, dims: tuple[int, ...] | None = None, off: int = 0, local: bool = False) -> None:
+        self.t = t
+        self.data = data
+        self.dims = dims if dims is not None and len(dims) > 1 else None
+        self.off = off
+        self.local = local
+
+    @property
+    def ndim(self) -> int:
+        return len(self.dims) if self.dims else 1
+
+    def size(self) -> int:
+        return len(self.data) - self.off
+
+    def view(self, index: int) -> "Arr":
+        return Arr(self.t, self.data, None, self.off + index, self.local)
+
+
+class Coll:
+    """A collection (2.3.4): values identified by a non-empty string key."""
+
+    __slots__ = ("t", "d")
+
+    def __init__(self, t: str, d: dict | None = None) -> None:
+        self.t = t
+        self.d = d if d is not None else {}
+
+    def keys(self) -> list[str]:
+        return sorted(self.d)
+
+
+def copy_value(v: Any) -> Any:
+    """Deep copy for `=` (7.3: after `=` the left variable is a copy of the right one)."""
+    tv = type(v)
+    if tv is float or tv is bool or tv is str:
+        return v
+    if tv is dict:
+        return {k: copy_value(x) for k, x in v.items()}
+    if tv is Arr:
+        return Arr(v.t, [copy_value(x) for x in v.data[v.off:]], v.dims, 0, v.local)
+    if tv is Coll:
+        return Coll(v.t, {k: copy_value(x) for k, x in v.d.items()})
+    return v  # IOPoint, Screen: links are shared
+
+
+def type_error(detail: str) -> Val3RuntimeError:
+    return Val3RuntimeError(70, detail)
+
+
+def canonical_type(name: str) -> str:
+    """Built-in spelling (`pointRx` -> `point`); user type names unchanged."""
+    return base_type(name)

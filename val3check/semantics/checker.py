@@ -1,0 +1,44 @@
+"""What the controller's compiler refuses when it loads an application (N, T and L codes).
+
+`check_application(workspace, app)` checks the declarations of the project (declarations.py),
+then the code of every program that parsed (statements.py, expressions.py, calls.py), against
+the application's symbol table (symbols.py). Programs whose code has syntax errors
+(`body is None`) are skipped; their declarations still serve the other programs' calls.
+
+For reuse (suspicious-pattern rules, an interpreter): `symbols.build(workspace, app)` gives the
+symbol table, and `program_typer(workspace, app, program)` an ExprTyper whose `typeof(node)`
+types any expression of that program (diagnostics go to its `ctx.diags`).
+"""
+
+from __future__ import annotations
+
+from ..diagnostics import Diagnostic
+from ..loading.model import Application, Program, Workspace
+from . import symbols
+from .context import Context
+from .declarations import check_declarations
+from .expressions import ExprTyper
+from .statements import StatementChecker
+
+
+def check_application(workspace: Workspace, app: Application) -> list[Diagnostic]:
+    table = symbols.build(workspace, app)
+    diags: list[Diagnostic] = check_declarations(table)
+    ctx = Context(workspace, app, table, diags)
+    checker = StatementChecker(ctx, {})
+    for program in app.programs.values():
+        body = program.body
+        if body is None:
+            continue
+        ctx.enter(program)
+        checker.literal_vals.clear()
+        checker.check(body)
+    return diags
+
+
+def program_typer(workspace: Workspace, app: Application, program: Program,
+                  table: symbols.AppSymbols | None = None) -> ExprTyper:
+    """An expression typer for `program` (its diagnostics collect in `typer.ctx.diags`)."""
+    ctx = Context(workspace, app, table or symbols.build(workspace, app), [])
+    ctx.enter(program)
+    return ExprTyper(ctx)

@@ -1,0 +1,114 @@
+"""Checks of what the project files declare (no code needed): names (2.5.1), duplicate
+parameters and locals, start()/stop() without parameters (2.2.3, 2.2.4), unknown types, and one
+arm family per application (9.7.2, SRS files).
+
+Duplicate programs and globals of one application are reported by the loader (F011).
+"""
+
+from __future__ import annotations
+
+import re
+
+from ..diagnostics import Diagnostic
+from ..loading.model import Application, Origin, Program
+from . import messages as M
+from . import vtypes as vt
+from .symbols import AppSymbols
+
+_NAME = re.compile(r"[A-Za-z][A-Za-z0-9_]*\Z")
+_CHARS = re.compile(r"[A-Za-z0-9_]*\Z")
+
+
+def name_problem(name: str, max_len: int | None = 15) -> str | None:
+    """Why `name` breaks 2.5.1, or None."""
+    if _NAME.match(name):
+        if max_len is not None and len(name) > max_len:
+            return f"{len(name)} characters, more than {max_len}"
+        return None
+    if not name:
+        return "empty"
+    if not _CHARS.match(name):
+        bad = next(c for c in name if not (c.isascii() and (c.isalnum() or c == "_")))
+        return f"the character {bad!r} is not allowed"
+    return "it must start with a letter"
+
+
+def _diag(code: str, message: str, origin: Origin) -> Diagnostic:
+    return Diagnostic(code, message, origin.path, origin.line, origin.col)
+
+
+def check_declarations(table: AppSymbols) -> list[Diagnostic]:
+    app = table.app
+    out: list[Diagnostic] = []
+    # s8 may allow longer names: only the characters are checked there.
+    max_len = 15 if app.version_major is None or app.version_major < 8 else None
+    families: list[tuple[str, str, str, Origin]] = []  # (family, kind, name, origin)
+
+    for d in app.data.values():
+        why = name_problem(d.name, max_len)
+        if why:
+            out.append(_diag("N008", M.invalid_name("global", d.name, why), d.origin))
+        _type_check(table, "global", d.name, d.type, d.origin, out, families)
+
+    for prog in app.programs.values():
+        why = name_problem(prog.name, max_len)
+        if why:
+            out.append(_diag("N008", M.invalid_name("program", prog.name, why), prog.origin))
+        if prog.name in ("start", "stop") and prog.parameters:
+            out.append(_diag("N009", M.start_stop_params(prog.name, len(prog.parameters)), prog.origin))
+        _program_declarations(table, prog, max_len, out, families)
+
+    out.extend(_families(families))
+    return out
+
+
+def _program_declarations(table: AppSymbols, prog: Program, max_len: int | None, out: list[Diagnostic],
+                          families: list) -> None:
+    seen: dict[str, tuple[str, int]] = {}
+    for kind, decls in (("parameter", prog.parameters), ("local", prog.locals)):
+        for d in decls:
+            why = name_problem(d.name, max_len)
+            if why:
+                out.append(_diag("N008", M.invalid_name(kind, d.name, why), d.origin))
+            first = seen.get(d.name)
+            if first is not None:
+                out.append(_diag("N007", M.duplicate_local(kind, d.name, first[0], first[1]), d.origin))
+            else:
+                seen[d.name] = (kind, d.origin.line)
+            _type_check(table, kind, d.name, d.type, d.origin, out, families)
+
+
+def _type_check(table: AppSymbols, kind: str, name: str, type_name: str, origin: Origin, out: list[Diagnostic],
+                families: list) -> None:
+    app: Application = table.app
+    if vt.builtin(type_name) is None:
+        low = type_name.lower()
+        declared = any(n.lower() == low for n in app.types)
+        s8 = app.version_major is not None and app.version_major >= 8  # may have types s7 lacks
+        if not declared and app.globals_known and not s8:
+            out.append(_diag("N010", M.undefined_type(kind, name, type_name), origin))
+        return
+    fam = vt.family_of(type_name)
+    if fam is not None:
+        families.append((fam, kind, name, type_name, origin))
+
+
+def _families(families: list) -> list[Diagnostic]:
+    if not families:
+        return []
+    counts: dict[str, int] = {}
+    first_of: dict[str, tuple] = {}
+    for f in families:
+        counts[f[0]] = counts.get(f[0], 0) + 1
+        first_of.setdefault(f[0], f)
+    if len(counts) < 2:
+        return []
+    order = [f[0] for f in families]
+    main = max(counts, key=lambda k: (counts[k], -order.index(k)))
+    ref = first_of[main]
+    where = f"{ref[1]} {ref[2]} is a {ref[3]}"
+    out = []
+    for fam, kind, name, type_name, origin in families:
+        if fam != main:
+            out.append(_diag("N011", M.mixed_families(kind, name, type_name, main, where), origin))
+    return out

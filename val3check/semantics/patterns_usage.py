@@ -1,0 +1,525 @@
+"""What the S rules need to know about names: a small resolver and the use/write facts.
+
+Only local knowledge is used: a program's parameters and locals (from the model), the globals
+of its application (`app.data`), program names (`app.programs`) and library aliases. A name
+resolves like the controller does (manual 2.5.2): local or parameter first, then global.
+
+Variables are resolved with their exact spelling, as the controller does, where a finding
+depends on it; a mention or a write in any spelling counts as a use or a write, which can only
+make the rules quieter. Programs and instructions are looked up without regard to case.
+
+Rules here:
+- S001 unused local, S002 unused parameter, S003 unused global, S004 unused private program;
+- S005 a local read before any value is assigned to it, where that is certain.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from functools import cache
+
+from ..diagnostics import Diagnostic
+from ..language.instructions import load_instructions
+from ..language.types import load_aliases, load_types
+from ..loading.model import Application, Container, Program, Workspace
+from ..parsing import ast as A
+from . import patterns_messages as M
+
+# Types whose variables are linked to hardware or to the user interface (3.5-3.7, 4).
+IO_TYPES = frozenset({"dio", "aio", "sio", "screen"})
+# Built-in types of plain values: what a local of these types holds is only its own value.
+VALUE_TYPES = frozenset({"bool", "num", "string", "trsf", "frame", "tool", "point", "joint", "config", "mdesc"})
+# Reference frames and tools: the operator jogs and teaches in them from the pendant.
+REFERENCE_TYPES = frozenset({"frame", "tool"})
+# The system's root frame and tool: declared in the data of s6 applications, always defined.
+SYSTEM_DATA = frozenset({"world", "flange"})
+
+_DEFAULT_TEXT = {
+    "bool": "false", "num": "0", "string": '""', "trsf": "{0,0,0,0,0,0}", "joint": "0 in every field",
+    "mdesc": "the default motion descriptor", "config": "the default configuration",
+    "point": "a point without reference frame", "frame": "a frame without reference frame",
+    "tool": "a tool without base tool",
+}
+_IDENT = re.compile(r"[A-Za-z][A-Za-z0-9_]*")
+
+
+@cache
+def _type_table() -> dict[str, str]:
+    table = {name.lower(): name for name in load_types()}
+    for name, alias in load_aliases().items():
+        table[name.lower()] = alias.type
+    return table
+
+
+def builtin_type(name: str) -> str | None:
+    """The built-in type behind a type name as written (`pointRx` -> `point`); None for user types."""
+    return _type_table().get((name or "").lower())
+
+
+@cache
+def _instruction_writes() -> dict[str, tuple[bool, ...]]:
+    """Instruction (lower-case) -> per argument position: may the instruction write it?
+
+    A parameter marked `&`, or that needs a variable, or that takes an array or a collection
+    counts as written (manual 2.6.2, 2.6.3): `toNum(s, nVal, bOk)`, `get(sDay)`, `sioGet(si, nBuf)`.
+    """
+    result = {}
+    for key, ins in load_instructions().items():
+        width = max((len(o.params) for o in ins.overloads), default=0)
+        flags = []
+        for k in range(width):
+            flags.append(any(len(o.params) > k and o.params[k].needs_variable for o in ins.overloads))
+        result[key] = tuple(flags)
+    return result
+
+
+def instruction_name(func: object) -> str | None:
+    """Lower-case instruction name of a call's `func` (`alias:libLoad` gives `libload`)."""
+    if type(func) is A.Name or type(func) is A.LibraryName:
+        return func.name.lower()
+    return None
+
+
+def root_name(expr: object) -> A.Name | None:
+    """The variable an lvalue designates: `a`, `a[i]`, `a.b.c`, `a[i].b` -> the Name `a`."""
+    while True:
+        t = type(expr)
+        if t is A.Name:
+            return expr
+        if t is A.Index or t is A.Field:
+            expr = expr.base
+            continue
+        return None
+
+
+class Resolver:
+    """Names of one application: programs, globals, libraries (built once per application)."""
+
+    def __init__(self, workspace: Workspace, app: Application):
+        self.workspace = workspace
+        self.app = app
+        self.programs = {name.lower(): p for name, p in app.programs.items()}
+        self.globals = {name.lower(): d for name, d in app.data.items()}
+        self._library_programs: dict[str, dict[str, Program]] = {}
+
+    def program(self, target: object) -> Program | None:
+        """The program a `call`/`taskCreate` names, when it is known."""
+        if type(target) is A.Name:
+            return self.programs.get(target.name.lower())
+        if type(target) is A.LibraryName:
+            alias = target.alias
+            if alias not in self._library_programs:
+                lib = self.workspace.library(self.app, alias)
+                self._library_programs[alias] = {n.lower(): p for n, p in lib.programs.items()} if lib else {}
+            return self._library_programs[alias].get(target.name.lower())
+        return None
+
+    def program_writes(self, target: object, count: int) -> list[bool]:
+        """Per argument of a program call: may the callee write it (parameter by reference)?"""
+        prog = self.program(target)
+        if prog is None:
+            return [True] * count
+        params = prog.parameters
+        return [k >= len(params) or params[k].by_reference or params[k].container != Container.ELEMENT
+                for k in range(count)]
+
+    @staticmethod
+    def call_writes(call: A.CallExpr) -> list[bool]:
+        """Per argument of an instruction call: may the instruction write it? Unknown: yes."""
+        name = instruction_name(call.func) if type(call.func) is not A.SystemName else None
+        flags = _instruction_writes().get(name) if name else None
+        count = len(call.args)
+        if flags is None:
+            return [True] * count
+        return [k >= len(flags) or flags[k] for k in range(count)]
+
+
+class Scope:
+    """What a name means inside one program (manual 2.5.2): local/parameter, then global.
+
+    Variable names are matched with their exact spelling, as the controller does; the rules
+    that only become quieter with a looser match (a use, a write) compare without case.
+    """
+
+    def __init__(self, resolver: Resolver, program: Program):
+        self.resolver = resolver
+        self.locals = {v.name: v for v in program.locals}
+        self.params = {p.name: p for p in program.parameters}
+
+    def kind(self, name: str) -> str:
+        """"local", "param", "global" or "other" for a name as written."""
+        if name in self.locals:
+            return "local"
+        if name in self.params:
+            return "param"
+        if name in self.resolver.app.data:
+            return "global"
+        return "other"
+
+    def type_of(self, name: str, ci: bool = False) -> str | None:
+        """The declared type (as written) of a local, parameter or global; None otherwise.
+        With `ci`, a variable whose name differs only by case also answers."""
+        v = self.locals.get(name) or self.params.get(name) or self.resolver.app.data.get(name)
+        if v is None and ci:
+            key = name.lower()
+            v = (next((x for n, x in self.locals.items() if n.lower() == key), None)
+                 or next((x for n, x in self.params.items() if n.lower() == key), None)
+                 or self.resolver.globals.get(key))
+        return v.type if v is not None else None
+
+
+# ------------------------------------------------------------------ facts of one program
+
+
+@dataclass(slots=True)
+class ProgramFacts:
+    """Everything the S rules read from one parsed program, gathered in one walk of its tree."""
+
+    names: set[str] = field(default_factory=set)  # names mentioned anywhere, as written
+    called: set[str] = field(default_factory=set)  # programs named by call/taskCreate(Sync)
+    task_targets: set[str] = field(default_factory=set)  # programs named by taskCreate(Sync)
+    strings: list = field(default_factory=list)  # String nodes
+    binaries: list = field(default_factory=list)  # Binary nodes, in pre-order
+    assigns: list = field(default_factory=list)  # Assign statements
+    loops: list = field(default_factory=list)  # While and DoUntil nodes
+    dynamic_data: bool = False  # getData() with a name that is not a constant string
+
+    def lower_names(self) -> set[str]:
+        return {n.lower() for n in self.names}
+
+    def string_tokens(self) -> set[str]:
+        tokens: set[str] = set()
+        for s in self.strings:
+            tokens.update(t.lower() for t in _IDENT.findall(s.value))
+        return tokens
+
+
+def gather(body: A.ProgramBody) -> ProgramFacts:
+    facts = ProgramFacts()
+    names = facts.names
+    for node in A.walk(body):
+        t = type(node)
+        if t is A.Name:
+            names.add(node.name)
+        elif t is A.Binary:
+            facts.binaries.append(node)
+        elif t is A.String:
+            facts.strings.append(node)
+        elif t is A.CallExpr:
+            if (type(node.func) is A.Name and node.func.name.lower() == "getdata"
+                    and (not node.args or type(node.args[0]) is not A.String)):
+                facts.dynamic_data = True
+        elif t is A.Assign:
+            facts.assigns.append(node)
+        elif t is A.Call or t is A.TaskCreate or t is A.TaskCreateSync:
+            if type(node.target) is A.Name:
+                target = node.target.name.lower()
+                facts.called.add(target)
+                if t is not A.Call:
+                    facts.task_targets.add(target)
+        elif t is A.While or t is A.DoUntil:
+            facts.loops.append(node)
+    return facts
+
+
+# ------------------------------------------------------------------ unused (S001-S004)
+
+
+def application_is_library(workspace: Workspace, app: Application) -> bool:
+    """A library or user type: no start() (manual 6.1), or used as one by another loaded app.
+    Its public programs and globals are an interface (6.2, 7.2)."""
+    if not any(name.lower() == "start" for name in app.programs):
+        return True
+    key = app.path
+    for other in workspace.apps.values():
+        if other is app:
+            continue
+        for ref in list(other.libraries.values()) + list(other.types.values()):
+            if ref.resolved and ref.resolved == key:
+                return True
+    return False
+
+
+def unused_in_program(program: Program, facts: ProgramFacts, interface: bool, is_task: bool) -> list[Diagnostic]:
+    """S001 locals and S002 parameters that the program's code never mentions."""
+    out = []
+    path = program.origin.path
+    mentioned = facts.lower_names()
+    for local in program.locals:
+        if local.name.lower() not in mentioned:
+            o = local.origin
+            out.append(Diagnostic(M.UNUSED_LOCAL, M.unused_local(local.name, program.name), o.path or path,
+                                  o.line, o.col))
+    if not interface and not is_task:
+        for param in program.parameters:
+            if param.name.lower() not in mentioned:
+                o = param.origin
+                out.append(Diagnostic(M.UNUSED_PARAMETER, M.unused_parameter(param.name, program.name),
+                                      o.path or path, o.line, o.col))
+    return out
+
+
+def _father_names(app: Application) -> set[str]:
+    """Globals named as the reference frame/tool of another global or value (fatherId)."""
+    found: set[str] = set()
+    stack = list(app.data.values())
+    while stack:
+        d = stack.pop()
+        fathers = [d.father] + [v.father for v in d.values]
+        for f in fathers:
+            if f and ":" not in f:
+                found.add(f.split("[", 1)[0].strip().lower())
+        for v in d.values:
+            stack.extend(v.members.values())
+    return found
+
+
+def unused_globals(app: Application, facts: dict[str, ProgramFacts], library: bool) -> list[Diagnostic]:
+    """S003: globals no program of the application mentions, where that is certain."""
+    if not app.globals_known or not app.data:
+        return []
+    if any(p.body is None for p in app.programs.values()):
+        return []  # a program that did not parse may use any of them
+    if any(f.dynamic_data for f in facts.values()):
+        return []  # getData() with a computed name may read any of them (2.5.4)
+    if library and not any(d.access == "public" for d in app.data.values()):
+        return []  # a library without public data: access was probably not written
+    used: set[str] = set()
+    tokens: set[str] = set()
+    for name, program in app.programs.items():
+        f = facts.get(name)
+        if f is None:
+            continue
+        own = {v.name for v in program.locals} | {p.name for p in program.parameters}
+        used.update(n.lower() for n in f.names if n not in own)  # a local hides the global (2.5.2)
+        tokens.update(f.string_tokens())
+    used |= _father_names(app)
+    out = []
+    for data in app.data.values():
+        key = data.name.lower()
+        if key in used or key in tokens or key in SYSTEM_DATA:
+            continue
+        if library and data.access != "private":
+            continue  # the interface of a library or the fields of a user type (6.2, 7.2)
+        base = builtin_type(data.type)
+        if base in IO_TYPES:
+            continue  # linked to hardware: declared for the I/O map, often on purpose
+        if base in REFERENCE_TYPES:
+            continue  # frames and tools also serve to jog and teach from the pendant (9.4, 9.5)
+        o = data.origin
+        out.append(Diagnostic(M.UNUSED_GLOBAL, M.unused_global(data.name, library), o.path, o.line, o.col))
+    return out
+
+
+def unused_programs(app: Application, facts: dict[str, ProgramFacts], library: bool) -> list[Diagnostic]:
+    """S004: private programs that no other program of the application calls."""
+    if any(p.body is None for p in app.programs.values()):
+        return []
+    if library and not any(p.access == "public" for p in app.programs.values()):
+        return []  # a library without public program: access was probably not written
+    called_by: dict[str, set[str]] = {}
+    for name, f in facts.items():
+        for target in f.called:
+            called_by.setdefault(target, set()).add(name.lower())
+    out = []
+    for name, program in app.programs.items():
+        key = name.lower()
+        if program.access != "private" or key in ("start", "stop"):
+            continue
+        if called_by.get(key, set()) - {key}:
+            continue
+        o = program.origin
+        out.append(Diagnostic(M.UNUSED_PROGRAM, M.unused_program(program.name), o.path, o.line, o.col))
+    return out
+
+
+# ------------------------------------------------------------------ read before assignment (S005)
+
+
+class _FirstUse:
+    """Walks a program in evaluation order and records, per tracked local, the first write and
+    the first read that comes before any write (with the outermost loop around that read).
+
+    A read is certain to see the initial value when no write comes before it in the program
+    text and no loop around it contains a write (the next iteration would see that write).
+    VAL 3 has no goto: in structured code, every path to a statement only runs statements
+    written before it, or statements of the loops around it.
+    """
+
+    def __init__(self, tracked: set[str], resolver: Resolver):
+        self.tracked = tracked  # exact names; writes are matched without case (quieter)
+        self.resolver = resolver
+        self.pos = 0
+        self.first_write: dict[str, int] = {}
+        self.first_read: dict[str, tuple[int, A.Name, int | None]] = {}
+        self.depth = 0
+        self.outer: int | None = None
+        self.loop_end: dict[int, int] = {}
+
+    # events
+    def _read(self, node: A.Name) -> None:
+        name = node.name
+        if name in self.tracked and name.lower() not in self.first_write and name not in self.first_read:
+            self.first_read[name] = (self.pos, node, self.outer if self.depth else None)
+        self.pos += 1
+
+    def _write(self, node: A.Name) -> None:
+        key = node.name.lower()
+        if key not in self.first_write:
+            self.first_write[key] = self.pos
+        self.pos += 1
+
+    def _enter_loop(self) -> None:
+        self.depth += 1
+        if self.depth == 1:
+            self.outer = self.pos
+        self.pos += 1
+
+    def _exit_loop(self) -> None:
+        self.depth -= 1
+        if self.depth == 0 and self.outer is not None:
+            self.loop_end[self.outer] = self.pos
+        self.pos += 1
+
+    # expressions
+    def read(self, e: object) -> None:
+        t = type(e)
+        if t is A.Name:
+            self._read(e)
+        elif t is A.Binary:
+            self.read(e.left)
+            self.read(e.right)
+        elif t is A.CallExpr:
+            self.args(e.args, Resolver.call_writes(e))
+        elif t is A.Index:
+            self.read(e.base)
+            for i in e.indices:
+                self.read(i)
+        elif t is A.Field:
+            self.read(e.base)
+        elif t is A.Unary:
+            self.read(e.operand)
+        elif t is A.Struct:
+            for f in e.fields:
+                if f is not None:
+                    self.read(f)
+        elif t is A.AssignExpr:
+            self.read(e.value)
+            self.write(e.target)
+
+    def write(self, e: object) -> None:
+        """`e` is assigned (or passed where it may be written): its indices are read."""
+        t = type(e)
+        if t is A.Name:
+            self._write(e)
+        elif t is A.Index:
+            for i in e.indices:
+                self.read(i)
+            self.write(e.base)
+        elif t is A.Field:
+            self.write(e.base)
+        else:
+            self.read(e)
+
+    def args(self, args: list, writes: list[bool]) -> None:
+        for arg, w in zip(args, writes):
+            if w:
+                self.write(arg)
+            else:
+                self.read(arg)
+
+    # statements
+    def block(self, statements: list) -> None:
+        for s in statements:
+            self.statement(s)
+
+    def statement(self, s: object) -> None:
+        t = type(s)
+        if t is A.Assign:
+            self.read(s.value)
+            self.write(s.target)
+        elif t is A.ExprStatement:
+            self.read(s.call)
+        elif t is A.Call:
+            self.args(s.args, self.resolver.program_writes(s.target, len(s.args)))
+        elif t is A.If:
+            for branch in s.branches:
+                self.read(branch.cond)
+                self.block(branch.body)
+            if s.orelse:
+                self.block(s.orelse)
+        elif t is A.While:
+            self._enter_loop()
+            self.read(s.cond)
+            self.block(s.body)
+            self._exit_loop()
+        elif t is A.DoUntil:
+            self._enter_loop()
+            self.block(s.body)
+            self.read(s.cond)
+            self._exit_loop()
+        elif t is A.For:
+            self.read(s.start)
+            self._enter_loop()
+            self.write(s.counter)
+            self.read(s.stop)
+            if s.step is not None:
+                self.read(s.step)
+            self.block(s.body)
+            self._exit_loop()
+        elif t is A.Switch:
+            self.read(s.subject)
+            for case in s.cases:
+                for v in case.values:
+                    self.read(v)
+                self.block(case.body)
+            if s.default is not None:
+                self.block(s.default.body)
+        elif t is A.TaskCreate or t is A.TaskCreateSync:
+            self.read(s.task)
+            if t is A.TaskCreate:
+                self.read(s.priority)
+            else:
+                self.read(s.period)
+                self.write(s.overrun)
+            self.args(s.args, self.resolver.program_writes(s.target, len(s.args)))
+
+    def certain_reads(self) -> list[tuple[str, A.Name]]:
+        out = []
+        for name, (pos, node, outer) in self.first_read.items():
+            written = self.first_write.get(name.lower())
+            if outer is not None and written is not None and written < self.loop_end.get(outer, written + 1):
+                continue  # written later in a loop around the read: the next iteration sees it
+            out.append((name, node))
+        return out
+
+
+def read_before_assignment(program: Program, resolver: Resolver) -> list[Diagnostic]:
+    """S005: a local read where it can only hold its initial value (2.2.5 call, 2.4.1).
+
+    Only locals of built-in value types (not I/O, not user types whose defaults are chosen by
+    the type's author, 7.1). Writes include passing the local where it may be written: to a
+    program parameter by reference, or an instruction parameter `&`/variable/container.
+    """
+    tracked: dict[str, str] = {}
+    for local in program.locals:
+        base = builtin_type(local.type)
+        if base in VALUE_TYPES:
+            tracked[local.name] = base
+    params = {p.name.lower() for p in program.parameters}
+    lowered: dict[str, int] = {}
+    for name in tracked:
+        lowered[name.lower()] = lowered.get(name.lower(), 0) + 1
+    for name in list(tracked):
+        if name.lower() in params or lowered[name.lower()] > 1:
+            del tracked[name]  # a duplicate declaration: the other rules' business
+    if not tracked:
+        return []
+    flow = _FirstUse(set(tracked), resolver)
+    flow.block(program.body.statements)
+    out = []
+    for key, node in flow.certain_reads():
+        out.append(Diagnostic(M.READ_BEFORE_ASSIGNMENT, M.read_before_assignment(node.name, _DEFAULT_TEXT[tracked[key]]),
+                              program.origin.path, node.line, node.col, node.end_line, node.end_col))
+    return out
