@@ -60,3 +60,17 @@ def test_program_typer_types_any_expression_of_a_program():
     assert typer.typeof(assign.value).t is vt.NUM  # l_pDepose.trsf.z + lib:nX
     assert typer.typeof(assign.target).var and typer.typeof(assign.target).root.name == "l_pDepose"
     assert typer.ctx.diags == []
+
+
+def test_resolve_an_ast_name_to_its_declaration():
+    ws, app = _load("Cell")
+    table = symbols.build(ws, app)
+    scope = table.scope(app.programs["start"])
+    names = [n for s in app.programs["start"].body.statements for n in A.walk(s) if type(n) in (A.Name, A.LibraryName)]
+    by_text = {(n.alias + ":" if type(n) is A.LibraryName else "") + n.name: symbols.resolve(scope, n) for n in names}
+    assert by_text["l_nLoad"].kind == symbols.LOCAL and by_text["l_nLoad"].decl.name == "l_nLoad"
+    assert by_text["bStop"].kind == symbols.GLOBAL
+    assert by_text["lib:bReady"].kind == symbols.LIBDATA
+    assert by_text["lib:init"].name == "init"  # a Program of the library
+    assert by_text["cycle"].name == "cycle"  # the program of taskCreate
+    assert by_text["lib:libLoad"] is None  # an instruction

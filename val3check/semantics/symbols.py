@@ -5,9 +5,11 @@
     sym = scope.lookup("nCount")                  # Symbol or None (exact spelling)
     sym = scope.lookup_ci("ncount")               # case-insensitive fallback, or None
     prog = table.program("pick")                  # Program or None
-    lib = table.library("lib")                    # LibraryInterface / None (not found) / MISSING
-    sym, private = lib.data_symbol("nX")          # public data of a library, or why not
-    ftype = symbols.field_symbol(table.registry, user_vtype, "nWeight")   # a user-type field
+    lib = table.library("lib")                    # LibraryInterface; MISSING (declared, not loaded); None
+    decl = symbols.resolve(scope, name_node)      # AST Name/LibraryName -> Symbol, Program or None
+    sym, why = lib.data_symbol("nX")              # (Symbol, "") public; (Symbol, "private"); (None, "")
+    fields = symbols.user_fields(table.registry, part_vtype)   # name -> Symbol: a user type's fields
+    vtype = table.resolve_type("pointRx")         # VType of a type name written in the app's files
 
 Names resolve in this order (2.5.2): the program's parameters and locals, then the
 application's globals, then the language's constants (`world`, `flange`, `true`, `righty`,
@@ -343,3 +345,31 @@ def resolve_name(scope: Scope, name: str) -> Symbol | None:
     """What a bare name designates in an expression: a variable of the scope, else a constant;
     exact spelling only (see Scope.lookup_ci for the case-insensitive fallback)."""
     return scope.lookup(name) or constant(name)
+
+
+def resolve(scope: Scope, node: Any) -> Symbol | Program | None:
+    """What an AST `Name` or `LibraryName` designates where it is written in `scope`'s program:
+    a variable or constant Symbol (`.decl` is its declaration), a Program (a `call` target, or a
+    program of a library), or None (undefined, an instruction, or a library not loaded). Exact
+    spelling first, then ignoring case, as the checker does."""
+    from ..parsing import ast as A
+
+    t = type(node)
+    table = scope.table
+    if t is A.Name:
+        name = node.name
+        return (scope.lookup(name) or constant(name) or scope.lookup_ci(name) or table.program(name)
+                or table.program_ci(name))
+    if t is A.LibraryName:
+        lib = table.library(node.alias)
+        if lib is None:
+            other = table.library_alias_ci(node.alias)
+            lib = table.library(other) if other is not None else None
+        if not isinstance(lib, LibraryInterface):
+            return None
+        sym, _ = lib.data_symbol(node.name)
+        if sym is not None:
+            return sym
+        prog, _ = lib.program(node.name)
+        return prog
+    return None
