@@ -17,7 +17,8 @@ import pytest
 from support import write_app
 
 ROOT = Path(__file__).resolve().parent.parent
-PRE_COMMIT = shutil.which("pre-commit") or str(Path(sys.executable).parent / "pre-commit")
+_BESIDE = Path(sys.executable).parent / "pre-commit"  # the one installed with the test extra
+PRE_COMMIT = str(_BESIDE) if _BESIDE.exists() else (shutil.which("pre-commit") or str(_BESIDE))
 
 
 def git(repo: Path, *args: str) -> None:
@@ -45,7 +46,7 @@ def test_hook_through_pre_commit(tmp_path, home):
     git(repo, "init", "-q")
     git(repo, "config", "user.email", "t@example.invalid")
     git(repo, "config", "user.name", "t")
-    write_app(repo, "begin\n  nX = 1\nend\n", name="Good")
+    write_app(repo, "begin\n  nX = 1\nend\n", name="Good", globals_=["num nX"])
     (repo / "notes.txt").write_text("not VAL 3\n")
     git(repo, "add", "-A")
     ok = try_repo(repo, home)

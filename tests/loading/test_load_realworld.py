@@ -66,3 +66,14 @@ def test_unlisted_program_in_a_subfolder_is_not_an_application(tmp_path):
     assert [ws.apps[k].name for k in ws.targets] == ["Cell"]
     found = sorted((d.code, d.path) for d in diags if d.code in ("F009", "F012"))
     assert found == [("F012", str(folder / "Comm" / "extra.pgx")), ("F012", str(folder / "orphan.pgx"))]
+
+
+def test_unread_listed_files_are_recorded(tmp_path):
+    folder = tmp_path / "App"
+    make_app(folder, data_body='<Data name="nX" access="public" xsi:type="array" type="num" size="1" />')
+    ws, _ = load([str(folder)])
+    assert ws.apps[ws.targets[0]].unread == set()
+    write(folder / "App.dtx", "<Database")  # malformed: the globals are only partly known
+    (folder / "stop.pgx").unlink()
+    ws, diags = load([str(folder)])
+    assert ws.apps[ws.targets[0]].unread == {"data", "program"}

@@ -95,14 +95,15 @@ def test_duplicate_local_and_parameter(tmp_path):
 def test_invalid_names_of_globals_locals_parameters_programs(tmp_path):
     folder = _app_with_program(tmp_path, params=["num x_ThisNameIsTooLong"], locals_=["num _l"],
                                name="helperWithALongName", globals_=["num nOk", "num nAVeryLongGlobalName"])
-    found = collect(folder, "N008", with_path=True)
-    assert sorted(f[1] for f in found) == ["Example.dtx", "helperWithALongName.pgx", "helperWithALongName.pgx",
-                                          "helperWithALongName.pgx"]
+    found = collect(folder, "N008", with_path=True)  # bad characters: errors
+    assert sorted(f[1] for f in found) == ["helperWithALongName.pgx"]
+    too_long = collect(folder, "N012", with_path=True)  # length alone: warnings
+    assert sorted(f[1] for f in too_long) == ["Example.dtx", "helperWithALongName.pgx", "helperWithALongName.pgx"]
 
 
 def test_s8_names_are_not_limited_to_15_characters(tmp_path):
     folder = _app_with_program(tmp_path, locals_=["num l_aLongLocalVariable"], version="s8.3")
-    assert collect(folder, "N008") == []
+    assert collect(folder, "N008") == [] and collect(folder, "N012") == []
 
 
 def test_start_and_stop_without_parameters(tmp_path):
@@ -140,3 +141,12 @@ def test_unreadable_data_or_program_file_relaxes_undefined_names(tmp_path):
     pjx = folder / "Example.pjx"
     pjx.write_text(pjx.read_text().replace('<Program file="stop.pgx" />', '<Program file="stop.pgx" />\n    <Program file="gone.pgx" />'))
     assert collect(folder) == []
+
+
+def test_task_name_length_is_not_held_against_s8(tmp_path):
+    code = 'begin\n  taskCreate "aTaskNameOfTwentyOne", 10, helper()\nend'
+    progs = {"helper": {"code": "begin\nend"}}
+    s7 = write_app(tmp_path / "s7", code, programs=progs)
+    s8 = write_app(tmp_path / "s8", code, programs=progs, version="s8.3")
+    assert [f[0] for f in collect(s7, "T023")] == ["T023"]
+    assert collect(s8, "T023") == []

@@ -98,6 +98,7 @@ class Loader:
             for rel, node in entries:
                 path = self._listed_file(rel, node, folder, kind, sink)
                 if path is None:
+                    app.unread.add(kind)
                     continue
                 k = _key(path)
                 if k in seen:
@@ -108,9 +109,11 @@ class Loader:
                 seen[k] = node
                 if kind == "program":
                     self.claimed.add(k)
-                    self._read_program_file(app, path)
+                    read = self._read_program_file(app, path)
                 else:
-                    self._read_data_file(app, path)
+                    read = self._read_data_file(app, path)
+                if not read:
+                    app.unread.add(kind)
         for alias, path, auto, node in pf.libraries:
             if alias in app.libraries:
                 first = app.libraries[alias].origin
@@ -143,18 +146,20 @@ class Loader:
             sink.add("F001", node, f"{kind} file '{rel}' listed here was not found")
         return None
 
-    def _read_program_file(self, app: Application, path: str) -> None:
+    def _read_program_file(self, app: Application, path: str) -> bool:
+        """False when the file could not be read at all."""
         app.files.append(path)
         root = self._read(path)
         if root is None:
-            return
+            return False
         layout, d = rd.check_root(root, "programs", path)
         self.diags.extend(d)
         if layout is None:
-            return
+            return False
         sink = rd.Sink(path, self.diags)
         for prog in rd.read_programs(root, sink):
             self._add_program(app, prog, sink)
+        return True
 
     def _add_program(self, app: Application, prog: Program, sink: rd.Sink) -> None:
         first = app.programs.get(prog.name)
@@ -173,15 +178,16 @@ class Loader:
             return
         app.programs[prog.name] = prog
 
-    def _read_data_file(self, app: Application, path: str) -> None:
+    def _read_data_file(self, app: Application, path: str) -> bool:
+        """False when the file could not be read at all."""
         app.files.append(path)
         root = self._read(path)
         if root is None:
-            return
+            return False
         layout, d = rd.check_root(root, "data", path)
         self.diags.extend(d)
         if layout is None:
-            return
+            return False
         sink = rd.Sink(path, self.diags)
         datas = rd.read_data_s6(root, sink) if layout == "s6" else rd.read_data_s7(root, sink)
         for data in datas:
@@ -199,6 +205,7 @@ class Loader:
                 )
                 continue
             app.data[data.name] = data
+        return True
 
     # -- .pgx without project -----------------------------------------------------------------
 

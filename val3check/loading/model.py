@@ -139,6 +139,9 @@ class Application:
     types: dict[str, TypeRef] = field(default_factory=dict)
     files: list[str] = field(default_factory=list)  # every file read for this application
     globals_known: bool = True  # False for .pgx files without a .pjx/.dtx
+    # "data" / "program" when a file of that kind listed by the project could not be read:
+    # the application's globals (or programs) are then only partly known.
+    unread: set[str] = field(default_factory=set)
 
     @property
     def folder(self) -> str:

@@ -208,7 +208,8 @@ def _instruction(typer: ExprTyper, node: A.CallExpr, ins: Instruction, statement
     if not cands:
         sigs = [o.signature(ins.name) for o in ins.overloads]
         counts = sorted({c for o in ins.overloads for c in range(o.min_arity, o.max_arity + 1)})
-        ctx.report_at("T005", M.arity(label, _count_words(counts), n, sigs), func)
+        msg = M.arity(label, _count_words(counts), n, sigs)
+        ctx.report_at(*_signature_finding(ctx, "T005", msg), func)
         return _common_return(ins.overloads, statement)
     full = [o for o in cands if all(_type_ok(p, v) for p, v in zip(o.params, vals))]
     if not full:
@@ -223,7 +224,7 @@ def _instruction(typer: ExprTyper, node: A.CallExpr, ins: Instruction, statement
             msg = M.argument_type(i + 1, label, p.name, expected, got)
         else:
             msg = M.argument_type_overloads(i + 1, label, got, [o.signature(ins.name) for o in cands])
-        ctx.report_at("T006", msg, args[i])
+        ctx.report_at(*_signature_finding(ctx, "T006", msg), args[i])
         return _common_return(cands, statement)
     chosen = None
     first_errors: list[_Pending] = []
@@ -399,6 +400,14 @@ def _param_text(p: Parameter) -> str:
     elif p.container is Container.COLLECTION:
         tail = '[""]'
     return f"{p.type}{amp} {p.name}{tail}"
+
+
+def _signature_finding(ctx, code: str, message: str) -> tuple[str, str]:
+    """s8 adds overloads to s7 instructions (e.g. logMsg with a second argument on CS9): there a
+    call that matches no s7 signature is T024, a warning, instead of a sure error."""
+    if ctx.strict_version:
+        return code, message
+    return "T024", M.s8_signature(message)
 
 
 def check_program_args(typer: ExprTyper, target: object, label: str, sig: ProgramSignature, args: list,

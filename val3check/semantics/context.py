@@ -47,10 +47,10 @@ class Context:
 
     def names_complete(self, kind: str, app: Application | None = None) -> bool:
         """Every `kind` ("data"/"program") file of `app` (default: the checked one) was read:
-        an unknown name is then really undefined (see completeness.py)."""
-        from .completeness import files_complete
-
-        return files_complete(app or self.app, kind, self.table.registry.complete)
+        an unknown name is then really undefined. When a listed file could not be read, the
+        loader reported it once and the name checks stay quiet."""
+        app = app or self.app
+        return app.layout != "pgx-only" and kind not in app.unread
 
     def enter(self, program: Program) -> None:
         self.program = program

@@ -19,18 +19,22 @@ _NAME = re.compile(r"[A-Za-z][A-Za-z0-9_]*\Z")
 _CHARS = re.compile(r"[A-Za-z0-9_]*\Z")
 
 
-def name_problem(name: str, max_len: int | None = 15) -> str | None:
-    """Why `name` breaks 2.5.1, or None."""
+def name_problem(name: str, max_len: int | None = 15) -> tuple[str, str] | None:
+    """(code, why) when `name` breaks 2.5.1, or None.
+
+    A name that is only too long is N012, a warning: real applications loaded by controllers
+    carry longer names (notably type projects saved by newer tools), so the length alone is not
+    a sure compile error. Bad characters are N008."""
     if _NAME.match(name):
         if max_len is not None and len(name) > max_len:
-            return f"{len(name)} characters, more than {max_len}"
+            return "N012", f"{len(name)} characters, more than {max_len}"
         return None
     if not name:
-        return "empty"
+        return "N008", "empty"
     if not _CHARS.match(name):
         bad = next(c for c in name if not (c.isascii() and (c.isalnum() or c == "_")))
-        return f"the character {bad!r} is not allowed"
-    return "it must start with a letter"
+        return "N008", f"the character {bad!r} is not allowed"
+    return "N008", "it must start with a letter"
 
 
 def _diag(code: str, message: str, origin: Origin) -> Diagnostic:
@@ -45,15 +49,15 @@ def check_declarations(table: AppSymbols) -> list[Diagnostic]:
     families: list[tuple[str, str, str, Origin]] = []  # (family, kind, name, origin)
 
     for d in app.data.values():
-        why = name_problem(d.name, max_len)
-        if why:
-            out.append(_diag("N008", M.invalid_name("global", d.name, why), d.origin))
+        problem = name_problem(d.name, max_len)
+        if problem:
+            out.append(_diag(problem[0], M.invalid_name("global", d.name, problem[1]), d.origin))
         _type_check(table, "global", d.name, d.type, d.origin, out, families)
 
     for prog in app.programs.values():
-        why = name_problem(prog.name, max_len)
-        if why:
-            out.append(_diag("N008", M.invalid_name("program", prog.name, why), prog.origin))
+        problem = name_problem(prog.name, max_len)
+        if problem:
+            out.append(_diag(problem[0], M.invalid_name("program", prog.name, problem[1]), prog.origin))
         if prog.name in ("start", "stop") and prog.parameters:
             out.append(_diag("N009", M.start_stop_params(prog.name, len(prog.parameters)), prog.origin))
         _program_declarations(table, prog, max_len, out, families)
@@ -67,9 +71,9 @@ def _program_declarations(table: AppSymbols, prog: Program, max_len: int | None,
     seen: dict[str, tuple[str, int]] = {}
     for kind, decls in (("parameter", prog.parameters), ("local", prog.locals)):
         for d in decls:
-            why = name_problem(d.name, max_len)
-            if why:
-                out.append(_diag("N008", M.invalid_name(kind, d.name, why), d.origin))
+            problem = name_problem(d.name, max_len)
+            if problem:
+                out.append(_diag(problem[0], M.invalid_name(kind, d.name, problem[1]), d.origin))
             first = seen.get(d.name)
             if first is not None:
                 out.append(_diag("N007", M.duplicate_local(kind, d.name, first[0], first[1]), d.origin))

@@ -113,6 +113,10 @@ def assign_in_expression() -> str:
             " parameter (3.1.2, 3.2.2, 3.4.2)")
 
 
+def s8_signature(message: str) -> str:
+    return f"{message}; this is the s7 manual's signature, and s8 may add other forms: check it on the controller"
+
+
 def arity(what: str, expected: str, got: int, signatures: Iterable[str] = ()) -> str:
     sigs = list(signatures)
     tail = ""

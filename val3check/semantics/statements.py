@@ -168,7 +168,7 @@ class StatementChecker(ExprTyper):
             self.ctx.report_at("T006", M.argument_type(1, keyword, "sNom", "string", vt.describe(v)), name)
         elif type(name) is A.String:
             # 5.10: "sNom doit avoir 1 à 15 caractères parmi a..zA..Z0..9_" (runtime error 29)
-            why = _task_name_problem(name.value)
+            why = _task_name_problem(name.value, check_length=self.ctx.strict_version)
             if why:
                 self.ctx.report_at("T023", M.task_name(keyword, name.value, why), name)
         sig, label, vals = self._program_target(target, args)
@@ -203,10 +203,12 @@ class StatementChecker(ExprTyper):
         self._task_common("taskCreateSync", st.task, st.target, st.args)
 
 
-def _task_name_problem(name: str) -> str | None:
+def _task_name_problem(name: str, check_length: bool = True) -> str | None:
+    """Why a constant task name fails at run time (error 29). s8 controllers are not held to the
+    s7 length, as for declared names (N012)."""
     if not name:
         return "it is empty"
-    if len(name) > 15:
+    if check_length and len(name) > 15:
         return f"{len(name)} characters, more than 15"
     bad = next((c for c in name if not (c.isascii() and (c.isalnum() or c == "_"))), None)
     return f"the character {bad!r} is not allowed" if bad is not None else None

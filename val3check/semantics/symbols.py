@@ -81,7 +81,6 @@ class TypeRegistry:
         self.user_types: dict[str, vt.VType] = {}
         self.interfaces: dict[str, LibraryInterface] = {}
         self.globals: dict[str, dict[str, Symbol]] = {}
-        self.complete: dict[tuple[str, str], bool] = {}  # completeness.files_complete answers
 
     def resolve_type(self, app: Application, name: str) -> vt.VType:
         """The VType of a type name written in `app`'s files; UNKNOWN when it cannot be known
