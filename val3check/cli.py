@@ -1,4 +1,4 @@
-"""Command line: `val3check lint`, `val3check sim`, `val3check rules`, `val3check rule CODE`.
+"""Command line: `val3check lint`, `val3check sim`, `val3check robots`, `val3check rules`, `val3check rule CODE`.
 
 Exit codes (README): 0 nothing at or above --fail-on; 1 findings; 2 usage error, bad
 configuration, or input that could not be read at all. `sim` (docs/sim.md): 0 the run raised
@@ -61,6 +61,13 @@ def build_parser() -> argparse.ArgumentParser:
     sim.add_argument("--config", metavar="FILE", help="configuration file (default: val3check.toml or pyproject.toml found upwards)")
     sim.add_argument("--isolated", action="store_true", help="ignore every configuration file")
 
+    robots = sub.add_parser("robots", help="list the arm models (reach, joint limits, speeds) or show one")
+    robots.add_argument("robot", nargs="?", metavar="ROBOT",
+                        help="an arm name (case-insensitive: tx2-60, TX2_60…), a URDF or an arm.cfx: show that model")
+    robots.add_argument("--robot", dest="robot_opt", metavar="ROBOT", help="same as ROBOT")
+    robots.add_argument("--app", metavar="PATH", help="show the arm chosen from the controller tree holding PATH (usr/configs/arm.cfx)")
+    robots.add_argument("--format", choices=("text", "json"), default="text")
+
     rules = sub.add_parser("rules", help="list the rule catalogue")
     rules.add_argument("--format", choices=("text", "json"), default="text")
     rule = sub.add_parser("rule", help="explain one rule")
@@ -75,6 +82,8 @@ def main(argv: list[str] | None = None) -> int:
             return _lint(args)
         if args.command == "sim":
             return _sim(args)
+        if args.command == "robots":
+            return _robots(args)
         if args.command == "rules":
             return _rules(args)
         if args.command == "rule":
@@ -251,6 +260,31 @@ def _lint(args: argparse.Namespace) -> int:
         sys.stdout.write(text)
         sys.stdout.flush()
     return exit_code(outcome, settings.fail_on)
+
+
+def _robots(args: argparse.Namespace) -> int:
+    """`val3check robots`: the catalogue, or one model in detail (val3check/robot)."""
+    from .robot import RobotError, load_robot, names
+    from .robot.report import render_detail, render_list
+
+    args.robot = args.robot or args.robot_opt
+    try:
+        if args.robot or args.app:
+            models = [load_robot(args.robot or None, args.app)]
+        else:
+            models = [load_robot(n) for n in names()]
+    except RobotError as exc:
+        print(f"val3check: error: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    detail = bool(args.robot or args.app)
+    if args.format == "json":
+        import json
+
+        body = {"robots": [m.describe() for m in models], "version": 1}
+        sys.stdout.write(json.dumps(body, indent=2, ensure_ascii=False) + "\n")
+        return EXIT_OK
+    sys.stdout.write(render_detail(models[0]) if detail else render_list(models))
+    return EXIT_OK
 
 
 def _rules(args: argparse.Namespace) -> int:

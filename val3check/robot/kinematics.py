@@ -1,0 +1,279 @@
+"""Forward kinematics: VAL 3 poses, the URDF chain, the closed-form OPW arm, pinocchio.
+
+Units inside: millimetres and radians. Transforms are 3x4 row-major tuples `((r00, r01, r02, x),
+(r10, r11, r12, y), (r20, r21, r22, z))` in millimetres.
+
+VAL 3 pose convention (manual 9.3.2): a trsf {x, y, z, rx, ry, rz} is the translation (x, y, z)
+and the rotation obtained by turning rx about x, then ry about the new y', then rz about the new
+z'': R = Rx(rx)·Ry(ry)·Rz(rz). Angles come back in ]-180, 180], ry in [-90, 90] and, when ry is
+±90 (gimbal lock), rx = 0; when both rx and rz would lie outside [-90, 90] the equivalent triple
+(rx±180, ±180-ry, rz±180) is returned instead, so that at least two of them lie within [-90, 90]
+as the manual says the controller guarantees.
+
+Three forward kinematics of the same arm, checked against each other by the tests:
+  * `Chain.fk`: the URDF joints multiplied out in pure Python (any serial arm);
+  * `OPW.fk`: the closed form of an ortho-parallel arm with a spherical wrist (Brandstötter,
+    Angerer, Hofbaur 2014), about ten times faster; its parameters are read from the URDF's zero
+    pose (`extract_opw`) and verified against the chain, never assumed;
+  * pinocchio (`models.RobotModel.fk_pinocchio`), from the same URDF file.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+from dataclasses import dataclass
+
+from .errors import RobotError
+from .urdf import IDENTITY, Mat, UrdfInfo, axis_angle, inverse, mul, transform
+
+DEG = math.pi / 180.0
+RAD = 180.0 / math.pi
+
+
+# ---- VAL 3 trsf <-> matrix ---------------------------------------------------------------------
+
+
+def trsf_matrix(pose) -> Mat:
+    """{x, y, z, rx, ry, rz} (mm, deg) -> 3x4 (mm), R = Rx(rx)·Ry(ry)·Rz(rz)."""
+    x, y, z, rx, ry, rz = pose
+    a, b, c = rx * DEG, ry * DEG, rz * DEG
+    ca, sa, cb, sb, cc, sc = math.cos(a), math.sin(a), math.cos(b), math.sin(b), math.cos(c), math.sin(c)
+    return (
+        (cb * cc, -cb * sc, sb, float(x)),
+        (ca * sc + sa * sb * cc, ca * cc - sa * sb * sc, -sa * cb, float(y)),
+        (sa * sc - ca * sb * cc, sa * cc + ca * sb * sc, ca * cb, float(z)),
+    )
+
+
+def _wrap180(a: float) -> float:
+    a = math.fmod(a, 360.0)
+    if a <= -180.0:
+        a += 360.0
+    elif a > 180.0:
+        a -= 360.0
+    return a
+
+
+def matrix_trsf(M) -> tuple[float, float, float, float, float, float]:
+    """3x4 (mm) -> {x, y, z, rx, ry, rz} (mm, deg) in the VAL 3 convention (module docstring)."""
+    r00, r01, r02 = M[0][0], M[0][1], M[0][2]
+    r10, r11, r12 = M[1][0], M[1][1], M[1][2]
+    r22 = M[2][2]
+    cb = math.hypot(r00, r01)
+    ry = math.atan2(r02, cb) * RAD
+    if cb < 1e-12:  # ry = ±90: rx chosen null (9.3.2)
+        rx = 0.0
+        rz = math.atan2(r10, r11) * RAD
+    else:
+        a = math.atan2(-r12, r22)
+        rx = a * RAD
+        # rz from what is left once rx and ry are undone, Ry(-ry)·Rx(-rx)·R = Rz(rz): exact even
+        # close to the gimbal lock, where -r01 and r00 alone are tiny and noisy
+        ca, sa = math.cos(a), math.sin(a)
+        sb = r02
+        r20 = M[2][0]
+        rz = math.atan2(ca * r10 + sa * r20, cb * r00 - sb * (-sa * r10 + ca * r20)) * RAD
+        if abs(rx) > 90.0 and abs(rz) > 90.0:
+            rx = rx - 180.0 if rx > 0 else rx + 180.0
+            ry = 180.0 - ry if ry > 0 else -180.0 - ry
+            rz = rz - 180.0 if rz > 0 else rz + 180.0
+    return (M[0][3], M[1][3], M[2][3], _wrap180(rx) + 0.0, _wrap180(ry) + 0.0, _wrap180(rz) + 0.0)
+
+
+def pose_error(A, B) -> tuple[float, float]:
+    """(position error in mm, rotation angle between the orientations in rad) of two 3x4."""
+    dp = math.sqrt(sum((A[i][3] - B[i][3]) ** 2 for i in range(3)))
+    # angle of A^T B: acos((trace - 1) / 2), computed robustly from the skew part too
+    tr = sum(A[k][i] * B[k][i] for i in range(3) for k in range(3))
+    vx = sum(A[k][1] * B[k][2] - A[k][2] * B[k][1] for k in range(3))
+    vy = sum(A[k][2] * B[k][0] - A[k][0] * B[k][2] for k in range(3))
+    vz = sum(A[k][0] * B[k][1] - A[k][1] * B[k][0] for k in range(3))
+    ang = math.atan2(0.5 * math.sqrt(vx * vx + vy * vy + vz * vz), 0.5 * (tr - 1.0))
+    return dp, abs(ang)
+
+
+# ---- the URDF chain -------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class ChainJoint:
+    name: str
+    before: Mat  # fixed transform from the previous joint's moving frame (or the world) to this joint
+    axis: tuple[float, float, float]
+    lower: float  # rad
+    upper: float
+    velocity: float  # rad/s
+    effort: float | None
+
+
+class Chain:
+    """The serial chain world -> flange of a URDF, in millimetres, for any six-axis arm."""
+
+    def __init__(self, info: UrdfInfo, world: str, flange: str):
+        path = info.path
+        for what, link in (("world_frame", world), ("flange_frame", flange)):
+            if link not in info.links:
+                raise RobotError(f"{path}: <val3check {what}=\"{link}\">: the URDF has no link named {link!r}")
+        root = info.root_link()
+        if not root:
+            raise RobotError(f"{path}: the links do not form one tree with a single root")
+        to_world = info.chain(root, world)
+        to_flange = info.chain(root, flange)
+        if to_world is None or to_flange is None:
+            raise RobotError(f"{path}: {world!r} and {flange!r} are not both below the root link {root!r}")
+        moving = [j for j in to_world if j.kind != "fixed"]
+        if moving:
+            raise RobotError(f"{path}: the world frame {world!r} must be fixed to the base, but joint {moving[0].name!r} moves it")
+        W = IDENTITY
+        for j in to_world:
+            W = mul(W, transform(_mm(j.xyz), j.rpy))
+        joints: list[ChainJoint] = []
+        acc = inverse(W)
+        for j in to_flange:
+            acc = mul(acc, transform(_mm(j.xyz), j.rpy))
+            if j.kind == "fixed":
+                continue
+            if j.kind not in ("revolute", "continuous"):
+                raise RobotError(f"{path}: joint {j.name!r} is {j.kind or 'untyped'}: only revolute joints are supported")
+            if j.kind == "revolute" and (j.lower is None or j.upper is None):
+                raise RobotError(f"{path}: joint {j.name!r} has no <limit lower upper>: the joint limits are needed")
+            if not j.velocity or j.velocity <= 0:
+                raise RobotError(f"{path}: joint {j.name!r} has no <limit velocity>: the nominal joint speed is needed")
+            lo, hi = (j.lower, j.upper) if j.kind == "revolute" else (-2 * math.pi, 2 * math.pi)
+            joints.append(ChainJoint(j.name, acc, j.axis, lo, hi, j.velocity, j.effort))
+            acc = IDENTITY
+        if len(joints) != 6:
+            raise RobotError(f"{path}: {len(joints)} moving joints between {world!r} and {flange!r}: a six-axis arm is needed")
+        self.joints = joints
+        self.tip = acc  # joint 6 frame -> flange
+        self.world_in_root = W
+
+    def fk(self, q) -> Mat:
+        """Flange in the world frame (mm) for joint angles q (rad)."""
+        T = IDENTITY
+        for j, a in zip(self.joints, q):
+            T = mul(mul(T, j.before), axis_angle(j.axis, a))
+        return mul(T, self.tip)
+
+    def zero_frames(self) -> list[tuple[tuple[float, float, float], tuple[float, float, float]]]:
+        """(origin, axis direction) of each joint in the world frame at the zero position."""
+        out = []
+        T = IDENTITY
+        for j in self.joints:
+            T = mul(T, j.before)
+            x, y, z = j.axis
+            n = math.sqrt(x * x + y * y + z * z)
+            d = tuple((T[i][0] * x + T[i][1] * y + T[i][2] * z) / n for i in range(3))
+            out.append(((T[0][3], T[1][3], T[2][3]), d))
+        return out
+
+
+def _mm(xyz) -> tuple[float, float, float]:
+    return (xyz[0] * 1000.0, xyz[1] * 1000.0, xyz[2] * 1000.0)
+
+
+# ---- ortho-parallel arm with a spherical wrist ---------------------------------------------------
+
+
+@dataclass(frozen=True)
+class OPW:
+    """Brandstötter et al. parameters (mm), axis sign corrections, and the flange offset G.
+
+    In the world frame, at the zero position: axis 1 is the world Z axis, axis 2 the line
+    (x = a1, z = c1) along Y, the elbow is c2 above axis 2, the wrist centre is (a1 + a2, b,
+    c1 + c2 + c3) and the flange point c4 above it on axis 6. Joint angle q_i turns the arm by
+    sign_i·q_i about the positive axis. flange = T_opw(q)·G.
+    """
+
+    a1: float
+    a2: float
+    b: float
+    c1: float
+    c2: float
+    c3: float
+    c4: float
+    signs: tuple[int, int, int, int, int, int] = (1, 1, 1, 1, 1, 1)
+    G: Mat | None = None  # None: the flange frame is the OPW tool frame itself
+
+    def fk(self, q) -> Mat:
+        """Flange in the world frame (mm) for joint angles q (rad)."""
+        s = self.signs
+        t1, t2, t3, t4, t5, t6 = (s[0] * q[0], s[1] * q[1], s[2] * q[2], s[3] * q[3], s[4] * q[4], s[5] * q[5])
+        c1, s1 = math.cos(t1), math.sin(t1)
+        c2, s2 = math.cos(t2), math.sin(t2)
+        t23 = t2 + t3
+        c23, s23 = math.cos(t23), math.sin(t23)
+        c4, s4 = math.cos(t4), math.sin(t4)
+        c5, s5 = math.cos(t5), math.sin(t5)
+        c6, s6 = math.cos(t6), math.sin(t6)
+        # W = Rz(t4)·Ry(t5)·Rz(t6)
+        w00 = c4 * c5 * c6 - s4 * s6
+        w01 = -c4 * c5 * s6 - s4 * c6
+        w02 = c4 * s5
+        w10 = s4 * c5 * c6 + c4 * s6
+        w11 = -s4 * c5 * s6 + c4 * c6
+        w12 = s4 * s5
+        w20 = -s5 * c6
+        w21 = s5 * s6
+        w22 = c5
+        # M = Ry(t23)·W
+        m00 = c23 * w00 + s23 * w20
+        m01 = c23 * w01 + s23 * w21
+        m02 = c23 * w02 + s23 * w22
+        m20 = -s23 * w00 + c23 * w20
+        m21 = -s23 * w01 + c23 * w21
+        m22 = -s23 * w02 + c23 * w22
+        # wrist centre in the joint-1 frame, then the flange point c4 along axis 6
+        u = self.a1 + self.c2 * s2 + self.c3 * s23 + self.a2 * c23 + self.c4 * m02
+        v = self.b + self.c4 * w12
+        z = self.c1 + self.c2 * c2 + self.c3 * c23 - self.a2 * s23 + self.c4 * m22
+        T = (
+            (c1 * m00 - s1 * w10, c1 * m01 - s1 * w11, c1 * m02 - s1 * w12, c1 * u - s1 * v),
+            (s1 * m00 + c1 * w10, s1 * m01 + c1 * w11, s1 * m02 + c1 * w12, s1 * u + c1 * v),
+            (m20, m21, m22, z),
+        )
+        return T if self.G is None else mul(T, self.G)
+
+
+def extract_opw(chain: Chain, tol_mm: float = 1e-6) -> tuple[OPW | None, str]:
+    """The OPW parameters of a chain read from its zero position, verified on random positions.
+
+    Returns (OPW, "") or (None, why the arm is not ortho-parallel with a spherical wrist)."""
+    frames = chain.zero_frames()
+    expected = ("z", "y", "y", "z", "y", "z")
+    unit = {"y": (0.0, 1.0, 0.0), "z": (0.0, 0.0, 1.0)}
+    signs = []
+    for i, ((_, d), e) in enumerate(zip(frames, expected)):
+        u = unit[e]
+        dot = d[0] * u[0] + d[1] * u[1] + d[2] * u[2]
+        if abs(abs(dot) - 1.0) > 1e-9:
+            return None, f"axis {i + 1} is not along world {e.upper()} at the zero position"
+        signs.append(1 if dot > 0 else -1)
+    (p1, _), (p2, _), (p3, _), (p4, _), (p5, _), (p6, _) = frames
+    if math.hypot(p1[0], p1[1]) > tol_mm:
+        return None, "axis 1 does not pass through the world origin"
+    a1, c1 = p2[0], p2[2]
+    if abs(p3[0] - p2[0]) > tol_mm:
+        return None, "axis 3 is not straight above axis 2 at the zero position"
+    c2 = p3[2] - p2[2]
+    if math.hypot(p4[0] - p6[0], p4[1] - p6[1]) > tol_mm or abs(p5[0] - p4[0]) > tol_mm:
+        return None, "axes 4, 5 and 6 do not meet in one point (no spherical wrist)"
+    cx, cy, cz = p4[0], p4[1], p5[2]
+    a2, b, c3 = cx - a1, cy, cz - c1 - c2
+    F = chain.fk((0.0,) * 6)
+    c4 = F[2][3] - cz
+    base = OPW(a1, a2, b, c1, c2, c3, c4, tuple(signs))  # type: ignore[arg-type]
+    T0 = base.fk((0.0,) * 6)
+    G = mul(inverse(T0), F)
+    if max(abs(G[i][k] - IDENTITY[i][k]) for i in range(3) for k in range(4)) < 1e-12:
+        opw = base
+    else:
+        opw = OPW(a1, a2, b, c1, c2, c3, c4, tuple(signs), G)  # type: ignore[arg-type]
+    rng = random.Random(12345)
+    for _ in range(32):
+        q = [rng.uniform(-math.pi, math.pi) for _ in range(6)]
+        dp, da = pose_error(opw.fk(q), chain.fk(q))
+        if dp > 1e-7 or da > 1e-10:
+            return None, f"the closed-form model does not reproduce the URDF chain ({dp:.3g} mm off)"
+    return opw, ""

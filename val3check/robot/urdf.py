@@ -1,0 +1,189 @@
+"""A small URDF reader: the serial chain between two links, joint limits, and val3check's metadata.
+
+Pure Python (no numpy, no pinocchio): `val3check robots` lists the models with it, and the fast
+kinematics is built from what it reads. Pinocchio reads the same file for its own model
+(`models.RobotModel.pinocchio()`); the test suite checks that both give the same kinematics.
+
+The metadata val3check needs in a URDF (robots/README.md, "Your own URDF"):
+
+    <val3check arm="MyTX2-60" world_frame="base" flange_frame="tool0">
+      <joint name="joint_1" acceleration_deg_s2="1740"/>   <!-- optional, one per joint -->
+    </val3check>
+
+`world_frame` and `flange_frame` are required: they name the links that are the VAL 3 `world`
+frame (on axis 1 at the height of axis 2, X forward, Z up) and `flange` frame (Z out of the flange
+along axis 6). Joint limits and nominal speeds are the URDF's own `<limit lower upper velocity>`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .errors import RobotError
+
+Mat = tuple[tuple[float, float, float, float], tuple[float, float, float, float], tuple[float, float, float, float]]
+
+
+@dataclass(frozen=True)
+class UrdfJoint:
+    name: str
+    kind: str
+    parent: str
+    child: str
+    xyz: tuple[float, float, float]
+    rpy: tuple[float, float, float]
+    axis: tuple[float, float, float]
+    lower: float | None  # radians
+    upper: float | None
+    velocity: float | None  # rad/s
+    effort: float | None
+
+
+@dataclass
+class UrdfInfo:
+    path: str
+    robot_name: str
+    joints: dict[str, UrdfJoint]
+    links: set[str]
+    meta: dict[str, str] | None  # attributes of <val3check>, None when absent
+    meta_joints: dict[str, dict[str, str]] = field(default_factory=dict)
+
+    def chain(self, root: str, tip: str) -> list[UrdfJoint]:
+        """Joints from `root` down to `tip` (both links), in order; empty when root == tip."""
+        by_child = {j.child: j for j in self.joints.values()}
+        out: list[UrdfJoint] = []
+        link = tip
+        while link != root:
+            j = by_child.get(link)
+            if j is None:
+                return None  # type: ignore[return-value]
+            out.append(j)
+            link = j.parent
+        out.reverse()
+        return out
+
+    def root_link(self) -> str:
+        children = {j.child for j in self.joints.values()}
+        roots = [n for n in self.links if n not in children]
+        return roots[0] if len(roots) == 1 else ""
+
+
+def _floats(text: str | None, n: int, default: tuple, what: str, path: str) -> tuple:
+    if text is None:
+        return default
+    try:
+        vals = tuple(float(t) for t in text.split())
+    except ValueError:
+        raise RobotError(f"{path}: {what} is not {n} numbers: {text!r}") from None
+    if len(vals) != n:
+        raise RobotError(f"{path}: {what} is not {n} numbers: {text!r}")
+    return vals
+
+
+def _opt(el, attr: str) -> float | None:
+    if el is None or el.get(attr) is None:
+        return None
+    return float(el.get(attr))
+
+
+def read_urdf(path: str | Path) -> UrdfInfo:
+    from defusedxml import ElementTree as ET
+
+    path = str(path)
+    try:
+        root = ET.parse(path).getroot()
+    except FileNotFoundError:
+        raise RobotError(f"{path}: no such file") from None
+    except OSError as exc:
+        raise RobotError(f"{path}: cannot read: {exc.strerror or exc}") from None
+    except ET.ParseError as exc:
+        raise RobotError(f"{path}: not well-formed XML: {exc}") from None
+    if root.tag != "robot":
+        raise RobotError(f"{path}: not a URDF (the root element is <{root.tag}>, not <robot>)")
+    links = {el.get("name") for el in root.findall("link")}
+    joints: dict[str, UrdfJoint] = {}
+    for el in root.findall("joint"):
+        name = el.get("name", "")
+        origin = el.find("origin")
+        axis = el.find("axis")
+        limit = el.find("limit")
+        parent, child = el.find("parent"), el.find("child")
+        if parent is None or child is None:
+            raise RobotError(f"{path}: joint {name!r} lacks <parent> or <child>")
+        try:
+            joints[name] = UrdfJoint(
+                name=name,
+                kind=el.get("type", ""),
+                parent=parent.get("link", ""),
+                child=child.get("link", ""),
+                xyz=_floats(origin.get("xyz") if origin is not None else None, 3, (0.0, 0.0, 0.0), f"joint {name!r} origin xyz", path),
+                rpy=_floats(origin.get("rpy") if origin is not None else None, 3, (0.0, 0.0, 0.0), f"joint {name!r} origin rpy", path),
+                axis=_floats(axis.get("xyz") if axis is not None else None, 3, (1.0, 0.0, 0.0), f"joint {name!r} axis", path),
+                lower=_opt(limit, "lower"),
+                upper=_opt(limit, "upper"),
+                velocity=_opt(limit, "velocity"),
+                effort=_opt(limit, "effort"),
+            )
+        except ValueError as exc:
+            raise RobotError(f"{path}: joint {name!r}: bad <limit>: {exc}") from None
+    meta_el = root.find("val3check")
+    meta = dict(meta_el.attrib) if meta_el is not None else None
+    meta_joints = {}
+    if meta_el is not None:
+        for j in meta_el.findall("joint"):
+            meta_joints[j.get("name", "")] = dict(j.attrib)
+    return UrdfInfo(path=path, robot_name=root.get("name", ""), joints=joints, links=links, meta=meta, meta_joints=meta_joints)
+
+
+# ---- small rigid-transform helpers (3x4 row-major tuples, metres) -------------------------------
+
+
+def rpy_matrix(r: float, p: float, y: float) -> tuple:
+    """URDF rpy: R = Rz(y)·Ry(p)·Rx(r)."""
+    cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
+    return (
+        (cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr),
+        (sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr),
+        (-sp, cp * sr, cp * cr),
+    )
+
+
+def transform(xyz, rpy) -> Mat:
+    R = rpy_matrix(*rpy)
+    return tuple((R[i][0], R[i][1], R[i][2], float(xyz[i])) for i in range(3))  # type: ignore[return-value]
+
+
+IDENTITY: Mat = ((1.0, 0.0, 0.0, 0.0), (0.0, 1.0, 0.0, 0.0), (0.0, 0.0, 1.0, 0.0))
+
+
+def mul(A: Mat, B: Mat) -> Mat:
+    return tuple(
+        (
+            A[i][0] * B[0][0] + A[i][1] * B[1][0] + A[i][2] * B[2][0],
+            A[i][0] * B[0][1] + A[i][1] * B[1][1] + A[i][2] * B[2][1],
+            A[i][0] * B[0][2] + A[i][1] * B[1][2] + A[i][2] * B[2][2],
+            A[i][0] * B[0][3] + A[i][1] * B[1][3] + A[i][2] * B[2][3] + A[i][3],
+        )
+        for i in range(3)
+    )  # type: ignore[return-value]
+
+
+def inverse(A: Mat) -> Mat:
+    R = [[A[j][i] for j in range(3)] for i in range(3)]  # transpose
+    t = [-(R[i][0] * A[0][3] + R[i][1] * A[1][3] + R[i][2] * A[2][3]) for i in range(3)]
+    return tuple((R[i][0], R[i][1], R[i][2], t[i]) for i in range(3))  # type: ignore[return-value]
+
+
+def axis_angle(axis, angle: float) -> Mat:
+    x, y, z = axis
+    n = math.sqrt(x * x + y * y + z * z)
+    x, y, z = x / n, y / n, z / n
+    c, s = math.cos(angle), math.sin(angle)
+    C = 1.0 - c
+    return (
+        (c + x * x * C, x * y * C - z * s, x * z * C + y * s, 0.0),
+        (y * x * C + z * s, c + y * y * C, y * z * C - x * s, 0.0),
+        (z * x * C - y * s, z * y * C + x * s, c + z * z * C, 0.0),
+    )
