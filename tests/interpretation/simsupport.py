@@ -9,8 +9,8 @@ from pathlib import Path
 from support import write_app
 
 from val3check.config import Settings
-from val3check.lint import run
 from val3check.interpretation.simulate import SimOptions, SimResult, simulate
+from val3check.lint import run
 
 
 def build(tmp_path: Path, code: str, *, globals_=(), locals_=(), programs=None, name: str = "Example",
@@ -80,3 +80,71 @@ def code_pos(result: SimResult, line: int, col: int, program: str = "start") -> 
     first = next(i for i, t in enumerate(text, 1) if "<![CDATA[" in t)
     start_col = text[first - 1].index("<![CDATA[") + len("<![CDATA[") + 1
     return first + line - 1, (start_col + col - 1) if line == 1 else col
+
+
+def _plain(v):
+    from val3check.interpretation.values import Arr, Coll, IOPoint
+
+    if type(v) is IOPoint:
+        return v.value
+    if type(v) is Arr:
+        return [_plain(x) for x in v.data[v.off:]]
+    if type(v) is Coll:
+        return {k: _plain(v.d[k]) for k in v.keys()}
+    if type(v) is dict:
+        return {k: _plain(x) for k, x in v.items()}
+    return v
+
+
+def gv(result: SimResult, name: str):
+    """The value of a global at the end of the run, as plain Python: a num is a float, an
+    element (array of size 1) its single value, an array a list, a collection a dict (keys in
+    VAL 3 order), a structured value a dict of its fields, a dio/aio its state."""
+    c = result.globals[name]
+    from val3check.interpretation.values import Arr
+
+    if type(c) is Arr and c.dims is None and len(c.data) == 1:
+        return _plain(c.data[0])
+    return _plain(c)
+
+
+def add_libraries(folder: Path, libs: dict[str, str], name: str = "Example") -> None:
+    """Declare library aliases ({"part": "Disk://Part"}) in an application written by `build`."""
+    pjx = folder / f"{name}.pjx"
+    entries = "".join(f'<Library alias="{a}" path="{html.escape(p, quote=True)}" />' for a, p in libs.items())
+    pjx.write_text(pjx.read_text(encoding="utf-8").replace("<Libraries />", f"<Libraries>{entries}</Libraries>"),
+                   encoding="utf-8")
+
+
+def make_library(tmp_path: Path, name: str, *, globals_=(), programs=None, values=None) -> Path:
+    """A library (an application without start()/stop()) in tmp_path/name."""
+    folder = build(tmp_path, "begin\nend\n", name=name, globals_=globals_, programs=programs, values=values)
+    for p in ("start", "stop"):
+        if not (programs and p in programs):
+            (folder / f"{p}.pgx").unlink()
+    pjx = folder / f"{name}.pjx"
+    text = pjx.read_text(encoding="utf-8")
+    for p in ("start", "stop"):
+        if not (programs and p in programs):
+            text = text.replace(f'    <Program file="{p}.pgx" />\n', "")
+    pjx.write_text(text, encoding="utf-8")
+    return folder
+
+
+def run_folder(folder: Path, *, scenario: str | None = None, duration: float = 10.0, tmp_path: Path | None = None,
+               check_lint: bool = True, **opts) -> SimResult:
+    """Lint and simulate an application folder (one written by `build` and then edited)."""
+    lr = run([str(folder)], Settings())
+    if check_lint:
+        errs = [d for d in lr.result.diagnostics if d.severity is not None and d.severity.label == "error"]
+        assert not errs, errs
+    ws = lr.workspace
+    app = ws.apps[ws.targets[0]]
+    sc = None
+    if scenario is not None:
+        from val3check.interpretation.scenario import load_scenario
+
+        p = (tmp_path or folder.parent) / "scenario.toml"
+        p.write_text(scenario, encoding="utf-8")
+        sc = load_scenario(str(p))
+    return simulate(ws, app, SimOptions(duration=duration, **opts), sc)

@@ -254,3 +254,35 @@ def test_lint_does_not_import_the_interpreter():
             "except SystemExit:\n    pass\nprint(sorted(m for m in sys.modules if 'interpretation' in m))\n")
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT)
     assert r.stdout.strip().endswith("[]"), r.stdout
+
+
+def test_controller_io_library(tmp_path):
+    # `io:` is the controller's own I/O library (lint's L003): its symbols are inputs/outputs
+    # linked to "io:NAME", of the kind their uses give (dioLink -> dio, "= text" -> sio)
+    from .simsupport import add_libraries, gv, run_folder
+
+    folder = build(tmp_path, """begin
+  dioLink(diSensor, io:bIn0)
+  dioLink(doMotor, io:bOut0)
+  wait(diSensor == true)
+  doMotor = true
+  io:tcp_server = "hello"
+  sReply = io:tcp_server
+  nStatus = ioStatus(io:bIn0)
+  bExist = io:libExist("bIn0")
+end
+""", globals_=["dio diSensor", "dio doMotor", "string sReply", "num nStatus", "bool bExist"])
+    add_libraries(folder, {"io": "Disk://io"})
+    r = run_folder(folder, scenario="""[[events]]
+at = 0.5
+set = { "io:bIn0" = true }
+[[serial]]
+sio = "io:tcp_server"
+when_sent = "hello"
+after = 0.1
+send = "world"
+""")
+    assert r.end_reason == "ended", r.diagnostics
+    assert gv(r, "sReply") == "world" and gv(r, "nStatus") == 0 and gv(r, "bExist") is True
+    assert [(e[2], e[3], e[4]) for e in r.io_log if e[1] == "dio"] == [("io:bIn0", True, "scenario"),
+                                                                      ("io:bOut0", True, "Example~")]

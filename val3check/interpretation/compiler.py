@@ -30,7 +30,13 @@ from ..loading.types import base_type
 from ..parsing import ast as A
 from .builtins_bridge import builtin
 from .memory import TypeSpace
-from .values import ENUM_CONSTANTS, ENUM_SPELLING, STRUCT_FIELDS, STRUCT_ORDER
+from .values import (
+    ENUM_CONSTANTS,
+    ENUM_SPELLING,
+    STRUCT_FIELDS,
+    STRUCT_ORDER,
+    clip_string,
+)
 
 # Instructions that need the arm model (chapters 9-11): executed by later issues.
 ARM_INSTRUCTIONS = frozenset(n.lower() for n in (
@@ -80,6 +86,8 @@ class Compiled:
     frame_bytes: int
     source: str = ""
     error: CompileError | None = None
+    # python line -> (sequence, index, length) of the VAL 3 instruction (taskResume jumps)
+    bpos: dict = field(default_factory=dict)
 
 
 # Estimated execution memory (2.1.4.2: 5000 bytes per task by default). The manual gives no
@@ -114,7 +122,7 @@ def _lower_map(names) -> dict[str, str]:
 
 
 class ProgramCompiler:
-    def __init__(self, unit, program: Program) -> None:
+    def __init__(self, unit, program: Program, max_level: int = 1000) -> None:
         self.unit = unit  # runtime.Unit
         self.app: Application = unit.model
         self.space: TypeSpace = unit.space
@@ -128,12 +136,23 @@ class ProgramCompiler:
         self.loop_depth = 0
         self.in_switch = 0
         self.arrayed: set[str] = set()
+        # taskResume jumps (5.10): each sequence of instructions (block) up to `max_level`
+        # nesting levels is a dispatch loop `_bK`; `ctx` is (K, index, length) of the
+        # instruction being compiled, `bpos` maps Python lines to it
+        self.max_level = max_level
+        self.level = 0
+        self.nblocks = 0
+        self.deepest = 0
+        self.ctx: tuple[int, int, int] | None = None
+        self.bpos: dict[int, tuple[int, int, int] | None] = {}
+        self.sw_flags: list[str] = []
 
     # ---- output -------------------------------------------------------------------------------
 
     def emit(self, text: str) -> None:
         self.out.append("    " * self.ind + text)
         self.pos[len(self.out) + 1] = self.cur  # +1: the "def" line comes first
+        self.bpos[len(self.out) + 1] = self.ctx
 
     def fresh(self, stem: str = "t") -> str:
         self.tmp += 1
@@ -215,7 +234,7 @@ class ProgramCompiler:
             if p.container is Container.ELEMENT:
                 if p.by_reference:
                     self.vars[p.name] = VarInfo(p.name, t, "element", store="ref", space=self.space)
-                elif p.name in boxed:
+                elif p.name in boxed or p.name in self.arrayed:  # arrayed: passed on as a 1-value array
                     self.vars[p.name] = VarInfo(p.name, t, "element", store="box", slot=slot, space=self.space)
                     slot += 1
                 else:
@@ -267,6 +286,10 @@ class ProgramCompiler:
     def lib_var(self, node: A.LibraryName) -> VarInfo:
         lib = self._lib_model(node.alias)
         d = lib.data.get(node.name) if lib is not None else None
+        sysio = self.unit.aliases.get(node.alias) if lib is None else None
+        if sysio is not None and sysio is self.unit.machine.system_io:  # the controller's io: library
+            return VarInfo(node.name, sysio.kind_of(node.name), "array", store="lib", alias=node.alias,
+                           space=self.space)
         if d is None:
             # unknown at compile time: the library may be loaded with another interface (6.3)
             return VarInfo(node.name, "?", "array", store="lib", alias=node.alias, space=self.space)
@@ -346,7 +369,7 @@ class ProgramCompiler:
         if tn is A.Number:
             return repr(float(node.value)), "num"
         if tn is A.String:
-            return repr(node.value), "string"
+            return repr(clip_string(node.value)), "string"  # 3.4.1: at most 128 bytes
         if tn is A.Bool:
             return ("True" if node.value else "False"), "bool"
         if tn is A.Name:
@@ -908,7 +931,8 @@ class ProgramCompiler:
         self.emit("if T.q < 0: yield")
 
     def guarded(self, code_lines: list[str], skippable: bool) -> None:
-        """One VAL 3 line that may fail: stop the task there, retry or skip on taskResume."""
+        """One VAL 3 line that may fail: stop the task there (5.2); on taskResume (5.10) run it
+        again (jump 0), go on after it (1) or resume `jump` instructions away in its sequence."""
         self.emit("while 1:")
         self.ind += 1
         self.emit("try:")
@@ -918,26 +942,90 @@ class ProgramCompiler:
         self.ind -= 1
         self.emit("except Exception as _e:")
         self.ind += 1
-        if skippable:
-            self.emit("if (yield from FAIL(T, _e, True)): continue")
-        else:
-            self.emit("yield from FAIL(T, _e, False)")
-            self.emit("continue")
+        ctx = self.ctx
+        self.emit(f"_j = yield from FAIL(T, _e, {skippable}, {ctx!r})")
+        self.emit("if _j == 0: continue")
+        if ctx is not None:
+            b, i, _ = ctx
+            if skippable:
+                self.emit(f"if _j != 1: raise JUMP({b}, {i} + _j)")
+            else:
+                self.emit(f"raise JUMP({b}, {i} + _j)")
         self.ind -= 1
         self.emit("break")
         self.ind -= 1
 
-    def block(self, stmts) -> None:
-        if not stmts:
-            self.emit("pass")
-            return
-        for s in stmts:
-            self.stmt(s)
+    def block(self, stmts, end=None) -> None:
+        """A sequence of instructions. Up to `max_level` nesting levels it is a dispatch loop, so
+        that taskResume can resume at any of its instructions (5.10):
+
+            _bK = 0
+            while 1:
+                try:
+                    if _bK <= 0: <instruction 0>
+                    if _bK <= 1: <instruction 1>
+                except JUMP as _x:          # resume at instruction _x.t of this sequence
+                    if _x.b != K: raise
+                    _bK = _x.t
+                    continue
+                break
+
+        Deeper sequences are plain code (Python allows 20 nested blocks): there, only jumps 0 and
+        1 are possible. `end` emits the program's `end` line as the sequence's last position."""
+        saved_ctx, saved_level = self.ctx, self.level
+        self.level += 1
+        self.deepest = max(self.deepest, self.level)
+        try:
+            if self.level > self.max_level:
+                self.ctx = None
+                if not stmts and end is None:
+                    self.emit("pass")
+                for st in stmts:
+                    self.stmt(st)
+                if end is not None:
+                    end()
+                return
+            self.nblocks += 1
+            K = self.nblocks
+            n = len(stmts)
+            self.emit(f"_b{K} = 0")
+            self.emit("while 1:")
+            self.ind += 1
+            self.emit("try:")
+            self.ind += 1
+            if not stmts and end is None:
+                self.emit("pass")
+            for i, st in enumerate(stmts):
+                self.ctx = (K, i, n)
+                self.emit(f"if _b{K} <= {i}:")
+                self.ind += 1
+                self.stmt(st)
+                self.ind -= 1
+            if end is not None:
+                self.ctx = (K, n, n)
+                self.emit(f"if _b{K} <= {n}:")
+                self.ind += 1
+                end()
+                self.ind -= 1
+            self.ind -= 1
+            self.ctx = saved_ctx
+            self.emit("except JUMP as _x:")
+            self.ind += 1
+            self.emit(f"if _x.b != {K}: raise")
+            self.emit(f"_b{K} = _x.t")
+            self.emit("continue")
+            self.ind -= 1
+            self.emit("break")
+            self.ind -= 1
+            if self.sw_flags and self.in_switch and not self.loop_depth:
+                self.emit(f"if {self.sw_flags[-1]}: break")  # a `break` of the switch left this loop
+        finally:
+            self.ctx, self.level = saved_ctx, saved_level
 
     def stmt(self, s) -> None:
         self.at(s)
         ts = type(s)
-        mark = (len(self.out), self.ind, self.loop_depth, self.in_switch)
+        mark = (len(self.out), self.ind, self.loop_depth, self.in_switch, self.ctx, self.level, len(self.sw_flags))
         try:
             if ts is A.Assign:
                 self.line()
@@ -961,6 +1049,7 @@ class ProgramCompiler:
                     self.line()
                     self.guarded(["NOTSIM('break outside a switch case')"], True)
                 else:
+                    self.emit(f"{self.sw_flags[-1]} = 1")
                     self.emit("break")
             elif ts is A.If:
                 self.if_stmt(s)
@@ -978,6 +1067,8 @@ class ProgramCompiler:
             # The line cannot run here: the task stops on it with R004 when it gets there.
             del self.out[mark[0]:]
             self.ind, self.loop_depth, self.in_switch = mark[1], mark[2], mark[3]
+            self.ctx, self.level = mark[4], mark[5]
+            del self.sw_flags[mark[6]:]
             self.at(s)
             self.line()
             self.guarded([f"NOTSIM({str(exc)!r})"], True)
@@ -1146,9 +1237,12 @@ class ProgramCompiler:
         if s.default is not None:
             code.append(f"{'if' if first else 'else'}{' True' if first else ''}: {n} = {len(s.cases)}")
         self.guarded(code, False)
+        flag = f"{n}x"
+        self.emit(f"{flag} = 0")
         self.emit("while 1:")
         self.ind += 1
         self.in_switch += 1
+        self.sw_flags.append(flag)
         saved_loops = self.loop_depth
         self.loop_depth = 0
         bodies = [c.body for c in s.cases] + ([s.default.body] if s.default is not None else [])
@@ -1161,6 +1255,7 @@ class ProgramCompiler:
             self.ind -= 1
         self.emit("break")
         self.loop_depth = saved_loops
+        self.sw_flags.pop()
         self.in_switch -= 1
         self.ind -= 1
 
@@ -1205,11 +1300,14 @@ class ProgramCompiler:
                 self.emit(f"v_{loc.name} = LOCAL({v.t!r}, {cont!r}, {tuple(loc.sizes or (1,))!r})")
         self.emit("try:")
         self.ind += 1
-        if body is not None:
-            self.block(body.statements)
-            self.cur = (body.end_line, max(1, body.end_col - 3))
-        self.line()  # `end` (2.2.5: return and end have the same effect)
-        self.emit("pass")
+
+        def end_line() -> None:
+            if body is not None:
+                self.cur = (body.end_line, max(1, body.end_col - 3))
+            self.line()  # `end` (2.2.5: return and end have the same effect)
+            self.emit("pass")
+
+        self.block(body.statements if body is not None else [], end=end_line)
         self.ind -= 1
         self.emit("finally:")
         self.ind += 1
@@ -1219,7 +1317,8 @@ class ProgramCompiler:
         head = f"def P_{prog.name}(T{''.join(', ' + x for x in params)}):"
         source = head + "\n" + "\n".join(self.out) + "\n"
         filename = f"<val3 {self.unit.uid}:{prog.name}>"
-        return Compiled(prog.name, None, prog.parameters, self.pos, prog.origin.path, filename, fb, source)
+        return Compiled(prog.name, None, prog.parameters, self.pos, prog.origin.path, filename, fb, source,
+                        bpos=self.bpos)
 
     def default_code(self, t: str) -> str:
         b = base_type(t)
@@ -1237,17 +1336,27 @@ ENUM_VALUES_TYPES = frozenset({"shoulder", "elbow", "wrist", "blend"})
 
 def compile_program(unit, program: Program, namespace: dict) -> Compiled:
     """Compile `program` of `unit` into `namespace` (shared by the unit's programs)."""
-    pc = ProgramCompiler(unit, program)
-    try:
-        result = pc.compile()
-    except CompileError as exc:  # the whole program cannot run: calling it fails with R004
-        return _failing(unit, program, exc, namespace)
-    try:
-        code = compile(result.source, result.filename, "exec")
-    except (SyntaxError, RecursionError) as exc:
-        err = CompileError(f"program too deeply nested for the simulator ({exc.__class__.__name__})",
-                           program.origin.line, program.origin.col)
+    if program.code is not None and program.body is None:  # syntax errors (F101): it cannot run
+        err = CompileError(f"program {program.name}() has syntax errors", program.origin.line, program.origin.col)
         return _failing(unit, program, err, namespace)
+    max_level = 1000
+    while True:
+        pc = ProgramCompiler(unit, program, max_level)
+        try:
+            result = pc.compile()
+        except CompileError as exc:  # the whole program cannot run: calling it fails with R004
+            return _failing(unit, program, exc, namespace)
+        try:
+            code = compile(result.source, result.filename, "exec")
+            break
+        except (SyntaxError, RecursionError) as exc:
+            # Python allows 20 nested blocks: fewer sequences get a taskResume dispatch loop
+            if max_level > 0 and isinstance(exc, SyntaxError):
+                max_level = min(max_level, pc.deepest) - 1
+                continue
+            err = CompileError(f"program too deeply nested for the simulator ({exc.__class__.__name__})",
+                               program.origin.line, program.origin.col)
+            return _failing(unit, program, err, namespace)
     exec(code, namespace)
     result.func = namespace[f"P_{program.name}"]
     return result
@@ -1260,9 +1369,12 @@ def _failing(unit, program: Program, exc: CompileError, namespace: dict) -> Comp
             params += [f"c_{p.name}", f"k_{p.name}"]
         else:
             params.append(f"v_{p.name}")
+    # the task (or the caller's line) stops with R004 where the program starts
     src = (f"def P_{program.name}(T{''.join(', ' + x for x in params)}):\n"
-           f"    NOTSIM({str(exc)!r})\n    if 0: yield\n")
+           f"    while 1:\n        try:\n            NOTSIM({str(exc)!r})\n"
+           f"        except Exception as _e:\n            yield from FAIL(T, _e, False, None)\n            continue\n"
+           f"    if 0: yield\n")
     filename = f"<val3 {unit.uid}:{program.name}>"
     exec(compile(src, filename, "exec"), namespace)
-    return Compiled(program.name, namespace[f"P_{program.name}"], program.parameters, {2: (exc.line, exc.col)},
-                    program.origin.path, filename, CALL_BYTES, src, exc)
+    return Compiled(program.name, namespace[f"P_{program.name}"], program.parameters,
+                    {i: (exc.line, exc.col) for i in range(2, 8)}, program.origin.path, filename, CALL_BYTES, src, exc)

@@ -13,8 +13,8 @@ import re
 from typing import Any
 
 from .errors import Val3RuntimeError
-from .runtime import DELAY, WAIT, YIELD, IX, _linked, _sio, _sio_wait, help_text
-from .values import Arr, IOPoint, Screen, clip_string
+from .runtime import DELAY, YIELD, _linked, _sio, _sio_wait, help_text
+from .values import Arr, Screen, clip_string, is_io
 
 E = Val3RuntimeError
 SYNC: set[str] = set()
@@ -102,7 +102,7 @@ def I_clock(T, A) -> float:
 
 
 def _link_to(pair, src: Any, kind: str) -> None:
-    if type(src) is not IOPoint or src.kind != kind:
+    if not is_io(src) or src.kind != kind:
         raise E(70, f"{kind}Link: the source is not a {kind}")
     c, k = pair
     c[k] = src
@@ -153,14 +153,16 @@ def I_dioset(T, A, arr: Arr, value: float) -> float:
 
 @sync
 def I_iostatus(T, A, io, desc=None, path=None) -> float:
-    """3.5.3: 0 works, -1 link not defined (the simulator has every linked I/O)."""
-    if type(io) is not IOPoint:
+    """3.5.3 / 3.6.2: 0 works, 1 locked by the operator, 2 simulated, -1 link not defined,
+    -2 the link matches no input/output, -3 the device is in error. A linked input/output
+    works (0) unless the scenario's [io] table says otherwise (docs/scenario.md)."""
+    if not is_io(io):
         raise E(70, "ioStatus: not an input/output")
     if desc is not None:
-        desc[0][desc[1]] = ""
+        desc[0][desc[1]] = clip_string(io.description)
     if path is not None:
-        path[0][path[1]] = io.link
-    return 0.0 if io.link else -1.0
+        path[0][path[1]] = clip_string(io.link)
+    return float(io.status) if io.link else -1.0
 
 
 @sync
@@ -171,9 +173,15 @@ def I_aioget(T, A, io) -> float:
 
 @sync
 def I_aioset(T, A, io, value: float) -> float:
+    """3.6.2 aioSet: writes the value and returns the value the output really takes (an integer
+    output rounds it: aioSet(aiCommand, 12.3) writes and returns 12)."""
     io = _linked(io, "aio")
     if io.driven:
         raise E(122, f"write to the input {io.link}")
+    if io.integer:
+        value = float(_int(value))
+    if io.status == 1:  # locked by the operator: writing has no effect
+        return float(io.value)
     if io.value != value:
         io.value = float(value)
         T.M.output_changed(T, io)
@@ -218,6 +226,10 @@ _SIO_PARAMS = {"port": float, "target": str, "clients": float, "endOfString": fl
                "flowControl": str, "nagle": bool}
 
 
+_SIO_VALUES = {"parity": ("none", "even", "odd"), "bits": (5, 6, 7, 8), "stopBits": (1, 2), "mode": ("rs232", "rs422"),
+               "flowControl": ("none", "hardware")}
+
+
 @sync
 def I_sioctrl(T, A, io, name: str, value: Any) -> float:
     """3.7.3 sioCtrl: 0 changed, -1 unknown parameter, -2 wrong type, -3 value not supported."""
@@ -235,11 +247,8 @@ def I_sioctrl(T, A, io, name: str, value: Any) -> float:
         if value < 0:
             return -3.0
         io.timeout = float(value)
-    elif name == "parity" and value not in ("none", "even", "odd"):
-        return -3.0
-    elif name == "bits" and _int(value) not in (5, 6, 7, 8):
-        return -3.0
-    elif name == "stopBits" and _int(value) not in (1, 2):
+    elif (name in _SIO_VALUES and (_int(value) if want is float else value) not in _SIO_VALUES[name]
+          or name in ("port", "clients", "baudRate") and (value < 0 or value != _int(value))):
         return -3.0
     io.params[name] = value
     return 0.0
@@ -288,14 +297,22 @@ def I_settextmode(T, A, *args) -> None:
 
 @sync
 def I_getkey(T, A, *args) -> float:
-    """4.3 getKey: the last key pressed since the previous call, -1 if none; never waits."""
+    """4.3 getKey: the last key pressed since the previous call, -1 if none; never waits. A
+    screen that is not displayed is told of no key (4.2.3)."""
+    scr, _ = _scr(T, args)
+    if scr is not T.M.page:
+        return -1.0
     return float(T.M.last_key())
 
 
 @sync
 def I_iskeypressed(T, A, *args) -> bool:
+    """4.3: a key is seen only by the screen displayed, except the keys (1), (2), (3) (281-283)."""
     scr, (code,) = _scr(T, args)
-    return T.M.key_held(_int(code))
+    n = _int(code)
+    if scr is not T.M.page and n not in (281, 282, 283):
+        return False
+    return T.M.key_held(n)
 
 
 @sync
@@ -432,8 +449,27 @@ def I_safetyfault(T, A, name) -> bool:
 
 @sync
 def I_iobusstatus(T, A, arr: Arr) -> float:
-    """8.1 ioBusStatus: number of field bus devices in error (the simulated bus has none)."""
-    return 0.0
+    """8.1 ioBusStatus: the number of field bus devices in error: the devices of the
+    inputs/outputs the scenario's [io] table gives status -3 (a device is the link without its
+    last component, 'deviceName\\moduleName'). One description "-3:deviceName\\moduleName" per
+    device is written to the array (a global one grows as needed), the rest is set to ""."""
+    devices = sorted({_device(io.link) for io in T.M.cell.points.values() if io.status == -3 and io.link})
+    for i in range(arr.off, len(arr.data)):
+        arr.data[i] = ""
+    room = arr.size()
+    if len(devices) > room and not arr.local and arr.dims is None:
+        arr.data.extend("" for _ in range(len(devices) - room))
+        room = arr.size()
+    for i, d in enumerate(devices[:room]):
+        arr.data[arr.off + i] = clip_string(f"-3:{d}")
+    return float(len(devices))
+
+
+def _device(link: str) -> str:
+    for sep in ("\\", "/"):
+        if sep in link:
+            return link.rsplit(sep, 1)[0]
+    return link
 
 
 @sync

@@ -152,10 +152,9 @@ def load_library(M, A, alias: str, path: Any, T) -> int:
             unit = Unit(M, model, display)
             unit.init_globals()
             unit.build()
-            if any(c.error is not None and "syntax" in str(c.error).lower() or
-                   (model.programs[c.name].code is not None and model.programs[c.name].body is None)
+            if any(model.programs[c.name].code is not None and model.programs[c.name].body is None
                    for c in unit.compile_errors):
-                return 12
+                return 12  # 6.6: the library holds invalid programs (syntax errors)
             M.units[resolved] = unit
     A.aliases[alias] = unit
     interface = M.library_model(A.model, alias)
@@ -182,6 +181,8 @@ def lib_operation(M, T, A, alias: str | None, op: str, *args: Any) -> Any:
             if alias not in A.aliases or A.aliases[alias] is None:
                 return 10.0
             unit = A.aliases[alias]
+            if isinstance(unit, SystemIO):
+                return 35.0  # the controller's I/O library cannot be saved ("write-protected")
         if args:
             code, key, display = normalise(args[0], A)
             if code:
@@ -245,3 +246,124 @@ def _lib_list(M, A, path: str, arr: Arr) -> bool:
     for i, n in enumerate(out[:room]):
         arr.data[arr.off + i] = n
     return len(out) <= room
+
+
+# ---- the controller's I/O library (`io:`) ---------------------------------------------------------
+
+
+def is_system_io(model, alias: str, ws) -> bool:
+    """An alias that names the controller's own I/O library (an s6 `<alias interface="io">` or
+    a `Disk://io` library that is not in the project): its symbols are the controller's
+    inputs/outputs (`io:bIn0`, `io:valve1`, `io:tcp_server`), as lint's L003 says."""
+    ref = model.libraries.get(alias)
+    if ref is None or ws.library(model, alias) is not None:
+        return False
+    tail = ref.path.replace("\\", "/").rstrip("/").rsplit("/", 1)[-1]
+    stem = tail[:-4] if tail.lower().endswith(".pjx") else tail
+    return alias.lower() == "io" or stem.lower() == "io"
+
+
+class SystemIO:
+    """The controller's I/O library, always loaded: `io:NAME` is a dio, aio or sio linked to
+    "io:NAME" (the scenario names it so). Its kind is inferred from how the application uses
+    it (`dioLink(x, io:NAME)`, `io:NAME = "text"`, `if io:NAME`...), else from the name
+    (b.../d... dio, a... aio)."""
+
+    uid = 0
+    name = "io"
+    model = None
+    disk_path = "io"
+
+    def __init__(self, machine) -> None:
+        self.M = machine
+        self.kinds: dict[str, str] = {}
+        self.globals: dict[str, Arr] = {}
+
+    def kind_of(self, name: str) -> str:
+        k = self.kinds.get(name)
+        if k is None:
+            low = name.lower()
+            k = "aio" if low.startswith("a") else "dio"
+        return k
+
+    def public_global(self, name: str) -> Arr:
+        c = self.globals.get(name)
+        if c is None:
+            kind = self.kind_of(name)
+            c = self.globals[name] = Arr(kind, [self.M.cell.io(kind, f"io:{name}")])
+        return c
+
+    def public_program(self, name: str):
+        return None
+
+    def infer(self, app, alias: str) -> None:
+        """Kinds of the `alias:NAME` symbols from their uses in `app`'s programs."""
+        from ..language import lookup
+        from ..loading.types import base_type
+        from ..parsing import ast as A
+
+        def io_name(node) -> str | None:
+            return node.name if type(node) is A.LibraryName and node.alias == alias else None
+
+        def note(node, kind: str | None) -> None:
+            n = io_name(node)
+            if n is not None and kind in ("dio", "aio", "sio") and n not in self.kinds:
+                self.kinds[n] = kind
+
+        def kind_of_value(node, prog) -> str | None:
+            t = type(node)
+            if t is A.String or t is A.Binary and node.op == "+" and (type(node.left) is A.String or
+                                                                      type(node.right) is A.String):
+                return "sio"
+            if t is A.Bool or t is A.Unary and node.op == "!" or t is A.Binary and node.op in (
+                    "==", "!=", "<", ">", "<=", ">=", "and", "or", "xor"):
+                return "dio"
+            if t is A.Number:
+                return "aio"
+            if t in (A.Name, A.Index):
+                base = node if t is A.Name else node.base
+                if type(base) is A.Name:
+                    vt = var_type(base.name, prog)
+                    return {"string": "sio", "bool": "dio", "num": "aio", "dio": "dio", "aio": "aio",
+                            "sio": "sio"}.get(vt or "")
+            return None
+
+        def var_type(name: str, prog) -> str | None:
+            for d in list(prog.parameters) + list(prog.locals):
+                if d.name == name:
+                    return base_type(d.type)
+            d = app.data.get(name)
+            return base_type(d.type) if d is not None else None
+
+        for prog in app.programs.values():
+            if prog.body is None:
+                continue
+            for node in A.walk(prog.body):
+                t = type(node)
+                if t is A.CallExpr and type(node.func) is A.Name:
+                    ins = lookup(node.func.name)
+                    if ins is not None:
+                        for i, a in enumerate(node.args):
+                            if io_name(a) is not None:
+                                types = {o.params[i].type for o in ins.overloads
+                                         if o.accepts_arity(len(node.args)) and i < len(o.params)}
+                                kinds = types & {"dio", "aio", "sio"}
+                                note(a, kinds.pop() if len(kinds) == 1 else ("dio" if "bool" in types else None))
+                elif t in (A.Assign, A.AssignExpr):
+                    if io_name(node.target) is not None:
+                        note(node.target, kind_of_value(node.value, prog))
+                    elif io_name(node.value) is not None:
+                        note(node.value, kind_of_value(node.target, prog))
+                elif t is A.Binary:
+                    for a, b in ((node.left, node.right), (node.right, node.left)):
+                        if io_name(a) is not None:
+                            note(a, "dio" if node.op in ("and", "or", "xor") else kind_of_value(b, prog))
+                elif t is A.Unary and node.op == "!":
+                    note(node.operand, "dio")
+                elif t in (A.While, A.DoUntil):
+                    note(node.cond, "dio")
+                elif t is A.If:
+                    for br in node.branches:
+                        note(br.cond, "dio")
+        for name in sorted(self.kinds):
+            self.public_global(name)

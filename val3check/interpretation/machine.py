@@ -15,7 +15,6 @@ All times are integer microseconds: runs are deterministic.
 from __future__ import annotations
 
 import heapq
-import os
 import re
 import time as _time
 from dataclasses import dataclass, field
@@ -27,6 +26,7 @@ from . import runtime as rt
 from .compiler import Compiled, compile_program
 from .errors import RUNTIME_CODES, Val3RuntimeError
 from .instructions import TABLE
+from .libraries import SystemIO, is_system_io
 from .memory import Cell, TypeSpace
 from .values import Arr, Coll, IOPoint, Screen, copy_value
 
@@ -87,7 +87,8 @@ class Controller:
 class Task:
     __slots__ = ("name", "unit", "prio", "period", "gen", "state", "q", "stack", "smax", "wake", "tdep", "error",
                  "errdetail", "errpos", "program", "created", "ended", "order", "M", "jump", "skippable",
-                 "overrun", "next_run", "overran", "limit", "end_state", "lines", "seq", "saved", "final")
+                 "overrun", "next_run", "overran", "limit", "end_state", "lines", "seq", "saved", "final",
+                 "jumpctx", "pending", "cond")
 
     def __init__(self, M, name: str, unit, program: str, prio: int, period: int = 0) -> None:
         self.M = M
@@ -120,6 +121,9 @@ class Task:
         self.seq = 0
         self.saved: tuple | None = None
         self.final: dict | None = None
+        self.jumpctx: tuple | None = None  # (sequence, index, length) of the line it stopped on
+        self.pending: BaseException | None = None  # a taskResume jump to throw in at its next turn
+        self.cond = None  # the condition of the wait/watch it is in (evaluated by the scheduler)
 
 
 class Unit:
@@ -134,7 +138,10 @@ class Unit:
         self.model = model
         self.disk_path = disk_path
         self.space = machine.space_for(model)
-        self.aliases: dict[str, Unit | None] = {a: None for a in model.libraries}
+        self.aliases: dict[str, Any] = {a: None for a in model.libraries}
+        for a in model.libraries:  # the controller's own I/O library is always there (io:...)
+            if is_system_io(model, a, machine.ws):
+                self.aliases[a] = machine.system_io_for(model, a)
         self.globals: dict[str, Any] = {}
         self.programs: dict[str, Compiled] = {}
         self.ns: dict[str, Any] = {}
@@ -150,6 +157,11 @@ class Unit:
                 self.globals[name] = copy_value(saved[name])
             else:
                 self.globals[name] = self.space.container(d)
+            c = self.globals[name]
+            if type(c) is Arr and c.t == "screen":  # the transcript names a screen by its variable
+                for i, scr in enumerate(c.data):
+                    if type(scr) is Screen and not scr.name:
+                        scr.name = name if len(c.data) == 1 else f"{name}[{i}]"
 
     def build(self) -> None:
         M = self.machine
@@ -257,12 +269,15 @@ class Machine:
         self.main: Unit | None = None
         self.link_names: dict[tuple[str, str], list[str]] = {}
         self.sync_periods: set[int] = set()
+        self.full_logs: set[str] = set()
+        self.system_io = SystemIO(self)
+        self.system_io_seen: set[tuple[str, str]] = set()
 
     # ---- set-up -------------------------------------------------------------------------------
 
     def _base_namespace(self) -> dict[str, Any]:
         ns: dict[str, Any] = {"__builtins__": __builtins__}
-        for name in ("E", "IX", "AI1", "AI2", "AI3", "CK", "CKW", "VIEW", "ELEMARR", "ASG", "CP", "MOD", "CAT", "DYN",
+        for name in ("E", "JUMP", "IX", "AI1", "AI2", "AI3", "CK", "CKW", "VIEW", "ELEMARR", "ASG", "CP", "MOD", "CAT", "DYN",
                      "JADD", "JSUB", "JGT", "JLT", "WORLD", "IOR", "IOW", "FAIL", "YIELD", "DELAY", "WAIT", "WATCH",
                      "SETMUTEX", "PAGE", "GET", "SIOR", "SIOW", "SIZE", "SIZE2", "ISDEF", "INSERT", "DELETE", "APPEND",
                      "RESIZE", "CFIRST", "CLAST", "CNEXT", "CPREV", "BREF", "ARM", "NOTSIM"):
@@ -285,6 +300,13 @@ class Machine:
             self.spaces[app.path] = sp
         return sp
 
+    def system_io_for(self, model: Application, alias: str) -> SystemIO:
+        key = (model.path, alias)
+        if key not in self.system_io_seen:
+            self.system_io_seen.add(key)
+            self.system_io.infer(model, alias)
+        return self.system_io
+
     def library_model(self, app: Application, alias: str) -> Application | None:
         return self.ws.library(app, alias)
 
@@ -301,7 +323,7 @@ class Machine:
                         label = d_name if len(c.data) == 1 else f"{d_name}[{i}]"
                         self.link_names.setdefault((io.kind, io.link), []).append(label)
         for alias, ref in self.app.libraries.items():
-            if ref.autoload:
+            if ref.autoload and unit.aliases.get(alias) is None:
                 self._load_library(unit, alias, ref.path, None)
         return unit
 
@@ -328,13 +350,17 @@ class Machine:
 
     def transcript_add(self, T: Task | None, kind: str, text: str, scr: Screen | None) -> None:
         if len(self.transcript) >= self.budgets.max_transcript:
-            self.budget_exceeded(f"transcript budget of {self.budgets.max_transcript} entries reached")
+            self._log_full("transcript", f"the user page transcript is full ({self.budgets.max_transcript} entries): "
+                           "later entries are not recorded (the page itself is still kept)", T)
+            return
         screen = None if scr is None or scr is self.default_page else scr.name
         self.transcript.append((self.clock_us(T), T.name if T else "", kind, text, screen))
 
     def log_io(self, at: int, io: IOPoint, value: Any, source: str) -> None:
         if len(self.io_log) >= self.budgets.max_io_log:
-            self.budget_exceeded(f"I/O log budget of {self.budgets.max_io_log} entries reached")
+            self._log_full("io_log", f"the I/O log is full ({self.budgets.max_io_log} events): later events are not "
+                           "recorded", self.current)
+            return
         self.io_log.append((at, io.kind, io.link, value, source))
 
     def output_changed(self, T: Task, io: IOPoint) -> None:
@@ -349,11 +375,19 @@ class Machine:
             raise Val3RuntimeError(125, f"{io.link} is closed")
         io.tx.extend(data)
         now = self.clock_us(T)
-        self.log_io(now, io, data.decode("utf-8", "replace"), T.name)
+        self.log_io(now, io, sio_text(data), T.name)
         for target, pattern, delay, reply in self.sio_replies:
             if target is io and pattern.encode("utf-8") in bytes(io.tx):
                 del io.tx[: bytes(io.tx).index(pattern.encode("utf-8")) + len(pattern.encode("utf-8"))]
                 self.push_event(now + delay, "sio", (io, reply))
+
+    def _log_full(self, which: str, message: str, T: Task | None) -> None:
+        """A record budget is reached: said once (R006), the run goes on without recording."""
+        if which in self.full_logs:
+            return
+        self.full_logs.add(which)
+        self.diags.append(Diag("R006", message, self.app.path, 0, 0, self.clock_us(T) if T is not None else self.now,
+                               T.name if T is not None else "", ""))
 
     def budget_exceeded(self, message: str) -> None:
         raise EndRun("budget:" + message)
@@ -471,20 +505,47 @@ class Machine:
         T.jump = 0
 
     def resume(self, T: Task, jump: int) -> None:
-        """5.10 taskResume: no effect unless STOPPED; jump 0 = the line where it stopped,
-        1 = the next one (only those two are simulated: others raise 90)."""
+        """5.10 taskResume: no effect unless STOPPED (suspended, or stopped on a runtime error).
+        The task resumes `jump` instructions before or after the line where it stopped, counted
+        in the sequence that holds that line (a structure - if, while, for, do, switch - counts
+        as one instruction of its sequence): 0 runs the line again, 1 goes on after it; the end
+        of the sequence is a valid target. Error 90 when the target is outside the sequence or
+        the line is in a sequence too deeply nested for the simulator's jumps (docs/sim.md)."""
         if T.state not in ("stopped", "error"):
             return
         if T.state == "error":
-            if jump not in (0, 1) or (jump == 1 and not T.skippable):
+            if jump == 0 or jump == 1 and T.skippable and T.jumpctx is None:
+                pass
+            elif not self._jump_ok(T.jumpctx, jump):
                 raise Val3RuntimeError(90, f"cannot resume {T.name} {jump} line(s) from where it stopped")
             T.jump = jump
             T.error = 0
             T.state = "ready"
             return
-        if jump != 0:
+        if jump == 0:
+            T.state, T.wake = T.saved or ("ready", None)
+            return
+        ctx = self._suspended_ctx(T)
+        if not self._jump_ok(ctx, jump):
             raise Val3RuntimeError(90, f"cannot resume {T.name} {jump} line(s) from where it was suspended")
-        T.state, T.wake = T.saved or ("ready", None)
+        T.pending = rt.JUMP(ctx[0], ctx[1] + jump)
+        T.state, T.wake, T.tdep, T.cond = "ready", None, False, None
+
+    @staticmethod
+    def _jump_ok(ctx: tuple | None, jump: int) -> bool:
+        return ctx is not None and 0 <= ctx[1] + jump <= ctx[2]
+
+    def _suspended_ctx(self, T: Task) -> tuple | None:
+        """The sequence position of the line a suspended task is at (innermost program)."""
+        g = T.gen
+        found = None
+        while g is not None:
+            code = getattr(g, "gi_code", None)
+            frame = getattr(g, "gi_frame", None)
+            if code is not None and frame is not None and code.co_filename in self.compiled:
+                found = self.compiled[code.co_filename].bpos.get(frame.f_lineno)
+            g = getattr(g, "gi_yieldfrom", None)
+        return found
 
     def kill(self, T: Task, by: Task | None = None) -> None:
         if T.state == "killed":
@@ -834,7 +895,7 @@ class Machine:
             elif kind == "sio":
                 io, data = payload
                 io.rx.extend(data)
-                self.log_io(at, io, data.decode("utf-8", "replace"), "scenario")
+                self.log_io(at, io, sio_text(data), "scenario")
             elif kind == "power":
                 if self.ctl.working_mode == 4 and self.ctl.es_status == 0:
                     self.ctl.powered = bool(payload)
@@ -848,7 +909,6 @@ class Machine:
         task ended up waiting."""
         self._apply_events()
         self.cycle_lines = 0
-        progress_any = False
         now = self.now
         for T in list(self.tasks):
             if T.period and now >= T.next_run and T in self.tasks:
@@ -863,15 +923,25 @@ class Machine:
                     continue
                 if st == "delay" and T.wake > now:
                     continue
+                ok = None
+                if st == "wait" and T.cond is not None:
+                    # the wait/watch condition, evaluated once per turn here rather than by
+                    # resuming the task: it is resumed when true (or at the watch timeout)
+                    try:
+                        ok = T.cond()
+                    except Exception:  # noqa: BLE001 - raised again in the task, at its line
+                        ok = None
+                    else:
+                        if not ok and (T.wake is None or now < T.wake):
+                            continue
                 left = LINES_PER_CYCLE - self.cycle_lines
                 if left <= 0:
                     break
-                ran = self._turn(T, min(T.prio, left))
+                ran = self._turn(T, min(T.prio, left), ok)
                 if ran:
                     progress = True
             if not progress:
                 break
-            progress_any = True
         self.total_lines += self.cycle_lines
         return self.cycle_lines >= LINES_PER_CYCLE
 
@@ -898,8 +968,9 @@ class Machine:
             return (self.app.path, 0, 0)
         return (w[0], w[1], w[2])
 
-    def _turn(self, T: Task, quantum: int) -> bool:
-        """Run one turn of a task; True when it ran at least one line or changed state."""
+    def _turn(self, T: Task, quantum: int, value: Any = None) -> bool:
+        """Run one turn of a task; True when it ran at least one line or changed state. `value`
+        is sent to the task (True: the condition it waits for was found true)."""
         self.current = T
         self.turn_given = quantum
         before = T.state
@@ -907,7 +978,12 @@ class Machine:
         T.q = quantum - 1 if before == "preempted" else quantum
         T.state = "run"
         try:
-            T.gen.send(None)
+            if T.pending is not None:
+                jump, T.pending = T.pending, None
+                T.q = quantum
+                T.gen.throw(jump)
+            else:
+                T.gen.send(value)
         except StopIteration:
             T.state = "ended"
         except EndRun:
@@ -957,6 +1033,15 @@ class Machine:
         if tdep:
             times.append(self.now + TICK_US)
         return min(times) if times else None
+
+
+def sio_text(data: bytes) -> Any:
+    """How the I/O log shows bytes sent or received on a sio: the text when they are UTF-8,
+    else the list of the byte values."""
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError:
+        return list(data)
 
 
 def _error_code(e: BaseException) -> tuple[int, str]:

@@ -14,7 +14,6 @@ from typing import Any
 from ..loading.model import Application, Container, Data, Value, Workspace
 from ..loading.types import DEFAULTS, base_type, is_builtin
 from .values import (
-    CONFIG_FIELDS,
     ENUM_SPELLING,
     JOINT_FIELDS,
     TRSF_FIELDS,

@@ -14,7 +14,17 @@ from typing import Any
 
 from .builtins_bridge import format_num, operator
 from .errors import RUNTIME_CODES, Val3RuntimeError
-from .values import MAX_CONTAINER, Arr, Coll, IOPoint, Screen, clip_string, copy_value
+from .values import (
+    MAX_CONTAINER,
+    Arr,
+    CellList,
+    Coll,
+    FaultyIOPoint,
+    IOPoint,
+    Screen,
+    clip_string,
+    copy_value,
+)
 
 E = Val3RuntimeError
 
@@ -94,7 +104,9 @@ def VIEW(a: Arr, v: float) -> Arr:
 
 
 def ELEMARR(c: Any, k: Any, t: str) -> Arr:
-    return Arr(t, [c[k]], local=True)
+    """An element (a by-reference or by-value parameter, a boxed local) passed where an array is
+    expected: a one-value array that aliases it (2.6.2, 2.6.3)."""
+    return Arr(t, CellList(c, k), local=True)
 
 
 def ASG(c: Any, k: Any, v: Any) -> Any:
@@ -135,9 +147,9 @@ def CAT(a: str, b: str) -> str:
 
 def DYN(op: str, a: Any, b: Any) -> Any:
     """An operator whose operand types were not known when compiling."""
-    if isinstance(a, IOPoint):
+    if isinstance(a, IOPoint) and a.kind == "dio":
         a = IOR(a)
-    if isinstance(b, IOPoint):
+    if isinstance(b, IOPoint) and b.kind == "dio":
         b = IOR(b)
     if op == "==":
         return a == b
@@ -193,10 +205,20 @@ def WORLD() -> dict:
 
 def _linked(io: Any, what: str) -> IOPoint:
     if type(io) is not IOPoint:
+        if type(io) is FaultyIOPoint and io.link:
+            _faulty(io)
         raise E(70, f"{what}: not an input/output")
     if not io.link:
         raise E(123, f"{io.kind} not linked to an input/output of the system")
     return io
+
+
+def _faulty(io: IOPoint) -> None:
+    """3.5.3: -2 the link matches no input/output of the system (error 123), -3 the device is in
+    error (error 125, field bus error)."""
+    if io.status == -2:
+        raise E(123, f"{io.link} is not an input/output of the system (ioStatus -2)")
+    raise E(125, f"the device of {io.link} is in error (ioStatus {io.status})")
 
 
 def IOR(io: Any) -> bool:
@@ -214,6 +236,8 @@ def IOW(T, io: Any, v: bool) -> bool:
     if io.driven:
         raise E(122, f"write to the input {io.link}")
     v = bool(v)
+    if io.status == 1:  # 3.5.3: locked by the operator, writing has no effect
+        return v
     if io.value is not v:
         io.value = v
         T.M.output_changed(T, io)
@@ -223,12 +247,26 @@ def IOW(T, io: Any, v: bool) -> bool:
 # ---- waiting and handing over (5.4, 5.10) --------------------------------------------------------
 
 
-def FAIL(T, e: BaseException, skippable: bool):
-    """A line failed: the task stops there (5.2). Returns True to run the line again
-    (taskResume jump 0), False to go on after it (jump 1)."""
+class JUMP(BaseException):
+    """taskResume(name, n) (5.10): resume at instruction `t` of sequence `b` of the program the
+    task stopped in (caught by that sequence's dispatch loop, compiler.py). A BaseException, so
+    that the `except Exception` of the lines it goes through does not take it for an error."""
+
+    __slots__ = ("b", "t")
+
+    def __init__(self, b: int, t: int) -> None:
+        super().__init__(b, t)
+        self.b = b
+        self.t = t
+
+
+def FAIL(T, e: BaseException, skippable: bool, ctx: tuple | None = None):
+    """A line failed: the task stops there (5.2). Returns the taskResume jump: 0 runs the line
+    again, 1 goes on after it, others resume in the line's sequence `ctx` (compiler.py)."""
     T.M.task_failed(T, e, skippable)
+    T.jumpctx = ctx
     yield
-    return T.jump == 0
+    return T.jump
 
 
 def YIELD(T):
@@ -250,16 +288,20 @@ def DELAY(T, s: float):
 
 def WAIT(T, fn, tdep: bool):
     """5.10 wait: the condition is evaluated again at each turn; no hand-over when it is
-    already true."""
+    already true. While it waits, the scheduler evaluates `T.cond` itself and resumes the task
+    only when it is true (with True), or with None when it raised (evaluated again here, so
+    that the error stops the task at its line)."""
     if fn():
         return
     T.tdep = tdep
     T.wake = None
+    T.cond = fn
     while True:
         T.state = "wait"
-        yield
-        if fn():
+        ok = yield
+        if ok or fn():
             break
+    T.cond = None
     T.tdep = False
 
 
@@ -269,15 +311,17 @@ def WATCH(T, fn, s: float, tdep: bool):
         return True
     T.tdep = tdep
     T.wake = T.M.wake_time(T, s) if s > 0 else T.M.now
+    T.cond = fn
     result = False
     while True:
         T.state = "wait"
-        yield
-        if fn():
+        ok = yield
+        if ok or fn():
             result = True
             break
         if T.M.now >= T.wake:
             break
+    T.cond = None
     T.wake = None
     T.tdep = False
     return result
@@ -323,7 +367,8 @@ def GET(T, *args: Any):
     scr, rest = _screen(T, args)
     pair, vtype = (rest[0], rest[1]) if len(rest) >= 2 else (None, None)
     M = T.M
-    yield from WAIT(T, M.key_available, False)
+    # 4.2.3: only the screen displayed on the pendant is told of the keys pressed
+    yield from WAIT(T, (lambda: M.page is scr and M.key_available()), False)
     key = M.take_key()
     code = float(key.code)
     if pair is not None and key.code != 255 and key.text is not None:  # Esc leaves it unchanged

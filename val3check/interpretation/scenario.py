@@ -101,7 +101,7 @@ class Applier:
         for name, c in main.globals.items():
             if type(c) is Arr and c.t in ("dio", "aio", "sio"):
                 for i, io in enumerate(c.data):
-                    if type(io) is IOPoint:
+                    if isinstance(io, IOPoint):
                         if i == 0:
                             out[name] = io
                         out[f"{name}[{i}]"] = io
@@ -141,7 +141,7 @@ class Applier:
 
     def apply(self) -> None:
         d = self.sc.data
-        known = {"version", "description", "inputs", "events", "reactions", "keys", "serial", "controller"}
+        known = {"version", "description", "inputs", "events", "reactions", "keys", "serial", "controller", "io"}
         for k in d:
             if k not in known:
                 self.fail(self.lines.key(k) or self.lines.section(k), f"unknown table or key {k!r}")
@@ -217,6 +217,38 @@ class Applier:
                 M.push_event(at, "sio", (io, data))
         if "controller" in d:
             self._controller(d["controller"])
+        if "io" in d:
+            self._io(d["io"])
+
+    def _io(self, table: Any) -> None:
+        """[io]: the state of inputs/outputs as ioStatus() reports it (3.5.3), their description,
+        and integer analog outputs (3.6.2)."""
+        from .values import FaultyIOPoint
+
+        line = self.lines.section("io")
+        if not isinstance(table, dict):
+            self.fail(line, "[io] must be a table of signal = { status = ..., description = \"...\", integer = ... }")
+        for name, spec in table.items():
+            ln = self.lines.key(name, line) or line
+            io = self.signal(name, ln, kinds=("dio", "aio", "sio"))
+            if not isinstance(spec, dict):
+                self.fail(ln, f"[io] {name}: expected {{ status = 0, description = \"...\" }}")
+            self._keys(spec, {"status", "description", "integer"}, ln, f"[io] {name}")
+            status = spec.get("status", 0)
+            if isinstance(status, bool) or status not in (0, 1, 2, -2, -3):
+                self.fail(ln, f"[io] {name}: status is 0 (works), 1 (locked), 2 (simulated), -2 (not installed) "
+                              f"or -3 (device in error), not {status!r}")
+            desc = spec.get("description", "")
+            if not isinstance(desc, str):
+                self.fail(ln, f"[io] {name}: description = \"text\"")
+            integer = spec.get("integer", False)
+            if not isinstance(integer, bool) or integer and io.kind != "aio":
+                self.fail(ln, f"[io] {name}: integer = true|false, for an aio only")
+            io.status = status
+            io.description = desc
+            io.integer = integer
+            if status < 0:
+                io.__class__ = FaultyIOPoint
 
     def _bytes(self, s: dict, line: int, io: IOPoint) -> bytes:
         if "send" in s:

@@ -51,6 +51,9 @@ class SimResult:
     screen: dict
     destroyed: list[str]
     link_names: dict = field(default_factory=dict)
+    # The application's globals at the end of the run (name -> Arr/Coll of run-time values,
+    # values.py): for tests and tools; not part of the reports.
+    globals: dict = field(default_factory=dict, repr=False)
 
 
 def simulate(ws: Workspace, app: Application, options: SimOptions | None = None, scenario: Any = None) -> SimResult:
@@ -103,4 +106,5 @@ def collect(M: Machine) -> SimResult:
         tasks.append(entry)
     screen = {"title": M.default_page.title, "lines": M.default_page.text()}
     return SimResult(M.app.name, M.app.path, reason, message, M.end_time, M.total_lines, tasks, diags, M.transcript,
-                     M.io_log, screen, list(M.destroyed), {k: sorted(v) for k, v in M.link_names.items()})
+                     M.io_log, screen, list(M.destroyed), {k: sorted(v) for k, v in M.link_names.items()},
+                     dict(M.main.globals) if M.main is not None else {})

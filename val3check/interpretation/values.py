@@ -74,7 +74,8 @@ class IOPoint:
     character (sioCtrl "endOfString"), `timeout` the communication timeout (0 = none).
     """
 
-    __slots__ = ("kind", "link", "value", "driven", "rx", "tx", "eos", "timeout", "closed", "params")
+    __slots__ = ("kind", "link", "value", "driven", "rx", "tx", "eos", "timeout", "closed", "params", "status",
+                 "description", "integer")
 
     def __init__(self, kind: str, link: str) -> None:
         self.kind = kind
@@ -87,6 +88,9 @@ class IOPoint:
         self.timeout = 0.0
         self.closed = False
         self.params: dict[str, Any] = {}
+        self.status = 0  # ioStatus() of a linked one (3.5.3), from the scenario's [io] table
+        self.description = ""
+        self.integer = False  # an integer analog output: aioSet() rounds (3.6.2)
 
     @property
     def linked(self) -> bool:
@@ -94,6 +98,19 @@ class IOPoint:
 
     def __repr__(self) -> str:  # pragma: no cover - debugging aid
         return f"IOPoint({self.kind}, {self.link!r})"
+
+
+class FaultyIOPoint(IOPoint):
+    """An input/output that does not work (ioStatus -2: not installed, -3: device in error,
+    3.5.3): the scenario's [io] table turns an `IOPoint` into this class, so that the fast
+    `type(io) is IOPoint` test of the generated code sends every use of it to the slow path,
+    which raises the runtime error (123 / 125)."""
+
+    __slots__ = ()
+
+
+def is_io(v: Any) -> bool:
+    return type(v) is IOPoint or type(v) is FaultyIOPoint
 
 
 class Screen:
@@ -128,10 +145,10 @@ class Screen:
             if ch == "\n":
                 self._newline()
                 continue
+            if self.x >= self.COLS:  # 4.3: at the end of a line the display goes on with the next
+                self._newline()  # (when the next character comes: a full last line does not scroll)
             self.lines[self.y][self.x] = ch
             self.x += 1
-            if self.x >= self.COLS:  # 4.3: at the end of a line the display goes on with the next
-                self._newline()
         if newline:
             self._newline()
 
@@ -163,6 +180,43 @@ class Arr:
 
     def view(self, index: int) -> "Arr":
         return Arr(self.t, self.data, None, self.off + index, self.local)
+
+
+class CellList:
+    """The values list of a one-value array that aliases one element of another container: an
+    element passed by reference (2.6.2) and handed on to an array parameter (2.6.3) keeps
+    its reference semantics, so the callee's writes reach the caller's variable."""
+
+    __slots__ = ("c", "k")
+
+    def __init__(self, c: Any, k: Any) -> None:
+        self.c = c
+        self.k = k
+
+    def __len__(self) -> int:
+        return 1
+
+    def __getitem__(self, i: Any) -> Any:
+        if type(i) is slice:
+            return [self.c[self.k]][i]
+        if i != 0 and i != -1:
+            raise IndexError(i)
+        return self.c[self.k]
+
+    def __setitem__(self, i: Any, v: Any) -> None:
+        if type(i) is slice:
+            vals = [self.c[self.k]]
+            vals[i] = v
+            if len(vals) != 1:
+                raise Val3RuntimeError(70, "an element passed as an array keeps one value")
+            self.c[self.k] = vals[0]
+            return
+        if i != 0 and i != -1:
+            raise IndexError(i)
+        self.c[self.k] = v
+
+    def __iter__(self):
+        yield self.c[self.k]
 
 
 class Coll:
