@@ -58,6 +58,7 @@ def build_parser() -> argparse.ArgumentParser:
     sim.add_argument("--max-lines", type=int, default=50_000_000, metavar="N", help="budget of executed VAL 3 lines")
     sim.add_argument("--fail-on", choices=("error", "warning", "info", "never"), help="lowest runtime diagnostic severity that makes the exit code 1 (default: error)")
     sim.add_argument("--disk-root", action="append", default=[], metavar="DIR", help="folder where Disk:// libraries are also searched (repeatable)")
+    sim.add_argument("--robot", metavar="NAME|URDF", help="the arm model: a catalogue name (case-insensitive, `val3check robots`), a URDF, an arm.cfx, or none (default: the usr/configs/arm.cfx of the controller tree holding APP, else none)")
     sim.add_argument("--config", metavar="FILE", help="configuration file (default: val3check.toml or pyproject.toml found upwards)")
     sim.add_argument("--isolated", action="store_true", help="ignore every configuration file")
 
@@ -180,15 +181,23 @@ def _sim(args: argparse.Namespace) -> int:
     from . import __version__
     from .interpretation.report import build_report
     from .interpretation.scenario import ScenarioError, load_scenario
-    from .interpretation.simulate import SimOptions, simulate
+    from .interpretation.simulate import SimOptions, choose_sim_robot, simulate
+    from .robot import RobotError
     from .rules.catalogue import catalogue
 
+    try:
+        robot, note = choose_sim_robot(args.robot, app.path)
+    except RobotError as exc:
+        print(f"val3check sim: --robot: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    if note:
+        print(f"val3check sim: note: {note}", file=sys.stderr)
     scenario = None
     try:
         if args.scenario:
             scenario = load_scenario(args.scenario)
         options = SimOptions(duration=args.duration, max_wall=args.max_wall, max_lines=args.max_lines,
-                             disk_roots=list(settings.disk_roots))
+                             disk_roots=list(settings.disk_roots), robot=robot)
         result = simulate(outcome.workspace, app, options, scenario)
     except ScenarioError as exc:
         print(f"val3check sim: bad scenario: {exc}", file=sys.stderr)

@@ -83,10 +83,19 @@ def code_pos(result: SimResult, line: int, col: int, program: str = "start") -> 
 
 
 def _plain(v):
+    from val3check.geometry import Frame, Point, Tool, Trsf
     from val3check.interpretation.values import Arr, Coll, IOPoint
 
     if type(v) is IOPoint:
         return v.value
+    if type(v) is Trsf:
+        return v.to_dict()
+    if type(v) is Point:
+        return {"trsf": v.trsf.to_dict(), "config": _plain(v.config)}
+    if type(v) is Tool:
+        return {"trsf": v.trsf.to_dict(), "gripper": _plain(v.gripper), "otime": v.otime, "ctime": v.ctime}
+    if type(v) is Frame:
+        return {"trsf": v.trsf.to_dict()}
     if type(v) is Arr:
         return [_plain(x) for x in v.data[v.off:]]
     if type(v) is Coll:
@@ -99,7 +108,8 @@ def _plain(v):
 def gv(result: SimResult, name: str):
     """The value of a global at the end of the run, as plain Python: a num is a float, an
     element (array of size 1) its single value, an array a list, a collection a dict (keys in
-    VAL 3 order), a structured value a dict of its fields, a dio/aio its state."""
+    VAL 3 order), a structured value a dict of its fields (trsf/frame/tool/point too: use
+    `result.globals` for the objects themselves), a dio/aio its state."""
     c = result.globals[name]
     from val3check.interpretation.values import Arr
 

@@ -46,6 +46,9 @@ Value shapes for the interpreter
   program may write their fields, the next computation through them raises 161/160.
 - ``local=True`` marks nodes/points held by local variables: linking or assigning a global to
   a local reference raises 165.
+- Fields can also be read and written by name (``tr["x"]``, ``p["trsf"]``, ``t["otime"]``): the
+  interpreter's (container, key) places. The interpreter keeps a point's ``config`` as a dict
+  of its fields and converts at the instruction boundary (val3check/interpretation/geom.py).
 
 Kinematics protocol (provided by val3check/robot/)
 --------------------------------------------------

@@ -61,6 +61,14 @@ class Frame:
 
     __hash__ = object.__hash__  # nodes are identified by identity (dict keys, sets)
 
+    # Field access by name (``f["trsf"]``, ``t["otime"]``) for the interpreter's (container,
+    # key) places; the write goes to the node itself.
+    def __getitem__(self, name: str):
+        return getattr(self, name)
+
+    def __setitem__(self, name: str, value) -> None:
+        setattr(self, name, value)
+
     def __repr__(self) -> str:
         ref = reference_of(self)
         rname = "None" if ref is None else (ref.name or "?")

@@ -48,6 +48,13 @@ class Point:
 
     __hash__ = None  # type: ignore[assignment]
 
+    # Field access by name (``p["trsf"]``) for the interpreter's (container, key) places.
+    def __getitem__(self, name: str):
+        return getattr(self, name)
+
+    def __setitem__(self, name: str, value) -> None:
+        setattr(self, name, value)
+
     def copy(self) -> Point:
         return Point(self.trsf.copy(), self.config, self.ref, name=self.name, local=self.local)
 

@@ -100,13 +100,16 @@ def matrix(rx: float, ry: float, rz: float) -> Mat:
 
 def angles_of(m: Mat) -> Angles:
     """The canonical VAL 3 angles (module docstring) of a rotation matrix."""
-    r00, r01, r02, r10, r11, r12, _r20, _r21, r22 = m
+    r00, r01, r02, r10, r11, r12, r20, _r21, r22 = m
     cb = math.hypot(r00, r01)
     if cb < GIMBAL_EPS:
         return 0.0, (90.0 if r02 > 0.0 else -90.0), norm180(math.atan2(r10, r11) * _R2D)
     b = math.atan2(r02, cb) * _R2D
     a = norm180(math.atan2(-r12, r22) * _R2D)
-    c = norm180(math.atan2(-r01, r00) * _R2D)
+    # rz from what is left once rx and ry are undone (Ry(-ry) Rx(-rx) R = Rz(rz)): exact even
+    # close to the gimbal lock, where -r01 and r00 alone are tiny and noisy
+    sa, ca = sincos(a)
+    c = norm180(math.atan2(ca * r10 + sa * r20, cb * r00 - r02 * (ca * r20 - sa * r10)) * _R2D)
     return _choose(a, b, c)
 
 

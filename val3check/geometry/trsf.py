@@ -64,6 +64,14 @@ class Trsf:
     def __iter__(self) -> Iterator[float]:
         return iter((self.x, self.y, self.z, self.rx, self.ry, self.rz))
 
+    # Field access by name (``tr["x"]``): the interpreter's (container, key) places, e.g. a
+    # field passed by reference, ``call f(tr.x)`` (2.6.2).
+    def __getitem__(self, name: str) -> float:
+        return getattr(self, name)
+
+    def __setitem__(self, name: str, value: float) -> None:
+        setattr(self, name, value)
+
     def copy(self) -> Trsf:
         return Trsf(self.x, self.y, self.z, self.rx, self.ry, self.rz)
 

@@ -38,15 +38,19 @@ from .values import (
     clip_string,
 )
 
-# Instructions that need the arm model (chapters 9-11): executed by later issues.
+# Instructions that move the arm or need more of it than its kinematics (chapters 9-11): they
+# stop the task with R002 (motion is the next issue). Chapter 9 itself is in geom.py; movej
+# is there too (it reports targets out of reach, then stops with R002).
 ARM_INSTRUCTIONS = frozenset(n.lower() for n in (
-    "herej isInRange setLatch getLatch distance interpolateL interpolateC align setFrame position link open close "
-    "compose appro here jointToPoint pointToJoint config movej movel movec stopMove resetMotion restartMove "
+    "setLatch getLatch movel movec stopMove resetMotion restartMove "
     "waitEndMove isEmpty isSettled autoConnectMove getSpeed getPositionErr getJointForce getMoveId setMoveId "
     "movejf movelf isCompliant alterMovej alterMovel alterMovec alterBegin alterEnd alter alterStopTime getDH "
     "getDefaultDH setDH resetTurn"
 ).split())
 GEOMETRY_TYPES = frozenset({"trsf", "frame", "tool", "point", "joint"})
+# values that are geometry objects (fields read as attributes, values.py) / nodes (`=` copies into)
+OBJECT_TYPES = frozenset({"trsf", "frame", "tool", "point"})
+NODE_TYPES = frozenset({"frame", "tool", "point"})
 
 # Functions whose value changes with time alone: a wait on them cannot be skipped over by
 # jumping to the next event (the clock is stepped instead).
@@ -395,7 +399,7 @@ class ProgramCompiler:
             if t in ("bool", "?"):
                 return f"(not {code})", "bool"
             if t == "trsf":
-                return f"ARM('operator ! (trsf)')", "trsf"
+                return f"TINV({code})", "trsf"
             raise self.err(f"operator ! on {t}", node)
         if tn is A.Binary:
             return self.binary(node)
@@ -418,9 +422,9 @@ class ProgramCompiler:
         if low in ENUM_CONSTANTS:
             return repr(ENUM_SPELLING[low]), ENUM_CONSTANTS[low]
         if low == "world":
-            return "WORLD()", "frame"
+            return "WORLD", "frame"
         if low == "flange":
-            return "FLANGE()", "tool"
+            return "FLANGE", "tool"
         prog = self._program(node.name)
         if prog is not None:
             raise self.err(f"program '{node.name}' used as a value", node)
@@ -465,6 +469,8 @@ class ProgramCompiler:
         if tn is A.Field:
             bcode, bt, bsp = self.value_with_space(node.base)
             ft, cont, sp, _ = self.field_type(bt, node.name, bsp, node)
+            if base_type(bt) in OBJECT_TYPES:  # a geometry object: its fields are attributes
+                return f"{bcode}.{node.name}", ft, sp
             code = f"{bcode}[{node.name!r}]"
             if cont == "array":
                 code += ".data[0]"
@@ -585,23 +591,21 @@ class ProgramCompiler:
             return f"({lc} {op} {rc})", "bool"
         if lt == rt and lt in ENUM_VALUES_TYPES and op in ("==", "!="):
             return f"({lc} {op} {rc})", "bool"
-        if lt == rt == "joint":
-            if op == "+":
-                return f"JADD({lc}, {rc})", "joint"
-            if op == "-":
-                return f"JSUB({lc}, {rc})", "joint"
-            if op == ">":
-                return f"JGT({lc}, {rc})", "bool"
-            if op == "<":
-                return f"JLT({lc}, {rc})", "bool"
+        if lt == rt == "joint":  # 9.2.2
+            fn = {"+": "JADD", "-": "JSUB", ">": "JGT", "<": "JLT", "==": "JEQ", "!=": "JNE"}.get(op)
+            if fn is not None:
+                return f"{fn}({lc}, {rc})", "joint" if op in ("+", "-") else "bool"
         if lt == rt and lt in ("config", "mdesc") and op in ("==", "!="):
             return f"({lc} {op} {rc})", "bool"
-        if lt in GEOMETRY_TYPES or rt in GEOMETRY_TYPES:
-            res = "bool" if op in ("==", "!=", "<", ">", "<=", ">=") else lt
-            return f"ARM({('operator ' + op + ' (' + lt + ')')!r})", res
+        if lt == rt and lt in OBJECT_TYPES and op in ("==", "!="):  # 9.3.3, 9.4.3, 9.5.3, 9.6.2
+            return f"({lc} {op} {rc})", "bool"
+        if lt == rt == "trsf" and op == "*":  # 9.3.3: geometric composition
+            return f"({lc} * {rc})", "trsf"
         if "?" in (lt, rt):
             res = "bool" if op in ("==", "!=", "<", ">", "<=", ">=") else (lt if lt != "?" else rt)
             return f"DYN({op!r}, {lc}, {rc})", res
+        if lt in GEOMETRY_TYPES or rt in GEOMETRY_TYPES:
+            raise self.err(f"operator {op} between {lt} and {rt}", node)
         raise self.err(f"operator {op} between {lt} and {rt}", node)
 
     def struct(self, node: A.Struct, want: str | None) -> tuple[str, str]:
@@ -610,13 +614,14 @@ class ProgramCompiler:
         b = base_type(want)
         if b == "frame":  # {x,y,z,rx,ry,rz} for a frame means its trsf
             inner, _ = self.struct(node, "trsf") if not (node.fields and type(node.fields[0]) is A.Struct) else self.struct(node.fields[0], "trsf")
-            return f"{{'trsf': {inner}}}", "frame"
+            return f"FRAMELIT({inner})", "frame"
         order = STRUCT_ORDER.get(b)
         if order is None:
             raise self.err(f"structured value {{...}} for type {want}", node)
         if len(node.fields) > len(order):
             raise self.err(f"too many fields for {b}", node)
         parts = []
+        codes = []
         defaults = {"config": {"shoulder": "ssame", "elbow": "esame", "wrist": "wsame"}}.get(b, {})
         for i, name in enumerate(order):
             ft = STRUCT_FIELDS[b][name]
@@ -636,6 +641,10 @@ class ProgramCompiler:
                     raise self.err(f"field {name} of {b} expects {ft}", f)
                 code = self.coerce(code, t, ft)
             parts.append(f"{name!r}: {code}")
+            codes.append(code)
+        if b in OBJECT_TYPES:  # geometry objects (values.py): TRSF(x, ...), POINTLIT(trsf, config)...
+            ctor = {"trsf": "TRSF", "point": "POINTLIT", "tool": "TOOLLIT"}[b]
+            return f"{ctor}({', '.join(codes)})", b
         return "{" + ", ".join(parts) + "}", b
 
     # ---- calls --------------------------------------------------------------------------------
@@ -656,10 +665,10 @@ class ProgramCompiler:
             return handler(node)
         from . import instructions as I
 
+        if low == "abs" and node.args and self._arg_type(node.args[0]) == "joint":
+            return f"JABS({self.expr(node.args[0])[0]})", "joint"
         if low in I.ASYNC or low in I.SYNC:
             return self.generic_instruction(node, low)
-        if low == "abs" and node.args and self._arg_type(node.args[0]) == "joint":
-            return "ARM('abs (joint)')", "joint"
         if builtin(low) is not None:
             return self.builtin_call(node, low)
         ins = lookup(name)
@@ -1074,8 +1083,18 @@ class ProgramCompiler:
             self.guarded([f"NOTSIM({str(exc)!r})"], True)
 
     def assign_code(self, target, value, as_expr: bool) -> tuple[str, str]:
-        c, k, t, sp = self.lvalue(target)
+        if type(target) is A.Name and target.name.lower() in ("world", "flange") and self.lookup_var(target.name) is None:
+            # the roots may be written (9.4.1, 9.5.1): the next computation through them fails
+            c, k, t = None, "WORLD" if target.name.lower() == "world" else "FLANGE", (
+                "frame" if target.name.lower() == "world" else "tool")
+        else:
+            c, k, t, sp = self.lvalue(target)
         vcode, vt = self.expr(value, want=t)
+        if t in NODE_TYPES:
+            # `=` copies INTO the variable's node (it keeps its identity: what is linked to it
+            # follows, 9.4.2); a {...} literal only writes the fields (the reference stays)
+            place = k if c is None else f"{c}[{k}]"
+            return f"{'NSET' if type(value) is A.Struct else 'NASG'}({place}, {vcode})", t
         if t == "dio" and vt in ("bool", "dio", "?"):
             # 3.5.2: `dio = bool` writes the output and returns the value
             tgt = f"{c}[{k}]" if c is not None else k
@@ -1120,7 +1139,9 @@ class ProgramCompiler:
             else:
                 code, t = self.expr(a, want=base_type(p.type))
                 code = self.coerce(code, t, base_type(p.type))
-                if t not in ("num", "bool", "string", "dio", "aio", "sio"):
+                if base_type(p.type) in NODE_TYPES:
+                    code = f"CPL({code})"  # 2.6.1: the callee gets a copy, a local of its own
+                elif t not in ("num", "bool", "string", "dio", "aio", "sio"):
                     code = f"CP({code})"  # 2.6.1: the callee gets a copy
                 out.append(code)
         return out
@@ -1288,16 +1309,16 @@ class ProgramCompiler:
         for loc in prog.locals:
             v = self.vars[loc.name]
             if v.store == "box":
-                boxinit[v.slot] = f"DEFAULT({v.t!r})"
+                boxinit[v.slot] = f"DEFAULT({v.t!r}, {loc.name!r})"
         if self.nbox:
             self.emit(f"L = [{', '.join(boxinit)}]")
         for loc in prog.locals:
             v = self.vars[loc.name]
             if v.store == "py":
-                self.emit(f"v_{loc.name} = {self.default_code(v.t)}")
+                self.emit(f"v_{loc.name} = {self.default_code(v.t, loc.name)}")
             elif v.store == "obj":
                 cont = "COLLECTION" if v.cont == "collection" else "ARRAY"
-                self.emit(f"v_{loc.name} = LOCAL({v.t!r}, {cont!r}, {tuple(loc.sizes or (1,))!r})")
+                self.emit(f"v_{loc.name} = LOCAL({v.t!r}, {cont!r}, {tuple(loc.sizes or (1,))!r}, {loc.name!r})")
         self.emit("try:")
         self.ind += 1
 
@@ -1320,7 +1341,7 @@ class ProgramCompiler:
         return Compiled(prog.name, None, prog.parameters, self.pos, prog.origin.path, filename, fb, source,
                         bpos=self.bpos)
 
-    def default_code(self, t: str) -> str:
+    def default_code(self, t: str, name: str = "") -> str:
         b = base_type(t)
         if b == "num":
             return "0.0"
@@ -1328,7 +1349,7 @@ class ProgramCompiler:
             return "False"
         if b == "string":
             return "''"
-        return f"DEFAULT({t!r})"
+        return f"DEFAULT({t!r}, {name!r})" if name else f"DEFAULT({t!r})"
 
 
 ENUM_VALUES_TYPES = frozenset({"shoulder", "elbow", "wrist", "blend"})

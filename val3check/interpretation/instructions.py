@@ -494,3 +494,7 @@ def I_setmonitorspeed(T, A, speed: float) -> float:
 @sync
 def I_getversion(T, A, component: str) -> str:
     return T.M.ctl.versions.get(component, "")
+
+
+# chapter 9 (geometry and the arm model) registers its instructions in the same table
+from . import geom as _geom  # noqa: E402,F401

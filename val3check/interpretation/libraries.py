@@ -13,7 +13,7 @@ import re
 from typing import Any
 
 from ..loading.resolve import listdir, resolve_library
-from .values import Arr, copy_value
+from .values import Arr, copy_globals
 
 _ROOT = re.compile(r"^([A-Za-z][A-Za-z0-9_\-]*):/+(.*)$")
 ROOTS = ("disk", "usb0", "floppy")
@@ -193,7 +193,7 @@ def lib_operation(M, T, A, alias: str | None, op: str, *args: Any) -> Any:
             code, key, display = normalise(unit.disk_path, A)
             if code:
                 return float(code)
-        M.disk[key] = Snapshot(unit.model, {n: copy_value(v) for n, v in unit.globals.items()}, display)
+        M.disk[key] = Snapshot(unit.model, copy_globals(unit.globals), display)
         M.transcript_add(T, "disk", f"libSave {display}", None)
         return 0.0
     if op == "libdelete":

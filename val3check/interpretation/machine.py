@@ -27,8 +27,10 @@ from .compiler import Compiled, compile_program
 from .errors import RUNTIME_CODES, Val3RuntimeError
 from .instructions import TABLE
 from .libraries import SystemIO, is_system_io
-from .memory import Cell, TypeSpace
-from .values import Arr, Coll, IOPoint, Screen, copy_value
+from .geom import NAMESPACE as GEOM_NAMESPACE
+from .geom import NO_ARM, Arm
+from .memory import Cell, TypeSpace, resolve_fathers
+from .values import Arr, Coll, IOPoint, Screen, copy_globals, store
 
 TICK_US = 4000  # the controller's cycle (4 ms)
 LINES_PER_CYCLE = 1000  # simulated cost: 4 µs per VAL 3 line
@@ -152,11 +154,16 @@ class Unit:
         return self.model.name
 
     def init_globals(self, saved: dict[str, Any] | None = None) -> None:
+        restored = copy_globals({n: saved[n] for n in self.model.data if n in saved}) if saved is not None else {}
+        self.machine.cell.pending = []
         for name, d in self.model.data.items():
-            if saved is not None and name in saved:
-                self.globals[name] = copy_value(saved[name])
+            if name in restored:
+                self.globals[name] = restored[name]
             else:
                 self.globals[name] = self.space.container(d)
+        # frames, tools and points of the data file: linked to their fatherId (9.4.1)
+        resolve_fathers(self.machine.cell, self.globals)
+        for name in self.model.data:
             c = self.globals[name]
             if type(c) is Arr and c.t == "screen":  # the transcript names a screen by its variable
                 for i, scr in enumerate(c.data):
@@ -167,11 +174,11 @@ class Unit:
         M = self.machine
         ns = dict(M.base_ns)
         ns["A"] = self
-        ns["DEFAULT"] = self.space.default
+        space = self.space
+        # the compiled code's defaults are those of locals (no reference frame/tool, 9.4.1)
+        ns["DEFAULT"] = lambda t, name="": space.default(t, True, name)
         ns["LOCAL"] = self._local
         ns["IODEF"] = lambda link: M.cell.io("dio", link)
-        ns["FLANGE"] = lambda: {"trsf": {k: 0.0 for k in ("x", "y", "z", "rx", "ry", "rz")},
-                                "gripper": M.cell.io("dio", "valve1"), "otime": 0.0, "ctime": 0.0}
         for name, c in self.globals.items():
             ns[f"g_{name}"] = c
             if type(c) is Arr:
@@ -186,8 +193,9 @@ class Unit:
             if compiled.error is not None:
                 self.compile_errors.append(compiled)
 
-    def _local(self, t: str, cont: str, sizes: tuple) -> Any:
-        return self.space.local_container(t, Container.COLLECTION if cont == "COLLECTION" else Container.ARRAY, sizes)
+    def _local(self, t: str, cont: str, sizes: tuple, name: str = "") -> Any:
+        return self.space.local_container(t, Container.COLLECTION if cont == "COLLECTION" else Container.ARRAY, sizes,
+                                          name)
 
     def program(self, name: str) -> Compiled | None:
         p = self.programs.get(name)
@@ -225,12 +233,14 @@ class Diag:
 
 class Machine:
     def __init__(self, ws: Workspace, app: Application, *, budgets: Budgets | None = None, scenario=None,
-                 disk_roots: list[str] | None = None) -> None:
+                 disk_roots: list[str] | None = None, robot: Any = None) -> None:
         self.ws = ws
         self.app = app
         self.budgets = budgets or Budgets()
         self.disk_roots = list(disk_roots or [])
         self.cell = Cell()
+        # the arm model (val3check.robot.RobotModel) and its commanded position, or None (geom.py)
+        self.arm: Arm | None = Arm(robot) if robot is not None else None
         self.ctl = Controller()
         import datetime
 
@@ -278,11 +288,14 @@ class Machine:
     def _base_namespace(self) -> dict[str, Any]:
         ns: dict[str, Any] = {"__builtins__": __builtins__}
         for name in ("E", "JUMP", "IX", "AI1", "AI2", "AI3", "CK", "CKW", "VIEW", "ELEMARR", "ASG", "CP", "MOD", "CAT", "DYN",
-                     "JADD", "JSUB", "JGT", "JLT", "WORLD", "IOR", "IOW", "FAIL", "YIELD", "DELAY", "WAIT", "WATCH",
+                     "IOR", "IOW", "FAIL", "YIELD", "DELAY", "WAIT", "WATCH",
                      "SETMUTEX", "PAGE", "GET", "SIOR", "SIOW", "SIZE", "SIZE2", "ISDEF", "INSERT", "DELETE", "APPEND",
                      "RESIZE", "CFIRST", "CLAST", "CNEXT", "CPREV", "BREF", "ARM", "NOTSIM"):
             ns[name] = getattr(rt, name)
         ns.update(TABLE)
+        ns.update(GEOM_NAMESPACE)
+        ns["WORLD"] = self.cell.world  # the roots of the frame and tool trees (9.4.1, 9.5.1)
+        ns["FLANGE"] = self.cell.flange
         ns["LG"] = self.lib_global
         ns["LP"] = self.lib_program
         ns["LIBDEF"] = self.lib_defined
@@ -572,8 +585,10 @@ class Machine:
             T.state = "held"
             T.limit = e.kind
             code = "R002" if e.kind == "arm" else "R004"
-            if e.kind == "arm":
-                msg = f"instruction {e.what} needs the arm model, which this version does not simulate"
+            if e.message:
+                msg = e.message
+            elif e.kind == "arm":
+                msg = self.arm_message(e.what)
             else:
                 msg = f"not simulated: {e.what}"
             self.add_diag(code, msg, T, pos, None)
@@ -586,6 +601,18 @@ class Machine:
         text = RUNTIME_CODES.get(code, "runtime error")
         extra = f" ({detail})" if detail and detail not in text else ""
         self.add_diag("R001", f"error {code}: {text}{extra}", T, pos, code)
+
+    def arm_message(self, what: str) -> str:
+        """R002: why the arm instruction stops the task, and (without an arm model) how to give one."""
+        low = what.lower()
+        if low in ("setlatch", "getlatch", "getdh", "getdefaultdh", "setdh"):
+            return f"instruction {what} needs the arm's hardware (position capture, calibration), which this " \
+                   f"version does not simulate"
+        text = f"instruction {what} moves the arm or reads its motion, which this version does not simulate (chapter 10)"
+        if self.arm is None:
+            return f"{text}; the run has no arm model either (to have movej targets checked, " \
+                   f"{NO_ARM[len('needs the arm model: '):]})"
+        return f"{text}; the arm model {self.arm.name} stays at its initial joint position"
 
     def add_diag(self, code: str, message: str, T: Task | None, pos, error: int | None) -> None:
         path, line, col, program = self.app.path, 0, 0, ""
@@ -714,13 +741,13 @@ class Machine:
                 vals = vals[:1]
         if c is None:  # an element: idx is the (container, key) pair
             cc, kk = idx
-            cc[kk] = copy_value(vals[0])
+            store(cc, kk, vals[0])
             return 1.0
         if type(c) is Coll:
             key = idx[0] if idx else None
             if key is None or key not in c.d:
                 return -3.0
-            c.d[key] = copy_value(vals[0])
+            store(c.d, key, vals[0])
             return 1.0
         dst_start = c.off
         if idx is not None:
@@ -728,7 +755,7 @@ class Machine:
         room = len(c.data) - dst_start
         n = min(room, len(vals)) if c.dims is None else 1
         for i in range(n):
-            c.data[dst_start + i] = copy_value(vals[i])
+            store(c.data, dst_start + i, vals[i])
         return float(n)
 
     # ---- the run ------------------------------------------------------------------------------

@@ -8,15 +8,18 @@ converts the loader's `Data`/`Value` records into run-time values (`values.py`).
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 from typing import Any
 
+from ..geometry.frames import Frame, Tool, new_flange, new_world
+from ..geometry.points import Point
+from ..geometry.trsf import Trsf
 from ..loading.model import Application, Container, Data, Value, Workspace
 from ..loading.types import DEFAULTS, base_type, is_builtin
 from .values import (
     ENUM_SPELLING,
     JOINT_FIELDS,
-    TRSF_FIELDS,
     Arr,
     Coll,
     IOPoint,
@@ -26,10 +29,16 @@ from .values import (
 
 
 class Cell:
-    """The inputs/outputs of the simulated cell, one `IOPoint` per (kind, physical link)."""
+    """The inputs/outputs of the simulated cell, one `IOPoint` per (kind, physical link); and
+    the roots of the frame and tool trees, `world` and `flange` (9.4.1, 9.5.1), one each for
+    the whole controller (every application and library)."""
 
     def __init__(self) -> None:
         self.points: dict[tuple[str, str], IOPoint] = {}
+        self.world = new_world()
+        self.flange = new_flange(self.io("dio", "valve1"))
+        # (node or point, "fPallet[0]"): data-file references waiting for every global to exist
+        self.pending: list[tuple[Any, str]] = []
 
     def io(self, kind: str, link: str) -> IOPoint:
         if not link:
@@ -53,8 +62,44 @@ def _num(fields: dict, key: str, default: float = 0.0) -> float:
     return float(v) if isinstance(v, (int, float)) and not isinstance(v, bool) else default
 
 
-def _trsf(fields: dict) -> dict:
-    return {k: _num(fields, k) for k in TRSF_FIELDS}
+def _trsf(fields: dict) -> Trsf:
+    return Trsf(_num(fields, "x"), _num(fields, "y"), _num(fields, "z"), _num(fields, "rx"), _num(fields, "ry"),
+                _num(fields, "rz"))
+
+
+_FATHER = re.compile(r"^\s*([A-Za-z_]\w*)\s*(?:\[\s*([^\]]*?)\s*\])?\s*$")
+
+
+def resolve_fathers(cell: Cell, globals_: dict[str, Any]) -> None:
+    """Link the frames, tools and points of the data files to their `fatherId` ("fPallet[0]",
+    "world[0]", "flange[0]"): a frame or point to a frame, a tool to a tool. A reference that
+    names nothing of the right type leaves the value without reference (its use raises
+    162/163/164, as for a local)."""
+    pending, cell.pending = cell.pending, []
+    lower = None
+    for obj, father in pending:
+        want = Tool if type(obj) is Tool else Frame
+        m = _FATHER.match(father)
+        found = None
+        if m:
+            name, idx = m.group(1), m.group(2)
+            low = name.lower()
+            if low == "world" and name not in globals_:
+                found = cell.world
+            elif low == "flange" and name not in globals_:
+                found = cell.flange
+            else:
+                c = globals_.get(name)
+                if c is None:
+                    if lower is None:
+                        lower = {n.lower(): v for n, v in globals_.items()}
+                    c = lower.get(low)
+                if type(c) is Arr:
+                    i = _flat(idx or "0", c.dims or (len(c.data),))
+                    found = c.data[i] if i is not None else None
+                elif type(c) is Coll and idx is not None:
+                    found = c.d.get(idx.strip().strip('"'))
+        obj.ref = found if type(found) is want else None
 
 
 def _enum(value: Any, default: str) -> str:
@@ -103,7 +148,10 @@ class TypeSpace:
 
     # ---- values -------------------------------------------------------------------------------
 
-    def default(self, t: str) -> Any:
+    def default(self, t: str, local: bool = False, name: str = "", linked: bool | None = None) -> Any:
+        """The default value of type `t` (2.4). A frame, tool or point of a global is linked to
+        world/flange (`linked`, default: not `local`); those of locals and user-type fields have
+        no reference (9.4.1, 9.5.1, 9.6.1); `local` marks the nodes of local variables (165)."""
         b = base_type(t)
         if b == "num":
             return 0.0
@@ -116,15 +164,19 @@ class TypeSpace:
         if b == "screen":
             return Screen()
         if b in DEFAULTS:
-            return self.from_fields(b, dict(DEFAULTS[b]), {})
+            v = self.from_fields(b, dict(DEFAULTS[b]), {}, name, local)
+            if b in ("frame", "tool", "point") and (not local if linked is None else linked):
+                v.ref = self.cell.flange if b == "tool" else self.cell.world
+            return v
         ut = self.user_type(t)
         if ut is None:
             return None
         sp = self.space_of(ut.app)
-        return {n: sp.container(d) for n, d in ut.fields.items()}
+        return {n: sp.container(d, in_user=True, local=local) for n, d in ut.fields.items()}
 
-    def from_fields(self, t: str, fields: dict, members: dict) -> Any:
-        """A value from a loader `Value.fields`/`members` (types.py keys: tmax/rmax, ioLink)."""
+    def from_fields(self, t: str, fields: dict, members: dict, name: str = "", local: bool = False) -> Any:
+        """A value from a loader `Value.fields`/`members` (types.py keys: tmax/rmax, ioLink).
+        Frames, tools and points come without reference (`value_of` links them)."""
         b = base_type(t)
         if b in ("num", "bool", "string"):
             v = fields.get("value")
@@ -140,12 +192,14 @@ class TypeSpace:
         if b == "trsf":
             return _trsf(fields)
         if b == "frame":
-            return {"trsf": _trsf(fields)}
+            return Frame(_trsf(fields), None, name=name, local=local)
         if b == "tool":
-            return {"trsf": _trsf(fields), "gripper": self.cell.io("dio", str(fields.get("ioLink") or "")),
-                    "otime": _num(fields, "otime"), "ctime": _num(fields, "ctime")}
+            return Tool(_trsf(fields), None, gripper=self.cell.io("dio", str(fields.get("ioLink") or "")),
+                        otime=_num(fields, "otime"), ctime=_num(fields, "ctime"), name=name, local=local)
         if b == "point":
-            return {"trsf": _trsf(fields), "config": self._config(fields)}
+            p = Point(_trsf(fields), (), None, name=name, local=local)
+            p.config = self._config(fields)
+            return p
         if b == "config":
             return self._config(fields)
         if b == "joint":
@@ -162,7 +216,8 @@ class TypeSpace:
         sp = self.space_of(ut.app)
         out = {}
         for n, d in ut.fields.items():
-            out[n] = sp.container(members[n], d) if n in members else sp.container(d)
+            out[n] = sp.container(members[n], d, in_user=True, local=local) if n in members else sp.container(
+                d, in_user=True, local=local)
         return out
 
     @staticmethod
@@ -170,17 +225,30 @@ class TypeSpace:
         return {"shoulder": _enum(fields.get("shoulder"), "ssame"), "elbow": _enum(fields.get("elbow"), "esame"),
                 "wrist": _enum(fields.get("wrist"), "wsame")}
 
-    def value_of(self, t: str, v: Value) -> Any:
-        return self.from_fields(t, v.fields, v.members)
+    def value_of(self, t: str, v: Value, name: str = "", in_user: bool = False, father: bool = True,
+                 local: bool = False) -> Any:
+        """A value of the data file. A frame, tool or point is linked to its `fatherId` once every
+        global exists (`resolve_fathers`), else to world/flange, except in a user-type field
+        (7.1, 9.4.1: no reference)."""
+        obj = self.from_fields(t, v.fields, v.members, name, local)
+        to = type(obj)
+        if to is Frame or to is Tool or to is Point:
+            if father and v.father:
+                self.cell.pending.append((obj, v.father))
+            elif not in_user:
+                obj.ref = self.cell.flange if to is Tool else self.cell.world
+        return obj
 
-    def container(self, data: Data, shape: Data | None = None) -> Arr | Coll:
+    def container(self, data: Data, shape: Data | None = None, in_user: bool = False, local: bool = False) -> Arr | Coll:
         """The container of a global (or of a user-type field): `data` gives the values,
         `shape` (default: `data`) the declaration. Unwritten indices take the defaults; for a
         user-type field, the type application's values are the defaults (7.1)."""
         shape = shape or data
         t = base_type(shape.type)
+        dname = data.name
         if shape.container is Container.COLLECTION:
-            return Coll(t, {v.key: self.value_of(t, v) for v in data.values})
+            return Coll(t, {v.key: self.value_of(t, v, f"{dname}[{v.key}]", in_user, True, local) for v in data.values},
+                        local)
         dims = tuple(max(1, int(s)) for s in (shape.sizes or (1,))) if data is shape else tuple(
             max(1, int(s)) for s in (data.sizes or shape.sizes or (1,)))
         n = 1
@@ -199,19 +267,25 @@ class TypeSpace:
                     defaults[idx] = v
         values = []
         for i in range(n):
-            src = given.get(i) or defaults.get(i)
-            values.append(self.value_of(t, src) if src is not None else self.default(t))
+            name = dname if n == 1 else f"{dname}[{i}]"
+            src = given.get(i)
+            if src is not None:
+                values.append(self.value_of(t, src, name, in_user, True, local))
+            elif i in defaults:  # the type application's value: its fatherId is not ours
+                values.append(self.value_of(t, defaults[i], name, in_user, False, local))
+            else:
+                values.append(self.default(t, local, name, not (in_user or local)))
         return Arr(t, values, dims)
 
-    def local_container(self, t: str, container: Container, sizes: tuple[int, ...]) -> Arr | Coll:
+    def local_container(self, t: str, container: Container, sizes: tuple[int, ...], name: str = "") -> Arr | Coll:
         if container is Container.COLLECTION:
-            return Coll(base_type(t))
+            return Coll(base_type(t), local=True)
         dims = tuple(max(1, int(s)) for s in (sizes or (1,)))
         n = 1
         for s in dims:
             n *= s
         bt = base_type(t)
-        return Arr(bt, [self.default(bt) for _ in range(n)], dims, local=True)
+        return Arr(bt, [self.default(bt, True, name if n == 1 else f"{name}[{i}]") for i in range(n)], dims, local=True)
 
 
 def _flat(key: str, dims: tuple[int, ...]) -> int | None:

@@ -12,6 +12,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from ..geometry.trsf import Trsf
 from .builtins_bridge import format_num, operator
 from .errors import RUNTIME_CODES, Val3RuntimeError
 from .values import (
@@ -30,12 +31,14 @@ E = Val3RuntimeError
 
 
 class SimLimit(Exception):
-    """The simulator cannot go on with this task: `kind` "arm" (R002) or "notsim" (R004)."""
+    """The simulator cannot go on with this task: `kind` "arm" (R002) or "notsim" (R004).
+    `message` is the diagnostic's text (default: made by the machine from `what`)."""
 
-    def __init__(self, kind: str, what: str) -> None:
+    def __init__(self, kind: str, what: str, message: str = "") -> None:
         super().__init__(what)
         self.kind = kind
         self.what = what
+        self.message = message
 
 
 def ARM(name: str, *args: Any) -> Any:
@@ -92,7 +95,7 @@ def CKW(A, c: Coll, key: Any) -> str:
         raise E(70, "a collection key is a non-empty string")
     if len(c.d) >= MAX_CONTAINER:
         raise E(40, "a variable holds at most 9999 values (2.5.4)")
-    c.d[key] = A.space.default(c.t)
+    c.d[key] = A.space.default(c.t, c.local, key)
     return key
 
 
@@ -176,28 +179,13 @@ def DYN(op: str, a: Any, b: Any) -> Any:
             return a >= b
     if type(a) is str and type(b) is str and op == "+":
         return CAT(a, b)
+    if op == "*" and type(a) is Trsf and type(b) is Trsf:
+        return a * b
+    if type(a) is dict and type(b) is dict and op in ("+", "-", "<", ">") and "j1" in a:  # joint (9.2.2)
+        from . import geom
+
+        return {"+": geom.JADD, "-": geom.JSUB, "<": geom.JLT, ">": geom.JGT}[op](a, b)
     raise E(70, f"operator {op} on these values")
-
-
-def JADD(a: dict, b: dict) -> dict:
-    return {k: a[k] + b.get(k, 0.0) for k in a}
-
-
-def JSUB(a: dict, b: dict) -> dict:
-    return {k: a[k] - b.get(k, 0.0) for k in a}
-
-
-def JGT(a: dict, b: dict) -> bool:
-    """9.2.2: true when every field is strictly greater."""
-    return all(a[k] > b.get(k, 0.0) for k in a)
-
-
-def JLT(a: dict, b: dict) -> bool:
-    return all(a[k] < b.get(k, 0.0) for k in a)
-
-
-def WORLD() -> dict:
-    return {"trsf": {k: 0.0 for k in ("x", "y", "z", "rx", "ry", "rz")}}
 
 
 # ---- inputs / outputs (3.5 - 3.7) ---------------------------------------------------------------
@@ -507,7 +495,7 @@ def INSERT(T, A, c: Any, idx: tuple | None) -> bool:
             return False
         if len(c.d) >= MAX_CONTAINER:
             raise E(40, "a variable holds at most 9999 values (2.5.4)")
-        c.d[key] = A.space.default(c.t)
+        c.d[key] = A.space.default(c.t, c.local, key)
         return True
     a = _growable(c, "insert")
     if idx is None:

@@ -141,7 +141,7 @@ class Applier:
 
     def apply(self) -> None:
         d = self.sc.data
-        known = {"version", "description", "inputs", "events", "reactions", "keys", "serial", "controller", "io"}
+        known = {"version", "description", "inputs", "events", "reactions", "keys", "serial", "controller", "io", "robot"}
         for k in d:
             if k not in known:
                 self.fail(self.lines.key(k) or self.lines.section(k), f"unknown table or key {k!r}")
@@ -219,6 +219,28 @@ class Applier:
             self._controller(d["controller"])
         if "io" in d:
             self._io(d["io"])
+        if "robot" in d:
+            self._robot(d["robot"])
+
+    def _robot(self, table: Any) -> None:
+        """[robot] joints = [j1, ..., j6]: the arm's joint position at the start (degrees), the
+        one herej() and here() return. Without an arm model (--robot) it has no effect."""
+        line = self.lines.section("robot")
+        if not isinstance(table, dict):
+            self.fail(line, "[robot] must be a table: joints = [j1, j2, j3, j4, j5, j6]")
+        self._keys(table, {"joints"}, line, "[robot]")
+        if "joints" not in table:
+            return
+        ln = self.lines.key("joints", line) or line
+        j = table["joints"]
+        if not isinstance(j, list) or not j or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in j):
+            self.fail(ln, "[robot] joints = [numbers], one per axis, in degrees")
+        arm = self.M.arm
+        if arm is None:
+            return
+        if len(j) != arm.axes:
+            self.fail(ln, f"[robot] joints: {len(j)} values for the {arm.axes}-axis arm {arm.name}")
+        arm.start_at(j)
 
     def _io(self, table: Any) -> None:
         """[io]: the state of inputs/outputs as ioStatus() reports it (3.5.3), their description,

@@ -34,6 +34,8 @@ class SimOptions:
     max_transcript: int = 10_000
     scenario: str | None = None
     disk_roots: list[str] = field(default_factory=list)
+    # the arm model (val3check.robot.RobotModel) or None: see `choose_sim_robot`
+    robot: Any = None
 
 
 @dataclass
@@ -51,6 +53,8 @@ class SimResult:
     screen: dict
     destroyed: list[str]
     link_names: dict = field(default_factory=dict)
+    # the arm model of the run: {"name": "TX2-60", "initial_joints": [...]} or None
+    robot: dict | None = None
     # The application's globals at the end of the run (name -> Arr/Coll of run-time values,
     # values.py): for tests and tools; not part of the reports.
     globals: dict = field(default_factory=dict, repr=False)
@@ -60,7 +64,7 @@ def simulate(ws: Workspace, app: Application, options: SimOptions | None = None,
     options = options or SimOptions()
     budgets = Budgets(duration_us=int(round(options.duration * 1_000_000)), wall_s=options.max_wall,
                       max_lines=options.max_lines, max_transcript=options.max_transcript)
-    M = Machine(ws, app, budgets=budgets, disk_roots=options.disk_roots)
+    M = Machine(ws, app, budgets=budgets, disk_roots=options.disk_roots, robot=options.robot)
     M.load_main()
     if scenario is not None:
         from .scenario import apply_scenario
@@ -105,6 +109,30 @@ def collect(M: Machine) -> SimResult:
         }
         tasks.append(entry)
     screen = {"title": M.default_page.title, "lines": M.default_page.text()}
+    robot = None if M.arm is None else {"name": M.arm.name, "initial_joints": list(M.arm.initial)}
     return SimResult(M.app.name, M.app.path, reason, message, M.end_time, M.total_lines, tasks, diags, M.transcript,
                      M.io_log, screen, list(M.destroyed), {k: sorted(v) for k, v in M.link_names.items()},
-                     dict(M.main.globals) if M.main is not None else {})
+                     robot=robot, globals=dict(M.main.globals) if M.main is not None else {})
+
+
+def choose_sim_robot(spec: str | None, app_path: str) -> tuple[Any, str]:
+    """The arm model of `val3check sim`: (RobotModel or None, a note for the user or "").
+
+    `spec`: --robot's value: a catalogue name (case-insensitive), a URDF path, an arm.cfx, or
+    "none" (no arm model). Without it, the usr/configs/arm.cfx of the controller tree that holds
+    the application, if any. Raises `val3check.robot.RobotError` for a --robot that names no
+    model; an arm.cfx found by itself whose arm has no model gives None and a note."""
+    if spec is not None and spec.strip().lower() == "none":
+        return None, ""
+    from ..robot import RobotError, choose_robot
+    from ..robot.catalog import find_arm_cfx
+
+    if spec:
+        return choose_robot(spec, app_path), ""
+    cfx = find_arm_cfx(app_path)
+    if cfx is None:
+        return None, ""
+    try:
+        return choose_robot(str(cfx), app_path), ""
+    except RobotError as exc:
+        return None, f"{cfx}: {exc}; running without an arm model (name one with --robot)"

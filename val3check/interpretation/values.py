@@ -3,10 +3,17 @@
 Representation (chosen for speed of the generated code, see `compiler.py`):
 
 - `num` is a Python float, `bool` a bool, `string` a str (at most 128 UTF-8 bytes, 3.4.1);
-- a built-in structured value (2.3.3) is a plain dict of its fields, nested as the manual
-  nests them: a point is ``{"trsf": {x, y, z, rx, ry, rz}, "config": {shoulder, elbow, wrist}}``,
-  an mdesc ``{accel, vel, decel, tvel, rvel, blend, leave, reach}``; enum fields (`sfree`,
-  `joint`...) are strings;
+- the geometry of chapter 9 uses the types of `val3check.geometry` (its docstring): a `trsf` is
+  a `Trsf` (mutable, fields x..rz); a `frame`/`tool` is a `Frame`/`Tool` *node* whose `ref` is
+  its reference node (shared: a variable holds one node for its whole life, `=` copies INTO it,
+  `geom.NASG`); a `point` is a `Point` (trsf, ref) whose `config` is the dict below. Globals are
+  linked to their data file's `fatherId` (world/flange by default), locals and user-type fields
+  have no reference (9.4.1, 9.5.1, 9.6.1). Their fields are read as attributes (`p.trsf.x`) and
+  written by name (`p["trsf"]`, the geometry classes' item access);
+- the other built-in structured values (2.3.3) are plain dicts of their fields: a `joint`
+  ``{j1..j6}``, a `config` ``{shoulder, elbow, wrist}``, an mdesc ``{accel, vel, decel, tvel, rvel,
+  blend, leave, reach}``; enum fields (`sfree`, `joint`...) are strings. `geom.py` converts joint
+  and config dicts to the geometry's tuples at the instruction boundary;
 - a user-type value (chapter 7) is a dict of field name -> container, since every field of a
   user type has its own container (7.1);
 - `dio`/`aio`/`sio` values are links (3.5.1): the variable holds the `IOPoint` object of the
@@ -19,6 +26,9 @@ from __future__ import annotations
 
 from typing import Any
 
+from ..geometry.frames import Frame, Tool, copy_node
+from ..geometry.points import Point
+from ..geometry.trsf import Trsf
 from ..loading.types import base_type
 from .errors import Val3RuntimeError
 
@@ -52,6 +62,10 @@ ENUMS: dict[str, tuple[str, ...]] = {
 ENUM_CONSTANTS: dict[str, str] = {v.lower(): t for t, vs in ENUMS.items() for v in vs}
 ENUM_SPELLING: dict[str, str] = {v.lower(): v for vs in ENUMS.values() for v in vs}
 SIMPLE = frozenset({"num", "bool", "string", "dio", "aio", "sio", "screen"})
+# VAL 3 types whose values are geometry objects (fields read as attributes)
+OBJECT_TYPES = frozenset({"trsf", "frame", "tool", "point"})
+# ... and those whose variables keep their identity (`=` copies into them)
+NODE_TYPES = frozenset({"frame", "tool", "point"})
 IO_TYPES = frozenset({"dio", "aio", "sio"})
 
 
@@ -220,30 +234,108 @@ class CellList:
 
 
 class Coll:
-    """A collection (2.3.4): values identified by a non-empty string key."""
+    """A collection (2.3.4): values identified by a non-empty string key. `local` for a local
+    variable's (its new values are local: no reference frame, 9.4.1)."""
 
-    __slots__ = ("t", "d")
+    __slots__ = ("t", "d", "local")
 
-    def __init__(self, t: str, d: dict | None = None) -> None:
+    def __init__(self, t: str, d: dict | None = None, local: bool = False) -> None:
         self.t = t
         self.d = d if d is not None else {}
+        self.local = local
 
     def keys(self) -> list[str]:
         return sorted(self.d)
 
 
+def copy_point(p: Point, local: bool | None = None) -> Point:
+    """A new point equal to `p` (same reference frame, config dict copied)."""
+    q = Point(p.trsf.copy(), (), p.ref, local=p.local if local is None else local)
+    c = p.config
+    q.config = dict(c) if type(c) is dict else c
+    return q
+
+
 def copy_value(v: Any) -> Any:
-    """Deep copy for `=` (7.3: after `=` the left variable is a copy of the right one)."""
+    """Deep copy for `=` (7.3: after `=` the left variable is a copy of the right one). A frame
+    or tool node copy keeps the same reference node (9.4.3)."""
     tv = type(v)
     if tv is float or tv is bool or tv is str:
         return v
     if tv is dict:
         return {k: copy_value(x) for k, x in v.items()}
+    if tv is Trsf:
+        return v.copy()
+    if tv is Point:
+        return copy_point(v)
+    if tv is Frame or tv is Tool:
+        return copy_node(v)
     if tv is Arr:
         return Arr(v.t, [copy_value(x) for x in v.data[v.off:]], v.dims, 0, v.local)
     if tv is Coll:
-        return Coll(v.t, {k: copy_value(x) for k, x in v.d.items()})
+        return Coll(v.t, {k: copy_value(x) for k, x in v.d.items()}, v.local)
     return v  # IOPoint, Screen: links are shared
+
+
+def copy_local(v: Any) -> Any:
+    """The copy a by-value parameter gets (2.6.1): frames, tools and points become local
+    variables of the callee (same reference, 9.4.1; a global cannot be linked to them, 165)."""
+    tv = type(v)
+    if tv is Point:
+        return copy_point(v, True)
+    if tv is Frame or tv is Tool:
+        return copy_node(v, local=True)
+    return copy_value(v)
+
+
+def copy_globals(values: dict[str, Any]) -> dict[str, Any]:
+    """Copy a unit's globals (libSave snapshots, libLoad of one): like `copy_value`, but the
+    references between the copied frames, tools and points are kept among the copies."""
+    memo: dict[int, Any] = {}
+    made: list[Any] = []
+
+    def cp(v: Any) -> Any:
+        tv = type(v)
+        if tv is Frame or tv is Tool or tv is Point:
+            n = memo.get(id(v))
+            if n is None:
+                n = copy_value(v)
+                n.name = v.name
+                memo[id(v)] = n
+                made.append(n)
+            return n
+        if tv is Arr:
+            return Arr(v.t, [cp(x) for x in v.data[v.off:]], v.dims, 0, v.local)
+        if tv is Coll:
+            return Coll(v.t, {k: cp(x) for k, x in v.d.items()}, v.local)
+        if tv is dict:
+            return {k: cp(x) for k, x in v.items()}
+        return copy_value(v)
+
+    out = {name: cp(v) for name, v in values.items()}
+    for n in made:
+        r = n.ref
+        if r is not None and id(r) in memo:
+            n.ref = memo[id(r)]
+    return out
+
+
+def store(c: Any, k: Any, v: Any) -> None:
+    """`c[k] = copy of v`; a frame, tool or point place keeps its node (copied into)."""
+    old = c[k] if type(c) is not dict or k in c else None
+    to = type(old)
+    if to is Frame or to is Tool:
+        from ..geometry.frames import assign
+
+        assign(old, v)
+        return
+    if to is Point:
+        from ..geometry.points import assign as passign
+
+        passign(old, v)
+        old.config = dict(v.config) if type(v.config) is dict else v.config
+        return
+    c[k] = copy_value(v)
 
 
 def type_error(detail: str) -> Val3RuntimeError:

@@ -32,6 +32,7 @@ def report(run: Any) -> dict[str, Any]:
         "version": VERSION,
         "tool": {"name": TOOL_NAME, "version": run.tool_version},
         "application": {"name": r.application, "path": run.app_path},
+        "robot": r.robot,
         "end": {"reason": r.end_reason, "message": r.end_message},
         "simulated_duration": _t(r.sim_time_us),
         "lines_executed": r.lines,

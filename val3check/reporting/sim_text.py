@@ -14,8 +14,11 @@ def _s(us: int | None) -> str:
 
 def render(run: Any) -> str:
     r = run.result
-    out = [f"val3check sim: {r.application} ({run.app_path})",
-           f"{r.end_message}, after {_s(r.sim_time_us)} of simulated time; {r.lines} VAL 3 lines executed", ""]
+    out = [f"val3check sim: {r.application} ({run.app_path})"]
+    if r.robot:
+        joints = ", ".join(f"{v:g}" for v in r.robot["initial_joints"])
+        out.append(f"arm model: {r.robot['name']}, at {{{joints}}} (motion is not simulated)")
+    out += [f"{r.end_message}, after {_s(r.sim_time_us)} of simulated time; {r.lines} VAL 3 lines executed", ""]
     out.append("tasks:")
     width = max([len(t["name"]) for t in r.tasks] + [4])
     for t in r.tasks:

@@ -5,10 +5,9 @@ Units inside: millimetres and radians. Transforms are 3x4 row-major tuples `((r0
 
 VAL 3 pose convention (manual 9.3.2): a trsf {x, y, z, rx, ry, rz} is the translation (x, y, z)
 and the rotation obtained by turning rx about x, then ry about the new y', then rz about the new
-z'': R = Rx(rx)·Ry(ry)·Rz(rz). Angles come back in ]-180, 180], ry in [-90, 90] and, when ry is
-±90 (gimbal lock), rx = 0; when both rx and rz would lie outside [-90, 90] the equivalent triple
-(rx±180, ±180-ry, rz±180) is returned instead, so that at least two of them lie within [-90, 90]
-as the manual says the controller guarantees.
+z'': R = Rx(rx)·Ry(ry)·Rz(rz). Poses come back in the canonical form of val3check/geometry/
+rotation.py (the one convention of val3check): angles in ]-180, 180], rx = 0 and ry = ±90 at the
+gimbal lock, at least two angles within [-90, 90] except the manual's "rx = 180, ry = 0" case.
 
 Three forward kinematics of the same arm, checked against each other by the tests:
   * `Chain.fk`: the URDF joints multiplied out in pure Python (any serial arm);
@@ -24,6 +23,7 @@ import math
 import random
 from dataclasses import dataclass
 
+from ..geometry import rotation as _rot
 from .errors import RobotError
 from .urdf import IDENTITY, Mat, UrdfInfo, axis_angle, inverse, mul, transform
 
@@ -32,53 +32,28 @@ RAD = 180.0 / math.pi
 
 
 # ---- VAL 3 trsf <-> matrix ---------------------------------------------------------------------
+# One convention for the whole of val3check: the geometry package's (val3check/geometry/rotation.py,
+# manual 9.3.2, with its canonical form and the "rx = 180, ry = 0" exception), so that
+# RobotModel.fk() and here()/jointToPoint() agree with compose()/position() bit for bit.
 
 
 def trsf_matrix(pose) -> Mat:
-    """{x, y, z, rx, ry, rz} (mm, deg) -> 3x4 (mm), R = Rx(rx)·Ry(ry)·Rz(rz)."""
+    """{x, y, z, rx, ry, rz} (mm, deg) -> 3x4 (mm), R = Rx(rx)·Ry(ry)·Rz(rz) (geometry.rotation.matrix,
+    exact for multiples of 30 and 45 degrees)."""
     x, y, z, rx, ry, rz = pose
-    a, b, c = rx * DEG, ry * DEG, rz * DEG
-    ca, sa, cb, sb, cc, sc = math.cos(a), math.sin(a), math.cos(b), math.sin(b), math.cos(c), math.sin(c)
+    m = _rot.matrix(float(rx), float(ry), float(rz))
     return (
-        (cb * cc, -cb * sc, sb, float(x)),
-        (ca * sc + sa * sb * cc, ca * cc - sa * sb * sc, -sa * cb, float(y)),
-        (sa * sc - ca * sb * cc, sa * cc + ca * sb * sc, ca * cb, float(z)),
+        (m[0], m[1], m[2], float(x)),
+        (m[3], m[4], m[5], float(y)),
+        (m[6], m[7], m[8], float(z)),
     )
 
 
-def _wrap180(a: float) -> float:
-    a = math.fmod(a, 360.0)
-    if a <= -180.0:
-        a += 360.0
-    elif a > 180.0:
-        a -= 360.0
-    return a
-
-
 def matrix_trsf(M) -> tuple[float, float, float, float, float, float]:
-    """3x4 (mm) -> {x, y, z, rx, ry, rz} (mm, deg) in the VAL 3 convention (module docstring)."""
-    r00, r01, r02 = M[0][0], M[0][1], M[0][2]
-    r10, r11, r12 = M[1][0], M[1][1], M[1][2]
-    r22 = M[2][2]
-    cb = math.hypot(r00, r01)
-    ry = math.atan2(r02, cb) * RAD
-    if cb < 1e-12:  # ry = ±90: rx chosen null (9.3.2)
-        rx = 0.0
-        rz = math.atan2(r10, r11) * RAD
-    else:
-        a = math.atan2(-r12, r22)
-        rx = a * RAD
-        # rz from what is left once rx and ry are undone, Ry(-ry)·Rx(-rx)·R = Rz(rz): exact even
-        # close to the gimbal lock, where -r01 and r00 alone are tiny and noisy
-        ca, sa = math.cos(a), math.sin(a)
-        sb = r02
-        r20 = M[2][0]
-        rz = math.atan2(ca * r10 + sa * r20, cb * r00 - sb * (-sa * r10 + ca * r20)) * RAD
-        if abs(rx) > 90.0 and abs(rz) > 90.0:
-            rx = rx - 180.0 if rx > 0 else rx + 180.0
-            ry = 180.0 - ry if ry > 0 else -180.0 - ry
-            rz = rz - 180.0 if rz > 0 else rz + 180.0
-    return (M[0][3], M[1][3], M[2][3], _wrap180(rx) + 0.0, _wrap180(ry) + 0.0, _wrap180(rz) + 0.0)
+    """3x4 (mm) -> {x, y, z, rx, ry, rz} (mm, deg): the canonical VAL 3 angles of
+    geometry.rotation.angles_of (module docstring)."""
+    rx, ry, rz = _rot.angles_of((M[0][0], M[0][1], M[0][2], M[1][0], M[1][1], M[1][2], M[2][0], M[2][1], M[2][2]))
+    return (M[0][3] + 0.0, M[1][3] + 0.0, M[2][3] + 0.0, rx, ry, rz)
 
 
 def pose_error(A, B) -> tuple[float, float]:
