@@ -15,6 +15,7 @@ from __future__ import annotations
 import difflib
 
 from ..language.instructions import lookup as lookup_instruction
+from ..loading.model import Container
 from ..parsing import ast as A
 from . import messages as M
 from . import symbols as S
@@ -231,6 +232,10 @@ class ExprTyper:
                 self._numeric_indices(node, idx)
             return vt.Val(t, ELEMENT, dims, True, base.var, base.root, dims == 1 and n == 1, FROM_ARRAY, base.field)
         if base.dims < 0:  # container not known (s6 parameter or global)
+            root = base.root
+            if root is not None and root.kind != S.PARAM and not base.field \
+                    and getattr(root.decl, "container", None) is Container.ARRAY:
+                self._numeric_indices(node, idx)  # an s6 global is an array: its indices are numbers
             return vt.Val(t, ELEMENT, 0, True, base.var, base.root, True, FROM_ELEMENT, base.field)
         # An element: a single [0]-like index is accepted (a 1-value array is an element, 2.3.4).
         if not base.var:
