@@ -216,21 +216,9 @@ def _sim(args: argparse.Namespace) -> int:
 
 
 def _lint(args: argparse.Namespace) -> int:
-    from .config import ConfigError, Settings, find_config, load_settings
-
     paths = _targets(args.paths)
-    try:
-        settings = Settings()
-        if args.config:
-            if not os.path.isfile(args.config):
-                raise ConfigError(f"{args.config}: configuration file not found")
-            settings = load_settings(args.config)
-        elif not args.isolated:
-            found = find_config(paths[0])
-            if found:
-                settings = load_settings(found)
-    except ConfigError as exc:
-        print(f"val3check: error: {exc}", file=sys.stderr)
+    settings = _settings(args, paths[0])
+    if settings is None:
         return EXIT_USAGE
     if args.select is not None:
         settings.select = args.select
@@ -258,16 +246,8 @@ def _lint(args: argparse.Namespace) -> int:
         args.color == "auto" and not to_file and sys.stdout.isatty() and "NO_COLOR" not in os.environ
     )
     text = render(args.format, outcome.result, color=color, statistics=args.statistics)
-    if to_file:
-        try:
-            with open(args.output, "w", encoding="utf-8", newline="\n") as fh:
-                fh.write(text)
-        except OSError as exc:
-            print(f"val3check: error: cannot write {args.output}: {exc.strerror or exc}", file=sys.stderr)
-            return EXIT_USAGE
-    else:
-        sys.stdout.write(text)
-        sys.stdout.flush()
+    if not _write(text, args.output):
+        return EXIT_USAGE
     return exit_code(outcome, settings.fail_on)
 
 
