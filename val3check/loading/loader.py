@@ -146,16 +146,22 @@ class Loader:
             sink.add("F001", node, f"{kind} file '{rel}' listed here was not found")
         return None
 
-    def _read_program_file(self, app: Application, path: str) -> bool:
-        """False when the file could not be read at all."""
+    def _read_member(self, app: Application, path: str, kind: str) -> tuple[Node, str] | None:
+        """Read one file listed by the project; its root and layout, or None if unreadable."""
         app.files.append(path)
         root = self._read(path)
         if root is None:
-            return False
-        layout, d = rd.check_root(root, "programs", path)
+            return None
+        layout, d = rd.check_root(root, kind, path)
         self.diags.extend(d)
-        if layout is None:
+        return None if layout is None else (root, layout)
+
+    def _read_program_file(self, app: Application, path: str) -> bool:
+        """False when the file could not be read at all."""
+        read = self._read_member(app, path, "programs")
+        if read is None:
             return False
+        root, _ = read
         sink = rd.Sink(path, self.diags)
         for prog in rd.read_programs(root, sink):
             self._add_program(app, prog, sink)
@@ -180,14 +186,10 @@ class Loader:
 
     def _read_data_file(self, app: Application, path: str) -> bool:
         """False when the file could not be read at all."""
-        app.files.append(path)
-        root = self._read(path)
-        if root is None:
+        read = self._read_member(app, path, "data")
+        if read is None:
             return False
-        layout, d = rd.check_root(root, "data", path)
-        self.diags.extend(d)
-        if layout is None:
-            return False
+        root, layout = read
         sink = rd.Sink(path, self.diags)
         datas = rd.read_data_s6(root, sink) if layout == "s6" else rd.read_data_s7(root, sink)
         for data in datas:
