@@ -141,3 +141,14 @@ def test_dtx_argument_stands_for_its_application(tmp_path):
     r = val3check("lint", folder / "Example.dtx", folder / "start.pgx", cwd=tmp_path)
     assert r.returncode == 1
     assert r.stdout.count("F101") == 1  # one application, checked once
+
+
+def test_excluded_folders_report_nothing(tmp_path):
+    write_app(tmp_path / "keep", GOOD, globals_=["num nX"])
+    write_app(tmp_path / "archive", BAD)
+    (tmp_path / "archive" / "Example" / "Example.dtx").write_text("<Database")  # a loader finding too
+    assert val3check("lint", ".", cwd=tmp_path).returncode == 1
+    (tmp_path / "val3check.toml").write_text('exclude = ["archive/**"]\n')
+    r = val3check("lint", ".", cwd=tmp_path)
+    assert r.returncode == 0, r.stdout
+    assert "archive" not in r.stdout

@@ -57,7 +57,7 @@ def run(paths: list[str], settings: Settings) -> LintRun:
 
     kept: dict[tuple, Diagnostic] = {}
     for d in found:
-        if not settings.enabled(d.code, d.path):
+        if not settings.enabled(d.code, d.path) or (settings.exclude and settings.excluded(d.path)):
             continue
         if suppression.is_suppressed(d.code, d.path, d.line, suppressed):
             continue
