@@ -77,3 +77,22 @@ def test_unread_listed_files_are_recorded(tmp_path):
     (folder / "stop.pgx").unlink()
     ws, diags = load([str(folder)])
     assert ws.apps[ws.targets[0]].unread == {"data", "program"}
+
+
+def test_listed_files_outside_the_application_are_not_read(tmp_path):
+    import os
+
+    secret = tmp_path / "secret.txt"
+    secret.write_text("root:x:0:0:do not quote me\n")
+    folder = tmp_path / "App"
+    make_app(folder, programs=("start",))
+    pjx = folder / "App.pjx"
+    text = pjx.read_text().replace('<Program file="start.pgx" />',
+                                   '<Program file="start.pgx" />\n    <Program file="../secret.txt" />\n    <Program file="link.pgx" />')
+    pjx.write_text(text)
+    os.symlink(secret, folder / "link.pgx")  # a link inside the folder that leads out of it
+    ws, diags = load([str(folder)])
+    found = [(d.code, d.path) for d in diags]
+    assert found == [("F013", str(pjx)), ("F013", str(pjx))]
+    assert all("do not quote me" not in d.message for d in diags)
+    assert "program" in ws.apps[ws.targets[0]].unread

@@ -9,7 +9,7 @@ from loadhelp import make_app
 from val3check.loading import load
 
 ITERATIONS = int(__import__("os").environ.get("VAL3CHECK_FUZZ_ITERATIONS", "150"))
-KNOWN_CODES = {f"F{n:03d}" for n in range(1, 13)} | {f"L{n:03d}" for n in range(1, 6)}
+KNOWN_CODES = {f"F{n:03d}" for n in range(1, 14)} | {f"L{n:03d}" for n in range(1, 6)}
 
 BODY = """    <Data name="pPick" access="public" xsi:type="array" type="pointRx" size="2 3">
       <Value key="0 1" x="500" y="-40" shoulder="lefty" fatherId="fPallet[0]" />

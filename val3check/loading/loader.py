@@ -30,6 +30,12 @@ def _key(path: str) -> str:
     return os.path.normcase(os.path.abspath(path))
 
 
+def _inside(path: str, folder: str) -> bool:
+    """`path` is in `folder` or below it, symbolic links resolved."""
+    real, top = os.path.realpath(path), os.path.realpath(folder)
+    return os.path.commonpath([real, top]) == top
+
+
 def _ext(path: str) -> str:
     return os.path.splitext(path)[1].lower()
 
@@ -137,6 +143,12 @@ class Loader:
     def _listed_file(self, rel: str, node: Node, folder: str, kind: str, sink: rd.Sink) -> str | None:
         path = rs.find_path(folder, rel)
         if path is not None and os.path.isfile(path):
+            if not _inside(path, folder):
+                # A project lists its own files; reading (and quoting) a file elsewhere on the
+                # machine because a project names it would leak it into reports.
+                sink.add("F013", node, f"{kind} file '{rel}' listed here is outside the application folder: not read")
+                self.claimed.add(_key(path))  # listed, so not "unlisted" (F012) either
+                return None
             return path
         if path is not None and os.path.isdir(path):
             sink.add("F001", node, f"{kind} file '{rel}' listed here is a folder, not a file")
