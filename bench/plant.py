@@ -690,10 +690,11 @@ class _Finder:
 
 
 def _multi_value(sym: S.Symbol) -> bool:
-    """The variable certainly holds several values, by its declaration (2.3.4): a collection,
-    an array declared with several values (s7), a global the data file writes several values
-    for (s6 files write no size). Array parameters take the caller's size: unknown."""
-    if sym.kind == S.PARAM or sym.kind == S.CONSTANT:
+    """The variable certainly holds several values, by its declaration (2.3.4): a collection or
+    an array declared with several values. Array parameters take the caller's size: unknown.
+    s6 globals are left out: s6 files write no size, and real s6 applications use multi-value
+    arrays bare (the checker does not report them)."""
+    if sym.kind == S.PARAM or sym.kind == S.CONSTANT or sym.dims < 0:
         return False
     if sym.container == vt.COLLECTION:
         return True
@@ -704,8 +705,7 @@ def _multi_value(sym: S.Symbol) -> bool:
         n *= k
     if n > 1:
         return True
-    values = getattr(decl, "values", None)
-    return bool(values) and len({v.key for v in values}) > 1
+    return False
 
 
 def _walk_expr(node):

@@ -150,3 +150,10 @@ def test_task_name_length_is_not_held_against_s8(tmp_path):
     s8 = write_app(tmp_path / "s8", code, programs=progs, version="s8.3")
     assert [f[0] for f in collect(s7, "T023")] == ["T023"]
     assert collect(s8, "T023") == []
+
+
+def test_program_names_may_start_with_an_underscore(tmp_path):
+    folder = write_app(tmp_path, "begin\n  call _helper()\nend", programs={"_helper": {"code": "begin\nend"}})
+    assert collect(folder, "N008") == []
+    bad = write_app(tmp_path / "b", "begin\n  call h()\nend", programs={"h": {"code": "begin\nend", "locals": ["num _l"]}})
+    assert [f[0] for f in collect(bad, "N008")] == ["N008"]  # a local still must start with a letter

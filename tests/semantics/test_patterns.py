@@ -550,3 +550,13 @@ def _pgx(name: str, code: str, params=(), access: str | None = "public") -> str:
         head += ('    <Parameters xmlns="http://www.staubli.com/robotics/VAL3/Param/1">\n'
                  + "\n".join("      " + p for p in params) + "\n    </Parameters>\n")
     return head + f"    <Code><![CDATA[{code}]]></Code>\n  </Program>\n</Programs>\n"
+
+
+def test_nothing_is_unused_when_a_listed_program_file_is_missing(tmp_path):
+    folder = app(tmp_path, "begin\nend", globals_=["private num nCount"],
+                 programs={"helper": {"code": "begin\nend", "access": "private"}})
+    assert sorted(c for c in codes(folder) if c in ("S003", "S004")) == ["S003", "S004"]
+    pjx = folder / "App.pjx"
+    pjx.write_text(pjx.read_text().replace('<Program file="stop.pgx" />',
+                                           '<Program file="stop.pgx" />\n    <Program file="lost.pgx" />'))
+    assert [c for c in codes(folder) if c in ("S003", "S004")] == []  # lost.pgx may use both

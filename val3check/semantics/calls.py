@@ -282,11 +282,7 @@ def _instruction_arg_errors(typer: ExprTyper, ins: Instruction, o: Overload, val
                 out.append(_Pending("T011", missing_index_message(a, v), a))
             continue
         if v is UNKNOWN_VAL or v.dims < 0:
-            # an undefined name (reported), an unknowable value, an s6 parameter; an s6 global
-            # written with several values is no element, even by reference (2.3.4)
-            if v.dims < 0 and v.elem is False and p.container == "element" and v is not UNKNOWN_VAL:
-                out.append(_Pending("T011", missing_index_message(a, v), a))
-            continue
+            continue  # an undefined name (reported), an unknowable value, an s6 variable
         if not v.var:
             word = {"array": "array", "collection": "collection"}.get(p.container, "")
             out.append(_Pending("T007", M.needs_variable(idx, label, p.name, word), a))

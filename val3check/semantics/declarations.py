@@ -16,16 +16,19 @@ from . import vtypes as vt
 from .symbols import AppSymbols
 
 _NAME = re.compile(r"[A-Za-z][A-Za-z0-9_]*\Z")
+# Program names may also start with '_': Stäubli's own sample applications have `_globals`;
+# 2.5.1's "starting with a letter" is written for variables.
+_PROGRAM_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 _CHARS = re.compile(r"[A-Za-z0-9_]*\Z")
 
 
-def name_problem(name: str, max_len: int | None = 15) -> tuple[str, str] | None:
+def name_problem(name: str, max_len: int | None = 15, pattern: re.Pattern = _NAME) -> tuple[str, str] | None:
     """(code, why) when `name` breaks 2.5.1, or None.
 
     A name that is only too long is N012, a warning: real applications loaded by controllers
     carry longer names (notably type projects saved by newer tools), so the length alone is not
     a sure compile error. Bad characters are N008."""
-    if _NAME.match(name):
+    if pattern.match(name):
         if max_len is not None and len(name) > max_len:
             return "N012", f"{len(name)} characters, more than {max_len}"
         return None
@@ -55,7 +58,7 @@ def check_declarations(table: AppSymbols) -> list[Diagnostic]:
         _type_check(table, "global", d.name, d.type, d.origin, out, families)
 
     for prog in app.programs.values():
-        problem = name_problem(prog.name, max_len)
+        problem = name_problem(prog.name, max_len, _PROGRAM_NAME)
         if problem:
             out.append(_diag(problem[0], M.invalid_name("program", prog.name, problem[1]), prog.origin))
         if prog.name in ("start", "stop") and prog.parameters:

@@ -279,8 +279,8 @@ def unused_globals(app: Application, facts: dict[str, ProgramFacts], library: bo
     """S003: globals no program of the application mentions, where that is certain."""
     if not app.globals_known or not app.data:
         return []
-    if any(p.body is None for p in app.programs.values()):
-        return []  # a program that did not parse may use any of them
+    if "program" in app.unread or any(p.body is None for p in app.programs.values()):
+        return []  # a program that is missing or did not parse may use any of them
     if any(f.dynamic_data for f in facts.values()):
         return []  # getData() with a computed name may read any of them (2.5.4)
     if library and not any(d.access == "public" for d in app.data.values()):
@@ -314,8 +314,8 @@ def unused_globals(app: Application, facts: dict[str, ProgramFacts], library: bo
 
 def unused_programs(app: Application, facts: dict[str, ProgramFacts], library: bool) -> list[Diagnostic]:
     """S004: private programs that no other program of the application calls."""
-    if any(p.body is None for p in app.programs.values()):
-        return []
+    if "program" in app.unread or any(p.body is None for p in app.programs.values()):
+        return []  # a program that is missing or did not parse may call any of them
     if library and not any(p.access == "public" for p in app.programs.values()):
         return []  # a library without public program: access was probably not written
     called_by: dict[str, set[str]] = {}

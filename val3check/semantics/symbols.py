@@ -129,10 +129,10 @@ def data_symbol(reg: TypeRegistry, app: Application, d: Data, kind: str) -> Symb
     if app.layout == "s6" and kind != FIELD:
         # s6 data files write no size: the loader counts the values of one dimension; the
         # dimensions are not known (dims -1: any index is accepted, 2.3.4 element or array).
-        # A global written with several values (or with a value at an index above 0) is
-        # certainly not an element: used bare where one value is needed, it is refused (T011).
-        several = _several_values(d)
-        return Symbol(d.name, kind, vtype, vt.ELEMENT, -1, d.sizes, d, app, elem=False if several else None)
+        # Nor is it known whether a bare name of a global written with several values stands
+        # for its first value: real s6 applications pass such arrays bare to movej/movel by
+        # the dozen, so a missing index is not reported there.
+        return Symbol(d.name, kind, vtype, vt.ELEMENT, -1, d.sizes, d, app, elem=None)
     sizes = d.sizes or (1,)
     dims = len(sizes)
     if dims > 1:
@@ -144,15 +144,6 @@ def data_symbol(reg: TypeRegistry, app: Application, d: Data, kind: str) -> Symb
     else:
         elem = False
     return Symbol(d.name, kind, vtype, vt.ARRAY, dims, sizes, d, app, elem=elem)
-
-
-def _several_values(d: Data) -> bool:
-    """An s6 global holds more than one value: its file writes several indices, or an index
-    above 0 (the loader then counts `sizes` from the highest index)."""
-    n = 1
-    for k in d.sizes:
-        n *= k
-    return n > 1 or len({v.key for v in d.values}) > 1
 
 
 def local_symbol(reg: TypeRegistry, app: Application, loc: Local) -> Symbol:
