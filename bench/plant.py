@@ -71,7 +71,7 @@ KINDS: dict[str, tuple[str, str]] = {
     "assign_type": ("T003", "a value of another type assigned to a variable"),
     "operator_type": ("T001", "an operand of a type the operator does not take (nX + \"x\", s + 1)"),
     "condition_not_bool": ("T002", "a num as the condition of if/elseIf/while/until"),
-    "missing_index": ("T011", "the index of a multi-value array or collection dropped where one value is needed"),
+    "missing_index": ("T011", "the index of a 2-D/3-D array or the key of a collection dropped where one value is needed"),
     "undefined_field": ("T012", "a field that the structured type does not have"),
     "field_of_variable": ("T012", "a field added to a variable of a type without it (nX.q, pA.q)"),
     "undefined_user_field": ("L013", "a field that the user type does not have"),
@@ -690,22 +690,14 @@ class _Finder:
 
 
 def _multi_value(sym: S.Symbol) -> bool:
-    """The variable certainly holds several values, by its declaration (2.3.4): a collection or
-    an array declared with several values. Array parameters take the caller's size: unknown.
-    s6 globals are left out: s6 files write no size, and real s6 applications use multi-value
-    arrays bare (the checker does not report them)."""
+    """Used bare where one value is needed, the variable is certainly refused (T011): a collection
+    or a 2-D/3-D array. A 1-D array of several values is only a warning (T025), array parameters
+    take the caller's size, and s6 files write no size: none of those is planted."""
     if sym.kind == S.PARAM or sym.kind == S.CONSTANT or sym.dims < 0:
         return False
     if sym.container == vt.COLLECTION:
         return True
-    decl = sym.decl
-    sizes = getattr(decl, "sizes", ()) or ()
-    n = 1
-    for k in sizes:
-        n *= k
-    if n > 1:
-        return True
-    return False
+    return len(getattr(sym.decl, "sizes", ()) or ()) > 1
 
 
 def _walk_expr(node):

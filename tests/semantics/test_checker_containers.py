@@ -31,7 +31,8 @@ def test_wrong_index_types(tmp_path):
 
 def test_containers_used_as_one_value(tmp_path):
     code = "begin\n  nArr = 0\n  nX = nGrid\n  putln(sColl)\n  if nCube == 1\n  endIf\nend"
-    assert findings(tmp_path, code, globals_=G) == [("T011", 2, 3), ("T011", 3, 8), ("T011", 4, 9), ("T011", 5, 6)]
+    # nArr: a 1-D array of several values, a warning (T025); the others are errors (T011)
+    assert findings(tmp_path, code, globals_=G) == [("T025", 2, 3), ("T011", 3, 8), ("T011", 4, 9), ("T011", 5, 6)]
 
 
 def test_whole_variable_instructions(tmp_path):
@@ -115,7 +116,7 @@ end"""
   call sendMessage(sArr)
 end"""
     found = codes(tmp_path / "b", bad, globals_=G, programs=progs)
-    assert found == ["T007", "T007", "T007", "T008", "T008", "T008", "T020", "T020", "T020", "T008", "T011", "T011"]
+    assert found == ["T007", "T007", "T007", "T008", "T008", "T008", "T020", "T020", "T020", "T008", "T025", "T025"]
 
 
 def test_array_parameters_inside_the_program(tmp_path):

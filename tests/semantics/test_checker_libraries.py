@@ -44,7 +44,7 @@ def test_user_type_fields(tree):
            "  part = partBin[1]\n  part = l_nVal\n  l_nVal = part.trGrip.q\n  insert(part.nDims[1])\n  resize(part.nDims, 1, 4)\n"
            "  if part == partBin[0]\n  endIf\n  call measure(partBin[2])\n  call measure(l_nVal)\n")
     found = [f[0] for f in collect(tree / "Sorter")]
-    assert found == ["L013", "L013", "T011", "T003", "T012", "T001", "T006"]
+    assert found == ["L013", "L013", "T025", "T003", "T012", "T001", "T006"]  # partBin: a 1-D array of several values
 
 
 def test_unresolved_library_and_type_are_not_checked(tree):
@@ -54,3 +54,16 @@ def test_unresolved_library_and_type_are_not_checked(tree):
     _plant(tree / "Sorter" / "stop.pgx", "  bRunning = false\n", "  part.anything = 3\n  l_nVal = part.x.y\n")
     assert collect(tree / "Cell") == []
     assert collect(tree / "Sorter") == []
+
+
+def test_library_system_instruction_is_not_an_interface_symbol(tmp_path):
+    from support import lint, write_app
+
+    write_app(tmp_path, "begin\nend", name="Lib")
+    app = write_app(tmp_path, "begin\n  lib:$libOpen()\n  nX = lib:$count(1)\n  nX = lib:nMissing\nend",
+                    name="App", globals_=["num nX"])
+    pjx = app / "App.pjx"
+    pjx.write_text(pjx.read_text().replace(
+        "<Libraries />", '<Libraries>\n    <Library alias="lib" path="Disk://Lib/Lib.pjx" />\n  </Libraries>'))
+    found = [(d.code, d.line) for d in lint([app], cwd=tmp_path).result.diagnostics if d.code[0] in "FLNT"]
+    assert found == [("L010", 7)]  # only the data symbol that really is missing

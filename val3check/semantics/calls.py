@@ -28,6 +28,7 @@ from .expressions import (
     FROM_ARRAY,
     FROM_COLLECTION,
     ExprTyper,
+    missing_index_code,
     missing_index_message,
     node_text,
     suggest,
@@ -98,8 +99,8 @@ def check_call_expr(typer: ExprTyper, node: A.CallExpr, statement: bool) -> vt.V
             return _instruction(typer, node, ins, statement)
         lib = typer.library(func, func.alias)
         _type_args(typer, node.args)
-        if lib is None:
-            return UNKNOWN_VAL
+        if lib is None or func.name.startswith("$"):
+            return UNKNOWN_VAL  # `alias:$name()`: an undocumented system instruction, like `$name()`
         prog, _ = lib.program(func.name)
         if prog is not None:
             ctx.report_at("T018", M.program_without_call(f"{func.alias}:{func.name}"), func)
@@ -279,7 +280,7 @@ def _instruction_arg_errors(typer: ExprTyper, ins: Instruction, o: Overload, val
         idx = i + 1
         if p.container == "element" and not (p.ref or p.variable):
             if v.elem is False:
-                out.append(_Pending("T011", missing_index_message(a, v), a))
+                out.append(_Pending(missing_index_code(v), missing_index_message(a, v), a))
             continue
         if v is UNKNOWN_VAL or v.dims < 0:
             continue  # an undefined name (reported), an unknowable value, an s6 variable
@@ -290,7 +291,7 @@ def _instruction_arg_errors(typer: ExprTyper, ins: Instruction, o: Overload, val
         cont = p.container
         if cont == "element":  # by reference or a variable the instruction changes
             if v.elem is False:
-                out.append(_Pending("T011", missing_index_message(a, v), a))
+                out.append(_Pending(missing_index_code(v), missing_index_message(a, v), a))
             continue
         if cont == "array":
             e = _array_arg(idx, label, p, v, a, dims=None if p.type == "*" else 1, bare_only=p.index == "none")
@@ -437,7 +438,7 @@ def check_program_args(typer: ExprTyper, target: object, label: str, sig: Progra
                     ctx.report_at("T006", M.argument_type(idx, label, p.name, ptype.name, _describe_arg(v)), a)
                 continue
             if v.elem is False:
-                ctx.report_at("T011", missing_index_message(a, v), a)
+                ctx.report_at(missing_index_code(v), missing_index_message(a, v), a)
                 continue
             if vt.assignable(ptype, v.t) is False:
                 ctx.report_at("T006", M.argument_type(idx, label, p.name, ptype.name, _describe_arg(v)), a)
@@ -453,7 +454,7 @@ def check_program_args(typer: ExprTyper, target: object, label: str, sig: Progra
             continue
         if cont is Container.ELEMENT:
             if v.elem is False and not s6:  # s6: maybe an array parameter declared by dimensions
-                ctx.report_at("T011", missing_index_message(a, v), a)
+                ctx.report_at(missing_index_code(v), missing_index_message(a, v), a)
                 continue
         elif cont is Container.ARRAY:
             e = _array_arg(idx, label, p, v, a, dims=p.dimensions or 1, bare_only=False)

@@ -34,6 +34,10 @@ def name_problem(name: str, max_len: int | None = 15, pattern: re.Pattern = _NAM
         return None
     if not name:
         return "N008", "empty"
+    if _PROGRAM_NAME.match(name):
+        # Starts with '_': 2.5.1 wants a letter, but files saved by Stäubli's editor carry such
+        # locals and load; a warning, not an error.
+        return "N013", "it starts with '_' instead of a letter"
     if not _CHARS.match(name):
         bad = next(c for c in name if not (c.isascii() and (c.isalnum() or c == "_")))
         return "N008", f"the character {bad!r} is not allowed"

@@ -51,6 +51,13 @@ def node_text(node: object, limit: int = 40) -> str:
     return "this expression"
 
 
+def missing_index_code(v: vt.Val) -> str:
+    """T011 (error) for a collection or a 2-D/3-D array used where one value is needed; T025
+    (warning) for a 1-D array of several values: 2.3.4 makes only a one-value array an element,
+    but real s7 applications use such arrays bare (reading their first value) and run."""
+    return "T011" if v.c == COLLECTION or (v.c == ARRAY and v.dims > 1) else "T025"
+
+
 def missing_index_message(node: object, v: vt.Val) -> str:
     """T011: `node` (of Val `v`) is a container used where one value is needed."""
     if v.c == COLLECTION:
@@ -431,7 +438,7 @@ class ExprTyper:
         return tv
 
     def _report_missing_index(self, node: object, v: vt.Val) -> None:
-        self.ctx.report_at("T011", missing_index_message(node, v), node)
+        self.ctx.report_at(missing_index_code(v), missing_index_message(node, v), node)
 
 
 _BOOL_RESULT = frozenset({"==", "!=", "<", ">", "<=", ">=", "and", "or", "xor"})
