@@ -118,10 +118,12 @@ def gv(result: SimResult, name: str):
     return _plain(c)
 
 
-def add_libraries(folder: Path, libs: dict[str, str], name: str = "Example") -> None:
-    """Declare library aliases ({"part": "Disk://Part"}) in an application written by `build`."""
+def add_libraries(folder: Path, libs: dict[str, str], name: str = "Example", autoload: str | None = "false") -> None:
+    """Declare library aliases ({"part": "Disk://Part"}) in an application written by `build`:
+    not loaded at start by default (loaded by libLoad); `autoload=None` writes no attribute."""
     pjx = folder / f"{name}.pjx"
-    entries = "".join(f'<Library alias="{a}" path="{html.escape(p, quote=True)}" />' for a, p in libs.items())
+    auto = "" if autoload is None else f' autoload="{autoload}"'
+    entries = "".join(f'<Library alias="{a}" path="{html.escape(p, quote=True)}"{auto} />' for a, p in libs.items())
     pjx.write_text(pjx.read_text(encoding="utf-8").replace("<Libraries />", f"<Libraries>{entries}</Libraries>"),
                    encoding="utf-8")
 

@@ -156,9 +156,19 @@ def load_library(M, A, alias: str, path: Any, T) -> int:
                    for c in unit.compile_errors):
                 return 12  # 6.6: the library holds invalid programs (syntax errors)
             M.units[resolved] = unit
+            autoload_libraries(M, unit)  # a library brings the libraries it loads at start
     A.aliases[alias] = unit
     interface = M.library_model(A.model, alias)
     return 0 if _interface_ok(interface, unit) else 11
+
+
+def autoload_libraries(M, unit) -> None:
+    """Load the libraries `unit`'s project declares with autoload (a missing attribute counts
+    as autoload: files that do not want a library loaded write autoload="false"). A library
+    already in memory is shared (6.6)."""
+    for alias, ref in unit.model.libraries.items():
+        if ref.autoload and unit.aliases.get(alias) is None:
+            load_library(M, unit, alias, ref.path, None)
 
 
 def _exists(M, A, key: str, path: str) -> bool:

@@ -335,9 +335,9 @@ class Machine:
                     if type(io) is IOPoint and io.link:
                         label = d_name if len(c.data) == 1 else f"{d_name}[{i}]"
                         self.link_names.setdefault((io.kind, io.link), []).append(label)
-        for alias, ref in self.app.libraries.items():
-            if ref.autoload and unit.aliases.get(alias) is None:
-                self._load_library(unit, alias, ref.path, None)
+        from .libraries import autoload_libraries
+
+        autoload_libraries(self, unit)
         return unit
 
     # ---- time ---------------------------------------------------------------------------------

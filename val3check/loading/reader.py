@@ -588,7 +588,9 @@ def read_project(root: Node, sink: Sink) -> ProjectFile:
             if not path:
                 sink.f007(n, f"library {alias} has no path: ignored")
                 continue
-            auto = parse_bool(n.get("autoload") or "false")
+            # A missing attribute loads the library: projects that do not want one loaded at
+            # start write autoload="false" (observed on controllers; the manual is silent).
+            auto = parse_bool(n.get("autoload") or "true")
             if auto is None:
                 sink.f007(n, f'library {alias}: invalid autoload "{n.get("autoload")}" (expected true or false)')
                 auto = False
