@@ -25,3 +25,14 @@ def test_autoload_false_is_not_loaded(tmp_path):
     pjx.write_text(pjx.read_text().replace(
         "<Libraries />", '<Libraries><Library alias="lc" path="Disk://LibC/LibC.pjx" autoload="false" /></Libraries>'))
     assert errors(run_folder(app)) == [80]  # 12.1: a library that is not loaded
+
+
+def test_tasks_are_destroyed_as_soon_as_stop_stops_on_an_error(tmp_path):
+    from .simsupport import sim
+
+    progs = {"spin": {"code": "begin\n  while true\n    delay(0.1)\n  endWhile\nend"},
+             "stop": {"code": "begin\n  nX = 1 / nZero\nend"}}
+    r = sim(tmp_path, 'begin\n  taskCreate "spin", 10, spin()\n  while true\n    delay(1)\n  endWhile\nend',
+            globals_=["num nX", "num nZero"], programs=progs, duration=3)
+    ended = {t["name"]: t["ended"] for t in r.tasks}  # microseconds
+    assert ended["~Example"] == ended["spin"] <= 3_000_100, ended  # not left running up to 2 s more

@@ -874,13 +874,17 @@ class Machine:
             self.kill(t)
             t.end_state = "destroyed" if t.end_state == "killed" else t.end_state
 
+    def _stop_done(self) -> bool:
+        T = self.stop_task
+        return T is None or T not in self.tasks or T.state in ("error", "held")
+
     def _loop(self, limit_us: int, stopping: bool = False) -> None:
         budgets = self.budgets
         wall_deadline = self.wall_start + budgets.wall_s
         cycles = 0
         while True:
-            if stopping and (self.stop_task is None or self.stop_task not in self.tasks):
-                return  # stop() has ended: the remaining tasks are destroyed by the caller
+            if stopping and self._stop_done():
+                return  # stop() has ended, or stopped on an error: the caller destroys the rest
             if not self.tasks:
                 if self.phase == "stopping":
                     return
@@ -896,6 +900,8 @@ class Machine:
             if self.total_lines > budgets.max_lines:
                 raise EndRun("steps")
             busy = self._cycle()
+            if stopping and self._stop_done():
+                return  # at once, not after the clock jumps to the next event
             if busy or not self.tasks:
                 self.now += TICK_US
                 continue
