@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from support import code_position
 
-from .simsupport import codes, errors, out, sim
+from .simsupport import errors, out, sim
 
 
 def test_arithmetic_and_for(tmp_path):

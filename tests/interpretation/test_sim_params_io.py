@@ -9,7 +9,7 @@ from pathlib import Path
 
 from val3check.cli import main
 
-from .simsupport import build, codes, errors, out, sim
+from .simsupport import build, errors, out, sim
 
 ROOT = Path(__file__).resolve().parents[2]
 

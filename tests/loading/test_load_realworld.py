@@ -3,9 +3,8 @@
 from __future__ import annotations
 
 from val3check.loading import load
-from val3check.loading.model import Container
 
-from loadhelp import DTX_NS, PGX_NS, XSI, codes, dtx, make_app, pgx, pjx, write
+from loadhelp import codes, make_app, pgx, pjx, write
 
 
 def test_two_dimensional_keys_written_with_a_comma(tmp_path):

@@ -98,7 +98,6 @@ class RobotModel:
 
     def fk_pinocchio(self, joints: Sequence[float]) -> Mat:
         """The flange in the world frame computed by pinocchio (3x4, mm)."""
-        import numpy as np
         import pinocchio as pin
 
         model, data = self.pinocchio()
