@@ -65,3 +65,22 @@ def test_one_run_over_everything_reports_every_case_and_no_traceback():
             if e["code"] == "F008":  # only for a folder named on the command line
                 continue
             assert (e["code"], e["file"], e["line"]) in found, e
+
+
+def test_sarif_of_a_whole_run_is_valid():
+    import jsonschema
+
+    r = subprocess.run(
+        [sys.executable, "-m", "val3check", "lint", ".", "--format", "sarif"],
+        cwd=FIXTURES, capture_output=True, text=True, timeout=300,
+        env={"PYTHONPATH": str(FIXTURES.parent), "PATH": "/usr/bin:/bin"},
+    )
+    import json
+
+    sarif = json.loads(r.stdout)
+    schema = json.loads((FIXTURES.parent / "tests" / "data" / "sarif-schema-2.1.0.json").read_text(encoding="utf-8"))
+    jsonschema.Draft4Validator(schema).validate(sarif)
+    results = sarif["runs"][0]["results"]
+    assert results and all(res["locations"][0]["physicalLocation"]["artifactLocation"].get("uriBaseId") == "%SRCROOT%"
+                           for res in results)
+    assert {res["ruleId"] for res in results} <= {rule["id"] for rule in sarif["runs"][0]["tool"]["driver"]["rules"]}
