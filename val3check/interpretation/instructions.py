@@ -454,14 +454,7 @@ def I_iobusstatus(T, A, arr: Arr) -> float:
     last component, 'deviceName\\moduleName'). One description "-3:deviceName\\moduleName" per
     device is written to the array (a global one grows as needed), the rest is set to ""."""
     devices = sorted({_device(io.link) for io in T.M.cell.points.values() if io.status == -3 and io.link})
-    for i in range(arr.off, len(arr.data)):
-        arr.data[i] = ""
-    room = arr.size()
-    if len(devices) > room and not arr.local and arr.dims is None:
-        arr.data.extend("" for _ in range(len(devices) - room))
-        room = arr.size()
-    for i, d in enumerate(devices[:room]):
-        arr.data[arr.off + i] = clip_string(f"-3:{d}")
+    arr.fill_strings([clip_string(f"-3:{d}") for d in devices])
     return float(len(devices))
 
 

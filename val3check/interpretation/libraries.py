@@ -247,15 +247,7 @@ def _lib_list(M, A, path: str, arr: Arr) -> bool:
         if snap is None:
             names.discard(k.rsplit("/", 1)[-1])
     out = sorted(names, key=str.lower)
-    for i in range(arr.off, len(arr.data)):
-        arr.data[i] = ""
-    room = arr.size()
-    if len(out) > room and not arr.local and arr.dims is None:
-        arr.data.extend("" for _ in range(len(out) - room))
-        room = arr.size()
-    for i, n in enumerate(out[:room]):
-        arr.data[arr.off + i] = n
-    return len(out) <= room
+    return len(out) <= arr.fill_strings(out)
 
 
 # ---- the controller's I/O library (`io:`) ---------------------------------------------------------

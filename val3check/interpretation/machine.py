@@ -548,16 +548,21 @@ class Machine:
     def _jump_ok(ctx: tuple | None, jump: int) -> bool:
         return ctx is not None and 0 <= ctx[1] + jump <= ctx[2]
 
-    def _suspended_ctx(self, T: Task) -> tuple | None:
-        """The sequence position of the line a suspended task is at (innermost program)."""
+    def _val3_frames(self, T: Task):
+        """(compiled program, Python line) of each VAL 3 program the task is in, outermost first."""
         g = T.gen
-        found = None
         while g is not None:
             code = getattr(g, "gi_code", None)
             frame = getattr(g, "gi_frame", None)
             if code is not None and frame is not None and code.co_filename in self.compiled:
-                found = self.compiled[code.co_filename].bpos.get(frame.f_lineno)
+                yield self.compiled[code.co_filename], frame.f_lineno
             g = getattr(g, "gi_yieldfrom", None)
+
+    def _suspended_ctx(self, T: Task) -> tuple | None:
+        """The sequence position of the line a suspended task is at (innermost program)."""
+        found = None
+        for c, lineno in self._val3_frames(T):
+            found = c.bpos.get(lineno)
         return found
 
     def kill(self, T: Task, by: Task | None = None) -> None:
@@ -629,17 +634,11 @@ class Machine:
 
     def where(self, T: Task) -> tuple[str, int, int, str] | None:
         """The file position of the line a task is at (innermost VAL 3 program)."""
-        g = T.gen
         found = None
-        while g is not None:
-            code = getattr(g, "gi_code", None)
-            frame = getattr(g, "gi_frame", None)
-            if code is not None and frame is not None and code.co_filename in self.compiled:
-                c = self.compiled[code.co_filename]
-                lc = c.pos.get(frame.f_lineno)
-                if lc is not None:
-                    found = (c.path, lc[0], lc[1], c.name)
-            g = getattr(g, "gi_yieldfrom", None)
+        for c, lineno in self._val3_frames(T):
+            lc = c.pos.get(lineno)
+            if lc is not None:
+                found = (c.path, lc[0], lc[1], c.name)
         return found
 
     # ---- libraries (chapter 6) ----------------------------------------------------------------

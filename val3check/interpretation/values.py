@@ -195,6 +195,19 @@ class Arr:
     def view(self, index: int) -> "Arr":
         return Arr(self.t, self.data, None, self.off + index, self.local)
 
+    def fill_strings(self, items: list[str]) -> int:
+        """Write `items` from the start of a 1-D string array, clearing the rest; a global
+        array grows as needed (libList 6.7, ioBusStatus 8.1). Returns the room written to."""
+        for i in range(self.off, len(self.data)):
+            self.data[i] = ""
+        room = self.size()
+        if len(items) > room and not self.local and self.dims is None:
+            self.data.extend("" for _ in range(len(items) - room))
+            room = self.size()
+        for i, text in enumerate(items[:room]):
+            self.data[self.off + i] = text
+        return room
+
 
 class CellList:
     """The values list of a one-value array that aliases one element of another container: an

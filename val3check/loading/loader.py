@@ -30,6 +30,20 @@ def _key(path: str) -> str:
     return os.path.normcase(os.path.abspath(path))
 
 
+def _keep_first(app: Application, table: dict, item, kind: str, sink: rd.Sink) -> None:
+    """Add a program or global to the application; one declared twice is F011, the first wins."""
+    first = table.get(item.name)
+    if first is None:
+        table[item.name] = item
+        return
+    sink.diagnostics.append(Diagnostic(
+        "F011",
+        f"{kind} {item.name} is declared twice in application {app.name} (first in"
+        f" {os.path.basename(first.origin.path)} line {first.origin.line}); the first one is used",
+        item.origin.path, item.origin.line, item.origin.col,
+    ))
+
+
 def _inside(path: str, folder: str) -> bool:
     """`path` is in `folder` or below it, symbolic links resolved."""
     real, top = os.path.realpath(path), os.path.realpath(folder)
@@ -180,21 +194,7 @@ class Loader:
         return True
 
     def _add_program(self, app: Application, prog: Program, sink: rd.Sink) -> None:
-        first = app.programs.get(prog.name)
-        if first is not None:
-            where = os.path.basename(first.origin.path)
-            sink.diagnostics.append(
-                Diagnostic(
-                    "F011",
-                    f"program {prog.name} is declared twice in application {app.name} (first in {where}"
-                    f" line {first.origin.line}); the first one is used",
-                    prog.origin.path,
-                    prog.origin.line,
-                    prog.origin.col,
-                )
-            )
-            return
-        app.programs[prog.name] = prog
+        _keep_first(app, app.programs, prog, "program", sink)
 
     def _read_data_file(self, app: Application, path: str) -> bool:
         """False when the file could not be read at all."""
@@ -205,20 +205,7 @@ class Loader:
         sink = rd.Sink(path, self.diags)
         datas = rd.read_data_s6(root, sink) if layout == "s6" else rd.read_data_s7(root, sink)
         for data in datas:
-            first = app.data.get(data.name)
-            if first is not None:
-                sink.diagnostics.append(
-                    Diagnostic(
-                        "F011",
-                        f"global {data.name} is declared twice in application {app.name} (first in"
-                        f" {os.path.basename(first.origin.path)} line {first.origin.line}); the first one is used",
-                        data.origin.path,
-                        data.origin.line,
-                        data.origin.col,
-                    )
-                )
-                continue
-            app.data[data.name] = data
+            _keep_first(app, app.data, data, "global", sink)
         return True
 
     # -- .pgx without project -----------------------------------------------------------------
