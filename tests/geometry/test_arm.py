@@ -11,7 +11,7 @@ from val3check.geometry.arm import Kinematics
 from val3check.geometry.frames import Frame, Tool, new_flange, new_world
 from val3check.geometry.points import Point
 from val3check.geometry.trsf import Trsf
-from val3check.interpretation.errors import Val3RuntimeError
+from val3check.language.runtime_errors import Val3RuntimeError
 
 from .helpers import FakeArm, trsf_close
 

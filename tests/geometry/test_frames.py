@@ -8,7 +8,7 @@ from val3check.geometry import frames, points
 from val3check.geometry.frames import Frame, Tool, new_flange, new_world
 from val3check.geometry.points import Point
 from val3check.geometry.trsf import Trsf, distance
-from val3check.interpretation.errors import Val3RuntimeError
+from val3check.language.runtime_errors import Val3RuntimeError
 
 from .helpers import trsf_close
 

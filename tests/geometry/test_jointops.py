@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from val3check.geometry import jointops as J
-from val3check.interpretation.errors import Val3RuntimeError
+from val3check.language.runtime_errors import Val3RuntimeError
 
 
 def test_abs_example_9_2_3():

@@ -10,7 +10,7 @@ import pytest
 
 from val3check.geometry import rotation as R
 from val3check.geometry.trsf import Trsf, align, close, distance, interpolate_c, interpolate_l
-from val3check.interpretation.errors import Val3RuntimeError
+from val3check.language.runtime_errors import Val3RuntimeError
 
 from .helpers import canonical_ok, mat_close, rodrigues, same_rotation, trsf_close
 

@@ -7,7 +7,7 @@ import math
 import pytest
 
 from val3check.interpretation.builtins import numeric as n
-from val3check.interpretation.errors import Val3RuntimeError
+from val3check.language.runtime_errors import Val3RuntimeError
 
 
 def error_code(func, *args) -> int:

@@ -7,7 +7,7 @@ import inspect
 import pytest
 
 from val3check.interpretation.builtins import OPERATORS, PURE, Builtin, format_num_default, lookup
-from val3check.interpretation.errors import Val3RuntimeError
+from val3check.language.runtime_errors import Val3RuntimeError
 from val3check.language.instructions import load_instructions
 
 # Chapter 3 sections whose instructions are all pure, plus the pure one of 4.3.

@@ -8,7 +8,7 @@ import pytest
 
 from val3check.interpretation.builtins import format_num_default
 from val3check.interpretation.builtins import strings as s
-from val3check.interpretation.errors import Val3RuntimeError
+from val3check.language.runtime_errors import Val3RuntimeError
 
 PI = 3.141592654  # 3.4.3: nPi = 3.141592654
 CHINESE = "中"  # 3 bytes in UTF-8

@@ -2314,7 +2314,7 @@ end
     add_libraries(folder, {"lib": "Disk://Lib"})
     make_library(tmp_path, "Lib", globals_=["num nY"])
     r = run_folder(folder, scenario="[inputs]\ndiIn = false\n", check_lint=False)
-    from val3check.interpretation.errors import RUNTIME_CODES
+    from val3check.language.runtime_errors import RUNTIME_CODES
 
     assert gv(r, "nStatus") == code
     assert gv(r, "sHelp") == RUNTIME_CODES[code]

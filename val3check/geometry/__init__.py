@@ -1,7 +1,7 @@
 """The geometry of VAL 3 chapter 9 (joint, trsf, frame, tool, point, config), in plain `math`.
 
 Pure functions and small value/node types; no interpreter state. Runtime errors are raised as
-`val3check.interpretation.errors.Val3RuntimeError(code, detail)` with the codes of 12.1.
+`val3check.language.runtime_errors.Val3RuntimeError(code, detail)` with the codes of 12.1.
 
 Modules
 -------

@@ -26,7 +26,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from val3check.interpretation.errors import Val3RuntimeError
+from ..language.runtime_errors import Val3RuntimeError
 
 from . import rotation as R
 from .trsf import Trsf

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from val3check.interpretation.errors import Val3RuntimeError
+from ..language.runtime_errors import Val3RuntimeError
 
 Joint = tuple[float, ...]
 FIELDS = ("j1", "j2", "j3", "j4", "j5", "j6")

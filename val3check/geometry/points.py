@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
-from val3check.interpretation.errors import Val3RuntimeError
+from ..language.runtime_errors import Val3RuntimeError
 
 from . import config as C
 from . import rotation as R

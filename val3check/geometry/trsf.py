@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator, Sequence
 
-from val3check.interpretation.errors import Val3RuntimeError
+from ..language.runtime_errors import Val3RuntimeError
 
 from . import rotation as R
 

@@ -31,7 +31,7 @@ from ..geometry import trsf as GT
 from ..geometry.frames import Frame, Tool
 from ..geometry.points import Point
 from ..geometry.trsf import Trsf
-from .errors import Val3RuntimeError
+from ..language.runtime_errors import Val3RuntimeError
 from .instructions import async_, sync
 from .runtime import DELAY, IOW, SimLimit
 

@@ -12,7 +12,7 @@ import math
 import re
 from typing import Any
 
-from .errors import Val3RuntimeError
+from ..language.runtime_errors import Val3RuntimeError
 from .runtime import DELAY, YIELD, _linked, _sio, _sio_wait, help_text
 from .values import Arr, Screen, clip_string, is_io
 

@@ -24,7 +24,7 @@ from ..loading.model import Application, Container, Workspace
 from ..parsing.parser import parse_program
 from . import runtime as rt
 from .compiler import Compiled, compile_program
-from .errors import RUNTIME_CODES, Val3RuntimeError
+from ..language.runtime_errors import RUNTIME_CODES, Val3RuntimeError
 from .instructions import TABLE
 from .libraries import SystemIO, is_system_io
 from .geom import NAMESPACE as GEOM_NAMESPACE

@@ -14,7 +14,7 @@ from typing import Any
 
 from ..geometry.trsf import Trsf
 from .builtins_bridge import format_num, operator
-from .errors import RUNTIME_CODES, Val3RuntimeError
+from ..language.runtime_errors import RUNTIME_CODES, Val3RuntimeError
 from .values import (
     MAX_CONTAINER,
     Arr,

@@ -30,7 +30,7 @@ from ..geometry.frames import Frame, Tool, copy_node
 from ..geometry.points import Point
 from ..geometry.trsf import Trsf
 from ..loading.types import base_type
-from .errors import Val3RuntimeError
+from ..language.runtime_errors import Val3RuntimeError
 
 MAX_CONTAINER = 9999  # 2.5.4: insert/append/resize limit a variable to 9999 values
 MAX_STRING_BYTES = 128  # 3.4.1

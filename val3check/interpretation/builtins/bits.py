@@ -14,7 +14,7 @@ import math
 import struct
 
 from val3check.interpretation.builtins.numeric import finite, non_negative_int, round_half_up
-from val3check.interpretation.errors import Val3RuntimeError
+from val3check.language.runtime_errors import Val3RuntimeError
 
 MASK32 = 0xFFFFFFFF
 

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 
-from val3check.interpretation.errors import Val3RuntimeError
+from val3check.language.runtime_errors import Val3RuntimeError
 
 # --- helpers shared by bits.py and strings.py --------------------------------------------------
 

@@ -21,7 +21,7 @@ import re
 import unicodedata
 
 from val3check.interpretation.builtins.numeric import finite, non_negative_int, to_int
-from val3check.interpretation.errors import Val3RuntimeError
+from val3check.language.runtime_errors import Val3RuntimeError
 
 MAX_BYTES = 128
 
