@@ -22,7 +22,7 @@ from support import write_app  # noqa: E402
 
 from val3check.config import Settings  # noqa: E402
 from val3check.interpretation.scenario import load_scenario  # noqa: E402
-from val3check.interpretation.simulate import SimOptions, simulate  # noqa: E402
+from val3check.simulation import SimOptions, simulate  # noqa: E402
 from val3check.lint import run  # noqa: E402
 
 LOOPS = """begin

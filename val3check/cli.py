@@ -13,9 +13,9 @@ import os
 import sys
 
 from . import __version__
+from .reporting import FORMATS, SIM_FORMATS
 
 EXIT_OK, EXIT_FINDINGS, EXIT_USAGE = 0, 1, 2
-FORMATS = ("text", "json", "sarif", "junit", "github")
 
 
 class _Parser(argparse.ArgumentParser):
@@ -51,7 +51,7 @@ def build_parser() -> argparse.ArgumentParser:
     sim = sub.add_parser("sim", help="run an application in the virtual controller (docs/sim.md)")
     sim.add_argument("app", metavar="APP", help="the application: its folder or .pjx")
     sim.add_argument("--duration", type=float, default=60.0, metavar="S", help="simulated seconds to run at most (default: 60)")
-    sim.add_argument("--report", choices=("text", "json"), default="text", help="report format (default: text)")
+    sim.add_argument("--report", choices=SIM_FORMATS, default="text", help="report format (default: text)")
     sim.add_argument("-o", "--output", metavar="FILE", help="write the report to FILE instead of standard output")
     sim.add_argument("--scenario", metavar="FILE", help="I/O scenario (TOML, docs/scenario.md)")
     sim.add_argument("--max-wall", type=float, default=60.0, metavar="S", help="wall-clock budget in seconds (default: 60)")
@@ -178,12 +178,11 @@ def _sim(args: argparse.Namespace) -> int:
         print(f"val3check sim: not run: {app.name} has no start() program (2.1.2)", file=sys.stderr)
         return EXIT_USAGE
 
-    from . import __version__
-    from .interpretation.report import build_report
     from .interpretation.scenario import ScenarioError, load_scenario
-    from .interpretation.simulate import SimOptions, choose_sim_robot, simulate
+    from .reporting.sim_report import build_report
     from .robot import RobotError
     from .rules.catalogue import catalogue
+    from .simulation import SimOptions, choose_sim_robot, simulate
 
     try:
         robot, note = choose_sim_robot(args.robot, app.path)
@@ -202,7 +201,7 @@ def _sim(args: argparse.Namespace) -> int:
     except ScenarioError as exc:
         print(f"val3check sim: bad scenario: {exc}", file=sys.stderr)
         return EXIT_USAGE
-    report = build_report(result, settings, catalogue(), __version__, result.link_names)
+    report = build_report(result, settings, catalogue(), __version__)
     if args.report == "json":
         from .reporting.sim_json import render as render_sim
     else:
@@ -212,7 +211,7 @@ def _sim(args: argparse.Namespace) -> int:
     if settings.fail_on == "never":
         return EXIT_OK
     threshold = Severity.parse(settings.fail_on)
-    return EXIT_FINDINGS if any(Severity.parse(d["severity"]) >= threshold for d in report.diagnostics) else EXIT_OK
+    return EXIT_FINDINGS if any(d.severity >= threshold for d in report.diagnostics) else EXIT_OK
 
 
 def _lint(args: argparse.Namespace) -> int:

@@ -1,4 +1,7 @@
-"""The one record every phase produces: a finding with a rule code and a file position."""
+"""The one record every phase produces: a finding with a rule code and a file position.
+
+Lint findings and the simulator's runtime findings are the same type: a runtime finding also
+has the simulated time, the task and the program (manual 12.1 code in `error` for R001)."""
 
 from __future__ import annotations
 
@@ -31,6 +34,9 @@ class Diagnostic:
 
     line == 0 means the finding concerns the whole file (e.g. it could not be read).
     `severity` is filled from the rule catalogue (and the user's configuration) before reporting.
+    Runtime findings (`val3check sim`) add `time_us` (simulated microseconds), `task` and
+    `program` ("" when the finding concerns the run, not a task) and, for R001, the VAL 3
+    runtime error code `error`.
     """
 
     code: str
@@ -41,6 +47,15 @@ class Diagnostic:
     end_line: int | None = None
     end_col: int | None = None
     severity: Severity | None = None
+    time_us: int | None = None
+    task: str | None = None
+    program: str | None = None
+    error: int | None = None
+
+    @property
+    def runtime(self) -> bool:
+        """A finding of `val3check sim` (it has a simulated time)."""
+        return self.time_us is not None
 
     def sort_key(self) -> tuple:
         return (self.path, self.line, self.col, self.code, self.message)

@@ -9,7 +9,7 @@ from pathlib import Path
 from support import write_app
 
 from val3check.config import Settings
-from val3check.interpretation.simulate import SimOptions, SimResult, simulate
+from val3check.simulation import SimOptions, SimResult, simulate
 from val3check.lint import run
 
 

@@ -1534,7 +1534,7 @@ def test_5_2_start_and_stop_tasks(tmp_path):
     # start() runs in task "APP~", stop() in "~APP", both of priority 10
     r = sim(tmp_path, 'begin\n  putln("start")\nend\n', programs={"stop": {"code": 'begin\n  putln("stop")\nend\n'}})
     assert [(e[1], e[3]) for e in r.transcript] == [("Example~", "start"), ("~Example", "stop")]
-    assert [(t["name"], t["priority"]) for t in r.tasks] == [("Example~", 10), ("~Example", 10)]
+    assert [(t.name, t.priority) for t in r.tasks] == [("Example~", 10), ("~Example", 10)]
 
 
 def test_5_4_sequencing(tmp_path):

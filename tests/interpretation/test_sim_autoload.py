@@ -34,5 +34,5 @@ def test_tasks_are_destroyed_as_soon_as_stop_stops_on_an_error(tmp_path):
              "stop": {"code": "begin\n  nX = 1 / nZero\nend"}}
     r = sim(tmp_path, 'begin\n  taskCreate "spin", 10, spin()\n  while true\n    delay(1)\n  endWhile\nend',
             globals_=["num nX", "num nZero"], programs=progs, duration=3)
-    ended = {t["name"]: t["ended"] for t in r.tasks}  # microseconds
+    ended = {t.name: t.ended for t in r.tasks}  # microseconds
     assert ended["~Example"] == ended["spin"] <= 3_000_100, ended  # not left running up to 2 s more

@@ -198,7 +198,7 @@ end
     text = (folder / "Example.pjx").read_text().replace("<Libraries />", '<Libraries><Library alias="lib" path="Disk://Lib" /><Library alias="other" path="Disk://Lib" /></Libraries>')
     (folder / "Example.pjx").write_text(text)
     from val3check.config import Settings
-    from val3check.interpretation.simulate import SimOptions, simulate
+    from val3check.simulation import SimOptions, simulate
     from val3check.lint import run
 
     lr = run([str(folder)], Settings())

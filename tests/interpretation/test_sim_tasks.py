@@ -92,8 +92,8 @@ def test_priority_is_lines_per_turn(tmp_path):
   taskCreate "b", 5, count(1)
 end
 """, globals_=["num nC[2]"], programs={"count": {"params": ["num x_i"], "code": loop}}, duration=0.5)
-    a = next(t for t in r.tasks if t["name"] == "a")["lines"]
-    b = next(t for t in r.tasks if t["name"] == "b")["lines"]
+    a = next(t for t in r.tasks if t.name == "a").lines
+    b = next(t for t in r.tasks if t.name == "b").lines
     assert 4.5 < b / a < 5.5
     assert r.end_reason == "duration"
 
@@ -257,7 +257,7 @@ def test_library_not_loaded_is_error_80(tmp_path):
     text = (folder / "Example.pjx").read_text().replace("<Libraries />", '<Libraries><Library alias="lib" path="Disk://Nowhere" /></Libraries>')
     (folder / "Example.pjx").write_text(text)
     from val3check.config import Settings
-    from val3check.interpretation.simulate import SimOptions, simulate
+    from val3check.simulation import SimOptions, simulate
     from val3check.lint import run
 
     lr = run([str(folder)], Settings())

@@ -48,7 +48,7 @@ Value shapes for the interpreter
   a local reference raises 165.
 - Fields can also be read and written by name (``tr["x"]``, ``p["trsf"]``, ``t["otime"]``): the
   interpreter's (container, key) places. The interpreter keeps a point's ``config`` as a dict
-  of its fields and converts at the instruction boundary (val3check/interpretation/geom.py).
+  of its fields and converts at the instruction boundary (val3check/interpretation/chapters/ch09_geometry.py).
 
 Kinematics protocol (provided by val3check/robot/)
 --------------------------------------------------

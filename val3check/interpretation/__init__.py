@@ -1,13 +1,21 @@
-"""The virtual VAL 3 controller behind `val3check sim` (docs/sim.md).
+"""The virtual VAL 3 controller behind `val3check sim` (docs/sim.md, docs/architecture.md).
 
-- `compiler.py` turns each program into a Python generator function, once;
-- `machine.py` holds the units (application, libraries), tasks, clock and scheduler;
-- `runtime.py`, `instructions.py`, `libraries.py` implement the instructions that act on the
-  controller; the pure ones (math, strings, bit fields) are in `builtins/`;
-- `geom.py` is chapter 9: `val3check.geometry` and the arm model (`val3check.robot`) behind the
-  trsf/frame/tool/point/joint/config instructions and operators, and movej's checks;
-- `scenario.py` reads the I/O scenario (docs/scenario.md);
-- `simulate.py` is the entry point: `simulate(ws, app, SimOptions(...)) -> SimResult`.
+Where things are:
+- a task is scheduled in `scheduler.py` (tasks, their states, the 4 ms cycle, the jumps of
+  the clock to the next event), on the clock of `clock.py`; a task waits with `waiting.py`;
+- an instruction is registered in `registry.py`, by the module of its chapter in `chapters/`
+  (`ch05_tasks.py`...; chapter 10 is `val3check.motion.ch10_motion`); what is not simulated
+  stops the task (`not_simulated.py`);
+- the arm's position comes through `arm_port.py` (implemented by `val3check.motion`);
+- what changes with time besides the tasks is a `Subsystem` (`subsystem.py`): the cell and
+  its scenario (`cell.py`, `events.py`, `scenario.py`), the arm's motion;
+- `compiler/` turns each program into a Python generator function, once; `code_support.py`
+  holds the helpers the generated code calls;
+- `machine.py` puts a run together: units (`units.py`, `libraries.py`, `system_io.py`), values
+  and memory (`values.py`, `memory.py`), the user page (`user_page.py`), the controller's state
+  (`controller.py`), what the run records (`records.py`);
+- the pure instructions (math, strings, bit fields) are in `builtins/`.
 
-Nothing here is imported by `val3check lint`.
+`val3check.simulation` assembles and runs a machine. Nothing here is imported by
+`val3check lint`.
 """

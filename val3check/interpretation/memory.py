@@ -12,7 +12,7 @@ import re
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..geometry.frames import Frame, Tool, new_flange, new_world
+from ..geometry.frames import Frame, Tool
 from ..geometry.points import Point
 from ..geometry.trsf import Trsf
 from ..loading.model import Application, Container, Data, Value, Workspace
@@ -26,28 +26,6 @@ from .values import (
     Screen,
     clip_string,
 )
-
-
-class Cell:
-    """The inputs/outputs of the simulated cell, one `IOPoint` per (kind, physical link); and
-    the roots of the frame and tool trees, `world` and `flange` (9.4.1, 9.5.1), one each for
-    the whole controller (every application and library)."""
-
-    def __init__(self) -> None:
-        self.points: dict[tuple[str, str], IOPoint] = {}
-        self.world = new_world()
-        self.flange = new_flange(self.io("dio", "valve1"))
-        # (node or point, "fPallet[0]"): data-file references waiting for every global to exist
-        self.pending: list[tuple[Any, str]] = []
-
-    def io(self, kind: str, link: str) -> IOPoint:
-        if not link:
-            return IOPoint(kind, "")  # 3.5.1: an undefined link
-        key = (kind, link)
-        p = self.points.get(key)
-        if p is None:
-            p = self.points[key] = IOPoint(kind, link)
-        return p
 
 
 @dataclass
@@ -70,7 +48,7 @@ def _trsf(fields: dict) -> Trsf:
 _FATHER = re.compile(r"^\s*([A-Za-z_]\w*)\s*(?:\[\s*([^\]]*?)\s*\])?\s*$")
 
 
-def resolve_fathers(cell: Cell, globals_: dict[str, Any]) -> None:
+def resolve_fathers(cell, globals_: dict[str, Any]) -> None:
     """Link the frames, tools and points of the data files to their `fatherId` ("fPallet[0]",
     "world[0]", "flange[0]"): a frame or point to a frame, a tool to a tool. A reference that
     names nothing of the right type leaves the value without reference (its use raises
@@ -111,7 +89,7 @@ def _enum(value: Any, default: str) -> str:
 class TypeSpace:
     """Types visible from one application, and value construction."""
 
-    def __init__(self, ws: Workspace, app: Application, cell: Cell, cache: dict | None = None) -> None:
+    def __init__(self, ws: Workspace, app: Application, cell, cache: dict | None = None) -> None:
         self.ws = ws
         self.app = app
         self.cell = cell

@@ -15,7 +15,10 @@ import tomllib
 from dataclasses import dataclass, field
 from typing import Any
 
-from .values import Arr, IOPoint
+from .cell import Reaction, SerialReply
+from .events import ControllerChange, InputsChange, KeyPress, SerialData
+from .user_page import Key
+from .values import Arr, FaultyIOPoint, IOPoint
 
 SCENARIO_VERSION = 1
 
@@ -87,7 +90,7 @@ def _seconds(v: Any) -> int | None:
 
 class Applier:
     def __init__(self, machine, scenario: Scenario) -> None:
-        self.M = machine
+        self.machine = machine
         self.sc = scenario
         self.lines = _Lines(scenario.text)
         self.signals = self._signals()
@@ -97,7 +100,7 @@ class Applier:
 
     def _signals(self) -> dict[str, IOPoint]:
         out: dict[str, IOPoint] = {}
-        main = self.M.main
+        main = self.machine.main
         for name, c in main.globals.items():
             if type(c) is Arr and c.t in ("dio", "aio", "sio"):
                 for i, io in enumerate(c.data):
@@ -105,7 +108,7 @@ class Applier:
                         if i == 0:
                             out[name] = io
                         out[f"{name}[{i}]"] = io
-        for (kind, link), io in self.M.cell.points.items():
+        for (kind, link), io in self.machine.cell.points.items():
             out.setdefault(link, io)
         return out
 
@@ -148,19 +151,20 @@ class Applier:
         version = d.get("version", SCENARIO_VERSION)
         if version != SCENARIO_VERSION:
             self.fail(self.lines.key("version"), f"unsupported scenario version {version!r} (expected 1)")
-        M = self.M
+        machine = self.machine
+        cell = machine.cell_subsystem
         if "inputs" in d:
             line = self.lines.section("inputs")
             for io, v in self.settings(d["inputs"], line, "[inputs]"):
                 io.value = v
-                M.log_io(0, io, v, "scenario")
+                machine.log_io(0, io, v, "scenario")
         for i, ev in enumerate(_list(d, "events", self)):
             line = self.lines.section("events", i)
             self._keys(ev, {"at", "set"}, line, "[[events]]")
             at = _seconds(ev.get("at"))
             if at is None:
                 self.fail(self.lines.key("at", line) or line, "[[events]] needs at = seconds (a number >= 0)")
-            M.push_event(at, "set", self.settings(ev.get("set", {}), line, "[[events]] set"))
+            cell.schedule(at, InputsChange(tuple(self.settings(ev.get("set", {}), line, "[[events]] set"))))
         for i, r in enumerate(_list(d, "reactions", self)):
             line = self.lines.section("reactions", i)
             self._keys(r, {"when", "becomes", "after", "set"}, line, "[[reactions]]")
@@ -172,9 +176,8 @@ class Applier:
             after = _seconds(r.get("after", 0))
             if after is None:
                 self.fail(self.lines.key("after", line) or line, "after = seconds (a number >= 0)")
-            M.reactions.append((io, becomes, after, self.settings(r.get("set", {}), line, "[[reactions]] set")))
-        from .machine import Key
-
+            cell.reactions.append(Reaction(io, becomes, after,
+                                           tuple(self.settings(r.get("set", {}), line, "[[reactions]] set"))))
         keys = []
         for i, k in enumerate(_list(d, "keys", self)):
             line = self.lines.section("keys", i)
@@ -192,8 +195,8 @@ class Applier:
             if hold is None:
                 self.fail(self.lines.key("hold", line) or line, "[[keys]] hold = seconds")
             keys.append(Key(at, code, text, hold))
-            M.push_event(at, "key", None)
-        M.keys = sorted(keys, key=lambda k: k.at)
+            cell.schedule(at, KeyPress())
+        machine.user_page.set_keys(keys)
         for i, s in enumerate(_list(d, "serial", self)):
             line = self.lines.section("serial", i)
             self._keys(s, {"sio", "at", "send", "bytes", "when_sent", "after"}, line, "[[serial]]")
@@ -209,12 +212,12 @@ class Applier:
                 after = _seconds(s.get("after", 0))
                 if after is None:
                     self.fail(self.lines.key("after", line) or line, "after = seconds")
-                M.sio_replies.append((io, pat, after, data))
+                cell.serial_replies.append(SerialReply(io, pat.encode("utf-8"), after, data))
             else:
                 at = _seconds(s.get("at", 0))
                 if at is None:
                     self.fail(self.lines.key("at", line) or line, "[[serial]] at = seconds (a number >= 0)")
-                M.push_event(at, "sio", (io, data))
+                cell.schedule(at, SerialData(io, data))
         if "controller" in d:
             self._controller(d["controller"])
         if "io" in d:
@@ -235,8 +238,8 @@ class Applier:
         j = table["joints"]
         if not isinstance(j, list) or not j or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in j):
             self.fail(ln, "[robot] joints = [numbers], one per axis, in degrees")
-        arm = self.M.arm
-        if arm is None:
+        arm = self.machine.arm
+        if not arm.has_model:
             return
         if len(j) != arm.axes:
             self.fail(ln, f"[robot] joints: {len(j)} values for the {arm.axes}-axis arm {arm.name}")
@@ -245,8 +248,6 @@ class Applier:
     def _io(self, table: Any) -> None:
         """[io]: the state of inputs/outputs as ioStatus() reports it (3.5.3), their description,
         and integer analog outputs (3.6.2)."""
-        from .values import FaultyIOPoint
-
         line = self.lines.section("io")
         if not isinstance(table, dict):
             self.fail(line, "[io] must be a table of signal = { status = ..., description = \"...\", integer = ... }")
@@ -296,7 +297,7 @@ class Applier:
         line = self.lines.section("controller")
         if not isinstance(c, dict):
             self.fail(line, "[controller] must be a table")
-        ctl = self.M.ctl
+        ctl = self.machine.controller
         spec = {
             "working_mode": (int, range(0, 5)), "working_state": (int, range(0, 7)), "es_status": (int, range(0, 3)),
             "powered": (bool, None), "power_delay": ((int, float), None), "calibrated": (bool, None),
@@ -349,7 +350,7 @@ class Applier:
                                       "safety_fault", "calibrated"):
                             self.fail(ln, f"[controller] changes: cannot change {ck!r}")
                         payload[ck] = cv
-                    self.M.push_event(_seconds(ch["at"]), "ctl", payload)
+                    self.machine.cell_subsystem.schedule(_seconds(ch["at"]), ControllerChange(tuple(payload.items())))
             else:
                 setattr(ctl, k, v)
 

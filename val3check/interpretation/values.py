@@ -29,44 +29,31 @@ from typing import Any
 from ..geometry.frames import Frame, Tool, copy_node
 from ..geometry.points import Point
 from ..geometry.trsf import Trsf
-from ..loading.types import base_type
 from ..language.runtime_errors import Val3RuntimeError
+from ..language.types import load_types
+from ..loading.types import base_type
 
 MAX_CONTAINER = 9999  # 2.5.4: insert/append/resize limit a variable to 9999 values
 MAX_STRING_BYTES = 128  # 3.4.1
 
-TRSF_FIELDS = ("x", "y", "z", "rx", "ry", "rz")
-CONFIG_FIELDS = ("shoulder", "elbow", "wrist")
-MDESC_FIELDS = ("accel", "vel", "decel", "tvel", "rvel", "blend", "leave", "reach")
-JOINT_FIELDS = ("j1", "j2", "j3", "j4", "j5", "j6")
-
-# Field types of the built-in structured types (types.toml), used by the compiler.
+# The built-in structured types and the value sets of their fields, from language/types.toml
+# (the one source of the type facts).
 STRUCT_FIELDS: dict[str, dict[str, str]] = {
-    "trsf": {f: "num" for f in TRSF_FIELDS},
-    "frame": {"trsf": "trsf"},
-    "tool": {"trsf": "trsf", "gripper": "dio", "otime": "num", "ctime": "num"},
-    "point": {"trsf": "trsf", "config": "config"},
-    "joint": {f: "num" for f in JOINT_FIELDS},
-    "config": {"shoulder": "shoulder", "elbow": "elbow", "wrist": "wrist"},
-    "mdesc": {"accel": "num", "vel": "num", "decel": "num", "tvel": "num", "rvel": "num", "blend": "blend",
-              "leave": "num", "reach": "num"},
-}
+    name: {f.name: f.type for f in bt.fields} for name, bt in load_types().items() if bt.kind == "structured"}
 # Literal order of the fields ({a, b, ...} initialisers, 2.4.2).
 STRUCT_ORDER: dict[str, tuple[str, ...]] = {t: tuple(f) for t, f in STRUCT_FIELDS.items()}
-ENUMS: dict[str, tuple[str, ...]] = {
-    "shoulder": ("righty", "lefty", "ssame", "sfree"),
-    "elbow": ("epositive", "enegative", "esame", "efree"),
-    "wrist": ("wpositive", "wnegative", "wsame", "wfree"),
-    "blend": ("off", "joint", "Cartesian"),
-}
+# A field's name or a spelling of data files (mdesc `tmax` for `tvel`) -> the field's name.
+FIELD_NAMES: dict[str, dict[str, str]] = {
+    name: {**{a: f.name for f in bt.fields for a in f.aliases}, **{f.name: f.name for f in bt.fields}}
+    for name, bt in load_types().items() if bt.kind == "structured"}
+JOINT_FIELDS = tuple(STRUCT_FIELDS["joint"])
+ENUMS: dict[str, tuple[str, ...]] = {name: bt.values for name, bt in load_types().items() if bt.kind == "enum"}
 ENUM_CONSTANTS: dict[str, str] = {v.lower(): t for t, vs in ENUMS.items() for v in vs}
 ENUM_SPELLING: dict[str, str] = {v.lower(): v for vs in ENUMS.values() for v in vs}
-SIMPLE = frozenset({"num", "bool", "string", "dio", "aio", "sio", "screen"})
 # VAL 3 types whose values are geometry objects (fields read as attributes)
 OBJECT_TYPES = frozenset({"trsf", "frame", "tool", "point"})
 # ... and those whose variables keep their identity (`=` copies into them)
 NODE_TYPES = frozenset({"frame", "tool", "point"})
-IO_TYPES = frozenset({"dio", "aio", "sio"})
 
 
 def clip_string(s: str) -> str:

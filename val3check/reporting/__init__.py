@@ -12,7 +12,8 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from ..result import LintResult
 
-FORMATS = ("text", "json", "sarif", "junit", "github")
+FORMATS = ("text", "json", "sarif", "junit", "github")  # `val3check lint --format`
+SIM_FORMATS = ("text", "json")  # `val3check sim --report`: sim_text.py, sim_json.py
 
 _MODULES = {
     "text": "text",

@@ -1,0 +1,133 @@
+"""The cell around the controller: its inputs/outputs and what drives them.
+
+- `Cell`: one `IOPoint` per physical link (every variable linked to it shares it, 3.5.1), and
+  the roots of the frame and tool trees, `world` and `flange` (9.4.1, 9.5.1), one each for the
+  whole controller;
+- `CellSubsystem`: the first `Subsystem` of the scheduler. It holds the timeline of what the
+  scenario schedules (inputs changing, serial data, key presses, controller changes) and what
+  the cell does in return to the application's outputs (reactions, serial replies), and the
+  arm power coming on after `enablePower()`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Callable
+
+from ..geometry.frames import new_flange, new_world
+from ..language.runtime_errors import Val3RuntimeError
+from .events import ControllerChange, Event, InputsChange, KeyPress, PowerChange, SerialData, Timeline
+from .records import sio_text
+from .values import IOPoint
+
+
+class Cell:
+    def __init__(self) -> None:
+        self.points: dict[tuple[str, str], IOPoint] = {}
+        self.world = new_world()
+        self.flange = new_flange(self.io("dio", "valve1"))
+        # (node or point, "fPallet[0]"): data-file references waiting for every global to exist
+        self.pending: list[tuple[Any, str]] = []
+
+    def io(self, kind: str, link: str) -> IOPoint:
+        if not link:
+            return IOPoint(kind, "")  # 3.5.1: an undefined link
+        key = (kind, link)
+        p = self.points.get(key)
+        if p is None:
+            p = self.points[key] = IOPoint(kind, link)
+        return p
+
+
+@dataclass(frozen=True, slots=True)
+class Reaction:
+    """The scenario's `[[reactions]]`: when `output` takes `value`, set inputs `delay_us` later."""
+
+    output: IOPoint
+    value: Any
+    delay_us: int
+    settings: tuple  # ((IOPoint, value), ...)
+
+
+@dataclass(frozen=True, slots=True)
+class SerialReply:
+    """The scenario's `[[serial]] when_sent`: when the program has sent `pattern` on `io`, the
+    peer answers `data` `delay_us` later."""
+
+    io: IOPoint
+    pattern: bytes
+    delay_us: int
+    data: bytes
+
+
+class CellSubsystem:
+    """See the module docstring. `log_io(time_us, io, value, source)` records I/O changes;
+    `controller` is the chapter 8 state the scenario and enablePower() change."""
+
+    def __init__(self, controller: Any, log_io: Callable[[int, IOPoint, Any, str], None]) -> None:
+        self.timeline = Timeline()
+        self.reactions: list[Reaction] = []
+        self.serial_replies: list[SerialReply] = []
+        self.controller = controller
+        self.log_io = log_io
+
+    # ---- Subsystem -----------------------------------------------------------------------------
+
+    def next_time(self, now_us: int) -> int | None:
+        return self.timeline.next_time()
+
+    def advance(self, to_us: int) -> None:
+        timeline = self.timeline
+        while True:
+            due = timeline.pop_due(to_us)
+            if due is None:
+                return
+            self._apply(*due)
+
+    def schedule(self, at: int, event: Event) -> None:
+        self.timeline.push(at, event)
+
+    def _apply(self, at: int, event: Event) -> None:
+        te = type(event)
+        if te is InputsChange:
+            for io, value in event.settings:
+                if io.value != value:
+                    io.value = value
+                    self.log_io(at, io, value, "scenario")
+                    self._react(io, at)
+        elif te is SerialData:
+            event.io.rx.extend(event.data)
+            self.log_io(at, event.io, sio_text(event.data), "scenario")
+        elif te is PowerChange:
+            ctl = self.controller
+            if ctl.working_mode == 4 and ctl.es_status == 0:
+                ctl.powered = event.on
+        elif te is ControllerChange:
+            for k, v in event.changes:
+                setattr(self.controller, k, v)
+        # KeyPress: the keys are in the user page's queue; the event only stops the clock
+        elif te is not KeyPress:  # pragma: no cover - every event type is handled above
+            raise TypeError(te)
+
+    # ---- what the application does to the cell --------------------------------------------------
+
+    def _react(self, io: IOPoint, at: int) -> None:
+        for r in self.reactions:
+            if r.output is io and io.value == r.value:
+                self.timeline.push(at + r.delay_us, InputsChange(r.settings))
+
+    def output_changed(self, io: IOPoint, at: int, source: str) -> None:
+        """An output written by a task at `at`: logged, and the cell's reactions scheduled."""
+        self.log_io(at, io, io.value, source)
+        self._react(io, at)
+
+    def sio_sent(self, io: IOPoint, data: bytes, at: int, source: str) -> None:
+        """Bytes sent on a sio: logged; a peer whose pattern has been sent answers."""
+        if io.closed:
+            raise Val3RuntimeError(125, f"{io.link} is closed")
+        io.tx.extend(data)
+        self.log_io(at, io, sio_text(data), source)
+        for reply in self.serial_replies:
+            if reply.io is io and reply.pattern in bytes(io.tx):
+                del io.tx[: bytes(io.tx).index(reply.pattern) + len(reply.pattern)]
+                self.timeline.push(at + reply.delay_us, SerialData(io, reply.data))

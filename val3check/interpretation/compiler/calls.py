@@ -1,0 +1,318 @@
+"""Calls of instructions in the generated code (chapters 2-11).
+
+What is simulated, and how, is the registry's (registry.py): a handler `I_name(T, A, ...)`
+gets its arguments compiled for the catalogue's parameters (values, (container, key) pairs
+for references, `Arr`/`Coll` for containers); a pure built-in `B_name(...)`; an inline form
+(`INLINE_FORMS`) is written here because its arguments are variables or conditions, not
+values. Library instructions (`alias:libLoad()`) and calls of programs are here and in
+statements.py.
+"""
+
+from __future__ import annotations
+
+from ...language import lookup
+from ...parsing import ast
+from ..not_simulated import ARM_LIMIT
+from ..values import ENUM_CONSTANTS
+from .structures import UNKNOWN, Code, CompileError, VariableArg
+
+# Functions whose value changes with time alone: a wait on them cannot be skipped over by
+# jumping to the next event (the clock is stepped instead).
+TIME_DEPENDENT = frozenset({"clock", "getdate", "watch"})
+
+# Instructions the compiler writes itself (registered as inline by their chapter module).
+INLINE_FORMS = {
+    # 2.5.4 - 2.5.6: any variable
+    "size": "i_size", "isdefined": "i_isdefined", "insert": "i_insert", "delete": "i_delete", "append": "i_append",
+    "resize": "i_resize", "first": "i_first", "last": "i_last", "next": "i_next", "prev": "i_prev",
+    "getdata": "i_getdata",
+    # 4.3: the screen is optional, get() writes a variable
+    "put": "i_put", "putln": "i_putln", "title": "i_title", "get": "i_get",
+    # 5.10: a condition evaluated again and again, a bool variable
+    "wait": "i_wait", "watch": "i_watch", "setmutex": "i_setmutex",
+}
+
+
+class CallCompiler:
+    """The calls part of `ProgramCompiler` (program.py)."""
+
+    def call_expr(self, node: ast.CallExpr) -> Code:
+        """A call of an instruction, as the registry says it is simulated: an inline form the
+        compiler writes itself, a handler, a pure built-in, or (a catalogue instruction nothing
+        simulates) the not-simulated stop, whose arguments are not evaluated (they could
+        block)."""
+        func = node.func
+        if type(func) is ast.SystemName:
+            return Code(f"NOTSIM({func.name!r})", UNKNOWN)
+        if type(func) is ast.LibraryName:
+            return self.lib_instruction(node)
+        name = func.name
+        low = name.lower()
+        registry = self.registry
+        form = INLINE_FORMS.get(low)
+        if form is not None and registry.is_inline(low):
+            return getattr(self, form)(node)
+        if low == "abs" and node.args and self._arg_type(node.args[0]) == "joint":  # 9.2.3 abs(joint)
+            return Code(f"JABS({self.expr(node.args[0]).text})", "joint")
+        handler = registry.handler(low)
+        if handler is not None:
+            return self.handler_call(node, handler)
+        if registry.builtin_of(low) is not None:
+            return self.builtin_call(node, low)
+        ins = lookup(name)
+        if ins is not None:
+            if registry.not_simulated_kind(low) == ARM_LIMIT:
+                return Code(f"ARM({name!r})", self._ret_type(name, node.args))
+            return Code(f"NOTSIM({ins.name!r})", self._ret_type(name, node.args))
+        raise self.err(f"unknown instruction '{name}'", node)
+
+    def _ret_type(self, name: str, args) -> str:
+        ins = lookup(name)
+        if ins is None:
+            return UNKNOWN
+        ovs = ins.overloads_with_arity(len(args)) or list(ins.overloads)
+        rets = {o.returns for o in ovs}
+        return rets.pop() if len(rets) == 1 else UNKNOWN
+
+    def _overload(self, name: str, node):
+        ins = lookup(name)
+        ovs = ins.overloads_with_arity(len(node.args)) if ins else []
+        if not ovs:
+            raise self.err(f"{name}: no form takes {len(node.args)} argument(s)", node)
+        if len(ovs) == 1:
+            return ovs[0]
+        types = [self._arg_type(a) for a in node.args]
+        for o in ovs:
+            if all(p.type in ("*", t) or t == UNKNOWN or (p.type == "bool" and t == "dio") for p, t in zip(o.params, types)):
+                return o
+        return ovs[0]
+
+    def _arg_type(self, a) -> str:
+        try:
+            tn = type(a)
+            if tn in (ast.Name, ast.LibraryName):
+                v = self.var_of(a)
+                if v is not None:
+                    return v.t
+                low = a.name.lower()
+                if low in ENUM_CONSTANTS:
+                    return ENUM_CONSTANTS[low]
+                return UNKNOWN
+            if tn is ast.Struct:
+                return UNKNOWN
+            return self.expr(a).t
+        except CompileError:
+            return UNKNOWN
+
+    def args_for(self, node, params) -> list[str]:
+        """Arguments compiled for catalogue parameters: values, (container, key) pairs for
+        references, Arr/Coll objects for containers."""
+        out = []
+        for a, p in zip(node.args, params):
+            if p.container in ("array", "collection"):
+                out.append(self.container_arg(a))
+            elif p.ref:
+                out.append(self.ref_arg(a))
+            else:
+                code, t = self.expr(a, want=p.type if p.type != "*" else None)
+                out.append(self.coerce(code, t, p.type))
+        return out
+
+    def container_arg(self, a) -> str:
+        """An array/collection argument; `a[i]` of a 1-D array passes the part from i (2.6.3)."""
+        if type(a) is ast.Index:
+            c, t, cont, ndim, _ = self.container_of(a.base)
+            if cont == "array" and len(a.indices) == 1:
+                return f"VIEW({c}, {self.expr(a.indices[0]).text})"
+            raise self.err("only a 1-D array can be passed from an index", a)
+        tn = type(a)
+        if tn in (ast.Name, ast.LibraryName):
+            v = self.var_of(a)
+            if v is not None and v.cont == "element":
+                c, k = self.elem_pair(v) if v.store != "py" else (None, None)
+                if c is None:
+                    raise self.err(f"'{a.name}' is not an array", a)
+                return f"ELEMARR({c}, {k}, {v.t!r})"
+        c, t, cont, ndim, _ = self.container_of(a)
+        return c
+
+    def handler_call(self, node, handler) -> Code:
+        """`I_name(T, A, args...)`, with `yield from` for a blocking handler."""
+        ov = self._overload(handler.name, node)
+        args = self.args_for(node, ov.params)
+        call = f"I_{handler.name}(T, A{''.join(', ' + x for x in args)})"
+        if handler.blocking:
+            call = f"(yield from {call})"
+        return Code(call, ov.returns)
+
+    def builtin_call(self, node, low: str) -> Code:
+        b = self.registry.builtin_of(low)
+        if len(node.args) != len(b.params):
+            raise self.err(f"{b.name} takes {len(b.params)} argument(s)", node)
+        args = []
+        for i, (a, p) in enumerate(zip(node.args, b.params)):
+            if p.endswith("[]"):
+                args.append(self.container_arg(a))
+            elif i in b.outputs:
+                args.append(self.ref_arg(a))
+            else:
+                code, t = self.expr(a, want=p)
+                args.append(self.coerce(code, t, p))
+        if not b.outputs and not any(p.endswith("[]") for p in b.params):
+            return Code(f"B_{low}({', '.join(args)})", b.returns)
+        return Code(f"BREF(B_{low}{''.join(', ' + x for x in args)})", b.returns)
+
+    def lib_instruction(self, node: ast.CallExpr) -> tuple[str, str]:
+        alias, name = node.func.alias, node.func.name
+        low = name.lower()
+        args = [self.expr(a).text for a in node.args]
+        if low in ("libload", "libsave", "libdelete", "liblist"):
+            return Code(f"(yield from I_lib(T, A, {alias!r}, {low!r}{''.join(', ' + x for x in args)}))", "num")
+        if low in ("libpath", "libexist"):
+            return Code(f"I_lib_now(T, A, {alias!r}, {low!r}{''.join(', ' + x for x in args)})", "string" if low == "libpath" else "bool")
+        raise self.err(f"{alias}:{name}() is not a library instruction", node)
+
+    # -- instructions with special argument forms (2.5.4 - 2.5.6: any variable) ------------------
+
+    def var_arg(self, a) -> VariableArg:
+        """A variable given to an instruction on any variable (size, insert...)."""
+        if type(a) is ast.Index:
+            ref = self.container_of(a.base)
+            idx = ", ".join(self.expr(i).text for i in a.indices)
+            return VariableArg(ref.code, f"({idx},)", ref.cont)
+        tn = type(a)
+        if tn in (ast.Name, ast.LibraryName):
+            v = self.var_of(a)
+            if v is None:
+                raise self.err(f"unknown variable '{a.name}'", a)
+            if v.cont == "element":
+                if v.store == "py":
+                    return VariableArg("None", "None", "element")
+                c, k = self.elem_pair(v)
+                return VariableArg(f"({c}, {k})", "None", "element")
+            return VariableArg(self.cont_code(v), "None", v.cont)
+        if tn is ast.Field:
+            try:
+                ref = self.container_of(a)
+                return VariableArg(ref.code, "None", ref.cont)
+            except CompileError:
+                return VariableArg("None", "None", "element")
+        raise self.err("expected a variable", a)
+
+    def i_size(self, node):
+        if len(node.args) == 2:
+            c, idx, cont = self.var_arg(node.args[0])
+            return Code(f"SIZE2({c}, {self.expr(node.args[1]).text})", "num")
+        c, idx, cont = self.var_arg(node.args[0])
+        return Code(f"SIZE({c}, {idx})", "num")
+
+    def i_isdefined(self, node):
+        a = node.args[0]
+        if type(a) is ast.LibraryName:
+            return Code(f"LIBDEF(A, {a.alias!r}, {a.name!r})", "bool")
+        if type(a) is ast.Index and type(a.base) is ast.LibraryName:
+            c, idx, cont = self.var_arg(a)
+            return Code(f"(LIBDEF(A, {a.base.alias!r}, {a.base.name!r}) and ISDEF({c}, {idx}))", "bool")
+        c, idx, cont = self.var_arg(a)
+        return Code(f"ISDEF({c}, {idx})", "bool")
+
+    def i_insert(self, node):
+        if len(node.args) == 3:
+            return self.builtin_or_missing(node, "insert")
+        c, idx, cont = self.var_arg(node.args[0])
+        return Code(f"INSERT(T, A, {c}, {idx})", "bool")
+
+    def i_delete(self, node):
+        if len(node.args) == 3:
+            return self.builtin_or_missing(node, "delete")
+        c, idx, cont = self.var_arg(node.args[0])
+        return Code(f"DELETE(T, {c}, {idx})", "bool")
+
+    def builtin_or_missing(self, node, low):
+        if self.registry.builtin_of(low) is not None:
+            return self.builtin_call(node, low)
+        return Code(f"NOTSIM({low!r})", "string")
+
+    def i_append(self, node):
+        c, idx, cont = self.var_arg(node.args[0])
+        return Code(f"APPEND(T, A, {c})", "void")
+
+    def i_resize(self, node):
+        c, idx, cont = self.var_arg(node.args[0])
+        return Code(f"RESIZE(T, A, {c}, {self.expr(node.args[1]).text}, {self.expr(node.args[2]).text})", "void")
+
+    def _coll_key_fn(self, node, fn):
+        a = node.args[0]
+        if type(a) is ast.Index:
+            c, t, cont, ndim, _ = self.container_of(a.base)
+            return Code(f"{fn}({c}, {self.expr(a.indices[0]).text})", "string")
+        c, idx, cont = self.var_arg(a)
+        return Code(f"{fn}({c}, None)", "string")
+
+    def i_first(self, node):
+        return self._coll_key_fn(node, "CFIRST")
+
+    def i_last(self, node):
+        return self._coll_key_fn(node, "CLAST")
+
+    def i_next(self, node):
+        return self._coll_key_fn(node, "CNEXT")
+
+    def i_prev(self, node):
+        return self._coll_key_fn(node, "CPREV")
+
+    def i_getdata(self, node):
+        name = self.expr(node.args[0]).text
+        a = node.args[1]
+        if type(a) is ast.Index:
+            c, t, cont, ndim, _ = self.container_of(a.base)
+            return Code(f"GETDATA(T, A, {name}, {c}, ({', '.join(self.expr(i).text for i in a.indices)},), {t!r})", "num")
+        v = self.var_of(a) if type(a) in (ast.Name, ast.LibraryName) else None
+        if v is not None and v.cont == "element":
+            return Code(f"GETDATA(T, A, {name}, None, {self.ref_arg(a)}, {v.t!r})", "num")
+        c, t, cont, ndim, _ = self.container_of(a)
+        return Code(f"GETDATA(T, A, {name}, {c}, None, {t!r})", "num")
+
+    def _cond_lambda(self, node) -> tuple[str, bool]:
+        """A wait condition as a lambda, and whether it changes with time alone (clock())."""
+        code = self.cond(node)
+        if "yield" in code:
+            raise self.err("a blocking instruction inside a wait condition is not simulated", node)
+        tdep = any(type(n) is ast.CallExpr and type(n.func) is ast.Name and n.func.name.lower() in TIME_DEPENDENT
+                   for n in ast.walk(node))
+        return f"lambda: {code}", tdep
+
+    def i_wait(self, node):
+        fn, tdep = self._cond_lambda(node.args[0])
+        return Code(f"(yield from WAIT(T, {fn}, {tdep}))", "void")
+
+    def i_watch(self, node):
+        fn, tdep = self._cond_lambda(node.args[0])
+        secs = self.expr(node.args[1]).text
+        return Code(f"(yield from WATCH(T, {fn}, {secs}, {tdep}))", "bool")
+
+    def i_setmutex(self, node):
+        return Code(f"(yield from SETMUTEX(T, {self.ref_arg(node.args[0])}))", "void")
+
+    def i_put(self, node):
+        return self._page(node, "put")
+
+    def i_putln(self, node):
+        return self._page(node, "putln")
+
+    def i_title(self, node):
+        return self._page(node, "title")
+
+    def _page(self, node, kind):
+        args = [self.coerce(*self.expr(a), UNKNOWN) for a in node.args]
+        return Code(f"PAGE(T, {kind!r}{''.join(', ' + x for x in args)})", "void")
+
+    def i_get(self, node):
+        args = []
+        for a in node.args:
+            t = self._arg_type(a)
+            if t == "screen":
+                args.append(self.expr(a).text)
+            else:
+                args.append(self.ref_arg(a) + f", {t!r}")
+        return Code(f"(yield from GET(T{''.join(', ' + x for x in args)}))", "num")

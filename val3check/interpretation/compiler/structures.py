@@ -1,0 +1,103 @@
+"""The small records the compiler passes around, and what a compiled program is."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, NamedTuple
+
+from ..memory import TypeSpace
+
+GEOMETRY_TYPES = frozenset({"trsf", "frame", "tool", "point", "joint"})
+# the value sets of config and mdesc fields (types.toml "enum" types)
+ENUM_VALUES_TYPES = frozenset({"shoulder", "elbow", "wrist", "blend"})
+
+UNKNOWN = "?"  # a type the compiler cannot know (a library loaded with another interface...)
+
+
+class CompileError(Exception):
+    """The program uses something the simulator cannot run (reported as R004 at run time)."""
+
+    def __init__(self, message: str, line: int, col: int) -> None:
+        super().__init__(message)
+        self.line, self.col = line, col
+
+
+class Code(NamedTuple):
+    """Python code of an expression and its VAL 3 type."""
+
+    text: str
+    t: str
+
+
+class Place(NamedTuple):
+    """An assignable place: `container[key]`, or the Python local `key` when `container` is
+    None; `space` resolves the names of user types."""
+
+    container: str | None
+    key: str
+    t: str
+    space: TypeSpace
+
+
+class TypedCode(NamedTuple):
+    """An rvalue's code, type, and the TypeSpace that resolves its type's name."""
+
+    text: str
+    t: str
+    space: TypeSpace
+
+
+class ContainerRef(NamedTuple):
+    """The container object (`Arr`/`Coll`) of an array or collection variable or field."""
+
+    code: str
+    t: str
+    cont: str  # "array" | "collection"
+    ndim: int
+    space: TypeSpace
+
+
+class FieldInfo(NamedTuple):
+    t: str
+    cont: str  # "element" | "array" | "collection"
+    space: TypeSpace
+    ndim: int
+    name: str  # the canonical name (a file alias, mDesc.tmax, names the field tvel)
+
+
+class VariableArg(NamedTuple):
+    """A variable given to an instruction on any variable (size, insert...): its container
+    code, the index tuple's code (or 'None'), and its container kind."""
+
+    container: str
+    index: str
+    cont: str
+
+
+@dataclass
+class VarInfo:
+    name: str
+    t: str  # base type ("num", "point"...) or a user type name
+    cont: str  # "element" | "array" | "collection"
+    ndim: int = 1
+    store: str = "py"  # py | box | ref | obj | g | lib
+    slot: int = 0  # index in L for "box"
+    alias: str = ""  # for "lib"
+    space: TypeSpace | None = None  # where the type's name is resolved
+
+
+@dataclass
+class Compiled:
+    """One program, ready to run."""
+
+    name: str
+    func: Any  # generator function (T, *args)
+    params: list  # model Parameters
+    pos: dict[int, tuple[int, int]]  # python line -> (file line, col)
+    path: str
+    filename: str
+    frame_bytes: int
+    source: str = ""
+    error: CompileError | None = None
+    # python line -> (sequence, index, length) of the VAL 3 instruction (taskResume jumps)
+    bpos: dict = field(default_factory=dict)

@@ -1,0 +1,124 @@
+"""The controller's own I/O library (`io:`), as applications see it: always loaded, its
+symbols are the controller's inputs/outputs (docs/sim.md, "The cell")."""
+
+from __future__ import annotations
+
+from ..language import lookup
+from ..loading.types import base_type
+from ..parsing import ast
+from .values import Arr
+
+
+def is_system_io(model, alias: str, ws) -> bool:
+    """An alias that names the controller's own I/O library (an s6 `<alias interface="io">` or
+    a `Disk://io` library that is not in the project): its symbols are the controller's
+    inputs/outputs (`io:bIn0`, `io:valve1`, `io:tcp_server`), as lint's L003 says."""
+    ref = model.libraries.get(alias)
+    if ref is None or ws.library(model, alias) is not None:
+        return False
+    tail = ref.path.replace("\\", "/").rstrip("/").rsplit("/", 1)[-1]
+    stem = tail[:-4] if tail.lower().endswith(".pjx") else tail
+    return alias.lower() == "io" or stem.lower() == "io"
+
+
+class SystemIO:
+    """The controller's I/O library, always loaded: `io:NAME` is a dio, aio or sio linked to
+    "io:NAME" (the scenario names it so). Its kind is inferred from how the application uses
+    it (`dioLink(x, io:NAME)`, `io:NAME = "text"`, `if io:NAME`...), else from the name
+    (b.../d... dio, a... aio)."""
+
+    uid = 0
+    name = "io"
+    model = None
+    disk_path = "io"
+
+    def __init__(self, machine) -> None:
+        self.machine = machine
+        self.kinds: dict[str, str] = {}
+        self.globals: dict[str, Arr] = {}
+
+    def kind_of(self, name: str) -> str:
+        k = self.kinds.get(name)
+        if k is None:
+            low = name.lower()
+            k = "aio" if low.startswith("a") else "dio"
+        return k
+
+    def public_global(self, name: str) -> Arr:
+        c = self.globals.get(name)
+        if c is None:
+            kind = self.kind_of(name)
+            c = self.globals[name] = Arr(kind, [self.machine.cell.io(kind, f"io:{name}")])
+        return c
+
+    def public_program(self, name: str):
+        return None
+
+    def infer(self, app, alias: str) -> None:
+        """Kinds of the `alias:NAME` symbols from their uses in `app`'s programs."""
+
+        def io_name(node) -> str | None:
+            return node.name if type(node) is ast.LibraryName and node.alias == alias else None
+
+        def note(node, kind: str | None) -> None:
+            n = io_name(node)
+            if n is not None and kind in ("dio", "aio", "sio") and n not in self.kinds:
+                self.kinds[n] = kind
+
+        def kind_of_value(node, prog) -> str | None:
+            t = type(node)
+            if t is ast.String or t is ast.Binary and node.op == "+" and (type(node.left) is ast.String or
+                                                                      type(node.right) is ast.String):
+                return "sio"
+            if t is ast.Bool or t is ast.Unary and node.op == "!" or t is ast.Binary and node.op in (
+                    "==", "!=", "<", ">", "<=", ">=", "and", "or", "xor"):
+                return "dio"
+            if t is ast.Number:
+                return "aio"
+            if t in (ast.Name, ast.Index):
+                base = node if t is ast.Name else node.base
+                if type(base) is ast.Name:
+                    vt = var_type(base.name, prog)
+                    return {"string": "sio", "bool": "dio", "num": "aio", "dio": "dio", "aio": "aio",
+                            "sio": "sio"}.get(vt or "")
+            return None
+
+        def var_type(name: str, prog) -> str | None:
+            for d in list(prog.parameters) + list(prog.locals):
+                if d.name == name:
+                    return base_type(d.type)
+            d = app.data.get(name)
+            return base_type(d.type) if d is not None else None
+
+        for prog in app.programs.values():
+            if prog.body is None:
+                continue
+            for node in ast.walk(prog.body):
+                t = type(node)
+                if t is ast.CallExpr and type(node.func) is ast.Name:
+                    ins = lookup(node.func.name)
+                    if ins is not None:
+                        for i, a in enumerate(node.args):
+                            if io_name(a) is not None:
+                                types = {o.params[i].type for o in ins.overloads
+                                         if o.accepts_arity(len(node.args)) and i < len(o.params)}
+                                kinds = types & {"dio", "aio", "sio"}
+                                note(a, kinds.pop() if len(kinds) == 1 else ("dio" if "bool" in types else None))
+                elif t in (ast.Assign, ast.AssignExpr):
+                    if io_name(node.target) is not None:
+                        note(node.target, kind_of_value(node.value, prog))
+                    elif io_name(node.value) is not None:
+                        note(node.value, kind_of_value(node.target, prog))
+                elif t is ast.Binary:
+                    for a, b in ((node.left, node.right), (node.right, node.left)):
+                        if io_name(a) is not None:
+                            note(a, "dio" if node.op in ("and", "or", "xor") else kind_of_value(b, prog))
+                elif t is ast.Unary and node.op == "!":
+                    note(node.operand, "dio")
+                elif t in (ast.While, ast.DoUntil):
+                    note(node.cond, "dio")
+                elif t is ast.If:
+                    for br in node.branches:
+                        note(br.cond, "dio")
+        for name in sorted(self.kinds):
+            self.public_global(name)

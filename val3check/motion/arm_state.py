@@ -1,0 +1,115 @@
+"""The arm as the interpreter sees it: the `Arm` port (interpretation/arm_port.py) and a
+`Subsystem` of the scheduler (interpretation/subsystem.py).
+
+`MotionlessArm` is the arm of this version: it stands at its initial joint position (all
+zeros, or the scenario's `[robot] joints`) for the whole run, and its motion queue is always
+empty. With no arm model (`model` None) only what needs no model works (`motion_done`).
+
+Units are converted here and nowhere else: the arm model (val3check.robot) works in
+millimetres, an application in its own length unit (2.1.4.1, `millimeterUnit`): 25.4 mm per
+inch.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+from ..interpretation.arm_port import Joints, KinematicsUnsupported, Pose6, TargetUnreachable
+from ..robot.errors import IKUnsupported, Unreachable
+
+INCH_MM = 25.4
+
+
+class UnitKinematics:
+    """A `RobotModel` seen by the geometry (`geometry.arm.Kinematics`) in an application's
+    length unit: poses in and out are scaled by `scale` (millimetres per unit)."""
+
+    def __init__(self, model: Any, scale: float) -> None:
+        self.model = model
+        self.scale = scale
+
+    def fk(self, joints):
+        x, y, z, rx, ry, rz = self.model.fk(joints)
+        s = self.scale
+        if s != 1.0:
+            x, y, z = x / s, y / s, z / s
+        return (x, y, z, rx, ry, rz)
+
+    def ik(self, pose, config, near):
+        x, y, z, rx, ry, rz = pose
+        s = self.scale
+        try:
+            return self.model.ik((x * s, y * s, z * s, rx, ry, rz), config=tuple(config), near=near)
+        except IKUnsupported as exc:
+            raise KinematicsUnsupported(str(exc)) from None
+
+    def config_of(self, joints):
+        try:
+            return self.model.config_of(joints)
+        except IKUnsupported as exc:
+            raise KinematicsUnsupported(str(exc)) from None
+
+    def in_limits(self, joints) -> bool:
+        return self.model.in_limits(joints)
+
+
+class MotionlessArm:
+    """See the module docstring. `model` is a `val3check.robot.RobotModel` or None."""
+
+    def __init__(self, model: Any = None) -> None:
+        self.model = model
+        self.name: str | None = model.name if model is not None else None
+        self._initial: Joints = (0.0,) * len(model.joint_limits) if model is not None else ()
+        self._kin: dict[bool, UnitKinematics] = {}
+
+    # ---- the Arm port ----------------------------------------------------------------------------
+
+    @property
+    def has_model(self) -> bool:
+        return self.model is not None
+
+    @property
+    def axes(self) -> int:
+        return len(self.model.joint_limits)
+
+    @property
+    def joint_limits(self) -> tuple[tuple[float, float], ...]:
+        return tuple(self.model.joint_limits)
+
+    @property
+    def initial_joints(self) -> Joints:
+        return self._initial
+
+    def start_at(self, joints: Sequence[float]) -> None:
+        self._initial = tuple(float(v) + 0.0 for v in joints)
+
+    def joints_at(self, time_us: int) -> Joints:
+        return self._initial  # the arm does not move in this version
+
+    def kinematics(self, millimeter_unit: bool) -> UnitKinematics:
+        k = self._kin.get(millimeter_unit)
+        if k is None:
+            k = self._kin[millimeter_unit] = UnitKinematics(self.model, 1.0 if millimeter_unit else INCH_MM)
+        return k
+
+    def solve(self, flange: Pose6, config: Sequence[str], millimeter_unit: bool, initial: Sequence[float]) -> Joints:
+        x, y, z, rx, ry, rz = flange
+        s = 1.0 if millimeter_unit else INCH_MM
+        try:
+            return tuple(self.model.solve((x * s, y * s, z * s, rx, ry, rz), tuple(config), initial=tuple(initial)))
+        except Unreachable as exc:
+            raise TargetUnreachable(str(exc), exc.reason) from None
+        except IKUnsupported as exc:
+            raise KinematicsUnsupported(str(exc)) from None
+
+    def motion_done(self, time_us: int) -> bool:
+        return True  # no motion command is ever accepted: the queue is always empty
+
+    # ---- the Subsystem ---------------------------------------------------------------------------
+
+    def next_time(self, now_us: int) -> int | None:
+        return None  # nothing ever changes
+
+    def advance(self, to_us: int) -> None:
+        pass

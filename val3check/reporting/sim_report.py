@@ -1,0 +1,51 @@
+"""The sim report: a `SimResult` as the reports show it (sim_text.py, sim_json.py).
+
+Runtime diagnostics are filtered and graded by the user's configuration like lint findings
+(rule selection, severities), their paths made relative to the current folder, and sorted by
+simulated time."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+from ..diagnostics import Diagnostic, Severity
+from ..lint import display_path
+from ..simulation.result import SimResult
+
+
+@dataclass
+class SimReport:
+    result: SimResult
+    app_path: str  # display path of the application
+    tool_version: str
+    diagnostics: list[Diagnostic] = field(default_factory=list)  # kept, severity set, display paths
+    rules: dict = field(default_factory=dict)  # the rule catalogue, by code
+    link_names: dict = field(default_factory=dict)  # (kind, link) -> variable names
+
+    def display(self, pos) -> Any:
+        """A (path, line, col, program) position with a display path."""
+        if not pos:
+            return None
+        path, line, col, program = pos
+        return (display_path(path), line, col, program)
+
+    def rule_name(self, code: str) -> str | None:
+        rule = self.rules.get(code)
+        return rule.name if rule else None
+
+
+def _sort_key(d: Diagnostic) -> tuple:
+    return (round(d.time_us / 1_000_000, 6), d.task or "", d.code, d.path, d.line or 0)
+
+
+def build_report(result: SimResult, settings, rules: dict, tool_version: str) -> SimReport:
+    kept = []
+    for d in result.diagnostics:
+        if settings is not None and not settings.enabled(d.code, d.path):
+            continue
+        rule = rules.get(d.code)
+        sev = (settings.severity.get(d.code) if settings is not None else None) or (rule.severity if rule else Severity.ERROR)
+        kept.append(replace(d, path=display_path(d.path), severity=sev))
+    kept.sort(key=_sort_key)
+    return SimReport(result, display_path(result.app_path), tool_version, kept, rules, link_names=result.link_names)

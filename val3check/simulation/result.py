@@ -1,0 +1,108 @@
+"""What a run hands to the reports: `SimResult` (reporting/sim_report.py, sim_text.py,
+sim_json.py; docs/sim-report.md)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from ..diagnostics import Diagnostic
+from ..interpretation.machine import Machine
+from ..interpretation.records import IOEvent, TranscriptEntry
+
+END_REASONS = {
+    "ended": "the application ended (its last task ended, then stop() ran)",
+    "duration": "the simulated duration was reached",
+    "deadlock": "deadlock: every task waits for something that no scheduled event can change",
+    "stalled": "no task can run any more: each one is stopped (runtime error, instruction not simulated)",
+    "wall-clock": "the wall-clock budget was reached",
+    "steps": "the budget of executed lines was reached",
+    "no-start": "the application has no start() program",
+}
+
+
+@dataclass(frozen=True)
+class TaskSummary:
+    """One task of the run, as the reports show it. Times in simulated microseconds."""
+
+    name: str
+    program: str
+    library: str | None  # the library whose program it runs, None for the application
+    priority: int | None  # asynchronous tasks
+    period: float | None  # synchronous tasks, seconds
+    created: int
+    ended: int | None
+    end: str  # ended, killed, destroyed, alive
+    state_at_end_of_run: str  # what it was doing when the run ended
+    error: int | None  # the VAL 3 code it stopped on
+    error_text: str | None
+    blocked_on: str | None  # what it waited for, when waiting at the end
+    position: tuple | None  # (path, line, col, program)
+    lines: int  # VAL 3 lines executed
+
+
+@dataclass
+class SimResult:
+    application: str
+    app_path: str
+    end_reason: str
+    end_message: str
+    sim_time_us: int
+    lines: int
+    tasks: list[TaskSummary]
+    diagnostics: list[Diagnostic]
+    transcript: list[TranscriptEntry]
+    io_log: list[IOEvent]
+    screen: dict
+    destroyed: list[str]
+    link_names: dict = field(default_factory=dict)  # (kind, link) -> sorted variable names
+    # the arm model of the run: {"name": "TX2-60", "initial_joints": [...]} or None
+    robot: dict | None = None
+    # The application's globals at the end of the run (name -> Arr/Coll of run-time values,
+    # interpretation/values.py): for tests and tools; not part of the reports.
+    globals: dict = field(default_factory=dict, repr=False)
+
+
+def collect(machine: Machine) -> SimResult:
+    reason = machine.end_reason
+    message = END_REASONS.get(reason, reason)
+    if reason.startswith("budget:"):
+        message = reason[len("budget:"):]
+        reason = "budget"
+    diags = list(machine.diags)
+    if reason == "duration":
+        running = [t.name for t in machine.scheduler.history if t.final is not None]
+        diags.append(Diagnostic("R007", f"run stopped at --duration {machine.end_time / 1e6:g} s; tasks still alive: "
+                                + (", ".join(running) or "none"), machine.app.path, 0, 0,
+                                time_us=machine.end_time, task="", program=""))
+    elif reason in ("wall-clock", "steps", "budget"):
+        diags.append(Diagnostic("R006", f"run cut short: {message}", machine.app.path, 0, 0, time_us=machine.end_time,
+                                task="", program=""))
+    tasks = []
+    for t in machine.scheduler.history:
+        final = t.final
+        where = (final.where if final is not None else None) or t.errpos
+        stopped_on_error = t.state.value == "error" or (final is not None and final.state == "error")
+        tasks.append(TaskSummary(
+            name=t.name,
+            program=t.program,
+            library=t.unit.name if t.unit is not machine.main else None,
+            priority=t.prio if not t.period else None,
+            period=t.period / 1e6 if t.period else None,
+            created=t.created,
+            ended=t.ended,
+            end=t.end_state or "alive",
+            state_at_end_of_run=final.state if final is not None else t.end_state or "ended",
+            error=t.error if stopped_on_error else None,
+            error_text=t.errdetail or None,
+            blocked_on=final.blocked_on if final is not None else None,
+            position=where,
+            lines=t.lines,
+        ))
+    page = machine.user_page.default
+    screen = {"title": page.title, "lines": page.text()}
+    arm = machine.arm
+    robot = {"name": arm.name, "initial_joints": list(arm.initial_joints)} if arm.has_model else None
+    return SimResult(machine.app.name, machine.app.path, reason, message, machine.end_time,
+                     machine.scheduler.total_lines, tasks, diags, machine.records.transcript, machine.records.io_log,
+                     screen, list(machine.destroyed), {k: sorted(v) for k, v in machine.link_names.items()},
+                     robot=robot, globals=dict(machine.main.globals) if machine.main is not None else {})

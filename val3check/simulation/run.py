@@ -1,0 +1,76 @@
+"""Assemble a run of the virtual controller and run it.
+
+    result = simulate(workspace, app, SimOptions(duration=10.0, robot=model), scenario)
+
+The application must have been loaded and its programs parsed (the `sim` command lints it
+first, in-process). Assembling a run means, in this order: the registry of instructions (the
+interpreter's chapters, then motion's), the arm (a `motion` arm on the chosen model), the
+machine, its subsystems (the cell and its scenario first, then the arm's motion), the
+scenario's settings. Nothing here writes files: reports are `val3check.reporting`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from ..interpretation import code_support, not_simulated, waiting
+from ..interpretation.chapters import (
+    ch02_variables,
+    ch03_simple_types,
+    ch04_user_page,
+    ch05_tasks,
+    ch06_libraries,
+    ch08_controller,
+    ch09_geometry,
+)
+from ..interpretation.machine import Budgets, Machine
+from ..interpretation.registry import Registry
+from ..loading.model import Application, Workspace
+from ..motion import ch10_motion
+from ..motion.arm_state import MotionlessArm
+from .result import SimResult, collect
+
+# What the generated code calls, then the chapters of the manual, in order.
+INTERPRETER_MODULES = (code_support, waiting, not_simulated, ch02_variables, ch03_simple_types, ch04_user_page,
+                       ch05_tasks, ch06_libraries, ch08_controller, ch09_geometry)
+MOTION_MODULES = (ch10_motion,)
+
+
+@dataclass
+class SimOptions:
+    duration: float = 60.0  # simulated seconds
+    max_wall: float = 60.0  # wall-clock seconds
+    max_lines: int = 50_000_000
+    max_transcript: int = 10_000
+    disk_roots: list[str] = field(default_factory=list)
+    # the arm model (val3check.robot.RobotModel) or None: see robot_choice.choose_sim_robot
+    robot: Any = None
+
+
+def build_registry() -> Registry:
+    registry = Registry()
+    for module in INTERPRETER_MODULES + MOTION_MODULES:
+        module.register(registry)
+    return registry
+
+
+def build_machine(ws: Workspace, app: Application, options: SimOptions) -> Machine:
+    budgets = Budgets(duration_us=int(round(options.duration * 1_000_000)), wall_s=options.max_wall,
+                      max_lines=options.max_lines, max_transcript=options.max_transcript)
+    arm = MotionlessArm(options.robot)
+    machine = Machine(ws, app, build_registry(), arm, budgets=budgets, disk_roots=options.disk_roots)
+    machine.add_subsystem(arm)  # after the cell: inputs are refreshed before the arm moves
+    return machine
+
+
+def simulate(ws: Workspace, app: Application, options: SimOptions | None = None, scenario: Any = None) -> SimResult:
+    options = options or SimOptions()
+    machine = build_machine(ws, app, options)
+    machine.load_main()
+    if scenario is not None:
+        from ..interpretation.scenario import apply_scenario
+
+        apply_scenario(machine, scenario)
+    machine.run()
+    return collect(machine)
