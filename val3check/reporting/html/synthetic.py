@@ -273,7 +273,7 @@ class _Run:
     # ---- the tasks --------------------------------------------------------------------------
 
     def script(self) -> None:
-        D, tick = self.duration, self.dt
+        tick = self.dt
         # Cell~ creates the tasks and ends
         self.seg("Cell~", 0.0, 2 * tick, "running", "start()")
         self.say(0.0, "Cell~", "title", "Cell")
