@@ -8,13 +8,18 @@ absent, unless VAL3CHECK_REQUIRE_BROWSER=1 (.ci/run).
 
 from __future__ import annotations
 
+import json
 import random
+from pathlib import Path
 
 import pytest
 
 import browser_client
-from val3check.reporting.html import chain_fk, render, synthetic_model
+from val3check.cli import main
+from val3check.reporting.html import chain_fk, model_from_sim_report, render, synthetic_model
 from val3check.robot import load_robot
+
+ROOT = Path(__file__).resolve().parents[2]
 
 _WHY = browser_client.skip_reason()
 if _WHY and browser_client.required():
@@ -190,9 +195,9 @@ def test_print_layout_hides_the_controls(chromium, report):
     page = chromium.open(report)
     p = page.page
     p.emulate_media(media="print")
-    hidden = page.evaluate("""() => ['.timebar', '.controls', 'nav.toc', 'button.goto']
+    hidden = page.evaluate("""() => ['.timebar', '.controls', 'nav.toc', '#diagnostics button.goto', 'table.motions button']
         .map((s) => getComputedStyle(document.querySelector(s)).display)""")
-    assert hidden == ["none"] * 4
+    assert hidden == ["none"] * 4 + ["inline-block"]  # the motion numbers stay, as text
     assert page.evaluate("getComputedStyle(document.querySelector('.scroll.tall')).overflow") == "visible"
     pdf = p.pdf(format="A4")
     assert pdf.startswith(b"%PDF") and len(pdf) > 50_000
@@ -224,3 +229,39 @@ def test_long_run_is_decimated_and_still_draws(chromium, model, tmp_path):
     lengths = page.evaluate("Array.from(document.querySelectorAll('#joint-plots path.series')).map((p) => p.getAttribute('d').length)")
     assert len(lengths) == 12 and min(lengths) > 500
     page.page.close()
+
+
+def test_3d_view_names_the_solid_under_the_pointer(loaded):
+    p = loaded.page
+    p.evaluate("() => V3.time.setCursor(0)")
+    names = loaded.evaluate("""() => {
+        const v = V3.view, c = document.getElementById('view3d'), seen = new Set();
+        for (let x = 0; x < c.clientWidth; x += 6) for (let y = 0; y < c.clientHeight; y += 6) {
+            const n = v.pick(x, y); if (n) seen.add(n);
+        }
+        return Array.from(seen).sort();
+    }""")
+    for expected in ("arm: link_2 (upper_arm)", "cell: pick table", "cell: pillar", "tool tGripper: body"):
+        assert expected in names, names
+
+
+@pytest.mark.parametrize("app, options", [("Cell", ["--robot", "tx2-60"]), ("Supervisor", [])])
+def test_report_of_a_real_application(chromium, app, options, capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(ROOT)
+    main(["sim", f"fixtures/valid/{app}", "--report", "json", "--duration", "20", *options])
+    report = json.loads(capsys.readouterr().out)
+    path = tmp_path / f"{app}.html"
+    path.write_text(render(model_from_sim_report(report)), encoding="utf-8")
+    page = chromium.open(path)
+    _clean(page)
+    p = page.page
+    assert p.locator("#diagnostics li.diag").count() == len(report["diagnostics"])
+    assert p.locator("table.transcript tbody tr").count() == len(report["transcript"])
+    assert p.locator("#io-lanes svg.chart").count() == (1 if report["io_log"] else 0)
+    if report["robot"]:
+        assert _painted(page, [120, 80, 0], [255, 200, 60]) > 2000  # the arm, standing at its initial position
+        assert p.locator("#jointnow tr").count() == 6
+    else:
+        assert p.locator("#view3d").count() == 0 and "No 3D scene" in p.locator("#view3d-section").text_content()
+    p.screenshot(path=str(tmp_path / f"{app}.png"), full_page=True)
+    p.close()

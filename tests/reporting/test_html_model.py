@@ -249,7 +249,7 @@ def test_page_without_motion_says_so():
     m["scene"] = None
     html = render(m)
     for text in ("No runtime diagnostic.", "No motion in this run.", "No joint trajectory", "No TCP speed",
-                 "No task ran.", "No input or output changed.", "Nothing was written", "No 3D scene"):
+                 "No task timeline in this report.", "No input or output changed.", "Nothing was written", "No 3D scene"):
         assert text in html
     assert _data(html)["traj"] is None
 

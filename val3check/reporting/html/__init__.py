@@ -16,8 +16,10 @@ gives a scripted pick-and-place run for tests and the demo
 from __future__ import annotations
 
 from .arm import arm_chain, chain_fk
+from .from_sim import model_from_sim_report
 from .model import VERSION, ModelError, check_model
 from .page import render
 from .synthetic import synthetic_model
 
-__all__ = ["VERSION", "ModelError", "arm_chain", "chain_fk", "check_model", "render", "synthetic_model"]
+__all__ = ["VERSION", "ModelError", "arm_chain", "chain_fk", "check_model", "model_from_sim_report", "render",
+           "synthetic_model"]

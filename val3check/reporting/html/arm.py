@@ -89,6 +89,8 @@ def arm_chain(urdf: str | Path, world_frame: str | None = None, flange_frame: st
     for j in ordered:
         kind = j.kind if j.kind in MOVING or j.kind == "fixed" else "fixed"
         n = math.sqrt(sum(a * a for a in j.axis)) or 1.0
+        scale = 1000.0 if kind == "prismatic" else 180.0 / math.pi  # mm, degrees: the trajectory's units
+        limited = kind in ("revolute", "prismatic") and j.lower is not None and j.upper is not None
         joints.append({
             "name": j.name,
             "type": kind,
@@ -97,6 +99,8 @@ def arm_chain(urdf: str | Path, world_frame: str | None = None, flange_frame: st
             "origin": _mm(transform(j.xyz, j.rpy)),
             "axis": [_r(a / n) for a in j.axis],
             "index": index.get(j.name) if kind != "fixed" else None,
+            "lower": _r(j.lower * scale) if limited else None,
+            "upper": _r(j.upper * scale) if limited else None,
         })
     reached = {root} | {j["child"] for j in joints}
     solids = read_link_solids(path)

@@ -130,6 +130,8 @@ def check_model(model: Any) -> None:
     if m["version"] != VERSION:
         _fail("version", f"version {VERSION} is expected, not {m['version']!r}")
     _dict(m["application"], "application", ("name",))
+    if any(not isinstance(t, str) for t in _list(m.get("limitations", []), "limitations")):
+        _fail("limitations", "strings are expected")
     v = _dict(m["verdict"], "verdict", ("counts", "end_reason", "simulated_duration"))
     _num(v["simulated_duration"], "verdict.simulated_duration")
     for s in SEVERITIES:
@@ -219,5 +221,8 @@ def check_model(model: Any) -> None:
             _matrix(tool["tcp"], "scene.tool.tcp")
             for k, s in enumerate(_list(tool["solids"], "scene.tool.solids")):
                 _solid(s, f"scene.tool.solids[{k}]")
-        for k, s in enumerate(_list(scene.get("obstacles", []), "scene.obstacles")):
+        for k, s in enumerate(_list(scene.get("obstacles") or [], "scene.obstacles")):
             _solid(s, f"scene.obstacles[{k}]")
+        if scene.get("joints") is not None:
+            for k, x in enumerate(_list(scene["joints"], "scene.joints")):
+                _num(x, f"scene.joints[{k}]")

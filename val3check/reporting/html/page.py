@@ -54,9 +54,10 @@ def _where(path: str | None, line: int | None, column: int | None) -> str:
     return f"{path}:{line}:{column}" if line and column else f"{path}:{line}" if line else path
 
 
-def _time_button(start: float, end: float | None, label: str) -> str:
+def _time_button(start: float, end: float | None, label: str, number: bool = False) -> str:
     end_attr = f' data-end="{end:.6f}"' if end is not None else ""
-    return f'<button type="button" class="goto" data-start="{start:.6f}"{end_attr}>{_e(label)}</button>'
+    cls = "goto num" if number else "goto"
+    return f'<button type="button" class="{cls}" data-start="{start:.6f}"{end_attr}>{_e(label)}</button>'
 
 
 # ---- sections --------------------------------------------------------------------------------
@@ -70,10 +71,13 @@ def _header(m: dict) -> str:
     facts.append(f"<span>arm model: {_e(robot)}</span>" if robot else "<span>no arm model</span>")
     if tool:
         facts.append(f"<span>{_e(tool.get('name', 'val3check'))} {_e(tool.get('version', ''))}</span>")
-    synthetic = ('<p class="synthetic" role="note">Synthetic run: generated for tests and demonstration, '
-                 "not the result of simulating an application.</p>") if m.get("synthetic") else ""
+    notes = []
+    if m.get("synthetic"):
+        notes.append("Synthetic run: generated for tests and demonstration, not the result of simulating an application.")
+    notes += m.get("limitations") or []
+    notes_html = "".join(f'<p class="synthetic" role="note">{_e(n)}</p>' for n in notes)
     return (f'<header class="top"><h1>{_e(m.get("title") or app["name"])} <span class="sub">simulation report</span></h1>'
-            f'<p class="facts">{" · ".join(facts)}</p>{synthetic}</header>')
+            f'<p class="facts">{" · ".join(facts)}</p>{notes_html}</header>')
 
 
 def _nav(sections: list[tuple[str, str]]) -> str:
@@ -90,7 +94,7 @@ def _verdict(m: dict) -> str:
     why = (f"no diagnostic at or above {_e(fail_on)}" if passed else f"diagnostics at or above {_e(fail_on)}")
     chips = "".join(
         f'<li class="chip sev-{s}"><span class="icon" aria-hidden="true"></span><b>{counts.get(s, 0)}</b> '
-        f'{_e(s if counts.get(s, 0) == 1 else s + "s")}</li>'
+        f'{_e(s if counts.get(s, 0) == 1 or s == "info" else s + "s")}</li>'
         for s in ("error", "warning", "info"))
     ct = v.get("cycle_time")
     cycle = (f'<div><dt>Cycle time</dt><dd><b>{_s(ct["seconds"])}</b> <span class="muted">{_e(ct.get("basis", ""))}'
@@ -125,6 +129,12 @@ def _excerpt(d: dict) -> str:
     return f'<pre class="excerpt" aria-label="{_e(label)}"><code>{chr(10).join(rows)}</code></pre>'
 
 
+def _has_time(m: dict) -> bool:
+    """Whether the page has time charts (and so a time window to move)."""
+    tr = m.get("trajectory")
+    return bool((tr and tr.get("times")) or m.get("tasks") or m.get("arm_timeline") or m.get("io"))
+
+
 def _name(d: dict) -> str:
     return f' <span class="muted">{_e(d["name"])}</span>' if d.get("name") else ""
 
@@ -143,7 +153,8 @@ def _diagnostics(m: dict) -> str:
                 who.append(f"at {_s(d['time'])}")
             if d.get("task"):
                 who.append(f"task {_e(d['task'])}" + (f" ({_e(d['program'])}())" if d.get("program") else ""))
-            goto = _time_button(d["time"], None, "show in the timelines") if d.get("time") is not None else ""
+            goto = (_time_button(d["time"], None, "show in the timelines")
+                    if d.get("time") is not None and _has_time(m) else "")
             items.append(
                 f'<li class="diag sev-{sev}"><p class="dhead"><span class="sev"><span class="icon" aria-hidden="true"></span>'
                 f'{_e(sev)}</span> <code class="code">{_e(d["code"])}</code>'
@@ -177,12 +188,12 @@ def _motions(m: dict) -> str:
             if mo.get("clearance_to") and mo.get("min_clearance") is not None:
                 clearance += f' <span class="muted">{_e(mo["clearance_to"])}</span>'
             rows.append(
-                f'<tr><td class="n">{_time_button(mo["start"], mo["end"], str(mo["id"]))}</td>'
+                f'<tr><td class="n">{_time_button(mo["start"], mo["end"], str(mo["id"]), True)}</td>'
                 f'<td class="n">{_e(mo.get("line") or "–")}</td><td>{_e(mo.get("task") or "")}</td>'
                 f'<td><code>{_e(mo["kind"])}</code></td><td>{_e(mo.get("target") or "")}</td>'
                 f'<td class="n">{mo["start"]:.3f}</td><td class="n">{mo["end"]:.3f}</td>'
                 f'<td class="n">{(mo["end"] - mo["start"]) if mo.get("duration") is None else mo["duration"]:.3f}</td>'
-                f'<td>{_e(mo.get("dominant_limit") or "–")}</td><td>{_e(", ".join(speed))}</td>'
+                f'<td>{_e(mo.get("dominant_limit") or "–")}</td><td class="nw">{_e(", ".join(speed))}</td>'
                 f'<td class="n">{clearance}</td></tr>')
         body = (f'<p>{summary}. The number zooms the timelines on the motion.</p>'
                 '<div class="scroll tall"><table class="data motions"><thead><tr>'
@@ -205,7 +216,7 @@ def _cycles(m: dict) -> str:
             stats = (f"{len(done)} complete: min {_s(min(done))}, mean {_s(sum(done) / len(done))}, max {_s(max(done))}"
                      if done else "no complete iteration")
             rows = "".join(
-                f'<tr><td class="n">{_time_button(it["start"], it["start"] + it["duration"], str(k + 1))}</td>'
+                f'<tr><td class="n">{_time_button(it["start"], it["start"] + it["duration"], str(k + 1), True)}</td>'
                 f'<td class="n">{it["start"]:.3f}</td><td class="n">{it["duration"]:.3f}</td>'
                 f'<td>{"" if it.get("complete", True) else "cut by the end of the run"}</td></tr>'
                 for k, it in enumerate(its))
@@ -248,7 +259,7 @@ def _tcp(m: dict) -> str:
 
 def _timeline(m: dict) -> str:
     if not m.get("tasks") and not m.get("arm_timeline"):
-        body = '<p class="empty">No task ran.</p>'
+        body = '<p class="empty">No task timeline in this report.</p>'
     else:
         body = ('<p>What each task was doing, and the arm. Diagnostics are marked on the top row.</p>'
                 '<div id="gantt" class="figure"></div>')
@@ -300,9 +311,21 @@ def _transcript(m: dict) -> str:
                      f'<tbody>{rows}</tbody></table></div>')
     if screen and any(line.strip() for line in screen.get("lines", [])):
         title = f' title “{_e(screen.get("title"))}”' if screen.get("title") else ""
-        parts.append(f'<h3>The user page at the end{title}</h3><pre class="screen">{_e(chr(10).join(screen["lines"]))}</pre>')
+        lines = [line.rstrip().ljust(40) for line in screen["lines"]]  # the 14x40 page, blanks included
+        parts.append(f'<h3>The user page at the end{title}</h3><pre class="screen">{_e(chr(10).join(lines))}</pre>')
     return (f'<section id="transcript" aria-labelledby="transcript-h"><h2 id="transcript-h">User page transcript</h2>'
             f'{"".join(parts)}</section>')
+
+
+def _key3d(scene: dict, moving: bool) -> str:
+    key = ["yellow: the arm"] if scene.get("arm") else []
+    if scene.get("arm") and scene.get("tool"):
+        key += ["dark grey: the tool", "orange dot: the TCP"]
+    if scene.get("obstacles"):
+        key.append("blue-grey: the cell")
+    if moving and scene.get("arm"):
+        key.append(f"blue line: the path of the {'TCP' if scene.get('tool') else 'flange'} (darker where already travelled)")
+    return "; ".join(key).capitalize() + "." if key else ""
 
 
 def _view3d(m: dict) -> str:
@@ -311,22 +334,28 @@ def _view3d(m: dict) -> str:
         body = '<p class="empty">No 3D scene: the run had no arm model and the cell no obstacle.</p>'
     else:
         notes = "".join(f'<p class="muted">{_e(n)}</p>' for n in (scene.get("arm") or {}).get("notes", []))
-        body = (
-            '<p>The arm along its path, with the tool and the cell. Drag to turn the view, wheel or +/− to zoom, '
-            'arrow keys to turn when the view has focus, space to play or pause.</p>'
-            '<div class="view3d"><canvas id="view3d" tabindex="0" role="img" aria-label="3D view of the arm and the cell" '
-            'aria-describedby="view3d-state"></canvas>'
-            '<div class="side"><table class="data jointnow" aria-label="Joint values at the current time"><thead><tr>'
-            '<th scope="col">joint</th><th scope="col">value</th><th scope="col">range</th></tr></thead><tbody id="jointnow">'
-            '</tbody></table><p id="view3d-state" aria-live="off"></p>'
-            '<p class="muted key3d">Yellow: the arm; dark grey: the tool; blue-grey: the cell; blue line: the TCP path '
-            '(darker where already travelled); orange dot: the TCP.</p></div></div>'
-            '<div class="controls" role="group" aria-label="Playback">'
+        tr = m.get("trajectory")
+        moving = bool(tr and tr.get("times"))
+        playback = (
             '<button type="button" id="play" aria-pressed="false">Play</button>'
             '<label>time <input type="range" id="scrub" min="0" max="1000" value="0" step="1"></label>'
             '<output id="scrub-time" for="scrub">0.000 s</output>'
             '<label>speed <select id="speed"><option value="0.25">0.25×</option><option value="0.5">0.5×</option>'
             '<option value="1" selected>1×</option><option value="2">2×</option><option value="4">4×</option></select></label>'
+        ) if moving else ""
+        intro = ("The arm along its path, with the tool and the cell. Drag to turn the view, wheel or +/− to zoom, "
+                 "arrow keys to turn when the view has focus, space to play or pause." if moving else
+                 "The arm where it is during the whole run, with the cell. Drag to turn the view, wheel or +/− to "
+                 "zoom, arrow keys to turn when the view has focus.")
+        body = (
+            f'<p>{intro}</p>'
+            '<div class="view3d"><canvas id="view3d" tabindex="0" role="img" aria-label="3D view of the arm and the cell" '
+            'aria-describedby="view3d-state"></canvas>'
+            '<div class="side"><table class="data jointnow" aria-label="Joint values at the current time"><thead><tr>'
+            '<th scope="col">joint</th><th scope="col">value</th><th scope="col">range</th></tr></thead><tbody id="jointnow">'
+            '</tbody></table><p id="view3d-state" aria-live="off"></p>'
+            f'<p class="muted key3d">{_e(_key3d(scene, moving))}</p></div></div>'
+            f'<div class="controls" role="group" aria-label="Playback">{playback}'
             f'<button type="button" id="reset-view">Reset view</button></div>{notes}')
     return f'<section id="view3d-section" aria-labelledby="view3d-h"><h2 id="view3d-h">3D view</h2>{body}</section>'
 
@@ -365,7 +394,7 @@ def render(model: dict) -> str:
     check_model(model)
     sections = "".join(fn(model) for _, _, fn in SECTIONS)
     body = (f"{_header(model)}{_nav([(sid, title) for sid, title, _ in SECTIONS])}"
-            f'<main id="main">{_timebar(model)}{sections}</main>'
+            f'<main id="main">{_timebar(model) if _has_time(model) else ""}{sections}</main>'
             '<footer><p>This page is self-contained: it loads nothing, from the network or from disk. '
             'Its plots and 3D view need JavaScript; the tables above do not.</p></footer>'
             '<noscript><p class="empty">JavaScript is off: the plots, timelines and the 3D view are not drawn.</p></noscript>')

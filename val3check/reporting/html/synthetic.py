@@ -469,8 +469,8 @@ def synthetic_model(duration: float = 60.0, dt: float = 0.004, robot: str = "tx2
         if who is not None:
             m["min_clearance"], m["clearance_to"] = round(best, 1), who
 
-    if duration > 0 and not failing:
-        alive = ", ".join(sorted(t for t in run.tasks if t != "Cell~"))
+    if duration > 0:
+        alive = ", ".join(sorted(t for t in run.tasks if t != "Cell~" and (t != "robot" or not failing)))
         run.diags.append({"code": "R007", "name": "duration-reached", "severity": "info",
                           "message": f"run stopped at --duration {duration:g} s; tasks still alive: {alive}",
                           "path": "Cell/Cell.pjx", "line": None, "column": None, "time": round(duration, 6),

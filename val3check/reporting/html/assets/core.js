@@ -139,7 +139,7 @@ var V3 = (function () {
   // ---- one tooltip for the page ----
   let tip = null;
   V3.tip = function (text, x, y) {
-    if (!tip) tip = V3.el("div", { class: "tip", role: "status" }, document.body);
+    if (!tip) tip = V3.el("div", { class: "tip", "aria-hidden": "true" }, document.body);
     if (text === null) { tip.style.display = "none"; return; }
     tip.textContent = text;
     tip.style.display = "block";

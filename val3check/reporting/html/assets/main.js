@@ -70,7 +70,7 @@
     on("tw-left", () => tw.pan(-0.25));
     on("tw-right", () => tw.pan(0.25));
     on("tw-reset", () => tw.reset());
-    tw.on("window", () => { out.textContent = tw.a.toFixed(3) + " – " + tw.b.toFixed(3) + " s"; });
+    if (out) tw.on("window", () => { out.textContent = tw.a.toFixed(3) + " – " + tw.b.toFixed(3) + " s"; });
     document.querySelectorAll("button.goto").forEach((b) => b.addEventListener("click", () => {
       const s = parseFloat(b.dataset.start), e = b.dataset.end !== undefined ? parseFloat(b.dataset.end) : null;
       tw.show(s, e);

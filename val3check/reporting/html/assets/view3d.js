@@ -108,12 +108,15 @@
       const arm = this.arm;
       if (arm) {
         arm.links.forEach((l) => l.solids.forEach((s) => this.parts.push({
-          frame: l.name, pose: M(s.pose), g: geometry(s), color: l.name === arm.flange_frame ? COLORS.flange : COLORS.arm, alpha: 1, name: s.name })));
+          frame: l.name, pose: M(s.pose), g: geometry(s), color: l.name === arm.flange_frame ? COLORS.flange : COLORS.arm, alpha: 1,
+          name: "arm: " + l.name + (s.name ? " (" + s.name + ")" : "") })));
         if (scene.tool) scene.tool.solids.forEach((s) => this.parts.push({
-          frame: arm.flange_frame, pose: M(s.pose), g: geometry(s), color: COLORS.tool, alpha: 1, name: s.name }));
+          frame: arm.flange_frame, pose: M(s.pose), g: geometry(s), color: COLORS.tool, alpha: 1,
+          name: "tool " + scene.tool.name + (s.name ? ": " + s.name : "") }));
       }
       (scene.obstacles || []).forEach((s) => this.parts.push({
-        frame: null, pose: M(s.pose), g: geometry(s), color: s.color ? rgb(s.color) : COLORS.obstacle, alpha: 0.88, name: s.name }));
+        frame: null, pose: M(s.pose), g: geometry(s), color: s.color ? rgb(s.color) : COLORS.obstacle, alpha: 0.88,
+        name: "cell: " + (s.name || s.shape) }));
       this.tcpOffset = scene.tool ? M(scene.tool.tcp) : I;
       this.t = 0;
       this.q = this.jointsAt(0);
@@ -126,7 +129,7 @@
     /* joint values at time t: linear between the samples */
     jointsAt(t) {
       const a = this.anim;
-      if (!a || !a.t.length) return this.joints.map(() => 0);
+      if (!a || !a.t.length) return (this.scene.joints || this.joints.map(() => 0)).slice();
       let i = V3.lowerBound(a.t, t);
       if (i <= 0) return a.q.map((c) => c[0]);
       if (i >= a.t.length) return a.q.map((c) => c[a.t.length - 1]);
@@ -174,6 +177,9 @@
         }
       });
       if (!isFinite(lo[0])) { lo = [-500, -500, -500]; hi = [500, 500, 500]; }
+      // room for the solids around the points
+      const pad = 0.08 * Math.max(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) + 100;
+      lo = lo.map((v) => v - pad); hi = hi.map((v) => v + pad);
       if (this.floor === undefined) this.floor = lo[2];
       this.lo = lo; this.hi = hi;
       this.center = [(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2];
@@ -182,7 +188,7 @@
 
     resetView() {
       this.yaw = -55 * DEG; this.pitch = 24 * DEG;
-      this.dist = this.radius / Math.sin(20 * DEG) * 0.92;
+      this.dist = this.radius / Math.sin(20 * DEG) * 0.85;
       this.target = this.center.slice();
       this.draw();
     }
@@ -262,7 +268,7 @@
           if (!part.g.closed && facing < 0) lam = -lam;
           const k = 0.45 + 0.55 * Math.max(0, lam);
           const c = part.color;
-          prims.push({ depth: depth / face.length, pts: face.map((i) => sv[i]),
+          prims.push({ depth: depth / face.length, pts: face.map((i) => sv[i]), part: part,
             fill: "rgba(" + Math.round(c[0] * k) + "," + Math.round(c[1] * k) + "," + Math.round(c[2] * k) + "," + part.alpha + ")" });
         });
       });
@@ -275,6 +281,7 @@
         }
       }
       prims.sort((a, b) => b.depth - a.depth);
+      this.prims = prims;
       ctx.lineJoin = "round";
       for (const p of prims) {
         if (p.line) {
@@ -337,6 +344,22 @@
       });
     }
 
+    /* the solid drawn at a point of the canvas (CSS pixels): the nearest face that covers it */
+    pick(x, y) {
+      const prims = this.prims || [];
+      for (let k = prims.length - 1; k >= 0; k--) {
+        const p = prims[k];
+        if (!p.pts) continue;
+        let inside = false;
+        for (let i = 0, j = p.pts.length - 1; i < p.pts.length; j = i++) {
+          const a = p.pts[i], b = p.pts[j];
+          if ((a[1] > y) !== (b[1] > y) && x < (b[0] - a[0]) * (y - a[1]) / (b[1] - a[1]) + a[0]) inside = !inside;
+        }
+        if (inside) return p.part.name;
+      }
+      return null;
+    }
+
     bind() {
       const cv = this.canvas;
       let drag = null;
@@ -346,7 +369,12 @@
         cv.style.cursor = "grabbing";
       });
       cv.addEventListener("pointermove", (ev) => {
-        if (!drag) return;
+        if (!drag) {
+          const r = cv.getBoundingClientRect(), name = this.pick(ev.clientX - r.left, ev.clientY - r.top);
+          V3.tip(name, ev.clientX, ev.clientY);
+          return;
+        }
+        V3.tip(null);
         const dx = ev.clientX - drag.x, dy = ev.clientY - drag.y;
         drag.x = ev.clientX; drag.y = ev.clientY;
         if (drag.pan) {
@@ -360,6 +388,7 @@
       });
       const end = () => { drag = null; cv.style.cursor = ""; };
       cv.addEventListener("pointerup", end);
+      cv.addEventListener("pointerleave", () => V3.tip(null));
       cv.addEventListener("pointercancel", end);
       cv.addEventListener("contextmenu", (ev) => ev.preventDefault());
       cv.addEventListener("wheel", (ev) => {
@@ -396,7 +425,12 @@
       anim = tr.anim ? { t: V3.f64(tr.anim.t), q: tr.anim.q.map(V3.f32) }
         : { t: V3.f64(tr.t), q: tr.joints.map((j) => V3.f32(j.pos.v)) };
     }
-    const joints = tr ? tr.joints : [];
+    // without a trajectory, the joints and their ranges come from the arm's chain
+    const chainJoint = (n) => (D.scene.arm ? D.scene.arm.joints.find((j) => j.name === n) : null) || {};
+    const joints = tr ? tr.joints : (D.scene.arm ? D.scene.arm.joint_names : []).map((n) => {
+      const j = chainJoint(n);
+      return { name: n, unit: j.type === "prismatic" ? "mm" : "deg", min: j.lower, max: j.upper };
+    });
     const view = new View3D(canvas, D.scene, anim, joints);
     const end = anim && anim.t.length ? anim.t[anim.t.length - 1] : D.duration;
     const play = document.getElementById("play"), scrub = document.getElementById("scrub");
@@ -409,18 +443,19 @@
       V3.el("th", { scope: "row" }, tr, j.name);
       const v = V3.el("td", { class: "n" }, tr);
       const u = j.unit === "deg" ? "°" : " " + j.unit;
-      V3.el("td", { class: "muted" }, tr, j.min !== null && j.max !== null ? j.min + " … " + j.max + u : "–");
+      V3.el("td", { class: "muted" }, tr, j.min != null && j.max != null ? j.min + " … " + j.max + u : "–");
       return { j: j, v: v, u: u };
     });
     function show(t) {
       view.setTime(t);
-      scrub.value = String(Math.round(t / (end || 1) * 1000));
-      out.textContent = t.toFixed(3) + " s";
+      if (scrub) scrub.value = String(Math.round(t / (end || 1) * 1000));
+      if (out) out.textContent = t.toFixed(3) + " s";
       cells.forEach((c, i) => {
         const x = view.q[i];
+        if (x === undefined) { c.v.textContent = "–"; return; }
         c.v.textContent = x.toFixed(2) + c.u;
         const span = (c.j.max - c.j.min) || 1;
-        const close = c.j.min !== null && (x - c.j.min < 0.05 * span || c.j.max - x < 0.05 * span);
+        const close = c.j.min != null && c.j.max != null && (x - c.j.min < 0.05 * span || c.j.max - x < 0.05 * span);
         c.v.classList.toggle("near", !!close);
         c.v.title = close ? "within 5 % of the joint range from a limit" : "";
       });
@@ -448,15 +483,17 @@
         requestAnimationFrame(frame);
       }
     }
-    play.addEventListener("click", () => setPlaying(!playing));
-    view.onSpace = () => setPlaying(!playing);
+    if (play) {
+      play.addEventListener("click", () => setPlaying(!playing));
+      view.onSpace = () => setPlaying(!playing);
+      scrub.addEventListener("input", () => V3.time.setCursor(parseInt(scrub.value, 10) / 1000 * end));
+    }
     view.onStep = (d) => {
       const a = view.anim;
       if (!a) return;
       const i = Math.min(Math.max(V3.lowerBound(a.t, view.t) + (d > 0 ? 1 : -1), 0), a.t.length - 1);
       V3.time.setCursor(a.t[i]);
     };
-    scrub.addEventListener("input", () => V3.time.setCursor(parseInt(scrub.value, 10) / 1000 * end));
     document.getElementById("reset-view").addEventListener("click", () => view.resetView());
     V3.time.on("cursor", show);
     show(0);
