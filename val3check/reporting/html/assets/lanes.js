@@ -185,7 +185,7 @@
       const y = (ev.clientY - r0.top) * (vb.height / r0.height);
       const row = this.rows.find((r) => y >= r.y - 2 && y <= r.y + r.h + 2);
       if (!row) { V3.tip(null); return; }
-      const px = (this.time1px = (V3.time.b - V3.time.a) / (this.g.x1 - this.g.x0)) * 5;
+      const px = 5 * (V3.time.b - V3.time.a) / (this.g.x1 - this.g.x0);  // 5 pixels, in seconds
       let text = null;
       if (row.kind === "states") {
         const i = V3.lowerBound(this.starts(row), t + 1e-12) - 1;
