@@ -100,6 +100,14 @@
       });
       // the data
       o.series.forEach((s) => {
+        if (s.lo !== s.hi) {  // min/max buckets of a long run: the band, when few enough to show it
+          const band = Plot.band(o.times, s.lo, s.hi, tw.a, tw.b, X, Y, g.x1 - g.x0);
+          if (band) {
+            V3.svg("path", { d: band.area, fill: s.color, "fill-opacity": 0.3, stroke: "none" }, body);
+            V3.svg("path", { class: "series", d: band.mid, fill: "none", stroke: s.color, "stroke-width": 1.4 }, body);
+            return;
+          }
+        }
         const d = Plot.path(o.times, s.lo, s.hi, tw.a, tw.b, X, Y, g.x1 - g.x0);
         if (d) V3.svg("path", { class: "series", d: d, fill: "none", stroke: s.color, "stroke-width": 1.6, "stroke-linejoin": "round" }, body);
       });
@@ -150,6 +158,23 @@
       }
       flush();
       return out.join("");
+    }
+
+    /* the band between the bucket minima and maxima and the line through their middle, or null
+       when there are more buckets than pixels (then `path` draws each column's extent) */
+    static band(times, lo, hi, a, b, X, Y, width) {
+      const n = times.length;
+      const i0 = Math.max(0, V3.lowerBound(times, a) - 1);
+      const i1 = Math.min(n, V3.lowerBound(times, b) + 1);
+      if (i1 - i0 < 1 || i1 - i0 > 2 * width) return null;
+      const up = [], down = [], mid = [];
+      for (let i = i0; i < i1; i++) {
+        const x = X(times[i]).toFixed(1);
+        up.push(x + "," + Y(hi[i]).toFixed(1));
+        down.push(x + "," + Y(lo[i]).toFixed(1));
+        mid.push(x + "," + Y((lo[i] + hi[i]) / 2).toFixed(1));
+      }
+      return { area: "M" + up.join("L") + "L" + down.reverse().join("L") + "Z", mid: "M" + mid.join("L") };
     }
 
     moveCursor(t) {
