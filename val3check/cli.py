@@ -253,7 +253,7 @@ def _lint(args: argparse.Namespace) -> int:
 def _robots(args: argparse.Namespace) -> int:
     """`val3check robots`: the catalogue, or one model in detail (val3check/robot)."""
     from .robot import RobotError, load_robot, names
-    from .robot.report import render_detail, render_list
+    from .reporting.robot_text import render_detail, render_list
 
     args.robot = args.robot or args.robot_opt
     try:

@@ -6,7 +6,7 @@ from __future__ import annotations
 import pytest
 
 from val3check.geometry import arm, points
-from val3check.geometry import instructions as I
+from val3check.geometry import by_val3_name as I
 from val3check.geometry.arm import Kinematics
 from val3check.geometry.frames import Frame, Tool, new_flange, new_world
 from val3check.geometry.points import Point

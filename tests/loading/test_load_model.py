@@ -372,7 +372,7 @@ def test_s7_data(s7_app):
         "rx": 0.0,
         "ry": 0.0,
         "rz": 0.0,
-        "ioLink": "valve1",
+        "gripper": "valve1",
         "otime": 0.2,
         "ctime": 0.0,
     }
@@ -381,8 +381,8 @@ def test_s7_data(s7_app):
         "accel": 100.0,
         "vel": 50.0,
         "decel": 100.0,
-        "tmax": 1000.0,
-        "rmax": 9999.0,
+        "tvel": 1000.0,
+        "rvel": 9999.0,
         "blend": "off",
         "leave": 50.0,
         "reach": 50.0,
@@ -452,8 +452,8 @@ def test_mdesc_manual_spellings(tmp_path):
     ws, diags = load([str(app)])
     assert diags == []
     v = ws.apps[str(app)].data["m"].values[0]
-    assert (v.fields["tmax"], v.fields["rmax"], v.fields["blend"]) == (10.0, 20.0, "Cartesian")
-    assert v.given == ("tmax", "rmax", "blend")
+    assert (v.fields["tvel"], v.fields["rvel"], v.fields["blend"]) == (10.0, 20.0, "Cartesian")
+    assert v.given == ("tvel", "rvel", "blend")
 
 
 def test_bad_values_are_f007_and_loading_goes_on(tmp_path):
@@ -606,5 +606,7 @@ def test_types_helpers():
     }
     # manual 10.5.1 defaults
     assert list(defaults("mdesc").values()) == [100.0, 100.0, 100.0, 9999.0, 9999.0, "joint", 50.0, 50.0]
-    assert field_key("mdesc", "tvel") == "tmax" and field_key("mdesc", "rvel") == "rmax"
+    # the manual's names are the keys; the files' spellings are aliases
+    assert field_key("mdesc", "tmax") == "tvel" and field_key("mdesc", "rmax") == "rvel"
+    assert field_key("mdesc", "tvel") == "tvel" and field_key("tool", "ioLink") == "gripper"
     assert defaults("Part") == {}

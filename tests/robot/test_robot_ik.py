@@ -8,7 +8,7 @@ import random
 import pytest
 
 from val3check.robot import Config, RobotError, Unreachable, load_robot
-from val3check.robot.config import classify
+from val3check.robot.configuration import classify
 from val3check.robot.ik import opw_ik
 from val3check.robot.kinematics import pose_error
 

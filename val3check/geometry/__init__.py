@@ -14,10 +14,10 @@ Modules
 - `points`    `Point`, `position`, `distance`, `compose`, `appro`, `link`, `assign`,
               `set_frame` (9.4.4); error 162.
 - `jointops`  joint ``+ - == != < >``, `abs_`, `herej`, `is_in_range` (9.2).
-- `config`    config tuples, `same`/`free` resolution (9.7).
+- `config_values`  config tuples, `same`/`free` resolution (9.7).
 - `arm`       the `Kinematics` protocol; `here`, `joint_to_point`, `point_to_joint`,
               `config_of` (9.6.3, 9.7.6).
-- `instructions`  the same by VAL 3 name, overloads dispatched on type (the interpreter's table).
+- `by_val3_name`   the same by VAL 3 name, overloads dispatched on type.
 
 Value shapes for the interpreter
 --------------------------------
@@ -29,7 +29,7 @@ Value shapes for the interpreter
   ``==`` compares the fields exactly (9.3.3 states no tolerance, unlike joint).
 - ``joint``: a tuple of floats (j1..j6, or j1..j4 on RS/TS arms); `jointops.from_dict/to_dict`.
 - ``config``: a tuple of strings, ``("lefty", "epositive", "wpositive")`` or ``("righty",)``;
-  `config.from_dict/to_dict`.
+  `config_values.from_dict/to_dict`.
 - ``frame``: a `Frame` node ``(trsf, ref, name, local, is_root)``; ``ref`` is the parent node
   (shared by reference, not copied). A frame VARIABLE must hold one node for its whole life:
   ``f1 = f2`` is ``assign(f1_node, f2_node)`` (copies trsf and reference into f1's node, so
@@ -60,7 +60,7 @@ of the software limits left out (or the model offers ``in_range``/``in_limits(jo
 ``config_of(joints) -> ("lefty", "epositive", "wpositive")`` (9.7.4; RS/TS: ``("righty",)``).
 See `arm.Kinematics`.
 
-Calls, by VAL 3 instruction (module `instructions` has them all by their VAL 3 names)
+Calls, by VAL 3 instruction (module `by_val3_name` has them all by their VAL 3 names)
 -----------------------------------------------------------------------------------------
 =================================  ==========================================================
 ``tr1 * tr2``, ``!tr``             ``tr1 * tr2``, ``tr.inverse()``

@@ -7,7 +7,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Protocol, runtime_checkable
 
-from . import config as C
+from . import config_values as C
 from . import rotation as R
 from .frames import Frame, Tool, root_pose
 from .jointops import herej  # noqa: F401  (re-exported: 9.2.3 herej)

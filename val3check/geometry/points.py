@@ -13,7 +13,7 @@ from collections.abc import Sequence
 
 from ..language.runtime_errors import Val3RuntimeError
 
-from . import config as C
+from . import config_values as C
 from . import rotation as R
 from .frames import Frame, check_link, root_pose
 from .trsf import Trsf

@@ -153,8 +153,9 @@ class TypeSpace:
         return {n: sp.container(d, in_user=True, local=local) for n, d in ut.fields.items()}
 
     def from_fields(self, t: str, fields: dict, members: dict, name: str = "", local: bool = False) -> Any:
-        """A value from a loader `Value.fields`/`members` (types.py keys: tmax/rmax, ioLink).
-        Frames, tools and points come without reference (`value_of` links them)."""
+        """A value from a loader `Value.fields`/`members` (loading/types.py: flat fields, the
+        manual's names). Frames, tools and points come without reference (`value_of` links
+        them)."""
         b = base_type(t)
         if b in ("num", "bool", "string"):
             v = fields.get("value")
@@ -172,7 +173,7 @@ class TypeSpace:
         if b == "frame":
             return Frame(_trsf(fields), None, name=name, local=local)
         if b == "tool":
-            return Tool(_trsf(fields), None, gripper=self.cell.io("dio", str(fields.get("ioLink") or "")),
+            return Tool(_trsf(fields), None, gripper=self.cell.io("dio", str(fields.get("gripper") or "")),
                         otime=_num(fields, "otime"), ctime=_num(fields, "ctime"), name=name, local=local)
         if b == "point":
             p = Point(_trsf(fields), (), None, name=name, local=local)
@@ -184,10 +185,8 @@ class TypeSpace:
             keys = [k for k in fields if k[:1] == "j" and k[1:].isdigit()] or list(JOINT_FIELDS)
             return {k: _num(fields, k) for k in sorted(keys, key=lambda s: int(s[1:]))}
         if b == "mdesc":
-            return {"accel": _num(fields, "accel", 100.0), "vel": _num(fields, "vel", 100.0),
-                    "decel": _num(fields, "decel", 100.0), "tvel": _num(fields, "tmax", 9999.0),
-                    "rvel": _num(fields, "rmax", 9999.0), "blend": _enum(fields.get("blend"), "joint"),
-                    "leave": _num(fields, "leave", 50.0), "reach": _num(fields, "reach", 50.0)}
+            return {f: _enum(fields.get(f), d) if type(d) is str else _num(fields, f, d)
+                    for f, d in DEFAULTS["mdesc"].items()}
         ut = self.user_type(t)
         if ut is None:
             return None
@@ -200,8 +199,7 @@ class TypeSpace:
 
     @staticmethod
     def _config(fields: dict) -> dict:
-        return {"shoulder": _enum(fields.get("shoulder"), "ssame"), "elbow": _enum(fields.get("elbow"), "esame"),
-                "wrist": _enum(fields.get("wrist"), "wsame")}
+        return {f: _enum(fields.get(f), d) for f, d in DEFAULTS["config"].items()}
 
     def value_of(self, t: str, v: Value, name: str = "", in_user: bool = False, father: bool = True,
                  local: bool = False) -> Any:

@@ -46,6 +46,10 @@ STRUCT_ORDER: dict[str, tuple[str, ...]] = {t: tuple(f) for t, f in STRUCT_FIELD
 FIELD_NAMES: dict[str, dict[str, str]] = {
     name: {**{a: f.name for f in bt.fields for a in f.aliases}, **{f.name: f.name for f in bt.fields}}
     for name, bt in load_types().items() if bt.kind == "structured"}
+# The value a field of a new variable takes (numbers, enum values, a dio's link name).
+FIELD_DEFAULTS: dict[str, dict[str, Any]] = {
+    name: {f.name: f.default for f in bt.fields if f.default is not None}
+    for name, bt in load_types().items() if bt.kind == "structured"}
 JOINT_FIELDS = tuple(STRUCT_FIELDS["joint"])
 ENUMS: dict[str, tuple[str, ...]] = {name: bt.values for name, bt in load_types().items() if bt.kind == "enum"}
 ENUM_CONSTANTS: dict[str, str] = {v.lower(): t for t, vs in ENUMS.items() for v in vs}

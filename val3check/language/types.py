@@ -28,6 +28,7 @@ class FieldSpec:
     type: str
     aliases: tuple[str, ...] = ()
     note: str = ""
+    default: Any = None  # a number, an enum value, a dio's link name; None: its type's defaults
 
 
 @dataclass(frozen=True)
@@ -130,7 +131,8 @@ def load_types() -> dict[str, BuiltinType]:
             prefix=raw.get("prefix"),
             default=raw.get("default"),
             fields=tuple(
-                FieldSpec(f["name"], f["type"], tuple(f.get("aliases", ())), f.get("note", "")) for f in raw.get("fields", ())
+                FieldSpec(f["name"], f["type"], tuple(f.get("aliases", ())), f.get("note", ""), f.get("default"))
+                for f in raw.get("fields", ())
             ),
             values=tuple(raw.get("values", ())),
             reference=raw.get("reference"),

@@ -73,8 +73,8 @@ class Value:
     `fields` holds every field of the type with defaults filled in (manual 2.4 and the type's
     chapter), converted: num -> float, bool -> bool, others -> str. `given` lists the field
     names that the file actually wrote. User-type values keep their fields in `members`.
-    Field keys are those of `loading.types.DEFAULTS` (mdesc: `tmax`/`rmax` for the manual's
-    `tvel`/`rvel`, see `loading.types.field_key`).
+    Field keys are those of `loading.types.DEFAULTS`: the manual's field names (mdesc `tvel`,
+    tool `gripper`), whatever spelling the file used (`tmax`, `ioLink`: `loading.types.field_key`).
     """
 
     key: str
@@ -101,7 +101,7 @@ class Data:
     values: list[Value]
     origin: Origin
     father: str | None = None  # frame/tool/point parent, e.g. "world[0]", "fPallet[0]" (from fatherId)
-    link: str | None = None  # dio/aio/sio/screen physical link, tool gripper ioLink
+    link: str | None = None  # dio/aio/sio/screen physical link, tool gripper link
 
 
 @dataclass(slots=True)

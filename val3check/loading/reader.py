@@ -359,7 +359,7 @@ def _make_data(name, typ, container, sizes, access, values, origin) -> Data:  # 
     link = None
     if values:
         f = values[0].fields
-        link = f.get("link") or f.get("ioLink") or None
+        link = f.get("link") or f.get("gripper") or None
     return Data(name, typ, container, sizes, access, values, origin, father=father, link=link)
 
 

@@ -8,6 +8,8 @@ from __future__ import annotations
 
 from typing import Any
 
+from ..language.types import load_types
+
 # Manual 2.3.2 (types simples) and 2.3.3 (types structurés). `trsf` is spelled `trs` in one
 # place of the French manual; `trsf` everywhere else and in files.
 SIMPLE_TYPES: tuple[str, ...] = ("bool", "num", "string", "dio", "aio", "sio", "screen")
@@ -52,65 +54,58 @@ def is_user_type(name: str) -> bool:
 
 
 # ---------------------------------------------------------------------------------------------
-# Fields and defaults. Values are already converted: num -> float, bool -> bool, others -> str.
+# Fields and defaults, from language/types.toml (the one source of the type facts). A value's
+# fields are flat, as data files write them: a point's are x..rz and shoulder, elbow, wrist.
+# Values are converted: num -> float, bool -> bool, others -> str. Keys are the manual's field
+# names (mdesc `tvel`, tool `gripper`); the files' spellings (`tmax`, `ioLink`) are aliases.
 
-_TRSF: dict[str, Any] = {"x": 0.0, "y": 0.0, "z": 0.0, "rx": 0.0, "ry": 0.0, "rz": 0.0}
-# Manual 9.7.2: shoulder/elbow/wrist take righty|lefty|ssame|sfree, epositive|enegative|esame|
-# efree, wpositive|wnegative|wsame|wfree. The manual does not say which value a new point gets;
-# SRS files omit the fields when unchanged and generated s6 files write ssame/esame/wsame, so
-# that is the default used here.
-_CONFIG: dict[str, Any] = {"shoulder": "ssame", "elbow": "esame", "wrist": "wsame"}
 
+def _literal(text: str | None) -> Any:
+    """A simple type's default as types.toml writes it (`false`, `0`, `""`)."""
+    return {"false": False, "true": True, '""': ""}.get(text or "", 0.0)
+
+
+def _flat_defaults(type_name: str) -> dict[str, Any]:
+    types = load_types()
+    out: dict[str, Any] = {}
+    for f in types[type_name].fields:
+        ft = types.get(f.type)
+        if ft is not None and ft.kind == "structured":
+            out.update(_flat_defaults(f.type))
+        elif f.type == "num":
+            out[f.name] = float(f.default or 0)
+        else:
+            out[f.name] = f.default
+    return out
+
+
+def _defaults() -> dict[str, dict[str, Any]]:
+    out: dict[str, dict[str, Any]] = {}
+    for name, bt in load_types().items():
+        if bt.kind == "simple":
+            # 2.4.1 false, 0, ""; 3.5-3.7, 4.2: an undefined link
+            out[name] = {"link": ""} if name in ("dio", "aio", "sio", "screen") else {"value": _literal(bt.default)}
+        elif bt.kind == "structured":
+            out[name] = _flat_defaults(name)
+    return out
+
+
+def _aliases() -> dict[str, dict[str, str]]:
+    out: dict[str, dict[str, str]] = {}
+    for name, bt in load_types().items():
+        found = {a.lower(): f.name for f in bt.fields for a in f.aliases}
+        if found:
+            out[name] = found
+    return out
+
+
+DEFAULTS: dict[str, dict[str, Any]] = _defaults()
+# Field spellings accepted in files -> the key used in Value.fields (`tmax` -> `tvel`).
+FIELD_ALIASES: dict[str, dict[str, str]] = _aliases()
+# 9.7.2 and 10.5.1: the values of the config fields and of blend, lower case.
 CONFIG_VALUES: dict[str, tuple[str, ...]] = {
-    "shoulder": ("righty", "lefty", "ssame", "sfree"),
-    "elbow": ("epositive", "enegative", "esame", "efree"),
-    "wrist": ("wpositive", "wnegative", "wsame", "wfree"),
-}
-# Manual 10.5.1: blend is off, joint or Cartesian.
-BLEND_VALUES: tuple[str, ...] = ("off", "joint", "cartesian")
-
-DEFAULTS: dict[str, dict[str, Any]] = {
-    # Manual 2.4.1: "La valeur d'initialisation est false pour un bool, 0 pour un num et ""
-    # (chaîne vide) pour une chaîne."
-    "bool": {"value": False},
-    "num": {"value": 0.0},
-    "string": {"value": ""},
-    # Manual 3.5-3.7, 4.2: "La valeur d'initialisation par défaut ... est un lien indéfini."
-    "dio": {"link": ""},
-    "aio": {"link": ""},
-    "sio": {"link": ""},
-    "screen": {"link": ""},
-    # Manual 9.3.1: "Par défaut, une variable de type trsf est initialisée à {0,0,0,0,0,0}."
-    "trsf": dict(_TRSF),
-    # Manual 9.4.1: one field, trsf; the reference frame comes from fatherId.
-    "frame": dict(_TRSF),
-    # Manual 9.5.1: "Par défaut, la sortie d'un outil est la sortie valve1 du système, les temps
-    # d'ouverture et de fermeture sont à 0, et l'outil de base est flange."
-    "tool": {**_TRSF, "ioLink": "valve1", "otime": 0.0, "ctime": 0.0},
-    # Manual 9.6.1: trsf + config.
-    "point": {**_TRSF, **_CONFIG},
-    # Manual 9.2.1: "Par défaut, chaque champ d'une variable de type joint est initialisé à 0."
-    "joint": {f"j{i}": 0.0 for i in range(1, 7)},
-    "config": dict(_CONFIG),
-    # Manual 10.5.1: "Par défaut, une variable de type mdesc est initialisée avec
-    # {100,100,100,9999,9999,joint,50,50}." Files write tvel/rvel as tmax/rmax.
-    "mdesc": {
-        "accel": 100.0,
-        "vel": 100.0,
-        "decel": 100.0,
-        "tmax": 9999.0,
-        "rmax": 9999.0,
-        "blend": "joint",
-        "leave": 50.0,
-        "reach": 50.0,
-    },
-}
-
-# Field spellings accepted in files (and used by the manual) -> the key used in Value.fields.
-FIELD_ALIASES: dict[str, dict[str, str]] = {
-    "mdesc": {"tvel": "tmax", "rvel": "rmax"},
-    "tool": {"iolink": "ioLink", "gripper": "ioLink"},
-}
+    f.name: tuple(v.lower() for v in load_types()[f.type].values) for f in load_types()["config"].fields}
+BLEND_VALUES: tuple[str, ...] = tuple(v.lower() for v in load_types()["blend"].values)
 
 # Which fields are numbers (converted to float) and which are booleans.
 BOOL_FIELDS: frozenset[tuple[str, str]] = frozenset({("bool", "value")})
@@ -123,7 +118,7 @@ def defaults(type_name: str) -> dict[str, Any]:
 
 
 def field_key(type_name: str, field: str) -> str:
-    """The key of `field` in Value.fields for a value of `type_name` (`tvel` -> `tmax`)."""
+    """The key of `field` in Value.fields for a value of `type_name` (`tmax` -> `tvel`)."""
     aliases = FIELD_ALIASES.get(base_type(type_name), {})
     return aliases.get(field.lower(), field)
 

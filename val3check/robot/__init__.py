@@ -49,7 +49,7 @@ assumed). RS/TS SCARA arms are out of scope.
 from __future__ import annotations
 
 from .catalog import names
-from .config import Config
+from .configuration import Config
 from .errors import IKUnsupported, RobotError, Unreachable
 from .models import RobotModel, from_urdf, load_robot
 from .select import choose_robot

@@ -10,7 +10,7 @@ from pathlib import Path
 from typing import Sequence
 
 from . import catalog as _catalog
-from .config import Config, classify, resolve
+from .configuration import Config, classify, resolve
 from .errors import IKUnsupported, RobotError, Unreachable
 from .ik import opw_ik
 from .kinematics import DEG, RAD, OPW, Chain, extract_opw, matrix_trsf, trsf_matrix

@@ -9,7 +9,15 @@ from __future__ import annotations
 
 from ...loading.types import base_type
 from ...parsing import ast
-from ..values import ENUM_CONSTANTS, ENUM_SPELLING, OBJECT_TYPES, STRUCT_FIELDS, STRUCT_ORDER, clip_string
+from ..values import (
+    ENUM_CONSTANTS,
+    ENUM_SPELLING,
+    FIELD_DEFAULTS,
+    OBJECT_TYPES,
+    STRUCT_FIELDS,
+    STRUCT_ORDER,
+    clip_string,
+)
 from .structures import (
     ENUM_VALUES_TYPES,
     GEOMETRY_TYPES,
@@ -278,7 +286,7 @@ class ExpressionCompiler:
             raise self.err(f"too many fields for {b}", node)
         parts = []
         codes = []
-        defaults = {"config": {"shoulder": "ssame", "elbow": "esame", "wrist": "wsame"}}.get(b, {})
+        defaults = FIELD_DEFAULTS[b]
         for i, name in enumerate(order):
             ft = STRUCT_FIELDS[b][name]
             f = node.fields[i] if i < len(node.fields) else None
@@ -288,9 +296,9 @@ class ExpressionCompiler:
                 elif ft in STRUCT_FIELDS:
                     code = f"DEFAULT({ft!r})"
                 elif ft == "dio":
-                    code = "IODEF('valve1')"
+                    code = f"IODEF({defaults[name]!r})"  # 9.5.1: valve1
                 else:
-                    code = repr(defaults.get(name, {"blend": "joint"}.get(name, "")))
+                    code = repr(defaults.get(name, ""))  # an enum field: its default value
             else:
                 code, t = self.expr(f, want=ft)
                 if ft != "num" and ft not in STRUCT_FIELDS and t in ("num",):

@@ -226,7 +226,7 @@ class VariableCompiler:
         `t` (a file alias of a built-in field, `mDesc.tmax`, is the field `tvel`)."""
         b = base_type(t)
         if b in STRUCT_FIELDS:
-            canonical = FIELD_NAMES[b].get(name.lower())
+            canonical = FIELD_NAMES[b].get(name)
             if canonical is None and b == "joint" and name[:1] == "j" and name[1:].isdigit():
                 canonical = name  # one field per axis (9.2.1): j7, j8 on extra axes
             if canonical is None:

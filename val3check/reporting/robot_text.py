@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from .models import RobotModel
+from ..robot.models import RobotModel
 
 
 def _n(v: float) -> str:

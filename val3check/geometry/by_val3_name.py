@@ -1,7 +1,7 @@
 """The geometry of chapter 9 by VAL 3 name: one function per instruction or operator, with the
-overloads of the manual dispatched on the Python types (`Trsf`, `Point`, `Frame`, `Tool`).
-
-This is the table the interpreter calls (see the package docstring for the value shapes).
+overloads of the manual dispatched on the Python types (`Trsf`, `Point`, `Frame`, `Tool`), for
+scripts and tests (see the package docstring for the value shapes; the interpreter's own
+boundary is interpretation/chapters/ch09_geometry.py).
 """
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from . import arm, frames, jointops, points
-from . import trsf as T
+from . import trsf as trsf_ops
 from .frames import Frame, Tool
 from .points import Point
 from .trsf import Trsf
@@ -45,7 +45,7 @@ def distance(a: Trsf | Point, b: Trsf | Point) -> float:
     """distance(trsf, trsf) 9.3.4, distance(point, point) 9.6.3."""
     if type(a) is Point:
         return points.distance(a, b)  # type: ignore[arg-type]
-    return T.distance(a, b)  # type: ignore[arg-type]
+    return trsf_ops.distance(a, b)  # type: ignore[arg-type]
 
 
 def compose(p: Point, reference: Frame, tr: Trsf) -> Point:
@@ -61,15 +61,15 @@ def setFrame(origin: Point, on_x: Point, in_xy: Point, result: Frame) -> int:
 
 
 def interpolateL(start: Trsf, end: Trsf, s: float) -> Trsf:
-    return T.interpolate_l(start, end, s)
+    return trsf_ops.interpolate_l(start, end, s)
 
 
 def interpolateC(start: Trsf, mid: Trsf, end: Trsf, s: float) -> Trsf:
-    return T.interpolate_c(start, mid, end, s)
+    return trsf_ops.interpolate_c(start, mid, end, s)
 
 
 def align(tr: Trsf, reference: Trsf) -> Trsf:
-    return T.align(tr, reference)
+    return trsf_ops.align(tr, reference)
 
 
 def trsf_mul(a: Trsf, b: Trsf) -> Trsf:

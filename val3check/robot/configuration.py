@@ -20,13 +20,14 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from ..geometry.config_values import CONCRETE
 from .errors import RobotError
 
 DEG = math.pi / 180.0
 
-SHOULDER = ("righty", "lefty")
-ELBOW = ("epositive", "enegative")
-WRIST = ("wpositive", "wnegative")
+SHOULDER = CONCRETE["shoulder"]  # ("righty", "lefty")
+ELBOW = CONCRETE["elbow"]  # ("epositive", "enegative")
+WRIST = CONCRETE["wrist"]  # ("wpositive", "wnegative")
 _FIELDS = (("shoulder", "s", SHOULDER), ("elbow", "e", ELBOW), ("wrist", "w", WRIST))
 
 

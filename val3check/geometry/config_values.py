@@ -11,17 +11,19 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+from ..language.types import load_types
+
 Config = tuple[str, ...]
 
-FIELDS = ("shoulder", "elbow", "wrist")
-VALUES = {
-    "shoulder": ("righty", "lefty", "ssame", "sfree"),
-    "elbow": ("epositive", "enegative", "esame", "efree"),
-    "wrist": ("wpositive", "wnegative", "wsame", "wfree"),
-}
-FREE = frozenset({"sfree", "efree", "wfree"})
-SAME = frozenset({"ssame", "esame", "wsame"})
-DEFAULT: Config = ("ssame", "esame", "wsame")  # what the interpreter gives an unwritten config
+# From language/types.toml: the config type's fields and the values of each (9.7.2).
+FIELDS: tuple[str, ...] = tuple(f.name for f in load_types()["config"].fields)
+VALUES: dict[str, tuple[str, ...]] = {f: load_types()[f].values for f in FIELDS}
+FREE = frozenset(v for vs in VALUES.values() for v in vs if v.endswith("free"))
+SAME = frozenset(v for vs in VALUES.values() for v in vs if v.endswith("same"))
+# the values an arm position has (config(joint), 9.7.4): neither same nor free
+CONCRETE: dict[str, tuple[str, ...]] = {f: tuple(v for v in vs if v not in FREE and v not in SAME)
+                                        for f, vs in VALUES.items()}
+DEFAULT: Config = tuple(f.default for f in load_types()["config"].fields)  # an unwritten config
 
 
 def from_dict(d: dict) -> Config:
