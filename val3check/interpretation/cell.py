@@ -74,10 +74,14 @@ class CellSubsystem:
     # ---- Subsystem -----------------------------------------------------------------------------
 
     def next_time(self, now_us: int) -> int | None:
-        return self.timeline.next_time()
+        heap = self.timeline.heap
+        return heap[0][0] if heap else None
 
     def advance(self, to_us: int) -> None:
         timeline = self.timeline
+        heap = timeline.heap
+        if not heap or heap[0][0] > to_us:  # nothing due: the common case, every 4 ms
+            return
         while True:
             due = timeline.pop_due(to_us)
             if due is None:

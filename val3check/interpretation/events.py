@@ -53,27 +53,27 @@ Event = Union[InputsChange, SerialData, KeyPress, PowerChange, ControllerChange]
 class Timeline:
     """Events in time order (then scheduling order)."""
 
-    __slots__ = ("_heap", "_seq")
+    __slots__ = ("heap", "_seq")
 
     def __init__(self) -> None:
-        self._heap: list[tuple[int, int, Event]] = []
+        self.heap: list[tuple[int, int, Event]] = []  # (time, order, event); heap[0] is the next
         self._seq = 0
 
     def push(self, at: int, event: Event) -> None:
         self._seq += 1
-        heapq.heappush(self._heap, (at, self._seq, event))
+        heapq.heappush(self.heap, (at, self._seq, event))
 
     def next_time(self) -> int | None:
-        return self._heap[0][0] if self._heap else None
+        return self.heap[0][0] if self.heap else None
 
     def pop_due(self, now: int) -> tuple[int, Event] | None:
         """The next event at or before `now`, removed from the timeline; None when there is
         none (events scheduled while applying one are seen by the next call)."""
-        heap = self._heap
+        heap = self.heap
         if heap and heap[0][0] <= now:
             at, _, event = heapq.heappop(heap)
             return at, event
         return None
 
     def __len__(self) -> int:
-        return len(self._heap)
+        return len(self.heap)

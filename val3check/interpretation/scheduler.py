@@ -136,11 +136,15 @@ class Scheduler:
         self.tasks: list[Task] = []  # live tasks, creation order
         self.history: list[Task] = []  # every task ever created
         self.subsystems: list[Any] = []  # Subsystem objects, in registration order
+        self._advance: list[Any] = []  # their bound `advance` and `next_time` (asked every cycle)
+        self._next_time: list[Any] = []
         self.total_lines = 0
         self._seq = 0
 
     def add_subsystem(self, subsystem: Any) -> None:
         self.subsystems.append(subsystem)
+        self._advance.append(subsystem.advance)
+        self._next_time.append(subsystem.next_time)
 
     # ---- task life (5.10) -----------------------------------------------------------------------
 
@@ -269,24 +273,27 @@ class Scheduler:
         task ended up waiting."""
         clock = self.clock
         now = clock.now
-        for subsystem in self.subsystems:
-            subsystem.advance(now)
+        for advance in self._advance:
+            advance(now)
         clock.cycle_lines = 0
-        for task in list(self.tasks):
-            if task.period and now >= task.next_run and task in self.tasks:
+        tasks = self.tasks
+        for task in list(tasks):
+            if task.period and now >= task.next_run and task in tasks:
                 self._sync_turn(task)
+        turn = self._turn
+        stopped, delay, wait = STOPPED_STATES, DELAY, WAIT
         while clock.cycle_lines < LINES_PER_CYCLE:
             progress = False
-            for task in list(self.tasks):
-                if task.period or task not in self.tasks:
+            for task in list(tasks):
+                if task.period or task not in tasks:
                     continue
                 st = task.state
-                if st is SUSPENDED or st is ERROR or st is HELD or st is KILLED:
+                if st in stopped:
                     continue
-                if st is DELAY and task.wake > now:
+                if st is delay and task.wake > now:
                     continue
                 ok = None
-                if st is WAIT and task.cond is not None:
+                if st is wait and task.cond is not None:
                     # the wait's condition, evaluated once per turn here rather than by
                     # resuming the task: it is resumed when true (or at the watch timeout)
                     try:
@@ -299,7 +306,7 @@ class Scheduler:
                 left = LINES_PER_CYCLE - clock.cycle_lines
                 if left <= 0:
                     break
-                if self._turn(task, min(task.prio, left), ok):
+                if turn(task, task.prio if task.prio < left else left, ok):
                     progress = True
             if not progress:
                 break
@@ -374,18 +381,19 @@ class Scheduler:
         """The next time something can change, or None (deadlock)."""
         now = self.clock.now
         times = []
-        for subsystem in self.subsystems:
-            t = subsystem.next_time(now)
+        for next_time in self._next_time:
+            t = next_time(now)
             if t is not None:
                 times.append(t)
         tdep = False
+        stopped, delay, wait = STOPPED_STATES, DELAY, WAIT
         for task in self.tasks:
             st = task.state
-            if task.period and st not in STOPPED_STATES:
+            if task.period and st not in stopped:
                 times.append(task.next_run)
-            if st is DELAY and task.wake is not None:
+            if st is delay and task.wake is not None:
                 times.append(task.wake)
-            elif st is WAIT:
+            elif st is wait:
                 if task.wake is not None:
                     times.append(task.wake)
                 if task.tdep:

@@ -7,6 +7,7 @@ from typing import Any
 
 from ..loading.model import Application, Container
 from ..parsing.parser import parse_program
+from ..semantics.checker import expression_types
 from .compiler import Compiled, compile_program
 from .memory import resolve_fathers
 from .system_io import is_system_io
@@ -31,6 +32,7 @@ class Unit:
         self.programs: dict[str, Compiled] = {}
         self.ns: dict[str, Any] = {}
         self.compile_errors: list = []
+        self.expression_types: dict = {}
 
     @property
     def name(self) -> str:
@@ -74,6 +76,9 @@ class Unit:
         for prog in self.model.programs.values():
             if prog.body is None and prog.code is not None:
                 parse_program(prog)
+        # the compiler reads the types semantic analysis computes (lint's checks)
+        self.expression_types = expression_types(machine.ws, self.model)
+        for prog in self.model.programs.values():
             compiled = compile_program(self, prog, ns)
             self.programs[prog.name] = compiled
             machine.compiled[compiled.filename] = compiled

@@ -6,8 +6,10 @@ the application's symbol table (symbols.py). Programs whose code has syntax erro
 (`body is None`) are skipped; their declarations still serve the other programs' calls.
 
 For reuse (suspicious-pattern rules, an interpreter): `symbols.build(workspace, app)` gives the
-symbol table, and `program_typer(workspace, app, program)` an ExprTyper whose `typeof(node)`
-types any expression of that program (diagnostics go to its `ctx.diags`).
+symbol table, `program_typer(workspace, app, program)` an ExprTyper whose `typeof(node)`
+types any expression of that program (diagnostics go to its `ctx.diags`), and
+`expression_types(workspace, app)` the type of every expression the checks typed (the
+simulator's compiler reads it).
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ from .context import Context
 from .declarations import check_declarations
 from .expressions import ExprTyper
 from .statements import StatementChecker
+from .vtypes import Val
 
 
 def check_application(workspace: Workspace, app: Application) -> list[Diagnostic]:
@@ -42,3 +45,30 @@ def program_typer(workspace: Workspace, app: Application, program: Program,
     ctx = Context(workspace, app, table or symbols.build(workspace, app), [])
     ctx.enter(program)
     return ExprTyper(ctx)
+
+
+class _RecordingChecker(StatementChecker):
+    def __init__(self, ctx: Context, types: dict[int, Val]) -> None:
+        super().__init__(ctx, {})
+        self.types = types
+
+    def typeof(self, node: object) -> Val:
+        v = super().typeof(node)
+        self.types[id(node)] = v
+        return v
+
+
+def expression_types(workspace: Workspace, app: Application,
+                     table: symbols.AppSymbols | None = None) -> dict[int, Val]:
+    """The Val of every expression of every program of `app` that parsed, by `id(node)`, as
+    the checks type it (the findings are dropped: lint reports them)."""
+    types: dict[int, Val] = {}
+    ctx = Context(workspace, app, table or symbols.build(workspace, app), [])
+    checker = _RecordingChecker(ctx, types)
+    for program in app.programs.values():
+        if program.body is None:
+            continue
+        ctx.enter(program)
+        checker.literal_vals.clear()
+        checker.check(program.body)
+    return types

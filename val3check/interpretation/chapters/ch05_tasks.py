@@ -107,7 +107,8 @@ def I_help(task, unit, code: float) -> str:
 
 
 def I_delay(task, unit, s: float):
-    yield from DELAY(task, s)
+    """5.10 delay: the waiting generator itself (the generated code's `yield from` runs it)."""
+    return DELAY(task, s)
 
 
 def I_clock(task, unit) -> float:

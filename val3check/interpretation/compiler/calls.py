@@ -88,6 +88,11 @@ class CallCompiler:
         return ovs[0]
 
     def _arg_type(self, a) -> str:
+        """An argument's type, for choosing an instruction's form: semantic analysis's, else
+        the compiler's."""
+        t = self.semantic_type(a)
+        if t is not None:
+            return t
         try:
             tn = type(a)
             if tn in (ast.Name, ast.LibraryName):

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from ...loading.types import base_type
 from ...parsing import ast
+from ...semantics import vtypes as vt
 from ..values import (
     ENUM_CONSTANTS,
     ENUM_SPELLING,
@@ -30,12 +31,38 @@ from .structures import (
 )
 
 
+# Expressions whose type the compiler takes from semantic analysis (see `expr`).
+_TYPED_BY_SEMANTICS = frozenset({ast.Name, ast.LibraryName, ast.Index, ast.Field, ast.CallExpr, ast.Unary, ast.Binary,
+                                 ast.Number, ast.String, ast.Bool})
+_KNOWN_KINDS = frozenset({vt.BUILTIN, vt.ENUM, vt.USER})
+
+
 class ExpressionCompiler:
     """The expressions part of `ProgramCompiler` (program.py)."""
 
+    def semantic_type(self, node) -> str | None:
+        """The type semantic analysis gave `node` (semantics.checker.expression_types), or None
+        when it could not tell (an unknown name, the controller's `io:` symbols...)."""
+        v = self.types.get(id(node))
+        if v is None or v.t.kind not in _KNOWN_KINDS:
+            return None
+        return v.t.name
+
     def expr(self, node, want: str | None = None) -> Code:
         """The Python code and VAL 3 type of an rvalue. `want` is the expected type (for
-        `{...}`)."""
+        `{...}`). The type is semantic analysis's when it typed the node; the compiler's own
+        for what only the context types (`{...}`), for the value of an `=` inside an
+        expression (the value written, not the variable: `n = (si = 5)` reads no sio), and
+        for what semantic analysis cannot know."""
+        code = self.derive(node, want)
+        if type(node) in _TYPED_BY_SEMANTICS:
+            t = self.semantic_type(node)
+            if t is not None and t != code.t:
+                return Code(code.text, t)
+        return code
+
+    def derive(self, node, want: str | None = None) -> Code:
+        """Code and type of an rvalue, the type as the compiler derives it."""
         tn = type(node)
         if tn is ast.Number:
             return Code(repr(float(node.value)), "num")

@@ -30,6 +30,7 @@ class ProgramCompiler(StatementCompiler, CallCompiler, ExpressionCompiler, Varia
     def __init__(self, unit, program: Program, max_level: int = 1000) -> None:
         self.unit = unit
         self.registry = unit.machine.registry
+        self.types = unit.expression_types  # id(node) -> semantics' Val
         self.app: Application = unit.model
         self.space: TypeSpace = unit.space
         self.program = program
