@@ -21,7 +21,7 @@ sys.path.insert(0, str(ROOT / "tests"))
 from support import write_app  # noqa: E402
 
 from val3check.config import Settings  # noqa: E402
-from val3check.interpretation.scenario import load_scenario  # noqa: E402
+from val3check.simulation.scenario import load_scenario  # noqa: E402
 from val3check.simulation import SimOptions, simulate  # noqa: E402
 from val3check.lint import run  # noqa: E402
 

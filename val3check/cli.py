@@ -178,7 +178,7 @@ def _sim(args: argparse.Namespace) -> int:
         print(f"val3check sim: not run: {app.name} has no start() program (2.1.2)", file=sys.stderr)
         return EXIT_USAGE
 
-    from .interpretation.scenario import ScenarioError, load_scenario
+    from .simulation.scenario import ScenarioError, load_scenario
     from .reporting.sim_report import build_report
     from .robot import RobotError
     from .rules.catalogue import catalogue

@@ -43,7 +43,7 @@ def sim(tmp_path: Path, code: str, *, globals_=(), locals_=(), programs=None, sc
     app = ws.apps[ws.targets[0]]
     sc = None
     if scenario is not None:
-        from val3check.interpretation.scenario import load_scenario
+        from val3check.simulation.scenario import load_scenario
 
         p = tmp_path / "scenario.toml"
         p.write_text(scenario, encoding="utf-8")
@@ -154,7 +154,7 @@ def run_folder(folder: Path, *, scenario: str | None = None, duration: float = 1
     app = ws.apps[ws.targets[0]]
     sc = None
     if scenario is not None:
-        from val3check.interpretation.scenario import load_scenario
+        from val3check.simulation.scenario import load_scenario
 
         p = (tmp_path or folder.parent) / "scenario.toml"
         p.write_text(scenario, encoding="utf-8")

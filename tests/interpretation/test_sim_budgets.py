@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from val3check.cli import main
-from val3check.interpretation.scenario import ScenarioError
+from val3check.simulation.scenario import ScenarioError
 
 from .simsupport import build, codes, errors, run_folder, sim
 

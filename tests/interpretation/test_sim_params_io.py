@@ -135,7 +135,7 @@ end
 def test_scenario_errors_name_the_line(tmp_path):
     import pytest
 
-    from val3check.interpretation.scenario import ScenarioError
+    from val3check.simulation.scenario import ScenarioError
 
     with pytest.raises(ScenarioError) as exc:
         sim(tmp_path, "begin\nend\n", globals_=["dio diIn"], links={"diIn": "IO\\%I0"},

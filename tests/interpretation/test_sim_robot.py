@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 from val3check.cli import main
-from val3check.interpretation.scenario import ScenarioError
+from val3check.simulation.scenario import ScenarioError
 from val3check.robot import load_robot
 
 from .simsupport import build, codes, errors, gv, run_folder, sim

@@ -8,7 +8,8 @@ Where things are:
   stops the task (`not_simulated.py`);
 - the arm's position comes through `arm_port.py` (implemented by `val3check.motion`);
 - what changes with time besides the tasks is a `Subsystem` (`subsystem.py`): the cell and
-  its scenario (`cell.py`, `events.py`, `scenario.py`), the arm's motion;
+  its scenario (`cell.py`, `events.py`; the scenario file is read by `val3check.simulation`),
+  the arm's motion;
 - `compiler/` turns each program into a Python generator function, once; `code_support.py`
   holds the helpers the generated code calls;
 - `machine.py` puts a run together: units (`units.py`, `libraries.py`, `system_io.py`), values

@@ -30,6 +30,7 @@ from ..loading.model import Application, Workspace
 from ..motion import ch10_motion
 from ..motion.arm_state import MotionlessArm
 from .result import SimResult, collect
+from .scenario import Scenario, apply_scenario
 
 # What the generated code calls, then the chapters of the manual, in order.
 INTERPRETER_MODULES = (code_support, waiting, not_simulated, ch02_variables, ch03_simple_types, ch04_user_page,
@@ -55,22 +56,24 @@ def build_registry() -> Registry:
     return registry
 
 
-def build_machine(ws: Workspace, app: Application, options: SimOptions) -> Machine:
+def build_machine(ws: Workspace, app: Application, options: SimOptions, *, registry: Registry | None = None,
+                  arm: Any = None) -> Machine:
+    """A machine ready to load the application. `registry` and `arm` (an `Arm` port that is also
+    a `Subsystem`) replace the standard ones (tests, tools)."""
     budgets = Budgets(duration_us=int(round(options.duration * 1_000_000)), wall_s=options.max_wall,
                       max_lines=options.max_lines, max_transcript=options.max_transcript)
-    arm = MotionlessArm(options.robot)
-    machine = Machine(ws, app, build_registry(), arm, budgets=budgets, disk_roots=options.disk_roots)
+    arm = arm if arm is not None else MotionlessArm(options.robot)
+    machine = Machine(ws, app, registry or build_registry(), arm, budgets=budgets, disk_roots=options.disk_roots)
     machine.add_subsystem(arm)  # after the cell: inputs are refreshed before the arm moves
     return machine
 
 
-def simulate(ws: Workspace, app: Application, options: SimOptions | None = None, scenario: Any = None) -> SimResult:
+def simulate(ws: Workspace, app: Application, options: SimOptions | None = None,
+             scenario: Scenario | None = None) -> SimResult:
     options = options or SimOptions()
     machine = build_machine(ws, app, options)
     machine.load_main()
     if scenario is not None:
-        from ..interpretation.scenario import apply_scenario
-
         apply_scenario(machine, scenario)
     machine.run()
     return collect(machine)

@@ -15,10 +15,10 @@ import tomllib
 from dataclasses import dataclass, field
 from typing import Any
 
-from .cell import Reaction, SerialReply
-from .events import ControllerChange, InputsChange, KeyPress, SerialData
-from .user_page import Key
-from .values import Arr, FaultyIOPoint, IOPoint
+from ..interpretation.cell import Reaction, SerialReply
+from ..interpretation.events import ControllerChange, InputsChange, KeyPress, SerialData
+from ..interpretation.user_page import Key
+from ..interpretation.values import Arr, FaultyIOPoint, IOPoint
 
 SCENARIO_VERSION = 1
 

@@ -1,0 +1,207 @@
+"""The layers of docs/architecture.md: which package may import which, read from every
+module's imports (function-level and TYPE_CHECKING imports included); no import cycle inside
+interpretation/; no private name imported from another package; nothing registers itself on
+import."""
+
+from __future__ import annotations
+
+import ast
+import subprocess
+import sys
+from pathlib import Path
+
+PACKAGE = Path(__file__).resolve().parent.parent / "val3check"
+
+# Layer of each top-level package or module of val3check (docs/architecture.md).
+LAYER_OF = {
+    "": "base", "diagnostics": "base", "positions": "base", "resources": "base", "rules": "base",
+    "language": "language",
+    "loading": "loading",
+    "parsing": "parsing",
+    "semantics": "semantics",
+    "lint": "lint", "config": "lint", "suppression": "lint", "result": "lint",
+    "geometry": "geometry",
+    "robot": "robot",
+    "interpretation": "interpretation",
+    "motion": "motion", "collision": "collision",
+    "simulation": "simulation",
+    "reporting": "reporting",
+    "cli": "cli", "__main__": "cli", "testing": "cli",
+}
+_BELOW_INTERPRETATION = {"base", "language", "loading", "parsing", "semantics", "geometry", "robot"}
+_BELOW_SIMULATION = _BELOW_INTERPRETATION | {"interpretation", "motion", "collision", "lint"}
+# What each layer may import (besides itself).
+ALLOWED = {
+    "base": set(),
+    "language": {"base"},
+    "loading": {"base", "language"},
+    "parsing": {"base", "language", "loading"},
+    "semantics": {"base", "language", "loading", "parsing"},
+    "lint": {"base", "language", "loading", "parsing", "semantics"},
+    "geometry": {"base", "language"},
+    "robot": {"base", "language", "geometry"},
+    "interpretation": _BELOW_INTERPRETATION,
+    "motion": _BELOW_INTERPRETATION | {"interpretation"},
+    "collision": _BELOW_INTERPRETATION | {"interpretation"},
+    "simulation": _BELOW_SIMULATION,
+    "reporting": _BELOW_SIMULATION | {"simulation"},
+    "cli": set(LAYER_OF.values()),
+}
+# The lint pipeline: what `val3check lint` may load (it installs without the sim extra).
+LINT_PATH = ALLOWED["lint"] | {"lint"}
+
+
+def _module_name(path: Path) -> str:
+    parts = list(path.relative_to(PACKAGE.parent).with_suffix("").parts)
+    if parts[-1] == "__init__":
+        parts = parts[:-1]
+    return ".".join(parts)
+
+
+def _imports(path: Path) -> list[tuple[str, str | None, int]]:
+    """(module imported, name imported from it or None, line) for every val3check import."""
+    module = _module_name(path)
+    package = module.split(".") if path.name == "__init__.py" else module.split(".")[:-1]
+    out = []
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.Import):
+            out += [(a.name, None, node.lineno) for a in node.names if a.name.split(".")[0] == "val3check"]
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = package[:len(package) - (node.level - 1)]
+                target = ".".join(base + ([node.module] if node.module else []))
+            else:
+                target = node.module or ""
+            if target.split(".")[0] == "val3check":
+                out += [(target, a.name, node.lineno) for a in node.names]
+    return out
+
+
+def _modules() -> dict[str, Path]:
+    return {_module_name(p): p for p in PACKAGE.rglob("*.py") if p.name != "_tables.py"}
+
+
+def _top(module: str) -> str:
+    parts = module.split(".")
+    return parts[1] if len(parts) > 1 else ""
+
+
+def _resolve(target: str, name: str | None, modules: dict[str, Path]) -> str:
+    """`from val3check.x import y`: the module val3check.x.y when y is one, else val3check.x."""
+    if name is not None and f"{target}.{name}" in modules:
+        return f"{target}.{name}"
+    return target
+
+
+def test_every_module_has_a_layer():
+    assert sorted({_top(m) for m in _modules()} - set(LAYER_OF)) == []
+
+
+def test_imports_follow_the_layers():
+    modules = _modules()
+    bad = []
+    for module, path in sorted(modules.items()):
+        layer = LAYER_OF[_top(module)]
+        for target, name, line in _imports(path):
+            other = LAYER_OF.get(_top(_resolve(target, name, modules)))
+            if other is not None and other != layer and other not in ALLOWED[layer]:
+                bad.append(f"{path.relative_to(PACKAGE.parent)}:{line}: {layer} imports {other} ({target})")
+    assert bad == []
+
+
+def test_no_import_cycle_inside_interpretation():
+    modules = _modules()
+    graph: dict[str, set[str]] = {}
+    for module, path in modules.items():
+        if _top(module) == "interpretation":
+            graph[module] = {t for t in (_resolve(tg, n, modules) for tg, n, _ in _imports(path))
+                             if _top(t) == "interpretation" and t != module and t in modules}
+    cycles = _cycles(graph)
+    assert cycles == []
+
+
+def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:
+    """Strongly connected components of more than one module (Tarjan)."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on: set[str] = set()
+    found: list[list[str]] = []
+
+    def visit(v: str) -> None:
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on.add(v)
+        for w in graph.get(v, ()):
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            comp = []
+            while True:
+                w = stack.pop()
+                on.discard(w)
+                comp.append(w)
+                if w == v:
+                    break
+            if len(comp) > 1:
+                found.append(sorted(comp))
+
+    for v in sorted(graph):
+        if v not in index:
+            visit(v)
+    return found
+
+
+def test_the_cycle_finder_finds_cycles():
+    assert _cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
+
+
+def test_no_private_name_is_imported_from_another_package():
+    modules = _modules()
+    bad = []
+    for module, path in modules.items():
+        here = module.rsplit(".", 1)[0] if path.name != "__init__.py" else module
+        for target, name, line in _imports(path):
+            if name and name.startswith("_") and not name.startswith("__"):
+                source = _resolve(target, name, modules)
+                source_package = source.rsplit(".", 1)[0] if source != target else target
+                if not (source_package == here or target == here):
+                    bad.append(f"{path.relative_to(PACKAGE.parent)}:{line}: {name} from {target}")
+    assert bad == []
+
+
+def test_lint_loads_nothing_above_the_lint_pipeline():
+    """What `val3check lint` imports stays in its layers: it installs and runs without the sim
+    extra (pinocchio, numpy...) and without the interpreter."""
+    code = (
+        "import sys, runpy\n"
+        "sys.argv = ['val3check', 'lint', 'fixtures/valid/Cell', '--format', 'json']\n"
+        "try:\n    runpy.run_module('val3check', run_name='__main__')\nexcept SystemExit:\n    pass\n"
+        "print('MODULES', sorted(m for m in sys.modules if m.startswith('val3check')), file=sys.stderr)\n"
+    )
+    r = subprocess.run([sys.executable, "-c", code], cwd=PACKAGE.parent, capture_output=True, text=True, timeout=60)
+    line = next(x for x in r.stderr.splitlines() if x.startswith("MODULES"))
+    loaded = eval(line[len("MODULES "):])  # noqa: S307 - our own output
+    layers = {LAYER_OF[_top(m)] for m in loaded}
+    # the command line and its report formats are the only modules above the pipeline it loads
+    assert layers - LINT_PATH <= {"cli", "reporting"}, layers
+    assert not [m for m in loaded if _top(m) == "reporting" and "sim" in m or _top(m) in ("interpretation",
+                                                                                              "simulation", "motion")]
+
+
+def test_nothing_registers_on_import():
+    """Importing every chapter module leaves no instruction anywhere: registration is the
+    explicit `register(registry)` that val3check.simulation makes."""
+    from val3check.interpretation.registry import Registry
+    from val3check.simulation import run
+
+    empty = Registry()
+    assert empty.namespace() == {}
+    registry = run.build_registry()
+    for module in run.INTERPRETER_MODULES + run.MOTION_MODULES:
+        assert callable(module.register)
+        assert not any(isinstance(v, Registry) for v in vars(module).values()), module.__name__
+    assert registry.handler("movej") is not None and registry.handler("taskStatus") is not None
