@@ -53,7 +53,7 @@ class RootResult:
     skipped_files: int = 0
 
 
-def _real(path: str) -> str:
+def real_path(path: str) -> str:
     return os.path.realpath(os.path.abspath(path))
 
 
@@ -62,11 +62,11 @@ def _errors(diags) -> list:
 
 
 def bench_root(root: Path, per_kind: int | None, seed: int, clean_only: bool) -> RootResult:
-    root_s = _real(str(root))
+    root_s = real_path(str(root))
     res = RootResult(root=str(root))
     base = run([root_s], Settings())
     res.precision_errors = _errors(base.result.diagnostics)
-    dirty = {_real(d.path) for d in res.precision_errors} if clean_only else set()
+    dirty = {real_path(d.path) for d in res.precision_errors} if clean_only else set()
     ws, _ = load([root_s])
     with tempfile.TemporaryDirectory(prefix="val3recall-") as tmp:
         copy = os.path.join(tmp, os.path.basename(root_s))
@@ -77,19 +77,19 @@ def bench_root(root: Path, per_kind: int | None, seed: int, clean_only: bool) ->
             settings = Settings(disk_roots=[os.path.dirname(root_s)])
         for key in sorted(ws.targets):
             app = ws.apps[key]
-            if not _real(app.path).startswith(root_s + os.sep):
+            if not real_path(app.path).startswith(root_s + os.sep):
                 continue
             res.apps += 1
-            res.skipped_files += sum(1 for p in app.programs.values() if _real(p.origin.path) in dirty)
+            res.skipped_files += sum(1 for p in app.programs.values() if real_path(p.origin.path) in dirty)
             mutants = plant_workspace(ws, app, per_kind=per_kind, seed=seed, skip_files=dirty)
-            app_copy = os.path.join(copy, os.path.relpath(_real(app.path), root_s))
+            app_copy = os.path.join(copy, os.path.relpath(real_path(app.path), root_s))
             for m in mutants:
-                res.outcomes.append(_lint_mutant(m, root_s, copy, app_copy, settings))
+                res.outcomes.append(lint_mutant(m, root_s, copy, app_copy, settings))
     return res
 
 
-def _lint_mutant(m: Mutant, root: str, copy: str, app_copy: str, settings: Settings) -> Outcome:
-    dest = os.path.join(copy, os.path.relpath(_real(m.path), root))
+def lint_mutant(m: Mutant, root: str, copy: str, app_copy: str, settings: Settings) -> Outcome:
+    dest = os.path.join(copy, os.path.relpath(real_path(m.path), root))
     with open(dest, "rb") as f:
         original = f.read()
     try:
@@ -109,7 +109,7 @@ def _lint_mutant(m: Mutant, root: str, copy: str, app_copy: str, settings: Setti
         return Outcome(m, False, f"expected position {m.line}:{m.col} but the code maps to {at.line}:{at.col}",
                        bad=True)
     want = Severity.parse(m.severity)
-    here = [d for d in outcome.result.diagnostics if _real(d.path) == _real(dest)]
+    here = [d for d in outcome.result.diagnostics if real_path(d.path) == real_path(dest)]
     for d in here:
         if d.code == m.code and d.line == m.line and d.col == m.col and d.severity == want:
             return Outcome(m, True)
@@ -152,7 +152,7 @@ def report(res: RootResult, show_misses: bool) -> tuple[int, int]:
         print("misses:")
         for o in misses:
             m = o.mutant
-            print(f"  {m.kind} {m.code} {os.path.relpath(m.path, _real(res.root))}:{m.line}:{m.col}: "
+            print(f"  {m.kind} {m.code} {os.path.relpath(m.path, real_path(res.root))}:{m.line}:{m.col}: "
                   f"{m.before!r} -> {m.after!r}: {o.reported}")
     return total, found
 

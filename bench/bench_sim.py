@@ -18,7 +18,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "tests"))
 
-from support import write_app  # noqa: E402
+from val3check.testing import write_app  # noqa: E402
 
 from val3check.config import Settings  # noqa: E402
 from val3check.simulation.scenario import load_scenario  # noqa: E402

@@ -3,50 +3,23 @@
 from __future__ import annotations
 
 import random
+import sys
 from pathlib import Path
 
-PJX = """<?xml version="1.0" encoding="utf-8"?>
-<Project xmlns="http://www.staubli.com/robotics/VAL3/Project/3">
-  <Parameters version="s7.11" stackSize="5000" millimeterUnit="true" />
-  <Programs>
-{programs}
-  </Programs>
-  <Database>
-    <Data file="{name}.dtx" />
-  </Database>
-  <Libraries />
-</Project>
-"""
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-DTX = """<?xml version="1.0" encoding="utf-8"?>
-<Database xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance" xmlns="http://www.staubli.com/robotics/VAL3/Data/2">
-  <Datas>
-    <Data name="nCount" access="public" xsi:type="array" type="num" size="1" />
+from val3check.testing import database_xml, program_file, project_xml  # noqa: E402
+
+# Globals of the application, as VAL 3 Studio writes them (sNames has one value).
+DATAS = """    <Data name="nCount" access="public" xsi:type="array" type="num" size="1" />
     <Data name="nGrid" access="public" xsi:type="array" type="num" size="10 10" />
     <Data name="sLog" access="public" xsi:type="array" type="string" size="1" />
     <Data name="bReady" access="public" xsi:type="array" type="bool" size="1" />
     <Data name="sNames" access="public" xsi:type="collection" type="string">
       <Value key="a" value="alpha" />
-    </Data>
-  </Datas>
-</Database>
-"""
-
-PGX = """<?xml version="1.0" encoding="utf-8"?>
-<Programs xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance" xmlns="http://www.staubli.com/robotics/VAL3/Program/2">
-  <Program name="{name}" access="public">
-    <Parameters xmlns="http://www.staubli.com/robotics/VAL3/Param/1">
-      <Parameter name="x_nIn" type="num" xsi:type="element" />
-    </Parameters>
-    <Locals>
-      <Local name="l_i" type="num" xsi:type="array" size="1" />
-      <Local name="l_j" type="num" xsi:type="array" size="1" />
-      <Local name="l_s" type="string" xsi:type="array" size="1" />
-    </Locals>
-    <Code><![CDATA[{code}]]></Code>
-  </Program>
-</Programs>
-"""
+    </Data>"""
+PARAMS = ("num x_nIn",)
+LOCALS = ("num l_i", "num l_j", "string l_s")
 
 BLOCKS = [
     "  // accumulate the grid\n  for l_i = 0 to 9\n    for l_j = 9 to 0 step -1\n      nGrid[l_i, l_j] = nGrid[l_i, l_j] + x_nIn * 2 - (l_i % 3)\n    endFor\n  endFor",
@@ -73,19 +46,17 @@ def generate(folder: Path, min_lines: int = 20_000, seed: int = 3) -> int:
         if index > 0:
             body.append(f"  call prog{index - 1:04d}(nCount)")
         body.append("end")
-        (folder / f"{prog}.pgx").write_text(PGX.format(name=prog, code="\n".join(body)), encoding="utf-8")
+        text = program_file(prog, "\n".join(body), PARAMS, LOCALS)
+        (folder / f"{prog}.pgx").write_text(text, encoding="utf-8")
         programs.append(prog)
         total += len(body)
         index += 1
     for special in ("start", "stop"):
         code = "begin\n  call prog0000(1)\nend" if special == "start" else "begin\nend"
-        text = PGX.format(name=special, code=code)
-        head, _, rest = text.partition("    <Parameters")
-        text = head + rest[rest.index("    <Code>"):]  # start() and stop() take no parameter and no local
-        (folder / f"{special}.pgx").write_text(text, encoding="utf-8")
+        # start() and stop() take no parameter and have no local
+        (folder / f"{special}.pgx").write_text(program_file(special, code), encoding="utf-8")
         programs.append(special)
         total += code.count("\n") + 1
-    entries = "\n".join(f'    <Program file="{p}.pgx" />' for p in programs)
-    (folder / f"{name}.pjx").write_text(PJX.format(programs=entries, name=name), encoding="utf-8")
-    (folder / f"{name}.dtx").write_text(DTX, encoding="utf-8")
+    (folder / f"{name}.pjx").write_text(project_xml(name, programs), encoding="utf-8")
+    (folder / f"{name}.dtx").write_text(database_xml(DATAS), encoding="utf-8")
     return total

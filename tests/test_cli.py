@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from support import write_app
+from val3check.testing import write_app
 
 ROOT = Path(__file__).resolve().parent.parent
 

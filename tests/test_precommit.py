@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-from support import write_app
+from val3check.testing import write_app
 
 ROOT = Path(__file__).resolve().parent.parent
 _BESIDE = Path(sys.executable).parent / "pre-commit"  # the one installed with the test extra

@@ -14,7 +14,7 @@ import pytest
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "bench"))
 
-from bench_recall import _lint_mutant, _real  # noqa: E402
+from bench_recall import lint_mutant, real_path  # noqa: E402
 from plant import KINDS, plant_workspace  # noqa: E402
 
 from val3check.config import Settings  # noqa: E402
@@ -38,16 +38,16 @@ BEFORE = _digest()
 
 @pytest.fixture(scope="module")
 def outcomes(tmp_path_factory):
-    root = _real(str(FIXTURES))
+    root = real_path(str(FIXTURES))
     copy = tmp_path_factory.mktemp("recall") / "valid"
     shutil.copytree(root, copy)
     ws, _ = load([str(FIXTURES / app) for app in APPS])
     out = []
     for key in ws.targets:
         app = ws.apps[key]
-        app_copy = str(copy / Path(_real(app.path)).relative_to(root))
+        app_copy = str(copy / Path(real_path(app.path)).relative_to(root))
         for m in plant_workspace(ws, app, per_kind=PER_KIND, seed=3):
-            out.append(_lint_mutant(m, root, str(copy), app_copy, Settings()))
+            out.append(lint_mutant(m, root, str(copy), app_copy, Settings()))
     return out
 
 

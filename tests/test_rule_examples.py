@@ -8,7 +8,9 @@ import pytest
 
 from val3check.config import Settings, load_settings
 from val3check.rules.catalogue import FAMILIES, catalogue
-from support import code_position, lint, write_app, write_files
+from support import lint
+
+from val3check.testing import code_position, write_app, write_files
 
 RULES = catalogue()
 

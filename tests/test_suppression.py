@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
-from support import lint, write_app
+from support import lint
+
+from val3check.testing import write_app
 
 
 def codes(tmp_path):

@@ -6,7 +6,7 @@ import html
 import re
 from pathlib import Path
 
-from support import write_app
+from val3check.testing import write_app
 
 from val3check.config import Settings
 from val3check.simulation import SimOptions, SimResult, simulate

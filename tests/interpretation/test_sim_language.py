@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from support import code_position
+from val3check.testing import code_position
 
 from .simsupport import errors, out, sim
 

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from loadhelp import PGX_NS, XSI, write
+from .loadhelp import PGX_NS, XSI, write
 
 from val3check.loading import load
 from val3check.positions import Position

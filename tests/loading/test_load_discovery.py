@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import os
 
-from loadhelp import codes, make_app, pgx, pjx, write
+from .loadhelp import codes, make_app, pgx, pjx, write
 
 from val3check.loading import load
 

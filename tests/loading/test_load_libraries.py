@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from loadhelp import codes, make_app, pjx, write
+from .loadhelp import codes, make_app, pjx, write
 
 from val3check.loading import LoadOptions, load
 

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import pytest
-from loadhelp import DTX_NS, PGX_NS, PJX_NS, XSI, dtx, make_app, pgx, pjx, write
+from .loadhelp import DTX_NS, PGX_NS, PJX_NS, XSI, dtx, make_app, pgx, pjx, write
 
 from val3check.loading import load
 from val3check.loading.model import Container

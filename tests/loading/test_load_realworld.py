@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from val3check.loading import load
 
-from loadhelp import codes, make_app, pgx, pjx, write
+from .loadhelp import codes, make_app, pgx, pjx, write
 
 
 def test_two_dimensional_keys_written_with_a_comma(tmp_path):

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import random
 
-from loadhelp import make_app
+from .loadhelp import make_app
 
 from val3check.loading import load
 

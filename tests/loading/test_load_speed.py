@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import time
 
-from loadhelp import PGX_NS, XSI, dtx, pjx, write
+from .loadhelp import PGX_NS, XSI, dtx, pjx, write
 
 from val3check.loading import load
 

@@ -6,7 +6,7 @@ import os
 import socket
 
 import pytest
-from loadhelp import PGX_NS, XSI, codes, make_app, pgx, pjx, write
+from .loadhelp import PGX_NS, XSI, codes, make_app, pgx, pjx, write
 
 from val3check.loading import LoadOptions, load
 from val3check.loading.xmlread import read_xml

@@ -5,7 +5,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from support import code_position, lint, write_app, write_files
+from support import lint
+
+from val3check.testing import code_position, write_app, write_files
 
 MINE = ("N", "T", "L0", "L1")
 

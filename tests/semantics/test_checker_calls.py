@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from checkhelp import codes, collect, findings, messages, write_app, write_files
+from .checkhelp import codes, collect, findings, messages, write_app, write_files
 
 G = ["num nX", "string sA", "bool bA", "joint jA", "point pA", "tool tA", "mdesc mA", "frame fA", "num nArr[4]",
      "sio siA", "dio diA", "dio doArr[3]", "trsf trA"]

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from checkhelp import codes, collect, findings, write_app
+from .checkhelp import codes, collect, findings, write_app
 
 G = ["num nOne", "num nArr[4]", "num nGrid[3,4]", "num nCube[2,3,4]", 'num nColl[""]', "string sKey", "num nX",
      'string sColl[""]', "string s3d[10,10,10]", "string s2d[20,5]", "string sArr[30]", "string sMsg"]

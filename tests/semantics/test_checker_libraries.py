@@ -6,7 +6,7 @@ import shutil
 from pathlib import Path
 
 import pytest
-from checkhelp import collect
+from .checkhelp import collect
 
 FIXTURES = Path(__file__).resolve().parents[2] / "fixtures" / "valid"
 
@@ -57,7 +57,9 @@ def test_unresolved_library_and_type_are_not_checked(tree):
 
 
 def test_library_system_instruction_is_not_an_interface_symbol(tmp_path):
-    from support import lint, write_app
+    from support import lint
+
+    from val3check.testing import write_app
 
     write_app(tmp_path, "begin\nend", name="Lib")
     app = write_app(tmp_path, "begin\n  lib:$libOpen()\n  nX = lib:$count(1)\n  nX = lib:nMissing\nend",

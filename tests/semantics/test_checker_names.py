@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from checkhelp import codes, collect, findings, messages, write_app, write_files
+from .checkhelp import codes, collect, findings, messages, write_app, write_files
 
 
 def test_undefined_variable_at_its_position_with_a_suggestion(tmp_path):

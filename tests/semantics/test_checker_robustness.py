@@ -5,7 +5,7 @@ from __future__ import annotations
 import random
 from pathlib import Path
 
-from checkhelp import collect, write_app
+from .checkhelp import collect, write_app
 
 from val3check.loading import load
 from val3check.parsing import ast as A

@@ -3,7 +3,7 @@ s6 global is indexed by numbers), but a bare name is never reported as a missing
 
 from __future__ import annotations
 
-from checkhelp import collect, write_files
+from .checkhelp import collect, write_files
 
 PJX = """<?xml version="1.0" encoding="utf-8"?>
 <project xmlns="ProjectNameSpace">

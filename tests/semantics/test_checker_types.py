@@ -4,7 +4,7 @@
 from __future__ import annotations
 
 import pytest
-from checkhelp import codes, findings
+from .checkhelp import codes, findings
 
 G = ["num nX", "num nY", "string sA", "string sB", "bool bA", "bool bB", "dio diA", "dio doB", "aio aiA", "sio siA",
      "joint jA", "joint jB", "trsf trA", "trsf trB", "point pA", "point pB", "frame fA", "tool tA", "config cA",

@@ -9,7 +9,9 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-from support import lint, write_app, write_files
+from support import lint
+
+from val3check.testing import write_app, write_files
 
 from val3check.semantics import patterns
 
