@@ -153,6 +153,12 @@ def _sim(args: argparse.Namespace) -> int:
     if not args.duration > 0 or not args.max_wall > 0 or args.max_lines < 1:
         print("val3check: error: --duration, --max-wall and --max-lines must be positive", file=sys.stderr)
         return EXIT_USAGE
+    from .simulation.requirements import install_hint, missing_sim_packages
+
+    missing = missing_sim_packages()
+    if missing:
+        print(f"val3check: error: {install_hint(missing)}", file=sys.stderr)
+        return EXIT_USAGE
 
     from .diagnostics import Severity
     from .lint import run

@@ -3,15 +3,27 @@ run it, and hand its `SimResult` to the reports (reporting/).
 
 - `run`           `simulate()`, `SimOptions`: the registry of instructions, the arm, the
                   machine and its subsystems, the scenario;
-- `result`        `SimResult`, `TaskSummary`: what a run hands to the reports;
 - `scenario`      the cell around the application (docs/scenario.md): read the file, then set
                   the cell's timeline, reactions, keys, controller and arm before the run;
+- `result`        `SimResult`, `TaskSummary`: what a run hands to the reports;
 - `robot_choice`  the arm model of the run (--robot, arm.cfx);
-- `requirements`  the packages of the `sim` extra, checked before a run.
+- `requirements`  the packages of the `sim` extra, checked before a run (importing it loads
+                  nothing else: the names below are imported when first used).
 """
 
-from .result import SimResult, TaskSummary
-from .robot_choice import choose_sim_robot
-from .run import SimOptions, simulate
+from __future__ import annotations
 
-__all__ = ["SimOptions", "SimResult", "TaskSummary", "choose_sim_robot", "simulate"]
+from importlib import import_module
+from typing import Any
+
+_EXPORTS = {"SimOptions": "run", "simulate": "run", "SimResult": "result", "TaskSummary": "result",
+            "choose_sim_robot": "robot_choice"}
+
+__all__ = sorted(_EXPORTS)
+
+
+def __getattr__(name: str) -> Any:
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    return getattr(import_module(f"{__name__}.{module}"), name)

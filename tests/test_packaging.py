@@ -1,0 +1,80 @@
+"""Packaging (docs/architecture.md): `pip install val3check` brings what `lint` needs and
+nothing else; `val3check[sim]` brings the robotics stack; `sim` without it says which extra to
+install; lark is pinned to the range the shipped parser tables load with."""
+
+from __future__ import annotations
+
+import ast
+import sys
+import tomllib
+from pathlib import Path
+
+from val3check.testing import write_app
+
+ROOT = Path(__file__).resolve().parent.parent
+PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
+SIM_STACK = {"pin", "pinocchio", "numpy", "scipy", "toppra", "python-fcl", "fcl", "trimesh", "mcap"}
+# the packages of the lint layers (tests/test_architecture.py LINT_PATH)
+LINT_PACKAGES = ("language", "loading", "parsing", "semantics", "rules")
+LINT_MODULES = ("__init__.py", "__main__.py", "cli.py", "diagnostics.py", "positions.py", "resources.py", "lint.py",
+                "config.py", "suppression.py", "result.py")
+
+
+def _name(requirement: str) -> str:
+    for sep in "<>=![ ;":
+        requirement = requirement.split(sep)[0]
+    return requirement.strip().lower()
+
+
+def test_the_base_install_has_no_robotics_stack():
+    base = {_name(r) for r in PYPROJECT["project"]["dependencies"]}
+    assert base == {"lark", "defusedxml"}
+    extras = PYPROJECT["project"]["optional-dependencies"]
+    assert {"pin", "numpy"} <= {_name(r) for r in extras["sim"]}
+    assert "val3check[sim]" in extras["test"]  # the README's test command installs everything
+
+
+def test_the_lint_path_imports_only_the_base_dependencies():
+    """Every module `lint` may load imports, besides val3check and the standard library, only
+    the base dependencies (read from the code, as a light install would run it)."""
+    package = ROOT / "val3check"
+    files = [package / m for m in LINT_MODULES]
+    for p in LINT_PACKAGES:
+        files += sorted((package / p).rglob("*.py"))
+    allowed = {"lark", "defusedxml"}
+    found = set()
+    for path in files:
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Import):
+                found |= {a.name.split(".")[0] for a in node.names}
+            elif isinstance(node, ast.ImportFrom) and not node.level and node.module:
+                found.add(node.module.split(".")[0])
+    third_party = found - set(sys.stdlib_module_names) - {"val3check", "__future__"}
+    assert third_party <= allowed, third_party - allowed
+
+
+def test_sim_without_the_extra_says_which_extra_to_install(tmp_path, monkeypatch, capsys):
+    from val3check import cli
+    from val3check.simulation import requirements
+
+    real = requirements.find_spec
+    monkeypatch.setattr(requirements, "find_spec", lambda m: None if m == "pinocchio" else real(m))
+    folder = write_app(tmp_path, "begin\nend\n")
+    assert cli.main(["sim", str(folder)]) == 2
+    err = capsys.readouterr().err
+    assert "missing: pin" in err and "pip install 'val3check[sim]'" in err
+
+
+def test_lark_is_pinned_to_the_range_the_shipped_tables_load_with():
+    import lark
+
+    from val3check.parsing import _tables
+    from val3check.parsing import parser as P
+
+    (spec,) = [r for r in PYPROJECT["project"]["dependencies"] if _name(r) == "lark"]
+    low, high = spec.split(">=")[1].split(",<")
+    version = tuple(int(x) for x in lark.__version__.split(".")[:2])
+    assert tuple(int(x) for x in low.split(".")[:2]) <= version < tuple(int(x) for x in high.split(".")[:2])
+    # the tables load with the installed Lark (no fallback on building them from the grammar)
+    assert P._load_shipped() is not None
+    assert _tables.LARK_VERSION.split(".")[:2] == lark.__version__.split(".")[:2]
