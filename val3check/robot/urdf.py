@@ -49,6 +49,9 @@ class UrdfInfo:
     links: set[str]
     meta: dict[str, str] | None  # attributes of <val3check>, None when absent
     meta_joints: dict[str, dict[str, str]] = field(default_factory=dict)
+    # the other children of <val3check>, in order: ("fact" | "assumption" | "alternative" |
+    # "missing", attributes); see models.Provenance
+    meta_items: list[tuple[str, dict[str, str]]] = field(default_factory=list)
 
     def chain(self, root: str, tip: str) -> list[UrdfJoint]:
         """Joints from `root` down to `tip` (both links), in order; empty when root == tip."""
@@ -131,10 +134,15 @@ def read_urdf(path: str | Path) -> UrdfInfo:
     meta_el = root.find("val3check")
     meta = dict(meta_el.attrib) if meta_el is not None else None
     meta_joints = {}
+    meta_items = []
     if meta_el is not None:
-        for j in meta_el.findall("joint"):
-            meta_joints[j.get("name", "")] = dict(j.attrib)
-    return UrdfInfo(path=path, robot_name=root.get("name", ""), joints=joints, links=links, meta=meta, meta_joints=meta_joints)
+        for child in meta_el:
+            if child.tag == "joint":
+                meta_joints[child.get("name", "")] = dict(child.attrib)
+            elif isinstance(child.tag, str):
+                meta_items.append((child.tag, dict(child.attrib)))
+    return UrdfInfo(path=path, robot_name=root.get("name", ""), joints=joints, links=links, meta=meta, meta_joints=meta_joints,
+                    meta_items=meta_items)
 
 
 # ---- small rigid-transform helpers (3x4 row-major tuples, metres) -------------------------------
