@@ -132,7 +132,7 @@ def match_id(arm_id: str, stroke_mm: float | None = None) -> Match:
         closest = closest_model(n)
         hint = f"; the closest model is {closest} (use --robot {closest}, or a URDF of your own)" if closest else \
             " (use --robot NAME or a URDF)"
-        ids = ", ".join(e["ids"][0] for e in _catalog.catalog().values() if e.get("ids"))
+        ids = ", ".join(dict.fromkeys(e["ids"][0] for e in _catalog.catalog().values() if e.get("ids")))
         raise RobotError(f"arm {arm_id!r} is {_describe_kind(n)} that val3check has no model for{hint}; known ids: {ids}")
     notes = []
     name, entry = cands[0]
@@ -144,7 +144,7 @@ def match_id(arm_id: str, stroke_mm: float | None = None) -> Match:
         else:
             notes.append(f"no lengthAxis3 in arm.cfx: the {entry.get('stroke_mm'):g} mm stroke of {name} is taken "
                          f"(the {', '.join(c[0] for c in cands[1:])} exists too)")
-    if not entry.get("confirmed") and key != _key(name):
+    if not entry.get("confirmed"):
         notes.append(f"arm id {arm_id!r} matched on {entry['ids'][0]!r}, an id inferred for the {name} (no real arm.cfx "
                      "seen with it)")
     other_stroke = None

@@ -28,6 +28,7 @@ from dataclasses import dataclass
 from .urdf import Mat
 
 _ORIENT_TOL = 1e-7  # rad: a target tilted more than this off the vertical is out of a SCARA's reach
+_STRETCH_EPS = 1e-13  # |cos β'| this close to 1 is the stretched (folded) arm
 
 
 @dataclass(frozen=True)
@@ -95,9 +96,11 @@ def scara_ik(sc: Scara, T: Mat, hint=None) -> tuple[list[tuple[float, float, flo
     l1, l2 = sc.l1, sc.l2
     r2 = px * px + py * py
     c = (r2 - l1 * l1 - l2 * l2) / (2.0 * l1 * l2)
-    if c > 1.0 or c < -1.0:
+    if abs(c) > 1.0 - _STRETCH_EPS:
         if abs(c) > 1.0 + 1e-12:
             return [], "reach"
+        # stretched (or folded) within rounding: acos would turn the last bits of c into two
+        # branches ~1e-6 degrees apart; the arm is exactly stretched (the flange moves < 1e-7 mm)
         c = 1.0 if c > 0 else -1.0
     b = math.acos(c)
     out = []
