@@ -8,11 +8,14 @@ The metadata val3check needs in a URDF (robots/README.md, "Your own URDF"):
 
     <val3check arm="MyTX2-60" world_frame="base" flange_frame="tool0">
       <joint name="joint_1" acceleration_deg_s2="1740"/>   <!-- optional, one per joint -->
+      <joint name="joint_3" acceleration_mm_s2="4000"/>    <!-- a prismatic joint (SCARA axis 3) -->
+      <fact .../> <assumption .../> <alternative .../> <missing .../>   <!-- optional: provenance.py -->
     </val3check>
 
 `world_frame` and `flange_frame` are required: they name the links that are the VAL 3 `world`
-frame (on axis 1 at the height of axis 2, X forward, Z up) and `flange` frame (Z out of the flange
-along axis 6). Joint limits and nominal speeds are the URDF's own `<limit lower upper velocity>`.
+frame (six-axis: on axis 1 at the height of axis 2, X forward, Z up) and `flange` frame (Z out of
+the flange). Joint limits and nominal speeds are the URDF's own `<limit lower upper velocity>`
+(radians and rad/s, metres and m/s for a prismatic joint).
 """
 
 from __future__ import annotations
