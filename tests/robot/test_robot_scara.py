@@ -223,3 +223,67 @@ def test_scara_through_the_geometry_protocol():
     p.config = ("lefty",)
     found, j = GA.point_to_joint(robot, flange, (0.0, 10.0, 0.0, 0.0), p)
     assert found and j[1] == pytest.approx(-80) and robot.config_of(j) == ("lefty",)
+
+
+# ---- a SCARA of the user's own (another maker's conventions) ----------------------------------------
+
+USER_SCARA = """<?xml version="1.0"?>
+<robot name="other_scara">
+  <val3check arm="Other SCARA" world_frame="base" flange_frame="tool0"/>
+  <link name="base_link"/><link name="base"/><link name="l1"/><link name="l2"/><link name="l3"/><link name="l4"/>
+  <link name="tool0"/>
+  <joint name="to_base" type="fixed"><origin xyz="0 0 0.1" rpy="0 0 0"/><parent link="base_link"/><child link="base"/></joint>
+  <joint name="j1" type="revolute"><origin xyz="0 0 0.4" rpy="0 0 0"/><parent link="base_link"/><child link="l1"/>
+    <axis xyz="0 0 1"/><limit lower="-2.5" upper="2.5" velocity="6" effort="0"/></joint>
+  <joint name="j2" type="revolute"><origin xyz="0.3 0.1 0" rpy="0 0 0"/><parent link="l1"/><child link="l2"/>
+    <axis xyz="0 0 1"/><limit lower="-2.6" upper="2.6" velocity="6" effort="0"/></joint>
+  <joint name="j3" type="prismatic"><origin xyz="0.25 0 -0.05" rpy="0 0 0"/><parent link="l2"/><child link="l3"/>
+    <axis xyz="0 0 -1"/><limit lower="0" upper="0.15" velocity="1.1" effort="0"/></joint>
+  <joint name="j4" type="revolute"><origin xyz="0 0 0" rpy="0 0 0"/><parent link="l3"/><child link="l4"/>
+    <axis xyz="0 0 1"/><limit lower="-6.28" upper="6.28" velocity="20" effort="0"/></joint>
+  <joint name="flange" type="fixed"><origin xyz="0.02 0 0" rpy="3.141592653589793 0 0.5"/><parent link="l4"/><child link="tool0"/></joint>
+</robot>
+"""
+
+
+def test_a_users_scara_urdf_gets_the_closed_form(tmp_path):
+    p = tmp_path / "other.urdf"
+    p.write_text(USER_SCARA, encoding="utf-8")
+    robot = load_robot(str(p))
+    assert robot.family == "scara" and robot.type_family == "Rs" and robot.scara is not None
+    sc = robot.scara
+    assert sc.l1 == pytest.approx(math.hypot(300, 100)) and sc.l2 == pytest.approx(250)
+    assert sc.signs == (1, 1, -1, 1) and sc.offset == pytest.approx((20, 0))
+    assert robot.joint_limits[2] == (0, 150) and robot.nominal_speeds[2] == pytest.approx(1100)
+    assert "assumed" in robot.acceleration_note
+    rng = random.Random(11)
+    for _ in range(300):
+        q = random_joints(robot, rng)
+        T = robot.fk_matrix(q)
+        assert close_pose(T, robot.fk_chain(q))
+        sols = robot.ik(T, near=q)
+        assert joint_dist(sols[0], q) < 1e-6
+        for s in sols:
+            assert close_pose(robot.fk_matrix(s), T)
+    pytest.importorskip("pinocchio")
+    assert close_pose(robot.fk_matrix([0.3, -0.4, 80, 1]), robot.fk_pinocchio([0.3, -0.4, 80, 1]))
+
+
+def test_a_scara_with_a_tilted_axis_has_no_closed_form(tmp_path):
+    p = tmp_path / "tilted.urdf"
+    p.write_text(USER_SCARA.replace('<axis xyz="0 0 1"/><limit lower="-2.6"', '<axis xyz="0 0.1 1"/><limit lower="-2.6"'),
+                 encoding="utf-8")
+    robot = load_robot(str(p))
+    assert robot.family == "scara" and robot.scara is None and "axis 2 is not vertical" in robot.opw_reason
+    robot.fk([10, 20, 30, 40])  # forward kinematics still works
+    from val3check.robot import IKUnsupported
+
+    with pytest.raises(IKUnsupported, match="four axes vertical"):
+        robot.ik(robot.fk([10, 20, 30, 40]))
+
+
+def test_other_joint_layouts_are_refused(tmp_path):
+    p = tmp_path / "rrpp.urdf"
+    p.write_text(USER_SCARA.replace('<joint name="j4" type="revolute">', '<joint name="j4" type="prismatic">'), encoding="utf-8")
+    with pytest.raises(RobotError, match="a SCARA is revolute, revolute, prismatic, revolute"):
+        load_robot(str(p))
