@@ -340,16 +340,19 @@ def _refs(texts: list[str]) -> list[str]:
     used = set()
     for t in texts:
         used |= set(re.findall(r"\b(S\d|ROS-I)\b", t))
+        if "ROS-Industrial" in t:
+            used.add("ROS-I")
     return [k for k in REFERENCES if k in used]
 
 
 def provenance_lines(name: str, arm: dict, assumptions: list[tuple[str, str, str]], missing: list[tuple[str, str]]) -> list[str]:
     facts = _sources(name, arm)
     lines = [f'    <fact key="{k}" text="{_x(t)}"/>' for k, t in facts]
-    lines += [f'    <reference id="{k}" text="{_x(REFERENCES[k])}"/>' for k in _refs([t for _, t in facts])]
+    alts = ALTERNATIVES.get(name, [])
+    texts = [t for _, t in facts] + [t for *_, t in alts] + [t for *_, t in assumptions]
+    lines += [f'    <reference id="{k}" text="{_x(REFERENCES[k])}"/>' for k in _refs(texts)]
     lines += [f'    <assumption key="{k}" value="{_x(v)}" text="{_x(t)}"/>' for k, v, t in assumptions]
-    lines += [f'    <alternative key="{k}" chosen="{_x(c)}" other="{_x(o)}" text="{_x(t)}"/>'
-              for k, c, o, t in ALTERNATIVES.get(name, [])]
+    lines += [f'    <alternative key="{k}" chosen="{_x(c)}" other="{_x(o)}" text="{_x(t)}"/>' for k, c, o, t in alts]
     lines += [f'    <missing key="{k}" text="{_x(t)}"/>' for k, t in missing]
     return lines
 

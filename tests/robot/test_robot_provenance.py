@@ -24,8 +24,8 @@ def test_every_model_states_its_sources_and_assumptions(name):
     assert all(f.text for f in pv.facts) and all(a.text and a.value for a in pv.assumptions)
     assert "ramp_s" in robot.assumed  # no joint acceleration is public
     refs = {r.key for r in pv.references}
-    for f in pv.facts:  # every source named is explained
-        assert set(re.findall(r"\b(S\d)\b", f.text)) <= refs, (name, f.text)
+    for text in [f.text for f in pv.facts] + [a.text for a in pv.alternatives] + [a.text for a in pv.assumptions]:
+        assert set(re.findall(r"\b(S\d)\b", text)) <= refs, (name, text)  # every source named is explained
     if name in SCARAS:
         assert {"nominal_speeds", "world_z_mm", "axis4_sign"} <= robot.assumed
         assert "max_torques" in {m.key for m in pv.missing} and robot.max_torques == (None,) * 4
