@@ -329,7 +329,10 @@ class RobotModel:
                 if any(w is not None and w != v for w, v in zip(wanted, c)):
                     continue
             for o in out:  # two branches that meet at a singular position come back once
-                if all(abs(a - b) < 1e-9 for a, b in zip(q, o)):
+                for a, b in zip(q, o):
+                    if abs(a - b) >= 1e-9:
+                        break
+                else:
                     break
             else:
                 out.append(q)
@@ -344,18 +347,15 @@ class RobotModel:
         """VAL 3 values within the joint limits: per revolute axis, the value (mod 360) nearest
         near (or 0), or every value with all_turns. Solutions with an axis that fits nowhere are
         dropped."""
-        limits = self.joint_limits
         out: list[tuple[float, ...]] = []
         tol = LIMIT_TOL_DEG
-        n = len(limits)
-        kinds, signs = self.joint_kinds, self.joint_signs
+        axes = self._axes_spec()
         for q in raw:
             vals: list[float] = []
             multi: list[list[float]] | None = None
-            for i in range(n):
-                lo, hi = limits[i]
-                if kinds[i] == "prismatic":
-                    v = signs[i] * q[i]
+            for i, (prismatic, sign, lo, hi, single) in enumerate(axes):
+                if prismatic:
+                    v = sign * q[i]
                     if v < lo - tol or v > hi + tol:
                         break
                     v = lo if v < lo else hi if v > hi else v
@@ -363,8 +363,8 @@ class RobotModel:
                     if multi is not None:
                         multi.append([v])
                     continue
-                v = math.remainder(signs[i] * q[i] * RAD, 360.0)
-                if hi - lo < 360.0 - 2 * tol:  # at most one value fits
+                v = math.remainder((q[i] if sign == 1 else -q[i]) * RAD, 360.0)
+                if single:  # at most one value fits
                     if v < lo - tol:
                         v += 360.0
                     elif v > hi + tol:
@@ -380,18 +380,19 @@ class RobotModel:
                 kmax = math.floor((hi + tol - v) / 360.0)
                 if kmin > kmax:
                     break
-                cands = [min(max(v + 360.0 * k, lo), hi) for k in range(kmin, kmax + 1)]
-                if all_turns and len(cands) > 1:
+                if all_turns and kmax > kmin:
+                    cands = [min(max(v + 360.0 * k, lo), hi) for k in range(kmin, kmax + 1)]
                     if multi is None:
                         multi = [[x] for x in vals]
                     multi.append(cands)
                     vals.append(cands[0])
                     continue
+                # the turn nearest the target (ties: the lower one)
                 target = near[i] if near is not None else 0.0
-                best = cands[0]
-                for c in cands[1:]:
-                    if abs(c - target) < abs(best - target):
-                        best = c
+                k = math.ceil((target - v) / 360.0 - 0.5)
+                k = kmin if k < kmin else kmax if k > kmax else k
+                best = v + 360.0 * k
+                best = lo if best < lo else hi if best > hi else best
                 vals.append(best)
                 if multi is not None:
                     multi.append([best])
@@ -401,6 +402,16 @@ class RobotModel:
                 else:
                     out.extend(itertools.product(*multi))
         return out
+
+    def _axes_spec(self) -> tuple:
+        """Per axis: (prismatic, sign, min, max, at most one turn fits), for _turns."""
+        key = (self.joint_limits, self.joint_kinds, self.joint_signs)
+        cached = self.__dict__.get("_spec")
+        if cached is None or cached[0] != key:
+            spec = tuple((k == "prismatic", s, lo, hi, hi - lo < 360.0 - 2 * LIMIT_TOL_DEG)
+                         for (lo, hi), k, s in zip(self.joint_limits, self.joint_kinds, self.joint_signs))
+            cached = self.__dict__["_spec"] = (key, spec)
+        return cached[1]
 
     # ---- description ----------------------------------------------------------------------------
 
