@@ -95,7 +95,7 @@ def _opt(el, attr: str) -> float | None:
 
 
 def read_urdf(path: str | Path) -> UrdfInfo:
-    from defusedxml import ElementTree as ET
+    from defusedxml import DefusedXmlException, ElementTree as ET
 
     path = str(path)
     try:
@@ -106,6 +106,8 @@ def read_urdf(path: str | Path) -> UrdfInfo:
         raise RobotError(f"{path}: cannot read: {exc.strerror or exc}") from None
     except ET.ParseError as exc:
         raise RobotError(f"{path}: not well-formed XML: {exc}") from None
+    except DefusedXmlException:  # never follow entities (DTDs, external references)
+        raise RobotError(f"{path}: XML entities and DTDs are not allowed in a URDF") from None
     if root.tag != "robot":
         raise RobotError(f"{path}: not a URDF (the root element is <{root.tag}>, not <robot>)")
     links = {el.get("name") for el in root.findall("link")}
