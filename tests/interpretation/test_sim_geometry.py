@@ -547,3 +547,26 @@ def test_library_snapshot_keeps_links_among_its_globals():
 def test_scenario_joints_without_a_robot_have_no_effect(tmp_path):
     r = sim(tmp_path, "begin\n  putln(\"ok\")\nend\n", scenario="[robot]\njoints = [0, 0, 0, 0, 0, 0]\n")
     assert out(r) == ["ok"] and r.robot is None
+
+
+def test_world_and_flange_pass_by_reference(tmp_path):
+    """world and flange are variables of the controller (9.4.1, 9.5.1): passed by reference
+    (2.6.2), the callee reads and writes the roots themselves (was R004 "unknown variable")."""
+    r = sim(tmp_path, "begin\n  call useTool(flange)\n  call useFrame(world)\n  nO = flange.otime\n"
+                      "  call replace(flange)\n  nC = flange.ctime\nend\n",
+            globals_=["num nZ", "num nX", "num nO", "num nC", "tool tOther"],
+            programs={"useTool": {"params": ["tool& x_tTool"], "code": "begin\n  nZ = x_tTool.trsf.z\n"
+                                                                       "  x_tTool.otime = 0.5\nend\n"},
+                      "useFrame": {"params": ["frame& x_fRef"], "code": "begin\n  nX = x_fRef.trsf.x\nend\n"},
+                      "replace": {"params": ["tool& x_tTool"], "code": "begin\n  tOther.ctime = 0.25\n"
+                                                                       "  x_tTool = tOther\nend\n"}})
+    assert not r.diagnostics, r.diagnostics
+    assert (gv(r, "nZ"), gv(r, "nX"), gv(r, "nO"), gv(r, "nC")) == (0.0, 0.0, 0.5, 0.25)
+
+
+def test_flange_written_through_a_reference_fails_the_next_computation(tmp_path):
+    # 9.5.1: once flange's coordinates are changed, the next computation through it is error 160
+    r = sim(tmp_path, "begin\n  call shift(flange)\n  trA = position(tGrip, flange)\nend\n",
+            globals_=["tool tGrip", "trsf trA"],
+            programs={"shift": {"params": ["tool& x_tTool"], "code": "begin\n  x_tTool.trsf.z = 10\nend\n"}})
+    assert errors(r) == [160]

@@ -102,6 +102,7 @@ class Machine:
         ns.update(self.registry.namespace())
         ns["WORLD"] = self.cell.world  # the roots of the frame and tool trees (9.4.1, 9.5.1)
         ns["FLANGE"] = self.cell.flange
+        ns["ROOTS"] = {"world": self.cell.world, "flange": self.cell.flange}  # passed by reference
         return ns
 
     def space_for(self, app: Application) -> TypeSpace:

@@ -31,6 +31,8 @@ from .structures import (
 )
 
 
+# The roots of the frame and tool trees, places in the generated code's ROOTS (machine.py).
+ROOTS = {"world": "frame", "flange": "tool"}
 # Expressions whose type the compiler takes from semantic analysis (see `expr`).
 _TYPED_BY_SEMANTICS = frozenset({ast.Name, ast.LibraryName, ast.Index, ast.Field, ast.CallExpr, ast.Unary, ast.Binary,
                                  ast.Number, ast.String, ast.Bool})
@@ -206,6 +208,9 @@ class ExpressionCompiler:
         if tn is ast.Name:
             v = self.lookup_var(node.name)
             if v is None:
+                low = node.name.lower()
+                if low in ROOTS:  # world and flange (9.4.1, 9.5.1) passed by reference
+                    return Place("ROOTS", repr(low), ROOTS[low], self.space)
                 raise self.err(f"unknown variable '{node.name}'", node)
             if v.store == "py":
                 return Place(None, f"v_{v.name}", v.t, v.space or self.space)
