@@ -286,3 +286,33 @@ send = "world"
     assert gv(r, "sReply") == "world" and gv(r, "nStatus") == 0 and gv(r, "bExist") is True
     assert [(e[2], e[3], e[4]) for e in r.io_log if e[1] == "dio"] == [("io:bIn0", True, "scenario"),
                                                                       ("io:bOut0", True, "Example~")]
+
+
+def test_exported_controller_io_library(tmp_path):
+    """A controller export holds usr/usrapp/io/io.pjx, the controller's io library: its dio,
+    aio and sio are the controller's inputs/outputs (linked to "io:NAME", driven by the
+    scenario), not unlinked variables of a plain library (was error 123)."""
+    from .simsupport import add_libraries, gv, make_library, run_folder
+
+    make_library(tmp_path, "io", globals_=["dio bOut7", "dio bIn0", "aio aSpeed", "sio tcpLine"])
+    folder = build(tmp_path, "begin\n  io:bOut7 = true\n  wait(io:bIn0)\n  nSpeed = aioGet(io:aSpeed)\n"
+                             "  sioLink(siLine, io:tcpLine)\n  siLine = \"hello\"\nend\n",
+                   globals_=["sio siLine", "num nSpeed"])
+    add_libraries(folder, {"io": "Disk://io"}, autoload="true")
+    r = run_folder(folder, tmp_path=tmp_path, scenario='[inputs]\n"io:aSpeed" = 12.5\n'
+                                                      '[[events]]\nat = 1\nset = { "io:bIn0" = true }\n')
+    assert r.end_reason == "ended" and not r.diagnostics, r.diagnostics
+    assert gv(r, "nSpeed") == 12.5
+    assert [(round(e.time_us / 1e6, 3), e.link, e.value, e.source) for e in r.io_log if e.kind != "aio"] == [
+        (0.0, "io:bOut7", True, "Example~"), (1.0, "io:bIn0", True, "scenario"),
+        (1.0, "io:tcpLine", "hello\r", "Example~")]
+
+
+def test_a_library_named_io_with_programs_is_a_plain_library(tmp_path):
+    from .simsupport import add_libraries, gv, make_library, run_folder
+
+    make_library(tmp_path, "io", globals_=["num nValue"], programs={"init": {"code": "begin\n  nValue = 3\nend\n"}})
+    folder = build(tmp_path, "begin\n  call io:init()\n  nGot = io:nValue\nend\n", globals_=["num nGot"])
+    add_libraries(folder, {"io": "Disk://io"}, autoload="true")
+    r = run_folder(folder, tmp_path=tmp_path)
+    assert not r.diagnostics and gv(r, "nGot") == 3.0

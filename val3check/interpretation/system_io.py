@@ -9,16 +9,31 @@ from ..parsing import ast
 from .values import Arr
 
 
+IO_TYPES = ("dio", "aio", "sio")
+
+
 def is_system_io(model, alias: str, ws) -> bool:
-    """An alias that names the controller's own I/O library (an s6 `<alias interface="io">` or
-    a `Disk://io` library that is not in the project): its symbols are the controller's
-    inputs/outputs (`io:bIn0`, `io:valve1`, `io:tcp_server`), as lint's L003 says."""
+    """An alias that names the controller's own I/O library: its symbols are the controller's
+    inputs/outputs (`io:bIn0`, `io:valve1`, `io:tcp_server`), as lint's L003 says. Either an s6
+    `<alias interface="io">` or a `Disk://io` library that is not in the project, or the
+    controller's io library exported with the application (`usr/usrapp/io/io.pjx`: a library
+    named io that declares only inputs/outputs)."""
     ref = model.libraries.get(alias)
-    if ref is None or ws.library(model, alias) is not None:
+    if ref is None:
         return False
+    lib = ws.library(model, alias)
+    if lib is not None:
+        return exported_io(lib)
     tail = ref.path.replace("\\", "/").rstrip("/").rsplit("/", 1)[-1]
     stem = tail[:-4] if tail.lower().endswith(".pjx") else tail
     return alias.lower() == "io" or stem.lower() == "io"
+
+
+def exported_io(lib) -> bool:
+    """The controller's io library as exported in a controller tree: named io, no program, its
+    globals only dio, aio and sio (their links are the controller's, not in the file)."""
+    return (lib.name.lower() == "io" and not lib.programs and bool(lib.data)
+            and all(base_type(d.type) in IO_TYPES for d in lib.data.values()))
 
 
 class SystemIO:
@@ -55,7 +70,12 @@ class SystemIO:
         return None
 
     def infer(self, app, alias: str) -> None:
-        """Kinds of the `alias:NAME` symbols from their uses in `app`'s programs."""
+        """Kinds of the `alias:NAME` symbols: as the exported io library declares them, else
+        from their uses in `app`'s programs."""
+        exported = self.machine.ws.library(app, alias)
+        if exported is not None:
+            for name, d in exported.data.items():
+                self.kinds.setdefault(name, base_type(d.type))
 
         def io_name(node) -> str | None:
             return node.name if type(node) is ast.LibraryName and node.alias == alias else None
