@@ -316,3 +316,20 @@ def test_a_library_named_io_with_programs_is_a_plain_library(tmp_path):
     add_libraries(folder, {"io": "Disk://io"}, autoload="true")
     r = run_folder(folder, tmp_path=tmp_path)
     assert not r.diagnostics and gv(r, "nGot") == 3.0
+
+
+def test_controller_io_passed_to_a_sio_parameter_is_a_sio(tmp_path):
+    """io:NAME given to a program's sio parameter is a serial line or socket, as the parameter
+    says (was typed as a dio by its name: error 70 at sioLink)."""
+    from .simsupport import add_libraries, run_folder
+
+    folder = build(tmp_path, "begin\n  call openLine(io:tcp_server)\n  taskCreate \"t2\", 10, talk(io:com1)\nend\n",
+                   globals_=["sio siLine", "sio siCom"],
+                   programs={"openLine": {"params": ["sio x_siLine"],
+                                          "code": "begin\n  sioLink(siLine, x_siLine)\n  siLine = \"hi\"\nend\n"},
+                             "talk": {"params": ["sio& x_siCom"],
+                                      "code": "begin\n  sioLink(siCom, x_siCom)\n  siCom = 7\nend\n"}})
+    add_libraries(folder, {"io": "Disk://io"})
+    r = run_folder(folder, tmp_path=tmp_path)
+    assert not r.diagnostics, r.diagnostics
+    assert [(e.kind, e.link, e.value) for e in r.io_log] == [("sio", "io:tcp_server", "hi\r"), ("sio", "io:com1", "\x07")]

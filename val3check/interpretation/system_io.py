@@ -103,6 +103,17 @@ class SystemIO:
                             "sio": "sio"}.get(vt or "")
             return None
 
+        def callee_params(target) -> list | None:
+            if type(target) is ast.Name:
+                low = target.name.lower()
+                prog = next((p for n, p in app.programs.items() if n.lower() == low), None)
+            elif type(target) is ast.LibraryName:
+                lib = self.machine.ws.library(app, target.alias)
+                prog = lib.programs.get(target.name) if lib is not None else None
+            else:
+                prog = None
+            return prog.parameters if prog is not None else None
+
         def var_type(name: str, prog) -> str | None:
             for d in list(prog.parameters) + list(prog.locals):
                 if d.name == name:
@@ -124,6 +135,11 @@ class SystemIO:
                                          if o.accepts_arity(len(node.args)) and i < len(o.params)}
                                 kinds = types & {"dio", "aio", "sio"}
                                 note(a, kinds.pop() if len(kinds) == 1 else ("dio" if "bool" in types else None))
+                elif t in (ast.Call, ast.TaskCreate, ast.TaskCreateSync):
+                    # a parameter of a program: `call openLine(io:tcp_server)` with `sio x_siLine`
+                    params = callee_params(node.target)
+                    for a, p in zip(node.args, params or ()):
+                        note(a, base_type(p.type))
                 elif t in (ast.Assign, ast.AssignExpr):
                     if io_name(node.target) is not None:
                         note(node.target, kind_of_value(node.value, prog))
