@@ -268,3 +268,24 @@ def test_library_not_loaded_is_error_80(tmp_path):
 def test_blocking_call_in_wait_condition_is_not_simulated(tmp_path):
     r = sim(tmp_path, "begin\n  wait(get() == 270)\nend\n", check_lint=False)
     assert "R004" in codes(r)
+
+
+def test_stop_that_never_ends_is_r006_at_the_duration(tmp_path, capsys):
+    """The application ends, its stop() runs and never ends: the run reaches --duration
+    (documented reason "duration", R007) and R006 says stop() did not end, at its line (was the
+    undocumented reason "stop-timeout", without diagnostic)."""
+    from val3check.cli import main
+
+    from .simsupport import build
+
+    stop = {"stop": {"code": "begin\n  while true\n    delay(1)\n  endWhile\nend\n"}}
+    r = sim(tmp_path, "begin\n  putln(\"start\")\nend\n", programs=stop, duration=5)
+    assert (r.end_reason, r.sim_time_us) == ("duration", 5_000_000)
+    assert [(d.code, d.message, d.task, d.program) for d in r.diagnostics] == [
+        ("R006", "stop() did not end: still running at --duration 5 s", "~Example", "stop"),
+        ("R007", "run stopped at --duration 5 s; tasks still alive: ~Example", "", "")]
+    assert r.diagnostics[0].line > 0
+    folder = build(tmp_path / "cli", "begin\nend\n", programs=stop)
+    assert main(["sim", str(folder), "--duration", "3", "--report", "json"]) == 0
+    assert '"reason": "duration"' in capsys.readouterr().out
+    assert main(["sim", str(folder), "--duration", "3", "--fail-on", "warning"]) == 1

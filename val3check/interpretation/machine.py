@@ -272,6 +272,11 @@ class Machine:
         self.end_reason = reason
         self.end_time = self.clock.now
         self._snapshot_tasks()
+        if reason == "stop-timeout":
+            # the application ended and its stop() was still running at --duration: the run
+            # reached its duration (R007), and stop() did not end (R006)
+            self.end_reason = reason = "duration"
+            self._stop_did_not_end(f"still running at --duration {self.budgets.duration_us / 1e6:g} s")
         if reason == "deadlock":
             self._report_blocked()
         if reason not in ("ended", "wall-clock"):
@@ -320,12 +325,16 @@ class Machine:
         except EndRun as extra:
             what = {"stop-timeout": f"still running {self.budgets.stop_us / 1e6:g} s after the run was stopped",
                     "deadlock": "blocked"}.get(extra.reason, extra.reason)
-            task = self.stop_task
-            if task is not None and task in self.scheduler.tasks and task.state is not ERROR and task.state is not HELD:
-                w = self.where(task)
-                path, line, col, prog = w if w else (self.app.path, 0, 0, "stop")
-                self.diags.append(Diagnostic("R006", f"stop() did not end: {what}", path, line, col,
-                                             time_us=self.clock.now, task=task.name, program=prog))
+            self._stop_did_not_end(what)
+
+    def _stop_did_not_end(self, what: str) -> None:
+        """R006 at the line where stop() is, when it is still alive (not stopped on an error)."""
+        task = self.stop_task
+        if task is not None and task in self.scheduler.tasks and task.state is not ERROR and task.state is not HELD:
+            w = self.where(task)
+            path, line, col, prog = w if w else (self.app.path, 0, 0, "stop")
+            self.diags.append(Diagnostic("R006", f"stop() did not end: {what}", path, line, col,
+                                         time_us=self.clock.now, task=task.name, program=prog))
 
     def start_stop_program(self) -> None:
         stop = self.main.program("stop")
