@@ -289,3 +289,22 @@ def test_stop_that_never_ends_is_r006_at_the_duration(tmp_path, capsys):
     assert main(["sim", str(folder), "--duration", "3", "--report", "json"]) == 0
     assert '"reason": "duration"' in capsys.readouterr().out
     assert main(["sim", str(folder), "--duration", "3", "--fail-on", "warning"]) == 1
+
+
+def test_a_task_created_in_a_round_takes_its_turn_in_that_round(tmp_path):
+    """5.4: tasks take turns in creation order, and delay(0) hands over to the next task at
+    once: the tasks the creator just made run before its next line (they used to wait for the
+    next round, after the creator)."""
+    r = sim(tmp_path, "begin\n  taskCreate \"t2\", 10, say(\"b\")\n  taskCreate \"t3\", 10, say(\"c\")\n  delay(0)\n"
+                      "  putln(\"a\")\nend\n",
+            programs={"say": {"params": ["string x_s"], "code": "begin\n  putln(x_s)\nend\n"}})
+    assert [(e.task, e.text) for e in r.transcript] == [("t2", "b"), ("t3", "c"), ("Example~", "a")]
+    assert all(e.time_us < 4000 for e in r.transcript)  # one cycle
+
+
+def test_a_new_task_runs_after_the_tasks_created_before_it(tmp_path):
+    # t1 exists before start() creates t2: in the round, t1's turn comes first, then t2's
+    r = sim(tmp_path, "begin\n  taskCreate \"t1\", 1, count(\"1\")\n  delay(0)\n  taskCreate \"t2\", 1, count(\"2\")\n"
+                      "  delay(0)\nend\n",
+            programs={"count": {"params": ["string x_s"], "code": "begin\n  putln(x_s)\n  putln(x_s)\nend\n"}})
+    assert [(e.task, e.text) for e in r.transcript] == [("t1", "1"), ("t1", "1"), ("t2", "2"), ("t2", "2")]

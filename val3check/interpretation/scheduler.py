@@ -284,7 +284,12 @@ class Scheduler:
         stopped, delay, wait = STOPPED_STATES, DELAY, WAIT
         while clock.cycle_lines < LINES_PER_CYCLE:
             progress = False
-            for task in list(tasks):
+            order = list(tasks)
+            seen = self._seq
+            i = 0
+            while i < len(order):
+                task = order[i]
+                i += 1
                 if task.period or task not in tasks:
                     continue
                 st = task.state
@@ -308,6 +313,11 @@ class Scheduler:
                     break
                 if turn(task, task.prio if task.prio < left else left, ok):
                     progress = True
+                if self._seq != seen:
+                    # 5.4: tasks take turns in creation order; one created in this turn takes
+                    # its turn in this round, after the tasks created before it
+                    order.extend(t for t in tasks if t.seq > seen)
+                    seen = self._seq
             if not progress:
                 break
         self.total_lines += clock.cycle_lines
