@@ -42,9 +42,13 @@ def _run(tmp_path, ex):
 
 
 def _simulate(tmp_path, ex):
-    """Runtime (R) rules fire when the application runs: their examples go through `sim`."""
-    from interpretation.simsupport import sim
+    """Runtime (R) rules fire when the application runs: their examples go through `sim`
+    (`code`: a generated application; `files`: an application tree, `target` the one run)."""
+    from interpretation.simsupport import run_folder, sim
 
+    if ex.code is None:
+        write_files(tmp_path, ex.files)
+        return run_folder(tmp_path / ex.target, tmp_path=tmp_path, duration=ex.duration).diagnostics
     result = sim(tmp_path, ex.code, globals_=ex.globals, locals_=ex.locals, programs=ex.programs,
                  scenario=ex.scenario, duration=ex.duration)
     return result.diagnostics

@@ -73,16 +73,17 @@ def _real_path(machine, owner, path: str) -> str | None:
     return resolve_library(text, owner.model.path, machine.disk_roots)
 
 
-def _model_for(machine, resolved: str):
+def _model_for(machine, resolved: str) -> tuple[Any, list]:
+    """The library's model, and the loader's findings when it could not be read."""
     app = machine.ws.apps.get(resolved)
     if app is not None:
-        return app
+        return app, []
     from ..loading import LoadOptions, load
 
-    ws2, _ = load([resolved], LoadOptions(disk_roots=list(machine.disk_roots)))
+    ws2, found = load([resolved], LoadOptions(disk_roots=list(machine.disk_roots)))
     for k, v in ws2.apps.items():
         machine.ws.apps.setdefault(k, v)
-    return machine.ws.apps.get(resolved)
+    return machine.ws.apps.get(resolved), found
 
 
 def _interface_ok(interface, unit) -> bool:
@@ -116,23 +117,45 @@ def _in_use(machine, unit) -> int:
     return 0
 
 
+# 6.6: what libLoad's codes mean
+LOAD_CODES = {
+    10: "the library identifier is not declared", 11: "loaded, but its public interface does not match",
+    12: "the library holds invalid data or programs", 13: "the previous library is running in a task",
+    14: "the previous library created a task that still runs", 20: "invalid root of the path",
+    21: "invalid path", 22: "invalid library name", 39: "library not found",
+}
+
+
 def load_library(machine, owner, alias: str, path: Any, task) -> int:
     """6.7 libLoad: 0 loaded, 11 interface does not match, 12 invalid content, 13/14 the
-    previous library cannot be unloaded, 20-22 bad path, 39 not found."""
+    previous library cannot be unloaded, 20-22 bad path, 39 not found. When the identifier
+    is left without a library, why is kept for the error 80 of its uses, and a library whose
+    own files are invalid is reported with its findings (R040)."""
+    code, display, findings = _load(machine, owner, alias, path)
+    if owner.aliases.get(alias) is not None:
+        owner.load_failures.pop(alias, None)
+    elif code:
+        machine.library_failed(owner, alias, display or str(path), code, LOAD_CODES.get(code, "file error"),
+                               findings, task)
+    return code
+
+
+def _load(machine, owner, alias: str, path: Any) -> tuple[int, str, list]:
+    """(libLoad's code, the library's display path, the findings that make it invalid)."""
     if not isinstance(path, str):
-        return 22
+        return 22, "", []
     if alias not in owner.aliases:
-        return 10
+        return 10, "", []
     code, key, display = normalise(path, owner)
     if code:
-        return code
+        return code, "", []
     old = owner.aliases.get(alias)
     busy = _in_use(machine, old)
     if busy:
-        return busy
+        return busy, display, []
     snap = machine.disk.get(key, False)
     if snap is None:
-        return 39
+        return 39, display, []
     if snap is not False:
         unit = machine.units.get("snap:" + key)
         if unit is None:
@@ -143,23 +166,23 @@ def load_library(machine, owner, alias: str, path: Any, task) -> int:
     else:
         resolved = _real_path(machine, owner, path if path.strip() else display)
         if resolved is None:
-            return 39
+            return 39, display, []
         unit = machine.units.get(resolved)
         if unit is None:
-            model = _model_for(machine, resolved)
+            model, found = _model_for(machine, resolved)
             if model is None:
-                return 12
+                return 12, display, [d for d in found if d.code.startswith("F")]
             unit = Unit(machine, model, display)
             unit.init_globals()
             unit.build()
             if any(model.programs[c.name].code is not None and model.programs[c.name].body is None
                    for c in unit.compile_errors):
-                return 12  # 6.6: the library holds invalid programs (syntax errors)
+                return 12, display, unit.parse_findings  # 6.6: invalid programs (syntax errors)
             machine.units[resolved] = unit
             autoload_libraries(machine, unit)  # a library brings the libraries it loads at start
     owner.aliases[alias] = unit
     interface = machine.library_model(owner.model, alias)
-    return 0 if _interface_ok(interface, unit) else 11
+    return (0 if _interface_ok(interface, unit) else 11), display, []
 
 
 def autoload_libraries(machine, unit) -> None:

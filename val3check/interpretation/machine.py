@@ -15,6 +15,7 @@ integer microseconds: runs are deterministic.
 
 from __future__ import annotations
 
+import os
 import time as _time
 from dataclasses import dataclass
 from typing import Any, NamedTuple
@@ -88,6 +89,7 @@ class Machine:
         self.stop_task: Task | None = None
         self.wall_start = 0.0
         self.destroyed: list[str] = []
+        self._libraries_reported: set[str] = set()
         self.base_namespace = self._base_namespace()
 
     def add_subsystem(self, subsystem: Any) -> None:
@@ -208,6 +210,28 @@ class Machine:
         text = RUNTIME_CODES.get(code, "runtime error")
         extra = f" ({detail})" if detail and detail not in text else ""
         self.add_diag("R001", f"error {code}: {text}{extra}", task, pos, code)
+
+    def library_failed(self, owner: Unit, alias: str, display: str, code: int, meaning: str, findings: list,
+                       task: Task | None) -> None:
+        """A library could not be loaded (6.6): why is kept for the error 80 of its uses; when
+        its own files are invalid, their first finding is reported, once per library (R040)."""
+        when = "at start" if task is None else f"by libLoad in task {task.name}"
+        first = findings[0] if findings else None
+        where = ""
+        if first is not None:  # the path as from the folder that holds the applications (Disk://)
+            disk = os.path.dirname(os.path.dirname(os.path.abspath(self.app.path)))
+            where = f": {first.code} at {os.path.relpath(first.path, disk)}:{first.line}:{first.col}"
+        owner.load_failures[alias] = f"loading {display} {when} returned {code}, {meaning}{where}"
+        if first is None or display in self._libraries_reported:
+            return
+        self._libraries_reported.add(display)
+        more = f" (and {len(findings) - 1} more finding(s) in the library)" if len(findings) > 1 else ""
+        self.diags.append(Diagnostic(
+            "R040", f"library {display} (identifier {alias} of {owner.name}) cannot be loaded because of this "
+                    f"{first.code} finding: {first.message}{more}; libLoad returns {code} and the data and "
+                    f"programs of {alias}: are error 80 where they are used", first.path, first.line, first.col,
+            time_us=self.clock.time_of(task) if task is not None else self.clock.now,
+            task=task.name if task is not None else "", program=""))
 
     def report_overrun(self, task: Task) -> None:
         """R005: a synchronous task used more than its period (5.6)."""

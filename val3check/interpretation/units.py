@@ -33,6 +33,8 @@ class Unit:
         self.ns: dict[str, Any] = {}
         self.compile_errors: list = []
         self.expression_types: dict = {}
+        self.parse_findings: list = []  # syntax errors of its programs (F101...)
+        self.load_failures: dict[str, str] = {}  # alias -> why its library could not be loaded
 
     @property
     def name(self) -> str:
@@ -75,7 +77,7 @@ class Unit:
         self.ns = ns
         for prog in self.model.programs.values():
             if prog.body is None and prog.code is not None:
-                parse_program(prog)
+                self.parse_findings.extend(parse_program(prog))
         # the compiler reads the types semantic analysis computes (lint's checks)
         self.expression_types = expression_types(machine.ws, self.model)
         for prog in self.model.programs.values():

@@ -19,7 +19,8 @@ def _library(unit, alias: str):
         raise E(80, f"no library identifier {alias}")
     lib = unit.aliases[alias]
     if lib is None:
-        raise E(80, f"library {alias} is not loaded (libLoad)")
+        why = unit.load_failures.get(alias)
+        raise E(80, f"library {alias} is not loaded ({why})" if why else f"library {alias} is not loaded (libLoad)")
     return lib
 
 
