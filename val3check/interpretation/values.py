@@ -1,19 +1,20 @@
 """Run-time values of the virtual controller.
 
-Representation (chosen for speed of the generated code, see `compiler.py`):
+Representation (chosen for speed of the generated code, see `compiler/`):
 
 - `num` is a Python float, `bool` a bool, `string` a str (at most 128 UTF-8 bytes, 3.4.1);
 - the geometry of chapter 9 uses the types of `val3check.geometry` (its docstring): a `trsf` is
   a `Trsf` (mutable, fields x..rz); a `frame`/`tool` is a `Frame`/`Tool` *node* whose `ref` is
   its reference node (shared: a variable holds one node for its whole life, `=` copies INTO it,
-  `geom.NASG`); a `point` is a `Point` (trsf, ref) whose `config` is the dict below. Globals are
-  linked to their data file's `fatherId` (world/flange by default), locals and user-type fields
-  have no reference (9.4.1, 9.5.1, 9.6.1). Their fields are read as attributes (`p.trsf.x`) and
-  written by name (`p["trsf"]`, the geometry classes' item access);
+  `ch09_geometry.NASG`); a `point` is a `Point` (trsf, ref) whose `config` is the dict below.
+  Globals are linked to their data file's `fatherId` (world/flange by default), locals and
+  user-type fields have no reference (9.4.1, 9.5.1, 9.6.1). Their fields are read as
+  attributes (`p.trsf.x`) and written by name (`p["trsf"]`, the geometry classes' item access);
 - the other built-in structured values (2.3.3) are plain dicts of their fields: a `joint`
   ``{j1..j6}``, a `config` ``{shoulder, elbow, wrist}``, an mdesc ``{accel, vel, decel, tvel, rvel,
-  blend, leave, reach}``; enum fields (`sfree`, `joint`...) are strings. `geom.py` converts joint
-  and config dicts to the geometry's tuples at the instruction boundary;
+  blend, leave, reach}``; enum fields (`sfree`, `joint`...) are strings.
+  `chapters/ch09_geometry.py` converts joint and config dicts to the geometry's tuples at the
+  instruction boundary;
 - a user-type value (chapter 7) is a dict of field name -> container, since every field of a
   user type has its own container (7.1);
 - `dio`/`aio`/`sio` values are links (3.5.1): the variable holds the `IOPoint` object of the
