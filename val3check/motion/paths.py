@@ -1,0 +1,263 @@
+"""Geometric paths in joint space: the pieces the arm follows, joined into one path.
+
+Every motion becomes joint-space geometry (the time parameterisation works on joints):
+
+* `JointLine` (movej, 10.1.1): the straight line in joint space from start to target.
+* `JointSpline` (movel, movec, Cartesian blends): the joint positions solved on a grid of the
+  TCP curve (tracking.py) joined by a cubic spline, with the exact end derivatives when given.
+* `JointBlend` (blend joint, 10.1.2.3): the superposition of the two neighbouring motions, each
+  continued in a straight joint line at its own rate, weighted by a smooth step (zero first and
+  second derivatives at the ends): it leaves the first path at its leave point and joins the
+  second at its reach point with the same joint velocity, so the velocity is continuous.
+
+A geometry is parameterised by λ ∈ [0, 1] and has a length `ell` in path units (degrees of joint
+motion, Euclidean over the six axes); a `Span` is the part λ ∈ [a, b] of one geometry, with
+path parameter σ = (λ - a)·ell. `Path` joins spans end to end: global path parameter s.
+"""
+
+from __future__ import annotations
+
+import bisect
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+
+H_FD = 1e-4  # path-units step of the finite differences of the TCP rates
+
+
+class JointLine:
+    kind = "joint"
+
+    def __init__(self, q0, q1):
+        self.q0 = np.asarray(q0, dtype=float)
+        self.q1 = np.asarray(q1, dtype=float)
+        self.delta = self.q1 - self.q0
+        self.ell = float(np.linalg.norm(self.delta))
+
+    def q(self, lam, order: int = 0) -> np.ndarray:
+        lam = np.atleast_1d(np.asarray(lam, dtype=float))
+        if order == 0:
+            return self.q0 + lam[:, None] * self.delta
+        if order == 1:
+            return np.broadcast_to(self.delta, (len(lam), len(self.delta))).copy()
+        return np.zeros((len(lam), len(self.delta)))
+
+    def grid(self, a: float, b: float) -> np.ndarray:
+        n = max(8, min(64, int(math.ceil(self.ell * (b - a) / 5.0))))
+        return np.linspace(a, b, n + 1)
+
+
+class JointSpline:
+    """Joint positions Q at λ (from tracking), cubic spline; d0/d1: dq/dλ at the ends or None."""
+
+    kind = "spline"
+
+    def __init__(self, lam: np.ndarray, Q: np.ndarray, d0=None, d1=None):
+        from scipy.interpolate import CubicSpline
+
+        self.lam = np.asarray(lam, dtype=float)
+        self.Q = np.asarray(Q, dtype=float)
+        if len(self.lam) < 2:
+            raise ValueError("a spline needs two points")
+        if len(self.lam) == 2 and d0 is None and d1 is None:
+            bc = "natural"
+        else:
+            bc = ((1, np.asarray(d0, dtype=float)) if d0 is not None else "not-a-knot",
+                  (1, np.asarray(d1, dtype=float)) if d1 is not None else "not-a-knot")
+            if len(self.lam) < 4 and (bc[0] == "not-a-knot" or bc[1] == "not-a-knot"):
+                bc = tuple(b if b != "not-a-knot" else (2, np.zeros(self.Q.shape[1])) for b in bc)
+        self.cs = CubicSpline(self.lam, self.Q, axis=0, bc_type=bc)
+        self.ell = max(float(np.linalg.norm(np.diff(self.Q, axis=0), axis=1).sum()), 1e-12)
+
+    def q(self, lam, order: int = 0) -> np.ndarray:
+        lam = np.atleast_1d(np.asarray(lam, dtype=float))
+        return self.cs(lam, order)
+
+    def grid(self, a: float, b: float) -> np.ndarray:
+        inner = self.lam[(self.lam > a + 1e-12) & (self.lam < b - 1e-12)]
+        return np.concatenate([[a], inner, [b]])
+
+
+class JointBlend:
+    """The cubic Hermite curve from (qL, vL) to (qR, vR): q(u) = h00·qL + h10·ℓ·vL + h01·qR +
+    h11·ℓ·vR, u = σ/ℓ; vL, vR = dq/dσ of the neighbours at the leave and reach points, ℓ the blend's
+    length in path units (the path the two neighbours would have covered from the leave point to
+    the via point and from there to the reach point). Between two straight lines meeting at the via
+    point with equal leave and reach it is the parabola of constant curvature, the least curved
+    such blend; the velocity is continuous at both ends."""
+
+    kind = "joint-blend"
+
+    def __init__(self, qL, vL, qR, vR, ell: float):
+        self.qL, self.vL = np.asarray(qL, dtype=float), np.asarray(vL, dtype=float)
+        self.qR, self.vR = np.asarray(qR, dtype=float), np.asarray(vR, dtype=float)
+        self.ell = float(ell)
+
+    def q(self, lam, order: int = 0) -> np.ndarray:
+        u = np.atleast_1d(np.asarray(lam, dtype=float))[:, None]
+        return hermite(u, self.qL, self.ell * self.vL, self.qR, self.ell * self.vR, order)
+
+    def grid(self, a: float, b: float) -> np.ndarray:
+        n = max(16, min(80, int(math.ceil(self.ell * (b - a) / 2.0))))
+        return np.linspace(a, b, n + 1)
+
+
+def hermite(u: np.ndarray, p0, m0, p1, m1, order: int = 0) -> np.ndarray:
+    """Cubic Hermite curve (or its derivatives in u) with end points p0, p1 and tangents m0, m1."""
+    if order == 0:
+        u2, u3 = u * u, u * u * u
+        return (2 * u3 - 3 * u2 + 1) * p0 + (u3 - 2 * u2 + u) * m0 + (-2 * u3 + 3 * u2) * p1 + (u3 - u2) * m1
+    if order == 1:
+        u2 = u * u
+        return (6 * u2 - 6 * u) * p0 + (3 * u2 - 4 * u + 1) * m0 + (-6 * u2 + 6 * u) * p1 + (3 * u2 - 2 * u) * m1
+    return (12 * u - 6) * p0 + (6 * u - 4) * m0 + (-12 * u + 6) * p1 + (6 * u - 2) * m1
+
+
+@dataclass
+class Span:
+    """The part λ ∈ [a, b] of a geometry. `owners`: (command key, σ from which it owns the span)
+    — a blend belongs to the first command up to its nominal target, then to the next.
+    `smooth`: joined to the previous span with continuous velocity (else the arm stops between
+    them). `tool`: the TCP (4x4) whose speed the limits tvel/rvel concern."""
+
+    geom: object
+    a: float
+    b: float
+    owners: list = field(default_factory=list)
+    smooth: bool = False
+    tool: np.ndarray | None = None
+    offset: float | None = None  # global s of its start, once in a Path
+    _cache: dict | None = field(default=None, repr=False)
+
+    @property
+    def ell(self) -> float:
+        return self.geom.ell
+
+    @property
+    def length(self) -> float:
+        return (self.b - self.a) * self.geom.ell
+
+    def lam(self, sigma) -> np.ndarray:
+        return self.a + np.asarray(sigma, dtype=float) / self.geom.ell
+
+    def q(self, sigma, order: int = 0) -> np.ndarray:
+        d = self.geom.q(self.lam(sigma), order)
+        return d if order == 0 else d / self.geom.ell ** order
+
+    def owner_at(self, sigma: float):
+        key = self.owners[0][0]
+        for k, start in self.owners:
+            if sigma >= start - 1e-12:
+                key = k
+        return key
+
+    def sample(self, kin) -> dict:
+        """Gridpoints (σ) and what the time parameterisation needs there, cached:
+        q, q1 = dq/dσ, q2 = d²q/dσ², pt = |dp/dσ| (mm), rt = |dθ/dσ| (deg) of the TCP."""
+        if self._cache is None:
+            lam = self.geom.grid(self.a, self.b)
+            sig = (lam - self.a) * self.geom.ell
+            q = self.geom.q(lam, 0)
+            q1 = self.geom.q(lam, 1) / self.geom.ell
+            q2 = self.geom.q(lam, 2) / self.geom.ell ** 2
+            pt, rt = tcp_rates(kin, q, q1, self.tool)
+            self._cache = {"sigma": sig, "q": q, "q1": q1, "q2": q2, "pt": pt, "rt": rt}
+        return self._cache
+
+
+def tcp_rates(kin, q: np.ndarray, q1: np.ndarray, tool) -> tuple[np.ndarray, np.ndarray]:
+    """|dp/dσ| (mm) and |dθ/dσ| (deg) of the TCP for joint derivatives q1, by central
+    differences of the forward kinematics along q1."""
+    h = H_FD
+    Tp = kin.tcp(q + h * q1, tool)
+    Tm = kin.tcp(q - h * q1, tool)
+    pt = np.linalg.norm(Tp[:, :3, 3] - Tm[:, :3, 3], axis=1) / (2 * h)
+    Rrel = np.swapaxes(Tm[:, :3, :3], 1, 2) @ Tp[:, :3, :3]
+    c = np.clip((np.trace(Rrel, axis1=1, axis2=2) - 1.0) / 2.0, -1.0, 1.0)
+    rt = np.degrees(np.arccos(c)) / (2 * h)
+    return pt, rt
+
+
+def tcp_state(kin, span: Span, sigma: float):
+    """(position, rotation, dp/dσ, angular velocity dω/dσ in world, rad) of the TCP of `span`'s
+    tool at σ (the boundary states of a Cartesian blend)."""
+    q = span.q([sigma], 0)
+    q1 = span.q([sigma], 1)
+    h = H_FD
+    T = kin.tcp(np.vstack([q, q + h * q1, q - h * q1]), span.tool)
+    p = T[0, :3, 3]
+    v = (T[1, :3, 3] - T[2, :3, 3]) / (2 * h)
+    from .cartesian import rotvec
+
+    w = rotvec(T[1, :3, :3] @ T[2, :3, :3].T) / (2 * h)
+    return p, T[0, :3, :3], v, w
+
+
+class Path:
+    """Spans joined end to end; s is the global path parameter (never reset: the arm's whole
+    run is one path)."""
+
+    def __init__(self, q_start):
+        self.spans: list[Span] = []
+        self.offsets: list[float] = []
+        self.end = 0.0
+        self.q_rest = np.asarray(q_start, dtype=float)  # where the path ends (or starts, empty)
+
+    def append(self, span: Span) -> float:
+        """Add a span at the end; returns its global offset."""
+        off = self.end
+        span.offset = off
+        self.spans.append(span)
+        self.offsets.append(off)
+        self.end = off + span.length
+        self.q_rest = span.q([span.length])[0]
+        return off
+
+    def cut(self, s: float) -> None:
+        """Drop everything after s (the arm stopped there and its commands were cancelled)."""
+        i = self.locate(s)[0] if self.spans else -1
+        if i < 0:
+            return
+        off = self.offsets[i]
+        sp = self.spans[i]
+        sigma = s - off
+        q = sp.q([sigma])[0]
+        del self.spans[i + 1:]
+        del self.offsets[i + 1:]
+        if sigma <= 1e-12:
+            del self.spans[i:]
+            del self.offsets[i:]
+        else:
+            self.spans[i] = Span(sp.geom, sp.a, sp.a + sigma / sp.geom.ell, sp.owners, sp.smooth, sp.tool, off)
+        self.end = s if self.spans else self.end
+        self.q_rest = q
+
+    def locate(self, s: float) -> tuple[int, float]:
+        """(span index, σ) of global s (the last span for s at or past the end)."""
+        if not self.spans:
+            return -1, 0.0
+        i = bisect.bisect_right(self.offsets, s) - 1
+        i = min(max(i, 0), len(self.spans) - 1)
+        return i, s - self.offsets[i]
+
+    def q(self, s, order: int = 0) -> np.ndarray:
+        """Joint positions (or derivatives) at global s values (array)."""
+        s = np.atleast_1d(np.asarray(s, dtype=float))
+        if not self.spans:
+            base = self.q_rest if order == 0 else np.zeros_like(self.q_rest)
+            return np.tile(base, (len(s), 1))
+        idx = np.searchsorted(np.asarray(self.offsets), s, side="right") - 1
+        idx = np.clip(idx, 0, len(self.spans) - 1)
+        out = np.empty((len(s), len(self.q_rest)))
+        for i in np.unique(idx):
+            m = idx == i
+            sp = self.spans[i]
+            sig = np.clip(s[m] - self.offsets[i], 0.0, sp.length)
+            out[m] = sp.q(sig, order)
+        return out
+
+    def smooth_starts(self) -> list[float]:
+        """Global s of every junction where the arm must stop (not smooth)."""
+        return [off for off, sp in zip(self.offsets, self.spans) if not sp.smooth]
