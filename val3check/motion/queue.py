@@ -261,6 +261,16 @@ class MotionQueue:
                 f = Finding(F.UNREACHABLE, f"{kind}: the target is out of the arm's reach{_name(command.target)}",
                             src, now, error=154, data={"target_mm": _r(T_end[:3, 3])})
             raise MotionError(154, f.message, f)
+        # the target in the start configuration: within the joint limits?
+        mine = self._turns(sols[ok][[int(x) == code0 for x in kin.config_codes(fill)]], q_s)
+        over = np.maximum(kin.lo - mine, mine - kin.hi).max(axis=1)
+        if np.all(over > 1e-7):
+            best = mine[int(np.argmin(over))]
+            ex = np.maximum(kin.lo - best, best - kin.hi)
+            ax = int(np.argmax(ex))
+            f = self._limit_finding(f"{kind}: the target{_name(command.target)} in the start configuration "
+                                    f"{'/'.join(cfg0)}", ax, float(ex[ax]), float(best[ax]), src, now)
+            raise MotionError(154, f.message, f)
         T0 = kin.tcp(q_s[None], tool)[0]
         try:
             curve = Line(T0, T_end) if kind == "movel" else Arc(T0, command.via.pose, T_end)
@@ -293,9 +303,20 @@ class MotionQueue:
                              "limits_deg": [lo, hi]})
 
     def _unreachable_finding(self, kind, tg, T, q_s, reason, src, now) -> Finding:
-        if reason == "limits":
-            sols = wrap_near(self.kin.ik_all(T)[0], q_s)
+        if reason in ("limits", "config"):
+            # the solutions in the requested configuration, ignoring the limits: if there are some,
+            # the joint limits are what stops the motion (which axis, by how much)
+            sols = self.kin.ik_all(T)[0]
             sols = sols[~np.isnan(sols[:, [0, 1, 2, 4, 5]]).any(axis=1)]
+            if len(sols):
+                sols[np.isnan(sols[:, 3]), 3] = q_s[3]
+                sols = self._turns(sols, q_s)
+                from ..robot.config import Config, resolve
+
+                wanted = resolve(Config.parse(tg.config), tuple(self.model.config_of(q_s)))
+                codes = self.kin.config_codes(sols)
+                keep = [all(w is None or w == v for w, v in zip(wanted, config_name(int(cd)))) for cd in codes]
+                sols = sols[np.array(keep, dtype=bool)]
             if len(sols):
                 sols[np.isnan(sols[:, 3]), 3] = q_s[3]
                 over = np.maximum(self.kin.lo - sols, sols - self.kin.hi)
@@ -311,6 +332,25 @@ class MotionQueue:
             msg = f"{kind}: the point{_name(tg)} is out of the arm's reach"
         return Finding(F.UNREACHABLE, msg, src, now, error=154,
                        data={"target_mm": _r(T[:3, 3]), "reason": reason, "config": list(tg.config)})
+
+    def _turns(self, sols: np.ndarray, q_s: np.ndarray) -> np.ndarray:
+        """Each axis on the turn within its limits nearest the start (9.6.3: an axis of more than
+        one turn takes the turn nearest jInitial); when no turn fits, the turn least outside them
+        (so that a violation is measured from there)."""
+        kin = self.kin
+        out = sols.copy()
+        shifts = 360.0 * np.arange(-2, 3)
+        for r in range(len(out)):
+            for k in range(out.shape[1]):
+                cand = sols[r, k] + shifts
+                excess = np.maximum(kin.lo[k] - cand, cand - kin.hi[k])
+                inside = excess <= 1e-7
+                if inside.any():
+                    c = cand[inside]
+                    out[r, k] = c[np.argmin(np.abs(c - q_s[k]))]
+                else:
+                    out[r, k] = cand[np.argmin(excess)]
+        return out
 
     def _path_failure(self, kind, fl, curve, src, now) -> Finding:
         at = fl.lam * curve.length_mm
