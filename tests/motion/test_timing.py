@@ -106,3 +106,28 @@ def test_a_very_short_movej():
     q.record(movej(target), 0.0)
     t = run(q)
     assert t == pytest.approx(bang_bang(1e-4, 995, 3980, 3980), rel=1e-7)
+
+
+def test_when_toppra_fails_a_safe_slower_profile_is_used_and_reported(monkeypatch):
+    from val3check.motion import findings as F
+    from val3check.motion import timing
+
+    from .motionhelp import KIN, movel, point
+
+    def broken():
+        raise RuntimeError("toppra is not available")
+
+    q0 = queue()
+    q0.record(movel(point(dz=150.0), MDesc(leave=40, reach=40)), 0.0)
+    q0.record(movel(point(dy=200.0, dz=150.0), MDesc(blend="off")), 0.0)
+    t_opt = run(q0)
+    monkeypatch.setattr(timing, "_load_toppra", broken)
+    q = queue()
+    q.record(movel(point(dz=150.0), MDesc(leave=40, reach=40)), 0.0)
+    q.record(movel(point(dy=200.0, dz=150.0), MDesc(blend="off")), 0.0)
+    t = run(q)
+    assert t > t_opt
+    assert any(f.code == F.FALLBACK for f in q.findings)
+    _, Q, Qd = q.trajectory.sample(0.0, t)
+    assert np.all(np.abs(Qd) <= np.array(KIN.speeds) * (1 + 1e-9))
+    assert np.all(np.abs(np.diff(Qd, axis=0)) / 0.004 <= np.array(KIN.accels) * 1.02)

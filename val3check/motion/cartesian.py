@@ -114,6 +114,17 @@ class Curve:
     def positions(self, lam: np.ndarray) -> np.ndarray:
         return self.poses(lam)[:, :3, 3]
 
+    def rates(self, lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """|dp/dλ| (mm) and |dθ/dλ| (deg) of the TCP (central differences; exact in subclasses)."""
+        lam = np.atleast_1d(np.asarray(lam, dtype=float))
+        h = 1e-6
+        n = len(lam)
+        T = self.poses(np.concatenate([lam + h, lam - h]))
+        p = np.linalg.norm(T[:n, :3, 3] - T[n:, :3, 3], axis=1) / (2 * h)
+        Rrel = np.swapaxes(T[n:, :3, :3], 1, 2) @ T[:n, :3, :3]
+        c = np.clip((np.trace(Rrel, axis1=1, axis2=2) - 1.0) / 2.0, -1.0, 1.0)
+        return p, np.degrees(np.arccos(c)) / (2 * h)
+
 
 class Line(Curve):
     """movel: straight line, smallest rotation (interpolateL)."""
@@ -125,6 +136,10 @@ class Line(Curve):
         self.ang, self.axis = smallest_rotation(T0[:3, :3], T1[:3, :3])
         self.length_mm = float(np.linalg.norm(self.p1 - self.p0))
         self.angle_deg = float(self.ang)
+
+    def rates(self, lam):
+        n = np.size(lam)
+        return np.full(n, self.length_mm), np.full(n, float(self.ang))
 
     def poses(self, lam):
         lam = np.atleast_1d(np.asarray(lam, dtype=float))
@@ -166,6 +181,12 @@ class Arc(Curve):
         self.r23 = math.radians(ang23) * ax23
         self.length_mm = self.radius * self.a3
         self.angle_deg = float(ang12 + ang23)
+
+    def rates(self, lam):
+        lam = np.atleast_1d(np.asarray(lam, dtype=float))
+        r12 = math.degrees(float(np.linalg.norm(self.r12))) / self.u2
+        r23 = math.degrees(float(np.linalg.norm(self.r23))) / (1.0 - self.u2)
+        return np.full(len(lam), self.radius * self.a3), np.where(lam <= self.u2, r12, r23)
 
     def poses(self, lam):
         lam = np.atleast_1d(np.asarray(lam, dtype=float))

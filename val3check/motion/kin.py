@@ -17,12 +17,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..robot.errors import IKUnsupported
+from ..robot.ik import opw_ik
 
 DEG = math.pi / 180.0
 RAD = 180.0 / math.pi
 # Below this |sin(j5)| the wrist is exactly singular: j4 is then taken from the previous
 # position of the path (only j4 + j6 is defined).
 WRIST_EXACT = 1e-9
+SMALL_N = 12  # below this many positions, forward kinematics loops over the pure-Python closed form
 
 
 def as4(m) -> np.ndarray:
@@ -79,6 +81,7 @@ class ArmKin:
             self.G = None if o.G is None else as4(o.G)
             self.Ginv = None if self.G is None else inv4(self.G)
             self.branch_is_config = bool(np.all(self.signs > 0) and o.a2 == 0.0)
+            self._deg_signs = DEG * self.signs
 
     # ---- forward kinematics ------------------------------------------------------------------
 
@@ -87,48 +90,45 @@ class ArmKin:
         Q = np.atleast_2d(np.asarray(Q, dtype=float))
         if self.opw is None:  # any URDF chain: one position at a time
             return np.array([as4(self.model.fk_matrix(q)) for q in Q])
+        if len(Q) <= SMALL_N:  # numpy's per-call cost outweighs a few closed-form evaluations
+            out = np.zeros((len(Q), 4, 4))
+            out[:, 3, 3] = 1.0
+            fk1 = self.opw.fk
+            for i, q in enumerate((Q * DEG).tolist()):
+                out[i, :3, :] = fk1(q)
+            return out
         o = self.opw
-        t = Q * DEG * self.signs
-        c1, s1 = np.cos(t[:, 0]), np.sin(t[:, 0])
-        c2, s2 = np.cos(t[:, 1]), np.sin(t[:, 1])
-        t23 = t[:, 1] + t[:, 2]
-        c23, s23 = np.cos(t23), np.sin(t23)
-        c4, s4 = np.cos(t[:, 3]), np.sin(t[:, 3])
-        c5, s5 = np.cos(t[:, 4]), np.sin(t[:, 4])
-        c6, s6 = np.cos(t[:, 5]), np.sin(t[:, 5])
-        w00 = c4 * c5 * c6 - s4 * s6
-        w01 = -c4 * c5 * s6 - s4 * c6
+        t = Q * self._deg_signs
+        t[:, 2] += t[:, 1]  # t23
+        c = np.cos(t)
+        sn = np.sin(t)
+        c1, c2, c23, c4, c5, c6 = c.T
+        s1, s2, s23, s4, s5, s6 = sn.T
+        c4c5 = c4 * c5
+        s4c5 = s4 * c5
+        w00 = c4c5 * c6 - s4 * s6
+        w01 = -c4c5 * s6 - s4 * c6
         w02 = c4 * s5
-        w10 = s4 * c5 * c6 + c4 * s6
-        w11 = -s4 * c5 * s6 + c4 * c6
+        w10 = s4c5 * c6 + c4 * s6
+        w11 = -s4c5 * s6 + c4 * c6
         w12 = s4 * s5
         w20 = -s5 * c6
         w21 = s5 * s6
-        w22 = c5
         m00 = c23 * w00 + s23 * w20
         m01 = c23 * w01 + s23 * w21
-        m02 = c23 * w02 + s23 * w22
-        m20 = -s23 * w00 + c23 * w20
-        m21 = -s23 * w01 + c23 * w21
-        m22 = -s23 * w02 + c23 * w22
+        m02 = c23 * w02 + s23 * c5
+        m20 = c23 * w20 - s23 * w00
+        m21 = c23 * w21 - s23 * w01
+        m22 = c23 * c5 - s23 * w02
         u = o.a1 + o.c2 * s2 + o.c3 * s23 + o.a2 * c23 + o.c4 * m02
         v = o.b + o.c4 * w12
         z = o.c1 + o.c2 * c2 + o.c3 * c23 - o.a2 * s23 + o.c4 * m22
         n = len(Q)
-        T = np.zeros((n, 4, 4))
-        T[:, 0, 0] = c1 * m00 - s1 * w10
-        T[:, 0, 1] = c1 * m01 - s1 * w11
-        T[:, 0, 2] = c1 * m02 - s1 * w12
-        T[:, 0, 3] = c1 * u - s1 * v
-        T[:, 1, 0] = s1 * m00 + c1 * w10
-        T[:, 1, 1] = s1 * m01 + c1 * w11
-        T[:, 1, 2] = s1 * m02 + c1 * w12
-        T[:, 1, 3] = s1 * u + c1 * v
-        T[:, 2, 0] = m20
-        T[:, 2, 1] = m21
-        T[:, 2, 2] = m22
-        T[:, 2, 3] = z
-        T[:, 3, 3] = 1.0
+        T = np.empty((n, 4, 4))
+        T[:, 0, :] = np.stack([c1 * m00 - s1 * w10, c1 * m01 - s1 * w11, c1 * m02 - s1 * w12, c1 * u - s1 * v], axis=1)
+        T[:, 1, :] = np.stack([s1 * m00 + c1 * w10, s1 * m01 + c1 * w11, s1 * m02 + c1 * w12, s1 * u + c1 * v], axis=1)
+        T[:, 2, :] = np.stack([m20, m21, m22, z], axis=1)
+        T[:, 3, :] = (0.0, 0.0, 0.0, 1.0)
         if self.G is not None:
             T = T @ self.G
         return T
@@ -156,6 +156,15 @@ class ArmKin:
         T = np.asarray(T, dtype=float)
         if T.ndim == 2:
             T = T[None]
+        if len(T) <= 2 and branches is None:  # a pose or two: the pure-Python closed form is faster
+            out = np.full((len(T), 8, 6), np.nan)
+            for i, M in enumerate(T):
+                sols = opw_ik(o, M[:3, :4].tolist())
+                if len(sols) != 8:  # singular or partly out of reach: branches are not 1 to 1
+                    break
+                out[i] = np.array(sols) * RAD
+            else:
+                return out
         if self.Ginv is not None:
             T = T @ self.Ginv
         a1, a2, b, c1, c2, c3, c4 = o.a1, o.a2, o.b, o.c1, o.c2, o.c3, o.c4

@@ -25,6 +25,7 @@ import numpy as np
 
 
 H_FD = 1e-4  # path-units step of the finite differences of the TCP rates
+JUNCTION_EPS = 1e-6  # path units: the second gridpoint of a span, on its side of a junction
 
 
 class JointLine:
@@ -50,30 +51,30 @@ class JointLine:
 
 
 class JointSpline:
-    """Joint positions Q at λ (from tracking), cubic spline; d0/d1: dq/dλ at the ends or None."""
+    """Joint positions Q (N, 6) at λ and their derivatives D = dq/dλ (from tracking, by central
+    differences of the inverse solution), joined by cubic Hermite pieces: C1, and as close to the
+    exact inverse solution between gridpoints as a cubic spline."""
 
     kind = "spline"
 
-    def __init__(self, lam: np.ndarray, Q: np.ndarray, d0=None, d1=None):
-        from scipy.interpolate import CubicSpline
-
+    def __init__(self, lam: np.ndarray, Q: np.ndarray, D: np.ndarray):
         self.lam = np.asarray(lam, dtype=float)
         self.Q = np.asarray(Q, dtype=float)
+        self.D = np.asarray(D, dtype=float)
         if len(self.lam) < 2:
             raise ValueError("a spline needs two points")
-        if len(self.lam) == 2 and d0 is None and d1 is None:
-            bc = "natural"
-        else:
-            bc = ((1, np.asarray(d0, dtype=float)) if d0 is not None else "not-a-knot",
-                  (1, np.asarray(d1, dtype=float)) if d1 is not None else "not-a-knot")
-            if len(self.lam) < 4 and (bc[0] == "not-a-knot" or bc[1] == "not-a-knot"):
-                bc = tuple(b if b != "not-a-knot" else (2, np.zeros(self.Q.shape[1])) for b in bc)
-        self.cs = CubicSpline(self.lam, self.Q, axis=0, bc_type=bc)
         self.ell = max(float(np.linalg.norm(np.diff(self.Q, axis=0), axis=1).sum()), 1e-12)
 
     def q(self, lam, order: int = 0) -> np.ndarray:
-        lam = np.atleast_1d(np.asarray(lam, dtype=float))
-        return self.cs(lam, order)
+        x = np.atleast_1d(np.asarray(lam, dtype=float))
+        knots = self.lam
+        i = np.clip(np.searchsorted(knots, x, side="right") - 1, 0, len(knots) - 2)
+        h = (knots[i + 1] - knots[i])[:, None]
+        u = (x - knots[i])[:, None] / h
+        p0, p1 = self.Q[i], self.Q[i + 1]
+        m0, m1 = self.D[i] * h, self.D[i + 1] * h
+        d = hermite(u, p0, m0, p1, m1, order)
+        return d if order == 0 else d / h ** order
 
     def grid(self, a: float, b: float) -> np.ndarray:
         inner = self.lam[(self.lam > a + 1e-12) & (self.lam < b - 1e-12)]
@@ -154,25 +155,45 @@ class Span:
         return key
 
     def sample(self, kin) -> dict:
-        """Gridpoints (σ) and what the time parameterisation needs there, cached:
-        q, q1 = dq/dσ, q2 = d²q/dσ², pt = |dp/dσ| (mm), rt = |dθ/dσ| (deg) of the TCP."""
+        """Gridpoints (σ, both ends included) and what the time parameterisation needs there,
+        cached: q1 = dq/dσ, q2 = d²q/dσ², pt = |dp/dσ| (mm), rt = |dθ/dσ| (deg) of the TCP; the
+        last row is the point JUNCTION_EPS after the start, where the span's own curvature
+        applies (the time parameterisation constrains both sides of a junction)."""
         if self._cache is None:
             lam = self.geom.grid(self.a, self.b)
+            eps = min(JUNCTION_EPS, 0.5 * self.length) / self.geom.ell
+            lam = np.append(lam, self.a + eps)
             sig = (lam - self.a) * self.geom.ell
-            q = self.geom.q(lam, 0)
             q1 = self.geom.q(lam, 1) / self.geom.ell
             q2 = self.geom.q(lam, 2) / self.geom.ell ** 2
-            pt, rt = tcp_rates(kin, q, q1, self.tool)
-            self._cache = {"sigma": sig, "q": q, "q1": q1, "q2": q2, "pt": pt, "rt": rt}
+            pt, rt = self._rates(kin, lam, q1)
+            self._cache = {"sigma": sig, "q1": q1, "q2": q2, "pt": pt, "rt": rt}
         return self._cache
+
+    def sample_at(self, kin, sigma: float) -> dict:
+        """The same at one σ."""
+        lam = self.lam(np.array([sigma]))
+        q1 = self.q([sigma], 1)
+        pt, rt = self._rates(kin, lam, q1)
+        return {"sigma": np.array([sigma]), "q1": q1, "q2": self.q([sigma], 2), "pt": pt, "rt": rt}
+
+    def _rates(self, kin, lam, q1):
+        """TCP rates per path unit: from the Cartesian curve when the geometry follows one (exact),
+        else from the forward kinematics."""
+        curve = getattr(self.geom, "curve", None)
+        if curve is not None:
+            p, r = curve.rates(lam)
+            return p / self.geom.ell, r / self.geom.ell
+        return tcp_rates(kin, self.geom.q(lam, 0), q1, self.tool)
 
 
 def tcp_rates(kin, q: np.ndarray, q1: np.ndarray, tool) -> tuple[np.ndarray, np.ndarray]:
     """|dp/dσ| (mm) and |dθ/dσ| (deg) of the TCP for joint derivatives q1, by central
     differences of the forward kinematics along q1."""
     h = H_FD
-    Tp = kin.tcp(q + h * q1, tool)
-    Tm = kin.tcp(q - h * q1, tool)
+    n = len(q)
+    T = kin.tcp(np.vstack([q + h * q1, q - h * q1]), tool)
+    Tp, Tm = T[:n], T[n:]
     pt = np.linalg.norm(Tp[:, :3, 3] - Tm[:, :3, 3], axis=1) / (2 * h)
     Rrel = np.swapaxes(Tm[:, :3, :3], 1, 2) @ Tp[:, :3, :3]
     c = np.clip((np.trace(Rrel, axis1=1, axis2=2) - 1.0) / 2.0, -1.0, 1.0)
@@ -248,16 +269,28 @@ class Path:
         if not self.spans:
             base = self.q_rest if order == 0 else np.zeros_like(self.q_rest)
             return np.tile(base, (len(s), 1))
-        idx = np.searchsorted(np.asarray(self.offsets), s, side="right") - 1
-        idx = np.clip(idx, 0, len(self.spans) - 1)
+        # only the spans between the smallest and the largest s (the path holds the whole run)
+        last = len(self.spans) - 1
+        i0 = min(max(bisect.bisect_right(self.offsets, float(s.min())) - 1, 0), last)
+        i1 = min(max(bisect.bisect_right(self.offsets, float(s.max())) - 1, 0), last)
         out = np.empty((len(s), len(self.q_rest)))
-        for i in np.unique(idx):
-            m = idx == i
+        if i0 == i1:
+            sp = self.spans[i0]
+            out[:] = sp.q(np.clip(s - self.offsets[i0], 0.0, sp.length), order)
+            return out
+        idx = np.searchsorted(np.asarray(self.offsets[i0:i1 + 1]), s, side="right") - 1 + i0
+        idx = np.clip(idx, i0, i1)
+        order_ = np.argsort(idx, kind="stable")
+        sidx = idx[order_]
+        cuts = np.flatnonzero(np.diff(sidx)) + 1
+        for rows in np.split(order_, cuts):  # one evaluation per span touched
+            i = int(idx[rows[0]])
             sp = self.spans[i]
-            sig = np.clip(s[m] - self.offsets[i], 0.0, sp.length)
-            out[m] = sp.q(sig, order)
+            out[rows] = sp.q(np.clip(s[rows] - self.offsets[i], 0.0, sp.length), order)
         return out
 
-    def smooth_starts(self) -> list[float]:
-        """Global s of every junction where the arm must stop (not smooth)."""
-        return [off for off, sp in zip(self.offsets, self.spans) if not sp.smooth]
+    def stops_after(self, s: float) -> list[float]:
+        """Global s of every junction after s where the arm must stop (not smooth)."""
+        i = max(bisect.bisect_right(self.offsets, s) - 1, 0)
+        return [self.offsets[k] for k in range(i, len(self.spans))
+                if not self.spans[k].smooth and self.offsets[k] > s + 1e-12]

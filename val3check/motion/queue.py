@@ -37,7 +37,7 @@ import numpy as np
 
 from . import findings as F
 from .cartesian import ArcError, Arc, Blend, Line
-from .checks import WHAT, singular_pass
+from .checks import THRESHOLDS, WHAT, singular_pass
 from .commands import MoveCommand
 from .findings import Finding, MotionError, Source
 from .kin import ArmKin, config_name, wrap_near
@@ -52,6 +52,9 @@ SETTLE_S = 0.05  # isSettled: at rest for 50 ms (perfect tracking: the commanded
 MIN_BLEND_MM = 0.01  # a leave or reach shorter than this: no blend, the arm stops at the point
 CUSP_COS = math.cos(math.radians(170.0))  # a blend that turns back more than this: the arm stops
 JOINT_EQ = 1e-6  # degrees: joint positions this close are the same position (9.2.2)
+# Commands recorded less than this apart while the arm starts from rest are timed together: in
+# that time the arm moves less than a micrometre, the same whichever way it is computed.
+MERGE_WINDOW = 0.001
 
 
 @dataclass
@@ -100,7 +103,8 @@ class MotionQueue:
         q0 = np.zeros(len(model.joint_limits)) if joints is None else np.asarray(joints, dtype=float)
         self.path = Path(q0)
         self.profile = Profile(0.0, 0.0)
-        self.trajectory = Trajectory(self.path, self.profile)
+        self._trajectory = Trajectory(self.path, self.profile)
+        self._pending: tuple[float, float, bool] | None = None  # a replan not done yet (see _replan)
         self.capacity = capacity
         self.powered = powered
         self.held = False  # stopMove
@@ -123,7 +127,7 @@ class MotionQueue:
 
     def record(self, command: MoveCommand, now: float) -> int | QueueFull:
         """movej/movel/movec (10.6): the command's identifier, or QueueFull."""
-        self.advance(now)
+        self._advance(now, lenient=True)
         if self.failure is not None:
             raise MotionError(150, self._failure_text())
         src = command.source
@@ -288,8 +292,9 @@ class MotionQueue:
             self.findings.append(f)
             self.failure = f
             return
-        c.geom = JointSpline(tr.lam, tr.Q)
+        c.geom = JointSpline(tr.lam, tr.Q, tr.D)
         c.geom.sing = tr.sing
+        c.geom.curve = curve
         c.q_end = tr.Q[-1].copy()
 
     # ---- findings ------------------------------------------------------------------------------
@@ -400,20 +405,20 @@ class MotionQueue:
             if d < MIN_BLEND_MM:
                 return None
             return 1.0 - d / L if from_end else d / L
-        lam = np.linspace(0.0, 1.0, 129)
+        lam = np.linspace(0.0, 1.0, 33)
         P = self._positions(c, lam)
         ref = P[-1] if from_end else P[0]
         chord = float(np.linalg.norm(P[-1] - P[0]))
         d = min(d, chord / 2.0)
         if d < MIN_BLEND_MM:
             return None
-        for _ in range(4):  # refine the bracket 32 times per round
+        for _ in range(4):  # refine the bracket 16 times per round
             dist = np.linalg.norm(P - ref, axis=1)
             far = np.nonzero(dist >= d)[0]
             j = int(far.max()) if from_end else int(far.min())
             j = min(j, len(lam) - 2) if from_end else max(j, 1)
             a, b = (lam[j], lam[j + 1]) if from_end else (lam[j - 1], lam[j])
-            lam = np.linspace(a, b, 33)
+            lam = np.linspace(a, b, 17)
             P = self._positions(c, lam)
         dist = np.linalg.norm(P - ref, axis=1)
         far = np.nonzero(dist >= d)[0]
@@ -525,9 +530,12 @@ class MotionQueue:
             return None
         Q = tr.Q.copy()
         Q[-1] = qR
-        g = JointSpline(tr.lam, Q, d0=ell_b * vL, d1=ell_b * vR)
+        D = tr.D.copy()
+        D[0], D[-1] = ell_b * vL, ell_b * vR  # exactly the neighbours' velocities: C1 junctions
+        g = JointSpline(tr.lam, Q, D)
         g.ell = ell_b
         g.sing = tr.sing
+        g.curve = curve
         return g
 
     # ---- timing ------------------------------------------------------------------------------------
@@ -536,16 +544,38 @@ class MotionQueue:
         return self.powered and not self.held
 
     def _replan(self, now: float, from_final_decel: bool) -> None:
-        """Re-time what the path added changes (see the module docstring)."""
+        """Re-time what the path added changes (see the module docstring), from the start of the
+        final braking (or the end of the motion ahead), or now when that is past.
+
+        The work is done when something reads the profile (`_flush`), so that a burst of records
+        is timed once: a record merges into a pending replan when it comes before that replan's
+        start (exactly the same result) or, from rest, within MERGE_WINDOW of the first record."""
         if not self._can_move():
             return
-        t_now = now
+        if self._pending is not None:
+            t_r0, t_req0, rest0 = self._pending
+            if now <= t_r0 + 1e-12 or (rest0 and now - t_req0 <= MERGE_WINDOW):
+                return
+            self._flush()
         if from_final_decel:
             k = self.profile.final_decel_start()
-            t_r = max(t_now, self.profile.T[k])
+            t_r = max(now, self.profile.T[k])
         else:
-            t_r = max(t_now, self.profile.t_end)
-        self._plan_from(t_r)
+            t_r = max(now, self.profile.t_end)
+        self._pending = (t_r, now, t_r >= self.profile.t_end)
+
+    def _flush(self) -> None:
+        """Do the pending replan (before anything reads the profile)."""
+        if self._pending is not None:
+            t_r = self._pending[0]
+            self._pending = None
+            self._plan_from(t_r)
+
+    @property
+    def trajectory(self) -> Trajectory:
+        """The arm's trajectory (path + time parameterisation), up to date."""
+        self._flush()
+        return self._trajectory
 
     def _plan_from(self, t_r: float) -> None:
         prof = self.profile
@@ -555,7 +585,7 @@ class MotionQueue:
             if sd_r > 0:  # numerically at the end: stop there
                 prof.SD[-1] = 0.0
             return
-        stops = [o for o in self.path.smooth_starts() if o > s_r + 1e-12] + [self.path.end]
+        stops = self.path.stops_after(s_r) + [self.path.end]
         a, v0 = s_r, sd_r
         t_cur = max(t_r, prof.t_end)
         for b in stops:
@@ -580,8 +610,10 @@ class MotionQueue:
         """The path between global a and b sampled for the time parameterisation, and the key of
         the command that owns each gridpoint."""
         path = self.path
+        kin = self.kin
         i0, _ = path.locate(a)
         parts = []
+        keys = ("sigma", "q1", "q2", "pt", "rt")
         i = i0
         while i < len(path.spans):
             off = path.offsets[i]
@@ -589,35 +621,37 @@ class MotionQueue:
             lo, hi = max(a - off, 0.0), min(b - off, sp.length)
             if hi < lo - 1e-12 or off > b + 1e-12:
                 break
-            smp = sp.sample(self.kin)
-            sig = smp["sigma"]
-            inner = (sig > lo + 1e-9) & (sig < hi - 1e-9)
-            ends = [lo] if not parts else []
-            sel = {k: smp[k][inner] for k in ("q1", "q2", "pt", "rt")}
-            extra = np.array(ends + [hi])
-            ex_q1 = sp.q(extra, 1)
-            ex_q2 = sp.q(extra, 2)
-            ex_pt, ex_rt = tcp_rates(self.kin, sp.q(extra), ex_q1, sp.tool)
-            if ends:
-                pts = np.concatenate([[lo], sig[inner], [hi]])
-                q1 = np.vstack([ex_q1[:1], sel["q1"], ex_q1[1:]])
-                q2 = np.vstack([ex_q2[:1], sel["q2"], ex_q2[1:]])
-                pt = np.concatenate([ex_pt[:1], sel["pt"], ex_pt[1:]])
-                rt = np.concatenate([ex_rt[:1], sel["rt"], ex_rt[1:]])
+            smp = sp.sample(kin)
+            sig = smp["sigma"][:-1]  # the grid (the last row is the junction point)
+            first = not parts
+            if first:
+                start = 0 if abs(lo - sig[0]) <= 1e-12 else None
+                from_ = lo
             else:  # at the junction the curvature may jump: constrain this span's side too
-                eps = min(1e-6, 0.5 * (hi - lo))
-                j_q1, j_q2 = sp.q([eps], 1), sp.q([eps], 2)
-                j_pt, j_rt = tcp_rates(self.kin, sp.q([eps]), j_q1, sp.tool)
-                inner &= sig > eps + 1e-9
-                sel = {k: smp[k][inner] for k in ("q1", "q2", "pt", "rt")}
-                pts = np.concatenate([[eps], sig[inner], [hi]])
-                q1 = np.vstack([j_q1, sel["q1"], ex_q1])
-                q2 = np.vstack([j_q2, sel["q2"], ex_q2])
-                pt = np.concatenate([j_pt, sel["pt"], ex_pt])
-                rt = np.concatenate([j_rt, sel["rt"], ex_rt])
-            owner_starts = np.array([st for _, st in sp.owners])
-            owner_keys = np.array([k for k, _ in sp.owners])
-            own = owner_keys[np.clip(np.searchsorted(owner_starts, pts + 1e-12, side="right") - 1, 0, None)]
+                start = len(sig)  # the junction row
+                from_ = smp["sigma"][-1]
+            j0 = int(np.searchsorted(sig, from_ + 1e-9, side="right"))
+            j1 = int(np.searchsorted(sig, hi - 1e-9, side="left"))
+            end = len(sig) - 1 if abs(hi - sig[-1]) <= 1e-9 else None
+            blocks = []
+            if start is None:
+                blocks.append(sp.sample_at(kin, lo))
+            else:
+                blocks.append({k: smp[k][start:start + 1] for k in keys})
+            if j1 > j0:
+                blocks.append({k: smp[k][j0:j1] for k in keys})
+            blocks.append({k: smp[k][end:end + 1] for k in keys} if end is not None else sp.sample_at(kin, hi))
+            pts = np.concatenate([bl["sigma"] for bl in blocks])
+            q1 = np.vstack([bl["q1"] for bl in blocks])
+            q2 = np.vstack([bl["q2"] for bl in blocks])
+            pt = np.concatenate([bl["pt"] for bl in blocks])
+            rt = np.concatenate([bl["rt"] for bl in blocks])
+            if len(sp.owners) == 1:
+                own = np.full(len(pts), sp.owners[0][0])
+            else:
+                owner_starts = np.array([st for _, st in sp.owners])
+                owner_keys = np.array([k for k, _ in sp.owners])
+                own = owner_keys[np.clip(np.searchsorted(owner_starts, pts + 1e-12, side="right") - 1, 0, None)]
             parts.append((pts + off, q1, q2, pt, rt, own))
             if off + sp.length >= b - 1e-12:
                 break
@@ -672,6 +706,14 @@ class MotionQueue:
 
     def advance(self, now: float) -> None:
         """Complete the commands the arm has finished by `now` (the Subsystem's advance)."""
+        self._advance(now)
+
+    def _advance(self, now: float, lenient: bool = False) -> None:
+        if self._pending is not None:
+            t_r0, t_req0, rest0 = self._pending
+            # a record within the merge window: the profile up to now is the current one
+            if not (lenient and (now <= t_r0 + 1e-12 or (rest0 and now - t_req0 <= MERGE_WINDOW))):
+                self._flush()
         while self.pending:
             c = self.pending[0]
             if c.S_end is None:
@@ -687,6 +729,7 @@ class MotionQueue:
             self._check_singularity(c)
 
     def _first_done_time(self) -> float | None:
+        self._flush()
         if not self.pending:
             return None
         c = self.pending[0]
@@ -697,6 +740,7 @@ class MotionQueue:
     def next_event(self, now: float) -> float | None:
         """The earliest time after `now` at which something a task can observe changes: a command completes (a queue place frees, isEmpty, waitEndMove), the arm comes
         to rest, or it has been at rest 50 ms (isSettled). None when nothing will change."""
+        self._flush()
         cands = []
         t = self._first_done_time()
         if t is not None and t > now:
@@ -747,6 +791,7 @@ class MotionQueue:
         return not self.pending
 
     def is_settled(self, now: float) -> bool:
+        self._flush()
         since = self.profile.rest_since(now)
         return since is not None and now - since >= SETTLE_S - 1e-9
 
@@ -758,6 +803,7 @@ class MotionQueue:
         self._brake(now)
 
     def restart_move(self, now: float) -> None:
+        self._flush()
         if not self.held:
             return
         self.held = False
@@ -777,6 +823,7 @@ class MotionQueue:
 
     def set_monitor_speed(self, percent: float, now: float) -> None:
         """setMonitorSpeed: every limit scales at once, the motion ahead is re-timed."""
+        self._flush()
         if percent == self.monitor:
             return
         self.monitor = float(percent)
@@ -810,6 +857,7 @@ class MotionQueue:
         if not self.pending:
             return float(self.pos_id)
         c = self.pending[0]
+        self._flush()
         s, _, _ = self.profile.state(now)
         end = c.S_end if c.S_end is not None else c.S_prov
         if c.id is None or c.S_begin is None or end is None or s < c.S_begin - 1e-12 or end - c.S_begin <= 0:
@@ -818,6 +866,7 @@ class MotionQueue:
         return c.id + frac
 
     def _brake(self, now: float) -> None:
+        self._flush()
         t_r = now
         prof = self.profile
         prof.cut(t_r)
@@ -825,7 +874,7 @@ class MotionQueue:
         if sd <= 0.0:
             return
         s_r = prof.s_end
-        stops = [o for o in self.path.smooth_starts() if o > s_r + 1e-12] + [self.path.end]
+        stops = self.path.stops_after(s_r) + [self.path.end]
         grid, _ = self._grid(s_r, stops[0])
         s, v = brake_stop(grid, sd)
         prof.append(prof.t_end, s, v)
@@ -834,10 +883,12 @@ class MotionQueue:
 
     def position(self, now: float) -> np.ndarray:
         """herej(): the commanded joint position (degrees)."""
-        return self.trajectory.position(now)
+        self._flush()
+        return self._trajectory.position(now)
 
     def velocity(self, now: float) -> np.ndarray:
-        return self.trajectory.velocity(now)
+        self._flush()
+        return self._trajectory.velocity(now)
 
     def get_speed(self, tool, now: float) -> float:
         """getSpeed(tool): the TCP translation speed from the commanded joint speeds (mm/s)."""
@@ -867,7 +918,9 @@ class MotionQueue:
             return
         c.checked = True
         sing = getattr(c.geom, "sing", None)
-        if sing is None:
+        if sing is None or (sing.wrist.min(initial=np.inf) >= THRESHOLDS["wrist"]
+                            and sing.elbow.min(initial=np.inf) >= THRESHOLDS["elbow"]
+                            and sing.shoulder.min(initial=np.inf) >= THRESHOLDS["shoulder"]):
             return
         g = c.geom
         q1 = g.q(g.lam, 1) / g.ell

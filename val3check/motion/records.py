@@ -67,85 +67,105 @@ def _time_leaving(profile, s0: float) -> float | None:
 
 def _speeds_at(profile, s: np.ndarray) -> np.ndarray:
     """ṡ at path positions s (ṡ² is linear in s between breakpoints)."""
-    S = np.asarray(profile.S)
-    X = np.asarray(profile.SD) ** 2
+    k0 = max(bisect.bisect_left(profile.S, float(s.min())) - 1, 0)
+    k1 = bisect.bisect_right(profile.S, float(s.max())) + 1
+    S = np.asarray(profile.S[k0:k1])
+    X = np.asarray(profile.SD[k0:k1]) ** 2
     keep = np.concatenate([np.diff(S) > 0, [True]])  # one value per position (a rest repeats S)
     return np.sqrt(np.maximum(np.interp(s, S[keep], X[keep]), 0.0))
 
 
-def record_of(queue, c) -> MotionRecord:
-    prof = queue.profile
-    path = queue.path
-    src = c.source
-    base = dict(target=c.target_name, tool=c.tool_name)
-    if c.S_begin is None or c.state == "failed":
-        return MotionRecord(c.id, c.kind, src, c.state, c.recorded, None, None, 0.0, 0.0, "", {}, **base)
-    s0 = c.S_begin
-    s1 = c.S_end if c.S_end is not None else min(prof.s_end, c.S_prov or prof.s_end)
-    if c.state == "cancelled":
-        s1 = min(s1, prof.s_end)
-    start = _time_leaving(prof, s0)
-    end = c.t_done if c.state == "done" else prof.time_at(s1)
-    if s1 - s0 <= 1e-12:
-        return MotionRecord(c.id, c.kind, src, c.state, c.recorded, start, end if end is not None else start, 0.0, 0.0,
-                            "", {}, **base)
-    # a fine grid of the command's part of the path for length and speed
-    s = np.linspace(s0, s1, 129)
-    k0 = bisect.bisect_left(prof.S, s0)
-    k1 = bisect.bisect_right(prof.S, s1)
-    s = np.unique(np.concatenate([s, np.asarray(prof.S[k0:k1])]))
-    q = path.q(s)
-    q1 = path.q(s, 1)
-    pt, rt = tcp_rates(queue.kin, q, q1, c.tool)
-    length = float(np.sum(0.5 * (pt[1:] + pt[:-1]) * np.diff(s)))
-    sd = _speeds_at(prof, s)
-    peak = float(np.max(pt * sd))
-    share = _limit_share(queue, c, prof, k0, k1, s0, s1)
-    dominant = max(share, key=share.get) if share else ""
-    return MotionRecord(c.id, c.kind, src, c.state, c.recorded, start, end, length, peak, dominant, share, **base)
+def motion_records(queue) -> list[MotionRecord]:
+    """One record per command recorded (in recording order), connection moves included. The
+    path is evaluated once for all commands (grouped by tool)."""
+    prof = queue.trajectory.profile
+    out: list[MotionRecord | None] = []
+    todo = []  # (index in out, command, s0, s1, start, end, points, mids)
+    for c in queue.history:
+        src = c.source
+        base = dict(target=c.target_name, tool=c.tool_name)
+        if c.S_begin is None or c.state == "failed":
+            out.append(MotionRecord(c.id, c.kind, src, c.state, c.recorded, None, None, 0.0, 0.0, "", {}, **base))
+            continue
+        s0 = c.S_begin
+        s1 = c.S_end if c.S_end is not None else min(prof.s_end, c.S_prov or prof.s_end)
+        if c.state in ("cancelled", "pending"):
+            s1 = min(s1, prof.s_end)
+        start = _time_leaving(prof, s0)
+        end = c.t_done if c.state == "done" else prof.time_at(s1)
+        if s1 - s0 <= 1e-12:
+            out.append(MotionRecord(c.id, c.kind, src, c.state, c.recorded, start, end if end is not None else start,
+                                    0.0, 0.0, "", {}, **base))
+            continue
+        k0 = bisect.bisect_left(prof.S, s0)
+        k1 = bisect.bisect_right(prof.S, s1)
+        pts = np.unique(np.concatenate([np.linspace(s0, s1, 33), np.asarray(prof.S[k0:k1])]))
+        lo = max(k0 - 1, 0)
+        S = np.asarray(prof.S[lo:k1 + 1])
+        mids = 0.5 * (S[1:] + S[:-1])
+        todo.append((len(out), c, s0, s1, start, end, pts, mids, lo, k1))
+        out.append(None)
+    groups: dict = {}
+    for item in todo:
+        groups.setdefault(id(item[1].tool), []).append(item)
+    for items in groups.values():
+        allp = np.concatenate([np.concatenate([it[6], it[7]]) for it in items])
+        q = queue.path.q(allp)
+        q1 = queue.path.q(allp, 1)
+        q2 = queue.path.q(allp, 2)
+        pt, rt = tcp_rates(queue.kin, q, q1, items[0][1].tool)
+        at = 0
+        for idx, c, s0, s1, start, end, pts, mids, lo, k1 in items:
+            n, m = len(pts), len(mids)
+            sl, sm = slice(at, at + n), slice(at + n, at + n + m)
+            at += n + m
+            length = float(np.sum(0.5 * (pt[sl][1:] + pt[sl][:-1]) * np.diff(pts)))
+            peak = float(np.max(pt[sl] * _speeds_at(prof, pts)))
+            share = _limit_share(queue.limits_of(c), prof, lo, k1, s0, s1, q1[sm], q2[sm], pt[sm], rt[sm])
+            dominant = max(share, key=share.get) if share else ""
+            out[idx] = MotionRecord(c.id, c.kind, c.source, c.state, c.recorded, start, end, length, peak, dominant,
+                                    share, target=c.target_name, tool=c.tool_name)
+    return out  # type: ignore[return-value]
 
 
-def _limit_share(queue, c, prof, k0: int, k1: int, s0: float, s1: float) -> dict:
+def _limit_share(lim, prof, lo: int, k1: int, s0: float, s1: float, q1, q2, pt, rt) -> dict:
     """Seconds under each limit: per breakpoint interval, the limit the profile is on (the
     acceleration or deceleration of the axis nearest its limit when the path speed changes, the
-    speed limit nearest when it is held)."""
-    lim = queue.limits_of(c)
-    T, S, SD = prof.T, prof.S, prof.SD
-    lo = max(bisect.bisect_left(S, s0) - 1, 0)
-    hi = min(k1 + 1, len(S) - 1)
+    speed limit nearest when it is held). q1..rt: the path at the intervals' midpoints."""
+    S = np.asarray(prof.S[lo:k1 + 1])
+    T = np.asarray(prof.T[lo:k1 + 1])
+    SD = np.asarray(prof.SD[lo:k1 + 1])
+    if len(S) < 2:
+        return {}
+    ds_all = np.diff(S)
+    m = (ds_all > 0) & (S[1:] > s0) & (S[:-1] < s1)
+    if not m.any():
+        return {}
+    i = np.nonzero(m)[0]
+    ds = ds_all[i]
+    dt = T[i + 1] - T[i]
+    x0, x1 = SD[i] ** 2, SD[i + 1] ** 2
+    x = 0.5 * (x0 + x1)
+    u = (x1 - x0) / (2.0 * ds)
+    q1, q2, pt, rt = q1[i], q2[i], pt[i], rt[i]
+    acc = np.abs(q1 * u[:, None] + q2 * x[:, None])
+    up = u > 0
+    ka = np.argmax(acc / np.where(up[:, None], lim.A, lim.D), axis=1)
+    sd = np.sqrt(x)
+    speed = np.hstack([np.abs(q1) * sd[:, None] / lim.V, (pt * sd / lim.tvel)[:, None], (rt * sd / lim.rvel)[:, None]])
+    kv = np.argmax(speed, axis=1)
+    changing = np.abs(u) > 1e-6 * np.maximum(1.0, x)
+    frac = np.clip((np.minimum(S[i + 1], s1) - np.maximum(S[i], s0)) / ds, 0.0, 1.0)
+    n = len(lim.V)
     out: dict[str, float] = {}
-    idx = [i for i in range(lo, hi) if S[i + 1] > S[i] and S[i + 1] > s0 and S[i] < s1]
-    if not idx:
-        return out
-    mids = np.array([0.5 * (S[i] + S[i + 1]) for i in idx])
-    q = queue.path.q(mids)
-    q1 = queue.path.q(mids, 1)
-    q2 = queue.path.q(mids, 2)
-    pt, rt = tcp_rates(queue.kin, q, q1, c.tool)
-    for j, i in enumerate(idx):
-        dt = T[i + 1] - T[i]
-        ds = S[i + 1] - S[i]
-        x = 0.5 * (SD[i] ** 2 + SD[i + 1] ** 2)
-        u = (SD[i + 1] ** 2 - SD[i] ** 2) / (2.0 * ds)
-        sd = x ** 0.5
-        if abs(u) > 1e-6 * max(1.0, x):
-            acc = np.abs(q1[j] * u + q2[j] * x)
-            lim_a = lim.A if u > 0 else lim.D
-            k = int(np.argmax(acc / lim_a))
-            label = f"j{k + 1} {'accel' if u > 0 else 'decel'}"
+    for j in range(len(i)):
+        if changing[j]:
+            label = f"j{ka[j] + 1} {'accel' if up[j] else 'decel'}"
         else:
-            ratios = list(np.abs(q1[j]) * sd / lim.V) + [pt[j] * sd / lim.tvel, rt[j] * sd / lim.rvel]
-            k = int(np.argmax(ratios))
-            label = f"j{k + 1} speed" if k < len(lim.V) else ("tvel" if k == len(lim.V) else "rvel")
-        # the part of the interval inside the command
-        frac = (min(S[i + 1], s1) - max(S[i], s0)) / ds
-        out[label] = out.get(label, 0.0) + dt * max(min(frac, 1.0), 0.0)
+            k = int(kv[j])
+            label = f"j{k + 1} speed" if k < n else ("tvel" if k == n else "rvel")
+        out[label] = out.get(label, 0.0) + float(dt[j] * frac[j])
     return out
-
-
-def motion_records(queue) -> list[MotionRecord]:
-    """One record per command recorded (in recording order), connection moves included."""
-    return [record_of(queue, c) for c in queue.history]
 
 
 def busy_time(profile, t_end: float) -> tuple[float, float]:

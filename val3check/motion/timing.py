@@ -261,15 +261,17 @@ def topp(grid: Grid, sd0: float = 0.0) -> TimedProfile:
     n = len(grid)
     if n < 2 or grid.s[-1] - grid.s[0] <= 0.0:
         return TimedProfile(grid.s[:1].copy(), np.array([0.0]))
-    TOPPRA, AccelConstraint, SpeedConstraint, GridPath = _load_toppra()
     xmax = grid.xmax()
     dof = grid.q1.shape[1]
     gp = grid.s
     try:
+        TOPPRA, AccelConstraint, SpeedConstraint, GridPath = _load_toppra()
         inst = TOPPRA([SpeedConstraint(xmax, dof), AccelConstraint(grid)], GridPath(gp, dof), gp)
         sdd, sd, _v, K = inst.compute_parameterization(0.0, 0.0, return_data=True) if sd0 <= 0 else \
             _with_start(inst, sd0)
-    except Exception:  # toppra raised (bad conditioning): the safe integration below
+    except ImportError:
+        raise
+    except Exception:  # toppra raised (bad conditioning): the safe profile below
         sd, K = None, None
     if sd is not None and np.all(np.isfinite(sd)):
         sd = np.maximum(sd, 0.0)
@@ -345,36 +347,48 @@ def brake_stop(grid: Grid, sd0: float) -> tuple[np.ndarray, np.ndarray]:
     return np.array(s_out), np.array(sd_out)
 
 
+def u_bounds(grid: Grid, x) -> tuple[np.ndarray, np.ndarray]:
+    """[u_min, u_max] of the path acceleration at every gridpoint for speed² x (scalar or (N,));
+    u_max < u_min where x is too fast for the accelerations (the centripetal term)."""
+    up, lo = grid.accel_bounds()
+    x = np.broadcast_to(np.asarray(x, dtype=float), grid.s.shape)[:, None]
+    a = grid.q1
+    c = grid.q2 * x
+    moving = np.abs(a) > 1e-12
+    with np.errstate(divide="ignore", invalid="ignore"):
+        hi = np.where(a > 0, (up - c) / a, (-lo - c) / a)
+        low = np.where(a > 0, (-lo - c) / a, (up - c) / a)
+    hi = np.where(moving, hi, np.inf)
+    low = np.where(moving, low, -np.inf)
+    # an axis that does not move along the path bounds the speed only: q''·x within its limits
+    still_ok = np.where(moving, True, (c <= up) & (-c <= lo))
+    umax = np.where(still_ok.all(axis=1), hi.min(axis=1), -np.inf)
+    umin = low.max(axis=1)
+    return umin, umax
+
+
 def integrate(grid: Grid, sd0: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
-    """The classical numerical integration: the velocity limit curve, a backward pass from rest at
-    the end with the greatest deceleration, a forward pass from sd0 with the greatest acceleration;
-    the profile is the lowest of the three. Slower than toppra near curvature changes but it always
-    gives a feasible answer."""
-    n = len(grid)
-    xmax = grid.xmax()
-    back = np.empty(n)
-    back[-1] = 0.0
-    for i in range(n - 2, -1, -1):
-        ds = grid.s[i + 1] - grid.s[i]
-        xn = back[i + 1]
-        umin, umax = grid.u_range(i, xn)
-        if not math.isfinite(umin) or umin > -EPS_U or umin > umax:
-            umin = -max(float(np.min(grid.D[i])), 1e-9) / max(float(np.max(np.abs(grid.q1[i]))), 1e-12) * 0.5
-        back[i] = min(xmax[i], xn - 2.0 * ds * umin)
-    fwd = np.empty(n)
-    fwd[0] = min(sd0 * sd0, max(back[0], sd0 * sd0))
-    for i in range(n - 1):
-        ds = grid.s[i + 1] - grid.s[i]
-        umin, umax = grid.u_range(i, fwd[i])
-        if not math.isfinite(umax) or umax < EPS_U or umin > umax:
-            umax = max(float(np.min(grid.A[i])), 1e-9) / max(float(np.max(np.abs(grid.q1[i]))), 1e-12) * 0.5
-        fwd[i + 1] = min(back[i + 1], fwd[i] + 2.0 * ds * umax)
-    x = np.maximum(fwd, 0.0)
-    x[-1] = 0.0
-    # two consecutive zero speeds would take forever: creep at a speed the accelerations allow
-    sd = np.sqrt(x)
-    for i in range(1, n - 1):
-        if sd[i] == 0.0 and sd[i - 1] == 0.0:
-            sd[i] = math.sqrt(max(float(np.min(grid.A[i])) / max(float(np.max(np.abs(grid.q1[i]))), 1e-12), 1e-6)
-                              * (grid.s[i] - grid.s[i - 1]))
-    return grid.s.copy(), sd
+    """A safe profile when toppra fails: a trapezoid in the path parameter whose speed,
+    acceleration and deceleration hold at every gridpoint. The bounds on the path acceleration are
+    concave (u_max) and convex (u_min) in ṡ², so checking them at ṡ² = 0 and at the cruise speed
+    covers every speed in between; the cruise speed is halved until they hold. Slower than the
+    optimum (the caller reports it, R019), never faster than the limits."""
+    S = float(grid.s[-1] - grid.s[0])
+    if S <= 0.0:
+        return grid.s[:1].copy(), np.array([0.0])
+    x = float(np.min(grid.xmax()))
+    x = min(x, XMAX)
+    A = D = 0.0
+    for _ in range(80):
+        lo0, hi0 = u_bounds(grid, 0.0)
+        lo1, hi1 = u_bounds(grid, x)
+        A = float(min(hi0.min(), hi1.min()))
+        D = float(-max(lo0.max(), lo1.max()))
+        if A > 0.0 and D > 0.0 and np.isfinite(A) and np.isfinite(D):
+            break
+        x *= 0.25
+    else:  # nothing moves this path within the limits: creep (the caller reports the fallback)
+        A = D = 1e-6
+        x = 1e-12
+    s, sd = trapezoid(S, sd0, math.sqrt(x), A, D)
+    return s + grid.s[0], sd

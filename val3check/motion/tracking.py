@@ -20,12 +20,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .kin import ArmKin, Singularity
+from .kin import ArmKin, Singularity, wrap_near
 
 JUMP_DEG = 2.0  # neighbouring gridpoints further apart on some axis are refined
 MIN_STEP = 1e-6  # finest spacing of the path parameter (fraction of the path)
 MAX_POINTS = 4000
 LIMIT_TOL = 1e-7
+DERIV_STEP = 1e-7  # of the path parameter, for dq/dλ
 
 
 @dataclass
@@ -45,10 +46,13 @@ class Track:
     Q: np.ndarray
     sing: Singularity
     failure: Failure | None = None
+    D: np.ndarray | None = None  # dq/dλ at the gridpoints (central differences), when no failure
 
 
-def grid_size(curve, per_mm: float = 0.25, per_deg: float = 0.5, lo: int = 8, hi: int = 400) -> int:
-    """Number of intervals for a curve: one per 4 mm of TCP path and per 2° of tool rotation."""
+def grid_size(curve, per_mm: float = 0.125, per_deg: float = 0.25, lo: int = 8, hi: int = 300) -> int:
+    """Number of intervals for a curve: one per 8 mm of TCP path and per 4° of tool rotation (the
+    spline between them stays within a micrometre of the curve; near a singularity the grid is
+    refined, see `track`)."""
     n = int(math.ceil(curve.length_mm * per_mm + curve.angle_deg * per_deg))
     return max(lo, min(hi, n))
 
@@ -183,7 +187,22 @@ def track(kin: ArmKin, curve, tool: np.ndarray | None, q_start, code: int, n: in
             failure = Failure("limits", float(lam[i]), axis=ax, amount=float(excess[:, ax].max() + LIMIT_TOL),
                               joints=tuple(Q[i]))
     sing = kin.singularity(Q) if len(Q) else Singularity(np.zeros(0), np.zeros(0), np.zeros(0))
-    return Track(lam, Q, sing, failure)
+    D = None
+    if failure is None:
+        # dq/dλ by central differences of the same branch (the curve continues past its ends)
+        h = DERIV_STEP
+        Qp, _ = solve(lam + h)
+        Qm, _ = solve(lam - h)
+        Qp[np.isnan(Qp[:, 3]), 3] = Q[np.isnan(Qp[:, 3]), 3]
+        Qm[np.isnan(Qm[:, 3]), 3] = Q[np.isnan(Qm[:, 3]), 3]
+        D = (wrap_near(Qp, Q) - wrap_near(Qm, Q)) / (2 * h)
+        bad = ~np.isfinite(D).all(axis=1)
+        if bad.any():  # a derivative point out of reach (the path ends on the boundary): one-sided
+            fwd = (wrap_near(Qp, Q) - Q) / h
+            back = (Q - wrap_near(Qm, Q)) / h
+            D[bad] = np.where(np.isfinite(fwd[bad]), fwd[bad], back[bad])
+            D[~np.isfinite(D)] = 0.0
+    return Track(lam, Q, sing, failure, D)
 
 
 def _nearest_singularity(kin: ArmKin, sing: Singularity) -> str:

@@ -59,10 +59,13 @@ class Profile:
 
     def states(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(s, ṡ) at many times (vectorised)."""
-        T = np.asarray(self.T)
-        S = np.asarray(self.S)
-        SD = np.asarray(self.SD)
         t = np.asarray(t, dtype=float)
+        if len(t) == 0:
+            return np.zeros(0), np.zeros(0)
+        # only the breakpoints around the times asked (the profile holds the whole run)
+        a = max(bisect.bisect_right(self.T, float(t.min())) - 1, 0)
+        b = bisect.bisect_right(self.T, float(t.max())) + 1
+        T, S, SD = np.asarray(self.T[a:b]), np.asarray(self.S[a:b]), np.asarray(self.SD[a:b])
         k = np.clip(np.searchsorted(T, t, side="right") - 1, 0, len(T) - 1)
         last = k >= len(T) - 1
         k1 = np.minimum(k + 1, len(T) - 1)
@@ -72,8 +75,8 @@ class Profile:
         tau = np.clip(t - T[k], 0.0, None)
         s = np.where(last, S[-1], S[k] + SD[k] * tau + 0.5 * u * tau * tau)
         sd = np.where(last, 0.0, SD[k] + u * tau)
-        before = t <= T[0]
-        s = np.where(before, S[0], s)
+        before = t <= self.T[0]
+        s = np.where(before, self.S[0], s)
         sd = np.where(before, 0.0, sd)
         return s, np.maximum(sd, 0.0)
 
