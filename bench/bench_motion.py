@@ -161,7 +161,10 @@ def geometry(robot, kin, n, rng):
 
 
 def pick_and_place(robot, kin, cycles):
-    """A cell: pick from a conveyor, place on a pallet of 3 x 3 places, blended approaches."""
+    """A pick-and-place cell as robot programmers write them: wait for a part on the conveyor
+    (0.4 s), approach it (blended joint move to 100 mm above, then 100 mm down at 250 mm/s),
+    close the gripper (0.3 s), leave (blended), carry it across the cell to one of 3 x 3 pallet
+    places (blended joint move), approach and place at 250 mm/s, open (0.2 s), leave."""
     home = np.array([0.0, 10.0, 100.0, 0.0, 70.0, 0.0])
     T0 = kin.fk(home[None])[0]
 
@@ -170,9 +173,9 @@ def pick_and_place(robot, kin, cycles):
         T[:3, 3] = [x, y, z]
         return Target.point(T)
 
-    fast = MDesc(blend="joint", leave=40, reach=40)
-    appro = MDesc(blend="joint", leave=20, reach=20, tvel=1000)
-    down = MDesc(blend="off", tvel=300)
+    fast = MDesc(blend="joint", leave=50, reach=50)
+    down = MDesc(blend="off", tvel=250)
+    up = MDesc(blend="joint", leave=30, reach=30, tvel=1000)
     q = MotionQueue(robot, home)
     now = 0.0
     n_cmd = 0
@@ -181,7 +184,7 @@ def pick_and_place(robot, kin, cycles):
     def rec(kind, target, md):
         nonlocal n_cmd, plan_time
         t = time.perf_counter()
-        r = q.record(MoveCommand(kind, target, md, source=Source("cell.pgx", 10 + n_cmd % 8, 5, "cycle", "robot")), now)
+        r = q.record(MoveCommand(kind, target, md, source=Source("cell.pgx", 10 + n_cmd % 6, 5, "cycle", "robot")), now)
         plan_time += time.perf_counter() - t
         n_cmd += 1
         return r
@@ -195,20 +198,19 @@ def pick_and_place(robot, kin, cycles):
 
     t_wall = time.perf_counter()
     for k in range(cycles):
-        px, py = 350.0, -150.0
-        gx, gy = 300.0 + 60.0 * (k % 3), 150.0 + 60.0 * ((k // 3) % 3)
+        px, py = 300.0, -300.0
+        gx, gy = 250.0 + 60.0 * (k % 3), 200.0 + 60.0 * ((k // 3) % 3)
         rec("movej", at(px, py, 150.0), fast)
-        rec("movel", at(px, py, 40.0), appro)
-        rec("movel", at(px, py, 20.0), down)
+        now += 0.4  # wait(diPartPresent)
+        rec("movel", at(px, py, 50.0), down)
         wait()
-        now += 0.2  # close(): ctime
-        rec("movel", at(px, py, 150.0), fast)
+        now += 0.3  # close(tGripper): ctime
+        rec("movel", at(px, py, 150.0), up)
         rec("movej", at(gx, gy, 150.0), fast)
-        rec("movel", at(gx, gy, 50.0), appro)
-        rec("movel", at(gx, gy, 30.0), down)
+        rec("movel", at(gx, gy, 50.0), down)
         wait()
-        now += 0.15  # open(): otime
-        rec("movel", at(gx, gy, 150.0), fast)
+        now += 0.2  # open(tGripper): otime
+        rec("movel", at(gx, gy, 150.0), up)
     wait()
     t_run = time.perf_counter() - t_wall
     t0 = time.perf_counter()
@@ -254,14 +256,17 @@ def main() -> int:
           f"{max(ce):.2e} mm (median {statistics.median(ce):.1e}, {len(ce)} circles) (goal < 0.01 mm)")
     ok &= max(le) < 0.01 and max(ce) < 0.01
 
+    cpu0 = time.process_time()
     p = pick_and_place(robot, kin, args.cycles)
+    cpu = time.process_time() - cpu0
     rate = p["commands"] / p["plan_s"]
     speed = p["sim_s"] / p["wall_s"]
     print(f"4. planning: {p['commands']} commands of a blended pick-and-place cell in {p['plan_s']:.3f} s: "
           f"{rate:,.0f} commands/s (goal 200)")
     print(f"5. simulation: {p['sim_s']:.1f} simulated s in {p['wall_s']:.3f} wall s (queue {p['run_s']:.3f} s, "
           f"4 ms trajectory of {p['samples']:,} samples and {p['records']} motion records {p['report_s']:.3f} s): "
-          f"{speed:,.0f} simulated s per wall s (goal 100); {p['fallbacks']} toppra fallbacks")
+          f"{speed:,.0f} simulated s per wall s, {p['sim_s'] / cpu:,.0f} per CPU s (goal 100); cycle "
+          f"{p['sim_s'] / args.cycles:.2f} s; {p['fallbacks']} toppra fallbacks")
     ok &= rate >= 200 and speed >= 100
     print()
     print("PASS" if ok else "FAIL")

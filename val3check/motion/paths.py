@@ -252,7 +252,7 @@ class Path:
             del self.offsets[i:]
         else:
             self.spans[i] = Span(sp.geom, sp.a, sp.a + sigma / sp.geom.ell, sp.owners, sp.smooth, sp.tool, off)
-        self.end = s if self.spans else self.end
+        self.end = s
         self.q_rest = q
 
     def locate(self, s: float) -> tuple[int, float]:

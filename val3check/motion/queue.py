@@ -55,6 +55,7 @@ JOINT_EQ = 1e-6  # degrees: joint positions this close are the same position (9.
 # Commands recorded less than this apart while the arm starts from rest are timed together: in
 # that time the arm moves less than a micrometre, the same whichever way it is computed.
 MERGE_WINDOW = 0.001
+MIN_GRID = 9  # gridpoints of the shortest piece of path given to toppra
 
 
 @dataclass
@@ -608,8 +609,24 @@ class MotionQueue:
 
     def _grid(self, a: float, b: float) -> tuple[Grid, np.ndarray]:
         """The path between global a and b sampled for the time parameterisation, and the key of
-        the command that owns each gridpoint."""
+        the command that owns each gridpoint (at least MIN_GRID gridpoints: toppra cannot start and
+        stop within fewer)."""
+        grid, own = self._grid_spans(a, b)
+        if len(grid) >= MIN_GRID:
+            return grid, own
+        return self._grid_spans(a, b, np.linspace(a, b, MIN_GRID))
+
+    def _grid_spans(self, a: float, b: float, points: np.ndarray | None = None) -> tuple[Grid, np.ndarray]:
         path = self.path
+        if points is not None:  # exactly these points (a short piece of path)
+            parts = []
+            for s_ in points:
+                i, sig = path.locate(float(s_))
+                sp = path.spans[i]
+                smp = sp.sample_at(self.kin, min(max(sig, 0.0), sp.length))
+                own = np.array([sp.owner_at(sig)])
+                parts.append((np.array([s_]), smp["q1"], smp["q2"], smp["pt"], smp["rt"], own))
+            return self._assemble(parts)
         kin = self.kin
         i0, _ = path.locate(a)
         parts = []
@@ -656,6 +673,9 @@ class MotionQueue:
             if off + sp.length >= b - 1e-12:
                 break
             i += 1
+        return self._assemble(parts)
+
+    def _assemble(self, parts) -> tuple[Grid, np.ndarray]:
         s = np.concatenate([p[0] for p in parts])
         q1 = np.vstack([p[1] for p in parts])
         q2 = np.vstack([p[2] for p in parts])

@@ -276,7 +276,11 @@ def topp(grid: Grid, sd0: float = 0.0) -> TimedProfile:
     if sd is not None and np.all(np.isfinite(sd)):
         sd = np.maximum(sd, 0.0)
         sd[-1] = 0.0
-        return TimedProfile(gp.copy(), sd)
+        # the arm must not stand still inside the path (two zero speeds in a row: a cusp or a
+        # grid too coarse for toppra's discretisation): then the safe profile
+        if not np.any((sd[:-1] + sd[1:] <= 0.0) & (np.diff(gp) > 0.0)):
+            return TimedProfile(gp.copy(), sd)
+        sd, K = None, None
     if K is not None and sd0 > 0 and np.all(np.isfinite(K)) and sd0 * sd0 > K[0, 1]:
         # the start is faster than the path allows from here (limits lowered under way): brake
         # along the path into the controllable set, then the optimal profile from there
