@@ -12,7 +12,7 @@ from val3check.motion.commands import Target
 from val3check.motion.findings import MotionError
 from val3check.motion.mdesc import MDesc
 
-from .motionhelp import HOME, KIN, OFF, T_HOME, movec, movej, movel, point, queue, run
+from .motionhelp import HOME, KIN, T_HOME, movec, movej, movel, point, queue, run
 
 
 def pose(q):

@@ -40,7 +40,7 @@ from .cartesian import ArcError, Arc, Blend, Line
 from .checks import THRESHOLDS, WHAT, singular_pass
 from .commands import MoveCommand
 from .findings import Finding, MotionError, Source
-from .kin import ArmKin, config_name, wrap_near
+from .kin import ArmKin, config_name
 from .mdesc import Limits, MDesc
 from .paths import JointBlend, JointLine, JointSpline, Path, Span, tcp_rates
 from .timing import Grid, brake_stop, topp, trapezoid
@@ -909,6 +909,21 @@ class MotionQueue:
     def velocity(self, now: float) -> np.ndarray:
         self._flush()
         return self._trajectory.velocity(now)
+
+    def acceleration(self, now: float) -> np.ndarray:
+        """Joint accelerations of the commanded motion (deg/s²): q'·s̈ + q''·ṡ²."""
+        self._flush()
+        s, sd, sdd = self.profile.state(now)
+        if sd == 0.0 and sdd == 0.0:
+            return np.zeros_like(self.path.q_rest)
+        return self.path.q([s], 1)[0] * sdd + self.path.q([s], 2)[0] * sd * sd
+
+    def joint_force(self, now: float) -> np.ndarray | None:
+        """getJointForce: the inverse dynamics of the commanded motion (N·m), or None when the
+        arm model has no inertial data (dynamics.py)."""
+        from .dynamics import joint_forces
+
+        return joint_forces(self.model, self.position(now), self.velocity(now), self.acceleration(now))
 
     def get_speed(self, tool, now: float) -> float:
         """getSpeed(tool): the TCP translation speed from the commanded joint speeds (mm/s)."""
