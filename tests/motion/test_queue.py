@@ -238,3 +238,32 @@ def test_next_event_and_advance():
     assert q.is_empty(t_done)
     assert q.next_event(t_done) == pytest.approx(t_done + 0.05)
     assert q.next_event(t_done + 0.05) is None
+
+
+def test_a_scara_arm_moves_too():
+    """RS/TS arms: four axes (axis 3 prismatic), configuration (shoulder,) (9.7.5)."""
+    from val3check.motion.commands import MoveCommand, Target
+    from val3check.motion.kin import ArmKin
+    from val3check.motion.queue import MotionQueue
+    from val3check.robot import load_robot
+
+    ts = load_robot("TS2-60")
+    kin = ArmKin(ts)
+    q0 = np.array([30.0, 60.0, 100.0, 0.0])
+    T0 = kin.fk(q0[None])[0]
+
+    def at(dx, dy, dz):
+        T = T0.copy()
+        T[:3, 3] += [dx, dy, dz]
+        return Target.point(T)
+
+    q = MotionQueue(ts, q0)
+    q.record(MoveCommand("movel", at(0, 0, -50), MDesc(blend="joint", leave=20, reach=20)), 0.0)
+    q.record(MoveCommand("movel", at(-150, -100, -50), MDesc(blend="off", tvel=500)), 0.0)
+    t = run(q)
+    P = kin.fk(q.position(t)[None])[0][:3, 3]
+    assert np.allclose(P - T0[:3, 3], [-150, -100, -50], atol=1e-6)
+    assert q.position(t)[2] == pytest.approx(150.0)  # the prismatic axis went down 50 mm
+    _, Q, _ = q.trajectory.sample(q.history[1].S_begin and 0.0, t)
+    path = kin.fk(Q)[:, :3, 3]
+    assert path[:, 2].min() >= T0[2, 3] - 50 - 1e-6

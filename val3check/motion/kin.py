@@ -75,6 +75,12 @@ class ArmKin:
         self.multi_turn = (self.hi - self.lo) >= 360.0 - 1e-9
         self.speeds = np.array(model.nominal_speeds, dtype=float)
         self.accels = np.array(model.accelerations, dtype=float)
+        kinds = getattr(model, "joint_kinds", None) or ("revolute",) * len(self.lo)
+        self.revolute = np.array([k != "prismatic" for k in kinds])
+        self.multi_turn &= self.revolute
+        self.scara = getattr(model, "scara", None) is not None
+        self.branch_is_config = False
+        self._configs: list[tuple[str, ...]] = []  # arms without the OPW form: codes by first use
         if self.opw is not None:
             o = self.opw
             self.signs = np.array(o.signs, dtype=float)
@@ -140,10 +146,55 @@ class ArmKin:
 
     # ---- inverse kinematics ------------------------------------------------------------------
 
+    @property
+    def generic(self) -> bool:
+        """True for an arm without the six-axis closed form (a SCARA): one pose at a time through
+        the model's own inverse kinematics."""
+        return self.opw is None
+
     def need_ik(self) -> None:
-        if self.opw is None:
+        if self.opw is None and not self.scara:
             self.model._need_opw()  # raises IKUnsupported with the model's reason
             raise IKUnsupported(f"{self.model.name}: no closed-form inverse kinematics")
+
+    def config_name(self, code: int) -> tuple[str, ...]:
+        """The configuration (VAL 3 names) of a code of `config_codes`."""
+        if self.opw is not None:
+            return config_name(code)
+        return self._configs[code]
+
+    def code_of(self, names) -> int:
+        names = tuple(names)
+        if self.opw is not None:
+            return config_code(names)
+        if names not in self._configs:
+            self._configs.append(names)
+        return self._configs.index(names)
+
+    def solutions(self, T) -> tuple[np.ndarray, np.ndarray]:
+        """Every inverse solution of one flange pose: (Q (M, n) degrees, codes (M,)). Six-axis
+        arms: every branch, principal values, limits not applied; other arms: the model's solutions
+        within the limits."""
+        self.need_ik()
+        if self.opw is not None:
+            sols = self.ik_all(T)[0]
+            sols = sols[~np.isnan(sols[:, [0, 1, 2, 4, 5]]).any(axis=1)]
+            sols[np.isnan(sols[:, 3]), 3] = 0.0
+            return sols, (self.config_codes(sols) if len(sols) else np.zeros(0, dtype=int))
+        sols = self.model.ik(np.asarray(T)[:3, :4].tolist())
+        Q = np.array(sols, dtype=float).reshape(-1, len(self.lo))
+        return Q, np.array([self.code_of(self.model.config_of(q)) for q in Q], dtype=int)
+
+    def solve_config(self, T, code: int) -> np.ndarray:
+        """Arms without the OPW form: the solution of configuration `code` at each pose (N, n),
+        NaN rows where there is none (within the limits)."""
+        names = self._configs[code]
+        out = np.full((len(T), len(self.lo)), np.nan)
+        for i, M in enumerate(np.asarray(T)):
+            sols = self.model.ik(M[:3, :4].tolist(), config=names)
+            if sols:
+                out[i] = sols[0]
+        return out
 
     def ik_all(self, T, branches=None) -> np.ndarray:
         """Every inverse branch (N, 8, 6), degrees, principal values, NaN where a branch does not
@@ -258,9 +309,12 @@ class ArmKin:
         return v
 
     def config_codes(self, Q) -> np.ndarray:
-        """Configuration of 9.7.4 as a code per position: 4·righty + 2·enegative + wnegative."""
+        """Configuration of 9.7.4 as a code per position: 4·righty + 2·enegative + wnegative (arms
+        without the OPW form: an index of their configurations, `config_name`)."""
         self.need_ik()
         Q = np.atleast_2d(np.asarray(Q, dtype=float))
+        if self.opw is None:
+            return np.array([self.code_of(self.model.config_of(q)) for q in Q], dtype=int)
         s = self.opw.signs
         righty = self.shoulder_value(Q) < 0
         eneg = s[2] * Q[:, 2] < 0
@@ -268,10 +322,16 @@ class ArmKin:
         return righty.astype(int) * 4 + eneg.astype(int) * 2 + wneg.astype(int)
 
     def singularity(self, Q) -> Singularity:
-        """Distances to the wrist, elbow and shoulder singularities (see `Singularity`)."""
+        """Distances to the wrist, elbow and shoulder singularities (see `Singularity`). A SCARA
+        (9.7.5): elbow = how far j2 is from 0 or ±180° (arm stretched or folded), shoulder = the
+        distance of axis 4 from axis 1 (mm); it has no wrist singularity."""
         self.need_ik()
         o = self.opw
         Q = np.atleast_2d(np.asarray(Q, dtype=float))
+        if o is None:
+            j2 = np.abs(np.remainder(Q[:, 1] + 90.0, 180.0) - 90.0)
+            xy = self.fk(Q)[:, :2, 3] if len(Q) else np.zeros((0, 2))
+            return Singularity(np.full(len(Q), np.inf), j2, np.hypot(xy[:, 0], xy[:, 1]))
         wrist = np.abs(Q[:, 4])
         psi = math.degrees(math.atan2(o.a2, o.c3))
         elbow = np.abs(Q[:, 2] * o.signs[2] + psi)

@@ -40,7 +40,7 @@ from .cartesian import ArcError, Arc, Blend, Line
 from .checks import THRESHOLDS, WHAT, singular_pass
 from .commands import MoveCommand
 from .findings import Finding, MotionError, Source
-from .kin import ArmKin, config_name
+from .kin import ArmKin
 from .mdesc import Limits, MDesc
 from .paths import JointBlend, JointLine, JointSpline, Path, Span, tcp_rates
 from .timing import Grid, brake_stop, topp, trapezoid
@@ -232,7 +232,7 @@ class MotionQueue:
         src = command.source
         kind = command.kind
         code0 = int(kin.config_codes(q_s)[0])
-        cfg0 = config_name(code0)
+        cfg0 = kin.config_name(code0)
         # 10.1.4.2: a line or a circle cannot change configuration
         for field_name, want, have in zip(("shoulder", "elbow", "wrist"), command.target.config, cfg0):
             w = want.lower()
@@ -247,27 +247,22 @@ class MotionQueue:
                 raise MotionError(154, f.message, f)
         T_end = command.target.pose
         flange_end = T_end if tool is None else T_end @ np.linalg.inv(tool)
-        sols = kin.ik_all(flange_end)[0]
-        ok = ~np.isnan(sols[:, [0, 1, 2, 4, 5]]).any(axis=1)
-        codes = set()
-        if ok.any():
-            fill = sols[ok].copy()
-            fill[np.isnan(fill[:, 3]), 3] = 0.0
-            codes = set(int(x) for x in kin.config_codes(fill))
+        sols, sol_codes = kin.solutions(flange_end)
+        codes = {int(x) for x in sol_codes}
         if code0 not in codes:
             if codes:
-                other = "/".join(config_name(min(codes)))
+                other = kin.config_name(min(codes))
                 f = Finding(F.CONFIG_CHANGE,
-                            f"{kind}: the target can only be reached in configuration {other}, not in the start "
-                            f"configuration {'/'.join(cfg0)}: a straight line or a circle cannot change "
+                            f"{kind}: the target can only be reached in configuration {'/'.join(other)}, not in the "
+                            f"start configuration {'/'.join(cfg0)}: a straight line or a circle cannot change "
                             "configuration (10.1.4.2); use movej", src, now, error=154,
-                            data={"start": list(cfg0), "target": list(config_name(min(codes)))})
+                            data={"start": list(cfg0), "target": list(other)})
             else:
                 f = Finding(F.UNREACHABLE, f"{kind}: the target is out of the arm's reach{_name(command.target)}",
                             src, now, error=154, data={"target_mm": _r(T_end[:3, 3])})
             raise MotionError(154, f.message, f)
         # the target in the start configuration: within the joint limits?
-        mine = self._turns(sols[ok][[int(x) == code0 for x in kin.config_codes(fill)]], q_s)
+        mine = self._turns(sols[sol_codes == code0], q_s)
         over = np.maximum(kin.lo - mine, mine - kin.hi).max(axis=1)
         if np.all(over > 1e-7):
             best = mine[int(np.argmin(over))]
@@ -303,8 +298,9 @@ class MotionQueue:
     def _limit_finding(self, what, ax, amount, value, src, now, error=154) -> Finding:
         lo, hi = self.model.joint_limits[ax]
         side = "below" if value < lo else "above"
-        return Finding(F.JOINT_LIMIT, f"{what} is outside the software limits: j{ax + 1} = {value:.3f}° is "
-                       f"{amount:.3f}° {side} its limit [{lo:g}, {hi:g}]", src, now, error=error,
+        u = "°" if self.kin.revolute[ax] else " mm"
+        return Finding(F.JOINT_LIMIT, f"{what} is outside the software limits: j{ax + 1} = {value:.3f}{u} is "
+                       f"{amount:.3f}{u} {side} its limit [{lo:g}, {hi:g}]", src, now, error=error,
                        data={"axis": ax + 1, "value_deg": round(value, 6), "excess_deg": round(amount, 6),
                              "limits_deg": [lo, hi]})
 
@@ -312,16 +308,13 @@ class MotionQueue:
         if reason in ("limits", "config"):
             # the solutions in the requested configuration, ignoring the limits: if there are some,
             # the joint limits are what stops the motion (which axis, by how much)
-            sols = self.kin.ik_all(T)[0]
-            sols = sols[~np.isnan(sols[:, [0, 1, 2, 4, 5]]).any(axis=1)]
+            sols, codes = self.kin.solutions(T)
             if len(sols):
-                sols[np.isnan(sols[:, 3]), 3] = q_s[3]
                 sols = self._turns(sols, q_s)
-                from ..robot.config import Config, resolve
-
-                wanted = resolve(Config.parse(tg.config), tuple(self.model.config_of(q_s)))
-                codes = self.kin.config_codes(sols)
-                keep = [all(w is None or w == v for w, v in zip(wanted, config_name(int(cd)))) for cd in codes]
+                start = tuple(self.model.config_of(q_s))
+                wanted = [s0 if w.endswith("same") else (None if w.endswith("free") else w)
+                          for w, s0 in zip((c.lower() for c in tg.config), start)]
+                keep = [all(w is None or w == v for w, v in zip(wanted, self.kin.config_name(int(cd)))) for cd in codes]
                 sols = sols[np.array(keep, dtype=bool)]
             if len(sols):
                 sols[np.isnan(sols[:, 3]), 3] = q_s[3]
@@ -348,6 +341,8 @@ class MotionQueue:
         shifts = 360.0 * np.arange(-2, 3)
         for r in range(len(out)):
             for k in range(out.shape[1]):
+                if not kin.revolute[k]:  # a prismatic axis (SCARA axis 3) has no turns
+                    continue
                 cand = sols[r, k] + shifts
                 excess = np.maximum(kin.lo[k] - cand, cand - kin.hi[k])
                 inside = excess <= 1e-7
@@ -375,7 +370,7 @@ class MotionQueue:
                            src, now, error=150, data={**data, "singularity": fl.which, "axis": fl.axis + 1,
                                                       "jump_deg": round(fl.amount, 3)})
         if fl.kind == "config":
-            other = "/".join(config_name(fl.other_config))
+            other = "/".join(self.kin.config_name(fl.other_config))
             return Finding(F.CONFIG_CHANGE,
                            f"{kind}: the path leaves the start configuration {where} (only {other} reaches it): a "
                            "straight line or a circle cannot change configuration (10.1.4.2)", src, now, error=150,

@@ -31,7 +31,7 @@ from ..geometry.points import Point
 from ..geometry.trsf import Trsf
 from ..loading.types import base_type
 from .checks import LIMIT_MARGIN, THRESHOLDS, UNITS, WHAT
-from .kin import ArmKin, config_name
+from .kin import ArmKin
 
 INCH_MM = 25.4
 _FATHER = re.compile(r"^\s*([A-Za-z_]\w*)\s*(?:\[\s*([^\]]*?)\s*\])?\s*$")
@@ -147,7 +147,7 @@ class _Space:
 def check_reach(ws, app, model) -> ReachReport:
     """The reach check of `app` (and the libraries it declares) with the arm `model`."""
     kin = ArmKin(model)
-    kin.need_ik()
+    kin.need_ik()  # six-axis arms without the closed form: IKUnsupported (a RobotError)
     world, flange = GF.new_world(), GF.new_flange()
     spaces = [_Space(app, "", world, flange)]
     for alias in sorted(app.libraries):
@@ -214,19 +214,16 @@ def _margins(kin: ArmKin, Q: np.ndarray):
 
 def _check_point(kin, label, config, T, tname, tool, origin) -> ReachEntry:
     flange_T = T if tool is None else T @ np.linalg.inv(tool)
-    sols = kin.ik_all(flange_T)[0]
-    ok = ~np.isnan(sols[:, [0, 1, 2, 4, 5]]).any(axis=1)
+    sols, codes = kin.solutions(flange_T)
     base = dict(kind="point", tool=tname, path=origin.path, line=origin.line, col=origin.col)
     where = f"point {label} with tool {tname}"
-    if not ok.any():
-        return ReachEntry(label, status="unreachable", message=f"{where} is out of the arm's reach",
+    if not len(sols):
+        return ReachEntry(label, status="unreachable", message=f"{where} is out of the arm's reach"
+                          + ("" if not kin.generic else " (or outside the joint limits)"),
                           data={"target_mm": _r(T[:3, 3])}, **base)
-    sols = sols[ok]
-    sols[np.isnan(sols[:, 3]), 3] = 0.0
     want = [c.lower() for c in config]
-    codes = kin.config_codes(sols)
     keep = np.array([all(w.endswith("same") or w.endswith("free") or w == v
-                         for w, v in zip(want, config_name(int(cd)))) for cd in codes])
+                         for w, v in zip(want, kin.config_name(int(cd)))) for cd in codes])
     if not keep.any():
         return ReachEntry(label, status="config", message=f"{where} is reachable, but not in configuration "
                           f"{'/'.join(config)}", data={"config": list(config)}, **base)
@@ -247,7 +244,9 @@ def _check_point(kin, label, config, T, tname, tool, origin) -> ReachEntry:
 def _in_range_turns(kin, sols):
     out = sols.copy()
     for r in range(len(out)):
-        for k in range(6):
+        for k in range(out.shape[1]):
+            if not kin.revolute[k]:
+                continue
             for shift in (0.0, 360.0, -360.0):
                 v = sols[r, k] + shift
                 if kin.lo[k] - 1e-7 <= v <= kin.hi[k] + 1e-7:
@@ -286,8 +285,9 @@ def _check_joint(kin, label, j, origin) -> ReachEntry:
     excess = np.maximum(kin.lo - Q, Q - kin.hi)
     if np.any(excess > 1e-7):
         ax = int(np.argmax(excess))
-        return ReachEntry(label, status="limits", message=f"joint {label}: j{ax + 1} = {Q[ax]:g}° is "
-                          f"{excess[ax]:.2f}° beyond its limits [{kin.lo[ax]:g}, {kin.hi[ax]:g}]",
+        u = "°" if kin.revolute[ax] else " mm"
+        return ReachEntry(label, status="limits", message=f"joint {label}: j{ax + 1} = {Q[ax]:g}{u} is "
+                          f"{excess[ax]:.2f}{u} beyond its limits [{kin.lo[ax]:g}, {kin.hi[ax]:g}]",
                           data={"axis": ax + 1, "excess_deg": round(float(excess[ax]), 4)}, **base)
     return _near(kin, Q[None], f"joint {label}", label, base)
 

@@ -61,6 +61,14 @@ def _select(kin: ArmKin, T: np.ndarray, code: int):
     """The solution of configuration `code` at each pose: (Q (N, 6) with NaN rows where there is
     none, a reachable other configuration code per row or -1)."""
     n = len(T)
+    if kin.generic:  # one pose at a time through the model (a SCARA)
+        Q = kin.solve_config(T, code)
+        other = np.full(n, -1)
+        for i in np.nonzero(np.isnan(Q[:, 0]))[0]:
+            _, codes = kin.solutions(T[i])
+            if len(codes):
+                other[i] = int(codes.min())
+        return Q, other
     if kin.branch_is_config:  # one branch is the configuration: solve only it, check, mend
         Q = kin.ik_all(T, (code,))[:, code]
         good = ~np.isnan(Q[:, [0, 1, 2, 4, 5]]).any(axis=1)
@@ -101,6 +109,8 @@ def _select_all(kin: ArmKin, T: np.ndarray, code: int):
 
 def _fill_wrist(Q: np.ndarray, q_start: np.ndarray) -> None:
     """At an exactly singular wrist (j4 NaN, j6 = j4 + j6), keep j4 from the previous point."""
+    if Q.shape[1] < 6:
+        return
     bad = np.isnan(Q[:, 3]) & ~np.isnan(Q[:, 0])
     if not bad.any():
         return
@@ -114,10 +124,11 @@ def _fill_wrist(Q: np.ndarray, q_start: np.ndarray) -> None:
         prev = Q[i, 3]
 
 
-def _unwrap(Q: np.ndarray, q_start: np.ndarray) -> np.ndarray:
-    """Each axis continuous along the path, starting on the turn of the start position."""
-    U = np.unwrap(Q, period=360.0, axis=0)
-    off = 360.0 * np.round((q_start - U[0]) / 360.0)
+def _unwrap(Q: np.ndarray, q_start: np.ndarray, revolute: np.ndarray) -> np.ndarray:
+    """Each revolute axis continuous along the path, starting on the turn of the start position."""
+    U = Q.copy()
+    U[:, revolute] = np.unwrap(Q[:, revolute], period=360.0, axis=0)
+    off = np.where(revolute, 360.0 * np.round((q_start - U[0]) / 360.0), 0.0)
     return U + off
 
 
@@ -150,7 +161,7 @@ def track(kin: ArmKin, curve, tool: np.ndarray | None, q_start, code: int, n: in
             other = other[:i]
             break
         _fill_wrist(Q, q_start)
-        Q = _unwrap(Q, q_start)
+        Q = _unwrap(Q, q_start, kin.revolute)
         if exact_start:
             Q[0] = q_start
         jumps = np.abs(np.diff(Q, axis=0)).max(axis=1)
@@ -193,13 +204,17 @@ def track(kin: ArmKin, curve, tool: np.ndarray | None, q_start, code: int, n: in
         h = DERIV_STEP
         Qp, _ = solve(lam + h)
         Qm, _ = solve(lam - h)
-        Qp[np.isnan(Qp[:, 3]), 3] = Q[np.isnan(Qp[:, 3]), 3]
-        Qm[np.isnan(Qm[:, 3]), 3] = Q[np.isnan(Qm[:, 3]), 3]
-        D = (wrap_near(Qp, Q) - wrap_near(Qm, Q)) / (2 * h)
+        if Q.shape[1] >= 6:
+            Qp[np.isnan(Qp[:, 3]), 3] = Q[np.isnan(Qp[:, 3]), 3]
+            Qm[np.isnan(Qm[:, 3]), 3] = Q[np.isnan(Qm[:, 3]), 3]
+        rev = kin.revolute
+        Qp = np.where(rev, wrap_near(Qp, Q), Qp)
+        Qm = np.where(rev, wrap_near(Qm, Q), Qm)
+        D = (Qp - Qm) / (2 * h)
         bad = ~np.isfinite(D).all(axis=1)
         if bad.any():  # a derivative point out of reach (the path ends on the boundary): one-sided
-            fwd = (wrap_near(Qp, Q) - Q) / h
-            back = (Q - wrap_near(Qm, Q)) / h
+            fwd = (Qp - Q) / h
+            back = (Q - Qm) / h
             D[bad] = np.where(np.isfinite(fwd[bad]), fwd[bad], back[bad])
             D[~np.isfinite(D)] = 0.0
     return Track(lam, Q, sing, failure, D)
