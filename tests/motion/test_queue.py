@@ -139,7 +139,8 @@ def test_is_settled_50_ms_after_the_end():
     assert q.is_empty(t)
     assert not q.is_settled(t + 0.049)
     assert q.is_settled(t + 0.0501)
-    assert q.is_settled(0.0) is True or True  # before any motion the arm is at rest
+    assert not q.is_settled(t / 2)
+    assert queue().is_settled(0.0)  # before any motion the arm is at rest
 
 
 def test_stopmove_stops_on_the_path_and_restartmove_resumes():
@@ -213,8 +214,6 @@ def test_monitor_speed_change_takes_effect_at_once():
     q.set_monitor_speed(25.0, 0.15)
     t = run(q)
     assert t > t_full + 0.3
-    _, _, Qd = q.trajectory.sample(0.2, t)
-    assert np.abs(Qd[:, 0]).max() <= 435 * 0.25 * (1 + 1e-6) or True
     _, _, Qd = q.trajectory.sample(0.6, t)
     assert np.abs(Qd[:, 0]).max() <= 435 * 0.25 * (1 + 1e-6)
     assert np.allclose(q.position(t), target)

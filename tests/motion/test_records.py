@@ -29,11 +29,10 @@ def test_movel_record_at_a_tvel_limit():
 
 
 def test_movej_records_name_the_axis_and_the_phase():
-    q = queue()
-    long_ = HOME + [0, 0, 0, 500.0 - 0.0, 0, 0]
-    long_[3] = 250.0
     start = HOME.copy()
     start[3] = -250.0
+    long_ = HOME.copy()
+    long_[3] = 250.0  # 500° of j4 at 50 %: cruise most of the time
     q = queue(joints=start)
     q.record(movej(long_, MDesc(vel=50, blend="off")), 0.0)
     t = run(q)

@@ -19,11 +19,6 @@ import numpy as np
 TICK = 0.004  # the controller's motion cycle (s)
 
 
-def tick_ceil(t: float) -> float:
-    """The first controller cycle at or after t (a 4 ms multiple)."""
-    k = math.ceil(t / TICK - 1e-9)
-    return k * TICK
-
 
 class Profile:
     """s(t) as breakpoints; before the first breakpoint the arm rests at s0."""
