@@ -46,7 +46,7 @@ class JointLine:
         return np.zeros((len(lam), len(self.delta)))
 
     def grid(self, a: float, b: float) -> np.ndarray:
-        n = max(8, min(64, int(math.ceil(self.ell * (b - a) / 5.0))))
+        n = max(8, min(48, math.ceil(self.ell * (b - a) / 8.0)))  # one per 8° of joint motion
         return np.linspace(a, b, n + 1)
 
 
@@ -101,7 +101,7 @@ class JointBlend:
         return hermite(u, self.qL, self.ell * self.vL, self.qR, self.ell * self.vR, order)
 
     def grid(self, a: float, b: float) -> np.ndarray:
-        n = max(16, min(80, int(math.ceil(self.ell * (b - a) / 2.0))))
+        n = max(12, min(60, math.ceil(self.ell * (b - a) / 4.0)))  # one per 4° of joint motion
         return np.linspace(a, b, n + 1)
 
 

@@ -408,13 +408,13 @@ class MotionQueue:
         d = min(d, chord / 2.0)
         if d < MIN_BLEND_MM:
             return None
-        for _ in range(4):  # refine the bracket 16 times per round
+        for _ in range(3):  # refine the bracket 8 times per round (1/16384 of the path)
             dist = np.linalg.norm(P - ref, axis=1)
             far = np.nonzero(dist >= d)[0]
             j = int(far.max()) if from_end else int(far.min())
             j = min(j, len(lam) - 2) if from_end else max(j, 1)
             a, b = (lam[j], lam[j + 1]) if from_end else (lam[j - 1], lam[j])
-            lam = np.linspace(a, b, 17)
+            lam = np.linspace(a, b, 9)
             P = self._positions(c, lam)
         dist = np.linalg.norm(P - ref, axis=1)
         far = np.nonzero(dist >= d)[0]

@@ -146,6 +146,14 @@ def track(kin: ArmKin, curve, tool: np.ndarray | None, q_start, code: int, n: in
             T = T @ tinv
         return _select(kin, T, code)
 
+    def near(ls):  # the same branch a hair away from solved points (for dq/dλ): no checks needed
+        if not kin.branch_is_config:
+            return solve(ls)[0]
+        T = curve.poses(ls)
+        if tinv is not None:
+            T = T @ tinv
+        return kin.ik_all(T, (code,))[:, code]
+
     Q, other = solve(lam)
     failure = None
     for depth in range(64):
@@ -202,8 +210,8 @@ def track(kin: ArmKin, curve, tool: np.ndarray | None, q_start, code: int, n: in
     if failure is None:
         # dq/dλ by central differences of the same branch (the curve continues past its ends)
         h = DERIV_STEP
-        Qp, _ = solve(lam + h)
-        Qm, _ = solve(lam - h)
+        Qp = near(lam + h)
+        Qm = near(lam - h)
         if Q.shape[1] >= 6:
             Qp[np.isnan(Qp[:, 3]), 3] = Q[np.isnan(Qp[:, 3]), 3]
             Qm[np.isnan(Qm[:, 3]), 3] = Q[np.isnan(Qm[:, 3]), 3]
