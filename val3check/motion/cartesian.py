@@ -181,6 +181,8 @@ class Arc(Curve):
         self.r23 = math.radians(ang23) * ax23
         self.length_mm = self.radius * self.a3
         self.angle_deg = float(ang12 + ang23)
+        # the orientation law changes at the intermediate point: a gridpoint there
+        self.knots = (self.u2,)
 
     def rates(self, lam):
         lam = np.atleast_1d(np.asarray(lam, dtype=float))

@@ -139,6 +139,9 @@ def track(kin: ArmKin, curve, tool: np.ndarray | None, q_start, code: int, n: in
     tinv = None if tool is None else np.linalg.inv(tool)
     n = grid_size(curve) if n is None else n
     lam = np.linspace(0.0, 1.0, n + 1)
+    knots = getattr(curve, "knots", ())
+    if knots:  # where the curve's orientation law changes (movec's intermediate point)
+        lam = np.unique(np.concatenate([lam, np.asarray(knots, dtype=float)]))
 
     def solve(ls):
         T = curve.poses(ls)
