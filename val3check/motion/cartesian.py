@@ -10,11 +10,11 @@ algorithm as the motion generator"), written here on numpy arrays:
   angle; the orientation turns by the smallest rotation start → intermediate over the first part
   of the arc, intermediate → end over the rest. An intermediate position 180° or more from the
   start or the end (on the arc or in orientation) is ambiguous: `ArcError`.
-* `Blend`: the position follows the cubic Hermite curve from the leave point to the reach point
-  with the velocities of the two paths there (for two straight lines: in their plane, the
-  parabola of least curvature when leave = reach); the orientation is the superposition of the
-  two neighbouring rotations, each continued at its own rate, weighted by a smooth step: the
-  velocity (translation and rotation) is continuous at both ends.
+* `Blend`: the position follows a curve from the leave point to the reach point with the
+  velocities of the two paths there (paths.BlendShape: for two straight lines, in their plane);
+  the orientation is the superposition of the two neighbouring rotations, each continued at its
+  own rate, weighted by a smooth step: the velocity (translation and rotation) is continuous at
+  both ends.
 """
 
 from __future__ import annotations
@@ -212,25 +212,30 @@ class Blend(Curve):
 
     left/right: (position (3,), rotation (3, 3), dp/dσ (3,), angular velocity dω/dσ in world
     (3,), rad) of the TCP at the leave and reach points, in the composite path parameter σ;
-    `ell`: the σ-length of the blend. The curve is parameterised by u = σ / ell ∈ [0, 1]."""
+    ell_l, ell_r: the path lengths from the leave point to the via point and from there to the
+    reach point. The position is a `paths.BlendShape` in Cartesian space (in the plane of two
+    straight lines); the orientation is the superposition of the two rotations continued at their
+    own rates, weighted by a smooth step. λ = σ / L, L the blend's length."""
 
-    def __init__(self, left, right, ell: float):
+    def __init__(self, left, right, ell_l: float, ell_r: float, shape="bezier"):
+        from .paths import BlendShape
+
         self.pL, self.RL, self.vL, self.wL = (np.asarray(a, dtype=float) for a in left)
         self.pR, self.RR, self.vR, self.wR = (np.asarray(a, dtype=float) for a in right)
-        self.ell = float(ell)
+        self.shape = BlendShape(self.pL, self.vL, self.pR, self.vR, ell_l, ell_r, shape)
+        self.ell = self.shape.ell
         lam = np.linspace(0.0, 1.0, 33)
         P = self.positions(lam)
         self.length_mm = float(np.linalg.norm(np.diff(P, axis=0), axis=1).sum())
         self.angle_deg = math.degrees(float(np.linalg.norm(rotvec(self.RL.T @ self.RR))))
 
     def poses(self, lam):
-        u = np.atleast_1d(np.asarray(lam, dtype=float))
-        w = smootherstep(u)[:, None]
-        from .paths import hermite
-
-        P = hermite(u[:, None], self.pL, self.ell * self.vL, self.pR, self.ell * self.vR)
-        Ra = expmap(np.outer(u * self.ell, self.wL)) @ self.RL
-        Rb = expmap(np.outer(-(1.0 - u) * self.ell, self.wR)) @ self.RR
+        lam = np.atleast_1d(np.asarray(lam, dtype=float))
+        sig = lam * self.ell
+        P = self.shape.point(sig)
+        w = smootherstep(lam)[:, None]
+        Ra = expmap(np.outer(sig, self.wL)) @ self.RL
+        Rb = expmap(np.outer(sig - self.ell, self.wR)) @ self.RR
         rel = rotvec(np.swapaxes(Ra, -1, -2) @ Rb)
         R = Ra @ expmap(rel * w)
         return _poses(P, R)

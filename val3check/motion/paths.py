@@ -58,9 +58,14 @@ class JointSpline:
     kind = "spline"
 
     def __init__(self, lam: np.ndarray, Q: np.ndarray, D: np.ndarray):
-        self.lam = np.asarray(lam, dtype=float)
-        self.Q = np.asarray(Q, dtype=float)
-        self.D = np.asarray(D, dtype=float)
+        lam = np.asarray(lam, dtype=float)
+        apart = np.diff(lam) > 1e-12  # no knots on top of each other
+        keep = np.concatenate([[True], apart])
+        if len(lam) > 2 and not apart[-1]:  # the last two coincide: keep the curve's end
+            keep[-2], keep[-1] = False, True
+        self.lam = lam[keep]
+        self.Q = np.asarray(Q, dtype=float)[keep]
+        self.D = np.asarray(D, dtype=float)[keep]
         if len(self.lam) < 2:
             raise ValueError("a spline needs two points")
         self.ell = max(float(np.linalg.norm(np.diff(self.Q, axis=0), axis=1).sum()), 1e-12)
@@ -81,24 +86,106 @@ class JointSpline:
         return np.concatenate([[a], inner, [b]])
 
 
+def blend_length(ell_l: float, ell_r: float) -> float:
+    """The path length of a blend whose two sides are ell_l (leave point to the via point, on the
+    first path) and ell_r (via point to the reach point, on the second), in path units."""
+    return 4.0 * ell_l * ell_r / (ell_l + ell_r)
+
+
+class BlendParam:
+    """The blend's curve parameter u ∈ [0, 1] against its path parameter σ ∈ [0, L]: u' = 1/(2ℓl)
+    at the leave point and 1/(2ℓr) at the reach point, linear in between (u quadratic in σ), so
+    that the Bézier curve below leaves and joins its neighbours with their own velocity."""
+
+    def __init__(self, ell_l: float, ell_r: float):
+        self.ell_l, self.ell_r = float(ell_l), float(ell_r)
+        self.L = blend_length(ell_l, ell_r)
+        self.c1 = 1.0 / (2.0 * ell_l)
+        self.c2 = (1.0 / (2.0 * ell_r) - self.c1) / (2.0 * self.L)
+
+    def u(self, sigma):
+        return np.clip(self.c1 * sigma + self.c2 * sigma * sigma, 0.0, 1.0)
+
+    def du(self, sigma):
+        return self.c1 + 2.0 * self.c2 * sigma
+
+
+def bezier(u: np.ndarray, P0, P1, P2, P3, order: int = 0) -> np.ndarray:
+    """Cubic Bézier curve (or its derivatives in u)."""
+    v = 1.0 - u
+    if order == 0:
+        return v * v * v * P0 + 3 * v * v * u * P1 + 3 * v * u * u * P2 + u * u * u * P3
+    if order == 1:
+        return 3 * v * v * (P1 - P0) + 6 * v * u * (P2 - P1) + 3 * u * u * (P3 - P2)
+    return 6 * v * (P2 - 2 * P1 + P0) + 6 * u * (P3 - 2 * P2 + P1)
+
+
+def blend_controls(pL, vL, pR, vR, ell_l: float, ell_r: float):
+    """Control points of the blend from (pL, vL) to (pR, vR): the corner of the two tangents, as a
+    cubic (the degree-raised parabola with its control point at the via point when the
+    neighbours are straight lines through it)."""
+    return pL, pL + (2.0 / 3.0) * ell_l * vL, pR - (2.0 / 3.0) * ell_r * vR, pR
+
+
+# The shape of blends: a cubic Hermite curve whose end tangents are `scale` × (ℓl + ℓr) long —
+# for two straight lines meeting at the via point with leave = reach, the parabola through their
+# corner. ("bezier": the Bézier curve through the corner of the two tangents, tighter when leave
+# and reach differ a lot; measured slower on random U cycles, bench/bench_motion.py.) When several
+# shapes are listed the queue takes the one its estimate says the arm follows fastest.
+BLEND_SHAPES = (1.0,)
+
+
+class BlendShape:
+    """A blend curve from (pL, vL) to (pR, vR) (positions and velocities per path unit σ), in
+    joint or Cartesian space: `point(σ, order)` with σ ∈ [0, ell]; velocity continuous at both
+    ends whatever the shape."""
+
+    def __init__(self, pL, vL, pR, vR, ell_l: float, ell_r: float, shape="bezier"):
+        pL, vL, pR, vR = (np.asarray(x, dtype=float) for x in (pL, vL, pR, vR))
+        self.shape = shape
+        if shape == "bezier":
+            self.param = BlendParam(ell_l, ell_r)
+            self.ell = self.param.L
+            self.P = blend_controls(pL, vL, pR, vR, ell_l, ell_r)
+        else:
+            self.ell = float(shape) * (ell_l + ell_r)
+            self.P = (pL, self.ell * vL, pR, self.ell * vR)
+
+    def point(self, sigma, order: int = 0) -> np.ndarray:
+        """Position (or d/dσ, d²/dσ²) at σ (array)."""
+        sig = np.atleast_1d(np.asarray(sigma, dtype=float))
+        if self.shape != "bezier":
+            u = (sig / self.ell)[:, None]
+            d = hermite(u, *self.P, order=order)
+            return d if order == 0 else d / self.ell ** order
+        pr = self.param
+        u = pr.u(sig)[:, None]
+        if order == 0:
+            return bezier(u, *self.P)
+        du = pr.du(sig)[:, None]
+        d1 = bezier(u, *self.P, order=1)
+        if order == 1:
+            return d1 * du
+        return bezier(u, *self.P, order=2) * du * du + d1 * (2.0 * pr.c2)
+
+
 class JointBlend:
-    """The cubic Hermite curve from (qL, vL) to (qR, vR): q(u) = h00·qL + h10·ℓ·vL + h01·qR +
-    h11·ℓ·vR, u = σ/ℓ; vL, vR = dq/dσ of the neighbours at the leave and reach points, ℓ the blend's
-    length in path units (the path the two neighbours would have covered from the leave point to
-    the via point and from there to the reach point). Between two straight lines meeting at the via
-    point with equal leave and reach it is the parabola of constant curvature, the least curved
-    such blend; the velocity is continuous at both ends."""
+    """A joint blend (10.1.2.3): from the leave point (qL, velocity vL = dq/dσ of the first path)
+    to the reach point (qR, vR of the second) along a `BlendShape` in joint space (the queue picks
+    the shape the arm can follow fastest). ℓl, ℓr: the path lengths from the leave point to the
+    via point and from there to the reach point."""
 
     kind = "joint-blend"
 
-    def __init__(self, qL, vL, qR, vR, ell: float):
-        self.qL, self.vL = np.asarray(qL, dtype=float), np.asarray(vL, dtype=float)
-        self.qR, self.vR = np.asarray(qR, dtype=float), np.asarray(vR, dtype=float)
-        self.ell = float(ell)
+    def __init__(self, qL, vL, qR, vR, ell_l: float, ell_r: float, shape="bezier"):
+        self.curve = None
+        self.shape = BlendShape(qL, vL, qR, vR, ell_l, ell_r, shape)
+        self.ell = self.shape.ell
 
     def q(self, lam, order: int = 0) -> np.ndarray:
-        u = np.atleast_1d(np.asarray(lam, dtype=float))[:, None]
-        return hermite(u, self.qL, self.ell * self.vL, self.qR, self.ell * self.vR, order)
+        sig = np.atleast_1d(np.asarray(lam, dtype=float)) * self.ell
+        d = self.shape.point(sig, order)
+        return d if order == 0 else d * self.ell ** order
 
     def grid(self, a: float, b: float) -> np.ndarray:
         n = max(12, min(60, math.ceil(self.ell * (b - a) / 4.0)))  # one per 4° of joint motion

@@ -42,7 +42,7 @@ from .commands import MoveCommand
 from .findings import Finding, MotionError, Source
 from .kin import ArmKin
 from .mdesc import Limits, MDesc
-from .paths import JointBlend, JointLine, JointSpline, Path, Span, tcp_rates
+from .paths import BLEND_SHAPES, JointBlend, JointLine, JointSpline, Path, Span, tcp_rates
 from .timing import Grid, brake_stop, topp, trapezoid
 from .tracking import track
 from .trajectory import Profile, Trajectory
@@ -87,6 +87,7 @@ class Cmd:
     S_begin: float | None = None
     S_end: float | None = None
     S_prov: float | None = None
+    S_nom: tuple[float, float, float] | None = None  # (s at lam_in, s at the end of its own span, λ there)
     state: str = "pending"
     t_done: float | None = None
     spans: list = field(default_factory=list)  # Span objects it (partly) owns
@@ -444,10 +445,12 @@ class MotionQueue:
             if hard:
                 c.S_begin = self.path.end
             b = c.lam_leave if c.blend != "off" else 1.0
+            s0 = self.path.end
             if b > c.lam_in + 1e-12:
                 sp = Span(c.geom, c.lam_in, b, [(c.key, 0.0)], smooth=not hard, tool=c.tool)
                 self.path.append(sp)
                 c.spans.append(sp)
+            c.S_nom = (s0, self.path.end, b)
             if c.blend != "off":
                 self.open = c
                 c.S_prov = self.path.end + (1.0 - c.lam_leave) * c.geom.ell
@@ -461,6 +464,8 @@ class MotionQueue:
             sp = Span(c.geom, c.lam_leave, 1.0, [(c.key, 0.0)], smooth=True, tool=c.tool)
             self.path.append(sp)
             c.spans.append(sp)
+            if c.S_nom is not None:
+                c.S_nom = (c.S_nom[0], self.path.end, 1.0)
         c.blend = "off"
         c.lam_leave = 1.0
         c.S_end = self.path.end
@@ -487,27 +492,56 @@ class MotionQueue:
         if nl < 1e-12 or nr < 1e-12 or float(vL @ vR) / (nl * nr) < CUSP_COS:
             return None
         ell_l = (1.0 - lam_l) * gL.ell
-        ell_b = ell_l + lam_r * gR.ell
+        ell_r = lam_r * gR.ell
         geom = None
         same_tool = (prev.tool is None and c.tool is None) or (
             prev.tool is not None and c.tool is not None and np.allclose(prev.tool, c.tool))
         if prev.blend == "Cartesian" and same_tool:
-            geom = self._cartesian_blend(prev, qL, vL, qR, vR, ell_b)
+            geom = self._cartesian_blend(prev, c, qL, vL, qR, vR, ell_l, ell_r)
         if geom is None:
-            geom = JointBlend(qL, vL, qR, vR, ell_b)
-        sp = Span(geom, 0.0, 1.0, [(prev.key, 0.0), (c.key, ell_l)], smooth=True, tool=prev.tool)
+            shapes = [JointBlend(qL, vL, qR, vR, ell_l, ell_r, shape) for shape in BLEND_SHAPES]
+            geom = shapes[0] if len(shapes) == 1 else min(shapes, key=lambda g: self._blend_time(g, prev, c))
+        # the blend belongs to prev up to the point proportional to the two sides
+        split = geom.ell * ell_l / (ell_l + ell_r)
+        sp = Span(geom, 0.0, 1.0, [(prev.key, 0.0), (c.key, split)], smooth=True, tool=prev.tool)
         off = self.path.append(sp)
         prev.spans.append(sp)
         c.spans.append(sp)
-        prev.S_end = off + ell_l
+        prev.S_end = off + split
         prev.S_prov = None
-        c.S_begin = off + ell_l
+        c.S_begin = off + split
         c.lam_in = lam_r
         return sp
 
-    def _cartesian_blend(self, prev: Cmd, qL, vL, qR, vR, ell_b):
-        """A Cartesian blend tracked in the configuration of the leave point; None when it cannot
-        be followed there (the joint blend is used instead, docs/motion.md)."""
+    def _blend_time(self, geom, prev: Cmd, c: Cmd) -> float:
+        """An estimate of the time to go through a blend: its length at the speed its curvature
+        and the joint speeds allow (the blend shape the arm follows fastest is chosen)."""
+        lam = np.linspace(0.0, 1.0, 17)
+        q1 = geom.q(lam, 1) / geom.ell
+        q2 = geom.q(lam, 2) / geom.ell ** 2
+        la, lb = self.limits_of(prev), self.limits_of(c)
+        V = np.minimum(la.V, lb.V)
+        A = np.minimum(np.minimum(la.A, la.D), np.minimum(lb.A, lb.D))
+        with np.errstate(divide="ignore"):
+            xv = np.min(np.where(np.abs(q1) > 1e-12, (V / np.abs(q1)) ** 2, np.inf), axis=1)
+            xa = np.min(np.where(np.abs(q2) > 1e-12, A / np.abs(q2), np.inf), axis=1)
+        sd = np.sqrt(np.minimum(xv, xa))
+        return float(np.trapezoid(1.0 / np.maximum(sd, 1e-9), lam * geom.ell))
+
+    def _cartesian_blend(self, prev: Cmd, c: Cmd, qL, vL, qR, vR, ell_l, ell_r):
+        """A Cartesian blend tracked in the configuration of the leave point, of the shape the arm
+        follows fastest; None when no shape can be followed there (the joint blend is used
+        instead, docs/motion.md)."""
+        best = None
+        for shape in BLEND_SHAPES:
+            g = self._cartesian_blend_shape(prev, qL, vL, qR, vR, ell_l, ell_r, shape)
+            if g is not None:
+                t = self._blend_time(g, prev, c) if len(BLEND_SHAPES) > 1 else 0.0
+                if best is None or t < best[0]:
+                    best = (t, g)
+        return None if best is None else best[1]
+
+    def _cartesian_blend_shape(self, prev: Cmd, qL, vL, qR, vR, ell_l, ell_r, shape):
         kin = self.kin
         h = 1e-4
         T = kin.tcp(np.vstack([qL, qL + h * vL, qL - h * vL, qR, qR + h * vR, qR - h * vR]), prev.tool)
@@ -519,7 +553,8 @@ class MotionQueue:
             w = rotvec(T[i + 1, :3, :3] @ T[i + 2, :3, :3].T) / (2 * h)
             return p, T[i, :3, :3], v, w
 
-        curve = Blend(state(0), state(3), ell_b)
+        curve = Blend(state(0), state(3), ell_l, ell_r, shape)
+        ell_b = curve.ell
         code = int(kin.config_codes(qL)[0])
         tr = track(kin, curve, prev.tool, qL, code)
         if tr.failure is not None or np.max(np.abs(tr.Q[-1] - qR)) > 1e-5:
@@ -877,8 +912,14 @@ class MotionQueue:
         end = c.S_end if c.S_end is not None else c.S_prov
         if c.id is None or c.S_begin is None or end is None or s < c.S_begin - 1e-12 or end - c.S_begin <= 0:
             return float(self.pos_id)
-        frac = min(max((s - c.S_begin) / (end - c.S_begin), 0.0), 0.999999)
-        return c.id + frac
+        if c.S_nom is not None:
+            # on its own part of the path the progress is the command's path parameter (the
+            # fraction of the distance for movel); across the blends it goes on linearly
+            s0, s1, lam1 = c.S_nom
+            frac = float(np.interp(s, [c.S_begin, s0, s1, end], [0.0, c.lam_in, lam1, 1.0]))
+        else:
+            frac = (s - c.S_begin) / (end - c.S_begin)
+        return c.id + min(max(frac, 0.0), 0.999999)
 
     def _brake(self, now: float) -> None:
         self._flush()

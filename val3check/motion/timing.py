@@ -278,7 +278,8 @@ def topp(grid: Grid, sd0: float = 0.0) -> TimedProfile:
         sd[-1] = 0.0
         # the arm must not stand still inside the path (two zero speeds in a row: a cusp or a
         # grid too coarse for toppra's discretisation): then the safe profile
-        if not np.any((sd[:-1] + sd[1:] <= 0.0) & (np.diff(gp) > 0.0)):
+        still = (sd[:-1] + sd[1:] <= 1e-9 * max(float(sd.max()), 1.0)) & (np.diff(gp) > 0.0)
+        if not np.any(still):
             return TimedProfile(gp.copy(), sd)
         sd, K = None, None
     if K is not None and sd0 > 0 and np.all(np.isfinite(K)) and sd0 * sd0 > K[0, 1]:

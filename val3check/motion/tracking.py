@@ -141,7 +141,10 @@ def track(kin: ArmKin, curve, tool: np.ndarray | None, q_start, code: int, n: in
     lam = np.linspace(0.0, 1.0, n + 1)
     knots = getattr(curve, "knots", ())
     if knots:  # where the curve's orientation law changes (movec's intermediate point)
-        lam = np.unique(np.concatenate([lam, np.asarray(knots, dtype=float)]))
+        k = np.asarray(knots, dtype=float)
+        k = k[np.abs(lam[np.clip(np.searchsorted(lam, k), 0, len(lam) - 1)] - k) > 1e-9]
+        k = k[np.abs(lam[np.clip(np.searchsorted(lam, k) - 1, 0, len(lam) - 1)] - k) > 1e-9]
+        lam = np.unique(np.concatenate([lam, k]))
 
     def solve(ls):
         T = curve.poses(ls)
