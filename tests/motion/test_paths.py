@@ -101,3 +101,23 @@ def test_movec_orientation_follows_interpolateC():
         # within one gridpoint on each side (docs/motion.md)
         tol = 0.1 if abs(frac - 0.5) < 0.1 else 1e-3
         assert GT.close(GT.Trsf.from_matrix4(T[k]), ref, length_tol=1e-2, angle_tol=tol)
+
+
+def test_a_knot_on_a_gridpoint_is_not_doubled():
+    """movec's intermediate point is a gridpoint; when the grid already has one there (up to
+    rounding), the spline must not get two knots 1e-16 apart (the time was then absurd)."""
+    from val3check.motion.cartesian import Arc
+    from val3check.motion.tracking import track
+
+    from .motionhelp import HOME
+
+    R = 100.0
+    c = T_HOME[:3, 3] + [0.0, R, 0.0]
+    via, target = T_HOME.copy(), T_HOME.copy()
+    via[:3, 3] = c + [-R, 0.0, 0.0]
+    target[:3, 3] = c + [0.0, R, 0.0]
+    arc = Arc(T_HOME, via, target)
+    arc.u2 = 0.5 + 1e-16  # what the arithmetic may give for a symmetric arc
+    arc.knots = (arc.u2,)
+    tr = track(KIN, arc, None, HOME, int(KIN.config_codes(HOME)[0]), n=40)
+    assert np.diff(tr.lam).min() > 1e-9
