@@ -12,6 +12,8 @@ options override it. Keys (kebab-case, as ruff):
     disk-roots = ["../controller/usr/usrapp"]    # where `Disk://` libraries are also searched
     exclude = ["build/**"]          # applications whose path matches are skipped
     max-file-size = 16777216        # bytes; larger files are reported (F002) and skipped
+    target = "CS9"                  # controller and/or VAL 3 version: "CS9", "s8.13", "CS8 s7.11"
+                                    # (default: each application's project file version)
 """
 
 from __future__ import annotations
@@ -22,6 +24,7 @@ import tomllib
 from dataclasses import dataclass, field
 
 from .diagnostics import Severity
+from .language.target import TargetError, TargetSpec, parse_target
 
 CONFIG_NAMES = ("val3check.toml", "pyproject.toml")
 FAIL_ON_CHOICES = ("error", "warning", "info", "never")
@@ -42,6 +45,7 @@ class Settings:
     disk_roots: list[str] = field(default_factory=list)
     exclude: list[str] = field(default_factory=list)
     max_file_size: int = 16 * 1024 * 1024
+    target: TargetSpec | None = None  # None: each application's project file version
     root: str = ""  # folder of the configuration file, "" when none was found
     source: str = ""  # path of the configuration file that was read
 
@@ -126,6 +130,7 @@ def _str_list(value, key: str, path: str) -> list[str]:
 
 KNOWN_KEYS = {
     "select", "extend-select", "ignore", "per-file-ignores", "severity", "fail-on", "disk-roots", "exclude", "max-file-size",
+    "target",
 }
 
 
@@ -165,4 +170,9 @@ def load_settings(path: str) -> Settings:
     if not isinstance(size, int) or isinstance(size, bool) or size <= 0:
         raise ConfigError(f"{path}: 'max-file-size' must be a positive number of bytes")
     s.max_file_size = size
+    if "target" in data:
+        try:
+            s.target = parse_target(data["target"])
+        except TargetError as exc:
+            raise ConfigError(f"{path}: {exc}") from None
     return s

@@ -50,6 +50,11 @@ def _inside(path: str, folder: str) -> bool:
     return os.path.commonpath([real, top]) == top
 
 
+def _stem(rel: str) -> str:
+    """'Sub\\pick.pgx' -> 'pick': the program a listed file is named after, in lower case."""
+    return os.path.splitext(rel.replace("\\", "/").rsplit("/", 1)[-1])[0].lower()
+
+
 def _ext(path: str) -> str:
     return os.path.splitext(path)[1].lower()
 
@@ -119,6 +124,8 @@ class Loader:
                 path = self._listed_file(rel, node, folder, kind, sink)
                 if path is None:
                     app.unread.add(kind)
+                    if kind == "program":
+                        app.unread_programs.add(_stem(rel))
                     continue
                 k = _key(path)
                 if k in seen:
@@ -134,6 +141,8 @@ class Loader:
                     read = self._read_data_file(app, path)
                 if not read:
                     app.unread.add(kind)
+                    if kind == "program":
+                        app.unread_programs.add(_stem(rel))
         for alias, path, auto, node in pf.libraries:
             if alias in app.libraries:
                 first = app.libraries[alias].origin

@@ -142,6 +142,9 @@ class Application:
     # "data" / "program" when a file of that kind listed by the project could not be read:
     # the application's globals (or programs) are then only partly known.
     unread: set[str] = field(default_factory=set)
+    # Lower-case names of the listed program files that could not be read ("pick" for
+    # pick.pgx): the programs they would define may exist; every other name is really undefined.
+    unread_programs: set[str] = field(default_factory=set)
 
     @property
     def folder(self) -> str:

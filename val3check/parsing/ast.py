@@ -247,6 +247,16 @@ class TaskCreateSync:
 
 
 @dataclass(slots=True)
+class Print:
+    """`? expr`: the s8 print statement (not in the s7 manual), shows the value. Position of
+    the `?`."""
+
+    value: Expr
+    line: int
+    col: int
+
+
+@dataclass(slots=True)
 class Return:
     """`return` (2.2.5)."""
 
@@ -378,7 +388,7 @@ class ErrorStatement:
 
 
 Statement = Union[
-    Assign, ExprStatement, Call, TaskCreate, TaskCreateSync, Return, Break, If, While, DoUntil, For,
+    Assign, ExprStatement, Call, TaskCreate, TaskCreateSync, Print, Return, Break, If, While, DoUntil, For,
     Switch, ErrorStatement,
 ]
 
@@ -424,6 +434,7 @@ _CHILDREN: dict[type, tuple[str, ...]] = {
     Call: ("target", "args"),
     TaskCreate: ("task", "priority", "target", "args"),
     TaskCreateSync: ("task", "period", "overrun", "target", "args"),
+    Print: ("value",),
     Return: (), Break: (), ErrorStatement: (),
     Branch: ("cond", "body"),
     If: ("branches", "orelse"),

@@ -76,12 +76,12 @@ _STRUCTURAL = set(_OPENER_OF) | {"END", "BEGIN"}
 _PUNCT = {
     "EQUAL": "'='", "PLUS": "'+'", "MINUS": "'-'", "BANG": "'!'", "LBRACE": "'{'",
     "_RBRACE": "'}'", "_LPAR": "'('", "_RPAR": "')'", "_LSQB": "'['", "_RSQB": "']'",
-    "_COMMA": "','", "_DOT": "'.'", "_COLON": "':'",
+    "_COMMA": "','", "_DOT": "'.'", "_COLON": "':'", "QMARK": "'?'",
 }
 _EXPR_START = {"NAME", "SYSNAME", "NUMBER", "BADNUMBER", "STRING", "BADSTRING", "TRUE", "FALSE",
                "_LPAR", "MINUS", "BANG", "LBRACE", "ERROR"}
 _STMT_START = {"CALL", "RETURN", "BREAK", "IF", "WHILE", "DO", "FOR", "SWITCH", "NAME", "SYSNAME",
-               "TASKCREATE", "TASKCREATESYNC"}
+               "TASKCREATE", "TASKCREATESYNC", "QMARK"}
 _BINOPS = {"EQUAL", "EQOP", "RELOP", "PLUS", "MINUS", "MULOP", "AND", "OR", "XOR"}
 _CLOSING = {"_RPAR": ("_LPAR", "')'", "'('"), "_RSQB": ("_LSQB", "']'", "'['"),
             "_RBRACE": ("LBRACE", "'}'", "'{'")}
@@ -281,6 +281,10 @@ class _Builder:
         t, task, period, overrun, target, args = c
         return A.TaskCreateSync(task, period, overrun, target, args if args is not None else [],
                                 *self.fpos(t.line, t.column))
+
+    def print_stmt(self, c):
+        t, value = c
+        return A.Print(value, *self.fpos(t.line, t.column))
 
     def return_stmt(self, c):
         t = c[0]
@@ -959,7 +963,7 @@ def _number_message(text: str) -> str:
 
 def _expr_too_deep(body: A.ProgramBody):
     """The first statement with an expression nested more than MAX_EXPR_DEPTH levels."""
-    stmt_types = (A.Assign, A.ExprStatement, A.Call, A.TaskCreate, A.TaskCreateSync, A.Return, A.Break, A.If, A.While,
+    stmt_types = (A.Assign, A.ExprStatement, A.Call, A.TaskCreate, A.TaskCreateSync, A.Print, A.Return, A.Break, A.If, A.While,
                   A.DoUntil, A.For, A.Switch, A.Branch, A.Case, A.Default)
     stack: list[tuple[Any, int, Any]] = [(s, 0, s) for s in reversed(body.statements)]
     while stack:

@@ -4,7 +4,9 @@ scope, and where findings go."""
 from __future__ import annotations
 
 from ..diagnostics import Diagnostic
+from ..language.target import Target, target_for
 from ..loading.model import Application, Program, Workspace
+from . import messages as M
 from .symbols import AppSymbols, Scope
 
 
@@ -15,6 +17,8 @@ class Context:
     name is an error there; s8 and later may have instructions the s7 catalogue lacks.
     `globals_known`: False for .pgx files without project (globals, libraries, user types and
     possibly programs unknown): undefined names are then not reported.
+    `target`: the controller/version/arm the application is checked for (language/target.py);
+    by default the version of its project file.
     """
 
     __slots__ = (
@@ -28,15 +32,18 @@ class Context:
         "scope",
         "strict_version",
         "table",
+        "target",
         "workspace",
     )
 
-    def __init__(self, workspace: Workspace, app: Application, table: AppSymbols, diags: list[Diagnostic]) -> None:
+    def __init__(self, workspace: Workspace, app: Application, table: AppSymbols, diags: list[Diagnostic],
+                 target: Target | None = None) -> None:
         self.workspace = workspace
         self.app = app
         self.table = table
         self.diags = diags
-        self.major = app.version_major
+        self.target = target if target is not None else target_for(app.version, None)
+        self.major = self.target.major
         self.strict_version = self.major is None or self.major < 8
         self.globals_known = app.globals_known
         # 3.5.2: "L'opérateur '=' entre les deux variables dio n'existe plus avec VAL 3 s7".
@@ -51,6 +58,25 @@ class Context:
         loader reported it once and the name checks stay quiet."""
         app = app or self.app
         return app.layout != "pgx-only" and kind not in app.unread
+
+    def program_may_exist(self, name: str, app: Application | None = None) -> bool:
+        """A program `name` may exist although it is not loaded: a listed program file that
+        could not be read is named after it (files are named after their program), or the
+        application has no project file (its other programs are not known)."""
+        app = app or self.app
+        return app.layout == "pgx-only" or name.lower() in app.unread_programs
+
+    def s8_only(self, what: str, node: object) -> None:
+        """`what` (a form, an instruction, a statement) exists from s8 on: fine on an s8 target,
+        T031 (error) on an s7 target the configuration names, T030 (warning) when the project
+        file says s7 (or no version): real CS9 code is often saved that way."""
+        t = self.target
+        if t.s8:
+            return
+        if t.explicit:
+            self.report_at("T031", M.s8_on_s7_target(what, t.label), node)
+        else:
+            self.report_at("T030", M.s8_only(what, t.label), node)
 
     def enter(self, program: Program) -> None:
         self.program = program

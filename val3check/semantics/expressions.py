@@ -205,7 +205,7 @@ class ExprTyper:
             ctx.report_at("N006", M.case_mismatch("library symbol", name, other), node)
             sym, _ = lib.data_symbol(other)
             return sym.val if sym is not None else UNKNOWN_VAL
-        if ctx.names_complete("data", lib.app) and ctx.names_complete("program", lib.app):
+        if ctx.names_complete("data", lib.app) and not ctx.program_may_exist(name, lib.app):
             publics = [n for n, d in lib.app.data.items() if d.access == "public"]
             ctx.report_at("L010", M.undefined_library_symbol(node.alias, name, lib.app.name, suggest(name, publics)),
                           node)
