@@ -1050,6 +1050,10 @@ class ProgramCompiler:
             elif ts is A.TaskCreate or ts is A.TaskCreateSync:
                 self.line()
                 self.guarded([self.task_create(s)], True)
+            elif ts is A.Print:  # s8 `? expr`: the emulator prints the value; here, a user page line
+                self.line()
+                code, t = self.expr(s.value)
+                self.guarded([f"PAGE(T, 'putln', {self.coerce(code, t, '?')})"], True)
             elif ts is A.Return:
                 self.line()
                 self.emit("return")

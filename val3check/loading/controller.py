@@ -11,7 +11,6 @@ read with the loader's safe XML reader (no entities, size limit).
 from __future__ import annotations
 
 import os
-from functools import lru_cache
 
 from .xmlread import read_xml
 
@@ -36,7 +35,6 @@ def find_arm_cfx(app_folder: str) -> str | None:
     return None
 
 
-@lru_cache(maxsize=64)
 def read_arm_id(cfx_path: str, max_size: int) -> str | None:
     """The arm id an arm.cfx declares; None when it cannot be read or has none."""
     res = read_xml(cfx_path, max_size)

@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 from ..diagnostics import Diagnostic
 from . import reader as rd
 from . import resolve as rs
+from .bindings import bound_names
 from .model import Application, LibraryRef, Origin, Program, TypeRef, Workspace
 from .xmlread import Node, read_xml
 
@@ -143,6 +144,8 @@ class Loader:
                     app.unread.add(kind)
                     if kind == "program":
                         app.unread_programs.add(_stem(rel))
+        app.ui_names, bindings = bound_names(folder, self.options.max_file_size)
+        app.files.extend(bindings)
         for alias, path, auto, node in pf.libraries:
             if alias in app.libraries:
                 first = app.libraries[alias].origin

@@ -145,6 +145,9 @@ class Application:
     # Lower-case names of the listed program files that could not be read ("pick" for
     # pick.pgx): the programs they would define may exist; every other name is really undefined.
     unread_programs: set[str] = field(default_factory=set)
+    # Lower-case names the s8 web user pages bind to (`*.bindings.json`, loading/bindings.py):
+    # programs and globals used by the pages.
+    ui_names: set[str] = field(default_factory=set)
 
     @property
     def folder(self) -> str:
