@@ -68,3 +68,15 @@ def test_s8_forms_are_typed_like_instructions(tmp_path):
 def test_print_statement_checks_its_expression(tmp_path):
     found = findings(tmp_path, "begin\n  ? nUndefined + 1\nend", version="s8.13")
     assert found == [("N001", 2, 5)]
+
+
+def test_code_saved_as_s7_that_uses_s8_forms_is_cs9_code(tmp_path):
+    # one known s8 form is evidence: other calls matching no s7 signature, and names one slip
+    # from an instruction, may be s8 forms val3check does not know: warnings, as in an s8 project
+    code = 'begin\n  popUpMsg("x", 2)\n  waitEndMov()\n  userPage("menu")\nend'
+    assert [f[0] for f in findings(tmp_path, code)] == ["T024", "N004", "T030"]
+    # without that evidence they are sure errors on s7
+    plain = 'begin\n  popUpMsg("x", 2)\n  waitEndMov()\nend'
+    assert [f[0] for f in findings(tmp_path / "b", plain)] == ["T005", "N003"]
+    # and with an s7 target named in the configuration they stay errors
+    assert [c for c, _ in _codes(tmp_path / "c", code, "CS8")] == ["T005", "N003", "T031"]

@@ -584,11 +584,12 @@ def test_programs_and_globals_bound_by_a_web_user_page_are_used(tmp_path):
     progs = {"onStart": {"code": "begin\n  putln(\"x\")\nend", "access": "private"},
              "onStop": {"code": "begin\n  putln(\"y\")\nend", "access": "private"}}
     folder = app(tmp_path, "begin\n  putln(\"go\")\nend", programs=progs, globals_=["private num nSpeed", "private num nOld"])
-    pages = folder / "userPages" / "main"
+    pages = folder / "interface"  # as a CS9 controller tree holds them (s8.10 cell, psi46/cmsrobot)
     pages.mkdir(parents=True)
     (pages / "main.bindings.json").write_text(
-        '{"bindings": [{"id": "btnStart", "event": "click", "callback": "onStart"},'
-        ' {"id": "sldSpeed", "variable": "App:nSpeed"}]}', encoding="utf-8")
+        '{"version": "1.0", "bindings": [{"id": "rng1", "attribute": "value", "data": "nSpeed[0]", "size": 1,'
+        ' "direction": "rw", "refresh": 1}], "callbacks": [{"id": "btn1", "event": "click", "data": "onStart",'
+        ' "priority": 10}], "events": []}', encoding="utf-8")
     assert [x[4] for x in s_found(folder, "S004")] == [
         "private program onStop() is never called (call, taskCreate, taskCreateSync) in the application"]
     assert [x[4] for x in s_found(folder, "S003")] == [

@@ -148,7 +148,8 @@ def check_call_expr(typer: ExprTyper, node: A.CallExpr, statement: bool) -> vt.V
     erratum = load_errata().get(name.lower())
     close = erratum.canonical if erratum is not None else _close_instruction(name)
     if ctx.strict_version and close is not None:
-        ctx.report_at("N003", M.undefined_instruction(name, close), func)
+        ctx.s7_only("N003", M.undefined_instruction(name, close), func, "N004",
+                    M.unknown_instruction_s8(name, ctx.app.version))
     elif ctx.strict_version:
         ctx.report_at("N004", M.unknown_instruction_s7(name), func)
     else:
@@ -236,7 +237,7 @@ def _instruction(typer: ExprTyper, node: A.CallExpr, ins: Instruction, statement
         sigs = [o.signature(ins.name) for o in ins.overloads]
         counts = sorted({c for o in ins.overloads for c in range(o.min_arity, o.max_arity + 1)})
         msg = M.arity(label, _count_words(counts), n, sigs)
-        ctx.report_at(*_signature_finding(ctx, "T005", msg, s7), func)
+        _signature_finding(ctx, "T005", msg, s7, func)
         return _common_return(ins.overloads, statement)
     if not full:
         best = max(cands, key=lambda o: sum(1 for p, v in zip(o.params, vals) if _type_ok(p, v)))
@@ -250,7 +251,7 @@ def _instruction(typer: ExprTyper, node: A.CallExpr, ins: Instruction, statement
             msg = M.argument_type(i + 1, label, p.name, expected, got)
         else:
             msg = M.argument_type_overloads(i + 1, label, got, [o.signature(ins.name) for o in cands])
-        ctx.report_at(*_signature_finding(ctx, "T006", msg, s7), args[i])
+        _signature_finding(ctx, "T006", msg, s7, args[i])
         return _common_return(cands, statement)
     chosen = None
     first_errors: list[_Pending] = []
@@ -428,13 +429,15 @@ def _param_text(p: Parameter) -> str:
     return f"{p.type}{amp} {p.name}{tail}"
 
 
-def _signature_finding(ctx, code: str, message: str, s7: bool = True) -> tuple[str, str]:
+def _signature_finding(ctx, code: str, message: str, s7: bool, node: object) -> None:
     """s8 adds overloads to s7 instructions (e.g. logMsg with a second argument on CS9, s8.toml):
     there a call that matches no s7 signature nor a known s8 form is T024, a warning, instead of a
-    sure error. So is a call of an s8 instruction whose signature does not match what is known."""
+    sure error; so in code saved as s7 that uses s8 forms (Context.settle). So is a call of an
+    s8 instruction whose signature does not match what is known."""
     if ctx.strict_version and s7:
-        return code, message
-    return "T024", M.s8_signature(message)
+        ctx.s7_only(code, message, node, "T024", M.s8_signature(message))
+    else:
+        ctx.report_at("T024", M.s8_signature(message), node)
 
 
 def check_program_args(typer: ExprTyper, target: object, label: str, sig: ProgramSignature, args: list,

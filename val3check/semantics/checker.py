@@ -36,6 +36,7 @@ def check_application(workspace: Workspace, app: Application, target: Target | N
         ctx.enter(program)
         checker.literal_vals.clear()
         checker.check(body)
+    ctx.settle()
     return diags
 
 

@@ -22,6 +22,7 @@ class Context:
     """
 
     __slots__ = (
+        "_s7_only",
         "app",
         "diags",
         "dio_assign_removed",
@@ -29,6 +30,7 @@ class Context:
         "major",
         "path",
         "program",
+        "s8_evidence",
         "scope",
         "strict_version",
         "table",
@@ -51,6 +53,10 @@ class Context:
         self.scope: Scope | None = None
         self.program: Program | None = None
         self.path = ""
+        # The code uses s8 forms although the project file says s7 (T030): it is CS9 code, and
+        # the findings that only hold on s7 (`_s7_only`) are turned into their s8 warning.
+        self.s8_evidence = False
+        self._s7_only: list[tuple[int, str, str]] = []
 
     def names_complete(self, kind: str, app: Application | None = None) -> bool:
         """Every `kind` ("data"/"program") file of `app` (default: the checked one) was read:
@@ -76,7 +82,25 @@ class Context:
         if t.explicit:
             self.report_at("T031", M.s8_on_s7_target(what, t.label), node)
         else:
+            self.s8_evidence = True
             self.report_at("T030", M.s8_only(what, t.label), node)
+
+    def s7_only(self, code: str, message: str, node: object, s8_code: str, s8_message: str) -> None:
+        """A finding that is sure on s7 but not on s8 (a call matching no s7 signature may be an
+        s8 form val3check does not know): reported as `code`, and turned into `s8_code` by
+        `settle()` when the application turns out to use s8 forms."""
+        self._s7_only.append((len(self.diags), s8_code, s8_message))
+        self.report_at(code, message, node)
+
+    def settle(self) -> None:
+        """After every program is checked: code that uses s8 forms (T030) is CS9 code whatever its
+        project file says, so its s7-only findings become the s8 warnings (unless the
+        configuration names the target)."""
+        if self.s8_evidence and not self.target.explicit:
+            for i, code, message in self._s7_only:
+                d = self.diags[i]
+                self.diags[i] = Diagnostic(code, message, d.path, d.line, d.col, d.end_line, d.end_col)
+        self._s7_only.clear()
 
     def enter(self, program: Program) -> None:
         self.program = program
