@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import fnmatch
 import os
-import tomllib
 from dataclasses import dataclass, field
 
 from .diagnostics import Severity
@@ -103,6 +102,8 @@ def find_config(start: str) -> str | None:
 
 
 def _read_toml(path: str) -> dict:
+    import tomllib  # only when there is a configuration to read (start-up time)
+
     try:
         with open(path, "rb") as fh:
             return tomllib.load(fh)
@@ -113,6 +114,12 @@ def _read_toml(path: str) -> dict:
 def _has_section(path: str, name: str) -> bool:
     if name != "pyproject.toml":
         return True
+    try:
+        with open(path, "rb") as fh:
+            if b"val3check" not in fh.read():
+                return False  # most pyproject.toml files are not ours: no need to parse them
+    except OSError:
+        return False
     try:
         data = _read_toml(path)
     except ConfigError:

@@ -53,3 +53,15 @@ def test_every_s8_entry_is_sourced_and_well_typed():
     assert cat.statements["print"].syntax == "? expr"
     # the $file... system instructions exist on s7 controllers (CS8 add-on): not s8-only
     assert not any(n.startswith("$") for n in cat.instructions)
+
+
+def test_compiled_language_data_is_current():
+    # val3check/language/_compiled.py ships the TOML files as Python data (start-up time)
+    from val3check.language import compiled
+
+    assert compiled.is_current(), "run python -m val3check.language.compiled"
+    import tomllib
+
+    for name in compiled.NAMES:
+        with open(f"{compiled.FOLDER}/{name}", "rb") as fh:
+            assert compiled.load_toml(name) == tomllib.load(fh)

@@ -10,7 +10,6 @@ Read on first use and cached, like instructions.toml.
 
 from __future__ import annotations
 
-import tomllib
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
@@ -87,8 +86,9 @@ def _instructions(raw: dict[str, Any]) -> dict[str, S8Instruction]:
 
 @lru_cache(maxsize=None)
 def load_s8() -> S8Catalogue:
-    with CATALOGUE_PATH.open("rb") as f:
-        raw = tomllib.load(f)
+    from .compiled import load_toml
+
+    raw = load_toml("s8.toml")
     statements = {k: S8Statement(k, v["syntax"], v["since"], v["source"]) for k, v in raw.get("statements", {}).items()}
     return S8Catalogue(_forms(raw.get("forms", {})), _instructions(raw.get("instructions", {})), statements)
 

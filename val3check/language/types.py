@@ -5,7 +5,6 @@ Importing this module is cheap: the TOML is read on first use and cached.
 
 from __future__ import annotations
 
-import tomllib
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
@@ -108,8 +107,9 @@ class RemovedOperator:
 
 @lru_cache(maxsize=None)
 def load_raw() -> dict[str, Any]:
-    with TYPES_PATH.open("rb") as f:
-        return tomllib.load(f)
+    from .compiled import load_toml
+
+    return load_toml("types.toml")
 
 
 @lru_cache(maxsize=None)
