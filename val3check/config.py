@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import fnmatch
 import os
-from dataclasses import dataclass, field
+from .records import dataclass, field
 
 from .diagnostics import Severity
 from .language.target import TargetError, TargetSpec, parse_target

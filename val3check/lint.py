@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import gc
 import os
-from dataclasses import dataclass
+from .records import dataclass
 
 from . import __version__, suppression
 from .config import Settings

@@ -6,7 +6,7 @@ and cached. The returned objects are frozen; do not mutate the returned dictiona
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from ..records import dataclass, field
 from functools import lru_cache
 from pathlib import Path
 from typing import Any, Iterable, Mapping, Sequence

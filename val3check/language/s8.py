@@ -10,7 +10,7 @@ Read on first use and cached, like instructions.toml.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from ..records import dataclass
 from functools import lru_cache
 from pathlib import Path
 from typing import Any

@@ -5,7 +5,7 @@ Importing this module is cheap: the TOML is read on first use and cached.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from ..records import dataclass
 from functools import lru_cache
 from pathlib import Path
 from typing import Any, Mapping

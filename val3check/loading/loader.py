@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import errno
 import os
-from dataclasses import dataclass, field
+from ..records import dataclass, field
 
 from ..diagnostics import Diagnostic
 from . import reader as rd

@@ -6,7 +6,7 @@ that a diagnostic about a declaration points at the line the user would edit.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from ..records import dataclass, field
 from enum import Enum
 from typing import Any
 

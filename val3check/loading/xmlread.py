@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import os
 import stat
-from dataclasses import dataclass, field
+from ..records import dataclass, field
 from xml.parsers import expat
 
 from defusedxml.common import (

@@ -15,7 +15,7 @@ a body returned by `parse_code`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from ..records import dataclass, field
 from typing import Union
 
 # ---------------------------------------------------------------- expressions

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Iterator, Mapping
-from dataclasses import dataclass, field
+from ..records import dataclass, field
 from functools import cache
 from pathlib import Path
 

@@ -16,7 +16,7 @@ Rules here:
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass, field
+from ..records import dataclass, field
 from functools import cache
 
 from ..diagnostics import Diagnostic
