@@ -102,3 +102,15 @@ def test_bad_target_is_a_clear_configuration_error(tmp_path, value, words):
     with pytest.raises(ConfigError) as exc:
         load_settings(str(cfg))
     assert words in str(exc.value) and str(cfg) in str(exc.value)
+
+
+@pytest.mark.parametrize("text,ours", [
+    ('[tool.val3check]\nignore = ["L001"]\n', True),
+    ('[tool . val3check . severity]\nL001 = "error"\n', True),
+    ('[tool]\nval3check = { ignore = ["L001"] }\n', True),
+    ('[project]\nname = "val3check"\n[project.scripts]\nval3check = "val3check.cli:main"\n', False),
+    ('[tool.ruff]\nline-length = 120\n', False),
+])
+def test_pyproject_is_parsed_only_when_it_may_hold_our_section(tmp_path, text, ours):
+    (tmp_path / "pyproject.toml").write_text(text)
+    assert (find_config(str(tmp_path)) == str(tmp_path / "pyproject.toml")) is ours

@@ -20,12 +20,16 @@ from __future__ import annotations
 
 import fnmatch
 import os
+import re
 from .records import dataclass, field
 
 from .diagnostics import Severity
 from .language.target import TargetError, TargetSpec, parse_target
 
 CONFIG_NAMES = ("val3check.toml", "pyproject.toml")
+# `[tool.val3check]`, `[tool.val3check.severity]`, `tool.val3check.x = `, or a `[tool]` table
+# (which may hold `val3check = {...}`): a pyproject.toml without any of them has no section of ours.
+_TOOL_SECTION = re.compile(rb"tool\s*\.\s*\"?val3check|^\s*\[\s*tool\s*\]", re.MULTILINE)
 FAIL_ON_CHOICES = ("error", "warning", "info", "never")
 
 
@@ -116,7 +120,7 @@ def _has_section(path: str, name: str) -> bool:
         return True
     try:
         with open(path, "rb") as fh:
-            if b"val3check" not in fh.read():
+            if not _TOOL_SECTION.search(fh.read()):
                 return False  # most pyproject.toml files are not ours: no need to parse them
     except OSError:
         return False

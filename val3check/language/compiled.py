@@ -9,10 +9,10 @@ else it reads the TOML file itself (while it is being edited): the TOML files st
 
 from __future__ import annotations
 
-import hashlib
 import os
-import pprint
 import sys
+
+from ..resources import sha256_hex
 
 FOLDER = os.path.dirname(os.path.abspath(__file__))
 NAMES = ("instructions.toml", "types.toml", "s8.toml")
@@ -30,7 +30,7 @@ def load_toml(name: str) -> dict:
     try:
         from . import _compiled
 
-        if _compiled.SHA256.get(name) == hashlib.sha256(raw).hexdigest():
+        if _compiled.SHA256.get(name) == sha256_hex(raw):
             return _compiled.DATA[name]
     except ImportError:
         pass
@@ -40,12 +40,13 @@ def load_toml(name: str) -> dict:
 
 
 def render() -> str:
+    import pprint  # imports dataclasses: only when regenerating
     import tomllib
 
     sha, data = {}, {}
     for name in NAMES:
         raw = _read(name)
-        sha[name] = hashlib.sha256(raw).hexdigest()
+        sha[name] = sha256_hex(raw)
         data[name] = tomllib.loads(raw.decode("utf-8"))
     return (
         '"""The language TOML files as Python data. GENERATED: do not edit; run\n'
@@ -61,7 +62,7 @@ def is_current() -> bool:
         from . import _compiled
     except ImportError:
         return False
-    return all(_compiled.SHA256.get(n) == hashlib.sha256(_read(n)).hexdigest() for n in NAMES)
+    return all(_compiled.SHA256.get(n) == sha256_hex(_read(n)) for n in NAMES)
 
 
 def main(argv: list[str] | None = None) -> int:

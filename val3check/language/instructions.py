@@ -8,10 +8,10 @@ from __future__ import annotations
 
 from ..records import dataclass, field
 from functools import lru_cache
-from pathlib import Path
+import os
 from typing import Any, Iterable, Mapping, Sequence
 
-CATALOGUE_PATH = Path(__file__).resolve().parent / "instructions.toml"
+CATALOGUE_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "instructions.toml")
 
 ANY_TYPE = "*"
 KINDS = frozenset({"function", "procedure", "library", "special"})

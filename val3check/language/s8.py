@@ -12,12 +12,12 @@ from __future__ import annotations
 
 from ..records import dataclass
 from functools import lru_cache
-from pathlib import Path
+import os
 from typing import Any
 
 from .instructions import CatalogueError, Instruction, Overload, _instruction, _param
 
-CATALOGUE_PATH = Path(__file__).resolve().parent / "s8.toml"
+CATALOGUE_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "s8.toml")
 
 
 @dataclass(frozen=True, slots=True)

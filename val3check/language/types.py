@@ -7,10 +7,10 @@ from __future__ import annotations
 
 from ..records import dataclass
 from functools import lru_cache
-from pathlib import Path
+import os
 from typing import Any, Mapping
 
-TYPES_PATH = Path(__file__).resolve().parent / "types.toml"
+TYPES_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "types.toml")
 
 TYPE_KINDS = frozenset({"simple", "structured", "enum", "pseudo"})
 UNARY_OPERATORS = frozenset({"!", "neg"})

@@ -22,7 +22,6 @@ reported too; errors that could be consequences of an earlier one are not report
 from __future__ import annotations
 
 import gc
-import hashlib
 import re
 import threading
 from operator import itemgetter
@@ -400,17 +399,21 @@ class _Builder:
 
 def grammar_text() -> str | None:
     """The grammar file's text (line ends normalised), or None when it cannot be read."""
-    from ..resources import resource_dir
+    import os
+
+    from ..resources import resource_path
 
     try:
-        with open(resource_dir("grammars") / "val3.lark", encoding="utf-8") as f:
+        with open(os.path.join(resource_path("grammars"), "val3.lark"), encoding="utf-8") as f:
             return f.read().replace("\r\n", "\n")
     except OSError:
         return None
 
 
 def grammar_hash(text: str) -> str:
-    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+    from ..resources import sha256_hex
+
+    return sha256_hex(text.encode("utf-8"))
 
 
 def build_from_grammar(text: str, transformer: Any = None):

@@ -12,10 +12,9 @@ import os
 from collections.abc import Iterator, Mapping
 from ..records import dataclass, field
 from functools import cache
-from pathlib import Path
 
 from ..diagnostics import Severity
-from ..resources import resource_dir
+from ..resources import resource_path
 
 # Code scheme: a family letter, then three digits (rules/README.md).
 FAMILIES: dict[str, str] = {
@@ -91,16 +90,17 @@ def _example(raw: dict, where: str) -> Example:
     )
 
 
-def load_rule(path: Path) -> Rule:
+def load_rule(path: str | os.PathLike) -> Rule:
     import tomllib
 
     try:
-        raw = tomllib.loads(path.read_text(encoding="utf-8"))
+        with open(path, encoding="utf-8") as fh:
+            raw = tomllib.loads(fh.read())
     except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
         raise CatalogueError(f"{path}: {exc}") from None
     try:
         code = raw["code"]
-        if path.stem != code:
+        if os.path.splitext(os.path.basename(path))[0] != code:
             raise CatalogueError(f"{path}: file name must be the rule code {code!r}")
         return Rule(
             code=code,
@@ -123,7 +123,7 @@ class Catalogue(Mapping):
     that a lint run reads only the rules it reports (reading all of them was a fifth of the
     start-up of `val3check lint`)."""
 
-    def __init__(self, folder: Path) -> None:
+    def __init__(self, folder: str) -> None:
         self._folder = folder
         names = sorted(n for n in os.listdir(folder) if n.endswith(".toml"))
         self._codes = [n[:-5] for n in names]
@@ -135,7 +135,7 @@ class Catalogue(Mapping):
         if rule is None:
             if code not in self._known:
                 raise KeyError(code)
-            rule = self._rules[code] = load_rule(self._folder / f"{code}.toml")
+            rule = self._rules[code] = load_rule(os.path.join(self._folder, f"{code}.toml"))
         return rule
 
     def __contains__(self, code: object) -> bool:
@@ -151,4 +151,4 @@ class Catalogue(Mapping):
 @cache
 def catalogue() -> Catalogue:
     """Every rule, by code, in code order (each read when first looked up)."""
-    return Catalogue(resource_dir("rules"))
+    return Catalogue(resource_path("rules"))
