@@ -35,6 +35,7 @@ def test_same_behaviour_as_dataclasses(opts):
     for cls in (std, mine):
         a, b = cls(1), cls(1, 2, [], "n")
         assert (a.x, a.y, a.tags, a.note, a.norm()) == (1, 2, [], "n", 3)
+        assert (b.x, b.y, b.tags, b.note) == (a.x, a.y, a.tags, a.note)
         assert cls(1).tags is not cls(1).tags  # a new list each time
         assert cls.__match_args__ == ("x", "y", "tags", "note")
         assert hasattr(cls(1), "__dict__") != bool(opts.get("slots"))
