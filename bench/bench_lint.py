@@ -2,14 +2,17 @@
 compared, in the same run, with pyflakes (the pure-Python peer) when it is installed.
 
 Goals: load + parse >= 20,000 VAL 3 lines per second (issue 2); the whole pipeline at least as
-fast as pyflakes checks Python (issue 11), on the 2-core CI machine.
+fast as pyflakes checks Python (issue 11: "about 52,000 Python lines per second"), on the 2-core
+CI machine.
 Run: python bench/bench_lint.py [--profile]   (writes only into a temporary folder)
 
 Times are CPU times of this process (time.process_time), the best and the median of several
 rounds: the CI machine is shared, and wall time measures the neighbours as much as the code.
 pyflakes checks two corpora, every line counted as `wc -l` counts them: val3check's own source
-(generated tables left out), and packages of the Python standard library (email, asyncio, json,
-logging: documented code, on which pyflakes is at its fastest); the goal is against the faster.
+(generated tables left out) and packages of the Python standard library (email, asyncio, json,
+logging). Its rate depends much on the corpus (documentation lines are nearly free): the goal is
+the issue's 52,000 lines/s and pyflakes on val3check's source in the same run; the standard
+library is shown for scale.
 """
 
 from __future__ import annotations
@@ -54,6 +57,8 @@ def _load_parse(folder: Path) -> None:
 def _whole(folder: Path) -> None:
     outcome = run([str(folder)], Settings())
     assert not outcome.result.diagnostics, outcome.result.diagnostics[:3]
+    # run() pauses the cyclic GC: the collection it defers is part of the cost
+    gc.collect(0)
 
 
 def pyflakes_rate(files: list[Path]) -> tuple[float, int] | None:
@@ -100,16 +105,18 @@ def main() -> None:
                                                       for p in sorted((stdlib / pkg).rglob("*.py"))],
         }
         mine = lines / min(whole)
-        rates = []
+        rates = {}
         for label, files in corpora.items():
             peer = pyflakes_rate(files)
             if peer is None:
                 print("pyflakes: not installed (pip install pyflakes) - no comparison")
                 break
-            rates.append(peer[0])
+            rates[label] = peer[0]
             print(f"pyflakes on {label} ({peer[1]:,} Python lines): {peer[0]:,.0f} lines/s (best)")
-        if rates:
-            print(f"whole lint: {mine:,.0f} lines/s (best) = {mine / max(rates):.2f} x pyflakes' faster rate (goal >= 1)")
+        print(f"whole lint: {mine:,.0f} lines/s (best); goal >= 52,000 (the issue's pyflakes figure): "
+              f"{'met' if mine >= 52_000 else 'NOT met'}")
+        for label, rate in rates.items():
+            print(f"  whole lint / pyflakes on {label} = {mine / rate:.2f}")
         if "--profile" in sys.argv:
             import cProfile
             import pstats
