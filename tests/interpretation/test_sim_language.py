@@ -254,7 +254,7 @@ end
 
 def test_s8_print_statement_writes_a_user_page_line(tmp_path):
     # `? expr` (s8): the emulator prints the value; the simulator writes it as putln does
-    r = sim(tmp_path, 'begin\n  nX = 2\n  ? nX * 3\n  ? "done " + toString("", nX)\n  ? nX > 1\nend',
+    r = sim(tmp_path, 'begin\n  nX = 2\n  ? nX * 3\n  ? "done " + toString("", nX)\n  ? nX > 1\n  ? "n=", nX\nend',
             globals_=["num nX"])
     assert errors(r) == []
-    assert out(r) == ["6", "done 2", "true"]
+    assert out(r) == ["6", "done 2", "true", "n=2"]

@@ -1052,8 +1052,9 @@ class ProgramCompiler:
                 self.guarded([self.task_create(s)], True)
             elif ts is A.Print:  # s8 `? expr`: the emulator prints the value; here, a user page line
                 self.line()
-                code, t = self.expr(s.value)
-                self.guarded([f"PAGE(T, 'putln', {self.coerce(code, t, '?')})"], True)
+                parts = [self.coerce(*self.expr(v), "?") for v in s.values]
+                calls = [f"PAGE(T, {'putln' if k == len(parts) - 1 else 'put'!r}, {p})" for k, p in enumerate(parts)]
+                self.guarded(["; ".join(calls)], True)
             elif ts is A.Return:
                 self.line()
                 self.emit("return")

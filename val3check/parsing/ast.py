@@ -248,10 +248,10 @@ class TaskCreateSync:
 
 @dataclass(slots=True)
 class Print:
-    """`? expr`: the s8 print statement (not in the s7 manual), shows the value. Position of
-    the `?`."""
+    """`? expr` (or `? a, b`): the s8 print statement (not in the s7 manual), shows the values.
+    Position of the `?`."""
 
-    value: Expr
+    values: list[Expr]
     line: int
     col: int
 
@@ -434,7 +434,7 @@ _CHILDREN: dict[type, tuple[str, ...]] = {
     Call: ("target", "args"),
     TaskCreate: ("task", "priority", "target", "args"),
     TaskCreateSync: ("task", "period", "overrun", "target", "args"),
-    Print: ("value",),
+    Print: ("values",),
     Return: (), Break: (), ErrorStatement: (),
     Branch: ("cond", "body"),
     If: ("branches", "orelse"),
@@ -492,7 +492,7 @@ def _pusher(cls: type, fields: tuple[str, ...]):
 # every other field holds one node.
 _FIELD_KINDS = {
     (Index, "indices"): "list", (CallExpr, "args"): "list", (Struct, "fields"): "holes",
-    (Call, "args"): "list", (TaskCreate, "args"): "list", (TaskCreateSync, "args"): "list",
+    (Call, "args"): "list", (TaskCreate, "args"): "list", (TaskCreateSync, "args"): "list", (Print, "values"): "list",
     (Branch, "body"): "list", (If, "branches"): "list", (If, "orelse"): "optional", (While, "body"): "list",
     (DoUntil, "body"): "list", (For, "step"): "optional", (For, "body"): "list", (Case, "values"): "list",
     (Case, "body"): "list", (Default, "body"): "list", (Switch, "cases"): "list", (Switch, "default"): "optional",

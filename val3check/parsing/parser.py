@@ -309,8 +309,8 @@ class _Builder:
                                 *self.tpos(t))
 
     def print_stmt(self, c):
-        t, value = c
-        return A.Print(value, *self.tpos(t))
+        t, values = c
+        return A.Print(values, *self.tpos(t))
 
     def return_stmt(self, c):
         t = c[0]

@@ -54,7 +54,8 @@ class StatementChecker(ExprTyper):
         self.call(st.call, True)
 
     def _print(self, st: A.Print) -> None:
-        self.typeof(st.value)  # any value, containers included: what the emulator prints is not documented
+        for v in st.values:
+            self.typeof(v)  # any value, containers included: what the emulator prints is not documented
         self.ctx.s8_only("the print statement '? expr'", st)
 
     def _condition(self, cond: object, keyword: str) -> None:
