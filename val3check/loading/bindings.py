@@ -18,15 +18,19 @@ import re
 
 SUFFIX = ".bindings.json"
 _DEPTH = 3
+_MAX_FOLDERS = 200  # an application folder that holds a whole repository is not searched further
+_SKIP = frozenset({"node_modules", "__pycache__", "site-packages", "venv", "virtualenv", "bower_components"})
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 
 def _files(folder: str) -> list[str]:
     out = []
     top = os.path.realpath(folder)
-    for here, dirs, names in os.walk(folder):
+    for seen, (here, dirs, names) in enumerate(os.walk(folder)):
+        if seen >= _MAX_FOLDERS:
+            break
         depth = os.path.relpath(here, folder).count(os.sep) + (here != folder)
-        dirs[:] = sorted(d for d in dirs if not d.startswith(".")) if depth < _DEPTH else []
+        dirs[:] = sorted(d for d in dirs if not d.startswith(".") and d not in _SKIP) if depth < _DEPTH else []
         for name in sorted(names):
             if name.lower().endswith(SUFFIX):
                 path = os.path.join(here, name)
