@@ -592,9 +592,10 @@ class _Engine:
                         state = unit_memo[key] = self._unit_chain(key)
                     state_stack[-1] = state
                     continue
-                if size == 1:  # the most common reduction (leaves): replace the top in place
+                if size == 1:  # the most common reduction (leaves): replace the tops in place
                     value_stack[-1] = callback([value_stack[-1]])
-                    state_stack.pop()
+                    state = state_stack[-1] = actions[state_stack[-2]][origin]
+                    continue  # (a one-symbol rule never completes the start rule)
                 else:
                     if size:
                         children = value_stack[-size:]
