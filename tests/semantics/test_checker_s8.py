@@ -80,3 +80,11 @@ def test_code_saved_as_s7_that_uses_s8_forms_is_cs9_code(tmp_path):
     assert [f[0] for f in findings(tmp_path / "b", plain)] == ["T005", "N003"]
     # and with an s7 target named in the configuration they stay errors
     assert [c for c, _ in _codes(tmp_path / "c", code, "CS8")] == ["T005", "N003", "T031"]
+
+
+def test_web_user_pages_are_s8_evidence(tmp_path):
+    # *.bindings.json files are s8 web user pages: the application is CS9 code
+    folder = write_app(tmp_path, 'begin\n  popUpMsg("x", 2)\nend')
+    (folder / "main.bindings.json").write_text('{"callbacks": [{"id": "b", "event": "click", "data": "start"}]}')
+    run = lint([folder], cwd=tmp_path)
+    assert [d.code for d in run.result.diagnostics if d.code[0] == "T"] == ["T024"]

@@ -53,9 +53,10 @@ class Context:
         self.scope: Scope | None = None
         self.program: Program | None = None
         self.path = ""
-        # The code uses s8 forms although the project file says s7 (T030): it is CS9 code, and
-        # the findings that only hold on s7 (`_s7_only`) are turned into their s8 warning.
-        self.s8_evidence = False
+        # The code uses s8 forms although the project file says s7 (T030), or the application
+        # has s8 web user pages (*.bindings.json): it is CS9 code, and the findings that only
+        # hold on s7 (`_s7_only`) are turned into their s8 warning.
+        self.s8_evidence = bool(app.ui_names)
         self._s7_only: list[tuple[int, str, str]] = []
 
     def names_complete(self, kind: str, app: Application | None = None) -> bool:
