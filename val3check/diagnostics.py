@@ -5,7 +5,7 @@ has the simulated time, the task and the program (manual 12.1 code in `error` fo
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from .records import dataclass
 from enum import IntEnum
 
 

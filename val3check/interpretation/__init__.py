@@ -14,7 +14,7 @@ Where things are:
   holds the helpers the generated code calls;
 - `machine.py` puts a run together: units (`units.py`, `libraries.py`, `system_io.py`), values
   and memory (`values.py`, `memory.py`), the user page (`user_page.py`), the controller's state
-  (`controller.py`), what the run records (`records.py`);
+  (`controller.py`), what the run records (`recorder.py`);
 - the pure instructions (math, strings, bit fields) are in `builtins/`.
 
 `val3check.simulation` assembles and runs a machine. Nothing here is imported by

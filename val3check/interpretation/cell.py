@@ -17,7 +17,7 @@ from typing import Any, Callable
 from ..geometry.frames import new_flange, new_world
 from ..language.runtime_errors import Val3RuntimeError
 from .events import ControllerChange, Event, InputsChange, KeyPress, PowerChange, SerialData, Timeline
-from .records import sio_text
+from .recorder import sio_text
 from .values import IOPoint
 
 

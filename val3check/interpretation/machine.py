@@ -5,7 +5,7 @@ A `Machine` holds the loaded units (the application and its libraries, units.py)
 for the next moment anything changes (the cell and its scenario, cell.py; the arm's motion,
 `val3check.motion`), the user page (user_page.py), the controller's state (controller.py),
 the arm port (arm_port.py) and what the run records: diagnostics, the user page transcript
-and the I/O log (records.py).
+and the I/O log (recorder.py).
 
 `val3check.simulation` assembles a machine (registry of instructions, arm, subsystems) and
 runs it: `start()` runs in task "APP~"; the application ends when its last task ends, then
@@ -30,7 +30,7 @@ from .controller import Controller
 from .libraries import autoload_libraries
 from .memory import TypeSpace
 from .not_simulated import ARM_LIMIT, SimLimit, arm_message
-from .records import IOEvent, Recorder, TranscriptEntry
+from .recorder import IOEvent, Recorder, TranscriptEntry
 from .registry import Registry
 from .scheduler import ERROR, HELD, START_PRIORITY, SUSPENDED, WAIT, EndRun, Scheduler, Task
 from .system_io import SystemIO
@@ -71,7 +71,7 @@ class Machine:
         self.cell = Cell()
         self.controller = Controller()
         self.user_page = UserPage()
-        self.records = Recorder(self.budgets.max_transcript, self.budgets.max_io_log, self._record_full)
+        self.recorder = Recorder(self.budgets.max_transcript, self.budgets.max_io_log, self._record_full)
         self.cell_subsystem = CellSubsystem(self.controller, self.log_io)
         self.scheduler.add_subsystem(self.cell_subsystem)
         self.diags: list[Diagnostic] = []
@@ -142,15 +142,15 @@ class Machine:
     # ---- what the run records -----------------------------------------------------------------
 
     def transcript_add(self, task: Task | None, kind: str, text: str, scr: Screen | None) -> None:
-        if not self.records.transcript_room(task):
+        if not self.recorder.transcript_room(task):
             return
         screen = None if scr is None or scr is self.user_page.default else scr.name
-        self.records.transcript.append(TranscriptEntry(self.clock.time_of(task), task.name if task else "", kind, text,
+        self.recorder.transcript.append(TranscriptEntry(self.clock.time_of(task), task.name if task else "", kind, text,
                                                        screen))
 
     def log_io(self, at: int, io: IOPoint, value: Any, source: str) -> None:
-        if self.records.io_room(self.clock.current):
-            self.records.io_log.append(IOEvent(at, io.kind, io.link, value, source))
+        if self.recorder.io_room(self.clock.current):
+            self.recorder.io_log.append(IOEvent(at, io.kind, io.link, value, source))
 
     def _record_full(self, message: str, task: Task | None) -> None:
         """A record budget is reached: said once (R006), the run goes on without recording."""

@@ -6,7 +6,7 @@ simulated time."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from typing import Any
 
 from ..diagnostics import Diagnostic, Severity
@@ -46,6 +46,7 @@ def build_report(result: SimResult, settings, rules: dict, tool_version: str) ->
             continue
         rule = rules.get(d.code)
         sev = (settings.severity.get(d.code) if settings is not None else None) or (rule.severity if rule else Severity.ERROR)
-        kept.append(replace(d, path=display_path(d.path), severity=sev))
+        kept.append(Diagnostic(d.code, d.message, display_path(d.path), d.line, d.col, d.end_line, d.end_col, sev,
+                               d.time_us, d.task, d.program, d.error))
     kept.sort(key=_sort_key)
     return SimReport(result, display_path(result.app_path), tool_version, kept, rules, link_names=result.link_names)

@@ -181,7 +181,7 @@ class RobotModel:
 
     def pinocchio(self):
         """(pinocchio.Model, pinocchio.Data) of the URDF (imports pinocchio on first use)."""
-        return _pinocchio_model(self.source)
+        return pinocchio_model(self.source)
 
     def collision_model(self):
         """pinocchio.GeometryModel of the collision solids of the URDF."""
@@ -195,7 +195,7 @@ class RobotModel:
         import pinocchio as pin
 
         model, data = self.pinocchio()
-        ids = _pin_ids(self.source, self.joint_names, self.world_frame, self.flange_frame)
+        ids = pinocchio_ids(self.source, self.joint_names, self.world_frame, self.flange_frame)
         q = pin.neutral(model)
         for (idx, nq), v, kind in zip(ids[0], self._internal(joints), self.joint_kinds):
             if kind == "prismatic":
@@ -597,7 +597,7 @@ def load_robot(spec: str | os.PathLike | None, app_path: str | os.PathLike | Non
 
 
 @functools.lru_cache(maxsize=None)
-def _pinocchio_model(path: str):
+def pinocchio_model(path: str):
     import pinocchio as pin
 
     model = pin.buildModelFromUrdf(path)
@@ -605,8 +605,8 @@ def _pinocchio_model(path: str):
 
 
 @functools.lru_cache(maxsize=None)
-def _pin_ids(path: str, joint_names: tuple[str, ...], world: str, flange: str):
-    model, data = _pinocchio_model(path)
+def pinocchio_ids(path: str, joint_names: tuple[str, ...], world: str, flange: str):
+    model, data = pinocchio_model(path)
     import pinocchio as pin
 
     qidx = []

@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 
 from ..diagnostics import Diagnostic
 from ..interpretation.machine import Machine
-from ..interpretation.records import IOEvent, TranscriptEntry
+from ..interpretation.recorder import IOEvent, TranscriptEntry
 
 END_REASONS = {
     "ended": "the application ended (its last task ended, then stop() ran)",
@@ -103,6 +103,6 @@ def collect(machine: Machine) -> SimResult:
     arm = machine.arm
     robot = {"name": arm.name, "initial_joints": list(arm.initial_joints)} if arm.has_model else None
     return SimResult(machine.app.name, machine.app.path, reason, message, machine.end_time,
-                     machine.scheduler.total_lines, tasks, diags, machine.records.transcript, machine.records.io_log,
+                     machine.scheduler.total_lines, tasks, diags, machine.recorder.transcript, machine.recorder.io_log,
                      screen, list(machine.destroyed), {k: sorted(v) for k, v in machine.link_names.items()},
                      robot=robot, globals=dict(machine.main.globals) if machine.main is not None else {})

@@ -153,6 +153,11 @@ class StatementCompiler:
             elif ts is ast.TaskCreate or ts is ast.TaskCreateSync:
                 self.line()
                 self.guarded([self.task_create(s)], True)
+            elif ts is ast.Print:  # s8 `? expr`: the emulator prints the value; here, a user page line
+                self.line()
+                parts = [self.coerce(*self.expr(v), "?") for v in s.values]
+                calls = [f"PAGE(T, {'putln' if k == len(parts) - 1 else 'put'!r}, {p})" for k, p in enumerate(parts)]
+                self.guarded(["; ".join(calls)], True)
             elif ts is ast.Return:
                 self.line()
                 self.emit("return")
