@@ -286,10 +286,8 @@ class Scheduler:
             progress = False
             order = list(tasks)
             seen = self._seq
-            i = 0
-            while i < len(order):
-                task = order[i]
-                i += 1
+            # (a list iterator sees the items appended while it runs: the tasks created below)
+            for task in order:
                 if task.period or task not in tasks:
                     continue
                 st = task.state
