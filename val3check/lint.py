@@ -82,6 +82,7 @@ def run(paths: list[str], settings: Settings) -> LintRun:
         applications=sorted(display_path(app.path) for app in targets),
         rules=rules,
         tool_version=__version__,
+        quotable=frozenset(display_path(f) for f in workspace.quotable),
     )
     missing_arg = any(not os.path.exists(p) for p in paths)
     return LintRun(result=result, workspace=workspace, unreadable=missing_arg or not targets)

@@ -6,6 +6,7 @@ import errno
 import os
 from dataclasses import dataclass, field
 
+from ..confine import Refused, Roots, check, repository_root
 from ..diagnostics import Diagnostic
 from . import reader as rd
 from . import resolve as rs
@@ -18,12 +19,16 @@ SKIP_DIRS = frozenset({"node_modules", "__pycache__", "site-packages", "venv", "
 _EXT_PROJECT = ".pjx"
 _EXT_PROGRAM = ".pgx"
 _EXT_DATA = ".dtx"
+_VAL3_EXTS = (_EXT_PROJECT, _EXT_PROGRAM, _EXT_DATA)
 
 
 @dataclass
 class LoadOptions:
     disk_roots: list[str] = field(default_factory=list)  # --disk-root DIR / config entry, searched after the defaults
     max_file_size: int = 16 * 1024 * 1024  # bytes; larger files get a diagnostic and are skipped
+    # more folders that paths written in files may lead into (the run's roots, when a library
+    # is loaded again by the simulator)
+    extra_roots: list[str] = field(default_factory=list)
 
 
 def _key(path: str) -> str:
@@ -70,19 +75,45 @@ class Loader:
         self.failed: set[str] = set()  # project files that could not be loaded
         self.lines_read = 0
         self.bytes_read = 0
+        # Where paths written in files may lead (val3check.confine): grows with each target.
+        self.roots = Roots([*options.disk_roots, *options.extra_roots])
+        self.ws.roots = self.roots
+        self.repos: list[str] = []  # repository roots of the targets (git top level, else the target)
 
     # -- reading ------------------------------------------------------------------------------
 
     def _read(self, path: str) -> Node | None:
-        res = read_xml(path, self.options.max_file_size)
+        res = read_xml(path, self.options.max_file_size, self.roots)
         self.diags.extend(res.diagnostics)
         self.lines_read += res.lines
         self.bytes_read += res.size
+        if res.size and (_ext(path) in _VAL3_EXTS or (res.root is not None and rd.classify(res.root) is not None)):
+            # only files read as VAL 3 are ever quoted in a report (source excerpts)
+            self.ws.quotable.add(os.path.abspath(path))
         return res.root
+
+    def _allow_target(self, path: str) -> None:
+        """A path the user named: its folder and its repository become roots."""
+        folder = path if os.path.isdir(path) else os.path.dirname(path)
+        for f in (folder, os.path.dirname(os.path.realpath(path)) if not os.path.isdir(path) else None):
+            if f is None:
+                continue
+            self.roots.add(f)
+            repo = repository_root(f)
+            self.roots.add(repo)
+            if repo not in self.repos:
+                self.repos.append(repo)
 
     def _add_target(self, key: str) -> None:
         if key not in self.ws.targets:
             self.ws.targets.append(key)
+        app = self.ws.apps.get(key)
+        if app is not None and app.layout != "pgx-only":
+            # its Disk:// folder (the controller's usr/usrapp) and its controller tree
+            self.roots.add(os.path.dirname(app.folder))
+            ctrl = rs.controller_usrapp(app.folder)
+            if ctrl is not None:
+                self.roots.add(ctrl)
 
     # -- projects -----------------------------------------------------------------------------
 
@@ -167,7 +198,12 @@ class Loader:
         if path is not None and os.path.isdir(path):
             sink.add("F001", node, f"{kind} file '{rel}' listed here is a folder, not a file")
         elif path is not None and os.path.lexists(path):
-            sink.add("F001", node, f"{kind} file '{rel}' listed here cannot be read (broken or looping symbolic link?)")
+            try:
+                check(path, Roots.user_given())
+                why = "cannot be read"
+            except Refused as exc:
+                why = exc.reason
+            sink.add("F001", node, f"{kind} file '{rel}' listed here: {why}")
         else:
             sink.add("F001", node, f"{kind} file '{rel}' listed here was not found")
         return None
@@ -245,7 +281,7 @@ class Loader:
 
     def _project_listing(self, pjx: str, target: str) -> bool:
         """Does this project list `target` among its programs or data? (no diagnostics)"""
-        res = read_xml(pjx, self.options.max_file_size)
+        res = read_xml(pjx, self.options.max_file_size, self.roots)
         if res.root is None or rd.classify(res.root) is None or rd.classify(res.root)[0] != "project":
             return False
         pf = rd.read_project(res.root, rd.Sink(pjx))
@@ -260,7 +296,11 @@ class Loader:
     # -- discovery ----------------------------------------------------------------------------
 
     def add_path(self, raw: str) -> None:
+        if not raw:
+            self.diags.append(Diagnostic("F001", "an empty path was given: name a file or folder", "."))
+            return
         path = os.path.abspath(raw)
+        self._allow_target(path)
         if not os.path.lexists(path):
             self.diags.append(Diagnostic("F001", "file or folder not found", path))
             return
@@ -290,7 +330,7 @@ class Loader:
             self._add_member_file(path, ext)
             return
         # Any other name: look at the content.
-        res = read_xml(path, self.options.max_file_size)
+        res = read_xml(path, self.options.max_file_size, self.roots)
         if res.root is None:
             self.diags.extend(res.diagnostics)
             return
@@ -369,20 +409,28 @@ class Loader:
             projects, programs, subdirs = [], [], []
             for n in names:
                 p = os.path.join(folder, n)
+                e = _ext(n)
                 if os.path.isdir(p):
                     if n.startswith(".") or n in SKIP_DIRS or os.path.isfile(os.path.join(p, "pyvenv.cfg")):
                         continue
+                    if not self.roots.allows(p):
+                        self._outside(p, "folder")
+                        continue
                     subdirs.append(p)
-                elif os.path.isfile(p):
-                    e = _ext(n)
-                    if e == _EXT_PROJECT:
-                        projects.append(p)
-                    elif e == _EXT_PROGRAM:
-                        programs.append(p)
+                elif e in (_EXT_PROJECT, _EXT_PROGRAM):
+                    # a FIFO or device, or a link that leads out: reading it reports it (F001, F014)
+                    if os.path.exists(p):
+                        (projects if e == _EXT_PROJECT else programs).append(p)
             if projects or programs:
                 out.append(_Folder(folder, projects, programs))
             stack.extend(reversed(subdirs))  # pre-order, sorted
         return out
+
+    def _outside(self, path: str, what: str) -> None:
+        self.diags.append(Diagnostic(
+            "F014", f"symbolic link to a {what} outside the folders being checked and the configured roots: not followed",
+            path,
+        ))
 
     def _add_folder(self, top: str) -> None:
         folders = self._walk(top)
@@ -458,14 +506,28 @@ class Loader:
         self._cycles("type")
 
     def _resolve(self, app: Application, ref: LibraryRef | TypeRef, kind: str) -> Application | None:
-        resolved = rs.resolve_library(ref.path, app.path, self.options.disk_roots)
+        found = rs.locate_library(ref.path, app.path, self.options.disk_roots, self.roots)
+        resolved = found.path
         if resolved is None:
-            self.diags.append(self._not_found(ref, kind))
+            self.diags.append(self._outside_ref(ref) if found.outside else self._not_found(ref, kind))
             return None
         ref.resolved = resolved
         if resolved in self.ws.apps:
             return None
         return self.load_project(resolved)
+
+    def _outside_ref(self, ref: LibraryRef | TypeRef) -> Diagnostic:
+        o = ref.origin
+        if isinstance(ref, LibraryRef):
+            what, tail = f"library {ref.alias}", f"uses of {ref.alias}: symbols are not checked"
+        else:
+            what, tail = f"user type {ref.name}", "its fields are not checked"
+        return Diagnostic(
+            "F014",
+            f"{what}: the path '{ref.path}' leads outside the application and the configured roots (its"
+            f" repository, --disk-root, disk-roots): not read; {tail}",
+            o.path, o.line, o.col,
+        )
 
     def _not_found(self, ref: LibraryRef | TypeRef, kind: str) -> Diagnostic:
         o = ref.origin

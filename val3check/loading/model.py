@@ -168,6 +168,11 @@ class Workspace:
 
     targets: list[str] = field(default_factory=list)  # keys into `apps`, in discovery order
     apps: dict[str, Application] = field(default_factory=dict)
+    # where paths written in files may lead (val3check.confine.Roots), set by the loader; the
+    # simulator's libLoad resolves paths within the same roots
+    roots: Any = None
+    # files read as VAL 3 (absolute paths): the only files a report may quote
+    quotable: set[str] = field(default_factory=set)
 
     def library(self, app: Application, alias: str) -> Application | None:
         ref = app.libraries.get(alias)

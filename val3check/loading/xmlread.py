@@ -14,8 +14,6 @@ CDATA or from escaped text (`&gt;` is one character of code but four columns of 
 
 from __future__ import annotations
 
-import os
-import stat
 from dataclasses import dataclass, field
 from xml.parsers import expat
 
@@ -25,6 +23,8 @@ from defusedxml.common import (
     ExternalReferenceForbidden,
 )
 
+from .. import confine
+from ..confine import Roots
 from ..diagnostics import Diagnostic
 from ..positions import Position, SourceMap
 
@@ -235,50 +235,13 @@ def _line_col_of_offset(prefix: str) -> tuple[int, int]:
     return line, len(prefix) - last  # last == -1 -> len + 1
 
 
-def read_bytes(path: str, max_size: int) -> tuple[bytes | None, list[Diagnostic]]:
-    """The file's bytes, or None with F001 (cannot read) / F002 (too large)."""
+def read_bytes(path: str, max_size: int, roots: Roots) -> tuple[bytes | None, list[Diagnostic]]:
+    """The file's bytes, or None with F001 (cannot read), F002 (too large) or F014 (outside the
+    allowed roots): `val3check.confine.read_bytes` decides."""
     try:
-        st = os.stat(path)
-    except FileNotFoundError:
-        return None, [Diagnostic("F001", "file not found", path)]
-    except OSError as exc:
-        return None, [Diagnostic("F001", f"cannot read the file: {_os_reason(exc)}", path)]
-    if stat.S_ISDIR(st.st_mode):
-        return None, [Diagnostic("F001", "expected a file but this is a folder", path)]
-    if not stat.S_ISREG(st.st_mode):
-        return None, [Diagnostic("F001", "not a regular file (device, pipe or socket): not read", path)]
-    if st.st_size > max_size:
-        return None, [
-            Diagnostic(
-                "F002",
-                f"file too large ({_human(st.st_size)}, limit {_human(max_size)}): not read",
-                path,
-            )
-        ]
-    try:
-        with open(path, "rb") as fh:
-            data = fh.read(max_size + 1)
-    except OSError as exc:
-        return None, [Diagnostic("F001", f"cannot read the file: {_os_reason(exc)}", path)]
-    if len(data) > max_size:  # grew while reading
-        return None, [Diagnostic("F002", f"file too large (more than {_human(max_size)}): not read", path)]
-    return data, []
-
-
-def _human(n: int) -> str:
-    if n >= 1024 * 1024:
-        return f"{n / (1024 * 1024):.1f} MB"
-    if n >= 1024:
-        return f"{n / 1024:.1f} KB"
-    return f"{n} bytes"
-
-
-def _os_reason(exc: OSError) -> str:
-    if isinstance(exc, PermissionError):
-        return "permission denied"
-    if exc.strerror:
-        return exc.strerror.lower()
-    return type(exc).__name__
+        return confine.read_bytes(path, roots, max_size), []
+    except confine.Refused as exc:
+        return None, [Diagnostic(exc.code, exc.reason, path)]
 
 
 def decode(data: bytes, path: str) -> tuple[bytes | None, list[Diagnostic]]:
@@ -519,9 +482,9 @@ def _expat_diagnostic(exc: expat.ExpatError, parser, data: bytes, path: str, sta
     return Diagnostic("F004", f"malformed XML: {msg}", path, line, col)
 
 
-def read_xml(path: str, max_size: int) -> XmlResult:
-    """Read, decode and parse one file: F001/F002/F003/F004/F005 diagnostics, never raises."""
-    data, diags = read_bytes(path, max_size)
+def read_xml(path: str, max_size: int, roots: Roots) -> XmlResult:
+    """Read, decode and parse one file: F001/F002/F003/F004/F005/F014 diagnostics, never raises."""
+    data, diags = read_bytes(path, max_size, roots)
     if data is None:
         return XmlResult(None, diags)
     size = len(data)

@@ -103,7 +103,7 @@ def _fingerprint(diag: Diagnostic, sources: SourceCache) -> str:
 def report(result: "LintResult") -> dict[str, Any]:
     codes = sorted({d.code for d in result.diagnostics})
     index = {code: i for i, code in enumerate(codes)}
-    sources = SourceCache()
+    sources = SourceCache(result.quotable)
     seen: dict[str, int] = {}
     results = []
     for diag in result.diagnostics:

@@ -160,7 +160,7 @@ def render(result: "LintResult", *, color: bool = False, statistics: bool = Fals
             out.extend(_statistics(result, style))
             out.append("")
     else:
-        sources = SourceCache()
+        sources = SourceCache(result.quotable)
         for diag in result.diagnostics:
             severity = severity_of(diag, result)
             out.append(_header(diag, severity, style))
