@@ -12,11 +12,11 @@ from pathlib import Path
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "loading"))
-from loadhelp import make_app, pgx, pjx, write  # noqa: E402
+from loadhelp import make_app, pgx, pjx, write
 
-from val3check.confine import Refused, Roots, check, read_bytes, repository_root  # noqa: E402
-from val3check.loading import LoadOptions, load  # noqa: E402
-from val3check.loading.resolve import resolve_library  # noqa: E402
+from val3check.confine import Refused, Roots, check, read_bytes, repository_root
+from val3check.loading import LoadOptions, load
+from val3check.loading.resolve import resolve_library
 
 ROOT = Path(__file__).resolve().parent.parent.parent
 SECRET = "TOPSECRET-do-not-print"

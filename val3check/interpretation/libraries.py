@@ -78,7 +78,13 @@ def _real_path(M, A, path: str) -> str | None:
     text = path.strip()
     if text.lower().startswith("disk://"):
         text = "Disk://" + text[7:]
-    return resolve_library(text, A.model.path, M.disk_roots, _roots(M))
+    found = resolve_library(text, A.model.path, M.disk_roots, _roots(M))
+    if found is None:
+        # a library the loader found by name in the repository (issue 11 item 5)
+        for ref in (*A.model.libraries.values(), *A.model.types.values()):
+            if ref.resolved and ref.path.strip().replace("\\", "/").lower() == text.replace("\\", "/").lower():
+                return ref.resolved
+    return found
 
 
 def _model_for(M, resolved: str):

@@ -55,6 +55,11 @@ def _inside(path: str, folder: str) -> bool:
     return os.path.commonpath([real, top]) == top
 
 
+def _is_io(ref) -> bool:  # noqa: ANN001
+    """The controller's own I/O library (L003): never looked for by name."""
+    return isinstance(ref, LibraryRef) and (ref.alias.lower() == "io" or rs.library_name(ref.path).lower() == "io")
+
+
 def _ext(path: str) -> str:
     return os.path.splitext(path)[1].lower()
 
@@ -79,6 +84,7 @@ class Loader:
         self.roots = Roots([*options.disk_roots, *options.extra_roots])
         self.ws.roots = self.roots
         self.repos: list[str] = []  # repository roots of the targets (git top level, else the target)
+        self.index = rs.RepositoryIndex(SKIP_DIRS)
 
     # -- reading ------------------------------------------------------------------------------
 
@@ -508,13 +514,48 @@ class Loader:
     def _resolve(self, app: Application, ref: LibraryRef | TypeRef, kind: str) -> Application | None:
         found = rs.locate_library(ref.path, app.path, self.options.disk_roots, self.roots)
         resolved = found.path
+        candidates: list[str] = []
+        if resolved is None and not _is_io(ref):
+            candidates = self._in_repository(app, ref)
+            if len(candidates) == 1:
+                resolved = candidates[0]
+                o = ref.origin
+                what = f"library {ref.alias}" if isinstance(ref, LibraryRef) else f"user type {ref.name}"
+                self.diags.append(Diagnostic(
+                    "F016",
+                    f"{what}: '{ref.path}' is not at its Disk:// place; using the application found by name in"
+                    f" the repository: {self._shown(resolved)}",
+                    o.path, o.line, o.col,
+                ))
         if resolved is None:
-            self.diags.append(self._outside_ref(ref) if found.outside else self._not_found(ref, kind))
+            if found.outside and len(candidates) < 2:
+                self.diags.append(self._outside_ref(ref))
+            else:
+                self.diags.append(self._not_found(ref, kind, candidates))
             return None
         ref.resolved = resolved
         if resolved in self.ws.apps:
             return None
         return self.load_project(resolved)
+
+    def _in_repository(self, app: Application, ref: LibraryRef | TypeRef) -> list[str]:
+        """Applications named like the library in the repositories that hold the declaring
+        project (issue 11 item 5), other than that project."""
+        name = rs.library_name(ref.path)
+        out: list[str] = []
+        for repo in self.repos:
+            if not self.roots.holds(os.path.realpath(app.path)) or not _inside(app.path, repo):
+                continue
+            for cand in self.index.find(repo, name):
+                if _key(cand) != _key(app.path) and self.roots.allows(cand) and cand not in out:
+                    out.append(cand)
+        return out
+
+    @staticmethod
+    def _shown(path: str) -> str:
+        """As reports show paths: relative to the current folder when inside it."""
+        rel = os.path.relpath(path)
+        return (path if rel == ".." or rel.startswith(".." + os.sep) else rel).replace(os.sep, "/")
 
     def _outside_ref(self, ref: LibraryRef | TypeRef) -> Diagnostic:
         o = ref.origin
@@ -529,15 +570,18 @@ class Loader:
             o.path, o.line, o.col,
         )
 
-    def _not_found(self, ref: LibraryRef | TypeRef, kind: str) -> Diagnostic:
+    def _not_found(self, ref: LibraryRef | TypeRef, kind: str, candidates: list[str] = ()) -> Diagnostic:
         o = ref.origin
-        tail = ref.path.replace("\\", "/").rstrip("/").rsplit("/", 1)[-1]
-        stem = tail[:-4] if tail.lower().endswith(".pjx") else tail
+        stem = rs.library_name(ref.path)
         where = (
             "relative to the project folder"
             if ref.path.startswith(("./", "../", ".\\", "..\\"))
             else "in the folder that contains the application folder, in each --disk-root and in the controller's usr/usrapp"
         )
+        if candidates:
+            where += (f"; {len(candidates)} applications named {stem} in the repository: "
+                      + ", ".join(self._shown(c) for c in candidates[:10])
+                      + (", ..." if len(candidates) > 10 else "") + " (name the right folder with --disk-root)")
         if isinstance(ref, LibraryRef):
             if ref.alias.lower() == "io" or stem.lower() == "io":
                 return Diagnostic(

@@ -14,6 +14,8 @@ la racine est Disk et le chemin vide") are resolved by `resolve_library`:
 Confinement (`val3check.confine`): a candidate is used only when it is a `.pjx` file that lies,
 symbolic links resolved, inside the run's allowed roots; a candidate outside them is never
 opened (nor are the folders on the way listed), and the caller reports the path as written.
+When the path leads nowhere, `RepositoryIndex` looks for the application by name in the
+repository (issue 11 item 5: repositories do not mirror `usr/usrapp`).
 """
 
 from __future__ import annotations
@@ -191,3 +193,53 @@ def locate_library(path_text: str, pjx_path: str, disk_roots: list[str], roots: 
 def resolve_library(path_text: str, pjx_path: str, disk_roots: list[str], roots: Roots) -> str | None:
     """The absolute path of the `.pjx` named by a Library/Type path (inside `roots`), or None."""
     return locate_library(path_text, pjx_path, disk_roots, roots).path
+
+
+def library_name(path_text: str) -> str:
+    """The application a Library/Type path names: its last component without `.pjx`."""
+    tail = path_text.strip().replace("\\", "/").rstrip("/").rsplit("/", 1)[-1]
+    tail = tail.rsplit(":", 1)[-1]
+    return tail[:-4] if tail.lower().endswith(".pjx") else tail
+
+
+class RepositoryIndex:
+    """The applications of a repository by name (issue 11 item 5), walked once per root.
+
+    A `.pjx` whose stem is the name, in any folder of the repository except hidden ones,
+    `node_modules`, virtual environments and the like; symbolic links are not followed, so the
+    search stays inside the repository. The walk is bounded (`MAX_FOLDERS`)."""
+
+    MAX_FOLDERS = 50_000
+
+    def __init__(self, skip: frozenset[str]) -> None:
+        self.skip = skip
+        self._by_root: dict[str, dict[str, list[str]]] = {}
+
+    def _index(self, root: str) -> dict[str, list[str]]:
+        found = self._by_root.get(root)
+        if found is not None:
+            return found
+        found = {}
+        seen = 0
+        for folder, dirs, files in os.walk(root):
+            seen += 1
+            if seen > self.MAX_FOLDERS:
+                break
+            dirs[:] = sorted(d for d in dirs if not d.startswith(".") and d not in self.skip
+                             and not os.path.isfile(os.path.join(folder, d, "pyvenv.cfg")))
+            for f in sorted(files):
+                if f.lower().endswith(".pjx"):
+                    p = os.path.join(folder, f)
+                    if os.path.isfile(p) and not os.path.islink(p):
+                        found.setdefault(f[:-4].lower(), []).append(os.path.abspath(p))
+        self._by_root[root] = found
+        return found
+
+    def find(self, root: str, name: str) -> list[str]:
+        """The projects named `name` (any case) in the repository at `root`, sorted."""
+        if not name or not _NAME_OK.match(name):
+            return []
+        return sorted(self._index(root).get(name.lower(), []))
+
+
+_NAME_OK = re.compile(r"^[^/\\:*?\"<>|]{1,255}$")
