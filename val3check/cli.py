@@ -15,6 +15,7 @@ import sys
 from . import __version__
 
 EXIT_OK, EXIT_FINDINGS, EXIT_USAGE = 0, 1, 2
+MAX_DURATION = 1e7  # seconds (about 115 days): --duration inf or nan is a usage error
 FORMATS = ("text", "json", "sarif", "junit", "github")
 
 
@@ -115,11 +116,11 @@ def _settings(args: argparse.Namespace, first_path: str):
     try:
         settings = Settings()
         if args.config:
-            if not os.path.isfile(args.config):
+            if not os.path.lexists(args.config):
                 raise ConfigError(f"{args.config}: configuration file not found")
             settings = load_settings(args.config)
         elif not args.isolated:
-            found = find_config(first_path)
+            found = find_config(first_path, warn=lambda m: print(f"val3check: warning: {m}", file=sys.stderr))
             if found:
                 settings = load_settings(found)
     except ConfigError as exc:
@@ -150,8 +151,15 @@ def _sim(args: argparse.Namespace) -> int:
     if args.fail_on:
         settings.fail_on = args.fail_on
     settings.disk_roots = [os.path.abspath(d) for d in args.disk_root] + settings.disk_roots
-    if not args.duration > 0 or not args.max_wall > 0 or args.max_lines < 1:
-        print("val3check: error: --duration, --max-wall and --max-lines must be positive", file=sys.stderr)
+    if not 0 < args.duration <= MAX_DURATION or not 0 < args.max_wall <= MAX_DURATION or args.max_lines < 1:
+        print(f"val3check: error: --duration and --max-wall must be positive numbers of seconds (at most {MAX_DURATION:g}),"
+              " --max-lines a positive number", file=sys.stderr)
+        return EXIT_USAGE
+    from .rules.catalogue import catalogue
+
+    bad = settings.unknown_codes(list(catalogue()))
+    if bad:
+        print(f"val3check: error: unknown rule code or prefix: {', '.join(bad)} (see `val3check rules`)", file=sys.stderr)
         return EXIT_USAGE
 
     from .diagnostics import Severity

@@ -69,12 +69,12 @@ def find_srs(arm_id: str) -> str:
 
 def read_arm_cfx(path: str | os.PathLike) -> str:
     """The arm id written in a controller's usr/configs/arm.cfx (<String name="arm" value="tx60-S1"/>)."""
-    from defusedxml import ElementTree as ET
+    from .urdf import parse_xml_file
 
     try:
-        root = ET.parse(str(path)).getroot()
-    except (OSError, ET.ParseError) as exc:
-        raise RobotError(f"{path}: cannot read the arm configuration: {exc}") from None
+        root = parse_xml_file(str(path), what="arm configuration")
+    except RobotError as exc:
+        raise RobotError(f"cannot read the arm configuration: {exc}") from None
     for el in root.iter():
         if el.get("name") == "arm" and el.get("value"):
             return el.get("value")
@@ -82,14 +82,17 @@ def read_arm_cfx(path: str | os.PathLike) -> str:
 
 
 def find_arm_cfx(app_path: str | os.PathLike) -> Path | None:
-    """usr/configs/arm.cfx of the controller tree that holds app_path (searching upwards)."""
+    """usr/configs/arm.cfx of the controller tree that holds app_path (searching upwards).
+
+    Only a controller tree counts (val3check.confine: nothing is read because of where a file
+    happens to sit): `<ctrl>/usr/configs/arm.cfx` when app_path is in `<ctrl>/usr/usrapp`."""
     p = Path(app_path).resolve()
     if p.is_file():
         p = p.parent
     for folder in (p, *p.parents):
-        for cand in (folder / "usr" / "configs" / "arm.cfx", folder / "configs" / "arm.cfx"):
-            if cand.is_file():
-                return cand
+        if folder.name.lower() == "usrapp" and folder.parent.name.lower() == "usr":
+            cand = folder.parent / "configs" / "arm.cfx"
+            return cand if cand.is_file() else None
     return None
 
 
