@@ -36,6 +36,7 @@ TICK_US = 4000  # the controller's cycle (4 ms)
 LINES_PER_CYCLE = 1000  # simulated cost: 4 µs per VAL 3 line
 LINE_US = TICK_US // LINES_PER_CYCLE
 SYNC_LINES = 3000  # 5.5: up to 3000 lines per sequencing of a synchronous task
+MAX_REACTIONS_PER_CYCLE = 10_000  # a scenario reaction firing more often within 4 ms is a loop (R008)
 START_PRIORITY = 10  # 5.2
 MAX_TASKS = 200
 TASK_NAME = re.compile(r"^[A-Za-z0-9_]{1,15}$")
@@ -267,6 +268,8 @@ class Machine:
         self.key_last = -1
         self.key_seen = 0
         self.reactions: list = []  # (IOPoint, value, delay_us, [(IOPoint, value)])
+        self.reaction_lines: list[int] = []  # the scenario line of each reaction (R008)
+        self.scenario_path = ""
         self.sio_replies: list = []
         self.total_lines = 0
         self.end_reason = ""
@@ -912,6 +915,7 @@ class Machine:
 
     def _apply_events(self) -> None:
         ev = self.events
+        fired: dict[int, int] = {}  # reactions fired in this cycle, by index
         while ev and ev[0][0] <= self.now:
             at, _, kind, payload = heapq.heappop(ev)
             if kind == "set":
@@ -919,8 +923,11 @@ class Machine:
                     if io.value != value:
                         io.value = value
                         self.log_io(at, io, value, "scenario")
-                        for watched, v, delay, actions in self.reactions:
+                        for k, (watched, v, delay, actions) in enumerate(self.reactions):
                             if watched is io and io.value == v:
+                                fired[k] = fired.get(k, 0) + 1
+                                if fired[k] > MAX_REACTIONS_PER_CYCLE:
+                                    self._reaction_loop(at, fired)
                                 self.push_event(at + delay, "set", actions)
             elif kind == "react":
                 pass
@@ -935,6 +942,20 @@ class Machine:
                 for k, v in payload.items():
                     setattr(self.ctl, k, v)
             # "key" events only wake the scheduler up
+
+    def _reaction_loop(self, at: int, fired: dict[int, int]) -> None:
+        """Scenario reactions that set each other's inputs without delay never let time move on:
+        said once (R008) at the first reaction of the loop, and the run ends."""
+        lines = [self.reaction_lines[k] if k < len(self.reaction_lines) else 0 for k in sorted(fired)
+                 if fired[k] > MAX_REACTIONS_PER_CYCLE // 2]
+        names = sorted({self.reactions[k][0].link for k in fired if fired[k] > MAX_REACTIONS_PER_CYCLE // 2})
+        where = ", ".join(f"line {n}" for n in lines if n) or "see [[reactions]]"
+        self.diags.append(Diag(
+            "R008", f"the scenario's reactions to {', '.join(names)} set each other's inputs again and again at"
+            f" {at / 1e6:g} s ({MAX_REACTIONS_PER_CYCLE} times within one 4 ms cycle; {where}): time cannot move on",
+            self.scenario_path or self.app.path, min((n for n in lines if n), default=0), 1 if any(lines) else 0, at,
+            "", ""))
+        raise EndRun(f"budget:the scenario's reactions loop at {at / 1e6:g} s (R008)")
 
     def _cycle(self) -> bool:
         """One 4 ms cycle. Returns True when the line budget was spent (busy), False when every

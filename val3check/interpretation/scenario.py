@@ -179,6 +179,7 @@ class Applier:
 
     def apply(self) -> None:
         d = self.sc.data
+        self.M.scenario_path = self.sc.path
         known = {"version", "description", "inputs", "events", "reactions", "keys", "serial", "controller", "io", "robot"}
         for k in d:
             if k not in known:
@@ -211,6 +212,7 @@ class Applier:
             if after is None:
                 self.fail(self.lines.key("after", line) or line, "after = seconds (a finite number from 0 to 1e7)")
             M.reactions.append((io, becomes, after, self.settings(r.get("set", {}), line, "[[reactions]] set")))
+            M.reaction_lines.append(line)
         from .machine import Key
 
         keys = []
