@@ -153,7 +153,7 @@ class Application:
     def version_major(self) -> int | None:
         """6, 7 or 8 from "s7.11"; None when unknown."""
         v = self.version.strip().lower()
-        if len(v) >= 2 and v[0] == "s" and v[1].isdigit():
+        if len(v) >= 2 and v[0] == "s" and v[1] in "0123456789":
             return int(v[1])
         return None
 

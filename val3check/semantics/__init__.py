@@ -3,7 +3,9 @@
 `analyse(workspace, app)` returns the findings of every semantic rule family:
 - `checker`  : what the controller's compiler refuses: names, types, containers, parameters,
                libraries and user types (N, T and L codes);
-- `patterns` : what compiles but is probably wrong (S codes).
+- `patterns` : what compiles but is probably wrong (S codes);
+- `limits`   : the manual's limits on sizes and numbers, and data-file references (T026,
+               T027, F017, N014).
 Programs whose code did not parse (`program.body is None`) are skipped.
 """
 
@@ -14,8 +16,9 @@ from ..loading.model import Application, Workspace
 
 
 def analyse(workspace: Workspace, app: Application) -> list[Diagnostic]:
-    from . import checker, patterns
+    from . import checker, limits, patterns
 
     found = checker.check_application(workspace, app)
     found.extend(patterns.check_application(workspace, app))
+    found.extend(limits.check_application(workspace, app))
     return found
