@@ -21,6 +21,7 @@ for runtime diagnostics and for reporting where a blocked task waits.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -371,6 +372,8 @@ class ProgramCompiler:
         """(python code, VAL 3 type) of an rvalue. `want` is the expected type (for `{...}`)."""
         tn = type(node)
         if tn is A.Number:
+            if not math.isfinite(node.value):  # F017 in lint; a library is not linted for sim
+                raise self.err(f"numeric constant {node.text[:40]} is beyond the range of a num (F017)", node)
             return repr(float(node.value)), "num"
         if tn is A.String:
             return repr(clip_string(node.value)), "string"  # 3.4.1: at most 128 bytes
@@ -936,6 +939,10 @@ class ProgramCompiler:
 
     def line(self) -> None:
         """Count one VAL 3 line (5.4) and hand over when the turn is used up."""
+        if len(self.out) > MAX_SOURCE_LINES:
+            origin = self.program.origin
+            raise CompileError(f"program {self.program.name}() is too large for the simulator (more than"
+                               f" {MAX_SOURCE_LINES} lines of generated code)", origin.line, origin.col)
         self.emit("T.q -= 1")
         self.emit("if T.q < 0: yield")
 
@@ -1251,12 +1258,12 @@ class ProgramCompiler:
             vals = [self.coerce(*self.expr(v, want=st), st) for v in case.values]
             tests.append((i, " or ".join(f"_s == {v}" for v in vals) or "False"))
         code = lines
-        first = True
+        # flat tests, not an elif chain: Python's compiler nests elif, and thousands of cases
+        # would exhaust its recursion
         for i, test in tests:
-            code.append(f"{'if' if first else 'elif'} {test}: {n} = {i}")
-            first = False
+            code.append(f"if {n} < 0 and ({test}): {n} = {i}")
         if s.default is not None:
-            code.append(f"{'if' if first else 'else'}{' True' if first else ''}: {n} = {len(s.cases)}")
+            code.append(f"if {n} < 0: {n} = {len(s.cases)}")
         self.guarded(code, False)
         flag = f"{n}x"
         self.emit(f"{flag} = 0")
@@ -1373,6 +1380,10 @@ class ProgramCompiler:
         return f"DEFAULT({t!r}, {name!r})" if name else f"DEFAULT({t!r})"
 
 
+# A budget on the Python the compiler writes: 150,000 lines (about 15,000 VAL 3 lines in one
+# program) compile in about 2 s and 700 MB; a 100,000-line program would need many GB.
+MAX_SOURCE_LINES = 150_000
+
 ENUM_VALUES_TYPES = frozenset({"shoulder", "elbow", "wrist", "blend"})
 
 
@@ -1391,6 +1402,10 @@ def compile_program(unit, program: Program, namespace: dict) -> Compiled:
         try:
             code = compile(result.source, result.filename, "exec")
             break
+        except MemoryError:
+            err = CompileError(f"program {program.name}() is too large for the simulator (out of memory while"
+                               " compiling it)", program.origin.line, program.origin.col)
+            return _failing(unit, program, err, namespace)
         except (SyntaxError, RecursionError) as exc:
             # Python allows 20 nested blocks: fewer sequences get a taskResume dispatch loop
             if max_level > 0 and isinstance(exc, SyntaxError):
