@@ -57,6 +57,8 @@ def build_parser() -> argparse.ArgumentParser:
     sim.add_argument("--scenario", metavar="FILE", help="I/O scenario (TOML, docs/scenario.md)")
     sim.add_argument("--max-wall", type=float, default=60.0, metavar="S", help="wall-clock budget in seconds (default: 60)")
     sim.add_argument("--max-lines", type=int, default=50_000_000, metavar="N", help="budget of executed VAL 3 lines")
+    sim.add_argument("--max-memory", type=float, default=1024.0, metavar="MB",
+                     help="memory budget in MB, loading included (default: 1024)")
     sim.add_argument("--fail-on", choices=("error", "warning", "info", "never"), help="lowest runtime diagnostic severity that makes the exit code 1 (default: error)")
     sim.add_argument("--disk-root", action="append", default=[], metavar="DIR", help="folder where Disk:// libraries are also searched (repeatable)")
     sim.add_argument("--robot", metavar="NAME|URDF", help="the arm model: a catalogue name (case-insensitive, `val3check robots`), a URDF, an arm.cfx, or none (default: the usr/configs/arm.cfx of the controller tree holding APP, else none)")
@@ -155,6 +157,9 @@ def _sim(args: argparse.Namespace) -> int:
         print(f"val3check: error: --duration and --max-wall must be positive numbers of seconds (at most {MAX_DURATION:g}),"
               " --max-lines a positive number", file=sys.stderr)
         return EXIT_USAGE
+    if not 0 < args.max_memory <= 1 << 20:
+        print("val3check: error: --max-memory must be a positive number of MB", file=sys.stderr)
+        return EXIT_USAGE
     from .rules.catalogue import catalogue
 
     bad = settings.unknown_codes(list(catalogue()))
@@ -205,7 +210,7 @@ def _sim(args: argparse.Namespace) -> int:
         if args.scenario:
             scenario = load_scenario(args.scenario)
         options = SimOptions(duration=args.duration, max_wall=args.max_wall, max_lines=args.max_lines,
-                             disk_roots=list(settings.disk_roots), robot=robot)
+                             max_memory_mb=args.max_memory, disk_roots=list(settings.disk_roots), robot=robot)
         result = simulate(outcome.workspace, app, options, scenario)
     except ScenarioError as exc:
         print(f"val3check sim: bad scenario: {exc}", file=sys.stderr)

@@ -30,6 +30,7 @@ from .libraries import SystemIO, is_system_io
 from .geom import NAMESPACE as GEOM_NAMESPACE
 from .geom import NO_ARM, Arm
 from .memory import Cell, TypeSpace, resolve_fathers
+from .memory_budget import MemoryBudget
 from .values import Arr, Coll, IOPoint, Screen, copy_globals, store
 
 TICK_US = 4000  # the controller's cycle (4 ms)
@@ -56,6 +57,7 @@ class Budgets:
     max_transcript: int = 10_000
     max_io_log: int = 100_000
     stop_us: int = 2_000_000  # simulated time left to stop() after a run is cut short
+    max_memory_mb: float = 1024.0  # growth of the process (memory_budget.py), loading included
 
 
 @dataclass
@@ -186,6 +188,7 @@ class Unit:
                 ns[f"d_{name}"] = c.data
         self.ns = ns
         for prog in self.model.programs.values():
+            M.check_load_budgets()
             if prog.body is None and prog.code is not None:
                 parse_program(prog)
             compiled = compile_program(self, prog, ns)
@@ -240,6 +243,7 @@ class Machine:
         self.budgets = budgets or Budgets()
         self.disk_roots = list(disk_roots or [])
         self.cell = Cell()
+        self.cell.budget = MemoryBudget(self.budgets.max_memory_mb, clock=self._wall_check)
         # the arm model (val3check.robot.RobotModel) and its commanded position, or None (geom.py)
         self.arm: Arm | None = Arm(robot) if robot is not None else None
         self.ctl = Controller()
@@ -275,7 +279,7 @@ class Machine:
         self.end_reason = ""
         self.phase = "start"
         self.stop_task: Task | None = None
-        self.wall_start = 0.0
+        self.wall_start = _time.monotonic()  # --max-wall covers loading and compiling too
         self.end_time = 0
         self.destroyed: list[str] = []
         self.base_ns = self._base_namespace()
@@ -774,8 +778,18 @@ class Machine:
         self.tasks.append(T)
         self.history.append(T)
 
+    def _wall_check(self) -> None:
+        if _time.monotonic() > self.wall_start + self.budgets.wall_s:
+            raise EndRun("wall-clock")
+
+    def check_load_budgets(self) -> None:
+        """While the application is loaded and compiled: the wall-clock and memory budgets."""
+        self._wall_check()
+        why = self.cell.budget.over()
+        if why:
+            raise EndRun("budget:" + why)
+
     def run(self) -> None:
-        self.wall_start = _time.monotonic()
         self.start()
         try:
             self._loop(self.budgets.duration_us)
@@ -897,8 +911,12 @@ class Machine:
             if self.now >= limit_us:
                 raise EndRun("stop-timeout" if stopping else "duration")
             cycles += 1
-            if cycles & 63 == 0 and _time.monotonic() > wall_deadline:
+            if _time.monotonic() > wall_deadline:
                 raise EndRun("wall-clock")
+            if cycles & 255 == 0:
+                why = self.cell.budget.over()
+                if why:
+                    raise EndRun("budget:" + why)
             if self.total_lines > budgets.max_lines:
                 raise EndRun("steps")
             busy = self._cycle()
@@ -1107,7 +1125,7 @@ def _error_code(e: BaseException) -> tuple[int, str]:
     if isinstance(e, RecursionError):
         return 41, "call depth"
     if isinstance(e, MemoryError):
-        return 40, ""
+        return 40, str(e)
     if isinstance(e, EndRun):
         raise e
     return 61, f"{e.__class__.__name__}: {e}"

@@ -8,6 +8,7 @@ converts the loader's `Data`/`Value` records into run-time values (`values.py`).
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass, field
 from typing import Any
@@ -17,6 +18,7 @@ from ..geometry.points import Point
 from ..geometry.trsf import Trsf
 from ..loading.model import Application, Container, Data, Value, Workspace
 from ..loading.types import DEFAULTS, base_type, is_builtin
+from .memory_budget import UNKNOWN_BYTES, VALUE_BYTES
 from .values import (
     ENUM_SPELLING,
     JOINT_FIELDS,
@@ -39,6 +41,7 @@ class Cell:
         self.flange = new_flange(self.io("dio", "valve1"))
         # (node or point, "fPallet[0]"): data-file references waiting for every global to exist
         self.pending: list[tuple[Any, str]] = []
+        self.budget = None  # memory_budget.MemoryBudget: containers are priced before they are built
 
     def io(self, kind: str, link: str) -> IOPoint:
         if not link:
@@ -141,6 +144,22 @@ class TypeSpace:
         if sp is None:
             sp = self._cache[key] = TypeSpace(self.ws, app, self.cell, self._cache)
         return sp
+
+    def value_cost(self, t: str, depth: int = 0) -> float:
+        """Estimated Python bytes of one value of type `t` (user types: their fields)."""
+        b = base_type(t)
+        if b in VALUE_BYTES:
+            return VALUE_BYTES[b]
+        ut = self.user_type(t) if depth < 8 else None
+        if ut is None:
+            return UNKNOWN_BYTES
+        sp = self.space_of(ut.app)
+        return UNKNOWN_BYTES + sum(math.prod(d.sizes or (1,)) * sp.value_cost(d.type, depth + 1)
+                                   for d in ut.fields.values())
+
+    def _reserve(self, t: str, n: int, what: str) -> None:
+        if self.cell.budget is not None:
+            self.cell.budget.reserve(n * self.value_cost(t), what)
 
     def field_info(self, tname: str) -> dict[str, Data] | None:
         ut = self.user_type(tname)
@@ -254,6 +273,7 @@ class TypeSpace:
         n = 1
         for s in dims:
             n *= s
+        self._reserve(t, n, f"the global {dname} ({' x '.join(map(str, dims))} values of {t})")
         given: dict[int, Value] = {}
         for v in data.values:
             idx = _flat(v.key, dims)
@@ -285,13 +305,14 @@ class TypeSpace:
         for s in dims:
             n *= s
         bt = base_type(t)
+        self._reserve(bt, n, f"the local {name} ({' x '.join(map(str, dims))} values of {bt})")
         return Arr(bt, [self.default(bt, True, name if n == 1 else f"{name}[{i}]") for i in range(n)], dims, local=True)
 
 
 def _flat(key: str, dims: tuple[int, ...]) -> int | None:
     try:
         parts = [int(float(p)) for p in key.replace(",", " ").split()]
-    except ValueError:
+    except (ValueError, OverflowError):  # "1e400": no index (N014 in lint)
         return None
     if len(parts) != len(dims):
         if len(parts) == 1 and len(dims) == 1:
