@@ -122,27 +122,40 @@ def _settings(args: argparse.Namespace, first_path: str):
                 raise ConfigError(f"{args.config}: configuration file not found")
             settings = load_settings(args.config)
         elif not args.isolated:
-            found = find_config(first_path, warn=lambda m: print(f"val3check: warning: {m}", file=sys.stderr))
+            found = find_config(first_path, warn=lambda m: print(f"val3check: warning: {_shown(m)}", file=sys.stderr))
             if found:
                 settings = load_settings(found)
     except ConfigError as exc:
-        print(f"val3check: error: {exc}", file=sys.stderr)
+        print(f"val3check: error: {_shown(str(exc))}", file=sys.stderr)
         return None
     return settings
 
 
 def _write(text: str, output: str | None) -> bool:
+    # Reports are UTF-8; a character that cannot be encoded (a lone surrogate from a file name
+    # that is not UTF-8) is escaped rather than ending the run with UnicodeEncodeError.
     if output is None:
-        sys.stdout.write(text)
+        try:
+            sys.stdout.write(text)
+        except UnicodeEncodeError:
+            enc = sys.stdout.encoding or "utf-8"
+            sys.stdout.write(text.encode(enc, "backslashreplace").decode(enc))
         sys.stdout.flush()
         return True
     try:
-        with open(output, "w", encoding="utf-8", newline="\n") as fh:
+        with open(output, "w", encoding="utf-8", errors="backslashreplace", newline="\n") as fh:
             fh.write(text)
-    except OSError as exc:
-        print(f"val3check: error: cannot write {output}: {exc.strerror or exc}", file=sys.stderr)
+    except (OSError, ValueError) as exc:
+        print(f"val3check: error: cannot write {_shown(output)}: {getattr(exc, 'strerror', None) or exc}",
+              file=sys.stderr)
         return False
     return True
+
+
+def _shown(path: str) -> str:
+    from .lint import printable_path
+
+    return printable_path(path)
 
 
 def _sim(args: argparse.Namespace) -> int:
@@ -175,10 +188,11 @@ def _sim(args: argparse.Namespace) -> int:
     apps = [outcome.workspace.apps[k] for k in outcome.workspace.targets]
     if outcome.unreadable or not apps:
         sys.stdout.write(render("text", outcome.result))
-        print(f"val3check sim: error: no application could be read at {args.app}", file=sys.stderr)
+        print(f"val3check sim: error: no application could be read at {_shown(args.app)}", file=sys.stderr)
         return EXIT_USAGE
     if len(apps) != 1:
-        print(f"val3check sim: error: {args.app} holds {len(apps)} applications; name one of them", file=sys.stderr)
+        print(f"val3check sim: error: {_shown(args.app)} holds {len(apps)} applications; name one of them",
+              file=sys.stderr)
         return EXIT_USAGE
     errors = [d for d in outcome.result.diagnostics if d.severity is not None and d.severity >= Severity.ERROR]
     if errors:
@@ -201,10 +215,10 @@ def _sim(args: argparse.Namespace) -> int:
     try:
         robot, note = choose_sim_robot(args.robot, app.path)
     except RobotError as exc:
-        print(f"val3check sim: --robot: {exc}", file=sys.stderr)
+        print(f"val3check sim: --robot: {_shown(str(exc))}", file=sys.stderr)
         return EXIT_USAGE
     if note:
-        print(f"val3check sim: note: {note}", file=sys.stderr)
+        print(f"val3check sim: note: {_shown(note)}", file=sys.stderr)
     scenario = None
     try:
         if args.scenario:
@@ -213,7 +227,7 @@ def _sim(args: argparse.Namespace) -> int:
                              max_memory_mb=args.max_memory, disk_roots=list(settings.disk_roots), robot=robot)
         result = simulate(outcome.workspace, app, options, scenario)
     except ScenarioError as exc:
-        print(f"val3check sim: bad scenario: {exc}", file=sys.stderr)
+        print(f"val3check sim: bad scenario: {_shown(str(exc))}", file=sys.stderr)
         return EXIT_USAGE
     report = build_report(result, settings, catalogue(), __version__, result.link_names)
     if args.report == "json":
@@ -276,7 +290,7 @@ def _robots(args: argparse.Namespace) -> int:
         else:
             models = [load_robot(n) for n in names()]
     except RobotError as exc:
-        print(f"val3check: error: {exc}", file=sys.stderr)
+        print(f"val3check: error: {_shown(str(exc))}", file=sys.stderr)
         return EXIT_USAGE
     detail = bool(args.robot or args.app)
     if args.format == "json":

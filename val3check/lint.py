@@ -7,6 +7,7 @@ applies the user's configuration (rule selection, severities, suppressions).
 from __future__ import annotations
 
 import os
+import re
 from dataclasses import dataclass
 
 from . import __version__, suppression
@@ -28,7 +29,9 @@ class LintRun:
 
 
 def display_path(path: str) -> str:
-    """Relative to the current directory when inside it, POSIX slashes: stable across machines."""
+    """Relative to the current directory when inside it, POSIX slashes: stable across machines.
+    Printable in every format: bytes that are not UTF-8 show as `\\xE9`, control characters as
+    `\\x1b` (a file name must not drive the terminal)."""
     if not path:
         return path
     absolute = os.path.abspath(path)
@@ -37,7 +40,15 @@ def display_path(path: str) -> str:
     except ValueError:  # another drive on Windows
         rel = absolute
     chosen = absolute if rel == ".." or rel.startswith(".." + os.sep) else rel
-    return chosen.replace(os.sep, "/")
+    return printable_path(chosen.replace(os.sep, "/"))
+
+
+_UNPRINTABLE = re.compile(r"[\x00-\x1f\x7f\udc80-\udcff]")
+
+
+def printable_path(text: str) -> str:
+    """`text` with undecodable bytes (os.fsdecode's surrogates) and control characters escaped."""
+    return _UNPRINTABLE.sub(lambda m: f"\\x{ord(m.group()) & 0xFF:02x}", text)
 
 
 def run(paths: list[str], settings: Settings) -> LintRun:
@@ -82,7 +93,7 @@ def run(paths: list[str], settings: Settings) -> LintRun:
         applications=sorted(display_path(app.path) for app in targets),
         rules=rules,
         tool_version=__version__,
-        quotable=frozenset(display_path(f) for f in workspace.quotable),
+        quotable={display_path(f): f for f in sorted(workspace.quotable)},
     )
     missing_arg = any(not os.path.exists(p) for p in paths)
     return LintRun(result=result, workspace=workspace, unreadable=missing_arg or not targets)

@@ -233,11 +233,20 @@ def read_program(node: Node, sink: Sink) -> Program | None:
                 loc = _read_local(ln, sink, what)
                 if loc is not None:
                     locals_.append(loc)
-    code_node = node.find("code")
+    codes = node.findall("code")
+    code_node = codes[0] if codes else None
     if code_node is None:
         src = node.find("source")
         if src is not None:
-            code_node = src.find("code")
+            codes = src.findall("code")
+            code_node = codes[0] if codes else None
+    for extra in codes[1:]:
+        sink.add("F015", extra, f"program {name} has a second <{extra.tag}> element (the first is on line"
+                 f" {code_node.line}): it is not read")
+    for child in code_node.children if code_node is not None else ():
+        sink.add("F015", child, f"program {name}: the element <{child.tag}> inside <{code_node.tag}> is not VAL 3"
+                 " code (a '<' that should be written &lt;, or code outside its CDATA section?): its content is"
+                 " not read")
     if code_node is None:
         sink.add(
             "F010",

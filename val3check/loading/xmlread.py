@@ -113,6 +113,7 @@ def _init_plain() -> None:
 
 _init_plain()
 _CODE_NO_ELEMENTS = expat.errors.codes[expat.errors.XML_ERROR_NO_ELEMENTS]
+_CODE_INVALID_TOKEN = expat.errors.codes[expat.errors.XML_ERROR_INVALID_TOKEN]
 _CODE_TAG_MISMATCH = expat.errors.codes[expat.errors.XML_ERROR_TAG_MISMATCH]
 _CODE_UNCLOSED_CDATA = expat.errors.codes[expat.errors.XML_ERROR_UNCLOSED_CDATA_SECTION]
 _CODE_UNDEFINED_ENTITY = expat.errors.codes[expat.errors.XML_ERROR_UNDEFINED_ENTITY]
@@ -251,6 +252,13 @@ def decode(data: bytes, path: str) -> tuple[bytes | None, list[Diagnostic]]:
     """
     if data.startswith(b"\xef\xbb\xbf"):
         data = data[3:]
+    elif data.startswith((b"\xff\xfe\x00\x00", b"\x00\x00\xfe\xff")):  # before UTF-16: same first bytes
+        try:
+            return data.decode("utf-32").encode("utf-8"), []
+        except UnicodeDecodeError:
+            return None, [
+                Diagnostic("F003", "the file starts with a UTF-32 byte-order mark but is not valid UTF-32", path)
+            ]
     elif data.startswith((b"\xff\xfe", b"\xfe\xff")):
         try:
             return data.decode("utf-16").encode("utf-8"), []
@@ -463,6 +471,10 @@ def _expat_diagnostic(exc: expat.ExpatError, parser, data: bytes, path: str, sta
         if start >= 0:
             line, col = _line_col_of_offset(data[:start].decode("utf-8", "replace"))
         return Diagnostic("F004", "malformed XML: " + _PLAIN[code], path, line, col)
+    if code == _CODE_INVALID_TOKEN:
+        better = _invalid_token(parser.ErrorByteIndex, data, path)
+        if better is not None:
+            return better
     if code == _CODE_NO_ELEMENTS:
         if not data.strip():
             return Diagnostic("F004", "malformed XML: the file is empty", path, 0, 0)
@@ -480,6 +492,36 @@ def _expat_diagnostic(exc: expat.ExpatError, parser, data: bytes, path: str, sta
         return Diagnostic("F004", f"malformed XML: {msg}", path, line, col)
     msg = _PLAIN.get(code) or expat.ErrorString(code)
     return Diagnostic("F004", f"malformed XML: {msg}", path, line, col)
+
+
+def _invalid_token(bi: int, data: bytes, path: str) -> Diagnostic | None:
+    """Say what the 'invalid token' really is: a control character, or the `]]>` that ended a
+    CDATA section early (a string of code holding "]]>") rather than the one expat stops at."""
+    if not 0 <= bi < len(data):
+        return None
+    byte = data[bi]
+    if byte < 0x20 and byte not in (0x09, 0x0A, 0x0D):
+        line, col = _line_col_of_offset(data[:bi].decode("utf-8", "replace"))
+        return Diagnostic(
+            "F004",
+            f"malformed XML: the control character U+{byte:04X} is not allowed in an XML file, even in a CDATA"
+            " section; remove it (in a string, build it with chr())",
+            path, line, col,
+        )
+    here = data.find(b"]]>", max(0, bi - 2), bi + 3)  # expat points at one of its characters
+    if here >= 0:
+        bi = here
+        start = data.rfind(b"<![CDATA[", 0, bi)
+        early = data.find(b"]]>", start + 9, bi) if start >= 0 else -1
+        if early >= 0:
+            line, col = _line_col_of_offset(data[:early].decode("utf-8", "replace"))
+            return Diagnostic(
+                "F004",
+                "malformed XML: this ']]>' ends the CDATA section of the code early (a string holding ']]>'?),"
+                " so the code after it is read as XML; write the string as \"]]\" + \">\"",
+                path, line, col,
+            )
+    return None
 
 
 def read_xml(path: str, max_size: int, roots: Roots) -> XmlResult:

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import os
 import re
 from typing import TYPE_CHECKING, Any
 from urllib.parse import quote
@@ -69,7 +70,10 @@ def _rule_descriptor(code: str, rule: "Rule | None") -> dict[str, Any]:
 
 
 def artifact_location(path: str) -> dict[str, str]:
-    posix = path.replace("\\", "/")
+    # Windows paths get forward slashes; on POSIX a backslash is part of a name (display paths
+    # write an undecodable byte as \xE9) and is percent-encoded like any other character.
+    windows = os.sep == "\\" or _DRIVE.match(path) or path.startswith("\\\\")
+    posix = path.replace("\\", "/") if windows else path
     if posix.startswith("//"):  # UNC path
         return {"uri": "file:" + quote(posix)}
     if posix.startswith("/"):
