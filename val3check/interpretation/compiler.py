@@ -549,6 +549,8 @@ class ProgramCompiler:
     def coerce(self, code: str, have: str, want: str | None) -> str:
         if want == "bool" and have == "dio":
             return f"IOR({code})"
+        if want == "num" and have == "aio":  # an aio read as a num, as lint accepts it (3.6.2 aioGet)
+            return f"I_aioget(T, A, {code})"
         if want in ("num", "string") and have == "sio":
             return f"(yield from SIOR(T, {code}, {want!r}))"
         return code
@@ -1114,6 +1116,8 @@ class ProgramCompiler:
             vcode = f"(yield from SIOR(T, {vcode}, {t!r}))"
         elif t == "bool" and vt == "dio":
             vcode = f"IOR({vcode})"
+        elif t == "num" and vt == "aio":
+            vcode = self.coerce(vcode, vt, t)
         elif t not in ("num", "bool", "string") and vt not in ("num", "bool", "string") and type(value) is not A.Struct:
             vcode = f"CP({vcode})"  # 7.3: `=` copies (deep copy) structured and user-type values
         if as_expr:
