@@ -350,7 +350,10 @@ def read_data_s7(root: Node, sink: Sink) -> list[Data]:
     return out
 
 
-def read_data_node(node: Node, sink: Sink, access: str | None, owner: str = "") -> Data | None:
+MAX_FIELD_DEPTH = 16  # user-type values inside user-type values: real types nest 2 or 3 deep
+
+
+def read_data_node(node: Node, sink: Sink, access: str | None, owner: str = "", depth: int = 0) -> Data | None:
     """A <Data> (global) or a <Field> of a user-type value (access given: "public")."""
     kind = "field" if access is not None else "global"
     name = _required(node, sink, "name", f"{owner}{'<' + node.tag + '>'}")
@@ -380,7 +383,7 @@ def read_data_node(node: Node, sink: Sink, access: str | None, owner: str = "") 
     values = []
     for vn in node.children:
         if vn.ltag == "value":
-            values.append(read_value(vn, sink, typ, container, sizes, f"{owner}{name}"))
+            values.append(read_value(vn, sink, typ, container, sizes, f"{owner}{name}", depth))
     return _make_data(name, typ, container, sizes, access, values, _origin(sink, node))
 
 
@@ -415,7 +418,8 @@ def _check_key(node: Node, sink: Sink, key: str, container: Container, sizes: tu
 _SKIP_ATTRS = frozenset({"key", "index", "fatherid", "xsi:type", "name"})
 
 
-def read_value(node: Node, sink: Sink, typ: str, container: Container, sizes: tuple[int, ...], owner: str) -> Value:
+def read_value(node: Node, sink: Sink, typ: str, container: Container, sizes: tuple[int, ...], owner: str,
+               depth: int = 0) -> Value:
     key = node.get("key")
     if key is None:
         key = node.get("index", "0") or "0"
@@ -430,14 +434,17 @@ def read_value(node: Node, sink: Sink, typ: str, container: Container, sizes: tu
     fields, given = convert_fields(node, sink, typ, attrs, what)
     members: dict[str, Data] = {}
     if t.is_user_type(typ):
-        for fn in node.children:
-            if fn.ltag == "field":
-                d = read_data_node(fn, sink, "public", f"{owner}[{key}].")
-                if d is not None:
-                    if d.name in members:
-                        sink.add("F011", fn, f"{what}: field {d.name} is written twice; the first one is kept")
-                    else:
-                        members[d.name] = d
+        fields_ = [fn for fn in node.children if fn.ltag == "field"]
+        if fields_ and depth >= MAX_FIELD_DEPTH:
+            sink.f007(fields_[0], f"{what}: user-type values nested more than {MAX_FIELD_DEPTH} deep: not read")
+            fields_ = []
+        for fn in fields_:
+            d = read_data_node(fn, sink, "public", f"{owner}[{key}].", depth + 1)
+            if d is not None:
+                if d.name in members:
+                    sink.add("F011", fn, f"{what}: field {d.name} is written twice; the first one is kept")
+                else:
+                    members[d.name] = d
     return Value(key, fields, given, _origin(sink, node), members, father)
 
 
