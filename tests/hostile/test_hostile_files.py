@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import os
 import subprocess
+import time
 import sys
 from pathlib import Path
 
@@ -119,3 +120,26 @@ def test_long_attribute_values_are_cut_in_messages(tmp_path):
     dtx.write_text(dtx.read_text().replace('size="1" />', f'size="1"><Value key="0" value="{"x" * 100000}" /></Data>'))
     (msg,) = [m for c, _, _, m in _codes(tmp_path) if c == "F007"]
     assert len(msg) < 300 and "100000 characters" in msg
+
+
+def test_user_type_values_nested_deep_in_a_data_file(tmp_path):
+    folder = write_app(tmp_path, "begin\nend\n")
+    deep = ('<Value key="0"><Field name="f" xsi:type="array" type="T" size="1">' * 3000
+            + "</Field></Value>" * 3000)
+    dtx = folder / "Example.dtx"
+    dtx.write_text(dtx.read_text().replace(
+        "<Datas>\n", f'<Datas>\n    <Data name="u" access="public" xsi:type="array" type="T" size="1">{deep}</Data>\n'))
+    found = _codes(tmp_path)
+    assert any(c == "F007" and "nested more than 16 deep" in m for c, _, _, m in found), found
+
+
+def test_a_megabyte_line_with_thousands_of_findings_is_shown_in_windows(tmp_path):
+    pgx = _one(tmp_path)
+    params = "".join(f'<Parameter name="p{i}" type="num" xsi:type="element"/>' for i in range(5000))
+    pgx.write_text(pgx.read_text().replace(
+        "<Code>", f'<Parameters xmlns="http://www.staubli.com/robotics/VAL3/Param/1">{params}</Parameters><Code>'))
+    t = time.monotonic()
+    r = val3check("lint", "Example", cwd=tmp_path)
+    out, _ = clean(r, (0, 1))
+    assert time.monotonic() - t < 20
+    assert max(len(line) for line in out.splitlines()) < 400 and "…" in out

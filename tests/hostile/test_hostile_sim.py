@@ -200,3 +200,29 @@ def test_reactions_that_loop_at_one_instant(tmp_path):
     loop = [d for d in result.diagnostics if d.code == "R008"]
     assert len(loop) == 1 and loop[0].line == 6 and loop[0].time_us == 100_000
     assert result.end_reason == "budget"
+
+
+@pytest.mark.parametrize("length,size", [(80, 1), (40, 2)])
+def test_chains_of_user_types_are_refused_before_allocation(tmp_path, length, size):
+    sys.path.insert(0, str(ROOT / "tests" / "loading"))
+    from loadhelp import make_app
+
+    from val3check.config import Settings
+    from val3check.interpretation.simulate import SimOptions, simulate
+    from val3check.lint import run
+
+    def body(t):
+        return f'    <Data name="f" access="public" xsi:type="array" type="{t}" size="{size}" />\n'
+
+    app = make_app(tmp_path / "App", types=[("T0", "Disk://T0")], data_body=body("T0"))
+    for i in range(length):
+        last = i == length - 1
+        make_app(tmp_path / f"T{i}", programs=(), types=[] if last else [(f"T{i + 1}", f"Disk://T{i + 1}")],
+                 data_body='    <Data name="n" access="public" xsi:type="array" type="num" size="1" />\n' if last
+                 else body(f"T{i + 1}"))
+    lr = run([str(app.parent)], Settings())
+    ws = lr.workspace
+    t = time.monotonic()
+    result = simulate(ws, ws.apps[ws.targets[0]], SimOptions(duration=1, max_wall=20))
+    assert time.monotonic() - t < 5
+    assert result.end_reason == "budget" and ("nested" in result.end_message or "memory budget" in result.end_message)

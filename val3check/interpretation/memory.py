@@ -18,7 +18,10 @@ from ..geometry.points import Point
 from ..geometry.trsf import Trsf
 from ..loading.model import Application, Container, Data, Value, Workspace
 from ..loading.types import DEFAULTS, base_type, is_builtin
-from .memory_budget import UNKNOWN_BYTES, VALUE_BYTES
+from .memory_budget import UNKNOWN_BYTES, VALUE_BYTES, MemoryBudgetExceeded
+
+MAX_TYPE_NESTING = 64  # user types inside user types (real ones: 2 or 3)
+TOO_MUCH = 1e15  # bytes: the price of what cannot be built
 from .values import (
     ENUM_SPELLING,
     JOINT_FIELDS,
@@ -42,6 +45,7 @@ class Cell:
         # (node or point, "fPallet[0]"): data-file references waiting for every global to exist
         self.pending: list[tuple[Any, str]] = []
         self.budget = None  # memory_budget.MemoryBudget: containers are priced before they are built
+        self.nesting = 0  # user-type values being built inside each other
 
     def io(self, kind: str, link: str) -> IOPoint:
         if not link:
@@ -120,6 +124,7 @@ class TypeSpace:
         self.cell = cell
         self._cache: dict[str, TypeSpace] = cache if cache is not None else {}
         self._users: dict[str, UserType | None] = {}
+        self._costs: dict[str, float] = {}
 
     # ---- user types ---------------------------------------------------------------------------
 
@@ -146,20 +151,38 @@ class TypeSpace:
         return sp
 
     def value_cost(self, t: str, depth: int = 0) -> float:
-        """Estimated Python bytes of one value of type `t` (user types: their fields)."""
+        """Estimated Python bytes of one value of type `t` (user types: their fields; nested
+        beyond MAX_TYPE_NESTING: more than any budget)."""
         b = base_type(t)
         if b in VALUE_BYTES:
             return VALUE_BYTES[b]
-        ut = self.user_type(t) if depth < 8 else None
+        if t in self._costs:
+            return self._costs[t]
+        ut = self.user_type(t)
         if ut is None:
             return UNKNOWN_BYTES
+        if depth >= MAX_TYPE_NESTING:
+            return TOO_MUCH
         sp = self.space_of(ut.app)
-        return UNKNOWN_BYTES + sum(math.prod(d.sizes or (1,)) * sp.value_cost(d.type, depth + 1)
-                                   for d in ut.fields.values())
+        cost = min(TOO_MUCH, UNKNOWN_BYTES + sum(math.prod(d.sizes or (1,)) * sp.value_cost(d.type, depth + 1)
+                                                 for d in ut.fields.values()))
+        self._costs[t] = cost
+        return cost
+
+    def _nest(self, t: str) -> None:
+        """One more user type inside another: bounded, like the memory (a chain of 1000 types)."""
+        if self.cell.nesting >= MAX_TYPE_NESTING:
+            raise MemoryBudgetExceeded(f"user type {t}: values nested more than {MAX_TYPE_NESTING} user types deep"
+                                       " are not simulated")
+        self.cell.nesting += 1
 
     def _reserve(self, t: str, n: int, what: str) -> None:
         if self.cell.budget is not None:
-            self.cell.budget.reserve(n * self.value_cost(t), what)
+            cost = self.value_cost(t)
+            if cost >= TOO_MUCH:
+                raise MemoryBudgetExceeded(f"{what}: user types nested more than {MAX_TYPE_NESTING} deep are not"
+                                           " simulated")
+            self.cell.budget.reserve(n * cost, what)
 
     def field_info(self, tname: str) -> dict[str, Data] | None:
         ut = self.user_type(tname)
@@ -191,7 +214,11 @@ class TypeSpace:
         if ut is None:
             return None
         sp = self.space_of(ut.app)
-        return {n: sp.container(d, in_user=True, local=local) for n, d in ut.fields.items()}
+        self._nest(t)
+        try:
+            return {n: sp.container(d, in_user=True, local=local) for n, d in ut.fields.items()}
+        finally:
+            self.cell.nesting -= 1
 
     def from_fields(self, t: str, fields: dict, members: dict, name: str = "", local: bool = False) -> Any:
         """A value from a loader `Value.fields`/`members` (types.py keys: tmax/rmax, ioLink).
@@ -234,9 +261,13 @@ class TypeSpace:
             return None
         sp = self.space_of(ut.app)
         out = {}
-        for n, d in ut.fields.items():
-            out[n] = sp.container(members[n], d, in_user=True, local=local) if n in members else sp.container(
-                d, in_user=True, local=local)
+        self._nest(t)
+        try:
+            for n, d in ut.fields.items():
+                out[n] = sp.container(members[n], d, in_user=True, local=local) if n in members else sp.container(
+                    d, in_user=True, local=local)
+        finally:
+            self.cell.nesting -= 1
         return out
 
     @staticmethod

@@ -73,8 +73,9 @@ def simulate(ws: Workspace, app: Application, options: SimOptions | None = None,
             from .scenario import apply_scenario
 
             apply_scenario(M, scenario)
-    except (EndRun, MemoryError) as stop:  # a budget reached before the first line ran
-        M.end_reason = stop.reason if isinstance(stop, EndRun) else f"budget:{stop}"
+    except (EndRun, MemoryError, RecursionError) as stop:  # a budget reached before the first line ran
+        M.end_reason = (stop.reason if isinstance(stop, EndRun) else f"budget:{stop}" if isinstance(stop, MemoryError)
+                        else "budget:the application's values are nested too deeply for the simulator")
         return collect(M)
     M.run()
     return collect(M)
