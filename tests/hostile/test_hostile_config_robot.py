@@ -155,6 +155,20 @@ def test_urdf_and_arm_cfx_with_entities_are_refused(tmp_path):
     clean(r, (2,))
 
 
+@pytest.mark.parametrize("old,new,fragment", [
+    ('<axis xyz="0 0 1"/>', '<axis xyz="0 0 0"/>', "axis 0 0 0"),
+    ('lower="-1"', 'lower="2"', "above upper"),
+    ('<axis', '<origin xyz="1e300 0 0"/><axis', "beyond"),
+])
+def test_urdf_joint_values_that_make_no_arm(tmp_path, old, new, fragment):
+    p = tmp_path / "r.urdf"
+    p.write_text(URDF.format(doctype="", joints=_joint("j1", "base", "l1").replace(old, new)))
+    with pytest.raises(RobotError, match=fragment):
+        read_urdf(p)
+    r = val3check("robots", p, cwd=tmp_path)
+    clean(r, (2,))
+
+
 def test_urdf_absurd_numbers_and_special_files(tmp_path):
     p = tmp_path / "r.urdf"
     p.write_text(URDF.format(doctype="", joints=_joint("j1", "base", "l1").replace('upper="1"', 'upper="nan"')))

@@ -117,11 +117,21 @@ def parse_xml_file(path: str, roots=None, what: str = "file"):  # noqa: ANN001
         raise RobotError(f"{path}: cannot be parsed: {type(exc).__name__}") from None
 
 
+MAX_OFFSET_M = 1e4  # a joint origin beyond 10 km is no arm: the transforms would overflow
+
+
 def _check_tree(path: str, joints: dict[str, UrdfJoint]) -> None:
     """URDF joints form a tree: each link is the child of one joint at most, and following the
-    parents from any link ends (a cycle would make every walk down the chain endless)."""
+    parents from any link ends (a cycle would make every walk down the chain endless). Axes are
+    not zero, limits are in order, origins are within MAX_OFFSET_M."""
     by_child: dict[str, UrdfJoint] = {}
     for j in joints.values():
+        if j.kind != "fixed" and math.sqrt(sum(a * a for a in j.axis)) < 1e-12:
+            raise RobotError(f"{path}: joint {j.name!r} has the axis 0 0 0: an axis needs a direction")
+        if j.lower is not None and j.upper is not None and j.lower > j.upper:
+            raise RobotError(f"{path}: joint {j.name!r}: lower limit {j.lower:g} above upper limit {j.upper:g}")
+        if any(abs(v) > MAX_OFFSET_M for v in j.xyz):
+            raise RobotError(f"{path}: joint {j.name!r}: origin xyz beyond {MAX_OFFSET_M:g} m")
         if j.parent == j.child:
             raise RobotError(f"{path}: joint {j.name!r} connects link {j.child!r} to itself")
         if j.child in by_child:
