@@ -49,9 +49,9 @@ def _keep_first(app: Application, table: dict, item, kind: str, sink: rd.Sink) -
     ))
 
 
-def _inside(path: str, folder: str) -> bool:
-    """`path` is in `folder` or below it, symbolic links resolved."""
-    real, top = os.path.realpath(path), os.path.realpath(folder)
+def _inside(path: str, folder: str, top: str | None = None) -> bool:
+    """`path` is in `folder` or below it, symbolic links resolved (`top`: the folder's real path)."""
+    real, top = os.path.realpath(path), top or os.path.realpath(folder)
     return os.path.commonpath([real, top]) == top
 
 
@@ -85,6 +85,7 @@ class Loader:
         self.ws.roots = self.roots
         self.repos: list[str] = []  # repository roots of the targets (git top level, else the target)
         self.index = rs.RepositoryIndex(SKIP_DIRS)
+        self._real_folders: dict[str, str] = {}  # application folder -> its real path
 
     # -- reading ------------------------------------------------------------------------------
 
@@ -151,8 +152,13 @@ class Loader:
         self.ws.apps[pjx] = app
         folder = os.path.dirname(pjx)
         seen: dict[str, Node] = {}
+        seen_text: dict[tuple[str, str], Node] = {}  # the same entry written again: no file system work
         for kind, entries in (("program", pf.programs), ("data", pf.data)):
             for rel, node in entries:
+                first = seen_text.setdefault((kind, rel.replace("\\", "/")), node)
+                if first is not node:
+                    sink.add("F011", node, f"{kind} file '{rel}' is listed twice (first on line {first.line}); read once")
+                    continue
                 path = self._listed_file(rel, node, folder, kind, sink)
                 if path is None:
                     app.unread.add(kind)
@@ -194,7 +200,10 @@ class Loader:
     def _listed_file(self, rel: str, node: Node, folder: str, kind: str, sink: rd.Sink) -> str | None:
         path = rs.find_path(folder, rel)
         if path is not None and os.path.isfile(path):
-            if not _inside(path, folder):
+            top = self._real_folders.get(folder)
+            if top is None:
+                top = self._real_folders[folder] = os.path.realpath(folder)
+            if not _inside(path, folder, top):
                 # A project lists its own files; reading (and quoting) a file elsewhere on the
                 # machine because a project names it would leak it into reports.
                 sink.add("F013", node, f"{kind} file '{rel}' listed here is outside the application folder: not read")
