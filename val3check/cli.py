@@ -57,8 +57,8 @@ def build_parser() -> argparse.ArgumentParser:
     sim.add_argument("--scenario", metavar="FILE", help="I/O scenario (TOML, docs/scenario.md)")
     sim.add_argument("--max-wall", type=float, default=60.0, metavar="S", help="wall-clock budget in seconds (default: 60)")
     sim.add_argument("--max-lines", type=int, default=50_000_000, metavar="N", help="budget of executed VAL 3 lines")
-    sim.add_argument("--max-memory", type=float, default=1024.0, metavar="MB",
-                     help="memory budget in MB, loading included (default: 1024)")
+    sim.add_argument("--max-memory", type=float, default=512.0, metavar="MB",
+                     help="memory budget in MB, loading included (default: 512)")
     sim.add_argument("--fail-on", choices=("error", "warning", "info", "never"), help="lowest runtime diagnostic severity that makes the exit code 1 (default: error)")
     sim.add_argument("--disk-root", action="append", default=[], metavar="DIR", help="folder where Disk:// libraries are also searched (repeatable)")
     sim.add_argument("--robot", metavar="NAME|URDF", help="the arm model: a catalogue name (case-insensitive, `val3check robots`), a URDF, an arm.cfx, or none (default: the usr/configs/arm.cfx of the controller tree holding APP, else none)")

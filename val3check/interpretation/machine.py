@@ -57,7 +57,7 @@ class Budgets:
     max_transcript: int = 10_000
     max_io_log: int = 100_000
     stop_us: int = 2_000_000  # simulated time left to stop() after a run is cut short
-    max_memory_mb: float = 1024.0  # growth of the process (memory_budget.py), loading included
+    max_memory_mb: float = 512.0  # growth of the process (memory_budget.py), loading included
 
 
 @dataclass
@@ -158,6 +158,7 @@ class Unit:
 
     def init_globals(self, saved: dict[str, Any] | None = None) -> None:
         restored = copy_globals({n: saved[n] for n in self.model.data if n in saved}) if saved is not None else {}
+        self.space.reserve_globals(d for n, d in self.model.data.items() if n not in restored)
         self.machine.cell.pending = []
         for name, d in self.model.data.items():
             if name in restored:

@@ -176,6 +176,24 @@ class TypeSpace:
                                        " are not simulated")
         self.cell.nesting += 1
 
+    def reserve_globals(self, datas) -> None:  # noqa: ANN001
+        """Price all the globals of an application at once, before the first is built: data
+        files that ask for gigabytes are refused at once rather than after seconds of building."""
+        if self.cell.budget is None:
+            return
+        total, biggest, name = 0.0, 0.0, ""
+        for d in datas:
+            if d.container is not Container.COLLECTION:
+                cost = self.value_cost(d.type)
+                if cost >= TOO_MUCH:
+                    self._reserve(d.type, 1, f"the global {d.name}")
+                price = math.prod(max(1, int(x)) for x in (d.sizes or (1,))) * cost
+                total += price
+                if price > biggest:
+                    biggest, name = price, d.name
+        self.cell.budget.reserve(total, f"the global data of {self.app.name} (the largest: {name}, about"
+                                        f" {biggest / (1 << 20):,.0f} MB)")
+
     def _reserve(self, t: str, n: int, what: str) -> None:
         if self.cell.budget is not None:
             cost = self.value_cost(t)

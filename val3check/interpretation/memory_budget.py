@@ -4,8 +4,9 @@ Sizes come from files (`size="9999 9999"`, a user type whose fields are big arra
 size of 10^12 bytes): allocating first and measuring after would take minutes and gigabytes
 before any other budget could act. So every container is priced before it is built, from the
 Python bytes one value of its type takes (measured with tracemalloc, CPython 3.11, rounded up),
-against what the process may still grow (`--max-memory`, default 1024 MB above what it used when
-the machine was created). The scheduler also looks at the process size periodically (`over`), to
+against what the process may still grow (`--max-memory`, default 512 MB above what it used when
+the machine was created: building 512 MB of VAL 3 values takes CPython about 10 s, and a real
+application needs a few MB). The scheduler also looks at the process size periodically (`over`), to
 end a run that grows by small steps. A refusal is `MemoryBudgetExceeded`, a MemoryError: in a
 line it is runtime error 40 ("not enough system memory", manual 12.1); while the application is
 loaded it ends the run with R006.

@@ -32,7 +32,7 @@ class SimOptions:
     max_wall: float = 60.0  # wall-clock seconds
     max_lines: int = 50_000_000
     max_transcript: int = 10_000
-    max_memory_mb: float = 1024.0  # growth of the process, loading included (memory_budget.py)
+    max_memory_mb: float = 512.0  # growth of the process, loading included (memory_budget.py)
     scenario: str | None = None
     disk_roots: list[str] = field(default_factory=list)
     # the arm model (val3check.robot.RobotModel) or None: see `choose_sim_robot`
