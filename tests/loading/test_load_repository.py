@@ -59,7 +59,7 @@ def test_user_types_too(tmp_path):
 
 def test_without_git_the_lint_root_is_searched(tmp_path):
     top = tmp_path / "checkout"
-    app = make_app(top / "App", libraries=[("lib", "Disk://MyLib")])
+    make_app(top / "App", libraries=[("lib", "Disk://MyLib")])
     make_app(top / "deep" / "MyLib", programs=())
     ws, diags = load([str(top)])  # the lint root holds the library
     assert codes(diags, "F016") and not codes(diags, "L001")
