@@ -12,18 +12,24 @@ options override it. Keys (kebab-case, as ruff):
     disk-roots = ["../controller/usr/usrapp"]    # where `Disk://` libraries are also searched
     exclude = ["build/**"]          # applications whose path matches are skipped
     max-file-size = 16777216        # bytes; larger files are reported (F002) and skipped
+    target = "CS9"                  # controller and/or VAL 3 version: "CS9", "s8.13", "CS8 s7.11"
+                                    # (default: each application's project file version)
 """
 
 from __future__ import annotations
 
 import fnmatch
 import os
-import tomllib
-from dataclasses import dataclass, field
+import re
+from .records import dataclass, field
 
 from .diagnostics import Severity
+from .language.target import TargetError, TargetSpec, parse_target
 
 CONFIG_NAMES = ("val3check.toml", "pyproject.toml")
+# `[tool.val3check]`, `[tool.val3check.severity]`, `tool.val3check.x = `, or a `[tool]` table
+# (which may hold `val3check = {...}`): a pyproject.toml without any of them has no section of ours.
+_TOOL_SECTION = re.compile(rb"tool\s*\.\s*\"?val3check|^\s*\[\s*tool\s*\]", re.MULTILINE)
 FAIL_ON_CHOICES = ("error", "warning", "info", "never")
 
 
@@ -42,6 +48,7 @@ class Settings:
     disk_roots: list[str] = field(default_factory=list)
     exclude: list[str] = field(default_factory=list)
     max_file_size: int = 16 * 1024 * 1024
+    target: TargetSpec | None = None  # None: each application's project file version
     root: str = ""  # folder of the configuration file, "" when none was found
     source: str = ""  # path of the configuration file that was read
 
@@ -107,6 +114,8 @@ MAX_FILE_SIZE_LIMIT = 1 << 30  # max-file-size cannot exceed 1 GiB
 def _read_toml(path: str) -> dict:
     """The TOML document at `path`, read through val3check.confine (a regular file, its size
     checked before reading); ConfigError for anything else."""
+    import tomllib  # only when there is a configuration to read (start-up time)
+
     from .confine import Refused, Roots, read_bytes
 
     try:
@@ -120,6 +129,15 @@ def _read_toml(path: str) -> dict:
         raise ConfigError(f"{path}: cannot read configuration: {exc}") from None
     except RecursionError:
         raise ConfigError(f"{path}: cannot read configuration: tables or arrays nested too deeply") from None
+
+
+def _read_bytes_capped(path: str) -> bytes:
+    from .confine import Refused, Roots, read_bytes
+
+    try:
+        return read_bytes(path, Roots.user_given(), MAX_CONFIG_SIZE)
+    except Refused as exc:
+        raise ConfigError(f"{path}: cannot read configuration: {exc.reason}") from None
 
 
 def _tool_table(data: dict, path: str) -> dict | None:
@@ -138,6 +156,14 @@ def _tool_table(data: dict, path: str) -> dict | None:
 def _has_section(path: str, name: str, warn=None) -> bool:  # noqa: ANN001
     if name != "pyproject.toml":
         return True
+    try:
+        data = _read_bytes_capped(path)
+    except ConfigError as exc:
+        if warn is not None:
+            warn(f"{exc}; this pyproject.toml is ignored")
+        return False
+    if not _TOOL_SECTION.search(data):
+        return False  # most pyproject.toml files are not ours: no need to parse them
     try:
         tool = _read_toml(path).get("tool")
     except ConfigError as exc:
@@ -161,6 +187,7 @@ def _str_list(value, key: str, path: str) -> list[str]:
 
 KNOWN_KEYS = {
     "select", "extend-select", "ignore", "per-file-ignores", "severity", "fail-on", "disk-roots", "exclude", "max-file-size",
+    "target",
 }
 
 
@@ -203,4 +230,9 @@ def load_settings(path: str) -> Settings:
     if not isinstance(size, int) or isinstance(size, bool) or not 0 < size <= MAX_FILE_SIZE_LIMIT:
         raise ConfigError(f"{path}: 'max-file-size' must be a number of bytes from 1 to {MAX_FILE_SIZE_LIMIT}")
     s.max_file_size = size
+    if "target" in data:
+        try:
+            s.target = parse_target(data["target"])
+        except TargetError as exc:
+            raise ConfigError(f"{path}: {exc}") from None
     return s

@@ -46,9 +46,12 @@ def test_bad_configuration_values(tmp_path, text, fragment):
         load_settings(str(tmp_path / "val3check.toml"))
 
 
-@pytest.mark.parametrize("text", ["tool = 5", "[tool\n", "a = " + "{x = " * 2000 + "1" + "}" * 2000, "\xff"])
+@pytest.mark.parametrize("text", [
+    "[tool.val3check\n", "[tool.val3check]\na = " + "{x = " * 2000 + "1" + "}" * 2000, "[tool.val3check]\n\xff",
+    "tool = 5\n[tool.val3check]\n",
+])
 def test_unreadable_pyproject_is_ignored_and_said(tmp_path, text):
-    (tmp_path / "pyproject.toml").write_bytes(text.encode("latin-1") if text == "\xff" else text.encode())
+    (tmp_path / "pyproject.toml").write_bytes(text.encode("latin-1"))
     warnings = []
     assert find_config(str(tmp_path), warn=warnings.append) is None
     assert len(warnings) == 1 and "pyproject.toml" in warnings[0] and "ignored" in warnings[0]
@@ -56,6 +59,14 @@ def test_unreadable_pyproject_is_ignored_and_said(tmp_path, text):
     r = val3check("lint", "Example", cwd=tmp_path)
     clean(r, (0,))
     assert "warning:" in r.stderr and "ignored" in r.stderr
+
+
+def test_a_pyproject_that_is_not_ours_is_ignored_quietly(tmp_path):
+    (tmp_path / "pyproject.toml").write_text("tool = 5\n[project\n")
+    write_app(tmp_path, "begin\nend\n")
+    r = val3check("lint", "Example", cwd=tmp_path)
+    clean(r, (0,))
+    assert r.stderr == ""
 
 
 def test_our_section_of_the_wrong_type_is_an_error(tmp_path):

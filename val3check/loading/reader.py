@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass, field
+from ..records import dataclass, field
 from typing import Any
 
 from ..diagnostics import Diagnostic

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import os
 import re
-from dataclasses import dataclass
+from ..records import dataclass
 
 from ..confine import Roots
 
