@@ -19,7 +19,7 @@ LAYER_OF = {
     "loading": "loading",
     "parsing": "parsing",
     "semantics": "semantics",
-    "records": "base",
+    "records": "base", "confine": "base",
     "lint": "lint", "config": "lint", "suppression": "lint", "result": "lint",
     "geometry": "geometry",
     "robot": "robot",

@@ -50,7 +50,7 @@ def _simulate(tmp_path, ex):
         write_files(tmp_path, ex.files)
         return run_folder(tmp_path / ex.target, tmp_path=tmp_path, duration=ex.duration).diagnostics
     result = sim(tmp_path, ex.code, globals_=ex.globals, locals_=ex.locals, programs=ex.programs,
-                 scenario=ex.scenario, duration=ex.duration)
+                 scenario=ex.scenario, duration=ex.duration, links=ex.links or None)
     return result.diagnostics
 
 

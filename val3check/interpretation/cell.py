@@ -14,10 +14,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, Callable
 
+from ..diagnostics import Diagnostic
 from ..geometry.frames import new_flange, new_world
 from ..language.runtime_errors import Val3RuntimeError
 from .events import ControllerChange, Event, InputsChange, KeyPress, PowerChange, SerialData, Timeline
 from .recorder import sio_text
+from .scheduler import EndRun
 from .values import IOPoint
 
 
@@ -28,6 +30,8 @@ class Cell:
         self.flange = new_flange(self.io("dio", "valve1"))
         # (node or point, "fPallet[0]"): data-file references waiting for every global to exist
         self.pending: list[tuple[Any, str]] = []
+        self.budget = None  # memory_budget.MemoryBudget: containers are priced before they are built
+        self.nesting = 0  # user-type values being built inside each other
 
     def io(self, kind: str, link: str) -> IOPoint:
         if not link:
@@ -47,6 +51,7 @@ class Reaction:
     value: Any
     delay_us: int
     settings: tuple  # ((IOPoint, value), ...)
+    line: int = 0  # its line in the scenario file (R008)
 
 
 @dataclass(frozen=True, slots=True)
@@ -60,16 +65,25 @@ class SerialReply:
     data: bytes
 
 
+# A scenario reaction firing more often within one 4 ms cycle is a loop (R008).
+MAX_REACTIONS_PER_CYCLE = 10_000
+
+
 class CellSubsystem:
     """See the module docstring. `log_io(time_us, io, value, source)` records I/O changes;
-    `controller` is the chapter 8 state the scenario and enablePower() change."""
+    `controller` is the chapter 8 state the scenario and enablePower() change;
+    `report(diagnostic)` records a finding of the cell (R008)."""
 
-    def __init__(self, controller: Any, log_io: Callable[[int, IOPoint, Any, str], None]) -> None:
+    def __init__(self, controller: Any, log_io: Callable[[int, IOPoint, Any, str], None],
+                 report: Callable[[Diagnostic], None]) -> None:
         self.timeline = Timeline()
         self.reactions: list[Reaction] = []
         self.serial_replies: list[SerialReply] = []
         self.controller = controller
         self.log_io = log_io
+        self.report = report
+        self.scenario_path = ""  # for R008's position
+        self._fired: dict[int, int] | None = None  # reactions fired in the cycle being advanced
 
     # ---- Subsystem -----------------------------------------------------------------------------
 
@@ -82,11 +96,15 @@ class CellSubsystem:
         heap = timeline.heap
         if not heap or heap[0][0] > to_us:  # nothing due: the common case, every 4 ms
             return
-        while True:
-            due = timeline.pop_due(to_us)
-            if due is None:
-                return
-            self._apply(*due)
+        self._fired = {}
+        try:
+            while True:
+                due = timeline.pop_due(to_us)
+                if due is None:
+                    return
+                self._apply(*due)
+        finally:
+            self._fired = None
 
     def schedule(self, at: int, event: Event) -> None:
         self.timeline.push(at, event)
@@ -116,9 +134,28 @@ class CellSubsystem:
     # ---- what the application does to the cell --------------------------------------------------
 
     def _react(self, io: IOPoint, at: int) -> None:
-        for r in self.reactions:
+        fired = self._fired  # counted while the scenario's events are applied (advance)
+        for k, r in enumerate(self.reactions):
             if r.output is io and io.value == r.value:
+                if fired is not None:
+                    fired[k] = fired.get(k, 0) + 1
+                    if fired[k] > MAX_REACTIONS_PER_CYCLE:
+                        self._reaction_loop(at, fired)
                 self.timeline.push(at + r.delay_us, InputsChange(r.settings))
+
+    def _reaction_loop(self, at: int, fired: dict[int, int]) -> None:
+        """Scenario reactions that set each other's inputs without delay never let time move on:
+        said once (R008) at the first reaction of the loop, and the run ends."""
+        looping = [k for k in sorted(fired) if fired[k] > MAX_REACTIONS_PER_CYCLE // 2]
+        lines = [self.reactions[k].line for k in looping]
+        names = sorted({self.reactions[k].output.link for k in looping})
+        where = ", ".join(f"line {n}" for n in lines if n) or "see [[reactions]]"
+        self.report(Diagnostic(
+            "R008", f"the scenario's reactions to {', '.join(names)} set each other's inputs again and again at"
+            f" {at / 1e6:g} s ({MAX_REACTIONS_PER_CYCLE} times within one 4 ms cycle; {where}): time cannot move on",
+            self.scenario_path, min((n for n in lines if n), default=0), 1 if any(lines) else 0,
+            time_us=at, task="", program=""))
+        raise EndRun(f"budget:the scenario's reactions loop at {at / 1e6:g} s (R008)")
 
     def output_changed(self, io: IOPoint, at: int, source: str) -> None:
         """An output written by a task at `at`: logged, and the cell's reactions scheduled."""

@@ -66,11 +66,27 @@ def normalise(path: str, owner) -> tuple[int, str, str]:
     return 0, display.lower(), display
 
 
+def _roots(machine):
+    """The lint run's roots (val3check.confine): a path never leads outside them at run time either."""
+    roots = machine.ws.roots
+    if roots is None:
+        from ..confine import Roots
+
+        roots = machine.ws.roots = Roots([*machine.disk_roots, os.path.dirname(machine.app.folder)])
+    return roots
+
+
 def _real_path(machine, owner, path: str) -> str | None:
     text = path.strip()
     if text.lower().startswith("disk://"):
         text = "Disk://" + text[7:]
-    return resolve_library(text, owner.model.path, machine.disk_roots)
+    found = resolve_library(text, owner.model.path, machine.disk_roots, _roots(machine))
+    if found is None:
+        # a library the loader found by name in the repository (issue 11 item 5)
+        for ref in (*owner.model.libraries.values(), *owner.model.types.values()):
+            if ref.resolved and ref.path.strip().replace("\\", "/").lower() == text.replace("\\", "/").lower():
+                return ref.resolved
+    return found
 
 
 def _model_for(machine, resolved: str) -> tuple[Any, list]:
@@ -80,7 +96,8 @@ def _model_for(machine, resolved: str) -> tuple[Any, list]:
         return app, []
     from ..loading import LoadOptions, load
 
-    ws2, found = load([resolved], LoadOptions(disk_roots=list(machine.disk_roots)))
+    ws2, found = load([resolved], LoadOptions(disk_roots=list(machine.disk_roots),
+                                              extra_roots=_roots(machine).folders))
     for k, v in ws2.apps.items():
         machine.ws.apps.setdefault(k, v)
     return machine.ws.apps.get(resolved), found
@@ -258,8 +275,9 @@ def _lib_list(machine, owner, path: str, arr: Arr) -> bool:
     if real is None:
         base = os.path.dirname(os.path.dirname(os.path.abspath(owner.model.path)))
         rest = path.split("://", 1)[-1].strip("/")
-        cand = os.path.join(base, rest) if rest else base
-        folder = cand if os.path.isdir(cand) else None
+        cand = os.path.normpath(os.path.join(base, rest)) if rest else base
+        roots = _roots(machine)  # never list a folder outside the run's roots (val3check.confine)
+        folder = cand if roots.holds(cand) and roots.allows(cand) and os.path.isdir(cand) else None
     else:
         folder = os.path.dirname(os.path.dirname(real))
     if folder:

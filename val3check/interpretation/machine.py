@@ -29,6 +29,7 @@ from .compiler import Compiled
 from .controller import Controller
 from .libraries import autoload_libraries
 from .memory import TypeSpace
+from .memory_budget import MemoryBudget
 from .not_simulated import ARM_LIMIT, SimLimit, arm_message
 from .recorder import IOEvent, Recorder, TranscriptEntry
 from .registry import Registry
@@ -47,6 +48,7 @@ class Budgets:
     max_transcript: int = 10_000
     max_io_log: int = 100_000
     stop_us: int = 2_000_000  # simulated time left to stop() after a run is cut short
+    max_memory_mb: float = 512.0  # growth of the process (memory_budget.py), loading included
 
 
 class FinalState(NamedTuple):
@@ -68,11 +70,13 @@ class Machine:
         self.disk_roots = list(disk_roots or [])
         self.clock = Clock()
         self.scheduler = Scheduler(self, self.clock)
+        self.wall_start = _time.monotonic()  # --max-wall covers loading and compiling too
         self.cell = Cell()
+        self.cell.budget = MemoryBudget(self.budgets.max_memory_mb, clock=self._wall_check)
         self.controller = Controller()
         self.user_page = UserPage()
         self.recorder = Recorder(self.budgets.max_transcript, self.budgets.max_io_log, self._record_full)
-        self.cell_subsystem = CellSubsystem(self.controller, self.log_io)
+        self.cell_subsystem = CellSubsystem(self.controller, self.log_io, self._cell_finding)
         self.scheduler.add_subsystem(self.cell_subsystem)
         self.diags: list[Diagnostic] = []
         self.compiled: dict[str, Compiled] = {}  # by the generated code's file name
@@ -87,7 +91,6 @@ class Machine:
         self.end_time = 0
         self.stopping = False  # stop() has been started
         self.stop_task: Task | None = None
-        self.wall_start = 0.0
         self.destroyed: list[str] = []
         self._libraries_reported: set[str] = set()
         self.base_namespace = self._base_namespace()
@@ -157,6 +160,13 @@ class Machine:
         self.diags.append(Diagnostic("R006", message, self.app.path, 0, 0,
                                      time_us=self.clock.time_of(task) if task is not None else self.clock.now,
                                      task=task.name if task is not None else "", program=""))
+
+    def _cell_finding(self, diagnostic: Diagnostic) -> None:
+        """A finding of the cell (R008), at the scenario file, else at the application."""
+        if not diagnostic.path:
+            diagnostic = Diagnostic(diagnostic.code, diagnostic.message, self.app.path, diagnostic.line, diagnostic.col,
+                                    time_us=diagnostic.time_us, task=diagnostic.task, program=diagnostic.program)
+        self.diags.append(diagnostic)
 
     def output_changed(self, task: Task, io: IOPoint) -> None:
         self.cell_subsystem.output_changed(io, self.clock.time_of(task), task.name)
@@ -285,8 +295,18 @@ class Machine:
         task.gen = start.func(task)
         self.scheduler.add(task)
 
+    def _wall_check(self) -> None:
+        if _time.monotonic() > self.wall_start + self.budgets.wall_s:
+            raise EndRun("wall-clock")
+
+    def check_load_budgets(self) -> None:
+        """While the application is loaded and compiled: the wall-clock and memory budgets."""
+        self._wall_check()
+        why = self.cell.budget.over()
+        if why:
+            raise EndRun("budget:" + why)
+
     def run(self) -> None:
-        self.wall_start = _time.monotonic()
         self.start()
         try:
             self.scheduler.loop(self.budgets.duration_us)
@@ -394,7 +414,7 @@ def _error_code(e: BaseException) -> tuple[int, str]:
     if isinstance(e, RecursionError):
         return 41, "call depth"
     if isinstance(e, MemoryError):
-        return 40, ""
+        return 40, str(e)
     if isinstance(e, EndRun):
         raise e
     return 61, f"{e.__class__.__name__}: {e}"

@@ -238,6 +238,7 @@ class Scheduler:
         clock = self.clock
         budgets = machine.budgets
         wall_deadline = machine.wall_start + budgets.wall_s
+        memory = machine.cell.budget
         cycles = 0
         while True:
             if stopping and machine.stop_done():
@@ -252,8 +253,12 @@ class Scheduler:
             if clock.now >= limit_us:
                 raise EndRun("stop-timeout" if stopping else "duration")
             cycles += 1
-            if cycles & 63 == 0 and _time.monotonic() > wall_deadline:
+            if _time.monotonic() > wall_deadline:
                 raise EndRun("wall-clock")
+            if cycles & 255 == 0:
+                why = memory.over()
+                if why:
+                    raise EndRun("budget:" + why)
             if self.total_lines > budgets.max_lines:
                 raise EndRun("steps")
             busy = self.cycle()

@@ -42,6 +42,7 @@ class Unit:
 
     def init_globals(self, saved: dict[str, Any] | None = None) -> None:
         restored = copy_globals({n: saved[n] for n in self.model.data if n in saved}) if saved is not None else {}
+        self.space.reserve_globals(d for n, d in self.model.data.items() if n not in restored)
         cell = self.machine.cell
         cell.pending = []
         for name, d in self.model.data.items():
@@ -76,6 +77,7 @@ class Unit:
                 ns[f"d_{name}"] = c.data
         self.ns = ns
         for prog in self.model.programs.values():
+            machine.check_load_budgets()
             if prog.body is None and prog.code is not None:
                 self.parse_findings.extend(parse_program(prog))
         # the compiler reads the types semantic analysis computes (lint's checks)

@@ -26,6 +26,7 @@ from ..interpretation.chapters import (
 )
 from ..interpretation.machine import Budgets, Machine
 from ..interpretation.registry import Registry
+from ..interpretation.scheduler import EndRun
 from ..loading.model import Application, Workspace
 from ..motion import ch10_motion
 from ..motion.arm_state import MotionlessArm
@@ -44,6 +45,7 @@ class SimOptions:
     max_wall: float = 60.0  # wall-clock seconds
     max_lines: int = 50_000_000
     max_transcript: int = 10_000
+    max_memory_mb: float = 512.0  # growth of the process, loading included (interpretation/memory_budget.py)
     disk_roots: list[str] = field(default_factory=list)
     # the arm model (val3check.robot.RobotModel) or None: see robot_choice.choose_sim_robot
     robot: Any = None
@@ -61,7 +63,8 @@ def build_machine(ws: Workspace, app: Application, options: SimOptions, *, regis
     """A machine ready to load the application. `registry` and `arm` (an `Arm` port that is also
     a `Subsystem`) replace the standard ones (tests, tools)."""
     budgets = Budgets(duration_us=int(round(options.duration * 1_000_000)), wall_s=options.max_wall,
-                      max_lines=options.max_lines, max_transcript=options.max_transcript)
+                      max_lines=options.max_lines, max_transcript=options.max_transcript,
+                      max_memory_mb=options.max_memory_mb)
     arm = arm if arm is not None else MotionlessArm(options.robot)
     machine = Machine(ws, app, registry or build_registry(), arm, budgets=budgets, disk_roots=options.disk_roots)
     machine.add_subsystem(arm)  # after the cell: inputs are refreshed before the arm moves
@@ -72,8 +75,14 @@ def simulate(ws: Workspace, app: Application, options: SimOptions | None = None,
              scenario: Scenario | None = None) -> SimResult:
     options = options or SimOptions()
     machine = build_machine(ws, app, options)
-    machine.load_main()
-    if scenario is not None:
-        apply_scenario(machine, scenario)
+    try:
+        machine.load_main()
+        if scenario is not None:
+            apply_scenario(machine, scenario)
+    except (EndRun, MemoryError, RecursionError) as stop:  # a budget reached before the first line ran
+        machine.end_reason = (stop.reason if isinstance(stop, EndRun) else f"budget:{stop}"
+                              if isinstance(stop, MemoryError)
+                              else "budget:the application's values are nested too deeply for the simulator")
+        return collect(machine)
     machine.run()
     return collect(machine)

@@ -85,12 +85,27 @@ class ProgramCompiler(StatementCompiler, CallCompiler, ExpressionCompiler, Varia
                 params.append(f"a_{p.name}")
             else:
                 params.append(f"v_{p.name}")
-        self.cur = (prog.origin.line, prog.origin.col)
         body = prog.body
-        if body is not None:
-            self.cur = (body.line, body.col)
+        # 2.1.4.2: a task's execution memory holds the parameters and locals of every program of
+        # its call stack; a call that does not fit stops the task at the program's declaration
+        # (error 41), as does local data the simulator has no memory for (error 40).
+        self.cur = (prog.origin.line, prog.origin.col)
+        self.emit("while 1:")
+        self.ind += 1
+        self.emit("try:")
+        self.ind += 1
         self.emit(f"T.stack += {fb}")
-        self.emit("if T.stack > T.smax: T.stack -= " + str(fb) + "; raise E(41, 'execution memory of the task exceeded')")
+        self.emit(f"if T.stack > T.smax: T.stack -= {fb}; raise E(41, 'the parameters and locals of {prog.name}()"
+                  f" need {fb} bytes, the task has ' + str(T.smax - T.stack) + ' left of its ' + str(T.smax))")
+        self.ind -= 1
+        self.emit("except Exception as _e:")
+        self.ind += 1
+        self.emit("yield from FAIL(T, _e, False, None)")
+        self.emit("continue")
+        self.ind -= 1
+        self.emit("break")
+        self.ind -= 1
+        prologue_at = len(self.out)
         boxinit = ["None"] * self.nbox
         for p in prog.parameters:
             v = self.vars[p.name]
@@ -109,6 +124,12 @@ class ProgramCompiler(StatementCompiler, CallCompiler, ExpressionCompiler, Varia
             elif v.store == "obj":
                 cont = "COLLECTION" if v.cont == "collection" else "ARRAY"
                 self.emit(f"v_{loc.name} = LOCAL({v.t!r}, {cont!r}, {tuple(loc.sizes or (1,))!r}, {loc.name!r})")
+        if len(self.out) > prologue_at:  # the locals' values: allocated at the declaration too
+            init = self.out[prologue_at:]
+            del self.out[prologue_at:]
+            self.guarded([line.strip() for line in init], False)
+        if body is not None:
+            self.cur = (body.line, body.col)
         self.emit("try:")
         self.ind += 1
 
@@ -157,6 +178,10 @@ def compile_program(unit, program: Program, namespace: dict) -> Compiled:
         try:
             code = compile(result.source, result.filename, "exec")
             break
+        except MemoryError:
+            err = CompileError(f"program {program.name}() is too large for the simulator (out of memory while"
+                               " compiling it)", program.origin.line, program.origin.col)
+            return _failing(unit, program, err, namespace)
         except (SyntaxError, RecursionError) as exc:
             # Python allows 20 nested blocks: fewer sequences get a taskResume dispatch loop
             if max_level > 0 and isinstance(exc, SyntaxError):

@@ -21,6 +21,11 @@ from ..values import NODE_TYPES
 from .structures import Code, CompileError
 
 
+# A budget on the Python the compiler writes: 150,000 lines (about 15,000 VAL 3 lines in one
+# program) compile in about 2 s and 700 MB; a 100,000-line program would need many GB.
+MAX_SOURCE_LINES = 150_000
+
+
 class _Mark(NamedTuple):
     """The compiler's state before a statement, to drop what it wrote if it cannot compile."""
 
@@ -38,6 +43,10 @@ class StatementCompiler:
 
     def line(self) -> None:
         """Count one VAL 3 line (5.4) and hand over when the turn is used up."""
+        if len(self.out) > MAX_SOURCE_LINES:
+            origin = self.program.origin
+            raise CompileError(f"program {self.program.name}() is too large for the simulator (more than"
+                               f" {MAX_SOURCE_LINES} lines of generated code)", origin.line, origin.col)
         self.emit("T.q -= 1")
         self.emit("if T.q < 0: yield")
 
@@ -215,6 +224,8 @@ class StatementCompiler:
             vcode = f"(yield from SIOR(T, {vcode}, {t!r}))"
         elif t == "bool" and vt == "dio":
             vcode = f"IOR({vcode})"
+        elif t == "num" and vt == "aio":
+            vcode = self.coerce(vcode, vt, t)
         elif t not in ("num", "bool", "string") and vt not in ("num", "bool", "string") and type(value) is not ast.Struct:
             vcode = f"CP({vcode})"  # 7.3: `=` copies (deep copy) structured and user-type values
         if as_expr:
@@ -359,12 +370,12 @@ class StatementCompiler:
             vals = [self.coerce(*self.expr(v, want=st), st) for v in case.values]
             tests.append((i, " or ".join(f"_s == {v}" for v in vals) or "False"))
         code = lines
-        first = True
+        # flat tests, not an elif chain: Python's compiler nests elif, and thousands of cases
+        # would exhaust its recursion
         for i, test in tests:
-            code.append(f"{'if' if first else 'elif'} {test}: {n} = {i}")
-            first = False
+            code.append(f"if {n} < 0 and ({test}): {n} = {i}")
         if s.default is not None:
-            code.append(f"{'if' if first else 'else'}{' True' if first else ''}: {n} = {len(s.cases)}")
+            code.append(f"if {n} < 0: {n} = {len(s.cases)}")
         self.guarded(code, False)
         flag = f"{n}x"
         self.emit(f"{flag} = 0")
