@@ -88,10 +88,11 @@ class Task:
     __slots__ = ("name", "unit", "prio", "period", "gen", "state", "q", "stack", "smax", "wake", "tdep", "error",
                  "errdetail", "errpos", "program", "created", "ended", "machine", "jump", "skippable",
                  "overrun", "next_run", "overran", "limit", "end_state", "lines", "seq", "saved", "final",
-                 "jumpctx", "pending", "cond", "waiting_for")
+                 "jumpctx", "pending", "cond", "waiting_for", "clock")
 
     def __init__(self, machine, name: str, unit, program: str, prio: int, period: int = 0) -> None:
         self.machine = machine
+        self.clock = machine.clock
         self.name = name
         self.unit = unit
         self.program = program
@@ -140,6 +141,7 @@ class Scheduler:
         self._next_time: list[Any] = []
         self.total_lines = 0
         self._seq = 0
+        self._created: list[Task] = []  # tasks created since the round's order was taken (5.4)
 
     def add_subsystem(self, subsystem: Any) -> None:
         self.subsystems.append(subsystem)
@@ -182,6 +184,7 @@ class Scheduler:
         task = Task(self.machine, name, unit, pname, prio, period)
         task.created = self.clock.time_of(creator)
         task.gen = func(task, *args)
+        self._created.append(task)
         return self.add(task)
 
     def suspend(self, task: Task) -> None:
@@ -287,10 +290,11 @@ class Scheduler:
                 self._sync_turn(task)
         turn = self._turn
         stopped, delay, wait = STOPPED_STATES, DELAY, WAIT
+        created = self._created
         while clock.cycle_lines < LINES_PER_CYCLE:
             progress = False
+            created.clear()
             order = list(tasks)
-            seen = self._seq
             # (a list iterator sees the items appended while it runs: the tasks created below)
             for task in order:
                 if task.period or task not in tasks:
@@ -316,11 +320,11 @@ class Scheduler:
                     break
                 if turn(task, task.prio if task.prio < left else left, ok):
                     progress = True
-                if self._seq != seen:
+                if created:
                     # 5.4: tasks take turns in creation order; one created in this turn takes
                     # its turn in this round, after the tasks created before it
-                    order.extend(t for t in tasks if t.seq > seen)
-                    seen = self._seq
+                    order.extend(created)
+                    created.clear()
             if not progress:
                 break
         self.total_lines += clock.cycle_lines

@@ -30,7 +30,7 @@ def DELAY(task, s: float, what: str = "delay"):
         task.state = _YIELD
         yield
         return
-    task.wake = task.machine.clock.wake_time(task, s)
+    task.wake = task.clock.wake_time(task, s)
     task.state = _DELAY
     task.waiting_for = what
     yield
