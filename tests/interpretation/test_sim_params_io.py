@@ -333,3 +333,20 @@ def test_controller_io_passed_to_a_sio_parameter_is_a_sio(tmp_path):
     r = run_folder(folder, tmp_path=tmp_path)
     assert not r.diagnostics, r.diagnostics
     assert [(e.kind, e.link, e.value) for e in r.io_log] == [("sio", "io:tcp_server", "hi\r"), ("sio", "io:com1", "\x07")]
+
+
+def test_an_aio_where_a_num_is_needed_is_read(tmp_path):
+    """3.6.2: lint accepts an aio where a num is needed (its value, as aioGet reads it): a for
+    bound or step, an operand, an index, put(), a switch (was error 61 or R004; found by
+    bench/fuzz.py)."""
+    from .simsupport import gv, run_folder
+
+    folder = build(tmp_path, "begin\n  for nI = 0 to aiX step aiX\n    nCount = nCount + 1\n  endFor\n"
+                             "  nSum = aiX + 1\n  nNeg = -aiX\n  nItem = nA[aiX]\n  put(aiX)\n"
+                             "  switch aiX\n    case 2\n      bTwo = true\n    break\n  endSwitch\nend\n",
+                   globals_=["aio aiX", "num nI", "num nCount", "num nSum", "num nNeg", "num nItem", "num nA[3]",
+                             "bool bTwo"], links={"aiX": "Cell\\analog0"})
+    r = run_folder(folder, tmp_path=tmp_path, scenario='[inputs]\naiX = 2\n')
+    assert not r.diagnostics, r.diagnostics
+    assert (gv(r, "nCount"), gv(r, "nSum"), gv(r, "nNeg"), gv(r, "nItem"), gv(r, "bTwo")) == (2.0, 3.0, -2.0, 0.0, True)
+    assert out(r) == ["2"]

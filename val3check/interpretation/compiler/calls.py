@@ -309,7 +309,7 @@ class CallCompiler:
         return self._page(node, "title")
 
     def _page(self, node, kind):
-        args = [self.coerce(*self.expr(a), UNKNOWN) for a in node.args]
+        args = [self.coerce(code, t, "num" if t == "aio" else UNKNOWN) for code, t in map(self.expr, node.args)]
         return Code(f"PAGE(T, {kind!r}{''.join(', ' + x for x in args)})", "void")
 
     def i_get(self, node):

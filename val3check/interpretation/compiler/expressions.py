@@ -90,6 +90,8 @@ class ExpressionCompiler:
             return self.call_expr(node)
         if tn is ast.Unary:
             code, t = self.expr(node.operand)
+            if t == "aio":  # an aio read as a num (3.6.2)
+                code, t = self.coerce(code, t, "num"), "num"
             if node.op == "-":
                 if t not in ("num", UNKNOWN):
                     raise self.err(f"unary - on {t}", node)
@@ -189,7 +191,7 @@ class ExpressionCompiler:
                 raise self.err("a collection takes one key", node)
             key = self.expr(node.indices[0]).text
             return Place(f"{c}.d", f"{'CKW(A, ' if write else 'CK('}{c}, {key})", t, sp)
-        idx = [self.expr(i).text for i in node.indices]
+        idx = [self.num(i) for i in node.indices]
         if n == 1:
             if type(node.base) is ast.Name:
                 v = self.lookup_var(node.base.name)
@@ -252,6 +254,10 @@ class ExpressionCompiler:
             return f"(yield from SIOR(T, {code}, {want!r}))"
         return code
 
+    def num(self, node) -> str:
+        """Code of an expression where a num is needed (an aio or a sio is read)."""
+        return self.coerce(*self.expr(node), "num")
+
     def cond(self, node) -> str:
         code, t = self.expr(node)
         if t == "dio":
@@ -270,6 +276,10 @@ class ExpressionCompiler:
         else:
             lc, lt = self.expr(node.left)
             rc, rt = self.expr(node.right, want=lt if lt != UNKNOWN else None)
+        if lt == "aio":  # an aio read as a num (3.6.2), as lint accepts it
+            lc, lt = self.coerce(lc, lt, "num"), "num"
+        if rt == "aio":
+            rc, rt = self.coerce(rc, rt, "num"), "num"
         if op == "xor":
             return Code(f"({self.coerce(lc, lt, 'bool')} != {self.coerce(rc, rt, 'bool')})", "bool")
         if lt == "dio" or rt == "dio":

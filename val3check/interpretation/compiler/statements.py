@@ -340,9 +340,9 @@ class StatementCompiler:
         c, k, t, _ = self.lvalue(s.counter)
         place = k if c is None else f"{c}[{k}]"
         self.line()
-        start = self.expr(s.start).text
-        stop = self.expr(s.stop).text
-        step = self.expr(s.step).text if s.step is not None else "1.0"
+        start = self.num(s.start)
+        stop = self.num(s.stop)
+        step = self.num(s.step) if s.step is not None else "1.0"
         self.guarded([f"{n}b = {stop}", f"{n}s = {step}", f"{place} = {start}"], False)
         self.emit("while 1:")
         self.ind += 1
@@ -363,6 +363,8 @@ class StatementCompiler:
         if st == "dio":
             subj = f"IOR({subj})"
             st = "bool"
+        elif st == "aio":
+            subj, st = self.coerce(subj, st, "num"), "num"
         self.line()
         lines = [f"_s = {subj}", f"{n} = -1"]
         tests = []
