@@ -106,8 +106,9 @@ def collision_solids(arm: dict) -> dict[str, list[tuple]]:
         ],
         # elbow housing around axis 3
         "link_3": [("elbow", r["elbow"], 2 * r["elbow"], (0, 0, 0), along_y)],
-        # forearm tube turning with axis 4, from the elbow to the wrist centre
-        "link_4": [("forearm", r["fore"], c3, (0, 0, c3 / 2), "0 0 0")],
+        # forearm tube turning with axis 4, from the elbow to the wrist housing (which covers the
+        # wrist centre): ending there lets the flange turn to 90 degrees beside it, as on the arm
+        "link_4": [("forearm", r["fore"], c3 - r["wrist"], (0, 0, (c3 - r["wrist"]) / 2), "0 0 0")],
         # wrist: housing around axis 5 and the part between the wrist centre and the flange
         "link_5": [
             ("wrist", r["wrist"], 2 * r["wrist"], (0, 0, 0), along_y),
@@ -139,6 +140,15 @@ def urdf(name: str, arm: dict, source: str) -> str:
             f'    <joint name="joint_{i}" nominal_speed_deg_s="{_f(j["nominal_speed_deg_s"])}" '
             f'acceleration_deg_s2="{_f(acc)}" max_torque_nm="{_f(j["max_torque_nm"])}"/>'
         )
+    # Link pairs never checked against each other besides those val3check computes (adjacent, always
+    # or never in collision: robots/README.md, "Allowed collisions"): where these cylinders, centred
+    # on the arm's plane, meet while the real casings pass beside each other.
+    lines += [
+        '    <disable_collisions link1="base_link" link2="link_2" reason="user"/>'
+        "  <!-- the upper arm swings beside the base column -->",
+        '    <disable_collisions link1="link_4" link2="link_6" reason="user"/>'
+        "  <!-- the flange turns inside the forearm's fork -->",
+    ]
     lines.append("  </val3check>")
     lines.append("")
     solids = collision_solids(arm)

@@ -1,0 +1,91 @@
+"""The arm as collision bodies: its links' solids, the allowed-collision matrix, and how far each
+link can be from each joint axis (for the motion bound of docs/cell.md)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ..robot.links import ArmLinks, arm_links
+from .acm import ACM, arm_acm
+from .bodies import Body
+from .meshes import MeshProblem, load_mesh
+
+
+class ArmModel:
+    """A `RobotModel` seen by the collision checker.
+
+    links          `ArmLinks` (link tree, FK of every link)
+    bodies         {link: [Body]} for the links that have collision solids
+    acm            the allowed-collision matrix (`acm.ACM`; `acm.source` "urdf" or "computed")
+    flange_link    the link of the VAL 3 flange frame: tools and parts hang on it
+    touch_links    the links a tool may touch by default: the first two links with solids found
+                   going up from the flange (the flange plate and the wrist it is mounted on)
+    reach[link]    {joint index: bound of the distance from that joint's axis to any point of the
+                   link's solids, in every configuration (mm)}
+    """
+
+    def __init__(self, robot, acm: ACM | None = None) -> None:
+        self.robot = robot
+        self.links: ArmLinks = arm_links(robot)
+        self.bodies: dict[str, list[Body]] = {}
+        for s in self.links.solids:
+            label = f"{s.link} ({s.name})"
+            if s.kind == "mesh":
+                try:
+                    mesh = load_mesh(Path(s.mesh), s.mesh, s.size, solid=False)
+                except MeshProblem as exc:
+                    from ..robot.errors import RobotError
+
+                    raise RobotError(f"{robot.source}: link {s.link!r}: {exc}") from None
+                b = Body("link", s.link, s.name, label, "mesh", (), s.origin, mesh.vertices, mesh.faces, solid=False)
+            else:
+                b = Body("link", s.link, s.name, label, s.kind, s.size, s.origin)
+            self.bodies.setdefault(s.link, []).append(b)
+        self.flange_link = robot.flange_frame
+        self.touch_links = self._touch_links()
+        self.acm = acm or arm_acm(self.links, self.bodies, robot.joint_limits, robot.source)
+        self.reach: dict[str, dict[int, float]] = {}
+        for link, bodies in self.bodies.items():
+            far = max(b.reach() for b in bodies)
+            self.reach[link] = {j: r + far for j, r in self.links.reach_from_joint(link).items()}
+
+    @property
+    def n_joints(self) -> int:
+        return len(self.links.joint_names)
+
+    def prismatic(self) -> np.ndarray:
+        return np.array(self.links.prismatic, dtype=bool)
+
+    def _touch_links(self) -> tuple[str, ...]:
+        out: list[str] = []
+        n = self.flange_link
+        while n != self.links.root and len(out) < 2:
+            if self.bodies.get(n):
+                out.append(n)
+            n = self.links.edges[n].parent
+        if len(out) < 2 and self.bodies.get(self.links.root):
+            out.append(self.links.root)
+        return tuple(out)
+
+    def flange_reach(self) -> dict[int, float]:
+        """{joint index: bound of the distance from that axis to the flange frame's origin}."""
+        return self.links.reach_from_joint(self.flange_link)
+
+
+_MODELS: dict[tuple, ArmModel] = {}
+
+
+def arm_model(robot) -> ArmModel:
+    """The `ArmModel` of a robot, built once per URDF file (and per joint names) in a process."""
+    p = Path(robot.source)
+    try:
+        mtime = p.stat().st_mtime_ns
+    except OSError:
+        mtime = 0
+    key = (str(p.resolve()), mtime, tuple(robot.joint_names), robot.world_frame, robot.flange_frame)
+    m = _MODELS.get(key)
+    if m is None:
+        m = _MODELS[key] = ArmModel(robot)
+    return m
