@@ -9,7 +9,7 @@ import numpy as np
 
 from ..robot.links import ArmLinks, arm_links
 from .acm import ACM, arm_acm
-from .bodies import Body
+from .bodies import Body, make_bodies
 from .meshes import MeshProblem, load_mesh
 
 
@@ -22,8 +22,7 @@ class ArmModel:
     flange_link    the link of the VAL 3 flange frame: tools and parts hang on it
     touch_links    the links a tool may touch by default: the first two links with solids found
                    going up from the flange (the flange plate and the wrist it is mounted on)
-    reach[link]    {joint index: bound of the distance from that joint's axis to any point of the
-                   link's solids, in every configuration (mm)}
+    weights(link, bodies)   the motion bound's factors (docs/cell.md)
     """
 
     def __init__(self, robot, acm: ACM | None = None) -> None:
@@ -39,17 +38,14 @@ class ArmModel:
                     from ..robot.errors import RobotError
 
                     raise RobotError(f"{robot.source}: link {s.link!r}: {exc}") from None
-                b = Body("link", s.link, s.name, label, "mesh", (), s.origin, mesh.vertices, mesh.faces, solid=False)
+                bodies = make_bodies("link", s.link, s.name, label, "mesh", (), s.origin, mesh.vertices, mesh.faces,
+                                     solid=False)
             else:
-                b = Body("link", s.link, s.name, label, s.kind, s.size, s.origin)
-            self.bodies.setdefault(s.link, []).append(b)
+                bodies = make_bodies("link", s.link, s.name, label, s.kind, s.size, s.origin)
+            self.bodies.setdefault(s.link, []).extend(bodies)
         self.flange_link = robot.flange_frame
         self.touch_links = self._touch_links()
         self.acm = acm or arm_acm(self.links, self.bodies, robot.joint_limits, robot.source)
-        self.reach: dict[str, dict[int, float]] = {}
-        for link, bodies in self.bodies.items():
-            far = max(b.reach() for b in bodies)
-            self.reach[link] = {j: r + far for j, r in self.links.reach_from_joint(link).items()}
 
     @property
     def n_joints(self) -> int:
@@ -69,9 +65,36 @@ class ArmModel:
             out.append(self.links.root)
         return tuple(out)
 
-    def flange_reach(self) -> dict[int, float]:
-        """{joint index: bound of the distance from that axis to the flange frame's origin}."""
-        return self.links.reach_from_joint(self.flange_link)
+    def weights(self, link: str, bodies: list[Body]) -> np.ndarray:
+        """Per joint value, how far (mm) a point of `bodies` (carried by `link`) may move per unit of
+        that joint's travel (radian, or mm for a prismatic axis), whatever the other joints:
+          * the joint nearest the link (its axis fixed in the link's frame): the largest distance
+            from that axis to a point of the bodies, 0 for a solid of revolution about it;
+          * a joint further up: the lengths of the links in between, end to end, plus the largest
+            distance from the link's origin to a point of the bodies (the axis can be anywhere
+            within that reach after the joints in between have turned);
+          * a prismatic joint: 1;  a joint that does not move the link: 0."""
+        w = np.zeros(self.n_joints)
+        if not bodies:
+            return w
+        links = self.links
+        pris = links.prismatic
+        far = max(b.reach() for b in bodies)
+        for j, r in links.reach_from_joint(link).items():
+            w[j] = 1.0 if pris[j] else r + far
+        n, T = link, np.eye(4)
+        while n != links.root:
+            e = links.edges[n]
+            if e.kind != "fixed" and e.index >= 0:
+                if not pris[e.index]:
+                    inv = np.linalg.inv(T)
+                    p0 = inv[:3, 3]
+                    d = inv[:3, :3] @ e.axis
+                    w[e.index] = max(b.from_line(p0, d / np.linalg.norm(d)) for b in bodies)
+                break
+            T = e.origin @ T
+            n = e.parent
+        return w
 
 
 _MODELS: dict[tuple, ArmModel] = {}
