@@ -126,12 +126,14 @@ def _collisions(links, bodies: dict[str, list[Body]], Q: np.ndarray, pairs) -> d
                 cb, hb = boxes[id(bb)]
                 near = np.nonzero(np.all(np.abs(ca - cb) <= ha + hb, axis=1) & ~hit)[0]
                 Ta, Tb = world[id(ba)], world[id(bb)]
+                oa = ba.exact if ba.exact is not None else ba.obj  # the triangles of a mesh, not its hull
+                ob = bb.exact if bb.exact is not None else bb.obj
                 for k in near:
-                    ba.obj.setRotation(Ta[k, :3, :3])
-                    ba.obj.setTranslation(Ta[k, :3, 3])
-                    bb.obj.setRotation(Tb[k, :3, :3])
-                    bb.obj.setTranslation(Tb[k, :3, 3])
-                    if fcl.collide(ba.obj, bb.obj, req, fcl.CollisionResult()):
+                    oa.setRotation(Ta[k, :3, :3])
+                    oa.setTranslation(Ta[k, :3, 3])
+                    ob.setRotation(Tb[k, :3, :3])
+                    ob.setTranslation(Tb[k, :3, 3])
+                    if fcl.collide(oa, ob, req, fcl.CollisionResult()):
                         hit[k] = True
         out[(a, b)] = int(hit.sum())
     return out

@@ -265,12 +265,24 @@ def read_collision_solids(path: str | os.PathLike) -> list[Solid]:
 
 
 def _mesh_path(filename: str, base: Path, where: str) -> str:
+    """A collision mesh's file: relative to the URDF (or file://), or package://NAME/... found in a
+    folder NAME above the URDF (as ROS resolves it from a package's share folder); it must stay
+    inside that folder."""
     if filename.startswith("file://"):
         filename = filename[len("file://"):]
+    root = base
+    if filename.startswith("package://"):
+        pkg, _, rest = filename[len("package://"):].partition("/")
+        for folder in (base, *base.parents):
+            if folder.name == pkg:
+                root, filename = folder, rest
+                break
+        else:
+            raise RobotError(f"{where}: mesh {filename!r}: no folder {pkg!r} above the URDF to resolve package:// in")
     if not filename or "://" in filename:
-        raise RobotError(f"{where}: mesh {filename!r}: give a path relative to the URDF (package:// cannot be resolved)")
-    p = (base / filename).resolve()
-    if base not in p.parents:
+        raise RobotError(f"{where}: mesh {filename!r}: give a path relative to the URDF")
+    p = (root / filename).resolve()
+    if root not in p.parents:
         raise RobotError(f"{where}: mesh {filename!r} is outside the URDF's folder")
     return str(p)
 
