@@ -151,7 +151,9 @@ class CollisionChecker:
         self._placed_obstacles: list[Body] = []
         self._lo = np.zeros((0, 3))
         self._hi = np.zeros((0, 3))
-        self._allowed: set[frozenset[int]] = set()  # body pairs touching at a grasp/release, until apart
+        # body pairs touching at a grasp or a release, not checked until they have moved apart
+        self._allowed: dict[frozenset[int], tuple[Body, Body]] = {}
+        self._allowed_until: dict[frozenset[int], float] = {}  # in the motion being checked: apart from
         self._last_q: np.ndarray | None = None
         self._time = 0.0
         # state of the motion being checked
@@ -367,20 +369,23 @@ class CollisionChecker:
         clear  the same over the pairs that count for clearance (not those landing or lifting off
                in this motion, `w.landing`); exact: whether it is exact; info: (body a, body b,
                point a, point b) of it when exact;
-        hit    (body a, body b, point, depth, kind) of the deepest overlap, or None."""
+        hit    (body a, body b, point, depth, kind) of the deepest overlap, or None;
+        valid  the values hold before this position only (a pair allowed to touch since a grasp
+               or release is left out until then), inf otherwise."""
         self._place(w.a, u)
         if w.b is not None:
             self._place(w.b, u)
         pairs = self._pairs(w)
-        if self._allowed:
+        valid = math.inf  # left-out pairs come back at this sample: the result holds before it only
+        if self._allowed_until:
+            until = self._allowed_until
             kept = []
-            for gap, ba, bb in pairs:
-                key = frozenset((id(ba), id(bb)))
-                if key in self._allowed:
-                    if gap > self.touch or self._distance(ba, bb, False)[0] > self.touch:
-                        self._allowed.discard(key)  # apart: checked again from now on
-                    continue
-                kept.append((gap, ba, bb))
+            for p in pairs:
+                at = until.get(frozenset((id(p[1]), id(p[2]))), -1.0)
+                if at <= u:
+                    kept.append(p)
+                else:
+                    valid = min(valid, at)
             pairs = kept
         cert = clear = math.inf
         exact, info = True, None
@@ -411,7 +416,7 @@ class CollisionChecker:
                 clear, exact, info = -depth, True, (ba, bb, p, p)
             if c is not None and (hit is None or depth > hit[3]):
                 hit = (ba, bb, point, depth, "contact" if w.b is None else "self")
-        return cert, clear, exact, info, hit
+        return cert, clear, exact, info, hit, valid
 
     def _collide(self, a: Body, b: Body) -> tuple[float, tuple] | None:
         res = fcl.CollisionResult()
@@ -443,8 +448,10 @@ class CollisionChecker:
                     inv = np.linalg.inv(outer.pose)
                     c = inv[:3, :3] @ (0.5 * (lo + hi)) + inv[:3, 3]
                     if point_inside(outer.mesh[0], outer.mesh[1], c):
-                        depth = self._distance(inner, outer)[0]  # to the surface: how deep inside
-                        return inner, outer, max(depth, 0.0)
+                        # how deep inside: from the solid to the mesh's triangles
+                        depth = fcl.distance(inner.exact_obj(), outer.exact_obj(), self._req, fcl.DistanceResult())
+                        self.measurements += 1
+                        return inner, outer, max(float(depth), 0.0)
         return None
 
     # ---- one motion ------------------------------------------------------------------------------------
@@ -473,6 +480,7 @@ class CollisionChecker:
         steps = self._step_motion(Q, q_at, T)
         n = len(T)
         self._prepare(watches, steps)
+        self._allowed_until = self._apart_from()
         for w in watches:
             w.contact = False
             w.first_contact = None
@@ -491,6 +499,10 @@ class CollisionChecker:
             report.too_close = (report.first_contact is None and report.starts_in_collision is None
                                 and self.margin > 0.0 and d < self.margin)
         report.checks = self.measurements - before
+        for key, at in self._allowed_until.items():
+            if at <= n - 1:
+                del self._allowed[key]  # apart now: checked like any pair from the next motion on
+        self._allowed_until = {}
         self._last_q = Q[-1].copy()
         self._time = float(T[-1])
         self._P = None
@@ -658,21 +670,47 @@ class CollisionChecker:
             return float(C[n])
         return float(C[k] + (u - k) * (C[k + 1] - C[k]))
 
-    def _record(self, w: _Watch, u: float, d: float, exact: bool, info) -> None:
-        """A measurement bounds the watch's distance at every sample: d minus the motion since."""
+    def _record(self, w: _Watch, u: float, d: float, exact: bool, info, valid: float = math.inf) -> None:
+        """A measurement bounds the watch's distance at every sample (before `valid`): d minus the
+        motion since."""
         k = int(u)
         if k == u:
-            np.maximum(w.L, d - np.abs(w.S - w.S[k]), out=w.L)
+            bound = d - np.abs(w.S - w.S[k])
         else:  # between samples: the path bound to the samples around it, then from sample to sample
             n = len(w.S) - 1
             before = d - (self._C(w, u) - w.C[k]) - np.abs(w.S - w.S[k])
             after = d - (w.C[min(k + 1, n)] - self._C(w, u)) - np.abs(w.S - w.S[min(k + 1, n)])
-            np.maximum(w.L, np.maximum(before, after), out=w.L)
+            bound = np.maximum(before, after)
+        if valid < len(w.L):
+            bound[int(math.ceil(valid)):] = -math.inf
+        np.maximum(w.L, bound, out=w.L)
         if k == u:
             w.L[k] = max(w.L[k], d) if not exact else d
             w.E[k] = w.E[k] or exact
         if exact and info is not None and (self._best is None or d < self._best[0]):
             self._best = (d, u, info[:4])
+
+    def _apart_from(self) -> dict[frozenset[int], float]:
+        """For each pair allowed to touch since a grasp or a release: the first sample where its two
+        bodies are apart (further than the touch tolerance); from there on it is checked. n + 1
+        when they stay together for the whole motion."""
+        out: dict[frozenset[int], float] = {}
+        if not self._allowed:
+            return out
+        owner = {id(b): g for g in self._arm_groups() for b in g.bodies}
+        n = len(self._T) - 1
+        for key, (a, b) in self._allowed.items():
+            ga, gb = owner.get(id(a)), owner.get(id(b))
+            at = float(n + 1)
+            for k in range(n + 1):
+                for g in (ga, gb):
+                    if g is not None:
+                        self._place(g, float(k))
+                if self._distance(a, b, False)[0] > self.touch:
+                    at = float(k)
+                    break
+            out[key] = at
+        return out
 
     def _landing(self, w: _Watch) -> set[tuple[int, int]]:
         """Body pairs touching (within the touch tolerance, not deeper) at the motion's first or last
@@ -711,7 +749,7 @@ class CollisionChecker:
             u = float(todo[0])
         while True:
             need = C[-1] - self._C(w, u)
-            cert, clear, exact, info, hit = self._measure(w, u, need if u > 0.0 else math.inf)
+            cert, clear, exact, info, hit, valid = self._measure(w, u, need if u > 0.0 else math.inf)
             if u == 0.0 and hit is None:
                 inside = self._contained(w, u)
                 if inside is not None:
@@ -720,7 +758,7 @@ class CollisionChecker:
                     hit = (a, b, c, depth, "inside")
                     cert = clear = -depth
                     info = (a, b, c, c)
-            self._record(w, u, clear, exact, info)
+            self._record(w, u, clear, exact, info, valid)
             if hit is not None and hit[3] > self.touch:
                 if not w.contact:
                     c = Contact(self._t(u), hit[0].label, hit[1].label, hit[2], hit[3], hit[4])
@@ -740,9 +778,11 @@ class CollisionChecker:
                 continue
             w.contact = False
             allowed = max(cert, 0.0) + self.touch - (hit[3] if hit is not None else 0.0)
-            if u >= n or self._C(w, n) - self._C(w, u) <= allowed:
+            if valid <= n and self._C(w, valid) - self._C(w, u) > allowed:
+                valid = math.inf  # the certified step ends before the left-out pair comes back
+            if u >= n or (valid > n and self._C(w, n) - self._C(w, u) <= allowed):
                 return  # certified to the end of the motion
-            uc = self._u_of(w, self._C(w, u) + allowed)
+            uc = min(self._u_of(w, self._C(w, u) + allowed), valid)
             k = np.searchsorted(todo, math.floor(uc))  # the next step the boxes do not keep apart
             if k >= len(todo):
                 return
@@ -784,8 +824,8 @@ class CollisionChecker:
                     if L[wi, k] >= found:
                         break  # this watch cannot be the closest at this sample
                     w = watches[wi]
-                    _, d, exact, info, _ = self._measure(w, float(k), math.inf)
-                    self._record(w, float(k), d, exact, info)
+                    _, d, exact, info, _, valid = self._measure(w, float(k), math.inf)
+                    self._record(w, float(k), d, exact, info, valid)
                     found = min(found, d)
                     spent += 1
         report.clearance = L.min(axis=0)
@@ -885,7 +925,7 @@ class CollisionChecker:
                     continue
                 d = self._distance(a, b)[0]
                 if d <= self.touch:
-                    self._allowed.add(frozenset((id(a), id(b))))
+                    self._allowed[frozenset((id(a), id(b)))] = (a, b)
 
     def _dropped_inside(self, bodies: list[Body], time: float, source: Any) -> list[PartDrop]:
         out = []
