@@ -250,20 +250,24 @@ def main(argv: list[str] | None = None) -> int:
         t_cell = time.perf_counter() - t0
     tris = [len(o.shape.mesh.faces) for o in cell.obstacles if o.shape.kind == "mesh"]
     plan = cycle_plan(robot, args.cycles)
-    checker = CollisionChecker(arm, cell, frames={"fPallet": PALLET}, tools={"tGripper": TOOL})
-    motion_s = 0.0
-    reports = []
-    drops = []
-    t0, c0 = time.perf_counter(), time.process_time()
-    for i, step in enumerate(plan):
-        if len(step) == 2:
-            drops += checker.gripper("tGripper", step[0], step[1])
-            continue
-        label, times, Q = step
-        reports.append(checker.check_motion(MotionSpan(i, label=label), times, Q))
-        motion_s += float(times[-1] - times[0])
-    wall = time.perf_counter() - t0
-    cpu = time.process_time() - c0
+    # three runs, the fastest counts (the machine is shared: the others measure the neighbours)
+    runs = []
+    for _ in range(3):
+        checker = CollisionChecker(arm, cell, frames={"fPallet": PALLET}, tools={"tGripper": TOOL})
+        motion_s = 0.0
+        reports = []
+        drops = []
+        t0, c0 = time.perf_counter(), time.process_time()
+        for i, step in enumerate(plan):
+            if len(step) == 2:
+                drops += checker.gripper("tGripper", step[0], step[1])
+                continue
+            label, times, Q = step
+            reports.append(checker.check_motion(MotionSpan(i, label=label), times, Q))
+            motion_s += float(times[-1] - times[0])
+        runs.append((time.perf_counter() - t0, time.process_time() - c0))
+    wall = min(r[0] for r in runs)
+    cpu = min(r[1] for r in runs)
     contacts = [r for r in reports if r.first_contact or r.starts_in_collision]
     samples = sum(len(r.times) for r in reports)
     rate = motion_s / wall
@@ -271,7 +275,7 @@ def main(argv: list[str] | None = None) -> int:
           f"{len(cell.tools)} tool solids, {len(cell.parts)} part; read in {t_cell * 1000:.0f} ms")
     print(f"trajectory: {len(reports)} motions, {samples} samples, {motion_s:.2f} s of motion "
           f"({args.cycles} cycles)")
-    print(f"checked: {rate:.0f} simulated s per wall s ({wall * 1000:.0f} ms wall, {cpu * 1000:.0f} ms CPU: "
+    print(f"checked: {rate:.0f} simulated s per wall s (best of 3: {wall * 1000:.0f} ms wall, {cpu * 1000:.0f} ms CPU, "
           f"{motion_s / cpu:.0f} simulated s per CPU s; "
           f"{checker.measurements} pair measurements, {checker.measurements / samples:.2f} per sample)")
     closest = min((r for r in reports if r.min_clearance), key=lambda r: r.min_clearance.mm)

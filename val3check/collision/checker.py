@@ -328,22 +328,20 @@ class CollisionChecker:
 
     def _pairs(self, w: _Watch) -> list[tuple[float, Body, Body]]:
         """Body pairs of a watch with the gap between their boxes, nearest first."""
-        out: list[tuple[float, Body, Body]] = []
+        A = w.a.bodies
         if w.b is None:
             if not self._static:
-                return out
-            for ba in w.a.bodies:
-                lo, hi = ba.aabb()
-                gaps = aabb_gap(lo[None, :], hi[None, :], self._lo, self._hi)
-                out.extend((float(gaps[i]), ba, self._static[i]) for i in range(len(gaps)))
-        else:
-            for ba in w.a.bodies:
-                la, ha = ba.aabb()
-                for bb in w.b.bodies:
-                    if (id(ba), id(bb)) in w.skip:
-                        continue
-                    lb, hb = bb.aabb()
-                    out.append((float(aabb_gap(la, ha, lb, hb)), ba, bb))
+                return []
+            lo, hi = _boxes(A)
+            gaps = aabb_gap(lo[:, None, :], hi[:, None, :], self._lo[None], self._hi[None]).ravel()
+            S, st = len(self._static), self._static
+            return [(float(gaps[i]), A[i // S], st[i % S]) for i in np.argsort(gaps, kind="stable")]
+        Bs = w.b.bodies
+        lo, hi = _boxes(A + Bs)
+        na = len(A)
+        gaps = aabb_gap(lo[:na, None, :], hi[:na, None, :], lo[None, na:], hi[None, na:])
+        out = [(float(gaps[i, j]), A[i], Bs[j]) for i in range(na) for j in range(len(Bs))
+               if (id(A[i]), id(Bs[j])) not in w.skip]
         out.sort(key=lambda x: x[0])
         return out
 
@@ -590,7 +588,7 @@ class CollisionChecker:
             dC = steps @ lay["W"]  # (N-1, watches)
             # how far each group's points move from a sample to the next: |ΔT·c| + ρ·2·sin(θ/2)
             R = F[:, :, :3, :3]
-            p = np.einsum("gnij,gj->gni", R, lay["sph_c"]) + F[:, :, :3, 3]
+            p = (R @ lay["sph_c"][:, None, :, None])[..., 0] + F[:, :, :3, 3]
             move = np.sqrt(((p[:, 1:] - p[:, :-1]) ** 2).sum(axis=2))
             cos = 0.5 * ((R[:, 1:] * R[:, :-1]).sum(axis=(2, 3)) - 1.0)
             moves = move + lay["sph_r"][:, None] * np.sqrt(np.maximum(2.0 - 2.0 * np.clip(cos, -1.0, 1.0), 0.0))
@@ -601,8 +599,8 @@ class CollisionChecker:
                 Fa, Fb = F[lay["ga"][sw]], F[lay["gb"][sw]]
                 Rb = Fb[..., :3, :3].transpose(0, 1, 3, 2)
                 Rr = Rb @ Fa[..., :3, :3]
-                pa = np.einsum("wnij,wj->wni", Fa[..., :3, :3], lay["sph_c"][lay["ga"][sw]]) + Fa[..., :3, 3]
-                pr = np.einsum("wnij,wnj->wni", Rb, pa - Fb[..., :3, 3])
+                pa = (Fa[..., :3, :3] @ lay["sph_c"][lay["ga"][sw]][:, None, :, None])[..., 0] + Fa[..., :3, 3]
+                pr = (Rb @ (pa - Fb[..., :3, 3])[..., None])[..., 0]
                 move = np.sqrt(((pr[:, 1:] - pr[:, :-1]) ** 2).sum(axis=2))
                 cos = 0.5 * ((Rr[:, 1:] * Rr[:, :-1]).sum(axis=(2, 3)) - 1.0)
                 rel = move + lay["sph_r"][lay["ga"][sw]][:, None] * np.sqrt(
@@ -616,8 +614,8 @@ class CollisionChecker:
             Cm = Sm = np.zeros((nw, 1))
         M = F[lay["body_group"]].transpose(1, 0, 2, 3) @ lay["local"][None]  # (N, B, 4, 4)
         R = M[..., :3, :3]
-        c = np.einsum("nbij,bj->nbi", R, lay["center"]) + M[..., :3, 3]
-        h = np.einsum("nbij,bj->nbi", np.abs(R), lay["half"])
+        c = (R @ lay["center"][:, :, None])[..., 0] + M[..., :3, 3]
+        h = (np.abs(R) @ lay["half"][:, :, None])[..., 0]
         lo, hi = c - h, c + h
         A = np.full((nw, n), np.inf)
         if self._static and lay["static_w"]:
@@ -950,6 +948,15 @@ class CollisionChecker:
 
 
 # ---- helpers ----------------------------------------------------------------------------------------------
+
+
+def _boxes(bodies: list[Body]) -> tuple[np.ndarray, np.ndarray]:
+    """World-aligned boxes (low, high), (B, 3), of bodies at their current poses."""
+    P = np.array([b.pose for b in bodies])
+    R = P[:, :3, :3]
+    c = (R @ np.array([b.center for b in bodies])[:, :, None])[..., 0] + P[:, :3, 3]
+    h = (np.abs(R) @ np.array([b.half for b in bodies])[:, :, None])[..., 0]
+    return c - h, c + h
 
 
 def _same(a: dict, b: dict | None) -> bool:
