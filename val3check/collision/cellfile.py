@@ -73,6 +73,7 @@ def read_cell(path: str | os.PathLike, app_dir: str | os.PathLike | None = None,
     except tomllib.TOMLDecodeError as exc:
         m = re.search(r"\(at line (\d+), column (\d+)\)", str(exc))
         msg = re.sub(r"\s*\(at line \d+, column \d+\)", "", str(exc)) or "invalid TOML"
+        msg = "".join(c if c.isprintable() else repr(c)[1:-1] for c in msg)  # one line: '\n', not a newline
         line, col = (int(m.group(1)), int(m.group(2))) if m else (0, 0)
         raise CellError([(shown, line, col, f"invalid TOML: {msg}")]) from None
     r = _Reader(shown, text, Path(path).resolve().parent, app_dir, roots or [], app_unit)
