@@ -902,6 +902,8 @@ class CollisionChecker:
         """A part taken where a part of the same name was left is that part: it leaves the cell."""
         keep = [d for d in self._dropped if not (d.owner == name and any(self._overlap(d, b) for b in bodies))]
         if len(keep) != len(self._dropped):
+            gone = {id(d) for d in self._dropped} - {id(d) for d in keep}
+            self._allowed = {k: v for k, v in self._allowed.items() if not (k & gone)}
             self._dropped = keep
             self._set_static([*self._placed_obstacles, *self._dropped])
 

@@ -79,7 +79,7 @@ class MotionReport:
     margin_mm: float = 0.0
     tolerance_mm: float = 0.05
     checks: int = 0
-    contacts: list[Contact] = field(default_factory=list)  # first contact of every pair of bodies
+    contacts: list[Contact] = field(default_factory=list)  # first contact of each pair of solid groups, by time
 
     @property
     def start(self) -> float:
