@@ -1,13 +1,14 @@
-"""Kinematics figures of the Stäubli arm models (issue 5, part A), on one core:
+"""Kinematics figures of the Stäubli arm models (issues 5 and 13), on one core:
 
-1. round trip FK -> IK -> FK over 100,000 random joint positions inside the limits, on every arm,
-   every branch the closed form returns (all eight where they exist): worst position error below
-   1e-6 mm, worst orientation error below 1e-9 rad, and the starting joint position found every
-   time among the solutions of RobotModel.ik();
-2. at least 50,000 forward-kinematics evaluations per second;
+1. round trip FK -> IK -> FK over 100,000 random joint positions inside the limits, on every arm
+   (31: 22 six-axis, 9 SCARA), every branch the closed form returns (all eight where they exist on
+   a six-axis arm, both elbow branches of a SCARA): worst position error below 1e-6 mm, worst
+   orientation error below 1e-9 rad, and the starting joint position found every time among the
+   solutions of RobotModel.ik();
+2. at least 50,000 forward-kinematics evaluations per second (TX2-60 and TS2-60);
 3. at least 10,000 full inverse-kinematics solves (all branches, limits, turns) per second.
 
-Run: python bench/bench_kinematics.py [--n 100000] [--arms TX2-60,RX160]
+Run: python bench/bench_kinematics.py [--n 100000] [--arms TX2-60,RX160,TS2-60]
 Exit code 1 when a figure is missed.
 """
 
@@ -26,6 +27,7 @@ sys.path.insert(0, str(ROOT))
 from val3check.robot import load_robot, names  # noqa: E402
 from val3check.robot.ik import opw_ik  # noqa: E402
 from val3check.robot.kinematics import pose_error  # noqa: E402
+from val3check.robot.scara import scara_ik  # noqa: E402
 
 DEG = math.pi / 180.0
 
@@ -33,17 +35,19 @@ DEG = math.pi / 180.0
 def round_trip(robot, n: int, seed: int) -> dict:
     rng = random.Random(seed)
     lim = robot.joint_limits
-    opw = robot.opw
+    solver = robot.opw or robot.scara
+    scara = robot.family == "scara"
     worst_p = worst_a = worst_j = 0.0
     missed = 0
     branches = {}
     for _ in range(n):
         q = [rng.uniform(lo, hi) for lo, hi in lim]
         T = robot.fk_matrix(q)
-        raw = opw_ik(opw, T, [v * DEG for v in q])
+        hint = robot._internal(q)
+        raw = scara_ik(solver, T, hint)[0] if scara else opw_ik(solver, T, hint)
         branches[len(raw)] = branches.get(len(raw), 0) + 1
         for s in raw:
-            dp, da = pose_error(opw.fk(s), T)
+            dp, da = pose_error(solver.fk(s), T)
             if dp > worst_p:
                 worst_p = dp
             if da > worst_a:
@@ -80,6 +84,32 @@ def rate(fn, items, min_time: float = 1.0) -> float:
             return count / elapsed
 
 
+def rates(arm: str) -> bool:
+    robot = load_robot(arm)
+    rng = random.Random(1)
+    qs = [[rng.uniform(lo, hi) for lo, hi in robot.joint_limits] for _ in range(20_000)]
+    poses = [robot.fk(q) for q in qs]
+    mats = [robot.fk_matrix(q) for q in qs]
+    fk_m = rate(robot.fk_matrix, qs)
+    fk_t = rate(robot.fk, qs)
+    ik_t = rate(robot.ik, poses)
+    ik_m = rate(robot.ik, mats)
+    ik_near = rate(lambda i: robot.ik(poses[i], near=qs[i]), range(len(qs)))
+    print()
+    print(f"Rates on one core ({arm}, closed form, pure Python):")
+    print(f"  forward kinematics -> 3x4 matrix          {fk_m:>10,.0f} /s")
+    print(f"  forward kinematics -> VAL 3 trsf          {fk_t:>10,.0f} /s   (goal 50,000)")
+    print(f"  inverse kinematics, trsf in, all branches {ik_t:>10,.0f} /s   (goal 10,000)")
+    print(f"  inverse kinematics, matrix in             {ik_m:>10,.0f} /s")
+    print(f"  inverse kinematics with near (9.6.3)      {ik_near:>10,.0f} /s")
+    try:
+        fk_p = rate(robot.fk_pinocchio, qs[:5000])
+        print(f"  forward kinematics by pinocchio -> 3x4    {fk_p:>10,.0f} /s")
+    except ImportError:
+        pass
+    return fk_t >= 50_000 and ik_t >= 10_000
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--n", type=int, default=100_000, help="random joint positions per arm (default 100,000)")
@@ -88,7 +118,7 @@ def main() -> int:
     arms = [a.strip() for a in args.arms.split(",") if a.strip()] or names()
 
     print(f"Round trip FK -> IK -> FK, {args.n:,} random joint positions per arm, every branch")
-    print(f"{'arm':<9} {'worst pos mm':>13} {'worst rot rad':>14} {'worst joint deg':>16} {'missed':>7}  branches per pose")
+    print(f"{'arm':<13} {'worst pos mm':>13} {'worst rot rad':>14} {'worst joint':>12} {'missed':>7}  branches per pose")
     ok = True
     t0 = time.perf_counter()
     all_p = all_a = 0.0
@@ -97,9 +127,10 @@ def main() -> int:
         r = round_trip(robot, args.n, 1000 + i)
         all_p, all_a = max(all_p, r["pos"]), max(all_a, r["ang"])
         dist = ", ".join(f"{k}: {v}" for k, v in sorted(r["branches"].items(), reverse=True))
-        print(f"{name:<9} {r['pos']:>13.2e} {r['ang']:>14.2e} {r['joint']:>16.2e} {r['missed']:>7}  {dist}")
+        print(f"{name:<13} {r['pos']:>13.2e} {r['ang']:>14.2e} {r['joint']:>12.2e} {r['missed']:>7}  {dist}")
         ok &= r["pos"] < 1e-6 and r["ang"] < 1e-9 and r["missed"] == 0
-    print(f"worst over all arms: {all_p:.2e} mm, {all_a:.2e} rad ({time.perf_counter() - t0:.0f} s)")
+    print(f"worst over all arms: {all_p:.2e} mm, {all_a:.2e} rad ({time.perf_counter() - t0:.0f} s); worst joint in deg "
+          "(mm for a SCARA's axis 3)")
 
     try:
         import pinocchio  # noqa: F401
@@ -113,29 +144,8 @@ def main() -> int:
     except ImportError:
         print("pinocchio not installed: its cross-check is skipped")
 
-    robot = load_robot("TX2-60")
-    rng = random.Random(1)
-    qs = [[rng.uniform(lo, hi) for lo, hi in robot.joint_limits] for _ in range(20_000)]
-    poses = [robot.fk(q) for q in qs]
-    mats = [robot.fk_matrix(q) for q in qs]
-    fk_m = rate(robot.fk_matrix, qs)
-    fk_t = rate(robot.fk, qs)
-    ik_t = rate(robot.ik, poses)
-    ik_m = rate(robot.ik, mats)
-    ik_near = rate(lambda i: robot.ik(poses[i], near=qs[i]), range(len(qs)))
-    print()
-    print("Rates on one core (TX2-60, closed form, pure Python):")
-    print(f"  forward kinematics -> 3x4 matrix          {fk_m:>10,.0f} /s")
-    print(f"  forward kinematics -> VAL 3 trsf          {fk_t:>10,.0f} /s   (goal 50,000)")
-    print(f"  inverse kinematics, trsf in, all branches {ik_t:>10,.0f} /s   (goal 10,000)")
-    print(f"  inverse kinematics, matrix in             {ik_m:>10,.0f} /s")
-    print(f"  inverse kinematics with near (9.6.3)      {ik_near:>10,.0f} /s")
-    try:
-        fk_p = rate(robot.fk_pinocchio, qs[:5000])
-        print(f"  forward kinematics by pinocchio -> 3x4    {fk_p:>10,.0f} /s")
-    except ImportError:
-        pass
-    ok &= fk_t >= 50_000 and ik_t >= 10_000
+    for arm in ("TX2-60", "TS2-60"):
+        ok &= rates(arm)
     print()
     print("PASS" if ok else "FAIL")
     return 0 if ok else 1

@@ -62,9 +62,10 @@ def build_parser() -> argparse.ArgumentParser:
     sim.add_argument("--config", metavar="FILE", help="configuration file (default: val3check.toml or pyproject.toml found upwards)")
     sim.add_argument("--isolated", action="store_true", help="ignore every configuration file")
 
-    robots = sub.add_parser("robots", help="list the arm models (reach, joint limits, speeds) or show one")
+    robots = sub.add_parser("robots", help="list the arm models by family (reach, joint limits, speeds, assumptions) or show one")
     robots.add_argument("robot", nargs="?", metavar="ROBOT",
-                        help="an arm name (case-insensitive: tx2-60, TX2_60…), a URDF or an arm.cfx: show that model")
+                        help="an arm name (case-insensitive: tx2-60, TX2_60, ts60-L200…), a URDF, an arm.cfx or a robot file "
+                             "(.toml): show that model, its facts and assumptions")
     robots.add_argument("--robot", dest="robot_opt", metavar="ROBOT", help="same as ROBOT")
     robots.add_argument("--app", metavar="PATH", help="show the arm chosen from the controller tree holding PATH (usr/configs/arm.cfx)")
     robots.add_argument("--format", choices=("text", "json"), default="text")
@@ -254,6 +255,7 @@ def _lint(args: argparse.Namespace) -> int:
 def _robots(args: argparse.Namespace) -> int:
     """`val3check robots`: the catalogue, or one model in detail (val3check/robot)."""
     from .robot import RobotError, load_robot, names
+    from .robot.catalog import known_without_model
     from .robot.report import render_detail, render_list
 
     args.robot = args.robot or args.robot_opt
@@ -270,9 +272,11 @@ def _robots(args: argparse.Namespace) -> int:
         import json
 
         body = {"robots": [m.describe() for m in models], "version": 1}
+        if not detail:
+            body["without_model"] = known_without_model()
         sys.stdout.write(json.dumps(body, indent=2, ensure_ascii=False) + "\n")
         return EXIT_OK
-    sys.stdout.write(render_detail(models[0]) if detail else render_list(models))
+    sys.stdout.write(render_detail(models[0]) if detail else render_list(models, known_without_model()))
     return EXIT_OK
 
 

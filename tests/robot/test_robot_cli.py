@@ -42,6 +42,6 @@ def test_robots_from_a_controller_tree(capsys):
 
 
 def test_robots_unknown_name(capsys):
-    assert main(["robots", "TX40"]) == 2
+    assert main(["robots", "TX3-60"]) == 2
     err = capsys.readouterr().err
-    assert "unknown robot 'TX40'" in err and "RX160L" in err
+    assert "unknown robot 'TX3-60'" in err and "RX160L" in err and "TS2-60" in err

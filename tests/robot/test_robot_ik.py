@@ -12,12 +12,12 @@ from val3check.robot.config import classify
 from val3check.robot.ik import opw_ik
 from val3check.robot.kinematics import pose_error
 
-from .robothelp import ARMS, close_pose, joint_dist, random_joints
+from .robothelp import SIX_AXIS, close_pose, joint_dist, random_joints
 
 ALL_CONFIGS = {(s, e, w) for s in ("righty", "lefty") for e in ("epositive", "enegative") for w in ("wpositive", "wnegative")}
 
 
-@pytest.mark.parametrize("name", ARMS)
+@pytest.mark.parametrize("name", SIX_AXIS)
 def test_round_trip_on_random_joints(name):
     robot = load_robot(name)
     rng = random.Random(f"rt {name}")
@@ -34,7 +34,7 @@ def test_round_trip_on_random_joints(name):
         assert joint_dist(robot.ik(robot.fk(q), near=q)[0], q) < 1e-6
 
 
-@pytest.mark.parametrize("name", ARMS)
+@pytest.mark.parametrize("name", SIX_AXIS)
 def test_all_eight_branches_away_from_singularities(name):
     robot = load_robot(name)
     q = [15, -10, 100, 35, 55, 65]  # wrist centre near enough to axis 1 for the branches behind it

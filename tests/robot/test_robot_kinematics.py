@@ -152,7 +152,7 @@ def _opw_reference(params, q_deg):
     return p, R6
 
 
-@pytest.mark.parametrize("name", ARMS)
+@pytest.mark.parametrize("name", sorted(PUBLIC_OPW))
 def test_fk_matches_the_public_description(name):
     robot = load_robot(name)
     c1 = PUBLIC_OPW[name][3] * 1000

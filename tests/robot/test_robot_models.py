@@ -11,13 +11,20 @@ import pytest
 from val3check.robot import RobotError, from_urdf, load_robot
 from val3check.robot.catalog import normalize
 
-from .robothelp import ARMS, ROOT, TOML, ZERO_POSE
+from .robothelp import ARMS, MORE, ROOT, SCARA_ZERO_X, SCARAS, SIX_AXIS, TOML, ZERO_POSE
 
-EXPECTED = ["TX60", "TX60L", "TX90", "TX90L", "TX90XL", "TX2-60", "TX2-60L", "TX2-90", "TX2-90L", "TX2-90XL", "RX160", "RX160L"]
+EXPECTED = [
+    "TX40", "TX60", "TX60L", "TX90", "TX90L", "TX90XL", "TX200", "TX200L",
+    "TX2-40", "TX2-60", "TX2-60L", "TX2-90", "TX2-90L", "TX2-90XL", "TX2-140", "TX2-160", "TX2-160L",
+    "RX90B", "RX90BL", "RX130B", "RX160", "RX160L",
+    "TS2-40", "TS2-60", "TS2-80", "TS2-100", "TS2-100-L400", "TS40", "TS60", "TS80", "TP80",
+]
+HAVE_FACTS = TOML.is_file() and MORE.is_file()
 
 
 def test_catalogue_has_every_arm():
     assert ARMS == EXPECTED
+    assert len(SIX_AXIS) == 22 and len(SCARAS) == 9
 
 
 @pytest.mark.parametrize("name", EXPECTED)
@@ -25,24 +32,28 @@ def test_pinocchio_loads_every_model(name):
     pin = pytest.importorskip("pinocchio")
     robot = load_robot(name)
     model = pin.buildModelFromUrdf(robot.source)
-    assert model.nq == 6 and model.nv == 6
-    assert [model.names[i] for i in range(1, 7)] == [f"joint_{i}" for i in range(1, 7)]
+    n = robot.axes
+    assert model.nq == n and model.nv == n
+    assert [model.names[i] for i in range(1, n + 1)] == [f"joint_{i}" for i in range(1, n + 1)]
     for frame in ("world", "flange"):
         assert model.existFrame(frame)
     geom = robot.collision_model()
-    assert geom.ngeoms >= 7  # at least one solid per link
+    assert geom.ngeoms >= n + 1  # at least one solid per link
     for obj in geom.geometryObjects:
         assert type(obj.geometry).__name__ == "Cylinder"
-    # limits and speeds as pinocchio reads them
+    # limits and speeds as pinocchio reads them (metres for a SCARA's prismatic axis 3)
     import math
 
-    for i, ((lo, hi), v) in enumerate(zip(robot.joint_limits, robot.nominal_speeds)):
-        assert math.isclose(model.lowerPositionLimit[i], math.radians(lo), abs_tol=1e-12)
-        assert math.isclose(model.upperPositionLimit[i], math.radians(hi), abs_tol=1e-12)
-        assert math.isclose(model.velocityLimit[i], math.radians(v), abs_tol=1e-12)
+    for i, ((lo, hi), v, kind) in enumerate(zip(robot.joint_limits, robot.nominal_speeds, robot.joint_kinds)):
+        f = (lambda x: x / 1000.0) if kind == "prismatic" else math.radians
+        assert math.isclose(model.lowerPositionLimit[i], f(lo), abs_tol=1e-12)
+        assert math.isclose(model.upperPositionLimit[i], f(hi), abs_tol=1e-12)
+        assert math.isclose(model.velocityLimit[i], f(v), abs_tol=1e-12)
+    if robot.family == "scara":
+        assert model.joints[3].shortname().startswith("JointModelP")  # prismatic (PZ)
 
 
-@pytest.mark.parametrize("name", EXPECTED)
+@pytest.mark.parametrize("name", SIX_AXIS)
 def test_zero_position_is_a1_b_c2c3c4(name):
     robot = load_robot(name)
     x, y, z, rx, ry, rz = robot.fk([0, 0, 0, 0, 0, 0])
@@ -52,27 +63,57 @@ def test_zero_position_is_a1_b_c2c3c4(name):
     assert max(abs(a - b) for a, b in zip(robot.fk_pinocchio([0] * 6)[0], (1, 0, 0, ex))) < 1e-9
 
 
-@pytest.mark.skipif(not TOML.is_file(), reason="shared/robots/staubli-arms.toml not beside the checkout")
+@pytest.mark.parametrize("name", SCARAS)
+def test_scara_zero_position_is_stretched_along_x_flange_down(name):
+    robot = load_robot(name)
+    x, y, z, rx, ry, rz = robot.fk([0, 0, 0, 0])
+    assert (round(x, 9), round(y, 9) + 0.0, round(z, 9) + 0.0) == (SCARA_ZERO_X[name], 0, 0)
+    assert (abs(rx), round(ry, 9) + 0.0, round(rz, 9) + 0.0) == (180, 0, 0)  # Z down, as pointRs values are taught
+    assert robot.reach_mm == SCARA_ZERO_X[name]
+
+
+def _facts():
+    out = {}
+    for path in (TOML, MORE):
+        out.update(tomllib.loads(path.read_text(encoding="utf-8")))
+    return out
+
+
+@pytest.mark.skipif(not HAVE_FACTS, reason="shared/robots/staubli-arms*.toml not beside the checkout")
 def test_models_match_the_facts():
-    facts = tomllib.loads(TOML.read_text(encoding="utf-8"))
+    facts = _facts()
     assert set(facts) == set(EXPECTED)
     for name, arm in facts.items():
         robot = load_robot(name)
-        assert robot.srs_arm_id == arm["srs_arm_id"]
-        for i in range(6):
+        assert (robot.srs_arm_id or robot.srs_arm_id_hint) == arm.get("srs_arm_id", arm.get("srs_arm_id_hint"))
+        assert bool(robot.srs_arm_id) == ("srs_arm_id" in arm)
+        for i in range(robot.axes):
             j = arm[f"joint{i + 1}"]
-            assert robot.joint_limits[i] == (j["min_deg"], j["max_deg"])
-            assert robot.nominal_speeds[i] == j["nominal_speed_deg_s"]
-            assert robot.max_torques[i] == j["max_torque_nm"]
+            if robot.joint_kinds[i] == "prismatic":
+                assert robot.joint_limits[i] == (j["min_mm"], j["max_mm"]), (name, i)
+            else:
+                assert robot.joint_limits[i] == (j["min_deg"], j["max_deg"]), (name, i)
+            if "nominal_speed_deg_s" in j:  # a published speed is used as it is, and is not an assumption
+                assert robot.nominal_speeds[i] == j["nominal_speed_deg_s"]
+                assert "nominal_speeds" not in robot.assumed
+            else:
+                assert "nominal_speeds" in robot.assumed, name
+            assert robot.max_torques[i] == j.get("max_torque_nm")
         if "opw" in arm:
             for k, v in arm["opw"].items():
                 expect = v * 1000.0 - (arm["shoulder_height_mm"] if k == "c1" else 0.0)  # world at axis 2's height
                 assert abs(getattr(robot.opw, k) - expect) < 1e-9, (name, k)
+        if arm.get("kind") == "scara":
+            assert robot.family == "scara" and robot.type_family == "Rs"
+            assert (robot.scara.l1, robot.scara.l2) == (arm["link1_mm"], arm["link2_mm"])
+            assert robot.stroke_mm == arm["stroke_mm"]
+        else:
+            assert robot.family == "six-axis" and robot.type_family == "Rx"
 
 
-@pytest.mark.skipif(not TOML.is_file(), reason="shared/robots/staubli-arms.toml not beside the checkout")
+@pytest.mark.skipif(not HAVE_FACTS, reason="shared/robots/staubli-arms*.toml not beside the checkout")
 def test_generated_urdfs_are_up_to_date():
-    r = subprocess.run([sys.executable, str(ROOT / "robots" / "generate.py"), "--check", "--toml", str(TOML)],
+    r = subprocess.run([sys.executable, str(ROOT / "robots" / "generate.py"), "--check", "--toml", str(TOML), "--more", str(MORE)],
                        capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
 
@@ -191,7 +232,8 @@ def test_arm_cfx_of_the_fixture_controller():
     assert load_robot(None, app / "Welder.pjx").name == "TX2-60"
 
 
-@pytest.mark.parametrize("value,name", [("tx90l-S2", "TX90L"), ("TX2-90XL-S1", "TX2-90XL"), ("rx160", "RX160"), ("tx2-60l-S3", "TX2-60L")])
+@pytest.mark.parametrize("value,name", [("tx90l-S2", "TX90L"), ("TX2-90XL-S1", "TX2-90XL"), ("rx160", "RX160"), ("tx2-60l-S3", "TX2-60L"),
+                                        ("tx2_60l-S3", "TX2-60L"), ("tx200-S3", "TX200"), ("ts2_60-S1", "TS2-60")])
 def test_arm_cfx_prefix_before_s(tmp_path, value, name):
     cfg = tmp_path / "CS9" / "usr" / "configs"
     cfg.mkdir(parents=True)
@@ -208,8 +250,8 @@ def test_arm_cfx_unknown_arm_and_missing_tree(tmp_path):
     (cfg / "arm.cfx").write_text(CFX.format(arm="tx3-70-S1"), encoding="utf-8")
     with pytest.raises(RobotError, match="tx3-70-S1.*known ids"):
         load_robot(None, tmp_path / "ctrl" / "usr" / "usrapp")
-    (cfg / "arm.cfx").write_text(CFX.format(arm="ts2-80-S1"), encoding="utf-8")
-    with pytest.raises(RobotError, match="SCARA"):
+    (cfg / "arm.cfx").write_text(CFX.format(arm="rs20-S1"), encoding="utf-8")
+    with pytest.raises(RobotError, match="SCARA.*no model for; the closest model is TS40"):
         load_robot(None, tmp_path / "ctrl" / "usr" / "usrapp")
     lone = tmp_path / "elsewhere"
     lone.mkdir()

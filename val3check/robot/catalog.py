@@ -1,4 +1,10 @@
-"""The Stäubli arm models shipped in `robots/` and how names, SRS arm ids and arm.cfx map to them."""
+"""The arm models shipped in `robots/` (their index `robots/catalog.toml`) and how names map to them.
+
+robots/catalog.toml is generated with the URDFs (robots/generate.py). It is plain data: the VAL 3
+type family of an arm id (Rx/Rs), the ids controllers write in arm.cfx, the arms that exist but
+have no public kinematic data. Code that must not import this package (`val3check lint`) can read
+it with tomllib (`catalog_path()`).
+"""
 
 from __future__ import annotations
 
@@ -15,6 +21,10 @@ def robots_dir() -> Path:
     return resource_dir("robots")
 
 
+def catalog_path() -> Path:
+    return robots_dir() / "catalog.toml"
+
+
 def normalize(name: str) -> str:
     """'tx2-60', 'TX2_60', 'tx260', 'Stäubli TX2-60' -> 'TX260'."""
     n = name.strip().upper()
@@ -24,21 +34,53 @@ def normalize(name: str) -> str:
     return re.sub(r"[\s_\-.]+", "", n)
 
 
+def normalize_id(arm_id: str) -> str:
+    """An arm.cfx value as compared: lower case, '_' as '-', without the '-S<n>' suffix (the arm's
+    generation: tx200-S3, ts2_60-S1 -> tx200, ts2-60)."""
+    n = arm_id.strip().lower().replace("_", "-")
+    m = re.match(r"^(.+?)-s\d+[-a-z0-9]*$", n)
+    return m.group(1) if m else n
+
+
+@functools.lru_cache(maxsize=1)
+def _data() -> dict:
+    import tomllib
+
+    path = catalog_path()
+    try:
+        with open(path, "rb") as fh:
+            return tomllib.load(fh)
+    except (OSError, tomllib.TOMLDecodeError) as exc:
+        raise RobotError(f"{path}: the arm catalogue cannot be read ({exc}): run python robots/generate.py") from None
+
+
 @functools.lru_cache(maxsize=1)
 def catalog() -> dict[str, dict]:
-    """Arm name -> {"path": URDF path, "srs_arm_id": ...}, in the order of `val3check robots`."""
-    from .urdf import read_urdf
-
-    out: dict[str, dict] = {}
+    """Arm name -> {"path", "srs_arm_id", "kind", "family", "series", "ids", "confirmed", "stroke_mm"},
+    in the order of `val3check robots` (grouped by series)."""
     folder = robots_dir()
-    for path in sorted(folder.glob("*.urdf")):
-        info = read_urdf(path)
-        if not info.meta or "arm" not in info.meta:
-            continue
-        out[info.meta["arm"]] = {"path": str(path), "srs_arm_id": info.meta.get("srs_arm_id", "")}
-    order = ("TX60", "TX60L", "TX90", "TX90L", "TX90XL", "TX2-60", "TX2-60L", "TX2-90", "TX2-90L", "TX2-90XL", "RX160", "RX160L")
-    rank = {n: i for i, n in enumerate(order)}
-    return dict(sorted(out.items(), key=lambda kv: (rank.get(kv[0], len(order)), kv[0])))
+    out: dict[str, dict] = {}
+    for arm in _data().get("arm", []):
+        entry = dict(arm)
+        entry["path"] = str(folder / arm["file"])
+        entry["srs_arm_id"] = arm["ids"][0] if arm.get("ids") and arm.get("confirmed") else ""
+        entry.setdefault("stroke_mm", None)
+        out[arm["name"]] = entry
+    return out
+
+
+def known_without_model() -> list[dict]:
+    """Stäubli arms whose id is known but that have no public kinematic data: {id, arm, closest, why}."""
+    return list(_data().get("known", []))
+
+
+def family_of_id(arm_id: str) -> str | None:
+    """The VAL 3 type family of an arm id by its prefix: "Rx" (tx, rx), "Rs" (ts, rs, tp), or None."""
+    n = normalize_id(arm_id)
+    for family, prefixes in _data().get("families", {}).items():
+        if any(n.startswith(p) for p in prefixes):
+            return family
+    return None
 
 
 def names() -> list[str]:
@@ -55,30 +97,18 @@ def find(name: str) -> str:
 
 
 def find_srs(arm_id: str) -> str:
-    """The catalogue name for an arm.cfx value such as 'tx2-60-S1' (match on the prefix before -S)."""
-    m = re.match(r"^(.*?)-S\d*[A-Z]?$", arm_id.strip(), re.IGNORECASE)
-    prefix = (m.group(1) if m else arm_id.strip()).lower()
-    for known, entry in catalog().items():
-        if entry["srs_arm_id"].lower() == prefix:
-            return known
-    ids = ", ".join(e["srs_arm_id"] for e in catalog().values())
-    if re.match(r"^(ts|rs)\d", prefix):
-        raise RobotError(f"arm {arm_id!r} (from arm.cfx) is a SCARA (RS/TS, manual 9.7.5): not modelled; six-axis arms: {ids}")
-    raise RobotError(f"arm {arm_id!r} (from arm.cfx) is not a known arm; known ids: {ids} (use --robot NAME or a URDF)")
+    """The catalogue name for an arm.cfx value such as 'tx2-60-S1' (identify.match_id, without a
+    stroke or mount)."""
+    from .identify import match_id
+
+    return match_id(arm_id).name
 
 
 def read_arm_cfx(path: str | os.PathLike) -> str:
     """The arm id written in a controller's usr/configs/arm.cfx (<String name="arm" value="tx60-S1"/>)."""
-    from defusedxml import ElementTree as ET
+    from .identify import read_arm_config
 
-    try:
-        root = ET.parse(str(path)).getroot()
-    except (OSError, ET.ParseError) as exc:
-        raise RobotError(f"{path}: cannot read the arm configuration: {exc}") from None
-    for el in root.iter():
-        if el.get("name") == "arm" and el.get("value"):
-            return el.get("value")
-    raise RobotError(f'{path}: no <String name="arm" value="..."/> in the arm configuration')
+    return read_arm_config(path).arm
 
 
 def find_arm_cfx(app_path: str | os.PathLike) -> Path | None:

@@ -12,7 +12,12 @@ forearm offset (a2 ≠ 0, none of Stäubli's), the same distance adds a2·cos(j2
 
 A requested configuration (the `config` field of a VAL 3 point) holds, per field, a value, `same`
 (ssame/esame/wsame: the configuration of the initial position) or `free` (sfree/efree/wfree: any).
-RS/TS SCARA arms (9.7.5) are out of scope: only six-axis RX/TX-type arms are modelled.
+
+RS/TS (SCARA) arms, 9.7.2 and 9.7.5: the config has the shoulder field only, righty when
+sin(j2) > 0, lefty when sin(j2) <= 0 (scara.classify). `Config.parse(spec, scara=True)` takes
+("righty",) or "lefty"; three fields are accepted only when elbow and wrist are `same` or `free`
+(what an interpreter that always builds three fields gives), never with a value such as
+epositive: an RS/TS arm has no elbow or wrist configuration.
 """
 
 from __future__ import annotations
@@ -39,14 +44,25 @@ class Config:
     wrist: str = "free"
 
     @classmethod
-    def parse(cls, spec) -> "Config":
+    def parse(cls, spec, scara: bool = False) -> "Config":
         if spec is None:
             return FREE
         if isinstance(spec, Config):
-            return spec
+            if scara and (spec.elbow not in ("same", "free") or spec.wrist not in ("same", "free")):
+                raise RobotError(_NO_ELBOW_WRIST.format(f"{spec.elbow}, {spec.wrist}"))
+            return cls(spec.shoulder) if scara else spec
         if isinstance(spec, str):
             spec = spec.replace(",", " ").split()
         spec = tuple(spec)
+        if scara:
+            if len(spec) == 1:
+                return cls.parse((spec[0], "efree", "wfree"))
+            if len(spec) == 3:
+                rest = [str(v).strip().lower() for v in spec[1:]]
+                if any(v not in ("esame", "efree", "wsame", "wfree", "same", "free") for v in rest):
+                    raise RobotError(_NO_ELBOW_WRIST.format(", ".join(str(v) for v in spec[1:])))
+                return cls.parse((spec[0], "efree", "wfree"))
+            raise RobotError(f"an RS/TS (SCARA) configuration has one field (shoulder), not {len(spec)}: {spec!r}")
         if len(spec) != 3:
             raise RobotError(f"a configuration has three fields (shoulder, elbow, wrist), not {len(spec)}: {spec!r}")
         vals = []
@@ -71,6 +87,8 @@ class Config:
 
 
 FREE = Config()
+_NO_ELBOW_WRIST = ("an RS/TS (SCARA) arm has no elbow or wrist configuration (manual 9.7.2: its config is the "
+                   "shoulder field only), but the configuration asks for {}")
 
 
 def shoulder_value(j2_deg: float, j3_deg: float, d1: float, d2: float, delta: float, a2: float = 0.0) -> float:

@@ -76,16 +76,27 @@ class ChainJoint:
     name: str
     before: Mat  # fixed transform from the previous joint's moving frame (or the world) to this joint
     axis: tuple[float, float, float]
-    lower: float  # rad
+    lower: float  # rad (revolute) or mm (prismatic)
     upper: float
-    velocity: float  # rad/s
+    velocity: float  # rad/s or mm/s
     effort: float | None
+    kind: str = "revolute"  # or "prismatic" (URDF "continuous" is a revolute joint of ±360°)
+
+
+# The two serial layouts val3check knows: six revolute joints (RX/TX arms) and the four axes of a
+# SCARA (RS/TS, manual 9.7.5): two revolute, one prismatic (its value is a length), one revolute.
+LAYOUTS = {
+    ("revolute",) * 6: "six-axis",
+    ("revolute", "revolute", "prismatic", "revolute"): "scara",
+}
 
 
 class Chain:
-    """The serial chain world -> flange of a URDF, in millimetres, for any six-axis arm."""
+    """The serial chain world -> flange of a URDF, in millimetres: six revolute joints, or the
+    revolute-revolute-prismatic-revolute chain of a SCARA. `world_shift` moves the world frame
+    relative to the URDF's world link (a user's assumption, e.g. the height of a SCARA's world)."""
 
-    def __init__(self, info: UrdfInfo, world: str, flange: str):
+    def __init__(self, info: UrdfInfo, world: str, flange: str, world_shift: Mat | None = None):
         path = info.path
         for what, link in (("world_frame", world), ("flange_frame", flange)):
             if link not in info.links:
@@ -103,32 +114,50 @@ class Chain:
         W = IDENTITY
         for j in to_world:
             W = mul(W, transform(_mm(j.xyz), j.rpy))
+        if world_shift is not None:
+            W = mul(W, world_shift)
         joints: list[ChainJoint] = []
         acc = inverse(W)
         for j in to_flange:
             acc = mul(acc, transform(_mm(j.xyz), j.rpy))
             if j.kind == "fixed":
                 continue
-            if j.kind not in ("revolute", "continuous"):
-                raise RobotError(f"{path}: joint {j.name!r} is {j.kind or 'untyped'}: only revolute joints are supported")
-            if j.kind == "revolute" and (j.lower is None or j.upper is None):
+            if j.kind not in ("revolute", "continuous", "prismatic"):
+                raise RobotError(f"{path}: joint {j.name!r} is {j.kind or 'untyped'}: only revolute and prismatic joints are supported")
+            if j.kind != "continuous" and (j.lower is None or j.upper is None):
                 raise RobotError(f"{path}: joint {j.name!r} has no <limit lower upper>: the joint limits are needed")
             if not j.velocity or j.velocity <= 0:
                 raise RobotError(f"{path}: joint {j.name!r} has no <limit velocity>: the nominal joint speed is needed")
-            lo, hi = (j.lower, j.upper) if j.kind == "revolute" else (-2 * math.pi, 2 * math.pi)
-            joints.append(ChainJoint(j.name, acc, j.axis, lo, hi, j.velocity, j.effort))
+            if j.kind == "prismatic":  # URDF metres -> millimetres
+                joints.append(ChainJoint(j.name, acc, j.axis, j.lower * 1000.0, j.upper * 1000.0, j.velocity * 1000.0,
+                                         j.effort, "prismatic"))
+            else:
+                lo, hi = (j.lower, j.upper) if j.kind == "revolute" else (-2 * math.pi, 2 * math.pi)
+                joints.append(ChainJoint(j.name, acc, j.axis, lo, hi, j.velocity, j.effort))
             acc = IDENTITY
-        if len(joints) != 6:
-            raise RobotError(f"{path}: {len(joints)} moving joints between {world!r} and {flange!r}: a six-axis arm is needed")
+        kinds = tuple(j.kind for j in joints)
+        if kinds not in LAYOUTS:
+            if len(joints) == 6 or "prismatic" not in kinds:
+                raise RobotError(f"{path}: {len(joints)} moving joints between {world!r} and {flange!r}: a six-axis arm "
+                                 "(six revolute joints) or a SCARA (revolute, revolute, prismatic, revolute) is needed")
+            raise RobotError(f"{path}: joints {', '.join(kinds)} between {world!r} and {flange!r}: a SCARA is revolute, "
+                             "revolute, prismatic, revolute (manual 9.7.5)")
+        self.kind = LAYOUTS[kinds]
         self.joints = joints
-        self.tip = acc  # joint 6 frame -> flange
+        self.tip = acc  # last joint frame -> flange
         self.world_in_root = W
 
     def fk(self, q) -> Mat:
-        """Flange in the world frame (mm) for joint angles q (rad)."""
+        """Flange in the world frame (mm) for joint values q (rad, or mm for a prismatic joint)."""
         T = IDENTITY
         for j, a in zip(self.joints, q):
-            T = mul(mul(T, j.before), axis_angle(j.axis, a))
+            T = mul(T, j.before)
+            if j.kind == "prismatic":
+                x, y, z = j.axis
+                n = math.sqrt(x * x + y * y + z * z)
+                T = mul(T, ((1.0, 0.0, 0.0, a * x / n), (0.0, 1.0, 0.0, a * y / n), (0.0, 0.0, 1.0, a * z / n)))
+            else:
+                T = mul(T, axis_angle(j.axis, a))
         return mul(T, self.tip)
 
     def zero_frames(self) -> list[tuple[tuple[float, float, float], tuple[float, float, float]]]:
@@ -142,7 +171,6 @@ class Chain:
             d = tuple((T[i][0] * x + T[i][1] * y + T[i][2] * z) / n for i in range(3))
             out.append(((T[0][3], T[1][3], T[2][3]), d))
         return out
-
 
 def _mm(xyz) -> tuple[float, float, float]:
     return (xyz[0] * 1000.0, xyz[1] * 1000.0, xyz[2] * 1000.0)
@@ -215,6 +243,8 @@ def extract_opw(chain: Chain, tol_mm: float = 1e-6) -> tuple[OPW | None, str]:
     """The OPW parameters of a chain read from its zero position, verified on random positions.
 
     Returns (OPW, "") or (None, why the arm is not ortho-parallel with a spherical wrist)."""
+    if chain.kind != "six-axis":
+        return None, "not a six-axis arm"
     frames = chain.zero_frames()
     expected = ("z", "y", "y", "z", "y", "z")
     unit = {"y": (0.0, 1.0, 0.0), "z": (0.0, 0.0, 1.0)}

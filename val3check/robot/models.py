@@ -1,8 +1,9 @@
-"""RobotModel: one six-axis arm (limits, speeds, accelerations, kinematics) and load_robot()."""
+"""RobotModel: one arm (six-axis RX/TX or SCARA RS/TS): limits, speeds, accelerations, kinematics."""
 
 from __future__ import annotations
 
 import functools
+import itertools
 import math
 import os
 from dataclasses import dataclass, field, replace
@@ -10,15 +11,31 @@ from pathlib import Path
 from typing import Sequence
 
 from . import catalog as _catalog
+from . import scara as _scara
 from .config import Config, classify, resolve
 from .errors import IKUnsupported, RobotError, Unreachable
 from .ik import opw_ik
 from .kinematics import DEG, RAD, OPW, Chain, extract_opw, matrix_trsf, trsf_matrix
-from .urdf import Mat, inverse, mul, read_urdf
+from .provenance import Provenance
+from .urdf import IDENTITY, Mat, inverse, mul, read_urdf
 
 # Acceleration assumed when a URDF gives none (robots/README.md): nominal speed reached in this time.
 DEFAULT_RAMP_S = 0.25
-LIMIT_TOL_DEG = 1e-7  # a solution this close outside a joint limit is taken as on it
+LIMIT_TOL_DEG = 1e-7  # a solution this close outside a joint limit is taken as on it (deg, or mm)
+
+FAMILY_TYPES = {"six-axis": "Rx", "scara": "Rs"}  # VAL 3 type family: pointRx/jointRx/configRx, pointRs…
+
+# The world frame turned into the cell (Z up, against gravity) for each mount (robots/README.md,
+# "Mounting"). The VAL 3 world is attached to the arm's base; the mount only places it in the cell.
+_MOUNT_ROTATION = {
+    ("six-axis", "floor"): IDENTITY,
+    ("six-axis", "ceiling"): ((1.0, 0.0, 0.0, 0.0), (0.0, -1.0, 0.0, 0.0), (0.0, 0.0, -1.0, 0.0)),  # Rx(180)
+    ("six-axis", "wall"): ((0.0, 0.0, 1.0, 0.0), (0.0, 1.0, 0.0, 0.0), (-1.0, 0.0, 0.0, 0.0)),  # Ry(90): axis 1 horizontal
+    ("scara", "floor"): IDENTITY,
+    ("scara", "wall"): IDENTITY,  # Stäubli's "WA" SCARA: a console on a wall, axes still vertical
+    ("scara", "ceiling"): ((1.0, 0.0, 0.0, 0.0), (0.0, -1.0, 0.0, 0.0), (0.0, 0.0, -1.0, 0.0)),
+}
+MOUNTS = ("floor", "wall", "ceiling")
 
 
 def _as_matrix(pose) -> Mat:
@@ -33,16 +50,19 @@ def _as_matrix(pose) -> Mat:
 
 @dataclass
 class RobotModel:
-    """A six-axis arm. Joint values are VAL 3's: degrees; lengths in millimetres.
+    """An arm. Joint values are VAL 3's: degrees, and millimetres for the prismatic axis 3 of a
+    SCARA; lengths in millimetres.
 
-    Attributes: name, source (URDF path), srs_arm_id, joint_names, joint_limits ((min, max) deg per
-    axis), nominal_speeds (deg/s), accelerations (deg/s², see acceleration_note), max_torques (N·m
-    or None), reach_mm, opw (closed-form parameters, None when the arm has none: then ik() raises
-    IKUnsupported, with the reason in opw_reason)."""
+    Attributes: name, source (URDF path), srs_arm_id, family ("six-axis" | "scara"),
+    joint_names, joint_kinds ("revolute" | "prismatic" per axis), joint_limits ((min, max) per
+    axis), nominal_speeds (deg/s or mm/s), accelerations (deg/s² or mm/s², see
+    acceleration_note), max_torques (N·m or None), reach_mm, provenance (facts, assumptions,
+    alternatives, missing values), mount, notes (how the model was chosen). Closed forms: opw
+    (six-axis) or scara; without one, ik() raises IKUnsupported with the reason in opw_reason."""
 
     name: str
     source: str
-    srs_arm_id: str
+    srs_arm_id: str  # as arm.cfx writes it (seen in a real controller tree), or "" (see srs_arm_id_hint)
     joint_names: tuple[str, ...]
     joint_limits: tuple[tuple[float, float], ...]
     nominal_speeds: tuple[float, ...]
@@ -55,6 +75,61 @@ class RobotModel:
     opw_reason: str = ""
     world_frame: str = "world"
     flange_frame: str = "flange"
+    family: str = "six-axis"
+    joint_kinds: tuple[str, ...] = ()
+    scara: _scara.Scara | None = field(default=None, repr=False)
+    stroke_mm: float | None = None  # SCARA: nominal stroke of axis 3
+    series: str = ""  # TX2, TX, RX, TS2, TS, TP… (catalogue models)
+    provenance: Provenance = field(default_factory=Provenance, repr=False)
+    mount: str = "floor"
+    native_mount: str = "floor"  # the mount the kinematic description is written for (TP80: ceiling)
+    notes: tuple[str, ...] = ()
+    srs_arm_id_hint: str = ""  # an id inferred (not seen in a real arm.cfx), matched all the same
+    # internal value = sign × VAL 3 value, per axis (an override of an axis direction)
+    joint_signs: tuple[int, ...] = ()
+    world_shift: Mat | None = field(default=None, repr=False)  # world moved from the URDF's world link
+
+    def __post_init__(self) -> None:
+        if not self.joint_kinds:
+            self.joint_kinds = tuple(j.kind for j in self.chain.joints)
+        if not self.joint_signs:
+            self.joint_signs = (1,) * len(self.joint_kinds)
+
+    # ---- identity ---------------------------------------------------------------------------------
+
+    @property
+    def type_family(self) -> str:
+        """The VAL 3 type family of the arm: "Rx" (pointRx, jointRx, configRx) or "Rs" (SCARA)."""
+        return FAMILY_TYPES[self.family]
+
+    @property
+    def axes(self) -> int:
+        return len(self.joint_limits)
+
+    @property
+    def joint_units(self) -> tuple[str, ...]:
+        """"deg" or "mm" per axis (a prismatic axis is a length: the application's length unit)."""
+        return tuple("mm" if k == "prismatic" else "deg" for k in self.joint_kinds)
+
+    @property
+    def config_fields(self) -> tuple[str, ...]:
+        """The fields of this arm's config (9.7.2): shoulder, elbow, wrist; shoulder only for RS/TS."""
+        return ("shoulder",) if self.family == "scara" else ("shoulder", "elbow", "wrist")
+
+    @property
+    def world_in_cell(self) -> Mat:
+        """The VAL 3 world frame in a cell frame whose Z points up (against gravity), for the mount
+        (a rotation; robots/README.md "Mounting")."""
+        if self.mount == self.native_mount:
+            return IDENTITY
+        R = _MOUNT_ROTATION[(self.family, self.mount)]
+        N = _MOUNT_ROTATION[(self.family, self.native_mount)]
+        return mul(R, inverse(N))
+
+    @property
+    def assumed(self) -> frozenset[str]:
+        """Keys of the values that are assumptions rather than public facts (provenance)."""
+        return self.provenance.assumed()
 
     # ---- limits ---------------------------------------------------------------------------------
 
@@ -63,18 +138,37 @@ class RobotModel:
         return all(lo - LIMIT_TOL_DEG <= j <= hi + LIMIT_TOL_DEG for j, (lo, hi) in zip(joints, self.joint_limits))
 
     def with_accelerations(self, accelerations: Sequence[float], note: str = "given by the user") -> "RobotModel":
-        """A copy with other nominal accelerations (deg/s², one per axis)."""
+        """A copy with other nominal accelerations (deg/s² or mm/s², one per axis)."""
         acc = tuple(float(a) for a in accelerations)
-        if len(acc) != 6 or any(not a > 0 for a in acc):
-            raise RobotError("accelerations: six positive values in deg/s² are needed")
+        if len(acc) != self.axes or any(not a > 0 for a in acc):
+            raise RobotError(f"accelerations: {self.axes} positive values (deg/s², mm/s² for a prismatic axis) are needed")
         return replace(self, accelerations=acc, acceleration_note=note)
+
+    def with_assumptions(self, values: dict) -> "RobotModel":
+        """A copy with the user's values in place of assumptions (overrides.KEYS: nominal_speeds,
+        accelerations, ramp_s, limits, max_torques, mount, world_z_mm, axis3_sign, axis4_sign)."""
+        from .overrides import apply
+
+        return apply(self, values, by="user")
+
+    # ---- joint values <-> the kinematics' internal values ------------------------------------------
+
+    def _internal(self, joints: Sequence[float]) -> list[float]:
+        """VAL 3 joint values -> radians (mm for a prismatic axis), axis signs applied."""
+        return [s * (j if k == "prismatic" else j * DEG) for j, k, s in zip(joints, self.joint_kinds, self.joint_signs)]
 
     # ---- forward kinematics ---------------------------------------------------------------------
 
     def fk_matrix(self, joints: Sequence[float], tool=None) -> Mat:
-        """The flange (or tool) in the world frame as a 3x4 matrix in mm, joints in degrees."""
-        q = [j * DEG for j in joints]
-        T = self.opw.fk(q) if self.opw is not None else self.chain.fk(q)
+        """The flange (or tool) in the world frame as a 3x4 matrix in mm; joints in degrees (mm for
+        a SCARA's axis 3)."""
+        q = self._internal(joints)
+        if self.opw is not None:
+            T = self.opw.fk(q)
+        elif self.scara is not None:
+            T = self.scara.fk(q)
+        else:
+            T = self.chain.fk(q)
         return T if tool is None else mul(T, _as_matrix(tool))
 
     def fk(self, joints: Sequence[float], tool=None) -> tuple[float, float, float, float, float, float]:
@@ -83,7 +177,7 @@ class RobotModel:
 
     def fk_chain(self, joints: Sequence[float]) -> Mat:
         """The URDF chain multiplied out in pure Python (reference for the closed form)."""
-        return self.chain.fk([j * DEG for j in joints])
+        return self.chain.fk(self._internal(joints))
 
     def pinocchio(self):
         """(pinocchio.Model, pinocchio.Data) of the URDF (imports pinocchio on first use)."""
@@ -103,40 +197,78 @@ class RobotModel:
         model, data = self.pinocchio()
         ids = _pin_ids(self.source, self.joint_names, self.world_frame, self.flange_frame)
         q = pin.neutral(model)
-        for (idx, nq), j in zip(ids[0], joints):
-            a = j * DEG
-            if nq == 1:
-                q[idx] = a
+        for (idx, nq), v, kind in zip(ids[0], self._internal(joints), self.joint_kinds):
+            if kind == "prismatic":
+                q[idx] = v / 1000.0  # pinocchio works in metres
+            elif nq == 1:
+                q[idx] = v
             else:  # continuous joint: (cos, sin)
-                q[idx], q[idx + 1] = math.cos(a), math.sin(a)
+                q[idx], q[idx + 1] = math.cos(v), math.sin(v)
         pin.forwardKinematics(model, data, q)
         pin.updateFramePlacement(model, data, ids[2])
         M = ids[3].actInv(data.oMf[ids[2]])  # world^-1 · flange
         R, p = M.rotation, M.translation * 1000.0
-        return tuple((float(R[i, 0]), float(R[i, 1]), float(R[i, 2]), float(p[i])) for i in range(3))  # type: ignore[return-value]
+        T = tuple((float(R[i, 0]), float(R[i, 1]), float(R[i, 2]), float(p[i])) for i in range(3))
+        return T if self.world_shift is None else mul(inverse(self.world_shift), T)  # type: ignore[return-value,arg-type]
 
     # ---- configurations -------------------------------------------------------------------------
 
-    def config_of(self, joints: Sequence[float]) -> tuple[str, str, str]:
-        """(shoulder, elbow, wrist) of a joint position by the formulas of 9.7.4: righty/lefty,
-        epositive/enegative, wpositive/wnegative."""
-        o = self._need_opw()
+    def config_of(self, joints: Sequence[float]) -> tuple[str, ...]:
+        """The configuration of a joint position: (shoulder, elbow, wrist) by the formulas of 9.7.4
+        for a six-axis arm (righty/lefty, epositive/enegative, wpositive/wnegative); (shoulder,)
+        for a SCARA, righty when sin(j2) > 0 (9.7.5)."""
+        if self.family == "scara":
+            self._need_closed_form()
+            return (_scara.classify(joints[1]),)
+        o = self._need_closed_form()
         s = o.signs
-        return classify(s[1] * joints[1], s[2] * joints[2], s[4] * joints[4], o.c2, o.c3, o.a1, o.a2)
+        g = self.joint_signs
+        return classify(s[1] * g[1] * joints[1], s[2] * g[2] * joints[2], s[4] * g[4] * joints[4], o.c2, o.c3, o.a1, o.a2)
+
+    def singularities(self, joints: Sequence[float], tol_deg: float = 1e-3, tol_mm: float = 1e-3) -> tuple[str, ...]:
+        """The singular positions `joints` is at (within the tolerances): "wrist" (j5 = 0),
+        "elbow" (six-axis: arm stretched or folded; SCARA: arm stretched or folded, sin(j2) = 0),
+        "shoulder" (the wrist centre, or a SCARA's axis 4, on axis 1)."""
+        out = []
+        q = self._internal(joints)
+        if self.family == "scara":
+            sc = self._need_closed_form()
+            beta = sc.elbow_angle(q[1])
+            if abs(math.sin(beta)) < math.sin(tol_deg * DEG):
+                out.append("elbow")
+            u, v = q[0] * sc.signs[0] + sc.alpha1, q[0] * sc.signs[0] + beta + sc.alpha1
+            if math.hypot(sc.l1 * math.cos(u) + sc.l2 * math.cos(v), sc.l1 * math.sin(u) + sc.l2 * math.sin(v)) < tol_mm:
+                out.append("shoulder")
+            return tuple(out)
+        o = self._need_closed_form()
+        s = o.signs
+        t2, t3, t5 = s[1] * q[1], s[2] * q[2], s[4] * q[4]
+        psi = math.atan2(o.a2, o.c3)
+        if abs(math.sin(t3 + psi)) < math.sin(tol_deg * DEG):
+            out.append("elbow")
+        if abs(math.sin(t5)) < math.sin(tol_deg * DEG):
+            out.append("wrist")
+        # the wrist centre's forward distance from axis 1 in the arm's plane (9.7.4.1): 0 where the
+        # two shoulder branches meet (on axis 1 when b = 0)
+        fwd = o.a1 + o.c2 * math.sin(t2) + o.c3 * math.sin(t2 + t3) + o.a2 * math.cos(t2 + t3)
+        if abs(fwd) < tol_mm:
+            out.append("shoulder")
+        return tuple(out)
 
     # ---- inverse kinematics ---------------------------------------------------------------------
 
     def ik(self, pose, config=None, near: Sequence[float] | None = None, same_from: Sequence[float] | None = None,
            tool=None, all_turns: bool = False) -> list[tuple[float, ...]]:
-        """Joint positions (degrees) that put the flange (or `tool`) at `pose` in the world frame.
+        """Joint positions that put the flange (or `tool`) at `pose` in the world frame.
 
         pose: a trsf (x, y, z, rx, ry, rz) in mm/deg or a 3x4/4x4 matrix in mm. config: None (all
-        free), a Config, or three names ("righty", "esame", "wfree"...). Every branch (up to 8)
-        within the joint limits and the configuration comes back. Axes that can turn more than once
-        (±270° on j4 and j6) take, per branch, the value nearest `near` (9.6.3), or the one nearest
-        0 without `near`; all_turns=True lists every such value instead. `same` fields take the
-        configuration of `same_from` (default: `near`). With `near`, the nearest solution comes
-        first. An empty list when nothing reaches the pose; `solve()` says why."""
+        free), a Config, or names ("righty", "esame", "wfree"...; a SCARA: ("righty",) or three
+        fields whose elbow and wrist are same/free). Every branch (up to 8; 2 for a SCARA) within
+        the joint limits and the configuration comes back. Axes that can turn more than once (±270°
+        on j4 and j6, ±500° on a SCARA's j4) take, per branch, the value nearest `near` (9.6.3), or
+        the one nearest 0 without `near`; all_turns=True lists every such value instead. `same`
+        fields take the configuration of `same_from` (default: `near`). With `near`, the nearest
+        solution comes first. An empty list when nothing reaches the pose; `solve()` says why."""
         sols, _ = self._ik(pose, config, near, same_from, tool, all_turns)
         return sols
 
@@ -154,24 +286,37 @@ class RobotModel:
             raise Unreachable(why[1], why[0])
         return sols[0]
 
-    def _need_opw(self) -> OPW:
-        if self.opw is None:
-            raise IKUnsupported(
-                f"{self.name}: no closed-form inverse kinematics: {self.opw_reason}. Only arms with an "
-                "ortho-parallel base and a spherical wrist (Stäubli RX/TX/TX2) are supported"
-            )
-        return self.opw
+    def _need_closed_form(self):
+        if self.opw is not None:
+            return self.opw
+        if self.scara is not None:
+            return self.scara
+        if self.family == "scara":
+            raise IKUnsupported(f"{self.name}: no closed-form inverse kinematics: {self.opw_reason}. A SCARA needs its "
+                                "four axes vertical, axis 3 prismatic")
+        raise IKUnsupported(
+            f"{self.name}: no closed-form inverse kinematics: {self.opw_reason}. Only arms with an "
+            "ortho-parallel base and a spherical wrist (Stäubli RX/TX/TX2) are supported"
+        )
 
     def _ik(self, pose, config, near, same_from, tool, all_turns):
-        opw = self._need_opw()
-        req = Config.parse(config)
+        solver = self._need_closed_form()
+        scara = self.family == "scara"
+        req = Config.parse(config, scara=scara)
         T = _as_matrix(pose)
         if tool is not None:
             T = mul(T, inverse(_as_matrix(tool)))
         ref = same_from if same_from is not None else near
-        wanted = resolve(req, self.config_of(ref) if ref is not None else None)
-        hint = [v * DEG for v in near] if near is not None else None
-        raw = opw_ik(opw, T, hint)
+        ref_cfg = self.config_of(ref) if ref is not None else None
+        wanted = resolve(req, ref_cfg)
+        hint = self._internal(near) if near is not None else None
+        if scara:
+            raw, why = _scara.scara_ik(solver, T, hint)
+            if why == "orientation":
+                return [], ("reach", f"{self.name}: a SCARA only turns its flange about the vertical: the target's Z "
+                                     "axis is tilted from the flange's")
+        else:
+            raw = opw_ik(solver, T, hint)
         if not raw:
             return [], ("reach", f"{self.name}: the pose is out of the arm's reach")
         in_limits = self._turns(raw, near, all_turns)
@@ -184,8 +329,10 @@ class RobotModel:
                 if any(w is not None and w != v for w, v in zip(wanted, c)):
                     continue
             for o in out:  # two branches that meet at a singular position come back once
-                if (abs(q[0] - o[0]) < 1e-9 and abs(q[1] - o[1]) < 1e-9 and abs(q[2] - o[2]) < 1e-9
-                        and abs(q[3] - o[3]) < 1e-9 and abs(q[4] - o[4]) < 1e-9 and abs(q[5] - o[5]) < 1e-9):
+                for a, b in zip(q, o):
+                    if abs(a - b) >= 1e-9:
+                        break
+                else:
                     break
             else:
                 out.append(q)
@@ -197,18 +344,27 @@ class RobotModel:
         return out, ("", "")
 
     def _turns(self, raw, near, all_turns) -> list[tuple[float, ...]]:
-        """Degrees within the joint limits: per axis, the value (mod 360) nearest near (or 0), or
-        every value with all_turns. Solutions with an axis that fits nowhere are dropped."""
-        limits = self.joint_limits
+        """VAL 3 values within the joint limits: per revolute axis, the value (mod 360) nearest
+        near (or 0), or every value with all_turns. Solutions with an axis that fits nowhere are
+        dropped."""
         out: list[tuple[float, ...]] = []
         tol = LIMIT_TOL_DEG
+        axes = self._axes_spec()
         for q in raw:
             vals: list[float] = []
             multi: list[list[float]] | None = None
-            for i in range(6):
-                lo, hi = limits[i]
-                v = math.remainder(q[i] * RAD, 360.0)
-                if hi - lo < 360.0 - 2 * tol:  # at most one value fits
+            for i, (prismatic, sign, lo, hi, single) in enumerate(axes):
+                if prismatic:
+                    v = sign * q[i]
+                    if v < lo - tol or v > hi + tol:
+                        break
+                    v = lo if v < lo else hi if v > hi else v
+                    vals.append(v)
+                    if multi is not None:
+                        multi.append([v])
+                    continue
+                v = math.remainder((q[i] if sign == 1 else -q[i]) * RAD, 360.0)
+                if single:  # at most one value fits
                     if v < lo - tol:
                         v += 360.0
                     elif v > hi + tol:
@@ -224,18 +380,19 @@ class RobotModel:
                 kmax = math.floor((hi + tol - v) / 360.0)
                 if kmin > kmax:
                     break
-                cands = [min(max(v + 360.0 * k, lo), hi) for k in range(kmin, kmax + 1)]
-                if all_turns and len(cands) > 1:
+                if all_turns and kmax > kmin:
+                    cands = [min(max(v + 360.0 * k, lo), hi) for k in range(kmin, kmax + 1)]
                     if multi is None:
                         multi = [[x] for x in vals]
                     multi.append(cands)
                     vals.append(cands[0])
                     continue
+                # the turn nearest the target (ties: the lower one)
                 target = near[i] if near is not None else 0.0
-                best = cands[0]
-                for c in cands[1:]:
-                    if abs(c - target) < abs(best - target):
-                        best = c
+                k = math.ceil((target - v) / 360.0 - 0.5)
+                k = kmin if k < kmin else kmax if k > kmax else k
+                best = v + 360.0 * k
+                best = lo if best < lo else hi if best > hi else best
                 vals.append(best)
                 if multi is not None:
                     multi.append([best])
@@ -243,34 +400,58 @@ class RobotModel:
                 if multi is None:
                     out.append(tuple(vals))
                 else:
-                    import itertools
-
                     out.extend(itertools.product(*multi))
         return out
+
+    def _axes_spec(self) -> tuple:
+        """Per axis: (prismatic, sign, min, max, at most one turn fits), for _turns."""
+        key = (self.joint_limits, self.joint_kinds, self.joint_signs)
+        cached = self.__dict__.get("_spec")
+        if cached is None or cached[0] != key:
+            spec = tuple((k == "prismatic", s, lo, hi, hi - lo < 360.0 - 2 * LIMIT_TOL_DEG)
+                         for (lo, hi), k, s in zip(self.joint_limits, self.joint_kinds, self.joint_signs))
+            cached = self.__dict__["_spec"] = (key, spec)
+        return cached[1]
 
     # ---- description ----------------------------------------------------------------------------
 
     def describe(self) -> dict:
-        o = self.opw
+        o, sc, pv = self.opw, self.scara, self.provenance
         return {
             "name": self.name,
-            "srs_arm_id": self.srs_arm_id,
+            "family": self.family,
+            "type_family": self.type_family,
+            "series": self.series,
+            "srs_arm_id": self.srs_arm_id or None,
+            "srs_arm_id_hint": self.srs_arm_id_hint or None,
             "source": self.source,
             "reach_mm": round(self.reach_mm, 6),
+            "stroke_mm": self.stroke_mm,
+            "mount": self.mount,
             "joints": [
                 {
                     "name": n,
-                    "min_deg": lo,
-                    "max_deg": hi,
-                    "nominal_speed_deg_s": v,
-                    "acceleration_deg_s2": a,
-                    "max_torque_nm": t,
+                    "kind": k,
+                    "unit": u,
+                    "min_deg" if u == "deg" else "min_mm": lo,
+                    "max_deg" if u == "deg" else "max_mm": hi,
+                    "nominal_speed_deg_s" if u == "deg" else "nominal_speed_mm_s": v,
+                    "acceleration_deg_s2" if u == "deg" else "acceleration_mm_s2": a,
+                    "max_torque_nm" if u == "deg" else "max_force_n": t,
                 }
-                for n, (lo, hi), v, a, t in zip(self.joint_names, self.joint_limits, self.nominal_speeds, self.accelerations, self.max_torques)
+                for n, k, u, (lo, hi), v, a, t in zip(self.joint_names, self.joint_kinds, self.joint_units, self.joint_limits,
+                                                      self.nominal_speeds, self.accelerations, self.max_torques)
             ],
             "acceleration_note": self.acceleration_note,
-            "closed_form_ik": o is not None,
+            "closed_form_ik": o is not None or sc is not None,
             "opw_mm": None if o is None else {k: round(getattr(o, k), 9) for k in ("a1", "a2", "b", "c1", "c2", "c3", "c4")},
+            "scara_mm": None if sc is None else {"l1": round(sc.l1, 9), "l2": round(sc.l2, 9), "z0": round(sc.z0, 9),
+                                                 "axis_signs": list(sc.signs)},
+            "facts": [{"key": f.key, "source": f.text} for f in pv.facts],
+            "assumptions": [{"key": a.key, "value": a.value, "why": a.text, "by": a.by} for a in pv.assumptions],
+            "alternatives": [{"key": a.key, "chosen": a.chosen, "other": a.other, "why": a.text} for a in pv.alternatives],
+            "missing": [{"key": m.key, "why": m.text} for m in pv.missing],
+            "notes": list(self.notes),
         }
 
 
@@ -283,9 +464,10 @@ def _clean(x: float) -> float:
 
 
 def from_urdf(path: str | os.PathLike, world_frame: str | None = None, flange_frame: str | None = None,
-              name: str | None = None) -> RobotModel:
+              name: str | None = None, world_shift: Mat | None = None) -> RobotModel:
     """A RobotModel from a URDF. The URDF must say which links are the VAL 3 world and flange frames
-    (<val3check world_frame=".." flange_frame=".."/>), unless world_frame/flange_frame are given."""
+    (<val3check world_frame=".." flange_frame=".."/>), unless world_frame/flange_frame are given.
+    `world_shift` moves the world frame relative to that link (an override of its position)."""
     info = read_urdf(path)
     meta = info.meta or {}
     world = world_frame or meta.get("world_frame")
@@ -299,19 +481,23 @@ def from_urdf(path: str | os.PathLike, world_frame: str | None = None, flange_fr
                 "inside <robot> (robots/README.md)"
             )
         raise RobotError(f"{info.path}: <val3check> lacks {' and '.join(missing)} (the links of the VAL 3 world and flange frames)")
-    chain = Chain(info, world, flange)
+    chain = Chain(info, world, flange, world_shift)
     joints = chain.joints
-    speeds = tuple(_clean(j.velocity * RAD) for j in joints)
+    speeds = tuple(_clean(j.velocity if j.kind == "prismatic" else j.velocity * RAD) for j in joints)
     accs, notes = [], set()
     for j, v in zip(joints, speeds):
-        given = info.meta_joints.get(j.name, {}).get("acceleration_deg_s2")
+        attrs = info.meta_joints.get(j.name, {})
+        key, other = ("acceleration_mm_s2", "acceleration_deg_s2") if j.kind == "prismatic" else ("acceleration_deg_s2", "acceleration_mm_s2")
+        if attrs.get(other) is not None:
+            raise RobotError(f"{info.path}: joint {j.name!r} is {j.kind}: its acceleration is {key}, not {other}")
+        given = attrs.get(key)
         if given is not None:
             try:
                 a = float(given)
             except ValueError:
-                raise RobotError(f"{info.path}: joint {j.name!r}: acceleration_deg_s2={given!r} is not a number") from None
+                raise RobotError(f"{info.path}: joint {j.name!r}: {key}={given!r} is not a number") from None
             if not a > 0:
-                raise RobotError(f"{info.path}: joint {j.name!r}: acceleration_deg_s2 must be positive")
+                raise RobotError(f"{info.path}: joint {j.name!r}: {key} must be positive")
             accs.append(a)
         else:
             accs.append(v / DEFAULT_RAMP_S)
@@ -322,27 +508,46 @@ def from_urdf(path: str | os.PathLike, world_frame: str | None = None, flange_fr
     else:
         note = f"from the URDF: {rule}" if rule else "from the URDF"
     opw, why = extract_opw(chain)
+    sc = None
+    if chain.kind == "scara":
+        sc, why = _scara.extract_scara(chain)
     if opw is not None:
         reach = opw.a1 + opw.c2 + math.hypot(opw.c3, opw.a2) + opw.c4
+    elif sc is not None:
+        reach = sc.l1 + sc.l2 + math.hypot(*sc.offset)
     else:  # upper bound: the lengths of the links after axis 1, end to end
         reach = sum(math.sqrt(sum(j.before[i][3] ** 2 for i in range(3))) for j in joints[1:])
         reach += math.sqrt(sum(chain.tip[i][3] ** 2 for i in range(3)))
+    stroke = meta.get("stroke_mm")
+    native = meta.get("native_mount", "floor")
+    if native not in MOUNTS:
+        raise RobotError(f"{info.path}: <val3check native_mount={native!r}>: one of {', '.join(MOUNTS)}")
     return RobotModel(
         name=name or meta.get("arm") or info.robot_name or Path(info.path).stem,
         source=info.path,
         srs_arm_id=meta.get("srs_arm_id", ""),
+        srs_arm_id_hint=meta.get("srs_arm_id_hint", ""),
         joint_names=tuple(j.name for j in joints),
-        joint_limits=tuple((_clean(j.lower * RAD), _clean(j.upper * RAD)) for j in joints),
+        joint_limits=tuple((_clean(j.lower if j.kind == "prismatic" else j.lower * RAD),
+                            _clean(j.upper if j.kind == "prismatic" else j.upper * RAD)) for j in joints),
         nominal_speeds=speeds,
         accelerations=tuple(accs),
         acceleration_note=note,
-        max_torques=tuple(j.effort for j in joints),
+        max_torques=tuple(j.effort if j.effort else None for j in joints),
         reach_mm=reach,
         chain=chain,
         opw=opw,
         opw_reason=why,
         world_frame=world,
         flange_frame=flange,
+        family=chain.kind,
+        scara=sc,
+        stroke_mm=float(stroke) if stroke else None,
+        series=meta.get("series", ""),
+        provenance=Provenance.from_meta(info.meta_items),
+        mount=native,
+        native_mount=native,
+        world_shift=world_shift,
     )
 
 
@@ -351,9 +556,18 @@ def _catalog_model(name: str) -> RobotModel:
     return from_urdf(_catalog.catalog()[name]["path"])
 
 
+def catalog_model(name: str) -> RobotModel:
+    """A catalogue model by its exact catalogue name (shared, unchanged: copy with replace())."""
+    return _catalog_model(name)
+
+
 def load_robot(spec: str | os.PathLike | None, app_path: str | os.PathLike | None = None) -> RobotModel:
-    """A robot by catalogue name (case-insensitive: 'tx2-60', 'TX2_60'), by URDF path, by arm.cfx
-    path, or — spec None — from the usr/configs/arm.cfx of the controller tree holding app_path."""
+    """A robot by catalogue name (case-insensitive: 'tx2-60', 'TX2_60'; 'TS60-L200' for another
+    stroke of a SCARA), by URDF path, by arm.cfx path, by robot file (.toml: a model plus the
+    user's values for its assumptions, overrides.py), or — spec None — from the
+    usr/configs/arm.cfx of the controller tree holding app_path."""
+    from . import identify
+
     if spec is None or str(spec) == "":
         if app_path is None:
             raise RobotError("no robot named and no application to find a controller tree (arm.cfx) from")
@@ -363,16 +577,20 @@ def load_robot(spec: str | os.PathLike | None, app_path: str | os.PathLike | Non
                 f"no usr/configs/arm.cfx above {app_path}: name the arm with --robot "
                 f"(one of {', '.join(_catalog.names())}, or a URDF)"
             )
-        return _catalog_model(_catalog.find_srs(_catalog.read_arm_cfx(cfx)))
+        return identify.from_arm_cfx(cfx)
     text = os.fspath(spec)
     low = text.lower()
     if low.endswith(".cfx"):
-        return _catalog_model(_catalog.find_srs(_catalog.read_arm_cfx(text)))
+        return identify.from_arm_cfx(text)
+    if low.endswith(".toml"):
+        from .overrides import load_robot_file
+
+        return load_robot_file(text, app_path)
     if low.endswith((".urdf", ".xml")) or os.path.sep in text or os.path.isfile(text):
         if not os.path.isfile(text):
             raise RobotError(f"{text}: no such URDF file")
         return from_urdf(text)
-    return _catalog_model(_catalog.find(text))
+    return identify.by_name(text)
 
 
 # ---- pinocchio, loaded lazily -------------------------------------------------------------------

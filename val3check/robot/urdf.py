@@ -8,11 +8,14 @@ The metadata val3check needs in a URDF (robots/README.md, "Your own URDF"):
 
     <val3check arm="MyTX2-60" world_frame="base" flange_frame="tool0">
       <joint name="joint_1" acceleration_deg_s2="1740"/>   <!-- optional, one per joint -->
+      <joint name="joint_3" acceleration_mm_s2="4000"/>    <!-- a prismatic joint (SCARA axis 3) -->
+      <fact .../> <assumption .../> <alternative .../> <missing .../>   <!-- optional: provenance.py -->
     </val3check>
 
 `world_frame` and `flange_frame` are required: they name the links that are the VAL 3 `world`
-frame (on axis 1 at the height of axis 2, X forward, Z up) and `flange` frame (Z out of the flange
-along axis 6). Joint limits and nominal speeds are the URDF's own `<limit lower upper velocity>`.
+frame (six-axis: on axis 1 at the height of axis 2, X forward, Z up) and `flange` frame (Z out of
+the flange). Joint limits and nominal speeds are the URDF's own `<limit lower upper velocity>`
+(radians and rad/s, metres and m/s for a prismatic joint).
 """
 
 from __future__ import annotations
@@ -49,6 +52,9 @@ class UrdfInfo:
     links: set[str]
     meta: dict[str, str] | None  # attributes of <val3check>, None when absent
     meta_joints: dict[str, dict[str, str]] = field(default_factory=dict)
+    # the other children of <val3check>, in order: ("fact" | "assumption" | "alternative" |
+    # "missing", attributes); see models.Provenance
+    meta_items: list[tuple[str, dict[str, str]]] = field(default_factory=list)
 
     def chain(self, root: str, tip: str) -> list[UrdfJoint]:
         """Joints from `root` down to `tip` (both links), in order; empty when root == tip."""
@@ -89,7 +95,7 @@ def _opt(el, attr: str) -> float | None:
 
 
 def read_urdf(path: str | Path) -> UrdfInfo:
-    from defusedxml import ElementTree as ET
+    from defusedxml import DefusedXmlException, ElementTree as ET
 
     path = str(path)
     try:
@@ -100,6 +106,8 @@ def read_urdf(path: str | Path) -> UrdfInfo:
         raise RobotError(f"{path}: cannot read: {exc.strerror or exc}") from None
     except ET.ParseError as exc:
         raise RobotError(f"{path}: not well-formed XML: {exc}") from None
+    except DefusedXmlException:  # never follow entities (DTDs, external references)
+        raise RobotError(f"{path}: XML entities and DTDs are not allowed in a URDF") from None
     if root.tag != "robot":
         raise RobotError(f"{path}: not a URDF (the root element is <{root.tag}>, not <robot>)")
     links = {el.get("name") for el in root.findall("link")}
@@ -131,10 +139,15 @@ def read_urdf(path: str | Path) -> UrdfInfo:
     meta_el = root.find("val3check")
     meta = dict(meta_el.attrib) if meta_el is not None else None
     meta_joints = {}
+    meta_items = []
     if meta_el is not None:
-        for j in meta_el.findall("joint"):
-            meta_joints[j.get("name", "")] = dict(j.attrib)
-    return UrdfInfo(path=path, robot_name=root.get("name", ""), joints=joints, links=links, meta=meta, meta_joints=meta_joints)
+        for child in meta_el:
+            if child.tag == "joint":
+                meta_joints[child.get("name", "")] = dict(child.attrib)
+            elif isinstance(child.tag, str):
+                meta_items.append((child.tag, dict(child.attrib)))
+    return UrdfInfo(path=path, robot_name=root.get("name", ""), joints=joints, links=links, meta=meta, meta_joints=meta_joints,
+                    meta_items=meta_items)
 
 
 # ---- small rigid-transform helpers (3x4 row-major tuples, metres) -------------------------------

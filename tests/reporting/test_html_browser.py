@@ -1,0 +1,267 @@
+"""The HTML report in a real browser: Debian's Chromium, headless, through Playwright.
+
+Each test loads a report from a file:// URL, waits for the page's rendered flag and checks the
+DOM, that nothing was logged as an error and that nothing was requested; screenshots go to
+pytest's temporary folder (`--basetemp` to keep them). They skip when Chromium or Playwright is
+absent, unless VAL3CHECK_REQUIRE_BROWSER=1 (.ci/run).
+"""
+
+from __future__ import annotations
+
+import json
+import random
+from pathlib import Path
+
+import pytest
+
+import browser_client
+from val3check.cli import main
+from val3check.reporting.html import chain_fk, model_from_sim_report, render, synthetic_model
+from val3check.robot import load_robot
+
+ROOT = Path(__file__).resolve().parents[2]
+
+_WHY = browser_client.skip_reason()
+if _WHY and browser_client.required():
+    raise RuntimeError(f"VAL3CHECK_REQUIRE_BROWSER is set but the browser tests cannot run: {_WHY}")
+pytestmark = [pytest.mark.browser, pytest.mark.skipif(_WHY is not None, reason=_WHY or "")]
+
+
+@pytest.fixture(scope="module")
+def chromium():
+    with browser_client.Chromium() as c:
+        yield c
+
+
+@pytest.fixture(scope="module")
+def model():
+    return synthetic_model(duration=60.0)
+
+
+@pytest.fixture(scope="module")
+def report(model, tmp_path_factory):
+    path = tmp_path_factory.mktemp("html") / "report.html"
+    path.write_text(render(model), encoding="utf-8")
+    return path
+
+
+@pytest.fixture(scope="module")
+def loaded(chromium, report):
+    page = chromium.open(report)
+    yield page
+    page.page.close()
+
+
+def _clean(page) -> None:
+    assert page.console_errors == []
+    assert page.requests == [page.url], page.requests  # the page itself, nothing else
+    assert page.refused == []
+    assert page.evaluate("document.body.dataset.failures") == "0"
+
+
+def test_report_renders_everything_with_no_error_and_no_request(loaded, model, tmp_path_factory):
+    _clean(loaded)
+    counts = loaded.evaluate("""() => ({
+        diags: document.querySelectorAll('#diagnostics li.diag').length,
+        excerpts: document.querySelectorAll('#diagnostics pre.excerpt .hit').length,
+        motions: document.querySelectorAll('table.motions tbody tr').length,
+        transcript: document.querySelectorAll('table.transcript tbody tr').length,
+        jointPlots: document.querySelectorAll('#joint-plots svg.chart').length,
+        tcpPlots: document.querySelectorAll('#tcp-plot svg.chart').length,
+        series: Array.from(document.querySelectorAll('#joint-plots path.series, #tcp-plot path.series'))
+                     .map((p) => p.getAttribute('d').length),
+        ganttRects: document.querySelectorAll('#gantt svg rect').length,
+        ioRects: document.querySelectorAll('#io-lanes svg rect').length,
+        bars: document.querySelectorAll('.cyclebars svg rect[role=button]').length,
+        jointRows: document.querySelectorAll('#jointnow tr').length,
+        status: document.querySelector('.verdict .badge').textContent,
+    })""")
+    assert counts["diags"] == len(model["diagnostics"]) == 2 and counts["excerpts"] == 1
+    assert counts["motions"] == len(model["motions"]) > 100
+    assert counts["transcript"] == len(model["transcript"])
+    assert counts["jointPlots"] == 12 and counts["tcpPlots"] == 1
+    assert len(counts["series"]) == 13 and min(counts["series"]) > 500  # every curve has its points
+    assert counts["ganttRects"] > 50 and counts["ioRects"] > 20
+    assert counts["bars"] == len(model["cycles"][0]["iterations"])
+    assert counts["jointRows"] == 6 and counts["status"] == "PASSED"
+    shots = tmp_path_factory.mktemp("screenshots")
+    loaded.page.screenshot(path=str(shots / "report-top.png"))
+    loaded.page.locator("#view3d-section").screenshot(path=str(shots / "report-3d.png"))
+    assert (shots / "report-3d.png").stat().st_size > 20_000
+
+
+def _painted(page, rgb_min, rgb_max) -> int:
+    """Pixels of the 3D canvas within a colour box (the arm is yellow, obstacles blue-grey)."""
+    return page.evaluate("""([lo, hi]) => {
+        const c = document.getElementById('view3d');
+        const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+        let n = 0;
+        for (let i = 0; i < d.length; i += 4)
+            if (d[i] >= lo[0] && d[i] <= hi[0] && d[i+1] >= lo[1] && d[i+1] <= hi[1] && d[i+2] >= lo[2] && d[i+2] <= hi[2]) n++;
+        return n;
+    }""", [rgb_min, rgb_max])
+
+
+def test_3d_view_draws_the_arm_and_the_cell(loaded):
+    yellow = _painted(loaded, [120, 80, 0], [255, 200, 60])  # the arm, shaded
+    steel = _painted(loaded, [60, 75, 90], [150, 175, 200])  # the obstacles, shaded
+    assert yellow > 2000 and steel > 2000, (yellow, steel)
+
+
+def test_3d_forward_kinematics_is_the_arm_models(loaded, model):
+    robot = load_robot("tx2-60")
+    arm = model["scene"]["arm"]
+    rng = random.Random(3)
+    for _ in range(10):
+        q = [rng.uniform(lo, hi) for lo, hi in robot.joint_limits]
+        poses = loaded.evaluate("(q) => window.val3checkReport.linkPoses(q)", q)
+        F = robot.fk_matrix(q)
+        assert max(abs(poses["flange"][i][k] - F[i][k]) for i in range(3) for k in range(4)) < 1e-6
+        P = chain_fk(arm, q)
+        for link, M in P.items():
+            assert max(abs(poses[link][i][k] - M[i][k]) for i in range(3) for k in range(4)) < 1e-6, link
+
+
+def test_keyboard_and_mouse_drive_the_time_window_and_the_3d_view(chromium, report, model):
+    page = chromium.open(report)
+    p = page.page
+    window = lambda: p.locator("#tw-range").text_content()  # noqa: E731
+    assert window() == "0.000 – 60.000 s"
+    p.locator("#joint-plots svg.chart").first.focus()
+    p.keyboard.press("+")
+    p.wait_for_function("() => document.getElementById('tw-range').textContent !== '0.000 – 60.000 s'")
+    assert window() == "15.000 – 45.000 s"
+    p.keyboard.press("ArrowRight")
+    p.wait_for_function("() => document.getElementById('tw-range').textContent === '18.000 – 48.000 s'")
+    p.keyboard.press("0")
+    p.wait_for_function("() => document.getElementById('tw-range').textContent === '0.000 – 60.000 s'")
+    # a motion's number zooms on it, and the row of the motion under the cursor is marked
+    m = model["motions"][2]
+    pad = (m["end"] - m["start"]) * 0.1
+    zoomed = f"{m['start'] - pad:.3f} – {m['end'] + pad:.3f} s"
+    p.locator("table.motions tbody tr:nth-child(3) button.goto").click()
+    p.wait_for_function("(w) => document.getElementById('tw-range').textContent === w", arg=zoomed)
+    assert p.locator("table.motions tbody tr.now").count() == 1
+    assert p.locator("#view3d-state").text_content().endswith("motion 3 (movel, line 16)")
+    # drag across a plot: zoom on the range
+    p.wait_for_timeout(800)  # the smooth scroll to the plots
+    p.locator("#tcp-plot svg.chart").scroll_into_view_if_needed()
+    box = p.locator("#tcp-plot svg.chart").bounding_box()
+    y = box["y"] + box["height"] / 2
+    p.mouse.move(box["x"] + box["width"] * 0.3, y)
+    p.mouse.down()
+    p.mouse.move(box["x"] + box["width"] * 0.6, y, steps=5)
+    p.mouse.up()
+    p.wait_for_function("(w) => document.getElementById('tw-range').textContent !== w", arg=zoomed)
+    a, b = (float(x) for x in window().replace(" s", "").split(" – "))
+    assert 0 < b - a < 0.6
+    # play: time moves; space on the focused 3D view pauses
+    p.locator("#tw-reset").click()
+    p.locator("#play").click()
+    p.wait_for_function("() => parseFloat(document.getElementById('scrub-time').textContent) > 1.25")
+    p.locator("#view3d").focus()
+    p.keyboard.press(" ")
+    assert p.locator("#play").get_attribute("aria-pressed") == "false"
+    t = p.locator("#scrub-time").text_content()
+    p.wait_for_timeout(200)
+    assert p.locator("#scrub-time").text_content() == t
+    before = _painted(page, [120, 80, 0], [255, 200, 60])
+    for _ in range(6):
+        p.keyboard.press("ArrowLeft")
+    p.keyboard.press("-")
+    assert _painted(page, [120, 80, 0], [255, 200, 60]) != before  # the view turned
+    _clean(page)
+    p.close()
+
+
+def test_failing_run_shows_the_error_and_the_stopped_task(chromium, tmp_path):
+    model = synthetic_model(duration=30.0, failing=True)
+    path = tmp_path / "failing.html"
+    path.write_text(render(model), encoding="utf-8")
+    page = chromium.open(path)
+    _clean(page)
+    p = page.page
+    assert p.locator(".verdict .badge").text_content() == "FAILED"
+    assert p.locator("#diagnostics li.sev-error").count() == 1
+    assert "error 154" in p.locator("#diagnostics li.sev-error .msg").text_content()
+    # the stopped segment of the robot task is drawn with its hatch pattern
+    assert page.evaluate("""() => Array.from(document.querySelectorAll('#gantt svg rect'))
+        .some((r) => (r.getAttribute('fill') || '').startsWith('url(#v3h'))""")
+    p.screenshot(path=str(tmp_path / "failing.png"), full_page=False)
+    p.close()
+
+
+def test_print_layout_hides_the_controls(chromium, report):
+    page = chromium.open(report)
+    p = page.page
+    p.emulate_media(media="print")
+    hidden = page.evaluate("""() => ['.timebar', '.controls', 'nav.toc', '#diagnostics button.goto', 'table.motions button']
+        .map((s) => getComputedStyle(document.querySelector(s)).display)""")
+    assert hidden == ["none"] * 4 + ["inline-block"]  # the motion numbers stay, as text
+    assert page.evaluate("getComputedStyle(document.querySelector('.scroll.tall')).overflow") == "visible"
+    pdf = p.pdf(format="A4")
+    assert pdf.startswith(b"%PDF") and len(pdf) > 50_000
+    _clean(page)
+    p.close()
+
+
+def test_long_run_is_decimated_and_still_draws(chromium, model, tmp_path):
+    # a ten-minute run: repeat the one-minute trajectory ten times
+    import copy
+
+    long = copy.deepcopy(model)
+    tr = long["trajectory"]
+    n = len(tr["times"])
+    reps = 10
+    tr["times"] = [round(k * 0.004, 6) for k in range(n * reps)]
+    for key in ("positions", "velocities"):
+        tr[key] = [col * reps for col in tr[key]]
+    tr["tcp_speed"] = tr["tcp_speed"] * reps
+    long["verdict"]["simulated_duration"] = tr["times"][-1]
+    path = tmp_path / "long.html"
+    text = render(long)
+    path.write_text(text, encoding="utf-8")
+    assert len(text.encode()) < 5_000_000
+    page = chromium.open(path)
+    _clean(page)
+    assert page.evaluate("V3.data.traj.decimated") is True
+    assert page.page.locator("#joints ul.legend li", has_text="min/max of").count() == 1
+    lengths = page.evaluate("Array.from(document.querySelectorAll('#joint-plots path.series')).map((p) => p.getAttribute('d').length)")
+    assert len(lengths) == 12 and min(lengths) > 500
+    page.page.close()
+
+
+def test_3d_view_names_the_solid_under_the_pointer(loaded):
+    p = loaded.page
+    p.evaluate("() => V3.time.setCursor(0)")
+    names = loaded.evaluate("""() => {
+        const v = V3.view, c = document.getElementById('view3d'), seen = new Set();
+        for (let x = 0; x < c.clientWidth; x += 6) for (let y = 0; y < c.clientHeight; y += 6) {
+            const n = v.pick(x, y); if (n) seen.add(n);
+        }
+        return Array.from(seen).sort();
+    }""")
+    for expected in ("arm: link_2 (upper_arm)", "cell: pick table", "cell: pillar", "tool tGripper: body"):
+        assert expected in names, names
+
+
+@pytest.mark.parametrize("app, options", [("Cell", ["--robot", "tx2-60"]), ("Supervisor", [])])
+def test_report_of_a_real_application(chromium, app, options, capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(ROOT)
+    main(["sim", f"fixtures/valid/{app}", "--report", "json", "--duration", "20", *options])
+    report = json.loads(capsys.readouterr().out)
+    path = tmp_path / f"{app}.html"
+    path.write_text(render(model_from_sim_report(report)), encoding="utf-8")
+    page = chromium.open(path)
+    _clean(page)
+    p = page.page
+    assert p.locator("#diagnostics li.diag").count() == len(report["diagnostics"])
+    assert p.locator("table.transcript tbody tr").count() == len(report["transcript"])
+    assert p.locator("#io-lanes svg.chart").count() == (1 if report["io_log"] else 0)
+    if report["robot"]:
+        assert _painted(page, [120, 80, 0], [255, 200, 60]) > 2000  # the arm, standing at its initial position
+        assert p.locator("#jointnow tr").count() == 6
+    else:
+        assert p.locator("#view3d").count() == 0 and "No 3D scene" in p.locator("#view3d-section").text_content()
+    p.screenshot(path=str(tmp_path / f"{app}.png"), full_page=True)
+    p.close()

@@ -1,0 +1,228 @@
+"""The report model: everything the HTML page shows, as one plain JSON-able dict.
+
+Documented in docs/html-report.md (with a JSON Schema, docs/html-report.schema.json). It is
+built from a run (later: the sim's JSON report plus the arm model), or by `synthetic.py` for
+tests and the demo; `page.render` turns it into the page. `check_model` gives a clear message
+for a model that the page could not show, instead of a broken page.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+VERSION = 1
+
+SEVERITIES = ("error", "warning", "info")
+TASK_STATES = ("running", "waiting", "blocked", "stopped")
+ARM_STATES = ("moving", "idle")
+IO_KINDS = ("dio", "aio", "sio")
+SHAPES = ("box", "cylinder", "sphere", "mesh")
+
+
+class ModelError(ValueError):
+    """A report model the page cannot show; the message names the key (`trajectory.times[3]`)."""
+
+
+def _fail(where: str, what: str) -> None:
+    raise ModelError(f"report model: {where}: {what}")
+
+
+def _num(v: Any, where: str, *, null: bool = False) -> None:
+    if v is None and null:
+        return
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+        _fail(where, f"a finite number is expected, not {v!r}")
+
+
+def _list(v: Any, where: str) -> list:
+    if not isinstance(v, list):
+        _fail(where, f"a list is expected, not {type(v).__name__}")
+    return v
+
+
+def _dict(v: Any, where: str, keys: tuple[str, ...] = ()) -> dict:
+    if not isinstance(v, dict):
+        _fail(where, f"an object is expected, not {type(v).__name__}")
+    for k in keys:
+        if k not in v:
+            _fail(where, f"key {k!r} is missing")
+    return v
+
+
+def _matrix(v: Any, where: str) -> None:
+    rows = _list(v, where)
+    if len(rows) != 3 or any(not isinstance(r, list) or len(r) != 4 for r in rows):
+        _fail(where, "a 3x4 matrix (three rows of four numbers) is expected")
+    for i, r in enumerate(rows):
+        for k, x in enumerate(r):
+            _num(x, f"{where}[{i}][{k}]")
+
+
+def _segments(segs: Any, where: str, states: tuple[str, ...]) -> None:
+    for i, s in enumerate(_list(segs, where)):
+        w = f"{where}[{i}]"
+        _dict(s, w, ("start", "end", "state"))
+        _num(s["start"], f"{w}.start")
+        _num(s["end"], f"{w}.end")
+        if s["end"] < s["start"]:
+            _fail(w, "end is before start")
+        if s["state"] not in states:
+            _fail(f"{w}.state", f"one of {', '.join(states)} is expected, not {s['state']!r}")
+
+
+def _solid(s: Any, where: str) -> None:
+    _dict(s, where, ("shape",))
+    shape = s["shape"]
+    if shape not in SHAPES:
+        _fail(f"{where}.shape", f"one of {', '.join(SHAPES)} is expected, not {shape!r}")
+    _matrix(s.get("pose"), f"{where}.pose")
+    if shape == "box":
+        size = _list(s.get("size"), f"{where}.size")
+        if len(size) != 3:
+            _fail(f"{where}.size", "three sides are expected")
+        for k, x in enumerate(size):
+            _num(x, f"{where}.size[{k}]")
+    elif shape in ("cylinder", "sphere"):
+        _num(s.get("radius"), f"{where}.radius")
+        if shape == "cylinder":
+            _num(s.get("length"), f"{where}.length")
+    else:
+        verts = _list(s.get("vertices"), f"{where}.vertices")
+        for k, p in enumerate(verts):
+            if not isinstance(p, list) or len(p) != 3:
+                _fail(f"{where}.vertices[{k}]", "three coordinates are expected")
+            for x in p:
+                _num(x, f"{where}.vertices[{k}]")
+        for k, t in enumerate(_list(s.get("triangles"), f"{where}.triangles")):
+            if (not isinstance(t, list) or len(t) != 3
+                    or any(isinstance(i, bool) or not isinstance(i, int) or not 0 <= i < len(verts) for i in t)):
+                _fail(f"{where}.triangles[{k}]", "three vertex indices are expected")
+
+
+def _check_arm(arm: Any, where: str, njoints: int | None) -> None:
+    _dict(arm, where, ("root", "root_in_world", "joints", "links", "joint_names"))
+    _matrix(arm["root_in_world"], f"{where}.root_in_world")
+    known = {arm["root"]}
+    for i, j in enumerate(_list(arm["joints"], f"{where}.joints")):
+        w = f"{where}.joints[{i}]"
+        _dict(j, w, ("name", "type", "parent", "child", "origin", "axis", "index"))
+        if j["parent"] not in known:
+            _fail(w, f"parent link {j['parent']!r} comes after its child (joints must be listed parents first)")
+        known.add(j["child"])
+        if j["type"] not in ("revolute", "continuous", "prismatic", "fixed"):
+            _fail(f"{w}.type", f"revolute, continuous, prismatic or fixed is expected, not {j['type']!r}")
+        _matrix(j["origin"], f"{w}.origin")
+        if j["index"] is not None and (not isinstance(j["index"], int) or j["index"] < 0
+                                       or (njoints is not None and j["index"] >= njoints)):
+            _fail(f"{w}.index", f"the index of a trajectory joint is expected, not {j['index']!r}")
+    for i, link in enumerate(_list(arm["links"], f"{where}.links")):
+        _dict(link, f"{where}.links[{i}]", ("name", "solids"))
+        if link["name"] not in known:
+            _fail(f"{where}.links[{i}]", f"link {link['name']!r} is not reached by the joints")
+        for k, s in enumerate(_list(link["solids"], f"{where}.links[{i}].solids")):
+            _solid(s, f"{where}.links[{i}].solids[{k}]")
+
+
+def check_model(model: Any) -> None:
+    """Raise ModelError if `model` is not a report model the page can show (docs/html-report.md)."""
+    m = _dict(model, "model", ("version", "application", "verdict"))
+    if m["version"] != VERSION:
+        _fail("version", f"version {VERSION} is expected, not {m['version']!r}")
+    _dict(m["application"], "application", ("name",))
+    if any(not isinstance(t, str) for t in _list(m.get("limitations", []), "limitations")):
+        _fail("limitations", "strings are expected")
+    v = _dict(m["verdict"], "verdict", ("counts", "end_reason", "simulated_duration"))
+    _num(v["simulated_duration"], "verdict.simulated_duration")
+    for s in SEVERITIES:
+        if not isinstance(v["counts"].get(s, 0), int):
+            _fail(f"verdict.counts.{s}", "an integer is expected")
+    if v.get("cycle_time") is not None:
+        _dict(v["cycle_time"], "verdict.cycle_time", ("seconds",))
+        _num(v["cycle_time"]["seconds"], "verdict.cycle_time.seconds")
+    for i, d in enumerate(_list(m.get("diagnostics", []), "diagnostics")):
+        w = f"diagnostics[{i}]"
+        _dict(d, w, ("code", "severity", "message"))
+        if d["severity"] not in SEVERITIES:
+            _fail(f"{w}.severity", f"one of {', '.join(SEVERITIES)} is expected, not {d['severity']!r}")
+        _num(d.get("time"), f"{w}.time", null=True)
+        ex = d.get("excerpt")
+        if ex is not None:
+            _dict(ex, f"{w}.excerpt", ("first_line", "lines"))
+            if not isinstance(ex["first_line"], int) or ex["first_line"] < 1:
+                _fail(f"{w}.excerpt.first_line", "a line number (from 1) is expected")
+            if any(not isinstance(t, str) for t in _list(ex["lines"], f"{w}.excerpt.lines")):
+                _fail(f"{w}.excerpt.lines", "strings are expected")
+    for i, mo in enumerate(_list(m.get("motions", []), "motions")):
+        w = f"motions[{i}]"
+        _dict(mo, w, ("id", "kind", "start", "end"))
+        _num(mo["start"], f"{w}.start")
+        _num(mo["end"], f"{w}.end")
+        for k in ("vel", "tvel", "min_clearance"):
+            _num(mo.get(k), f"{w}.{k}", null=True)
+    for i, c in enumerate(_list(m.get("cycles", []), "cycles")):
+        _dict(c, f"cycles[{i}]", ("task", "iterations"))
+        for k, it in enumerate(_list(c["iterations"], f"cycles[{i}].iterations")):
+            _dict(it, f"cycles[{i}].iterations[{k}]", ("start", "duration"))
+            _num(it["start"], f"cycles[{i}].iterations[{k}].start")
+            _num(it["duration"], f"cycles[{i}].iterations[{k}].duration")
+    njoints = None
+    tr = m.get("trajectory")
+    if tr is not None:
+        _dict(tr, "trajectory", ("joints", "times", "positions", "velocities"))
+        times = _list(tr["times"], "trajectory.times")
+        n = len(times)
+        prev = -math.inf
+        for k, t in enumerate(times):
+            _num(t, f"trajectory.times[{k}]")
+            if t < prev:
+                _fail(f"trajectory.times[{k}]", "times must not decrease")
+            prev = t
+        joints = _list(tr["joints"], "trajectory.joints")
+        njoints = len(joints)
+        for i, j in enumerate(joints):
+            _dict(j, f"trajectory.joints[{i}]", ("name", "unit", "min", "max", "speed"))
+            for k in ("min", "max", "speed"):
+                _num(j[k], f"trajectory.joints[{i}].{k}", null=True)
+        for key in ("positions", "velocities"):
+            rows = _list(tr[key], f"trajectory.{key}")
+            if len(rows) != njoints:
+                _fail(f"trajectory.{key}", f"one list per joint ({njoints}) is expected, not {len(rows)}")
+            for i, row in enumerate(rows):
+                if len(_list(row, f"trajectory.{key}[{i}]")) != n:
+                    _fail(f"trajectory.{key}[{i}]", f"{n} values (one per time) are expected, not {len(row)}")
+                for k, x in enumerate(row):
+                    _num(x, f"trajectory.{key}[{i}][{k}]")
+        if tr.get("tcp_speed") is not None:
+            speed = _list(tr["tcp_speed"], "trajectory.tcp_speed")
+            if len(speed) != n:
+                _fail("trajectory.tcp_speed", f"{n} values (one per time) are expected, not {len(speed)}")
+            for k, x in enumerate(speed):
+                _num(x, f"trajectory.tcp_speed[{k}]")
+    for i, t in enumerate(_list(m.get("tasks", []), "tasks")):
+        _dict(t, f"tasks[{i}]", ("name", "segments"))
+        _segments(t["segments"], f"tasks[{i}].segments", TASK_STATES)
+    _segments(m.get("arm_timeline", []), "arm_timeline", ARM_STATES)
+    for i, e in enumerate(_list(m.get("io", []), "io")):
+        _dict(e, f"io[{i}]", ("time", "kind", "link", "value"))
+        _num(e["time"], f"io[{i}].time")
+        if e["kind"] not in IO_KINDS:
+            _fail(f"io[{i}].kind", f"one of {', '.join(IO_KINDS)} is expected, not {e['kind']!r}")
+    for i, e in enumerate(_list(m.get("transcript", []), "transcript")):
+        _dict(e, f"transcript[{i}]", ("time", "task", "kind", "text"))
+        _num(e["time"], f"transcript[{i}].time")
+    scene = m.get("scene")
+    if scene is not None:
+        _dict(scene, "scene")
+        if scene.get("arm") is not None:
+            _check_arm(scene["arm"], "scene.arm", njoints)
+        if scene.get("tool") is not None:
+            tool = _dict(scene["tool"], "scene.tool", ("name", "tcp", "solids"))
+            _matrix(tool["tcp"], "scene.tool.tcp")
+            for k, s in enumerate(_list(tool["solids"], "scene.tool.solids")):
+                _solid(s, f"scene.tool.solids[{k}]")
+        for k, s in enumerate(_list(scene.get("obstacles") or [], "scene.obstacles")):
+            _solid(s, f"scene.obstacles[{k}]")
+        if scene.get("joints") is not None:
+            for k, x in enumerate(_list(scene["joints"], "scene.joints")):
+                _num(x, f"scene.joints[{k}]")
