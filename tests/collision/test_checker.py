@@ -254,3 +254,23 @@ radius = 10
     times, Q = line_motion(A, B, V)
     rep = checker(read_cell(path)).check_motion(MotionSpan(1), times, Q)
     assert abs(rep.min_clearance.mm - 15.0) <= 0.5 and not rep.too_close
+
+
+def test_a_scara_quill_coming_down_on_a_box():
+    # the prismatic axis 3: every point of the quill and the flange moves by |Δq3| mm
+    from val3check.collision import CollisionChecker, arm_model
+    from val3check.robot import load_robot
+
+    scara = load_robot("TS2-60")
+    q0, q1 = [30.0, 40.0, 150.0, 0.0], [30.0, 40.0, 0.0, 0.0]
+    x, y, _ = np.array(scara.fk_matrix(q0))[:, 3]
+    box = _box((60.0, 60.0, 40.0), (x, y, 20.0), name="fixture")  # top at z = 40
+    cell = Cell(path="test", obstacles=[box], tools=[ToolSolid("tip", "flange", Shape("sphere", (10.0,)), np.eye(4))])
+    times, Q = joint_motion(q0, q1, 0.5)  # axis 3 at 300 mm/s
+    z0 = np.array(scara.fk_matrix(q0))[2, 3]
+    z1 = np.array(scara.fk_matrix(q1))[2, 3]
+    rep = CollisionChecker(arm_model(scara), cell).check_motion(MotionSpan(1), times, Q)
+    c = rep.first_contact
+    assert c is not None and {c.body_a, c.body_b} == {"tool flange 'tip'", "obstacle 'fixture'"}
+    expected = 0.5 * (z0 - 50.0) / (z0 - z1)  # the tip's bottom (10 below the flange) reaches z = 40
+    assert abs(c.time - expected) <= DT
