@@ -273,3 +273,21 @@ def test_positions_follow_tables_arrays_and_strings():
     assert p.values[("t", 1, "q k", "v", "y")] == (7, 11)
     assert p.at(("t", 1, "nothing", 3)) == (5, 1)
     assert positions("a = [1, 2").at(("a", 1)) == (1, 1) or True  # never raises on text it cannot follow
+
+
+def test_a_cell_path_that_is_not_a_file(tmp_path):
+    os.mkfifo(tmp_path / "fifo.toml")  # reading it would wait forever
+    with pytest.raises(CellError, match="not a regular file"):
+        read_cell(tmp_path / "fifo.toml")
+    with pytest.raises(CellError, match="not a regular file"):
+        read_cell(tmp_path)
+
+
+def test_all_meshes_of_a_cell_are_limited_together(tmp_path, monkeypatch):
+    for i in range(3):
+        trimesh.creation.icosphere(radius=10 + i).export(tmp_path / f"b{i}.stl")
+    size = (tmp_path / "b0.stl").stat().st_size
+    monkeypatch.setattr(meshes, "MAX_TOTAL_MESH_BYTES", 2 * size + 10)
+    text = "".join(f'[[obstacle]]\nname = "m{i}"\nshape = "mesh"\nfile = "b{i}.stl"\n' for i in range(3))
+    with pytest.raises(CellError, match="add up to more than"):
+        read_cell(write_cell(tmp_path, text))

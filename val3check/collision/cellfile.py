@@ -57,6 +57,8 @@ def read_cell(path: str | os.PathLike, app_dir: str | os.PathLike | None = None,
     folder (`app_dir`) or one of `roots`. Lengths are in the cell's `unit` (default: the
     application's, `app_unit`); the Cell holds millimetres."""
     shown = str(path)
+    if os.path.exists(path) and not os.path.isfile(path):
+        raise CellError([(shown, 0, 0, "the cell file is not a regular file")])
     try:
         size = os.path.getsize(path)
         if size > MAX_CELL_BYTES:
@@ -93,6 +95,8 @@ class _Reader:
         self.problems: list[tuple[str, int, int, str]] = []
         self.scale = 1.0
         self._meshes: dict[tuple, MeshData] = {}
+        self._mesh_files: set[str] = set()
+        self._mesh_bytes = 0
 
     # ---- reporting --------------------------------------------------------------------------------
 
@@ -285,7 +289,17 @@ class _Reader:
             target = meshes.resolve_mesh_path(name, self.folder, self.roots)
             key = (str(target), scale, solid)
             if key not in self._meshes:
+                size = target.stat().st_size
+                if str(target) not in self._mesh_files:
+                    self._mesh_bytes += size
+                    self._mesh_files.add(str(target))
+                if self._mesh_bytes > meshes.MAX_TOTAL_MESH_BYTES:
+                    raise meshes.MeshProblem(f"mesh file {name!r}: the cell's meshes add up to more than "
+                                             f"{meshes.MAX_TOTAL_MESH_BYTES} bytes")
                 self._meshes[key] = meshes.load_mesh(target, name, scale, solid)  # type: ignore[arg-type]
+        except OSError as exc:
+            self.fail(path + ("file",), f"{label}: mesh file {name!r}: cannot read: {exc.strerror or exc}")
+            return None
         except meshes.MeshProblem as exc:
             self.fail(path + ("file",), f"{label}: {exc}")
             return None

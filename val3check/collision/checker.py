@@ -163,6 +163,9 @@ class CollisionChecker:
         self._poses_u = -1.0
         self._poses: dict[str, np.ndarray] = {}
         self._P: dict[str, np.ndarray] | None = None
+        self._box_lo: np.ndarray | None = None  # (N, B, 3): every arm-side body's box at every sample
+        self._box_hi: np.ndarray | None = None
+        self._box_col: dict[int, int] = {}
         self._best = None
 
     # ---- the scene between motions --------------------------------------------------------------------
@@ -326,18 +329,29 @@ class CollisionChecker:
 
     # ---- measuring -------------------------------------------------------------------------------------
 
-    def _pairs(self, w: _Watch) -> list[tuple[float, Body, Body]]:
-        """Body pairs of a watch with the gap between their boxes, nearest first."""
+    def _pairs(self, w: _Watch, u: float | None = None) -> list[tuple[float, Body, Body]]:
+        """Body pairs of a watch with the gap between their boxes, nearest first: at sample u, the
+        boxes _prepare computed for the whole motion; else from the bodies where they are."""
         A = w.a.bodies
+        k = -1 if u is None else int(u)
+        at_sample = k == u and self._box_lo is not None
         if w.b is None:
             if not self._static:
                 return []
-            lo, hi = _boxes(A)
+            if at_sample:
+                cols = [self._box_col[id(b)] for b in A]
+                lo, hi = self._box_lo[k, cols], self._box_hi[k, cols]
+            else:
+                lo, hi = _boxes(A)
             gaps = aabb_gap(lo[:, None, :], hi[:, None, :], self._lo[None], self._hi[None]).ravel()
             S, st = len(self._static), self._static
             return [(float(gaps[i]), A[i // S], st[i % S]) for i in np.argsort(gaps, kind="stable")]
         Bs = w.b.bodies
-        lo, hi = _boxes(A + Bs)
+        if at_sample:
+            cols = [self._box_col[id(b)] for b in A + Bs]
+            lo, hi = self._box_lo[k, cols], self._box_hi[k, cols]
+        else:
+            lo, hi = _boxes(A + Bs)
         na = len(A)
         gaps = aabb_gap(lo[:na, None, :], hi[:na, None, :], lo[None, na:], hi[None, na:])
         out = [(float(gaps[i, j]), A[i], Bs[j]) for i in range(na) for j in range(len(Bs))
@@ -373,7 +387,7 @@ class CollisionChecker:
         self._place(w.a, u)
         if w.b is not None:
             self._place(w.b, u)
-        pairs = self._pairs(w)
+        pairs = self._pairs(w, u)
         valid = math.inf  # left-out pairs come back at this sample: the result holds before it only
         if self._allowed_until:
             until = self._allowed_until
@@ -470,6 +484,7 @@ class CollisionChecker:
         self._T, self._Q, self._q_at = T, Q, q_at
         self._poses_u = -1.0
         self._P = None
+        self._box_lo = self._box_hi = None
         self.refresh(float(T[0]))
         watches = self._watches()
         self._P = self.arm.links.poses_many(Q)
@@ -504,6 +519,7 @@ class CollisionChecker:
         self._last_q = Q[-1].copy()
         self._time = float(T[-1])
         self._P = None
+        self._box_lo = self._box_hi = None
         return report
 
     def _step_motion(self, Q: np.ndarray, q_at, T: np.ndarray) -> np.ndarray:
@@ -552,9 +568,8 @@ class CollisionChecker:
             "groups": groups,
             "bodies": bodies,
             "body_group": np.array([gindex[id(g)] for g in groups for _ in g.bodies], dtype=int),
-            "local": np.array([b.local for b in bodies]),
-            "center": np.array([b.center for b in bodies]),
-            "half": np.array([b.half for b in bodies]),
+            "c_local": np.array([b.local[:3, :3] @ b.center + b.local[:3, 3] for b in bodies]),
+            "h_local": np.array([np.abs(b.local[:3, :3]) @ b.half for b in bodies]),
             "sph_c": np.array([c for c, _ in spheres]).reshape(-1, 3),
             "sph_r": np.array([r for _, r in spheres]),
             "ga": np.array([gindex[id(w.a)] for w in watches], dtype=int),
@@ -565,7 +580,6 @@ class CollisionChecker:
             "starts": np.array(starts, dtype=int),
             "self_w": np.array(self_w, dtype=int),
             "static_w": static_w,
-            "self_all": np.array([wi for wi, w in enumerate(watches) if w.b is not None], dtype=int),
             "static_cols": static_cols,
         }
         self._layout_cache = (self._version, lay)
@@ -573,10 +587,10 @@ class CollisionChecker:
 
     def _prepare(self, watches: list[_Watch], steps: np.ndarray) -> None:
         """Per watch and sample: C, the path bound from the start; S, the same from sample to
-        sample (per step the smaller of C's step and how far the groups' points are apart between
-        the two samples: S bounds distances at samples, C between them too); A, a lower bound of
-        the distance from the boxes around the bodies (the broad phase); L = A; E = False; and per
-        step, whether the boxes alone keep the watch apart along it (`free`)."""
+        sample (per step the smaller of C's step and how far the two groups' points move in world
+        between the two samples: S bounds distances at samples, C between them too); A, a lower
+        bound of the distance from the boxes around the bodies (the broad phase); L = A; E = False;
+        and per step, whether the boxes alone keep the watch apart along it (`free`)."""
         n = len(self._T)
         nw = len(watches)
         if not nw:
@@ -594,29 +608,21 @@ class CollisionChecker:
             moves = move + lay["sph_r"][:, None] * np.sqrt(np.maximum(2.0 - 2.0 * np.clip(cos, -1.0, 1.0), 0.0))
             moves = np.vstack([moves, np.zeros((1, n - 1))])  # row -1: the static set does not move
             dS = (moves[lay["ga"]] + moves[lay["gb"]]).T
-            sw = lay["self_all"]
-            if len(sw):  # two parts of the arm: how far one moves in the other's frame
-                Fa, Fb = F[lay["ga"][sw]], F[lay["gb"][sw]]
-                Rb = Fb[..., :3, :3].transpose(0, 1, 3, 2)
-                Rr = Rb @ Fa[..., :3, :3]
-                pa = (Fa[..., :3, :3] @ lay["sph_c"][lay["ga"][sw]][:, None, :, None])[..., 0] + Fa[..., :3, 3]
-                pr = (Rb @ (pa - Fb[..., :3, 3])[..., None])[..., 0]
-                move = np.sqrt(((pr[:, 1:] - pr[:, :-1]) ** 2).sum(axis=2))
-                cos = 0.5 * ((Rr[:, 1:] * Rr[:, :-1]).sum(axis=(2, 3)) - 1.0)
-                rel = move + lay["sph_r"][lay["ga"][sw]][:, None] * np.sqrt(
-                    np.maximum(2.0 - 2.0 * np.clip(cos, -1.0, 1.0), 0.0))
-                dS[:, sw] = np.minimum(dS[:, sw], rel.T)
             dS = np.minimum(dS, dC)
             Cm = np.vstack([np.zeros(nw), np.cumsum(dC, axis=0)]).T
             Sm = np.vstack([np.zeros(nw), np.cumsum(dS, axis=0)]).T
         else:
             dC = np.zeros((0, nw))
             Cm = Sm = np.zeros((nw, 1))
-        M = F[lay["body_group"]].transpose(1, 0, 2, 3) @ lay["local"][None]  # (N, B, 4, 4)
-        R = M[..., :3, :3]
-        c = (R @ lay["center"][:, :, None])[..., 0] + M[..., :3, 3]
-        h = (np.abs(R) @ lay["half"][:, :, None])[..., 0]
-        lo, hi = c - h, c + h
+        # each body's box: its centre carried by its group's frame; its half sizes through |R|
+        # (|R_group·R_local| <= |R_group|·|R_local|: exact for solids square to their link)
+        Fb = F[lay["body_group"]]  # (B, N, 4, 4)
+        Rg = Fb[..., :3, :3]
+        c = (Rg @ lay["c_local"][:, None, :, None])[..., 0] + Fb[..., :3, 3]
+        h = (np.abs(Rg) @ lay["h_local"][:, None, :, None])[..., 0]
+        lo, hi = (c - h).transpose(1, 0, 2), (c + h).transpose(1, 0, 2)  # (N, B, 3)
+        self._box_lo, self._box_hi = lo, hi
+        self._box_col = {id(b): i for i, b in enumerate(lay["bodies"])}
         A = np.full((nw, n), np.inf)
         if self._static and lay["static_w"]:
             # boxes swept over the whole motion first: a far obstacle bounds every sample alike
@@ -722,7 +728,7 @@ class CollisionChecker:
             self._place(w.a, u)
             if w.b is not None:
                 self._place(w.b, u)
-            for gap, ba, bb in self._pairs(w):
+            for gap, ba, bb in self._pairs(w, u):
                 if gap > self.touch:
                     break
                 d = self._distance(ba, bb)[0]

@@ -1,7 +1,8 @@
 """Mesh files of a cell (STL, OBJ, GLB), read with trimesh under the rules of docs/cell.md.
 
 A mesh file must be inside the cell file's folder or the application's folder (symbolic links
-resolved), at most `MAX_MESH_BYTES` long and `MAX_TRIANGLES` triangles. The bytes are read here and
+resolved), at most `MAX_MESH_BYTES` long (`MAX_TOTAL_MESH_BYTES` for all of a cell's) and
+`MAX_TRIANGLES` triangles. The bytes are read here and
 handed to trimesh from memory, so a file cannot make trimesh open another one (an OBJ's material
 library, a glTF buffer). A mesh that does not load, has no triangle, or is not watertight while the
 cell says it is a solid is refused with the file's name and the reason.
@@ -17,7 +18,8 @@ import numpy as np
 
 from .cell import MeshData
 
-MAX_MESH_BYTES = 64 * 1024 * 1024
+MAX_MESH_BYTES = 64 * 1024 * 1024  # one file
+MAX_TOTAL_MESH_BYTES = 256 * 1024 * 1024  # all the files of a cell
 MAX_TRIANGLES = 2_000_000
 FILE_TYPES = {".stl": "stl", ".obj": "obj", ".glb": "glb"}
 
