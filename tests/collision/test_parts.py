@@ -191,3 +191,30 @@ def test_jaws_overlapping_a_part_they_let_go_may_leave_it():
     times, q = line_motion(spot, up, 200.0, t0=float(times[-1]) + 0.2)
     rep = chk.check_motion(MotionSpan(2), times, q)
     assert rep.starts_in_collision is None and rep.first_contact is None
+
+
+def test_a_solid_inside_a_non_convex_closed_mesh_is_found():
+    pytest.importorskip("trimesh")
+    import trimesh
+
+    # a thick ring (non-convex, cut into pieces): the tip starts inside its material, far from the
+    # pieces' boxes
+    ring = trimesh.creation.annulus(r_min=60.0, r_max=220.0, height=120.0, sections=512)
+    assert not ring.is_convex and ring.is_watertight
+    mesh = MeshData("ring.stl", np.asarray(ring.vertices), np.asarray(ring.faces), solid=True)
+    c = Cell(path="test")
+    c.obstacles.append(Obstacle("ring", Shape("mesh", (), mesh), "world", trsf_matrix((350.0 + 140.0, -200.0, 100.0, 0, 0, 0))))
+    c.tools.append(ToolSolid("tip", "tTool", Shape("sphere", (10.0,)), np.eye(4)))
+    times, q = line_motion((350.0, -200.0, 100.0), (350.0, -190.0, 100.0), 50.0)
+    chk = checker(c)
+    rep = chk.check_motion(MotionSpan(1), times, q)
+    s = rep.starts_in_collision
+    assert s is not None and s.kind == "inside" and s.body_b == "obstacle 'ring'"
+    assert s.depth_mm == pytest.approx(50.0, abs=2.0)  # 60 - 10 to the top and bottom faces, 70 to the sides
+    # a part left there is reported too
+    c.parts.append(Part("pin", "tTool", "close", Shape("sphere", (5.0,)), np.eye(4)))
+    chk = checker(c)
+    chk.check_motion(MotionSpan(1), times, q)
+    chk.gripper("tTool", "close", float(times[-1]))
+    drops = chk.gripper("tTool", "open", float(times[-1]) + 0.1)
+    assert drops and drops[0].obstacle == "obstacle 'ring'"

@@ -55,7 +55,7 @@ class Body:
     mesh the piece belongs to (for point-in-mesh), or None."""
 
     __slots__ = ("axis", "center", "exact", "half", "kind", "label", "lb", "local", "mesh", "name", "obj", "owner",
-                 "points", "pose", "radius", "solid", "whole")
+                 "points", "pose", "radius", "solid", "whole", "whole_box")
 
     def __init__(self, kind: str, owner: str, name: str, label: str, shape_kind: str, size: tuple[float, ...],
                  local: np.ndarray, vertices=None, faces=None, solid: bool = True, exact=None, mesh=None,
@@ -96,6 +96,7 @@ class Body:
         lo = self.points.min(axis=0) - self.radius
         hi = self.points.max(axis=0) + self.radius
         self.center, self.half = 0.5 * (lo + hi), 0.5 * (hi - lo)
+        self.whole_box = (self.center, self.half)  # box around the whole solid a piece belongs to
 
     def place(self, frame: np.ndarray) -> None:
         """Put the body at `frame` @ local (world, mm)."""
@@ -117,6 +118,13 @@ class Body:
         R = self.pose[:3, :3]
         c = R @ self.center + self.pose[:3, 3]
         h = np.abs(R) @ self.half
+        return c - h, c + h
+
+    def whole_aabb(self) -> tuple[np.ndarray, np.ndarray]:
+        """World-aligned box around the whole solid (all the pieces of its mesh)."""
+        R = self.pose[:3, :3]
+        c = R @ self.whole_box[0] + self.pose[:3, 3]
+        h = np.abs(R) @ self.whole_box[1]
         return c - h, c + h
 
     def reach(self) -> float:
@@ -153,6 +161,8 @@ def make_bodies(kind: str, owner: str, name: str, label: str, shape_kind: str, s
     f = np.asarray(faces, dtype=np.int64)
     whole_mesh = (v, f) if solid else None
     key = object()
+    lo, hi = v.min(axis=0), v.max(axis=0)
+    whole_box = (0.5 * (lo + hi), 0.5 * (hi - lo))
     out = []
     for pv, pf, hv, hf, bvh, lb in _pieces(v, f):
         exact = fcl.CollisionObject(bvh, fcl.Transform())
@@ -162,6 +172,7 @@ def make_bodies(kind: str, owner: str, name: str, label: str, shape_kind: str, s
             b = Body(kind, owner, name, label, "convex", (), local, hv, hf, solid=solid, exact=exact, mesh=whole_mesh)
             b.lb = lb
         b.whole = id(key)
+        b.whole_box = whole_box
         out.append(b)
     return out
 

@@ -118,7 +118,9 @@ class CollisionChecker:
         J = arm.n_joints
         self._J = J
         self._rad = np.array([1.0 if p else math.pi / 180.0 for p in arm.links.prismatic])
-        self._req = fcl.DistanceRequest(enable_nearest_points=True, enable_signed_distance=True)
+        # no signed distance: fcl's loops forever on concentric spheres; an overlap measures 0 or
+        # less, and then `collide` gives the depth
+        self._req = fcl.DistanceRequest(enable_nearest_points=True)
         self._creq = fcl.CollisionRequest(num_max_contacts=16, enable_contact=True)
         # arm groups
         self.link_groups: dict[str, _Group] = {}
@@ -413,8 +415,9 @@ class CollisionChecker:
                 break
             d, pa, pb, ok = self._distance(ba, bb, need == math.inf)
             lands = bool(landing) and (id(ba), id(bb)) in landing
-            if d <= 0.0:
+            if d <= 0.0:  # overlapping or touching: the depth decides, below
                 touching.append((ba, bb, lands))
+                continue
             cert = min(cert, d)
             if not lands and d < clear:
                 clear, exact, info = d, ok, ((ba, bb, pa, pb) if ok else None)
@@ -441,29 +444,37 @@ class CollisionChecker:
 
     def _contained(self, w: _Watch, u: float) -> tuple[Body, Body, float] | None:
         """A body of the watch wholly inside a closed mesh of the other side (fcl measures only
-        to the surface, so this is tested apart, at a motion's start)."""
+        to the surface, so this is tested apart, at a motion's start): (inner, a piece of the
+        mesh, how deep inside: the distance to the mesh's triangles)."""
         self._place(w.a, u)
-        others = self._static if w.b is None else (self._place(w.b, u) or w.b.bodies)
-        seen: set[tuple[int, int]] = set()
-        for ba in w.a.bodies:
-            for bb in others:
-                if (id(ba), id(bb)) in w.skip or frozenset((id(ba), id(bb))) in self._allowed:
-                    continue
-                for inner, outer in ((ba, bb), (bb, ba)):
-                    if outer.mesh is None or not outer.solid or (inner.whole, outer.whole) in seen:
+        if w.b is not None:
+            self._place(w.b, u)
+        sides = (w.a.bodies, self._static if w.b is None else w.b.bodies)
+        for inners, outers in (sides, sides[::-1]):
+            wholes: dict[int, list[Body]] = {}
+            for o in outers:
+                if o.mesh is not None and o.solid:
+                    wholes.setdefault(o.whole, []).append(o)
+            for pieces in wholes.values():
+                outer = pieces[0]
+                olo, ohi = outer.whole_aabb()
+                for inner in inners:
+                    if inner.whole == outer.whole or any(
+                            (id(inner), id(p)) in w.skip or (id(p), id(inner)) in w.skip
+                            or frozenset((id(inner), id(p))) in self._allowed for p in pieces):
                         continue
-                    seen.add((inner.whole, outer.whole))
                     lo, hi = inner.aabb()
-                    olo, ohi = outer.aabb()
                     if np.any(lo < olo) or np.any(hi > ohi):
                         continue
                     inv = np.linalg.inv(outer.pose)
                     c = inv[:3, :3] @ (0.5 * (lo + hi)) + inv[:3, 3]
                     if point_inside(outer.mesh[0], outer.mesh[1], c):
-                        # how deep inside: from the solid to the mesh's triangles
-                        depth = fcl.distance(inner.exact_obj(), outer.exact_obj(), self._req, fcl.DistanceResult())
-                        self.measurements += 1
-                        return inner, outer, max(float(depth), 0.0)
+                        depth = math.inf
+                        for p in pieces:
+                            d = fcl.distance(inner.exact_obj(), p.exact_obj(), self._req, fcl.DistanceResult())
+                            self.measurements += 1
+                            depth = min(depth, float(d))
+                        return inner, outer, max(depth, 0.0)
         return None
 
     # ---- one motion ------------------------------------------------------------------------------------
@@ -716,6 +727,11 @@ class CollisionChecker:
             out[key] = at
         return out
 
+    def _solid_mesh(self, w: _Watch) -> bool:
+        """Whether a closed mesh is on either side of the watch."""
+        others = self._static if w.b is None else w.b.bodies
+        return any(b.mesh is not None and b.solid for b in (*w.a.bodies, *others))
+
     def _landing(self, w: _Watch) -> set[tuple[int, int]]:
         """Body pairs touching (within the touch tolerance, not deeper) at the motion's first or last
         sample: a part set down on a pallet, a tool lifted off a part it let go. They are checked for
@@ -745,8 +761,8 @@ class CollisionChecker:
         A, C = w.A, w.C
         # a step is free when the boxes at its two ends are further apart than it can close
         todo = np.nonzero(~w.free)[0]
-        if n == 0 or A[0] <= 0.0:
-            u = 0.0
+        if n == 0 or A[0] <= 0.0 or self._solid_mesh(w):
+            u = 0.0  # (a solid wholly inside a closed mesh is far from its pieces' boxes: look)
         elif len(todo) == 0:
             return
         else:
@@ -934,15 +950,21 @@ class CollisionChecker:
                     self._allowed[frozenset((id(a), id(b)))] = (a, b)
 
     def _dropped_inside(self, bodies: list[Body], time: float, source: Any) -> list[PartDrop]:
+        """The part's solids left overlapping an obstacle (deeper than the touch tolerance), or wholly
+        inside a closed mesh."""
         out = []
+        seen: set[tuple[int, int]] = set()
         for a in bodies:
+            la, ha = a.aabb()
             for b in self._static:
-                la, ha = a.aabb()
-                lb, hb = b.aabb()
+                if b in bodies or (a.whole, b.whole) in seen:
+                    continue
+                lb, hb = b.whole_aabb()
                 if float(aabb_gap(la, ha, lb, hb)) > 0.0:
                     continue
                 c = self._collide(a, b)
                 if c is not None and c[0] > self.touch:
+                    seen.add((a.whole, b.whole))
                     out.append(PartDrop(time, a.label, b.label, c[1], c[0], source))
                     continue
                 for inner, outer in ((a, b), (b, a)):
@@ -950,6 +972,7 @@ class CollisionChecker:
                         inv = np.linalg.inv(outer.pose)
                         p = inv[:3, :3] @ inner.pose[:3, 3] + inv[:3, 3]
                         if point_inside(outer.mesh[0], outer.mesh[1], p):
+                            seen.add((a.whole, b.whole))
                             out.append(PartDrop(time, a.label, b.label, _tup(inner.pose[:3, 3]), None, source))
                             break
         return out
