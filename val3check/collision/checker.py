@@ -728,9 +728,22 @@ class CollisionChecker:
         return out
 
     def _solid_mesh(self, w: _Watch) -> bool:
-        """Whether a closed mesh is on either side of the watch."""
+        """Whether a body of one side may lie wholly inside a closed mesh of the other at the first
+        sample: its box inside the mesh's box."""
         others = self._static if w.b is None else w.b.bodies
-        return any(b.mesh is not None and b.solid for b in (*w.a.bodies, *others))
+        for inners, outers in ((w.a.bodies, others), (others, w.a.bodies)):
+            meshes = [b for b in outers if b.mesh is not None and b.solid]
+            if not meshes:
+                continue
+            self._place(w.a, 0.0)
+            if w.b is not None:
+                self._place(w.b, 0.0)
+            boxes = [m.whole_aabb() for m in meshes]
+            for inner in inners:
+                lo, hi = inner.aabb()
+                if any(np.all(lo >= olo) and np.all(hi <= ohi) for olo, ohi in boxes):
+                    return True
+        return False
 
     def _landing(self, w: _Watch) -> set[tuple[int, int]]:
         """Body pairs touching (within the touch tolerance, not deeper) at the motion's first or last
