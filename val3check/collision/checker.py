@@ -46,7 +46,8 @@ from .records import CellProblem, Clearance, Contact, MotionReport, MotionSpan, 
 
 GRID = 16  # below one sample, checks are aligned down to 1/GRID of a sample
 MIN_STEP = 1.0 / 256.0  # the smallest step between two checks, in samples
-MAX_TOLERANCE_MM = 0.4  # the reported minimum clearance of a motion is within this of the true one
+MAX_TOLERANCE_MM = 0.4  # the reported minimum clearance of a motion is within this of the true one ...
+FAR_MM = 50.0  # ... when it is below this; beyond, within 5 %
 NEAR_MM = 50.0  # obstacles further than this from a body's box swept over a motion: one bound for all samples
 EXACT_CAP = 20000  # measurements per motion spent on exact clearances (minimum, closer than the margin)
 
@@ -376,7 +377,7 @@ class CollisionChecker:
         pa, pb = res.nearest_points
         return float(d), _tup(pa), _tup(pb), not lb
 
-    def _measure(self, w: _Watch, u: float, need: float):
+    def _measure(self, w: _Watch, u: float, need: float, exact_mesh: bool | None = None):
         """Watch w at position u -> (cert, clear, exact, info, hit):
         cert   the smallest distance between its bodies (minus the penetration depth where they
                overlap), or a lower bound of it when every remaining pair is `need` or more apart;
@@ -384,13 +385,18 @@ class CollisionChecker:
                in this motion, `w.landing`); exact: whether it is exact; info: (body a, body b,
                point a, point b) of it when exact;
         hit    (body a, body b, point, depth, kind) of the deepest overlap, or None;
-        valid  the values hold before this position only (a pair allowed to touch since a grasp
-               or release is left out until then), inf otherwise."""
+        exact_mesh: measure meshes to their triangles, not their pieces' hulls (default: when
+        `need` is infinite);
+        valid  (for cert, for clear): the values hold before these positions only (a pair allowed
+               to touch since a grasp or release is left out until then), inf otherwise."""
         self._place(w.a, u)
         if w.b is not None:
             self._place(w.b, u)
         pairs = self._pairs(w, u)
-        valid = math.inf  # left-out pairs come back at this sample: the result holds before it only
+        # left-out pairs come back at this sample: the values hold before it only (`clear` ignores
+        # the landing ones anyway)
+        valid = valid_clear = math.inf
+        landing = w.landing
         if self._allowed_until:
             until = self._allowed_until
             kept = []
@@ -400,11 +406,12 @@ class CollisionChecker:
                     kept.append(p)
                 else:
                     valid = min(valid, at)
+                    if (id(p[1]), id(p[2])) not in landing:
+                        valid_clear = min(valid_clear, at)
             pairs = kept
         cert = clear = math.inf
         exact, info = True, None
         touching: list[tuple[Body, Body, bool]] = []
-        landing = w.landing
         for gap, ba, bb in pairs:
             if gap > max(clear, 0.0):
                 break
@@ -413,7 +420,7 @@ class CollisionChecker:
                 if gap < clear:
                     clear, exact, info = gap, False, None
                 break
-            d, pa, pb, ok = self._distance(ba, bb, need == math.inf)
+            d, pa, pb, ok = self._distance(ba, bb, need == math.inf if exact_mesh is None else exact_mesh)
             lands = bool(landing) and (id(ba), id(bb)) in landing
             if d <= 0.0:  # overlapping or touching: the depth decides, below
                 touching.append((ba, bb, lands))
@@ -431,7 +438,7 @@ class CollisionChecker:
                 clear, exact, info = -depth, True, (ba, bb, p, p)
             if c is not None and (hit is None or depth > hit[3]):
                 hit = (ba, bb, point, depth, "contact" if w.b is None else "self")
-        return cert, clear, exact, info, hit, valid
+        return cert, clear, exact, info, hit, (valid, valid_clear)
 
     def _collide(self, a: Body, b: Body) -> tuple[float, tuple] | None:
         res = fcl.CollisionResult()
@@ -516,7 +523,7 @@ class CollisionChecker:
         for w in watches:
             self._advance(w, report)
         report.contacts.sort(key=lambda c: c.time)
-        self._samples(watches, report)
+        self._samples([w for w in watches if w.b is None], report)
         if self._best is not None:
             d, u, (a, b, pa, pb) = self._best
             report.min_clearance = Clearance(float(d), self._t(u), a.label, b.label, pa, pb)
@@ -659,10 +666,12 @@ class CollisionChecker:
 
     def _tolerance(self, clearance: float) -> float:
         """How close to the true minimum a reported minimum clearance is: tolerance_mm plus 2 % of
-        the clearance, at most MAX_TOLERANCE_MM (0.2 mm of doubt at 10 mm matters no more than
-        0.05 mm at 1 mm, and the search costs less)."""
+        the clearance, at most MAX_TOLERANCE_MM below FAR_MM; 5 % beyond (0.2 mm of doubt at 10 mm
+        matters no more than 0.05 mm at 1 mm, nor 5 mm at 100 mm; and the search costs less)."""
         if not math.isfinite(clearance):
             return self.tol
+        if clearance >= FAR_MM:
+            return 0.05 * clearance
         return max(self.tol, min(self.tol + 0.02 * max(clearance, 0.0), MAX_TOLERANCE_MM))
 
     def _u_of(self, w: _Watch, target: float) -> float:
@@ -702,8 +711,8 @@ class CollisionChecker:
         if k == u:
             w.L[k] = max(w.L[k], d) if not exact else d
             w.E[k] = w.E[k] or exact
-        if exact and info is not None and (self._best is None or d < self._best[0]):
-            self._best = (d, u, info[:4])
+        if w.b is None and exact and info is not None and (self._best is None or d < self._best[0]):
+            self._best = (d, u, info[:4])  # the clearance is to the cell: the static set
 
     def _apart_from(self) -> dict[frozenset[int], float]:
         """For each pair allowed to touch since a grasp or a release: the first sample where its two
@@ -718,12 +727,25 @@ class CollisionChecker:
             ga, gb = owner.get(id(a)), owner.get(id(b))
             at = float(n + 1)
             for k in range(n + 1):
-                for g in (ga, gb):
+                boxes = []
+                for body, g in ((a, ga), (b, gb)):
+                    if g is None:
+                        boxes.append(body.aabb())
+                    else:
+                        col = self._box_col[id(body)]
+                        boxes.append((self._box_lo[k, col], self._box_hi[k, col]))
+                if float(aabb_gap(*boxes[0], *boxes[1])) > self.touch:
+                    at = float(k)  # the boxes are apart: so are the bodies
+                    break
+                for body, g in ((a, ga), (b, gb)):
                     if g is not None:
-                        self._place(g, float(k))
+                        body.place(self._P[g.link][k])
                 if self._distance(a, b, False)[0] > self.touch:
                     at = float(k)
                     break
+            for g in (ga, gb):
+                if g is not None:
+                    g.placed = -1.0
             out[key] = at
         return out
 
@@ -782,7 +804,7 @@ class CollisionChecker:
             u = float(todo[0])
         while True:
             need = C[-1] - self._C(w, u)
-            cert, clear, exact, info, hit, valid = self._measure(w, u, need if u > 0.0 else math.inf)
+            cert, clear, exact, info, hit, (valid, valid_clear) = self._measure(w, u, need if u > 0.0 else math.inf)
             if u == 0.0 and hit is None:
                 inside = self._contained(w, u)
                 if inside is not None:
@@ -791,7 +813,7 @@ class CollisionChecker:
                     hit = (a, b, c, depth, "inside")
                     cert = clear = -depth
                     info = (a, b, c, c)
-            self._record(w, u, clear, exact, info, valid)
+            self._record(w, u, clear, exact, info, valid_clear)
             if hit is not None and hit[3] > self.touch:
                 if not w.contact:
                     c = Contact(self._t(u), hit[0].label, hit[1].label, hit[2], hit[3], hit[4])
@@ -857,7 +879,8 @@ class CollisionChecker:
                     if L[wi, k] >= found:
                         break  # this watch cannot be the closest at this sample
                     w = watches[wi]
-                    _, d, exact, info, _, valid = self._measure(w, float(k), math.inf)
+                    # exact below the limit; above it a bound is all that is needed
+                    _, d, exact, info, _, (_, valid) = self._measure(w, float(k), limit, exact_mesh=True)
                     self._record(w, float(k), d, exact, info, valid)
                     found = min(found, d)
                     spent += 1
