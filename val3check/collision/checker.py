@@ -23,9 +23,10 @@ How it works (docs/cell.md, "How the check works"):
   to 1/16 of a sample, never less than 1/256 of a sample ahead). Between checks no contact can
   have happened. Far from everything, checks are rare; close to something they get dense, down
   to sub-sample steps for a fast motion that grazes a thin obstacle between two 4 ms samples.
-* The measurements give, per sample, a lower bound of the clearance; the minimum of each motion
-  is then refined (checks where the bound could still be below the best value found) to within
-  `tolerance_mm`, and every sample closer than the margin is measured exactly.
+* The measurements give, per sample, a lower bound of the clearance to the cell (the static
+  set; the arm against itself is checked for contact only); the minimum of each motion is then
+  refined (checks where the bound could still be below the best value found) to within
+  `_tolerance`, and every sample closer than the margin is measured exactly.
 
 Lengths are millimetres, times seconds, joints VAL 3 values (degrees; mm for a prismatic axis).
 Frame and tool poses come from the caller in the application's unit (`app_unit_mm` per unit).
