@@ -1,13 +1,16 @@
 """Cold start of `val3check lint` on one small application, whole process.
 
-Goal (issue 2): under 0.4 s. Also prints the import-time budget (python -X importtime), the
-largest imports first, and checks that no robotics package is imported on the lint path.
+Goal: under 150 ms (issue 11; issue 2 asked for 400 ms). Wall time is what a pre-commit hook
+waits; the CPU time of the process (user + system) is shown too: on a shared machine it moves
+less with the neighbours. Also prints the import-time budget (python -X importtime), the largest
+imports first, and checks that no robotics package is imported on the lint path.
 Run: python bench/bench_startup.py
 """
 
 from __future__ import annotations
 
 import os
+import resource
 import statistics
 import subprocess
 import sys
@@ -23,13 +26,17 @@ def main() -> None:
     env = dict(os.environ, PYTHONPATH=str(ROOT), PYTHONDONTWRITEBYTECODE="")
     cmd = [sys.executable, "-m", "val3check", "lint", str(APP)]
     subprocess.run(cmd, capture_output=True, env=env, cwd=ROOT)  # warm the .pyc files once
-    times = []
-    for _ in range(10):
+    times, cpu = [], []
+    for _ in range(15):
+        r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
         t0 = time.perf_counter()
         r = subprocess.run(cmd, capture_output=True, env=env, cwd=ROOT)
         times.append(time.perf_counter() - t0)
-    print(f"val3check lint {APP.relative_to(ROOT)}: exit {r.returncode}, median {statistics.median(times)*1000:.0f} ms, "
-          f"max {max(times)*1000:.0f} ms over {len(times)} runs; goal < 400 ms")
+        r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu.append(r1.ru_utime - r0.ru_utime + r1.ru_stime - r0.ru_stime)
+    print(f"val3check lint {APP.relative_to(ROOT)}: exit {r.returncode}, wall median {statistics.median(times)*1000:.0f} ms "
+          f"(best {min(times)*1000:.0f}, max {max(times)*1000:.0f}), CPU median {statistics.median(cpu)*1000:.0f} ms "
+          f"(best {min(cpu)*1000:.0f}) over {len(times)} runs; goal < 150 ms")
     r = subprocess.run([sys.executable, "-X", "importtime", *cmd[1:]], capture_output=True, text=True, env=env, cwd=ROOT)
     rows = []
     for line in r.stderr.splitlines():

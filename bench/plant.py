@@ -41,6 +41,7 @@ import random
 import re
 from dataclasses import dataclass, field
 
+from val3check.language import s8
 from val3check.language.instructions import lookup as lookup_instruction
 from val3check.loading.model import Application, Container, Program, Workspace
 from val3check.parsing import ast as A
@@ -290,13 +291,15 @@ _ARITH = ("+", "-", "*", "/", "<", ">", "<=", ">=")
 
 class _Finder:
     def __init__(self, ws: Workspace, app: Application, table: S.AppSymbols, program: Program,
-                 body: A.ProgramBody, lines: list[str], rng: random.Random) -> None:
+                 body: A.ProgramBody, lines: list[str], rng: random.Random, s8_evidence: bool = False) -> None:
         self.ws, self.app, self.table, self.program = ws, app, table, program
         self.body, self.lines, self.rng = body, lines, rng
         self.scope = table.scope(program)
         self.typer = program_typer(ws, app, program, table)
         self.sites: dict[str, list[_Site]] = {k: [] for k in KINDS}
-        self.strict = app.version_major is None or app.version_major < 8
+        # s8 code (by its project file, or because it already uses s8 forms, T030): a call that
+        # matches no s7 signature is the T024 warning, not an error
+        self.strict = (app.version_major is None or app.version_major < 8) and not s8_evidence
         self.names_data = app.globals_known and app.layout != "pgx-only" and "data" not in app.unread
         self.names_prog = app.globals_known and app.layout != "pgx-only" and "program" not in app.unread
 
@@ -611,10 +614,11 @@ class _Finder:
             return
         exp = (func.line, func.col)
         code, severity = ("T005", "error") if self.strict else ("T024", "warning")
-        # instruction_arity
-        if not ins.overloads_with_arity(n + 1):
+        # instruction_arity (not into an s8 form: logMsg(s) -> logMsg(s, 1) is valid s8, T030)
+        s8_arities = {k for f in s8.forms(ins.name) for k in range(f.overload.min_arity, f.overload.max_arity + 1)}
+        if not ins.overloads_with_arity(n + 1) and n + 1 not in s8_arities:
             self._add_argument("instruction_arity", func, node.args, exp, "1", code, severity)
-        if n and not ins.overloads_with_arity(n - 1):
+        if n and not ins.overloads_with_arity(n - 1) and n - 1 not in s8_arities:
             self._drop_last_argument("instruction_arity", node.args, exp, code, severity)
         # misspelt_instruction
         if not (self.app.globals_known and "program" in self.app.unread):
@@ -633,9 +637,10 @@ class _Finder:
                 const = {vt.NUM: "0", vt.BOOL: "false", vt.STRING: '"x"'}.get(v.t)
                 if const is not None and all(p.type == v.t.name for p in params):
                     self.replace("constant_by_reference_instruction", a, const)
-            # instruction_argument_type
+            # instruction_argument_type (not into an s8 form: userPage("x") is valid s8, T030)
+            s8_params = [f.overload.params[i] for f in s8.forms(ins.name) if f.overload.accepts_arity(n)]
             for const, ct in _CONSTANTS:
-                if not any(_type_ok(p, vt.value(ct)) for p in params):
+                if not any(_type_ok(p, vt.value(ct)) for p in params + s8_params):
                     self.replace("instruction_argument_type", a, const, "T006" if self.strict else "T024", severity)
                     break
         # assign_in_argument: wait(a == b) -> wait(a = b)
@@ -802,6 +807,13 @@ def plant_workspace(ws: Workspace, app: Application, *, per_kind: int | None = 5
     """Mutants of `app` (loaded in `ws`): at most `per_kind` per kind (None: every site),
     never in the files of `skip_files` (absolute paths)."""
     table = S.build(ws, app)
+    from val3check.parsing.parser import parse_program
+    from val3check.semantics.checker import check_application
+
+    for program in app.programs.values():
+        if program.body is None:
+            parse_program(program)
+    s8_evidence = any(d.code == "T030" for d in check_application(ws, app))
     by_kind: dict[str, list[_Site]] = {k: [] for k in KINDS}
     bodies: dict[str, A.ProgramBody] = {}
     for name in sorted(app.programs):
@@ -813,7 +825,8 @@ def plant_workspace(ws: Workspace, app: Application, *, per_kind: int | None = 5
             continue
         bodies[name] = body
         rng = random.Random(f"{seed}:{app.name}:{name}")
-        finder = _Finder(ws, app, table, program, body, program.code.split("\n"), rng)  # type: ignore[union-attr]
+        finder = _Finder(ws, app, table, program, body, program.code.split("\n"), rng,  # type: ignore[union-attr]
+                         s8_evidence)
         for kind, sites in finder.run().items():
             by_kind[kind].extend(sites)
         for kind, dsites in _declaration_sites(app, program, rng).items():

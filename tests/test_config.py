@@ -74,3 +74,43 @@ def test_bad_configuration_is_a_clear_error(tmp_path, text, fragment):
 def test_unknown_selection_is_reported():
     s = Settings(select=["F", "Q9"], ignore=["F1"])
     assert s.unknown_codes(["F001", "F101"]) == ["Q9"]
+
+
+def test_target_key(tmp_path):
+    from val3check.language.target import TargetSpec
+
+    cfg = tmp_path / "val3check.toml"
+    cfg.write_text('target = "cs8 s7.11"\n')
+    assert load_settings(str(cfg)).target == TargetSpec("CS8", "s7.11")
+    cfg.write_text('target = "CS9"\n')
+    assert load_settings(str(cfg)).target == TargetSpec("CS9", None)
+    cfg.write_text('select = ["F"]\n')
+    assert load_settings(str(cfg)).target is None  # default: each project file's version
+
+
+@pytest.mark.parametrize("value,words", [
+    ('"CS10"', "unknown word 'CS10'"),
+    ('"CS8 s8.13"', "CS8 controllers run VAL 3 s5 to s7, not s8.13"),
+    ('"CS9 s7.11"', "CS9 controllers run VAL 3 s8, not s7.11"),
+    ('"CS8 CS9"', "two controllers"),
+    ('""', "must be a controller and/or a VAL 3 version"),
+    ('7', "must be a controller and/or a VAL 3 version"),
+])
+def test_bad_target_is_a_clear_configuration_error(tmp_path, value, words):
+    cfg = tmp_path / "val3check.toml"
+    cfg.write_text(f"target = {value}\n")
+    with pytest.raises(ConfigError) as exc:
+        load_settings(str(cfg))
+    assert words in str(exc.value) and str(cfg) in str(exc.value)
+
+
+@pytest.mark.parametrize("text,ours", [
+    ('[tool.val3check]\nignore = ["L001"]\n', True),
+    ('[tool . val3check . severity]\nL001 = "error"\n', True),
+    ('[tool]\nval3check = { ignore = ["L001"] }\n', True),
+    ('[project]\nname = "val3check"\n[project.scripts]\nval3check = "val3check.cli:main"\n', False),
+    ('[tool.ruff]\nline-length = 120\n', False),
+])
+def test_pyproject_is_parsed_only_when_it_may_hold_our_section(tmp_path, text, ours):
+    (tmp_path / "pyproject.toml").write_text(text)
+    assert (find_config(str(tmp_path)) == str(tmp_path / "pyproject.toml")) is ours

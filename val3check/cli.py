@@ -1,4 +1,5 @@
-"""Command line: `val3check lint`, `val3check sim`, `val3check robots`, `val3check rules`, `val3check rule CODE`.
+"""Command line: `val3check lint`, `val3check sim`, `val3check reach`, `val3check robots`, `val3check rules`,
+`val3check rule CODE`.
 
 Exit codes (README): 0 nothing at or above --fail-on; 1 findings; 2 usage error, bad
 configuration, or input that could not be read at all. `sim` (docs/sim.md): 0 the run raised
@@ -62,6 +63,13 @@ def build_parser() -> argparse.ArgumentParser:
     sim.add_argument("--config", metavar="FILE", help="configuration file (default: val3check.toml or pyproject.toml found upwards)")
     sim.add_argument("--isolated", action="store_true", help="ignore every configuration file")
 
+    reach = sub.add_parser("reach", help="check that the arm reaches every point and joint of the data files (docs/motion.md)")
+    reach.add_argument("app", metavar="APP", help="the application: its folder or .pjx")
+    reach.add_argument("--robot", metavar="NAME|URDF", help="the arm model (default: the usr/configs/arm.cfx of the controller tree holding APP)")
+    reach.add_argument("--format", choices=("text", "json"), default="text")
+    reach.add_argument("-o", "--output", metavar="FILE", help="write the report to FILE instead of standard output")
+    reach.add_argument("--disk-root", action="append", default=[], metavar="DIR", help="folder where Disk:// libraries are also searched (repeatable)")
+
     robots = sub.add_parser("robots", help="list the arm models by family (reach, joint limits, speeds, assumptions) or show one")
     robots.add_argument("robot", nargs="?", metavar="ROBOT",
                         help="an arm name (case-insensitive: tx2-60, TX2_60, ts60-L200…), a URDF, an arm.cfx or a robot file "
@@ -86,6 +94,8 @@ def main(argv: list[str] | None = None) -> int:
             return _sim(args)
         if args.command == "robots":
             return _robots(args)
+        if args.command == "reach":
+            return _reach(args)
         if args.command == "rules":
             return _rules(args)
         if args.command == "rule":
@@ -250,6 +260,36 @@ def _lint(args: argparse.Namespace) -> int:
     if not _write(text, args.output):
         return EXIT_USAGE
     return exit_code(outcome, settings.fail_on)
+
+
+def _reach(args: argparse.Namespace) -> int:
+    """`val3check reach`: no run; 1 when a point or joint is out of reach or out of the limits."""
+    from .loading import LoadOptions, load
+    from .robot import RobotError, choose_robot
+
+    ws, _diags = load([args.app], LoadOptions(disk_roots=[os.path.abspath(d) for d in args.disk_root]))
+    apps = [ws.apps[k] for k in ws.targets]
+    if len(apps) != 1:
+        what = "no application" if not apps else f"{len(apps)} applications"
+        print(f"val3check reach: error: {args.app} holds {what}; name one application", file=sys.stderr)
+        return EXIT_USAGE
+    try:
+        model = choose_robot(args.robot, apps[0].path)
+    except RobotError as exc:
+        print(f"val3check reach: --robot: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    from .motion.reach import check_reach
+    from .reporting.reach import render_json, render_text
+
+    try:
+        report = check_reach(ws, apps[0], model)
+    except RobotError as exc:  # no closed-form inverse kinematics for this arm
+        print(f"val3check reach: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    text = render_json(report) if args.format == "json" else render_text(report)
+    if not _write(text, args.output):
+        return EXIT_USAGE
+    return EXIT_FINDINGS if any(e.severity == "error" for e in report.entries) else EXIT_OK
 
 
 def _robots(args: argparse.Namespace) -> int:

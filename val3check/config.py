@@ -12,18 +12,24 @@ options override it. Keys (kebab-case, as ruff):
     disk-roots = ["../controller/usr/usrapp"]    # where `Disk://` libraries are also searched
     exclude = ["build/**"]          # applications whose path matches are skipped
     max-file-size = 16777216        # bytes; larger files are reported (F002) and skipped
+    target = "CS9"                  # controller and/or VAL 3 version: "CS9", "s8.13", "CS8 s7.11"
+                                    # (default: each application's project file version)
 """
 
 from __future__ import annotations
 
 import fnmatch
 import os
-import tomllib
-from dataclasses import dataclass, field
+import re
+from .records import dataclass, field
 
 from .diagnostics import Severity
+from .language.target import TargetError, TargetSpec, parse_target
 
 CONFIG_NAMES = ("val3check.toml", "pyproject.toml")
+# `[tool.val3check]`, `[tool.val3check.severity]`, `tool.val3check.x = `, or a `[tool]` table
+# (which may hold `val3check = {...}`): a pyproject.toml without any of them has no section of ours.
+_TOOL_SECTION = re.compile(rb"tool\s*\.\s*\"?val3check|^\s*\[\s*tool\s*\]", re.MULTILINE)
 FAIL_ON_CHOICES = ("error", "warning", "info", "never")
 
 
@@ -42,6 +48,7 @@ class Settings:
     disk_roots: list[str] = field(default_factory=list)
     exclude: list[str] = field(default_factory=list)
     max_file_size: int = 16 * 1024 * 1024
+    target: TargetSpec | None = None  # None: each application's project file version
     root: str = ""  # folder of the configuration file, "" when none was found
     source: str = ""  # path of the configuration file that was read
 
@@ -99,6 +106,8 @@ def find_config(start: str) -> str | None:
 
 
 def _read_toml(path: str) -> dict:
+    import tomllib  # only when there is a configuration to read (start-up time)
+
     try:
         with open(path, "rb") as fh:
             return tomllib.load(fh)
@@ -109,6 +118,12 @@ def _read_toml(path: str) -> dict:
 def _has_section(path: str, name: str) -> bool:
     if name != "pyproject.toml":
         return True
+    try:
+        with open(path, "rb") as fh:
+            if not _TOOL_SECTION.search(fh.read()):
+                return False  # most pyproject.toml files are not ours: no need to parse them
+    except OSError:
+        return False
     try:
         data = _read_toml(path)
     except ConfigError:
@@ -126,6 +141,7 @@ def _str_list(value, key: str, path: str) -> list[str]:
 
 KNOWN_KEYS = {
     "select", "extend-select", "ignore", "per-file-ignores", "severity", "fail-on", "disk-roots", "exclude", "max-file-size",
+    "target",
 }
 
 
@@ -165,4 +181,9 @@ def load_settings(path: str) -> Settings:
     if not isinstance(size, int) or isinstance(size, bool) or size <= 0:
         raise ConfigError(f"{path}: 'max-file-size' must be a positive number of bytes")
     s.max_file_size = size
+    if "target" in data:
+        try:
+            s.target = parse_target(data["target"])
+        except TargetError as exc:
+            raise ConfigError(f"{path}: {exc}") from None
     return s

@@ -7,7 +7,7 @@ extracted `<Code>` block. A `SourceMap` converts (line, column) of the extracted
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from .records import dataclass, field
 
 
 @dataclass(frozen=True, slots=True)

@@ -250,3 +250,11 @@ end
     d = [d for d in r.diagnostics if d.code == "R002"]
     assert d and "movej" in d[0].message and "arm" in d[0].message
     assert (d[0].line, d[0].col) == code_position(3, 3)
+
+
+def test_s8_print_statement_writes_a_user_page_line(tmp_path):
+    # `? expr` (s8): the emulator prints the value; the simulator writes it as putln does
+    r = sim(tmp_path, 'begin\n  nX = 2\n  ? nX * 3\n  ? "done " + toString("", nX)\n  ? nX > 1\n  ? "n=", nX\nend',
+            globals_=["num nX"])
+    assert errors(r) == []
+    assert out(r) == ["6", "done 2", "true", "n=2"]

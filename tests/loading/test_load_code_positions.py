@@ -150,3 +150,23 @@ def test_s6_code_escaped(tmp_path):
     assert prog.code_map.to_file(2, 13) == Position(9, 18)  # "d" after "&quot;"
     assert prog.code_map.to_file(3, 1) == Position(10, 1)
     assert prog.access == "private"
+
+
+def test_cdata_sections_map_like_character_by_character():
+    # a CDATA section is mapped in one piece (speed): same text and positions as expat's chunks
+    from val3check.loading.xmlread import parse
+
+    for data, text, starts, maps in [
+        (b"<Code><![CDATA[begin\r\n  x = 1\r\nend]]></Code>", "begin\n  x = 1\nend", [(1, 16), (2, 1), (3, 1)], {}),
+        (b"<Code>\n  <![CDATA[begin\n  x = 1\n]]><![CDATA[  y = 2\nend]]></Code>",
+         "\n  begin\n  x = 1\n  y = 2\nend", [(1, 1), (2, 1), (3, 1), (4, 13), (5, 1)],
+         {1: [1, 2, 12, 13, 14, 15, 16]}),
+        (b"<Code>  pre &gt; <![CDATA[begin\n\n\nend]]> post\nz</Code>", "  pre > begin\n\n\nend post\nz",
+         [(1, 7), (2, 1), (3, 1), (4, 1), (5, 1)],
+         {0: [7, 8, 9, 10, 11, 12, 13, 17, 27, 28, 29, 30, 31], 3: [1, 2, 3, 7, 8, 9, 10, 11]}),
+        (b"<Code><![CDATA[\n]]></Code>", "\n", [(1, 1), (2, 1)], {}),
+    ]:
+        root, diags = parse(data, "t.pgx")
+        assert not diags and root.text == text
+        assert [(p.line, p.col) for p in root.smap.line_starts] == starts
+        assert root.smap.col_maps == maps

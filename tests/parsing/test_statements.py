@@ -294,3 +294,13 @@ TASKCREATE sName + "x", nPrio, lib:prog(a, b[1])
     assert isinstance(b, A.TaskCreateSync)
     assert (sx(b.task), sx(b.period), sx(b.overrun), sx(b.target), b.args) == ('"supervisor"', "0.02", "bSupervisor", "supervisor", [])
     assert isinstance(c.target, A.LibraryName) and sx(c.task) == '(+ sName "x")'
+
+
+def test_s8_print_statement():
+    # `? expr` (s8): one or several values; `?` elsewhere is a syntax error, not an invalid character
+    a, b = stmts('? nX * 2\n?"n=", toString("", n)')
+    assert isinstance(a, A.Print) and [sx(v) for v in a.values] == ["(* nX 2)"] and (a.line, a.col) == (2, 1)
+    assert [sx(v) for v in b.values] == ['"n="', "(call toString \"\" n)"]
+    from .shapes import errors
+
+    assert [e[:3] for e in errors("begin\n  x = ?\n  ?\nend")] == [("F101", 2, 7), ("F101", 3, 4)]

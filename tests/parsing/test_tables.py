@@ -62,3 +62,54 @@ def test_engine_falls_back_on_the_grammar(monkeypatch):
     good = "begin\n  if a or b\n    x = {1,,2}\n  endIf\nend"
     monkeypatch.setattr(P, "_engine", engine)
     assert P.parse_code(good, SourceMap.identity(good), "t.pgx") [0] is not None
+
+
+def _lark_callback_engine():
+    """The engine as it was driven before the tables were compiled: Lark's own tree-building
+    callbacks (child filters, placeholders, inlined repetitions) around the same builder."""
+    from val3check.parsing import parser as P
+
+    engine = P._Engine()
+    lk = build_from_grammar(grammar_text(), engine.builder)
+    lalr = lk.parser.parser
+    table, callbacks = lalr._parse_table, lalr.parser.callbacks
+    actions = [dict() for _ in range(len(table.states))]
+    for state, row in table.states.items():
+        for sym, (_kind, arg) in row.items():
+            if type(arg) is int:
+                actions[state][sym] = arg
+            elif (len(arg.expansion) == 1 and arg.options.expand1 and not arg.alias
+                  and not arg.expansion[0].is_term and not arg.expansion[0].name.startswith("_")):
+                actions[state][sym] = (1, arg.origin.name, None)
+            else:
+                actions[state][sym] = (len(arg.expansion), arg.origin.name, callbacks[arg])
+    engine.actions = actions
+    engine.start_state = table.start_states["start"]
+    engine.end_state = table.end_states["start"]
+    engine.unit_memo = {}
+    engine.expected = [frozenset(k for k in acts if k.isupper()) for acts in actions]
+    return engine
+
+
+def test_compiled_rule_plans_build_what_lark_builds(monkeypatch, tmp_path):
+    from pathlib import Path
+
+    from val3check.loading import load
+    from val3check.parsing import parser as P
+
+    root = Path(__file__).resolve().parents[2]
+    ws, _ = load([str(root / "fixtures")])
+    programs = [p for app in ws.apps.values() for p in app.programs.values() if p.code]
+    codes = [p.code for p in programs] + [
+        "begin\n  call f()\n  call f(1, 2)\n  x = {1,,2,}\n  x = {}\n  y = (a + b) * -c\n  ? x\n"
+        "  taskCreate \"t\", 1, g()\n  if a\n  elseIf b\n  else\n  endIf\n  for i = 0 to 3 step 2\n  endFor\n"
+        "  switch x\n    case 1, 2\n    break\n    default\n  endSwitch\n  do\n  until true\nend",
+        "begin\n  if true\nend", "begin\n  x = 1 +\n  y = )\nend",
+    ]
+    from val3check.positions import SourceMap
+
+    new = [P.parse_code(c, SourceMap.identity(c), "t.pgx") for c in codes]
+    monkeypatch.setattr(P, "_engine", _lark_callback_engine())
+    old = [P.parse_code(c, SourceMap.identity(c), "t.pgx") for c in codes]
+    assert len(codes) > 40
+    assert new == old

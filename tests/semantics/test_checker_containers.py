@@ -126,3 +126,15 @@ def test_array_parameters_inside_the_program(tmp_path):
     folder = write_app(tmp_path, "begin\n  call use(nArr, nGrid, nColl)\nend", globals_=G, programs=progs)
     # x_a bare: a 1-D array parameter may hold one value (size unknown): not reported
     assert [f[0] for f in collect(folder)] == ["T011", "T010"]
+
+
+def test_a_field_of_a_bare_multi_value_array_is_written_as_it_is_read(tmp_path):
+    # the same warning (T025) whether the field is read or written; never "must be a variable" (T013)
+    code = "begin\n  pTarget.trsf.x = 5\n  nX = pTarget.trsf.x\n  call setNum(pTarget.trsf.y)\nend"
+    progs = {"setNum": {"params": ["num& x_n"], "code": "begin\n  x_n = 1\nend"}}
+    found = findings(tmp_path, code, globals_=["point pTarget[3]", "num nX"], programs=progs)
+    assert found == [("T025", 2, 3), ("T025", 3, 8), ("T025", 4, 15)]
+    # a collection or a 2-D array stays an error, once
+    code = "begin\n  pColl.trsf.x = 5\n  pGrid.trsf.x = 5\nend"
+    found = findings(tmp_path / "b", code, globals_=['point pColl[""]', "point pGrid[2,2]"])
+    assert found == [("T011", 2, 3), ("T011", 3, 3)]

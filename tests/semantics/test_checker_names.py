@@ -69,7 +69,7 @@ def test_unknown_instructions_typo_error_far_name_warning_s8_warning_system_neve
 
 
 def test_unknown_instruction_in_s8_is_a_warning_even_when_close(tmp_path):
-    assert codes(tmp_path, "begin\n  waitEndMov()\n  userPageSet(1)\nend", version="s8.3") == ["N004", "N004"]
+    assert codes(tmp_path, "begin\n  waitEndMov()\n  setPayload(1)\nend", version="s8.3") == ["N004", "N004"]
 
 
 def test_variable_called_like_a_function(tmp_path):
@@ -121,11 +121,40 @@ def test_undefined_type_but_declared_unresolved_user_type_is_left_to_the_loader(
     assert collect(folder, "N010") == []
 
 
-def test_mixed_arm_families_reports_the_minority(tmp_path):
-    folder = write_app(tmp_path, "begin\nend", globals_=["pointRx pA", "jointRx jB", "configRs cC"])
-    found = collect(folder, "N011", with_path=True)
+def test_mixed_arm_families_without_a_known_arm_is_one_warning_on_the_minority(tmp_path):
+    folder = write_app(tmp_path, "begin\nend", globals_=["pointRx pA", "jointRx jB", "configRs cC", "pointRs pD"])
+    assert collect(folder, "N011") == []
+    found = collect(folder, "N016", with_path=True)
     assert len(found) == 1 and found[0][1] == "Example.dtx"
-    assert "cC" in messages(folder)[0]
+    assert "cC" in messages(folder)[0] and "2 Rs and 2 Rx" in messages(folder)[0]
+
+
+def _in_controller(tmp_path, arm: str, globals_):
+    usrapp = tmp_path / "Controller1" / "usr" / "usrapp"
+    folder = write_app(usrapp, "begin\nend", globals_=globals_)
+    configs = tmp_path / "Controller1" / "usr" / "configs"
+    configs.mkdir(parents=True)
+    (configs / "arm.cfx").write_text('<?xml version="1.0" encoding="utf-8"?>\n<Configuration>\n  <Arm>\n'
+                                     f'    <String name="arm" value="{arm}" />\n  </Arm>\n</Configuration>\n')
+    return folder
+
+
+def test_with_the_arm_of_the_controller_tree_only_the_other_family_is_an_error(tmp_path):
+    # a SCARA cell: the Rx declarations are wrong, whichever side has more
+    folder = _in_controller(tmp_path, "ts2_60-S1", ["pointRx pA", "jointRx jB", "configRs cC"])
+    found = collect(folder, "N0", with_path=True)
+    assert [(f[0], f[1]) for f in found] == [("N011", "Example.dtx"), ("N011", "Example.dtx")]
+    assert all("ts2_60-S1" in m and "SCARA" in m for m in messages(folder))
+    # a six-axis cell: the one Rs declaration is wrong, and one without Rs types is clean
+    six = _in_controller(tmp_path / "b", "tx2-60-S1", ["pointRx pA", "pointRs pB"])
+    assert [f[0] for f in collect(six, "N0")] == ["N011"] and "pB" in messages(six)[0]
+    clean = _in_controller(tmp_path / "c", "tx2-60-S1", ["pointRx pA", "jointRx jB"])
+    assert collect(clean, "N0") == []
+
+
+def test_an_arm_of_no_known_family_leaves_the_warning(tmp_path):
+    folder = _in_controller(tmp_path, "tp80-S1", ["pointRx pA", "pointRx pC", "pointRs pB"])
+    assert [f[0] for f in collect(folder, "N0")] == ["N016"]
 
 
 def test_program_with_a_syntax_error_is_skipped_but_still_callable(tmp_path):
@@ -140,8 +169,20 @@ def test_unreadable_data_or_program_file_relaxes_undefined_names(tmp_path):
     (folder / "Example.dtx").write_text("<Database><Datas>", encoding="utf-8")  # malformed: F004
     assert [f[0] for f in collect(folder)] == ["N002"]
     pjx = folder / "Example.pjx"
-    pjx.write_text(pjx.read_text().replace('<Program file="stop.pgx" />', '<Program file="stop.pgx" />\n    <Program file="gone.pgx" />'))
+    text = pjx.read_text()
+    # a missing program file exempts the program it is named after, not every other name
+    pjx.write_text(text.replace('<Program file="stop.pgx" />', '<Program file="stop.pgx" />\n    <Program file="gone.pgx" />'))
+    assert [f[0] for f in collect(folder)] == ["N002"]
+    pjx.write_text(text.replace('<Program file="stop.pgx" />', '<Program file="stop.pgx" />\n    <Program file="Sub/helper.pgx" />'))
     assert collect(folder) == []
+
+
+def test_missing_program_file_exempts_its_program_called_any_way(tmp_path):
+    code = "begin\n  call pick()\n  place(1)\n  call place(2)\n  taskCreate \"t\", 10, pick()\nend"
+    folder = write_app(tmp_path, code)
+    pjx = folder / "Example.pjx"
+    pjx.write_text(pjx.read_text().replace('<Program file="stop.pgx" />', '<Program file="stop.pgx" />\n    <Program file="pick.pgx" />'))
+    assert [(f[0], f[1]) for f in collect(folder)] == [("N004", 3), ("N002", 4)]
 
 
 def test_task_name_length_is_not_held_against_s8(tmp_path):

@@ -96,8 +96,18 @@ def test_application_used_as_a_library_keeps_its_public_globals(tmp_path):
     run = lint([main, lib], cwd=tmp_path)
     found = sorted((Path(d.path).name, d.message) for d in run.result.diagnostics if d.code == "S003")
     assert found == [("Tools.dtx", "private global variable 'nOwn' is never used by a program of the application")]
-    alone = s_found(lib, "S003")  # linted alone, Tools is an application: both are unused
-    assert len(alone) == 2
+    # linted alone, Tools's empty start() says it is a library or type (SRS creates them so):
+    # its public global is its interface
+    assert [x[4] for x in s_found(lib, "S003")] == ["private global variable 'nOwn' is never used by a program of the application"]
+    # an application whose start() does something is not: both are unused
+    cell = app(tmp_path / "cell", "begin\n  putln(\"go\")\nend", name="Tools", globals_=["num nShared", "private num nOwn"])
+    assert len(s_found(cell, "S003")) == 2
+
+
+def test_user_type_linted_alone_keeps_its_fields(tmp_path):
+    # a type project as SRS saves it: empty start() and stop(), public globals = the fields (7.2)
+    part = app(tmp_path, "begin\nend", name="Part", globals_=["num nId", "string sName", "point pGrip", "private num nTmp"])
+    assert [x[4] for x in s_found(part, "S003")] == ["private global variable 'nTmp' is never used by a program of the application"]
 
 
 def test_library_without_any_public_program_or_data_is_left_alone(tmp_path):
@@ -553,10 +563,37 @@ def _pgx(name: str, code: str, params=(), access: str | None = "public") -> str:
 
 
 def test_nothing_is_unused_when_a_listed_program_file_is_missing(tmp_path):
-    folder = app(tmp_path, "begin\nend", globals_=["private num nCount"],
+    folder = app(tmp_path, "begin\n  putln(\"go\")\nend", globals_=["private num nCount"],
                  programs={"helper": {"code": "begin\nend", "access": "private"}})
     assert sorted(c for c in codes(folder) if c in ("S003", "S004")) == ["S003", "S004"]
     pjx = folder / "App.pjx"
     pjx.write_text(pjx.read_text().replace('<Program file="stop.pgx" />',
                                            '<Program file="stop.pgx" />\n    <Program file="lost.pgx" />'))
     assert [c for c in codes(folder) if c in ("S003", "S004")] == []  # lost.pgx may use both
+
+
+def test_comment_only_program_is_documentation_not_dead_code(tmp_path):
+    progs = {"readme": {"code": "begin\n  // how to use this cell:\n  // call pick() then place()\nend", "access": "private"},
+             "empty": {"code": "begin\nend", "access": "private"}}
+    folder = app(tmp_path, "begin\n  putln(\"go\")\nend", programs=progs)
+    assert [x[4] for x in s_found(folder, "S004")] == [
+        "private program empty() is never called (call, taskCreate, taskCreateSync) in the application"]
+
+
+def test_programs_and_globals_bound_by_a_web_user_page_are_used(tmp_path):
+    progs = {"onStart": {"code": "begin\n  putln(\"x\")\nend", "access": "private"},
+             "onStop": {"code": "begin\n  putln(\"y\")\nend", "access": "private"}}
+    folder = app(tmp_path, "begin\n  putln(\"go\")\nend", programs=progs, globals_=["private num nSpeed", "private num nOld"])
+    pages = folder / "interface"  # as a CS9 controller tree holds them (s8.10 cell, psi46/cmsrobot)
+    pages.mkdir(parents=True)
+    (pages / "main.bindings.json").write_text(
+        '{"version": "1.0", "bindings": [{"id": "rng1", "attribute": "value", "data": "nSpeed[0]", "size": 1,'
+        ' "direction": "rw", "refresh": 1}], "callbacks": [{"id": "btn1", "event": "click", "data": "onStart",'
+        ' "priority": 10}], "events": []}', encoding="utf-8")
+    assert [x[4] for x in s_found(folder, "S004")] == [
+        "private program onStop() is never called (call, taskCreate, taskCreateSync) in the application"]
+    assert [x[4] for x in s_found(folder, "S003")] == [
+        "global variable 'nOld' is never used by a program of the application"]
+    # a broken bindings file is ignored (the page editor owns it), as is one outside the folder
+    (pages / "main.bindings.json").write_text("{not json", encoding="utf-8")
+    assert len(s_found(folder, "S004")) == 2

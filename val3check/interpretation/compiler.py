@@ -1050,6 +1050,11 @@ class ProgramCompiler:
             elif ts is A.TaskCreate or ts is A.TaskCreateSync:
                 self.line()
                 self.guarded([self.task_create(s)], True)
+            elif ts is A.Print:  # s8 `? expr`: the emulator prints the value; here, a user page line
+                self.line()
+                parts = [self.coerce(*self.expr(v), "?") for v in s.values]
+                calls = [f"PAGE(T, {'putln' if k == len(parts) - 1 else 'put'!r}, {p})" for k, p in enumerate(parts)]
+                self.guarded(["; ".join(calls)], True)
             elif ts is A.Return:
                 self.line()
                 self.emit("return")

@@ -6,13 +6,12 @@ and cached. The returned objects are frozen; do not mutate the returned dictiona
 
 from __future__ import annotations
 
-import tomllib
-from dataclasses import dataclass, field
+from ..records import dataclass, field
 from functools import lru_cache
-from pathlib import Path
+import os
 from typing import Any, Iterable, Mapping, Sequence
 
-CATALOGUE_PATH = Path(__file__).resolve().parent / "instructions.toml"
+CATALOGUE_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "instructions.toml")
 
 ANY_TYPE = "*"
 KINDS = frozenset({"function", "procedure", "library", "special"})
@@ -208,8 +207,9 @@ def _instruction(name: str, raw: Mapping[str, Any]) -> Instruction:
 @lru_cache(maxsize=None)
 def load_raw() -> dict[str, Any]:
     """The parsed TOML document, as is."""
-    with CATALOGUE_PATH.open("rb") as f:
-        return tomllib.load(f)
+    from .compiled import load_toml
+
+    return load_toml("instructions.toml")
 
 
 @lru_cache(maxsize=None)

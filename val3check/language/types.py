@@ -5,13 +5,12 @@ Importing this module is cheap: the TOML is read on first use and cached.
 
 from __future__ import annotations
 
-import tomllib
-from dataclasses import dataclass
+from ..records import dataclass
 from functools import lru_cache
-from pathlib import Path
+import os
 from typing import Any, Mapping
 
-TYPES_PATH = Path(__file__).resolve().parent / "types.toml"
+TYPES_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "types.toml")
 
 TYPE_KINDS = frozenset({"simple", "structured", "enum", "pseudo"})
 UNARY_OPERATORS = frozenset({"!", "neg"})
@@ -108,8 +107,9 @@ class RemovedOperator:
 
 @lru_cache(maxsize=None)
 def load_raw() -> dict[str, Any]:
-    with TYPES_PATH.open("rb") as f:
-        return tomllib.load(f)
+    from .compiled import load_toml
+
+    return load_toml("types.toml")
 
 
 @lru_cache(maxsize=None)

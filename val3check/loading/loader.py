@@ -4,11 +4,12 @@ from __future__ import annotations
 
 import errno
 import os
-from dataclasses import dataclass, field
+from ..records import dataclass, field
 
 from ..diagnostics import Diagnostic
 from . import reader as rd
 from . import resolve as rs
+from .bindings import bound_names
 from .model import Application, LibraryRef, Origin, Program, TypeRef, Workspace
 from .xmlread import Node, read_xml
 
@@ -48,6 +49,11 @@ def _inside(path: str, folder: str) -> bool:
     """`path` is in `folder` or below it, symbolic links resolved."""
     real, top = os.path.realpath(path), os.path.realpath(folder)
     return os.path.commonpath([real, top]) == top
+
+
+def _stem(rel: str) -> str:
+    """'Sub\\pick.pgx' -> 'pick': the program a listed file is named after, in lower case."""
+    return os.path.splitext(rel.replace("\\", "/").rsplit("/", 1)[-1])[0].lower()
 
 
 def _ext(path: str) -> str:
@@ -119,6 +125,8 @@ class Loader:
                 path = self._listed_file(rel, node, folder, kind, sink)
                 if path is None:
                     app.unread.add(kind)
+                    if kind == "program":
+                        app.unread_programs.add(_stem(rel))
                     continue
                 k = _key(path)
                 if k in seen:
@@ -134,6 +142,10 @@ class Loader:
                     read = self._read_data_file(app, path)
                 if not read:
                     app.unread.add(kind)
+                    if kind == "program":
+                        app.unread_programs.add(_stem(rel))
+        app.ui_names, bindings = bound_names(folder, self.options.max_file_size)
+        app.files.extend(bindings)
         for alias, path, auto, node in pf.libraries:
             if alias in app.libraries:
                 first = app.libraries[alias].origin

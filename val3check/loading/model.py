@@ -6,7 +6,7 @@ that a diagnostic about a declaration points at the line the user would edit.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from ..records import dataclass, field
 from enum import Enum
 from typing import Any
 
@@ -142,6 +142,12 @@ class Application:
     # "data" / "program" when a file of that kind listed by the project could not be read:
     # the application's globals (or programs) are then only partly known.
     unread: set[str] = field(default_factory=set)
+    # Lower-case names of the listed program files that could not be read ("pick" for
+    # pick.pgx): the programs they would define may exist; every other name is really undefined.
+    unread_programs: set[str] = field(default_factory=set)
+    # Lower-case names the s8 web user pages bind to (`*.bindings.json`, loading/bindings.py):
+    # programs and globals used by the pages.
+    ui_names: set[str] = field(default_factory=set)
 
     @property
     def folder(self) -> str:

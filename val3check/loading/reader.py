@@ -9,7 +9,7 @@ file is still read.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass, field
+from ..records import dataclass, field
 from typing import Any
 
 from ..diagnostics import Diagnostic

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import os
 import stat
-from dataclasses import dataclass, field
+from ..records import dataclass, field
 from xml.parsers import expat
 
 from defusedxml.common import (
@@ -194,6 +194,24 @@ class _CodeCollector:
             self._newline(line + k, 1)
             self._chars(piece, line + k, 1, 1)
 
+    def verbatim(self, text: str, line: int, col: int) -> None:
+        """A whole CDATA section's text, starting at file (line, col): verbatim, so every line
+        after the first starts at column 1. Same result as `literal`, without the per-line
+        work (a third of the loading time of a large application)."""
+        self.pending_cr = False
+        nl = text.count("\n")
+        if not nl:
+            self._chars(text, line, col, 1)
+            return
+        first = text.find("\n")
+        self._chars(text[:first], line, col, 1)
+        self._close_line()
+        self.starts.extend([Position(line + k, 1) for k in range(1, nl)])
+        last = text[text.rindex("\n") + 1:]
+        self.parts.append(text[first:])
+        self.cur_line, self.cur_start_col = line + nl, 1
+        self.cur_len, self.next_col, self.cur_cols = len(last), 1 + len(last), None
+
     def reference(self, text: str, line: int, col: int, width: int) -> None:
         """A character or entity reference (`&gt;`, `&#10;`), `width` columns in the file."""
         if text == "\n" and self.pending_cr:  # &#13;&#10: one line end
@@ -325,6 +343,7 @@ def parse(data: bytes, path: str) -> tuple[Node | None, list[Diagnostic]]:
     root_holder: list[Node] = []
     stack: list[Node] = []
     state = {"cdata": False}
+    cdata: list = []  # [line, col, chunks...] of the CDATA section being read in a code element
     collectors: list[_CodeCollector | None] = []
     texts: list[list[str] | None] = []
 
@@ -368,7 +387,14 @@ def parse(data: bytes, path: str) -> tuple[Node | None, list[Diagnostic]]:
             collectors.append(None)
             texts.append(None)
 
+    def flush_cdata() -> None:
+        if cdata and collectors and collectors[-1] is not None:
+            collectors[-1].verbatim("".join(cdata[2:]), cdata[0], cdata[1])
+        cdata.clear()
+
     def end(name: str) -> None:
+        if cdata:
+            flush_cdata()
         node = stack.pop()
         coll = collectors.pop()
         txt = texts.pop()
@@ -382,15 +408,19 @@ def parse(data: bytes, path: str) -> tuple[Node | None, list[Diagnostic]]:
             return
         coll = collectors[-1]
         if coll is not None:
+            if state["cdata"]:  # gathered, handled in one piece at the end of the section
+                if not cdata:
+                    cdata.extend((parser.CurrentLineNumber, parser.CurrentColumnNumber + 1))
+                cdata.append(text)
+                return
             line = parser.CurrentLineNumber
             col = parser.CurrentColumnNumber + 1
-            if not state["cdata"]:
-                bi = parser.CurrentByteIndex
-                if 0 <= bi < len(data) and data[bi] == 0x26:  # "&": a reference
-                    semi = data.find(b";", bi, bi + 40)
-                    width = (semi - bi + 1) if semi > 0 else 1
-                    coll.reference(text, line, col, width)
-                    return
+            bi = parser.CurrentByteIndex
+            if 0 <= bi < len(data) and data[bi] == 0x26:  # "&": a reference
+                semi = data.find(b";", bi, bi + 40)
+                width = (semi - bi + 1) if semi > 0 else 1
+                coll.reference(text, line, col, width)
+                return
             coll.literal(text, line, col)
             return
         txt = texts[-1]
@@ -401,6 +431,7 @@ def parse(data: bytes, path: str) -> tuple[Node | None, list[Diagnostic]]:
         state["cdata"] = True
 
     def cdata_end() -> None:
+        flush_cdata()
         state["cdata"] = False
 
     def entity_decl(name, is_param, value, base, sysid, pubid, notation):  # noqa: ANN001

@@ -15,7 +15,7 @@ a body returned by `parse_code`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from ..records import dataclass, field
 from typing import Union
 
 # ---------------------------------------------------------------- expressions
@@ -247,6 +247,16 @@ class TaskCreateSync:
 
 
 @dataclass(slots=True)
+class Print:
+    """`? expr` (or `? a, b`): the s8 print statement (not in the s7 manual), shows the values.
+    Position of the `?`."""
+
+    values: list[Expr]
+    line: int
+    col: int
+
+
+@dataclass(slots=True)
 class Return:
     """`return` (2.2.5)."""
 
@@ -378,7 +388,7 @@ class ErrorStatement:
 
 
 Statement = Union[
-    Assign, ExprStatement, Call, TaskCreate, TaskCreateSync, Return, Break, If, While, DoUntil, For,
+    Assign, ExprStatement, Call, TaskCreate, TaskCreateSync, Print, Return, Break, If, While, DoUntil, For,
     Switch, ErrorStatement,
 ]
 
@@ -424,6 +434,7 @@ _CHILDREN: dict[type, tuple[str, ...]] = {
     Call: ("target", "args"),
     TaskCreate: ("task", "priority", "target", "args"),
     TaskCreateSync: ("task", "period", "overrun", "target", "args"),
+    Print: ("values",),
     Return: (), Break: (), ErrorStatement: (),
     Branch: ("cond", "body"),
     If: ("branches", "orelse"),
@@ -451,11 +462,64 @@ def children(node: object) -> list:
     return out
 
 
-def walk(node: object):
-    """Every node under `node` (itself included), depth first, in source order. Iterative: safe
-    on any depth."""
-    stack = [node]
+def _pusher(cls: type, fields: tuple[str, ...]):
+    """A function that pushes the children of a `cls` node on a stack, last child first (so
+    that popping gives them in source order). Generated once per class: `walk` is the hot loop
+    of the pattern rules. Only Struct.fields (empty fields) and If.orelse/For.step/Switch.default
+    (absent parts) may hold None."""
+    lines = ["def push(n, append, extend):"]
+    for name in reversed(fields):
+        kind = _FIELD_KINDS.get((cls, name), "node")
+        if kind == "list":
+            lines.append(f"    extend(n.{name}[::-1])")
+        elif kind == "holes":
+            lines.append(f"    extend([x for x in n.{name}[::-1] if x is not None])")
+        elif kind == "optional":
+            lines.append(f"    v = n.{name}")
+            lines.append("    if v is not None:")
+            lines.append("        extend(v[::-1]) if v.__class__ is list else append(v)")
+        else:
+            lines.append(f"    append(n.{name})")
+    if not fields:
+        lines.append("    pass")
+    scope: dict = {}
+    exec("\n".join(lines), scope)  # noqa: S102 - code built from this module's own field names
+    return scope["push"]
+
+
+# How each child field holds its nodes: "list" (never None inside), "holes" (a list that may
+# hold None: the empty fields of a structured value), "optional" (None, a node or a list);
+# every other field holds one node.
+_FIELD_KINDS = {
+    (Index, "indices"): "list", (CallExpr, "args"): "list", (Struct, "fields"): "holes",
+    (Call, "args"): "list", (TaskCreate, "args"): "list", (TaskCreateSync, "args"): "list", (Print, "values"): "list",
+    (Branch, "body"): "list", (If, "branches"): "list", (If, "orelse"): "optional", (While, "body"): "list",
+    (DoUntil, "body"): "list", (For, "step"): "optional", (For, "body"): "list", (Case, "values"): "list",
+    (Case, "body"): "list", (Default, "body"): "list", (Switch, "cases"): "list", (Switch, "default"): "optional",
+    (ProgramBody, "statements"): "list",
+}
+_PUSH = {cls: _pusher(cls, fields) for cls, fields in _CHILDREN.items() if fields}
+
+
+def nodes(node: object) -> list:
+    """Every node under `node` (itself included), depth first, in source order, as a list.
+    Iterative: safe on any depth."""
+    out = [node]
+    stack: list = []
+    append, extend, pop, add = stack.append, stack.extend, stack.pop, out.append
+    push = _PUSH
+    f = push.get(node.__class__)
+    if f is not None:
+        f(node, append, extend)
     while stack:
-        n = stack.pop()
-        yield n
-        stack.extend(reversed(children(n)))
+        n = pop()
+        add(n)
+        f = push.get(n.__class__)
+        if f is not None:
+            f(n, append, extend)
+    return out
+
+
+def walk(node: object):
+    """Every node under `node` (itself included), depth first, in source order."""
+    return iter(nodes(node))

@@ -22,9 +22,9 @@ reported too; errors that could be consequences of an earlier one are not report
 from __future__ import annotations
 
 import gc
-import hashlib
 import re
 import threading
+from operator import itemgetter
 from typing import Any
 
 from ..diagnostics import Diagnostic
@@ -76,38 +76,47 @@ _STRUCTURAL = set(_OPENER_OF) | {"END", "BEGIN"}
 _PUNCT = {
     "EQUAL": "'='", "PLUS": "'+'", "MINUS": "'-'", "BANG": "'!'", "LBRACE": "'{'",
     "_RBRACE": "'}'", "_LPAR": "'('", "_RPAR": "')'", "_LSQB": "'['", "_RSQB": "']'",
-    "_COMMA": "','", "_DOT": "'.'", "_COLON": "':'",
+    "_COMMA": "','", "_DOT": "'.'", "_COLON": "':'", "QMARK": "'?'",
 }
 _EXPR_START = {"NAME", "SYSNAME", "NUMBER", "BADNUMBER", "STRING", "BADSTRING", "TRUE", "FALSE",
                "_LPAR", "MINUS", "BANG", "LBRACE", "ERROR"}
 _STMT_START = {"CALL", "RETURN", "BREAK", "IF", "WHILE", "DO", "FOR", "SWITCH", "NAME", "SYSNAME",
-               "TASKCREATE", "TASKCREATESYNC"}
+               "TASKCREATE", "TASKCREATESYNC", "QMARK"}
 _BINOPS = {"EQUAL", "EQOP", "RELOP", "PLUS", "MINUS", "MULOP", "AND", "OR", "XOR"}
 _CLOSING = {"_RPAR": ("_LPAR", "')'", "'('"), "_RSQB": ("_LSQB", "']'", "'['"),
             "_RBRACE": ("LBRACE", "'}'", "'{'")}
 
 
-class Tok:
-    """A token. `line`/`column` are 1-based positions in the CODE text (not the file)."""
+class Tok(tuple):
+    """A token: (type, value, line, column), `line`/`column` 1-based in the CODE text (not the
+    file). The driver makes plain tuples (one per token: a tuple is much cheaper to make than
+    an object) and the builder indexes them; error messages view them as Tok (`as_tok`)."""
 
-    __slots__ = ("type", "value", "line", "column")
+    __slots__ = ()
 
-    def __init__(self, type_: str, value: str, line: int, column: int) -> None:
-        self.type = type_
-        self.value = value
-        self.line = line
-        self.column = column
+    type = property(itemgetter(0))
+    value = property(itemgetter(1))
+    line = property(itemgetter(2))
+    column = property(itemgetter(3))
 
     @property
     def end_line(self) -> int:
-        return self.line
+        return self[2]
 
     @property
     def end_column(self) -> int:
-        return self.column + len(self.value)
+        return self[3] + len(self[1])
 
     def __repr__(self) -> str:
-        return f"Tok({self.type}, {self.value!r}, {self.line}:{self.column})"
+        return f"Tok({self[0]}, {self[1]!r}, {self[2]}:{self[3]})"
+
+
+def as_tok(v: Any) -> Any:
+    """A value of the parser's stack: a token (type, value, line, column) as a Tok, anything
+    else (a node, a list, a builder tuple whose first item is not a string) as it is."""
+    if v.__class__ is tuple and len(v) == 4 and v[0].__class__ is str:
+        return Tok(v)
+    return v
 
 
 # ---------------------------------------------------------------- tree builder
@@ -119,6 +128,9 @@ def _clip(text: str, n: int = 30) -> str:
     if not text.isprintable():
         text = "".join(c if c.isprintable() else f"U+{ord(c):04X}" for c in text)
     return text
+
+
+_WORD_OPS = frozenset({"AND", "OR", "XOR"})
 
 
 class _Builder:
@@ -158,49 +170,63 @@ class _Builder:
             return p.line, p.col
         return self.lines[k], self.offs[k] + col
 
-    def _span(self, t) -> tuple[int, int, int, int]:
-        k = t.line - 1
+    def tend(self, t) -> tuple[int, int]:
+        """The file (line, col) just after a token."""
+        return self.fpos(t[2], t[3] + len(t[1]))
+
+    def tpos(self, t) -> tuple[int, int]:
+        """The file (line, col) of a token (tokens are tuples: type, value, line, column)."""
+        k = t[2] - 1
         if k in self.col_maps:
-            ln, c = self.fpos(t.line, t.column)
-            el, ec = self.fpos(t.line, t.column + len(t.value))
+            return self.fpos(t[2], t[3])
+        return self.lines[k], self.offs[k] + t[3]
+
+    def _span(self, t) -> tuple[int, int, int, int]:
+        line, column, n = t[2], t[3], len(t[1])
+        k = line - 1
+        if k in self.col_maps:
+            ln, c = self.fpos(line, column)
+            el, ec = self.fpos(line, column + n)
             return ln, c, el, ec
         ln = self.lines[k]
-        c = self.offs[k] + t.column
-        return ln, c, ln, c + len(t.value)
+        c = self.offs[k] + column
+        return ln, c, ln, c + n
 
     # leaves ----------------------------------------------------------
 
     def name(self, c):
         t = c[0]
-        k = t.line - 1
+        v = t[1]
+        k = t[2] - 1
         if k in self.col_maps:
-            return A.Name(t.value, *self._span(t))
+            return A.Name(v, *self._span(t))
         ln = self.lines[k]
-        col = self.offs[k] + t.column
-        return A.Name(t.value, ln, col, ln, col + len(t.value))
+        col = self.offs[k] + t[3]
+        return A.Name(v, ln, col, ln, col + len(v))
 
     def lib_name(self, c):
         a, n = c
         ln, k, _, _ = self._span(a)
         _, _, el, ec = self._span(n)
-        return A.LibraryName(a.value, n.value, ln, k, el, ec)
+        return A.LibraryName(a[1], n[1], ln, k, el, ec)
 
     def sys_name(self, c):
         t = c[0]
-        return A.SystemName(t.value, *self._span(t))
+        return A.SystemName(t[1], *self._span(t))
 
     def number(self, c):
         t = c[0]
+        text = t[1]
         try:
-            value = float(t.value)
+            value = float(text)
         except ValueError:  # BADNUMBER, already reported
             value = float("nan")
-        return A.Number(value, t.value, *self._span(t))
+        return A.Number(value, text, *self._span(t))
 
     def string(self, c):
         t = c[0]
-        v = t.value
-        return A.String(v[1:-1] if t.type == "STRING" else v[1:], *self._span(t))
+        v = t[1]
+        return A.String(v[1:-1] if t[0] == "STRING" else v[1:], *self._span(t))
 
     def true(self, c):
         return A.Bool(True, *self._span(c[0]))
@@ -210,7 +236,7 @@ class _Builder:
 
     def error_expr(self, c):
         t = c[0]
-        return A.ErrorExpr(*self.fpos(t.line, t.column))
+        return A.ErrorExpr(*self.tpos(t))
 
     # expressions -----------------------------------------------------
 
@@ -219,7 +245,7 @@ class _Builder:
         fields = c[1:]
         if len(fields) == 1 and fields[0] is None:
             fields = []
-        return A.Struct(fields, *self.fpos(t.line, t.column))
+        return A.Struct(fields, *self.tpos(t))
 
     def args(self, c):
         return c
@@ -234,26 +260,26 @@ class _Builder:
 
     def field(self, c):
         base, t = c
-        return A.Field(base, t.value, base.line, base.col, *self.fpos(t.line, t.column))
+        return A.Field(base, t[1], base.line, base.col, *self.tpos(t))
 
     def unary(self, c):
         t, operand = c
-        ln, k = self.fpos(t.line, t.column)
-        if t.value == "-" and type(operand) is A.Number and not operand.text.startswith("-"):
+        ln, k = self.tpos(t)
+        if t[1] == "-" and type(operand) is A.Number and not operand.text.startswith("-"):
             # fold `-3` into a constant (3.2.1: `[-]<digits>...`)
             return A.Number(-operand.value, "-" + operand.text, ln, k, operand.end_line, operand.end_col)
-        return A.Unary(t.value, operand, ln, k)
+        return A.Unary(t[1], operand, ln, k)
 
     def binary(self, c):
         left, t, right = c
-        op = t.value
-        if t.type in ("AND", "OR", "XOR"):
+        op = t[1]
+        if t[0] in _WORD_OPS:
             op = op.lower()
-        return A.Binary(op, left, right, left.line, left.col, *self.fpos(t.line, t.column))
+        return A.Binary(op, left, right, left.line, left.col, *self.tpos(t))
 
     def assign_expr(self, c):
         target, t, value = c
-        return A.AssignExpr(target, value, target.line, target.col, *self.fpos(t.line, t.column))
+        return A.AssignExpr(target, value, target.line, target.col, *self.tpos(t))
 
     # statements ------------------------------------------------------
 
@@ -262,7 +288,7 @@ class _Builder:
 
     def assign(self, c):
         target, t, value = c
-        return A.Assign(target, value, target.line, target.col, *self.fpos(t.line, t.column))
+        return A.Assign(target, value, target.line, target.col, *self.tpos(t))
 
     def expr_stmt(self, c):
         call = c[0]
@@ -270,38 +296,42 @@ class _Builder:
 
     def call_stmt(self, c):
         t, target, args = c
-        return A.Call(target, args if args is not None else [], *self.fpos(t.line, t.column))
+        return A.Call(target, args if args is not None else [], *self.tpos(t))
 
     def task_create(self, c):
         t, task, priority, target, args = c
         return A.TaskCreate(task, priority, target, args if args is not None else [],
-                            *self.fpos(t.line, t.column))
+                            *self.tpos(t))
 
     def task_create_sync(self, c):
         t, task, period, overrun, target, args = c
         return A.TaskCreateSync(task, period, overrun, target, args if args is not None else [],
-                                *self.fpos(t.line, t.column))
+                                *self.tpos(t))
+
+    def print_stmt(self, c):
+        t, values = c
+        return A.Print(values, *self.tpos(t))
 
     def return_stmt(self, c):
         t = c[0]
-        return A.Return(*self.fpos(t.line, t.column))
+        return A.Return(*self.tpos(t))
 
     def break_stmt(self, c):
         t = c[0]
-        return A.Break(*self.fpos(t.line, t.column))
+        return A.Break(*self.tpos(t))
 
     def error_stmt(self, c):
         t = c[0]
-        return A.ErrorStatement(*self.fpos(t.line, t.column))
+        return A.ErrorStatement(*self.tpos(t))
 
     def if_stmt(self, c):
         t, cond, body = c[0], c[1], c[2]
         end = c[-1]
         orelse = c[-2]
-        ln, k = self.fpos(t.line, t.column)
+        ln, k = self.tpos(t)
         branches = [A.Branch(cond, body, ln, k)]
         branches.extend(c[3:-2])
-        el, ec = self.fpos(end.line, end.column + len(end.value))
+        el, ec = self.tend(end)
         if orelse is None:
             return A.If(branches, None, ln, k, 0, 0, el, ec)
         ol, oc, obody = orelse
@@ -309,58 +339,58 @@ class _Builder:
 
     def elseif_clause(self, c):
         t, cond, body = c
-        return A.Branch(cond, body, *self.fpos(t.line, t.column))
+        return A.Branch(cond, body, *self.tpos(t))
 
     def else_clause(self, c):
         t, body = c
-        ln, k = self.fpos(t.line, t.column)
+        ln, k = self.tpos(t)
         return (ln, k, body)
 
     def while_stmt(self, c):
         t, cond, body, end = c
-        ln, k = self.fpos(t.line, t.column)
-        el, ec = self.fpos(end.line, end.column + len(end.value))
+        ln, k = self.tpos(t)
+        el, ec = self.tend(end)
         return A.While(cond, body, ln, k, el, ec)
 
     def do_stmt(self, c):
         t, body, u, cond = c
-        ln, k = self.fpos(t.line, t.column)
-        ul, uc = self.fpos(u.line, u.column)
+        ln, k = self.tpos(t)
+        ul, uc = self.tpos(u)
         return A.DoUntil(body, cond, ln, k, ul, uc)
 
     def for_header(self, c):
         if len(c) == 1:  # ERROR (recovery)
-            e = A.ErrorExpr(*self.fpos(c[0].line, c[0].column))
+            e = A.ErrorExpr(*self.tpos(c[0]))
             return (e, e, e, None)
         counter, _eq, start, _to, stop, _step, step = c
         return (counter, start, stop, step)
 
     def for_stmt(self, c):
         t, (counter, start, stop, step), body, end = c
-        ln, k = self.fpos(t.line, t.column)
-        el, ec = self.fpos(end.line, end.column + len(end.value))
+        ln, k = self.tpos(t)
+        el, ec = self.tend(end)
         return A.For(counter, start, stop, step, body, ln, k, el, ec)
 
     def case_clause(self, c):
         t = c[0]
-        return A.Case(c[1:-1], c[-1], *self.fpos(t.line, t.column))
+        return A.Case(c[1:-1], c[-1], *self.tpos(t))
 
     def default_clause(self, c):
         t, body = c
-        return A.Default(body, *self.fpos(t.line, t.column))
+        return A.Default(body, *self.tpos(t))
 
     def switch_stmt(self, c):
         t, subject = c[0], c[1]
         end = c[-1]
         default = c[-2]
-        ln, k = self.fpos(t.line, t.column)
-        el, ec = self.fpos(end.line, end.column + len(end.value))
+        ln, k = self.tpos(t)
+        el, ec = self.tend(end)
         return A.Switch(subject, c[2:-2], default, ln, k, el, ec)
 
     def start(self, c):
         b, stmts, e = c
-        ln, k = self.fpos(b.line, b.column)
-        el, ec = self.fpos(e.line, e.column + len(e.value))
+        ln, k = self.tpos(b)
+        el, ec = self.tend(e)
         return A.ProgramBody(stmts, [], ln, k, el, ec)
 
 
@@ -369,17 +399,21 @@ class _Builder:
 
 def grammar_text() -> str | None:
     """The grammar file's text (line ends normalised), or None when it cannot be read."""
-    from ..resources import resource_dir
+    import os
+
+    from ..resources import resource_path
 
     try:
-        with open(resource_dir("grammars") / "val3.lark", encoding="utf-8") as f:
+        with open(os.path.join(resource_path("grammars"), "val3.lark"), encoding="utf-8") as f:
             return f.read().replace("\r\n", "\n")
     except OSError:
         return None
 
 
 def grammar_hash(text: str) -> str:
-    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+    from ..resources import sha256_hex
+
+    return sha256_hex(text.encode("utf-8"))
 
 
 def build_from_grammar(text: str, transformer: Any = None):
@@ -389,38 +423,62 @@ def build_from_grammar(text: str, transformer: Any = None):
     return Lark(text, **LARK_OPTIONS, transformer=transformer)
 
 
-def _load_shipped(transformer: Any = None):
-    from lark import Lark
-
-    from . import _tables
-
-    return Lark._load_from_dict(_tables.DATA, _tables.MEMO, transformer=transformer)
-
-
-def _load_lark(transformer: Any):
-    """The Lark object: from the shipped tables when they match the grammar file, else from
-    the grammar file itself."""
+def load_tables() -> dict:
+    """The parse tables (build_parser.compile_tables): the shipped ones when they match the
+    grammar file, else computed from the grammar file itself with Lark (while editing it)."""
     text = grammar_text()
     try:
         from . import _tables
 
         if text is None or _tables.GRAMMAR_SHA256 == grammar_hash(text):
-            return _load_shipped(transformer)
+            return {k: getattr(_tables, k) for k in ("LEXER", "STATES", "RULES", "START", "END")}
     except Exception:  # missing or incompatible tables: fall back on the grammar
         if text is None:
             raise
-    return build_from_grammar(text, transformer)  # type: ignore[arg-type]
+    from .build_parser import compile_tables
+
+    return compile_tables(build_from_grammar(text))  # type: ignore[arg-type]
 
 
 # ---------------------------------------------------------------- the engine
 
 
-def _is_unit(rule: Any) -> bool:
-    """A `?rule` alternative made of one other rule: Lark's callback returns the child."""
-    if len(rule.expansion) != 1 or not rule.options.expand1 or rule.alias:
-        return False
-    sym = rule.expansion[0]
-    return not sym.is_term and not sym.name.startswith("_")
+def _lone(children: list) -> Any:
+    if len(children) != 1:  # pragma: no cover - a grammar change Lark would build a Tree for
+        raise ValueError(f"a ?rule alternative kept {len(children)} children")
+    return children[0]
+
+
+def _reducer(builder: "_Builder", plan: tuple):
+    """The function of one rule: children as the LALR driver pops them -> the node.
+
+    It does what Lark's tree builder does (build_parser.compile_tables), written out as straight
+    code: e.g. `call: callee _LPAR [args] _RPAR` without args becomes
+    `lambda c: builder.call([c[0], None])`."""
+    callback, expand1, include, nones = plan
+    fn = getattr(builder, callback) if callback is not None else None
+    if fn is None and expand1:  # `?rule: _LPAR expr _RPAR`: the lone kept child itself
+        fn = _lone
+    if include is None and not nones and not expand1:
+        return fn if fn is not None else list
+    parts: list[str] = []  # items of the kept list, in order; "*" marks an inlined child list
+    for i, inline, before in include or ():
+        parts.extend(["None"] * before)
+        parts.append(f"*c[{i}]" if inline else f"c[{i}]")
+    parts.extend(["None"] * nones)
+    if include and include[0][1] and not include[0][2]:
+        # `__x_star: __x_star item`: extend the left child's own list (left recursion, linear)
+        body = [f"f = c[{include[0][0]}]"] + [f"f.append({p})" if not p.startswith("*") else f"f.extend({p[1:]})"
+                                               for p in parts[1:]]
+    else:
+        body = [f"f = [{', '.join(parts)}]"]
+    if expand1:
+        body.append("if len(f) == 1: return f[0]")
+    body.append("return fn(f)" if fn is not None else "return f")
+    src = "def reduce(c):\n" + "".join(f"    {line}\n" for line in body)
+    scope: dict = {"fn": fn}
+    exec(src, scope)  # noqa: S102 - source built above from the shipped tables
+    return scope["reduce"]
 
 
 class _Stop(Exception):
@@ -432,34 +490,19 @@ class _Engine:
 
     def __init__(self) -> None:
         self.builder = _Builder()
-        lk = _load_lark(self.builder)
-        lalr = lk.parser.parser  # LALR_Parser
-        table = lalr._parse_table
-        callbacks = lalr.parser.callbacks
-        # actions[state][symbol]: int = shift to (or goto) that state;
-        # tuple = reduce (number of children, rule name, callback)
-        actions: list[dict[str, Any]] = [dict() for _ in range(len(table.states))]
-        for state, row in table.states.items():
-            acts = actions[state]
-            for sym, (_kind, arg) in row.items():
-                if type(arg) is int:
-                    acts[sym] = arg
-                elif _is_unit(arg):  # `?rule: other_rule`: the value passes through unchanged
-                    acts[sym] = (1, arg.origin.name, None)
-                else:
-                    acts[sym] = (len(arg.expansion), arg.origin.name, callbacks[arg])
-        self.actions = actions
-        self.start_state = table.start_states["start"]
-        self.end_state = table.end_states["start"]
+        tables = load_tables()
+        # rules[k]: (number of children, rule name, callback); callback None for `?rule: other`
+        # (the value passes through unchanged: only the state changes)
+        rules = [(size, origin, None if plan is None else _reducer(self.builder, plan))
+                 for origin, size, plan in tables["RULES"]]
+        # actions[state][symbol]: int = shift to (or goto) that state; tuple = reduce
+        self.actions: list[dict[str, Any]] = [
+            {sym: (act if act >= 0 else rules[-1 - act]) for sym, act in row.items()} for row in tables["STATES"]]
+        self.start_state = tables["START"]
+        self.end_state = tables["END"]
         self.unit_memo: dict[tuple[int, int, str], int] = {}
-        self.expected = [frozenset(k for k in acts if k.isupper()) for acts in actions]
-
-        # One regex for all the terminals, in Lark's order (priority, then longest possible
-        # match, then longest pattern); leading blanks are skipped by the regex itself.
-        terms = [t for t in lk.terminals if t.name not in ("WS", "TO", "STEP")]
-        terms.sort(key=lambda t: (-t.priority, -t.pattern.max_width, -len(t.pattern.value), t.name))
-        alts = "|".join(f"(?P<{t.name}>{t.pattern.to_regexp()})" for t in terms)
-        self.regex = re.compile(r"[ \t\f\r]*(?:" + alts + r"|(?P<EOF>\Z))")
+        self.expected = [frozenset(k for k in acts if k.isupper()) for acts in self.actions]
+        self.regex = re.compile(tables["LEXER"])
 
     # -------------------------------------------------------------- driver
 
@@ -481,6 +524,7 @@ class _Engine:
         line = 1
         line_start = 0
         depth = 0
+        state = state_stack[-1]  # the top of state_stack, kept in a local
         while True:
             m = match(text, pos)
             if m is None:
@@ -492,68 +536,77 @@ class _Engine:
                 col = p - line_start + 1
                 ctx.report("F102", _char_message(ch), line, col, line, col + 1)
                 pos = self._recover(ctx, None, line, col, p)
+                state = state_stack[-1]
                 continue
-            typ = m.lastgroup
-            start = m.start(typ)
-            end = m.end()
-            value = text[start:end]
-            tok = Tok(typ, value, line, start - line_start + 1)
-            pos = end
-            if typ == "NAME":
+            ttype = m.lastgroup
+            start, pos = m.span(ttype)
+            value = text[start:pos]
+            if ttype == "NAME":
                 low = value.lower()
                 kw = keywords.get(low)
                 if kw is not None:
-                    tok.type = kw
+                    ttype = kw
                     if kw in openers:
                         depth += 1
                         if depth > MAX_BLOCK_DEPTH and ctx.deep_token is None:
-                            ctx.deep_token = tok
+                            ctx.deep_token = Tok((kw, value, line, start - line_start + 1))
                     elif kw in closers:
                         depth -= 1
-                elif low in ctx_keywords and ctx_keywords[low] in actions[state_stack[-1]]:
-                    tok.type = ctx_keywords[low]
-            elif typ == "_NL":
+                elif low in ctx_keywords and ctx_keywords[low] in actions[state]:
+                    ttype = ctx_keywords[low]
+                tok = (ttype, value, line, start - line_start + 1)
+            elif ttype == "_NL":
+                tok = (ttype, value, line, start - line_start + 1)
                 line += value.count("\n")
                 line_start = start + value.rindex("\n") + 1
-            elif typ == "COMMENT":
+            elif ttype == "COMMENT":
                 continue
-            elif typ == "EOF":
-                tok.type = "$END"
-            elif typ == "BADSTRING":
-                ctx.report("F101", "unterminated string: a string ends with '\"' on the same line",
-                           tok.line, tok.column, tok.line, tok.column + len(value))
-            elif typ == "BADNUMBER":
-                ctx.report("F103", _number_message(value), tok.line, tok.column, tok.line, tok.column + len(value))
+            else:
+                if ttype == "EOF":
+                    ttype = "$END"
+                col = start - line_start + 1
+                tok = (ttype, value, line, col)
+                if ttype == "BADSTRING":
+                    ctx.report("F101", "unterminated string: a string ends with '\"' on the same line",
+                               line, col, line, col + len(value))
+                elif ttype == "BADNUMBER":
+                    ctx.report("F103", _number_message(value), line, col, line, col + len(value))
 
             # feed the token to the LALR automaton
-            ttype = tok.type
             while True:
-                act = actions[state_stack[-1]].get(ttype)
+                act = actions[state].get(ttype)
                 if act is None:
-                    pos = self._recover(ctx, tok, tok.line, tok.column, pos)
+                    pos = self._recover(ctx, Tok(tok), tok[2], tok[3], pos)
+                    state = state_stack[-1]
                     break
                 if act.__class__ is int:
                     state_stack.append(act)
                     value_stack.append(tok)
+                    state = act
                     break
                 size, origin, callback = act
                 if callback is None:  # unit rules: only the state changes; chains are memoised
-                    key = (state_stack[-2], state_stack[-1], ttype)
-                    new_state = unit_memo.get(key)
-                    if new_state is None:
-                        new_state = unit_memo[key] = self._unit_chain(key)
-                    state_stack[-1] = new_state
+                    key = (state_stack[-2], state, ttype)
+                    state = unit_memo.get(key)
+                    if state is None:
+                        state = unit_memo[key] = self._unit_chain(key)
+                    state_stack[-1] = state
                     continue
-                if size:
-                    children = value_stack[-size:]
-                    del value_stack[-size:]
-                    del state_stack[-size:]
+                if size == 1:  # the most common reduction (leaves): replace the tops in place
+                    value_stack[-1] = callback([value_stack[-1]])
+                    state = state_stack[-1] = actions[state_stack[-2]][origin]
+                    continue  # (a one-symbol rule never completes the start rule)
                 else:
-                    children = []
-                value_stack.append(callback(children))
-                new_state = actions[state_stack[-1]][origin]
-                state_stack.append(new_state)
-                if new_state == end_state and ttype == "$END":
+                    if size:
+                        children = value_stack[-size:]
+                        del value_stack[-size:]
+                        del state_stack[-size:]
+                    else:
+                        children = []
+                    value_stack.append(callback(children))
+                state = actions[state_stack[-1]][origin]
+                state_stack.append(state)
+                if state == end_state and ttype == "$END":
                     return value_stack[-1]
 
     def _unit_chain(self, key: tuple[int, int, str]) -> int:
@@ -648,8 +701,8 @@ class _Engine:
         if not nl_consumed:
             nl = text.find("\n", pos)
             pos = nl if nl >= 0 else len(text)
-        nl_tok = bad if nl_consumed else Tok("_NL", "\n", line, col)
-        err_tok = Tok("ERROR", "", line, col)
+        nl_tok = bad if nl_consumed else Tok(("_NL", "\n", line, col))
+        err_tok = Tok(("ERROR", "", line, col))
         actions = self.actions
         end_state = self.end_state
         feed = self._feed
@@ -826,6 +879,7 @@ class _Message:
 
 def _syntax_message(ctx: _Context, tok: Tok, expected: frozenset[str], value_stack: list) -> _Message:
     """Say what was found and what was expected, in words, like a compiler would."""
+    value_stack = [as_tok(v) for v in value_stack]
     t = tok.type
     found = _describe(tok)
     # keyword tokens still on the stack: the blocks and clauses not closed yet
@@ -959,7 +1013,7 @@ def _number_message(text: str) -> str:
 
 def _expr_too_deep(body: A.ProgramBody):
     """The first statement with an expression nested more than MAX_EXPR_DEPTH levels."""
-    stmt_types = (A.Assign, A.ExprStatement, A.Call, A.TaskCreate, A.TaskCreateSync, A.Return, A.Break, A.If, A.While,
+    stmt_types = (A.Assign, A.ExprStatement, A.Call, A.TaskCreate, A.TaskCreateSync, A.Print, A.Return, A.Break, A.If, A.While,
                   A.DoUntil, A.For, A.Switch, A.Branch, A.Case, A.Default)
     stack: list[tuple[Any, int, Any]] = [(s, 0, s) for s in reversed(body.statements)]
     while stack:

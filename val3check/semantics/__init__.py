@@ -10,12 +10,15 @@ Programs whose code did not parse (`program.body is None`) are skipped.
 from __future__ import annotations
 
 from ..diagnostics import Diagnostic
+from ..language.target import Target
 from ..loading.model import Application, Workspace
 
 
-def analyse(workspace: Workspace, app: Application) -> list[Diagnostic]:
+def analyse(workspace: Workspace, app: Application, target: Target | None = None) -> list[Diagnostic]:
+    """`target`: the controller/version/arm `app` is checked for (language/target.py); by
+    default the version its project file writes, arm unknown."""
     from . import checker, patterns
 
-    found = checker.check_application(workspace, app)
+    found = checker.check_application(workspace, app, target)
     found.extend(patterns.check_application(workspace, app))
     return found

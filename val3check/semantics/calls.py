@@ -18,6 +18,7 @@ from ..language.instructions import (
     load_errata,
     load_instructions,
 )
+from ..language import s8
 from ..language.instructions import lookup as lookup_instruction
 from ..loading.model import Application, Container, Parameter, Program
 from ..parsing import ast as A
@@ -112,7 +113,7 @@ def check_call_expr(typer: ExprTyper, node: A.CallExpr, statement: bool) -> vt.V
         if ins is not None:
             ctx.report_at("T018", M.library_prefix_unexpected(func.alias, func.name), func)
             return UNKNOWN_VAL
-        if ctx.names_complete("data", lib.app) and ctx.names_complete("program", lib.app):
+        if ctx.names_complete("data", lib.app) and not ctx.program_may_exist(func.name, lib.app):
             publics = [n for n, p in lib.app.programs.items() if p.access == "public"]
             ctx.report_at("L010", M.undefined_library_symbol(func.alias, func.name, lib.app.name,
                                                              suggest(func.name, publics)), func)
@@ -126,8 +127,15 @@ def check_call_expr(typer: ExprTyper, node: A.CallExpr, statement: bool) -> vt.V
             ctx.report_at("T018", M.library_prefix_needed(ins.name), func)
             return UNKNOWN_VAL
         return _instruction(typer, node, ins, statement)
-    _type_args(typer, node.args)
     table = ctx.table
+    new = s8.instruction(name)
+    if new is not None and table.program(name) is None and table.program_ci(name) is None:
+        ctx.s8_only(f"{new.name}()", func)
+        if new.instruction is not None:
+            return _instruction(typer, node, new.instruction, statement, s7=False)
+        _type_args(typer, node.args)
+        return UNKNOWN_VAL
+    _type_args(typer, node.args)
     if table.program(name) is not None or table.program_ci(name) is not None:
         ctx.report_at("T018", M.program_without_call(name), func)
         return UNKNOWN_VAL
@@ -135,12 +143,13 @@ def check_call_expr(typer: ExprTyper, node: A.CallExpr, statement: bool) -> vt.V
     if sym is not None:
         ctx.report_at("N003", M.variable_called(name), func)
         return UNKNOWN_VAL
-    if ctx.globals_known and not ctx.names_complete("program"):
-        return UNKNOWN_VAL  # maybe a program of a file that could not be read, called without call
+    if ctx.globals_known and ctx.program_may_exist(name):
+        return UNKNOWN_VAL  # maybe the program of a file that could not be read, called without call
     erratum = load_errata().get(name.lower())
     close = erratum.canonical if erratum is not None else _close_instruction(name)
     if ctx.strict_version and close is not None:
-        ctx.report_at("N003", M.undefined_instruction(name, close), func)
+        ctx.s7_only("N003", M.undefined_instruction(name, close), func, "N004",
+                    M.unknown_instruction_s8(name, ctx.app.version))
     elif ctx.strict_version:
         ctx.report_at("N004", M.unknown_instruction_s7(name), func)
     else:
@@ -191,7 +200,19 @@ def _type_args(typer: ExprTyper, args: list) -> list[vt.Val]:
     return [typer.typeof(a) for a in args]
 
 
-def _instruction(typer: ExprTyper, node: A.CallExpr, ins: Instruction, statement: bool) -> vt.Val:
+def _s8_form(ins: Instruction, vals: list[vt.Val]) -> s8.S8Form | None:
+    """The s8 form of `ins` (s8.toml) that these arguments select, if any."""
+    n = len(vals)
+    for form in s8.forms(ins.name):
+        o = form.overload
+        if o.accepts_arity(n) and all(_type_ok(p, v) for p, v in zip(o.params, vals)):
+            return form
+    return None
+
+
+def _instruction(typer: ExprTyper, node: A.CallExpr, ins: Instruction, statement: bool, s7: bool = True) -> vt.Val:
+    """A call of the catalogue instruction `ins`; `s7`: the signatures are the manual's (a
+    mismatch is a sure error on s7), not the partly known ones of an s8 instruction."""
     ctx = typer.ctx
     args = node.args
     if ins.name == "isDefined":  # 2.5.4: the way to probe a library interface
@@ -206,13 +227,18 @@ def _instruction(typer: ExprTyper, node: A.CallExpr, ins: Instruction, statement
     func = node.func
     label = f"{ins.name}()"
     cands = ins.overloads_with_arity(n)
+    full = [o for o in cands if all(_type_ok(p, v) for p, v in zip(o.params, vals))]
+    if not full:
+        form = _s8_form(ins, vals)
+        if form is not None:  # an s8 form of an s7 instruction (s8.toml)
+            ctx.s8_only(f"the form {form.overload.signature(ins.name)}", func)
+            cands = full = [form.overload]
     if not cands:
         sigs = [o.signature(ins.name) for o in ins.overloads]
         counts = sorted({c for o in ins.overloads for c in range(o.min_arity, o.max_arity + 1)})
         msg = M.arity(label, _count_words(counts), n, sigs)
-        ctx.report_at(*_signature_finding(ctx, "T005", msg), func)
+        _signature_finding(ctx, "T005", msg, s7, func)
         return _common_return(ins.overloads, statement)
-    full = [o for o in cands if all(_type_ok(p, v) for p, v in zip(o.params, vals))]
     if not full:
         best = max(cands, key=lambda o: sum(1 for p, v in zip(o.params, vals) if _type_ok(p, v)))
         i = next(i for i, (p, v) in enumerate(zip(best.params, vals)) if not _type_ok(p, v))
@@ -225,7 +251,7 @@ def _instruction(typer: ExprTyper, node: A.CallExpr, ins: Instruction, statement
             msg = M.argument_type(i + 1, label, p.name, expected, got)
         else:
             msg = M.argument_type_overloads(i + 1, label, got, [o.signature(ins.name) for o in cands])
-        ctx.report_at(*_signature_finding(ctx, "T006", msg), args[i])
+        _signature_finding(ctx, "T006", msg, s7, args[i])
         return _common_return(cands, statement)
     chosen = None
     first_errors: list[_Pending] = []
@@ -403,12 +429,15 @@ def _param_text(p: Parameter) -> str:
     return f"{p.type}{amp} {p.name}{tail}"
 
 
-def _signature_finding(ctx, code: str, message: str) -> tuple[str, str]:
-    """s8 adds overloads to s7 instructions (e.g. logMsg with a second argument on CS9): there a
-    call that matches no s7 signature is T024, a warning, instead of a sure error."""
-    if ctx.strict_version:
-        return code, message
-    return "T024", M.s8_signature(message)
+def _signature_finding(ctx, code: str, message: str, s7: bool, node: object) -> None:
+    """s8 adds overloads to s7 instructions (e.g. logMsg with a second argument on CS9, s8.toml):
+    there a call that matches no s7 signature nor a known s8 form is T024, a warning, instead of a
+    sure error; so in code saved as s7 that uses s8 forms (Context.settle). So is a call of an
+    s8 instruction whose signature does not match what is known."""
+    if ctx.strict_version and s7:
+        ctx.s7_only(code, message, node, "T024", M.s8_signature(message))
+    else:
+        ctx.report_at("T024", M.s8_signature(message), node)
 
 
 def check_program_args(typer: ExprTyper, target: object, label: str, sig: ProgramSignature, args: list,

@@ -13,6 +13,7 @@ types any expression of that program (diagnostics go to its `ctx.diags`).
 from __future__ import annotations
 
 from ..diagnostics import Diagnostic
+from ..language.target import Target
 from ..loading.model import Application, Program, Workspace
 from . import symbols
 from .context import Context
@@ -21,10 +22,12 @@ from .expressions import ExprTyper
 from .statements import StatementChecker
 
 
-def check_application(workspace: Workspace, app: Application) -> list[Diagnostic]:
+def check_application(workspace: Workspace, app: Application, target: Target | None = None) -> list[Diagnostic]:
+    """`target`: what the application is checked for (default: its project file's version)."""
     table = symbols.build(workspace, app)
-    diags: list[Diagnostic] = check_declarations(table)
-    ctx = Context(workspace, app, table, diags)
+    ctx = Context(workspace, app, table, [], target)
+    diags: list[Diagnostic] = check_declarations(table, ctx.target)
+    ctx.diags = diags
     checker = StatementChecker(ctx, {})
     for program in app.programs.values():
         body = program.body
@@ -33,12 +36,13 @@ def check_application(workspace: Workspace, app: Application) -> list[Diagnostic
         ctx.enter(program)
         checker.literal_vals.clear()
         checker.check(body)
+    ctx.settle()
     return diags
 
 
 def program_typer(workspace: Workspace, app: Application, program: Program,
-                  table: symbols.AppSymbols | None = None) -> ExprTyper:
+                  table: symbols.AppSymbols | None = None, target: Target | None = None) -> ExprTyper:
     """An expression typer for `program` (its diagnostics collect in `typer.ctx.diags`)."""
-    ctx = Context(workspace, app, table or symbols.build(workspace, app), [])
+    ctx = Context(workspace, app, table or symbols.build(workspace, app), [], target)
     ctx.enter(program)
     return ExprTyper(ctx)

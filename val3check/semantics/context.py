@@ -4,7 +4,9 @@ scope, and where findings go."""
 from __future__ import annotations
 
 from ..diagnostics import Diagnostic
+from ..language.target import Target, target_for
 from ..loading.model import Application, Program, Workspace
+from . import messages as M
 from .symbols import AppSymbols, Scope
 
 
@@ -15,9 +17,12 @@ class Context:
     name is an error there; s8 and later may have instructions the s7 catalogue lacks.
     `globals_known`: False for .pgx files without project (globals, libraries, user types and
     possibly programs unknown): undefined names are then not reported.
+    `target`: the controller/version/arm the application is checked for (language/target.py);
+    by default the version of its project file.
     """
 
     __slots__ = (
+        "_s7_only",
         "app",
         "diags",
         "dio_assign_removed",
@@ -25,18 +30,22 @@ class Context:
         "major",
         "path",
         "program",
+        "s8_evidence",
         "scope",
         "strict_version",
         "table",
+        "target",
         "workspace",
     )
 
-    def __init__(self, workspace: Workspace, app: Application, table: AppSymbols, diags: list[Diagnostic]) -> None:
+    def __init__(self, workspace: Workspace, app: Application, table: AppSymbols, diags: list[Diagnostic],
+                 target: Target | None = None) -> None:
         self.workspace = workspace
         self.app = app
         self.table = table
         self.diags = diags
-        self.major = app.version_major
+        self.target = target if target is not None else target_for(app.version, None)
+        self.major = self.target.major
         self.strict_version = self.major is None or self.major < 8
         self.globals_known = app.globals_known
         # 3.5.2: "L'opérateur '=' entre les deux variables dio n'existe plus avec VAL 3 s7".
@@ -44,6 +53,11 @@ class Context:
         self.scope: Scope | None = None
         self.program: Program | None = None
         self.path = ""
+        # The code uses s8 forms although the project file says s7 (T030), or the application
+        # has s8 web user pages (*.bindings.json): it is CS9 code, and the findings that only
+        # hold on s7 (`_s7_only`) are turned into their s8 warning.
+        self.s8_evidence = bool(app.ui_names)
+        self._s7_only: list[tuple[int, str, str]] = []
 
     def names_complete(self, kind: str, app: Application | None = None) -> bool:
         """Every `kind` ("data"/"program") file of `app` (default: the checked one) was read:
@@ -51,6 +65,43 @@ class Context:
         loader reported it once and the name checks stay quiet."""
         app = app or self.app
         return app.layout != "pgx-only" and kind not in app.unread
+
+    def program_may_exist(self, name: str, app: Application | None = None) -> bool:
+        """A program `name` may exist although it is not loaded: a listed program file that
+        could not be read is named after it (files are named after their program), or the
+        application has no project file (its other programs are not known)."""
+        app = app or self.app
+        return app.layout == "pgx-only" or name.lower() in app.unread_programs
+
+    def s8_only(self, what: str, node: object) -> None:
+        """`what` (a form, an instruction, a statement) exists from s8 on: fine on an s8 target,
+        T031 (error) on an s7 target the configuration names, T030 (warning) when the project
+        file says s7 (or no version): real CS9 code is often saved that way."""
+        t = self.target
+        if t.s8:
+            return
+        if t.explicit:
+            self.report_at("T031", M.s8_on_s7_target(what, t.label), node)
+        else:
+            self.s8_evidence = True
+            self.report_at("T030", M.s8_only(what, t.label), node)
+
+    def s7_only(self, code: str, message: str, node: object, s8_code: str, s8_message: str) -> None:
+        """A finding that is sure on s7 but not on s8 (a call matching no s7 signature may be an
+        s8 form val3check does not know): reported as `code`, and turned into `s8_code` by
+        `settle()` when the application turns out to use s8 forms."""
+        self._s7_only.append((len(self.diags), s8_code, s8_message))
+        self.report_at(code, message, node)
+
+    def settle(self) -> None:
+        """After every program is checked: code that uses s8 forms (T030) is CS9 code whatever its
+        project file says, so its s7-only findings become the s8 warnings (unless the
+        configuration names the target)."""
+        if self.s8_evidence and not self.target.explicit:
+            for i, code, message in self._s7_only:
+                d = self.diags[i]
+                self.diags[i] = Diagnostic(code, message, d.path, d.line, d.col, d.end_line, d.end_col)
+        self._s7_only.clear()
 
     def enter(self, program: Program) -> None:
         self.program = program

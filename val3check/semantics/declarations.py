@@ -1,6 +1,6 @@
 """Checks of what the project files declare (no code needed): names (2.5.1), duplicate
-parameters and locals, start()/stop() without parameters (2.2.3, 2.2.4), unknown types, and one
-arm family per application (9.7.2, SRS files).
+parameters and locals, start()/stop() without parameters (2.2.3, 2.2.4), unknown types, and
+positions for the arm (9.7.2, SRS files: Rx types for six-axis arms, Rs types for SCARA).
 
 Duplicate programs and globals of one application are reported by the loader (F011).
 """
@@ -10,6 +10,7 @@ from __future__ import annotations
 import re
 
 from ..diagnostics import Diagnostic
+from ..language.target import Target, target_for
 from ..loading.model import Application, Origin, Program
 from . import messages as M
 from . import vtypes as vt
@@ -48,18 +49,19 @@ def _diag(code: str, message: str, origin: Origin) -> Diagnostic:
     return Diagnostic(code, message, origin.path, origin.line, origin.col)
 
 
-def check_declarations(table: AppSymbols) -> list[Diagnostic]:
+def check_declarations(table: AppSymbols, target: Target | None = None) -> list[Diagnostic]:
     app = table.app
+    target = target if target is not None else target_for(app.version, None)
     out: list[Diagnostic] = []
     # s8 may allow longer names: only the characters are checked there.
-    max_len = 15 if app.version_major is None or app.version_major < 8 else None
+    max_len = None if target.s8 else 15
     families: list[tuple[str, str, str, Origin]] = []  # (family, kind, name, origin)
 
     for d in app.data.values():
         problem = name_problem(d.name, max_len)
         if problem:
             out.append(_diag(problem[0], M.invalid_name("global", d.name, problem[1]), d.origin))
-        _type_check(table, "global", d.name, d.type, d.origin, out, families)
+        _type_check(table, target, "global", d.name, d.type, d.origin, out, families)
 
     for prog in app.programs.values():
         problem = name_problem(prog.name, max_len, _PROGRAM_NAME)
@@ -67,14 +69,14 @@ def check_declarations(table: AppSymbols) -> list[Diagnostic]:
             out.append(_diag(problem[0], M.invalid_name("program", prog.name, problem[1]), prog.origin))
         if prog.name in ("start", "stop") and prog.parameters:
             out.append(_diag("N009", M.start_stop_params(prog.name, len(prog.parameters)), prog.origin))
-        _program_declarations(table, prog, max_len, out, families)
+        _program_declarations(table, target, prog, max_len, out, families)
 
-    out.extend(_families(families))
+    out.extend(_families(families, target))
     return out
 
 
-def _program_declarations(table: AppSymbols, prog: Program, max_len: int | None, out: list[Diagnostic],
-                          families: list) -> None:
+def _program_declarations(table: AppSymbols, target: Target, prog: Program, max_len: int | None,
+                          out: list[Diagnostic], families: list) -> None:
     seen: dict[str, tuple[str, int]] = {}
     for kind, decls in (("parameter", prog.parameters), ("local", prog.locals)):
         for d in decls:
@@ -86,17 +88,16 @@ def _program_declarations(table: AppSymbols, prog: Program, max_len: int | None,
                 out.append(_diag("N007", M.duplicate_local(kind, d.name, first[0], first[1]), d.origin))
             else:
                 seen[d.name] = (kind, d.origin.line)
-            _type_check(table, kind, d.name, d.type, d.origin, out, families)
+            _type_check(table, target, kind, d.name, d.type, d.origin, out, families)
 
 
-def _type_check(table: AppSymbols, kind: str, name: str, type_name: str, origin: Origin, out: list[Diagnostic],
-                families: list) -> None:
+def _type_check(table: AppSymbols, target: Target, kind: str, name: str, type_name: str, origin: Origin,
+                out: list[Diagnostic], families: list) -> None:
     app: Application = table.app
     if vt.builtin(type_name) is None:
         low = type_name.lower()
         declared = any(n.lower() == low for n in app.types)
-        s8 = app.version_major is not None and app.version_major >= 8  # may have types s7 lacks
-        if not declared and app.globals_known and not s8:
+        if not declared and app.globals_known and not target.s8:  # s8 may have types s7 lacks
             out.append(_diag("N010", M.undefined_type(kind, name, type_name), origin))
         return
     fam = vt.family_of(type_name)
@@ -104,22 +105,27 @@ def _type_check(table: AppSymbols, kind: str, name: str, type_name: str, origin:
         families.append((fam, kind, name, type_name, origin))
 
 
-def _families(families: list) -> list[Diagnostic]:
+_ARM_KIND = {"Rx": "six-axis", "Rs": "SCARA"}
+
+
+def _families(families: list, target: Target) -> list[Diagnostic]:
+    """Positions of the other arm family (9.7.2). When the controller tree says which arm the
+    application runs on, each declaration of the other family is N011 (an error), at its line;
+    when the arm is not known, an application that declares both families gets one N016 (a
+    warning): a library may offer both forms, and which side is right is not known."""
     if not families:
         return []
+    arm = target.family
+    if arm is not None:
+        where = f"{target.arm} in {target.arm_source}" if target.arm_source else str(target.arm)
+        return [_diag("N011", M.wrong_arm_family(kind, name, type_name, fam, arm, _ARM_KIND[arm], where), origin)
+                for fam, kind, name, type_name, origin in families if fam != arm]
     counts: dict[str, int] = {}
-    first_of: dict[str, tuple] = {}
     for f in families:
         counts[f[0]] = counts.get(f[0], 0) + 1
-        first_of.setdefault(f[0], f)
     if len(counts) < 2:
         return []
     order = [f[0] for f in families]
     main = max(counts, key=lambda k: (counts[k], -order.index(k)))
-    ref = first_of[main]
-    where = f"{ref[1]} {ref[2]} is a {ref[3]}"
-    out = []
-    for fam, kind, name, type_name, origin in families:
-        if fam != main:
-            out.append(_diag("N011", M.mixed_families(kind, name, type_name, main, where), origin))
-    return out
+    fam, kind, name, type_name, origin = next(f for f in families if f[0] != main)
+    return [_diag("N016", M.mixed_families_unknown_arm(kind, name, type_name, counts), origin)]

@@ -109,10 +109,15 @@ class ExprTyper:
 
     def elem(self, node: object) -> vt.Val:
         """The Val of `node` where one value is needed: a container without index is reported
-        (2.3.4, 2.5.3) and read as one value of its type."""
+        (2.3.4, 2.5.3) and read as one value of its type, still a variable when it is one: a bare
+        1-D array of several values (a warning, T025) stands for its first value, so
+        `pTarget.trsf.x = v` is the same warning as reading it, and no container gets a second
+        finding ("must be a variable") after its missing index."""
         v = self.typeof(node)
         if v.elem is False:
             self._report_missing_index(node, v)
+            if v.var:
+                return vt.Val(v.t, ELEMENT, 1, True, True, v.root, False, FROM_ARRAY, v.field)
             return vt.value(v.t)
         return v
 
@@ -205,7 +210,7 @@ class ExprTyper:
             ctx.report_at("N006", M.case_mismatch("library symbol", name, other), node)
             sym, _ = lib.data_symbol(other)
             return sym.val if sym is not None else UNKNOWN_VAL
-        if ctx.names_complete("data", lib.app) and ctx.names_complete("program", lib.app):
+        if ctx.names_complete("data", lib.app) and not ctx.program_may_exist(name, lib.app):
             publics = [n for n, d in lib.app.data.items() if d.access == "public"]
             ctx.report_at("L010", M.undefined_library_symbol(node.alias, name, lib.app.name, suggest(name, publics)),
                           node)

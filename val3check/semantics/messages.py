@@ -75,9 +75,17 @@ def undefined_type(kind: str, name: str, type_name: str) -> str:
             " declared in the project (2.3, 7)")
 
 
-def mixed_families(kind: str, name: str, type_name: str, first: str, first_where: str) -> str:
-    return (f"{kind} {name} is {a(type_name)}, but the application already uses {first} types ({first_where}):"
-            " an application is written for one arm family (Rx: six-axis arms, Rs: SCARA)")
+def wrong_arm_family(kind: str, name: str, type_name: str, family: str, arm_family: str, arm_kind: str,
+                     where: str) -> str:
+    return (f"{kind} {name} is {a(type_name)} ({family} type), but the arm of this controller is a {arm_kind} arm"
+            f" ({where}): its positions are {arm_family} types (9.7.2)")
+
+
+def mixed_families_unknown_arm(kind: str, name: str, type_name: str, counts: dict[str, int]) -> str:
+    both = " and ".join(f"{n} {fam}" for fam, n in sorted(counts.items()))
+    return (f"{kind} {name} is {a(type_name)}: this application declares positions of both arm families"
+            f" ({both} declarations; Rx: six-axis arms, Rs: SCARA) and its arm is not known (no controller tree"
+            " with usr/configs/arm.cfx): check that the declarations of the other family are meant")
 
 
 # ------------------------------------------------------------------------------ types (T)
@@ -297,3 +305,16 @@ def undefined_user_field(type_name: str, field: str, known: Iterable[str]) -> st
 
 def private_user_field(type_name: str, field: str) -> str:
     return f"{field} is a private global of user type {type_name}'s application: it is not a field of the type (7.2)"
+
+
+# ------------------------------------------------------------------------------ s8 (T030, T031)
+
+
+def s8_only(what: str, target: str) -> str:
+    return (f"{what} is s8 only (CS9 controllers) and this application targets {target}: it runs on a CS9,"
+            " a CS8 refuses it; say which controller you target in the configuration (target = \"CS9\" or"
+            " target = \"CS8 s7.11\")")
+
+
+def s8_on_s7_target(what: str, target: str) -> str:
+    return f"{what} is s8 only (CS9 controllers): the target {target} does not have it"

@@ -337,6 +337,7 @@ def _statements(statements: list):
 def _loop_is_busy(loop: object, scope: Scope) -> bool:
     """Nothing in the loop can wait or yield, and the loop does not change its own condition."""
     written: set[str] = set()
+    yielding, instructions, constants = _yielding(), load_instructions(), _constants()
     for node in A.walk(loop):
         t = type(node)
         if t is A.Return or t is A.Call or t is A.TaskCreate or t is A.TaskCreateSync:
@@ -345,7 +346,7 @@ def _loop_is_busy(loop: object, scope: Scope) -> bool:
             if type(node.func) is not A.Name:
                 return False  # library or system call: unknown
             name = node.func.name.lower()
-            if name in _yielding() or name not in load_instructions():
+            if name in yielding or name not in instructions:
                 return False
             for arg, w in zip(node.args, Resolver.call_writes(node)):
                 if w:
@@ -365,7 +366,7 @@ def _loop_is_busy(loop: object, scope: Scope) -> bool:
             key = node.name.lower()
             typ = scope.type_of(node.name, ci=True)
             if typ is None:
-                if key not in _constants() and key not in load_instructions():
+                if key not in constants and key not in instructions:
                     return False  # unknown name: maybe a sio global of an application without data
             elif builtin_type(typ) == "sio":
                 return False  # reading or writing a sio waits (5.4)

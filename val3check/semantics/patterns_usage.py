@@ -16,7 +16,7 @@ Rules here:
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass, field
+from ..records import dataclass, field
 from functools import cache
 
 from ..diagnostics import Diagnostic
@@ -227,9 +227,12 @@ def gather(body: A.ProgramBody) -> ProgramFacts:
 
 
 def application_is_library(workspace: Workspace, app: Application) -> bool:
-    """A library or user type: no start() (manual 6.1), or used as one by another loaded app.
-    Its public programs and globals are an interface (6.2, 7.2)."""
-    if not any(name.lower() == "start" for name in app.programs):
+    """A library or user type: no start() (manual 6.1), a start() that does nothing (SRS creates
+    user types and libraries with empty start() and stop(): linted alone, nothing else says what
+    they are), or used as one by another loaded application. Its public programs and globals are
+    an interface (6.2, 7.2)."""
+    start = next((p for name, p in app.programs.items() if name.lower() == "start"), None)
+    if start is None or (start.body is not None and not start.body.statements):
         return True
     key = app.path
     for other in workspace.apps.values():
@@ -295,6 +298,7 @@ def unused_globals(app: Application, facts: dict[str, ProgramFacts], library: bo
         used.update(n.lower() for n in f.names if n not in own)  # a local hides the global (2.5.2)
         tokens.update(f.string_tokens())
     used |= _father_names(app)
+    used |= app.ui_names  # bound by an s8 web user page
     out = []
     for data in app.data.values():
         key = data.name.lower()
@@ -329,6 +333,11 @@ def unused_programs(app: Application, facts: dict[str, ProgramFacts], library: b
             continue
         if called_by.get(key, set()) - {key}:
             continue
+        if key in app.ui_names:
+            continue  # a callback of an s8 web user page (*.bindings.json)
+        body = program.body
+        if body is not None and not body.statements and body.comments:
+            continue  # comments only (a `readme`): documentation, not dead code
         o = program.origin
         out.append(Diagnostic(M.UNUSED_PROGRAM, M.unused_program(program.name), o.path, o.line, o.col))
     return out

@@ -27,6 +27,7 @@ class StatementChecker(ExprTyper):
             A.Call: self._call_statement,
             A.TaskCreate: self._task_create,
             A.TaskCreateSync: self._task_create_sync,
+            A.Print: self._print,
             A.If: self._if,
             A.While: self._while,
             A.DoUntil: self._do,
@@ -51,6 +52,11 @@ class StatementChecker(ExprTyper):
 
     def _expr_statement(self, st: A.ExprStatement) -> None:
         self.call(st.call, True)
+
+    def _print(self, st: A.Print) -> None:
+        for v in st.values:
+            self.typeof(v)  # any value, containers included: what the emulator prints is not documented
+        self.ctx.s8_only("the print statement '? expr'", st)
 
     def _condition(self, cond: object, keyword: str) -> None:
         v = self.elem(cond)
@@ -131,7 +137,7 @@ class StatementChecker(ExprTyper):
                     ctx.report_at("N006", M.case_mismatch("library program", target.name, other), target)
                     prog, why = lib.program(other)
                 else:
-                    if ctx.names_complete("program", lib.app) and ctx.names_complete("data", lib.app):
+                    if not ctx.program_may_exist(target.name, lib.app) and ctx.names_complete("data", lib.app):
                         publics = [n for n, p in lib.app.programs.items() if p.access == "public"]
                         ctx.report_at("L010", M.undefined_library_symbol(target.alias, target.name, lib.app.name,
                                                                          suggest(target.name, publics)), target)
@@ -152,7 +158,7 @@ class StatementChecker(ExprTyper):
             ins = lookup_instruction(name)
             if ins is not None:
                 ctx.report_at("T018", M.call_of_instruction(ins.name), target)
-            elif ctx.globals_known and ctx.names_complete("program"):
+            elif ctx.globals_known and not ctx.program_may_exist(name):
                 ctx.report_at("N002", M.undefined_program(name, suggest(name, table.app.programs)), target)
             return None, label, vals
         return signature(table.registry, ctx.app, prog, self.signatures), label, vals

@@ -1,0 +1,91 @@
+"""Per-motion records and cycle times."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from val3check.motion.cycle import CycleCounter, cycle_stats
+from val3check.motion.findings import Source
+from val3check.motion.mdesc import MDesc
+from val3check.motion.records import busy_time, motion_records
+
+from .motionhelp import HOME, movej, movel, point, queue, run
+
+
+def test_movel_record_at_a_tvel_limit():
+    q = queue()
+    q.record(movel(point(dy=300.0, name="pA"), MDesc(blend="off", tvel=250.0), line=11), 0.0)
+    t = run(q)
+    (r,) = motion_records(q)
+    assert r.id == 0 and r.kind == "movel" and r.source.line == 11 and r.state == "done"
+    assert r.start == 0.0 and r.end == pytest.approx(t)
+    assert r.length_mm == pytest.approx(300.0, rel=1e-6)
+    assert r.peak_tcp_mm_s == pytest.approx(250.0, rel=1e-4)
+    assert r.dominant == "tvel"
+    assert r.target == "pA"
+    d = r.as_dict()
+    assert d["line"] == 11 and d["dominant_limit"] == "tvel"
+
+
+def test_movej_records_name_the_axis_and_the_phase():
+    start = HOME.copy()
+    start[3] = -250.0
+    long_ = HOME.copy()
+    long_[3] = 250.0  # 500° of j4 at 50 %: cruise most of the time
+    q = queue(joints=start)
+    q.record(movej(long_, MDesc(vel=50, blend="off")), 0.0)
+    t = run(q)
+    short = long_.copy()
+    short[0] += 60.0
+    q.record(movej(short, MDesc(decel=50, blend="off")), t)
+    run(q, t)
+    r1, r2 = motion_records(q)
+    assert r1.dominant == "j4 speed"
+    assert r2.dominant == "j1 decel"
+    assert sum(r1.limit_share.values()) == pytest.approx(r1.duration, rel=1e-9)
+
+
+def test_cycle_times_start_at_the_first_motion_of_the_loop():
+    q = queue()
+    home = Source("app/start.pgx", 5, 3, "start", "robot")
+    a = Source("app/start.pgx", 8, 5, "start", "robot")
+    b = Source("app/start.pgx", 9, 5, "start", "robot")
+    counter = CycleCounter()
+    now = 0.0
+    q.record(_mj(HOME + [10, 0, 0, 0, 0, 0], home), now)
+    counter.note("robot", home)
+    for _ in range(4):
+        q.record(_mj(HOME + [40, 0, 0, 0, 0, 0], a), now)
+        counter.note("robot", a)
+        q.record(_mj(HOME + [-20, 10, 0, 0, 0, 0], b), now)
+        counter.note("robot", b)
+        now = run(q, now) + 0.3  # the program waits 0.3 s each cycle
+    st = cycle_stats(motion_records(q))["robot"]
+    assert st.marker == ("app/start.pgx", 8, 5)
+    assert st.count == 3 == counter.completed("robot")
+    times = st.times
+    assert times[1] == pytest.approx(times[2], abs=1e-9)  # from the second pass on, the same cycle
+    recs = motion_records(q)
+    one = recs[4].end - recs[3].start  # a (from b) then b, then the program's 0.3 s
+    assert times[1] == pytest.approx(one + 0.3, abs=1e-9)
+    assert times[0] == pytest.approx(recs[2].end - recs[1].start + 0.3, abs=1e-9)
+    s = st.summary()
+    assert s["cycles"] == 3 and s["median"] == pytest.approx(times[1])
+    busy, idle = busy_time(q.profile, now)
+    assert busy + idle == pytest.approx(now) and idle >= 4 * 0.3 - 1e-9
+
+
+def _mj(j, src):
+    from val3check.motion.commands import MoveCommand, Target
+
+    return MoveCommand("movej", Target.joint(j), MDesc(blend="off"), source=src)
+
+
+def test_records_of_cancelled_and_failed_commands():
+    q = queue()
+    q.record(movej(HOME + [120, 0, 0, 0, 0, 0]), 0.0)
+    q.reset_motion(0.1)
+    (r,) = motion_records(q)
+    assert r.state == "cancelled" and r.start == 0.0 and r.end > 0.1
+    assert np.isfinite(r.length_mm)

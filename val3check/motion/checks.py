@@ -1,0 +1,79 @@
+"""Thresholds of the motion diagnostics and the analysis of a path near a singularity.
+
+10.1.4.3: near a singularity two axes line up and a small motion of the tool needs large joint
+motions; on a straight line or a circle the joint speed limits then force the tool to slow down,
+and through the singularity the path cannot be followed at all (10.3.4: the arm would stop on a
+following error). The manual gives no figures; val3check uses these (docs/motion.md):
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+# A position is "near" a singularity below these distances (kin.Singularity).
+THRESHOLDS = {"wrist": 5.0, "elbow": 5.0, "shoulder": 30.0}  # degrees, degrees, mm
+UNITS = {"wrist": "°", "elbow": "°", "shoulder": " mm"}
+WHAT = {
+    "wrist": "wrist singularity (axes 4 and 6 aligned, j5 = 0)",
+    "elbow": "elbow singularity (arm stretched)",
+    "shoulder": "shoulder singularity (wrist centre on axis 1)",
+}
+# A Cartesian path near a singularity is reported (warning) when the joint speed limits cut the
+# TCP speed there below this fraction of the speed the path allows elsewhere (or of tvel).
+SLOWDOWN_WARN = 0.5
+# The static reach check: a joint within this margin of a software limit is "near" it (degrees).
+LIMIT_MARGIN = 2.0
+
+
+@dataclass
+class SingularPass:
+    """How a Cartesian path passes a singularity (the closest gridpoint)."""
+
+    which: str  # "wrist" | "elbow" | "shoulder"
+    distance: float  # degrees or mm (see THRESHOLDS)
+    index: int  # gridpoint of the closest approach
+    axis: int  # the axis whose speed limit binds there (0-based)
+    cap: float  # TCP speed the joint speed limits allow there (mm/s)
+    reference: float  # TCP speed the path allows elsewhere, at most tvel (mm/s)
+    needed: float  # speed the axis would need to keep `reference` (deg/s)
+    nominal: float  # that axis's speed limit (deg/s)
+
+    @property
+    def ratio(self) -> float:
+        return self.cap / self.reference if self.reference > 0 else 1.0
+
+
+def nearest(sing) -> tuple[str, float, int]:
+    """(which, distance, gridpoint) of the closest approach to a singularity, relative to the
+    thresholds."""
+    best = ("wrist", np.inf, 0, np.inf)
+    for which in ("wrist", "elbow", "shoulder"):
+        d = getattr(sing, which)
+        if len(d) == 0:
+            continue
+        i = int(np.argmin(d))
+        rel = float(d[i]) / THRESHOLDS[which]
+        if rel < best[3]:
+            best = (which, float(d[i]), i, rel)
+    return best[0], best[1], best[2]
+
+
+def singular_pass(sing, q1: np.ndarray, pt: np.ndarray, V: np.ndarray, tvel: float) -> SingularPass | None:
+    """The closest approach of a path to a singularity when it is within the thresholds, with
+    what it costs: the TCP speed cap from the joint speed limits there versus the cap elsewhere
+    (at most tvel). q1: dq/dσ (N, 6); pt: |dp/dσ| (N,); V: joint speed limits (6,)."""
+    which, dist, i = nearest(sing)
+    if not np.isfinite(dist) or dist >= THRESHOLDS[which]:
+        return None
+    aq = np.abs(q1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        per_axis = np.where(aq > 1e-12, V / aq, np.inf) * pt[:, None]  # mm/s allowed by each axis
+    cap = per_axis.min(axis=1)
+    finite = cap[np.isfinite(cap)]
+    ref_path = float(np.percentile(finite, 90)) if len(finite) else np.inf
+    reference = min(tvel, ref_path)
+    axis = int(np.argmin(per_axis[i])) if np.isfinite(cap[i]) else 0
+    needed = float(aq[i, axis] / pt[i] * reference) if pt[i] > 1e-12 else float("inf")
+    return SingularPass(which, dist, i, axis, float(cap[i]), float(reference), needed, float(V[axis]))

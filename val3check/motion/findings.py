@@ -1,0 +1,85 @@
+"""What the motion core reports: typed records with the command's position, time and numbers.
+
+A `Finding` is one motion diagnostic (rule family R, codes R010-R029): the rule code, its
+default severity, a message in the user's terms, the source position of the motion instruction,
+the simulated time, the task, and `data` (the numbers behind the message: axis, amount, distance,
+speeds...). `error` is the runtime error of 12.1 the controller raises for it, if any: at the
+motion instruction (`MotionError` is raised at once), or 150 on the next motion instruction,
+waitEndMove, open or close when an already recorded command cannot be executed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+# The motion rules (rules/R0xx.toml describe them).
+UNREACHABLE = "R010"  # no joint position reaches a target (or a point of the path)
+JOINT_LIMIT = "R011"  # a joint target or a path outside the software joint limits
+CONFIG_CHANGE = "R012"  # a configuration change imposed in movel/movec (10.1.4.2)
+SINGULAR_STOP = "R013"  # a Cartesian path through a singularity: it cannot be followed
+SINGULAR_SLOW = "R014"  # a Cartesian path near a singularity: the TCP slows far below its speed
+CIRCLE = "R015"  # movec: arc undefined or orientation ambiguous (10.1.4.1)
+NO_OP = "R016"  # movej to the position it starts from
+MDESC = "R017"  # invalid motion descriptor field (12.1: 100-106)
+NO_POWER = "R018"  # a task waits for a motion that arm power never allows
+FALLBACK = "R019"  # the time-optimal parameterisation failed: a slower safe profile was used
+
+SEVERITY = {
+    UNREACHABLE: "error", JOINT_LIMIT: "error", CONFIG_CHANGE: "error", SINGULAR_STOP: "error",
+    SINGULAR_SLOW: "warning", CIRCLE: "error", NO_OP: "info", MDESC: "error", NO_POWER: "error",
+    FALLBACK: "warning",
+}
+
+
+@dataclass(frozen=True)
+class Source:
+    """Where a motion instruction is written: the file the user opens, 1-based line and column,
+    the program and the task that executed it."""
+
+    path: str = ""
+    line: int = 0
+    col: int = 0
+    program: str = ""
+    task: str = ""
+
+    def label(self) -> str:
+        return f"{self.path}:{self.line}" if self.path else f"line {self.line}"
+
+
+@dataclass(frozen=True)
+class Finding:
+    code: str
+    message: str
+    source: Source
+    time: float  # simulated seconds
+    move_id: float | None = None
+    error: int | None = None  # runtime error of 12.1 that goes with it (154, 150, 100-106, 70)
+    data: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def severity(self) -> str:
+        return SEVERITY.get(self.code, "error")
+
+    @property
+    def task(self) -> str:
+        return self.source.task
+
+    def as_dict(self) -> dict[str, Any]:
+        return {
+            "code": self.code, "severity": self.severity, "message": self.message, "path": self.source.path,
+            "line": self.source.line, "col": self.source.col, "task": self.source.task,
+            "time": round(self.time, 6), "move_id": self.move_id, "error": self.error, "data": self.data,
+        }
+
+
+class MotionError(Exception):
+    """A motion instruction stops its task with the runtime error `code` of 12.1; `finding` is the
+    motion diagnostic behind it (None for 150, whose finding was reported with the command that
+    could not be executed)."""
+
+    def __init__(self, code: int, message: str, finding: Finding | None = None):
+        super().__init__(message)
+        self.code = code
+        self.message = message
+        self.finding = finding

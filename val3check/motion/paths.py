@@ -1,0 +1,383 @@
+"""Geometric paths in joint space: the pieces the arm follows, joined into one path.
+
+Every motion becomes joint-space geometry (the time parameterisation works on joints):
+
+* `JointLine` (movej, 10.1.1): the straight line in joint space from start to target.
+* `JointSpline` (movel, movec, Cartesian blends): the joint positions solved on a grid of the
+  TCP curve (tracking.py) joined by a cubic spline, with the exact end derivatives when given.
+* `JointBlend` (blend joint, 10.1.2.3): the superposition of the two neighbouring motions, each
+  continued in a straight joint line at its own rate, weighted by a smooth step (zero first and
+  second derivatives at the ends): it leaves the first path at its leave point and joins the
+  second at its reach point with the same joint velocity, so the velocity is continuous.
+
+A geometry is parameterised by λ ∈ [0, 1] and has a length `ell` in path units (degrees of joint
+motion, Euclidean over the six axes); a `Span` is the part λ ∈ [a, b] of one geometry, with
+path parameter σ = (λ - a)·ell. `Path` joins spans end to end: global path parameter s.
+"""
+
+from __future__ import annotations
+
+import bisect
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+
+H_FD = 1e-4  # path-units step of the finite differences of the TCP rates
+JUNCTION_EPS = 1e-6  # path units: the second gridpoint of a span, on its side of a junction
+
+
+class JointLine:
+    kind = "joint"
+
+    def __init__(self, q0, q1):
+        self.q0 = np.asarray(q0, dtype=float)
+        self.q1 = np.asarray(q1, dtype=float)
+        self.delta = self.q1 - self.q0
+        self.ell = float(np.linalg.norm(self.delta))
+
+    def q(self, lam, order: int = 0) -> np.ndarray:
+        lam = np.atleast_1d(np.asarray(lam, dtype=float))
+        if order == 0:
+            return self.q0 + lam[:, None] * self.delta
+        if order == 1:
+            return np.broadcast_to(self.delta, (len(lam), len(self.delta))).copy()
+        return np.zeros((len(lam), len(self.delta)))
+
+    def grid(self, a: float, b: float) -> np.ndarray:
+        n = max(8, min(48, math.ceil(self.ell * (b - a) / 8.0)))  # one per 8° of joint motion
+        return np.linspace(a, b, n + 1)
+
+
+class JointSpline:
+    """Joint positions Q (N, 6) at λ and their derivatives D = dq/dλ (from tracking, by central
+    differences of the inverse solution), joined by cubic Hermite pieces: C1, and as close to the
+    exact inverse solution between gridpoints as a cubic spline."""
+
+    kind = "spline"
+
+    def __init__(self, lam: np.ndarray, Q: np.ndarray, D: np.ndarray):
+        lam = np.asarray(lam, dtype=float)
+        apart = np.diff(lam) > 1e-12  # no knots on top of each other
+        keep = np.concatenate([[True], apart])
+        if len(lam) > 2 and not apart[-1]:  # the last two coincide: keep the curve's end
+            keep[-2], keep[-1] = False, True
+        self.lam = lam[keep]
+        self.Q = np.asarray(Q, dtype=float)[keep]
+        self.D = np.asarray(D, dtype=float)[keep]
+        if len(self.lam) < 2:
+            raise ValueError("a spline needs two points")
+        self.ell = max(float(np.linalg.norm(np.diff(self.Q, axis=0), axis=1).sum()), 1e-12)
+
+    def q(self, lam, order: int = 0) -> np.ndarray:
+        x = np.atleast_1d(np.asarray(lam, dtype=float))
+        knots = self.lam
+        i = np.clip(np.searchsorted(knots, x, side="right") - 1, 0, len(knots) - 2)
+        h = (knots[i + 1] - knots[i])[:, None]
+        u = (x - knots[i])[:, None] / h
+        p0, p1 = self.Q[i], self.Q[i + 1]
+        m0, m1 = self.D[i] * h, self.D[i + 1] * h
+        d = hermite(u, p0, m0, p1, m1, order)
+        return d if order == 0 else d / h ** order
+
+    def grid(self, a: float, b: float) -> np.ndarray:
+        inner = self.lam[(self.lam > a + 1e-12) & (self.lam < b - 1e-12)]
+        return np.concatenate([[a], inner, [b]])
+
+
+def blend_length(ell_l: float, ell_r: float) -> float:
+    """The path length of a blend whose two sides are ell_l (leave point to the via point, on the
+    first path) and ell_r (via point to the reach point, on the second), in path units."""
+    return 4.0 * ell_l * ell_r / (ell_l + ell_r)
+
+
+class BlendParam:
+    """The blend's curve parameter u ∈ [0, 1] against its path parameter σ ∈ [0, L]: u' = 1/(2ℓl)
+    at the leave point and 1/(2ℓr) at the reach point, linear in between (u quadratic in σ), so
+    that the Bézier curve below leaves and joins its neighbours with their own velocity."""
+
+    def __init__(self, ell_l: float, ell_r: float):
+        self.ell_l, self.ell_r = float(ell_l), float(ell_r)
+        self.L = blend_length(ell_l, ell_r)
+        self.c1 = 1.0 / (2.0 * ell_l)
+        self.c2 = (1.0 / (2.0 * ell_r) - self.c1) / (2.0 * self.L)
+
+    def u(self, sigma):
+        return np.clip(self.c1 * sigma + self.c2 * sigma * sigma, 0.0, 1.0)
+
+    def du(self, sigma):
+        return self.c1 + 2.0 * self.c2 * sigma
+
+
+def bezier(u: np.ndarray, P0, P1, P2, P3, order: int = 0) -> np.ndarray:
+    """Cubic Bézier curve (or its derivatives in u)."""
+    v = 1.0 - u
+    if order == 0:
+        return v * v * v * P0 + 3 * v * v * u * P1 + 3 * v * u * u * P2 + u * u * u * P3
+    if order == 1:
+        return 3 * v * v * (P1 - P0) + 6 * v * u * (P2 - P1) + 3 * u * u * (P3 - P2)
+    return 6 * v * (P2 - 2 * P1 + P0) + 6 * u * (P3 - 2 * P2 + P1)
+
+
+def blend_controls(pL, vL, pR, vR, ell_l: float, ell_r: float):
+    """Control points of the blend from (pL, vL) to (pR, vR): the corner of the two tangents, as a
+    cubic (the degree-raised parabola with its control point at the via point when the
+    neighbours are straight lines through it)."""
+    return pL, pL + (2.0 / 3.0) * ell_l * vL, pR - (2.0 / 3.0) * ell_r * vR, pR
+
+
+# The shape of blends: a cubic Hermite curve whose end tangents are `scale` × (ℓl + ℓr) long —
+# for two straight lines meeting at the via point with leave = reach, the parabola through their
+# corner. ("bezier": the Bézier curve through the corner of the two tangents, tighter when leave
+# and reach differ a lot; measured slower on random U cycles, bench/bench_motion.py.) When several
+# shapes are listed the queue takes the one its estimate says the arm follows fastest.
+BLEND_SHAPES = (1.0,)
+
+
+class BlendShape:
+    """A blend curve from (pL, vL) to (pR, vR) (positions and velocities per path unit σ), in
+    joint or Cartesian space: `point(σ, order)` with σ ∈ [0, ell]; velocity continuous at both
+    ends whatever the shape."""
+
+    def __init__(self, pL, vL, pR, vR, ell_l: float, ell_r: float, shape="bezier"):
+        pL, vL, pR, vR = (np.asarray(x, dtype=float) for x in (pL, vL, pR, vR))
+        self.shape = shape
+        if shape == "bezier":
+            self.param = BlendParam(ell_l, ell_r)
+            self.ell = self.param.L
+            self.P = blend_controls(pL, vL, pR, vR, ell_l, ell_r)
+        else:
+            self.ell = float(shape) * (ell_l + ell_r)
+            self.P = (pL, self.ell * vL, pR, self.ell * vR)
+
+    def point(self, sigma, order: int = 0) -> np.ndarray:
+        """Position (or d/dσ, d²/dσ²) at σ (array)."""
+        sig = np.atleast_1d(np.asarray(sigma, dtype=float))
+        if self.shape != "bezier":
+            u = (sig / self.ell)[:, None]
+            d = hermite(u, *self.P, order=order)
+            return d if order == 0 else d / self.ell ** order
+        pr = self.param
+        u = pr.u(sig)[:, None]
+        if order == 0:
+            return bezier(u, *self.P)
+        du = pr.du(sig)[:, None]
+        d1 = bezier(u, *self.P, order=1)
+        if order == 1:
+            return d1 * du
+        return bezier(u, *self.P, order=2) * du * du + d1 * (2.0 * pr.c2)
+
+
+class JointBlend:
+    """A joint blend (10.1.2.3): from the leave point (qL, velocity vL = dq/dσ of the first path)
+    to the reach point (qR, vR of the second) along a `BlendShape` in joint space (the queue picks
+    the shape the arm can follow fastest). ℓl, ℓr: the path lengths from the leave point to the
+    via point and from there to the reach point."""
+
+    kind = "joint-blend"
+
+    def __init__(self, qL, vL, qR, vR, ell_l: float, ell_r: float, shape="bezier"):
+        self.curve = None
+        self.shape = BlendShape(qL, vL, qR, vR, ell_l, ell_r, shape)
+        self.ell = self.shape.ell
+
+    def q(self, lam, order: int = 0) -> np.ndarray:
+        sig = np.atleast_1d(np.asarray(lam, dtype=float)) * self.ell
+        d = self.shape.point(sig, order)
+        return d if order == 0 else d * self.ell ** order
+
+    def grid(self, a: float, b: float) -> np.ndarray:
+        n = max(12, min(60, math.ceil(self.ell * (b - a) / 4.0)))  # one per 4° of joint motion
+        return np.linspace(a, b, n + 1)
+
+
+def hermite(u: np.ndarray, p0, m0, p1, m1, order: int = 0) -> np.ndarray:
+    """Cubic Hermite curve (or its derivatives in u) with end points p0, p1 and tangents m0, m1."""
+    if order == 0:
+        u2, u3 = u * u, u * u * u
+        return (2 * u3 - 3 * u2 + 1) * p0 + (u3 - 2 * u2 + u) * m0 + (-2 * u3 + 3 * u2) * p1 + (u3 - u2) * m1
+    if order == 1:
+        u2 = u * u
+        return (6 * u2 - 6 * u) * p0 + (3 * u2 - 4 * u + 1) * m0 + (-6 * u2 + 6 * u) * p1 + (3 * u2 - 2 * u) * m1
+    return (12 * u - 6) * p0 + (6 * u - 4) * m0 + (-12 * u + 6) * p1 + (6 * u - 2) * m1
+
+
+@dataclass
+class Span:
+    """The part λ ∈ [a, b] of a geometry. `owners`: (command key, σ from which it owns the span)
+    — a blend belongs to the first command up to its nominal target, then to the next.
+    `smooth`: joined to the previous span with continuous velocity (else the arm stops between
+    them). `tool`: the TCP (4x4) whose speed the limits tvel/rvel concern."""
+
+    geom: object
+    a: float
+    b: float
+    owners: list = field(default_factory=list)
+    smooth: bool = False
+    tool: np.ndarray | None = None
+    offset: float | None = None  # global s of its start, once in a Path
+    _cache: dict | None = field(default=None, repr=False)
+
+    @property
+    def ell(self) -> float:
+        return self.geom.ell
+
+    @property
+    def length(self) -> float:
+        return (self.b - self.a) * self.geom.ell
+
+    def lam(self, sigma) -> np.ndarray:
+        return self.a + np.asarray(sigma, dtype=float) / self.geom.ell
+
+    def q(self, sigma, order: int = 0) -> np.ndarray:
+        d = self.geom.q(self.lam(sigma), order)
+        return d if order == 0 else d / self.geom.ell ** order
+
+    def owner_at(self, sigma: float):
+        key = self.owners[0][0]
+        for k, start in self.owners:
+            if sigma >= start - 1e-12:
+                key = k
+        return key
+
+    def sample(self, kin) -> dict:
+        """Gridpoints (σ, both ends included) and what the time parameterisation needs there,
+        cached: q1 = dq/dσ, q2 = d²q/dσ², pt = |dp/dσ| (mm), rt = |dθ/dσ| (deg) of the TCP; the
+        last row is the point JUNCTION_EPS after the start, where the span's own curvature
+        applies (the time parameterisation constrains both sides of a junction)."""
+        if self._cache is None:
+            lam = self.geom.grid(self.a, self.b)
+            eps = min(JUNCTION_EPS, 0.5 * self.length) / self.geom.ell
+            lam = np.append(lam, self.a + eps)
+            sig = (lam - self.a) * self.geom.ell
+            q1 = self.geom.q(lam, 1) / self.geom.ell
+            q2 = self.geom.q(lam, 2) / self.geom.ell ** 2
+            pt, rt = self._rates(kin, lam, q1)
+            self._cache = {"sigma": sig, "q1": q1, "q2": q2, "pt": pt, "rt": rt}
+        return self._cache
+
+    def sample_at(self, kin, sigma: float) -> dict:
+        """The same at one σ."""
+        lam = self.lam(np.array([sigma]))
+        q1 = self.q([sigma], 1)
+        pt, rt = self._rates(kin, lam, q1)
+        return {"sigma": np.array([sigma]), "q1": q1, "q2": self.q([sigma], 2), "pt": pt, "rt": rt}
+
+    def _rates(self, kin, lam, q1):
+        """TCP rates per path unit: from the Cartesian curve when the geometry follows one (exact),
+        else from the forward kinematics."""
+        curve = getattr(self.geom, "curve", None)
+        if curve is not None:
+            p, r = curve.rates(lam)
+            return p / self.geom.ell, r / self.geom.ell
+        return tcp_rates(kin, self.geom.q(lam, 0), q1, self.tool)
+
+
+def tcp_rates(kin, q: np.ndarray, q1: np.ndarray, tool) -> tuple[np.ndarray, np.ndarray]:
+    """|dp/dσ| (mm) and |dθ/dσ| (deg) of the TCP for joint derivatives q1, by central
+    differences of the forward kinematics along q1."""
+    h = H_FD
+    n = len(q)
+    T = kin.tcp(np.vstack([q + h * q1, q - h * q1]), tool)
+    Tp, Tm = T[:n], T[n:]
+    pt = np.linalg.norm(Tp[:, :3, 3] - Tm[:, :3, 3], axis=1) / (2 * h)
+    Rrel = np.swapaxes(Tm[:, :3, :3], 1, 2) @ Tp[:, :3, :3]
+    c = np.clip((np.trace(Rrel, axis1=1, axis2=2) - 1.0) / 2.0, -1.0, 1.0)
+    rt = np.degrees(np.arccos(c)) / (2 * h)
+    return pt, rt
+
+
+def tcp_state(kin, span: Span, sigma: float):
+    """(position, rotation, dp/dσ, angular velocity dω/dσ in world, rad) of the TCP of `span`'s
+    tool at σ (the boundary states of a Cartesian blend)."""
+    q = span.q([sigma], 0)
+    q1 = span.q([sigma], 1)
+    h = H_FD
+    T = kin.tcp(np.vstack([q, q + h * q1, q - h * q1]), span.tool)
+    p = T[0, :3, 3]
+    v = (T[1, :3, 3] - T[2, :3, 3]) / (2 * h)
+    from .cartesian import rotvec
+
+    w = rotvec(T[1, :3, :3] @ T[2, :3, :3].T) / (2 * h)
+    return p, T[0, :3, :3], v, w
+
+
+class Path:
+    """Spans joined end to end; s is the global path parameter (never reset: the arm's whole
+    run is one path)."""
+
+    def __init__(self, q_start):
+        self.spans: list[Span] = []
+        self.offsets: list[float] = []
+        self.end = 0.0
+        self.q_rest = np.asarray(q_start, dtype=float)  # where the path ends (or starts, empty)
+
+    def append(self, span: Span) -> float:
+        """Add a span at the end; returns its global offset."""
+        off = self.end
+        span.offset = off
+        self.spans.append(span)
+        self.offsets.append(off)
+        self.end = off + span.length
+        self.q_rest = span.q([span.length])[0]
+        return off
+
+    def cut(self, s: float) -> None:
+        """Drop everything after s (the arm stopped there and its commands were cancelled)."""
+        i = self.locate(s)[0] if self.spans else -1
+        if i < 0:
+            return
+        off = self.offsets[i]
+        sp = self.spans[i]
+        sigma = s - off
+        q = sp.q([sigma])[0]
+        del self.spans[i + 1:]
+        del self.offsets[i + 1:]
+        if sigma <= 1e-12:
+            del self.spans[i:]
+            del self.offsets[i:]
+        else:
+            self.spans[i] = Span(sp.geom, sp.a, sp.a + sigma / sp.geom.ell, sp.owners, sp.smooth, sp.tool, off)
+        self.end = s
+        self.q_rest = q
+
+    def locate(self, s: float) -> tuple[int, float]:
+        """(span index, σ) of global s (the last span for s at or past the end)."""
+        if not self.spans:
+            return -1, 0.0
+        i = bisect.bisect_right(self.offsets, s) - 1
+        i = min(max(i, 0), len(self.spans) - 1)
+        return i, s - self.offsets[i]
+
+    def q(self, s, order: int = 0) -> np.ndarray:
+        """Joint positions (or derivatives) at global s values (array)."""
+        s = np.atleast_1d(np.asarray(s, dtype=float))
+        if not self.spans:
+            base = self.q_rest if order == 0 else np.zeros_like(self.q_rest)
+            return np.tile(base, (len(s), 1))
+        # only the spans between the smallest and the largest s (the path holds the whole run)
+        last = len(self.spans) - 1
+        i0 = min(max(bisect.bisect_right(self.offsets, float(s.min())) - 1, 0), last)
+        i1 = min(max(bisect.bisect_right(self.offsets, float(s.max())) - 1, 0), last)
+        out = np.empty((len(s), len(self.q_rest)))
+        if i0 == i1:
+            sp = self.spans[i0]
+            out[:] = sp.q(np.clip(s - self.offsets[i0], 0.0, sp.length), order)
+            return out
+        idx = np.searchsorted(np.asarray(self.offsets[i0:i1 + 1]), s, side="right") - 1 + i0
+        idx = np.clip(idx, i0, i1)
+        order_ = np.argsort(idx, kind="stable")
+        sidx = idx[order_]
+        cuts = np.flatnonzero(np.diff(sidx)) + 1
+        for rows in np.split(order_, cuts):  # one evaluation per span touched
+            i = int(idx[rows[0]])
+            sp = self.spans[i]
+            out[rows] = sp.q(np.clip(s[rows] - self.offsets[i], 0.0, sp.length), order)
+        return out
+
+    def stops_after(self, s: float) -> list[float]:
+        """Global s of every junction after s where the arm must stop (not smooth)."""
+        i = max(bisect.bisect_right(self.offsets, s) - 1, 0)
+        return [self.offsets[k] for k in range(i, len(self.spans))
+                if not self.spans[k].smooth and self.offsets[k] > s + 1e-12]

@@ -1,0 +1,188 @@
+"""The arm's trajectory: a path plus a time parameterisation behind one interface.
+
+`Profile` is the path parameter over simulated time, s(t): breakpoints (t, s, ṡ) with a constant
+path acceleration between them (the exact form of both the bang-bang profiles and toppra's
+output); at rest between motions ṡ = 0. It only grows at its end, except that a replan cuts it at
+the replanning time and continues from the exact state there (position and speed continuous).
+
+`Trajectory` joins it to the `paths.Path`: joint position and velocity at any time, and sampling
+on the controller's 4 ms clock (`sample`). Times are seconds of simulated time.
+"""
+
+from __future__ import annotations
+
+import bisect
+import math
+
+import numpy as np
+
+TICK = 0.004  # the controller's motion cycle (s)
+
+
+
+class Profile:
+    """s(t) as breakpoints; before the first breakpoint the arm rests at s0."""
+
+    def __init__(self, s0: float = 0.0, t0: float = 0.0):
+        self.T: list[float] = [t0]
+        self.S: list[float] = [s0]
+        self.SD: list[float] = [0.0]
+
+    @property
+    def t_end(self) -> float:
+        return self.T[-1]
+
+    @property
+    def s_end(self) -> float:
+        return self.S[-1]
+
+    def state(self, t: float) -> tuple[float, float, float]:
+        """(s, ṡ, s̈) at time t."""
+        T = self.T
+        if t <= T[0]:
+            return self.S[0], 0.0, 0.0
+        k = bisect.bisect_right(T, t) - 1
+        if k >= len(T) - 1:
+            return self.S[-1], 0.0, 0.0
+        dt = T[k + 1] - T[k]
+        if dt <= 0.0:
+            return self.S[k + 1], self.SD[k + 1], 0.0
+        sd0, sd1 = self.SD[k], self.SD[k + 1]
+        u = (sd1 - sd0) / dt
+        tau = t - T[k]
+        return self.S[k] + sd0 * tau + 0.5 * u * tau * tau, sd0 + u * tau, u
+
+    def states(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(s, ṡ) at many times (vectorised)."""
+        t = np.asarray(t, dtype=float)
+        if len(t) == 0:
+            return np.zeros(0), np.zeros(0)
+        # only the breakpoints around the times asked (the profile holds the whole run)
+        a = max(bisect.bisect_right(self.T, float(t.min())) - 1, 0)
+        b = bisect.bisect_right(self.T, float(t.max())) + 1
+        T, S, SD = np.asarray(self.T[a:b]), np.asarray(self.S[a:b]), np.asarray(self.SD[a:b])
+        k = np.clip(np.searchsorted(T, t, side="right") - 1, 0, len(T) - 1)
+        last = k >= len(T) - 1
+        k1 = np.minimum(k + 1, len(T) - 1)
+        dt = T[k1] - T[k]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            u = np.where(dt > 0, (SD[k1] - SD[k]) / dt, 0.0)
+        tau = np.clip(t - T[k], 0.0, None)
+        s = np.where(last, S[-1], S[k] + SD[k] * tau + 0.5 * u * tau * tau)
+        sd = np.where(last, 0.0, SD[k] + u * tau)
+        before = t <= self.T[0]
+        s = np.where(before, self.S[0], s)
+        sd = np.where(before, 0.0, sd)
+        return s, np.maximum(sd, 0.0)
+
+    def cut(self, t: float) -> None:
+        """Keep the profile up to t (and the exact state at t)."""
+        if t >= self.T[-1]:
+            return
+        s, sd, _ = self.state(t)
+        k = bisect.bisect_right(self.T, t)
+        del self.T[k:]
+        del self.S[k:]
+        del self.SD[k:]
+        if self.T[-1] < t:
+            self.T.append(t)
+            self.S.append(s)
+            self.SD.append(sd)
+
+    def append(self, t0: float, s: np.ndarray, sd: np.ndarray) -> None:
+        """Add a motion starting at t0 from (s[0], sd[0]) (the current end of the profile)."""
+        if t0 > self.T[-1]:
+            self.T.append(t0)
+            self.S.append(self.S[-1])
+            self.SD.append(0.0)
+        t = self.T[-1]
+        ds = np.diff(s)
+        v = sd[:-1] + sd[1:]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            dt = np.where(ds > 0, 2.0 * ds / np.maximum(v, 1e-300), 0.0)
+        times = t + np.cumsum(dt)
+        for i in range(len(ds)):
+            if ds[i] <= 0.0:
+                continue
+            self.T.append(float(times[i]))
+            self.S.append(float(s[i + 1]))
+            self.SD.append(float(sd[i + 1]))
+
+    def time_at(self, s_target: float) -> float | None:
+        """The first time at which s reaches s_target; None when the profile never gets there."""
+        S = self.S
+        k = bisect.bisect_left(S, s_target - 1e-12)
+        if k >= len(S):
+            return None
+        if k == 0:
+            return self.T[0]
+        if abs(S[k] - s_target) <= 1e-9 * max(1.0, abs(s_target)):
+            return self.T[k]  # a breakpoint (the end of a motion): exact
+        return self._solve(k - 1, s_target)
+
+    def _solve(self, k: int, s_target: float) -> float:
+        """Time within interval k (T[k]..T[k+1]) where s = s_target."""
+        T, S, SD = self.T, self.S, self.SD
+        dt = T[k + 1] - T[k]
+        ds = s_target - S[k]
+        if ds <= 0.0 or dt <= 0.0:
+            return T[k] if ds <= 0.0 else T[k + 1]
+        sd0 = SD[k]
+        u = (SD[k + 1] - sd0) / dt
+        if abs(u) < 1e-15:
+            tau = ds / sd0 if sd0 > 0 else dt
+        else:
+            disc = sd0 * sd0 + 2.0 * u * ds
+            tau = (-sd0 + math.sqrt(max(disc, 0.0))) / u
+        return T[k] + min(max(tau, 0.0), dt)
+
+    def final_decel_start(self) -> int:
+        """Index of the breakpoint where the last run of decreasing speed begins (the braking to
+        the end of the profile)."""
+        SD = self.SD
+        k = len(SD) - 1
+        while k > 0 and SD[k - 1] > SD[k] + 1e-12:
+            k -= 1
+        return k
+
+    def rest_since(self, t: float) -> float | None:
+        """When the arm came to rest, if it is at rest at t (else None); -inf when it has not
+        moved yet."""
+        _, sd, _ = self.state(t)
+        if sd > 1e-12:
+            return None
+        k = min(bisect.bisect_right(self.T, t) - 1, len(self.T) - 1)
+        k = max(k, 0)
+        while k > 0 and self.SD[k - 1] <= 1e-12:
+            k -= 1
+        return -math.inf if k == 0 else self.T[k]
+
+
+class Trajectory:
+    """A path plus a time parameterisation: joint position and velocity at any time."""
+
+    def __init__(self, path, profile: Profile):
+        self.path = path
+        self.profile = profile
+
+    def position(self, t: float) -> np.ndarray:
+        s, _, _ = self.profile.state(t)
+        return self.path.q([s])[0]
+
+    def velocity(self, t: float) -> np.ndarray:
+        s, sd, _ = self.profile.state(t)
+        if sd == 0.0:
+            return np.zeros_like(self.path.q_rest)
+        return self.path.q([s], 1)[0] * sd
+
+    def sample(self, t0: float, t1: float, dt: float = TICK) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(times, joint positions (N, 6), joint velocities (N, 6)) on the 4 ms clock from t0 to t1."""
+        k0 = math.ceil(t0 / dt - 1e-9)
+        k1 = math.floor(t1 / dt + 1e-9)
+        times = np.arange(k0, k1 + 1) * dt
+        if len(times) == 0:
+            return times, np.zeros((0, 6)), np.zeros((0, 6))
+        s, sd = self.profile.states(times)
+        q = self.path.q(s)
+        qd = self.path.q(s, 1) * sd[:, None]
+        return times, q, qd

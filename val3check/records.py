@@ -1,0 +1,135 @@
+"""`dataclass` and `field` for the lint path: the subset of the standard `dataclasses` that
+val3check uses, without its cost.
+
+`val3check lint` must start fast (a pre-commit hook): `dataclasses` imports `inspect` (and
+through it `ast`, `dis`, `tokenize`...) and spends over a millisecond per class; the lint path
+declares some seventy record classes, which made up a third of the start-up. This module makes
+the same classes with one `exec` each and imports nothing.
+
+Supported, with the standard meaning: `@dataclass`, `@dataclass(slots=True, frozen=True,
+eq=False)`, fields from the class annotations in order, defaults, `field(default=...)` and
+`field(default_factory=...)`; generated `__init__`, `__repr__`, `__eq__` (fields compared as a
+tuple, same class only), `__hash__` (from the fields when frozen; None when eq and not frozen),
+`__match_args__`; frozen classes refuse assignments (FrozenInstanceError, an AttributeError).
+Not supported (not used here): inheritance of fields, `ClassVar`, `InitVar`, `__post_init__`,
+ordering, `kw_only`; the robotics and simulation code keeps the standard module.
+"""
+
+from __future__ import annotations
+
+__all__ = ["FrozenInstanceError", "dataclass", "field"]
+
+
+class FrozenInstanceError(AttributeError):
+    """Assignment to a field of a frozen record."""
+
+
+class _Missing:
+    __slots__ = ()
+
+    def __repr__(self) -> str:
+        return "MISSING"
+
+
+MISSING = _Missing()
+
+
+class _Field:
+    __slots__ = ("default", "default_factory")
+
+    def __init__(self, default: object, default_factory: object) -> None:
+        self.default = default
+        self.default_factory = default_factory
+
+
+def field(*, default: object = MISSING, default_factory: object = MISSING) -> object:
+    """A field's default value, or the function that makes it (`list`, `dict`...)."""
+    if default is not MISSING and default_factory is not MISSING:
+        raise ValueError("cannot specify both default and default_factory")
+    return _Field(default, default_factory)
+
+
+def _frozen_setattr(self, name, value):  # noqa: ANN001
+    raise FrozenInstanceError(f"cannot assign to field {name!r}")
+
+
+def _frozen_delattr(self, name):  # noqa: ANN001
+    raise FrozenInstanceError(f"cannot delete field {name!r}")
+
+
+def _process(cls: type, slots: bool, frozen: bool, eq: bool) -> type:
+    names = [n for n in cls.__dict__.get("__annotations__", {})]
+    scope: dict = {"MISSING": MISSING, "__object_setattr": object.__setattr__}
+    params, body = [], []
+    for name in names:
+        default = cls.__dict__.get(name, MISSING)
+        factory = MISSING
+        if isinstance(default, _Field):
+            default, factory = default.default, default.default_factory
+        if factory is not MISSING:
+            scope[f"_factory_{name}"] = factory
+            params.append(f"{name}=MISSING")
+            value = f"_factory_{name}() if {name} is MISSING else {name}"
+        elif default is not MISSING:
+            scope[f"_default_{name}"] = default
+            params.append(f"{name}=_default_{name}")
+            value = name
+        else:
+            if any("=" in p for p in params):
+                raise TypeError(f"non-default argument {name!r} follows default argument")
+            params.append(name)
+            value = name
+        body.append(f"__object_setattr(self, {name!r}, {value})" if frozen else f"self.{name} = {value}")
+    src = [f"def __init__(self, {', '.join(params)}):" if params else "def __init__(self):"]
+    src += [f"    {line}" for line in body or ["pass"]]
+    fields_repr = ", ".join(f"{n}={{self.{n}!r}}" for n in names)
+    src += ["def __repr__(self):", f"    return f'{{self.__class__.__qualname__}}({fields_repr})'"]
+    as_tuple = "(" + "".join(f"self.{n}, " for n in names) + ")"
+    if eq:
+        other = as_tuple.replace("self.", "other.")
+        src += ["def __eq__(self, other):", "    if other.__class__ is self.__class__:",
+                f"        return {as_tuple} == {other}", "    return NotImplemented"]
+        if frozen:
+            src += ["def __hash__(self):", f"    return hash({as_tuple})"]
+    exec("\n".join(src), scope)  # noqa: S102 - source built above from the class's field names
+
+    body_dict = dict(cls.__dict__)
+    for method in ("__init__", "__repr__", "__eq__", "__hash__"):
+        if method in scope:
+            body_dict[method] = scope[method]
+            scope[method].__qualname__ = f"{cls.__qualname__}.{method}"
+    if eq and not frozen:
+        body_dict["__hash__"] = None  # like dataclasses: mutable and compared by value
+    body_dict["__match_args__"] = tuple(names)
+    if frozen:
+        body_dict["__setattr__"] = _frozen_setattr
+        body_dict["__delattr__"] = _frozen_delattr
+    if slots:
+        body_dict["__slots__"] = tuple(names)
+        for name in names:
+            body_dict.pop(name, None)  # a class attribute would hide the slot
+        body_dict.pop("__dict__", None)
+        body_dict.pop("__weakref__", None)
+        new = type(cls)(cls.__name__, cls.__bases__, body_dict)
+        new.__qualname__ = cls.__qualname__
+        return new
+    for name in names:
+        default = body_dict.get(name)
+        if isinstance(default, _Field):  # keep plain defaults as class attributes, like dataclasses
+            if default.default is MISSING:
+                delattr(cls, name)
+            else:
+                setattr(cls, name, default.default)
+    for key, value in body_dict.items():
+        if key in ("__init__", "__repr__", "__eq__", "__hash__", "__match_args__", "__setattr__", "__delattr__"):
+            setattr(cls, key, value)
+    return cls
+
+
+def dataclass(cls: type | None = None, *, slots: bool = False, frozen: bool = False, eq: bool = True):
+    """Make `cls` a record class (see the module docstring)."""
+
+    def wrap(c: type) -> type:
+        return _process(c, slots, frozen, eq)
+
+    return wrap if cls is None else wrap(cls)
