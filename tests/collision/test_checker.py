@@ -274,3 +274,49 @@ def test_a_scara_quill_coming_down_on_a_box():
     assert c is not None and {c.body_a, c.body_b} == {"tool flange 'tip'", "obstacle 'fixture'"}
     expected = 0.5 * (z0 - 50.0) / (z0 - z1)  # the tip's bottom (10 below the flange) reaches z = 40
     assert abs(c.time - expected) <= DT
+
+
+def test_per_sample_clearance_never_exceeds_the_true_clearance():
+    """Against a brute-force oracle: every solid of the arm and the tool measured against every
+    obstacle at every sample, the triangles of meshes included."""
+    import fcl
+    import trimesh
+
+    from val3check.collision import arm_model
+    from val3check.collision.bodies import make_bodies
+    from val3check.collision.cell import MeshData
+
+    ring = trimesh.creation.annulus(r_min=40.0, r_max=90.0, height=60.0, sections=96)
+    cell = _cell(_box((700.0, 1200.0, 40.0), (600.0, 0.0, -240.0), name="table"),
+                 _ball(420.0, 150.0, 20.0, 35.0),
+                 Obstacle("ring", Shape("mesh", (), MeshData("ring.stl", np.asarray(ring.vertices),
+                                                            np.asarray(ring.faces), solid=True)), "world",
+                          trsf_matrix((300.0, -250.0, -60.0, 0, 0, 0))), margin=20.0)
+    q0 = ROBOT.solve((300.0, -250.0, 120.0, 180.0, 0.0, 0.0), None, None, tool=TOOL)
+    q1 = ROBOT.solve((380.0, 150.0, 90.0, 180.0, 0.0, 30.0), None, q0, tool=TOOL)
+    times, Q = joint_motion(q0, q1, 0.8)
+    chk = checker(cell)
+    rep = chk.check_motion(MotionSpan(1), times, Q)
+    assert rep.first_contact is None
+    arm = arm_model(ROBOT)
+    tool = make_bodies("tool", "tTool", "tip", "tip", "sphere", (TIP,), np.array(
+        [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, TOOL[2]], [0, 0, 0, 1.0]]))
+    obstacles = [b for o in cell.obstacles for b in make_bodies(
+        "obstacle", o.name, o.name, o.name, o.shape.kind, o.shape.size, o.pose,
+        *((o.shape.mesh.vertices, o.shape.mesh.faces) if o.shape.mesh else (None, None)))]
+    for b in obstacles:
+        b.place(np.eye(4))
+    for k, q in enumerate(Q):
+        P = arm.links.poses(q)
+        moving = [(b, P[link]) for link, bodies in arm.bodies.items() for b in bodies]
+        moving += [(b, P[arm.flange_link]) for b in tool]
+        true = math.inf
+        for b, frame in moving:
+            b.place(frame)
+            for o in obstacles:
+                d = fcl.distance(b.exact_obj(), o.exact_obj(), fcl.DistanceRequest(), fcl.DistanceResult())
+                true = min(true, d)
+        assert rep.clearance[k] <= true + 1e-6, (k, rep.clearance[k], true)
+        if rep.exact[k]:
+            assert rep.clearance[k] == pytest.approx(true, abs=1e-3)
+    assert rep.min_clearance.mm == pytest.approx(min(rep.clearance[rep.exact]), abs=1e-9)

@@ -27,8 +27,11 @@ API
         3x4/4x4 matrix; None when the program has none
     report = checker.check_motion(MotionSpan(id, source, label), times, joints, q_at=None)
         times (N,) s, joints (N, axes) VAL 3 units; q_at(t) for positions between samples
-        -> MotionReport: starts_in_collision, first_contact, min_clearance, too_close, clearance
-           (per sample, mm), exact, contacts, checks
+        -> MotionReport: starts_in_collision, first_contact (Contact: time, the two solids'
+           labels, point, depth, kind "contact" | "self" | "inside"), min_clearance (Clearance: mm,
+           time, solids, nearest points; to the cell), too_close (below the margin), clearance
+           (per sample, mm, a lower bound) and exact (per sample), contacts, checks
+        the motion is checked between its samples too (conservative advancement, docs/cell.md)
     drops = checker.gripper(tool_name, "open" | "close", time, joints=None, source=None)
         -> [PartDrop]; parts grasped or left in the cell as the cell file says
     checker.problems                                            # [CellProblem]: frames/tools not found
