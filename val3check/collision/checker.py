@@ -170,6 +170,7 @@ class CollisionChecker:
         self._box_lo: np.ndarray | None = None  # (N, B, 3): every arm-side body's box at every sample
         self._box_hi: np.ndarray | None = None
         self._box_col: dict[int, int] = {}
+        self._inside0: set[int] = set()
         self._best = None
 
     # ---- the scene between motions --------------------------------------------------------------------
@@ -512,6 +513,7 @@ class CollisionChecker:
         steps = self._step_motion(Q, q_at, T)
         n = len(T)
         self._prepare(watches, steps)
+        self._inside0 = self._inside_static_meshes()
         self._allowed_until = self._apart_from()
         for w in watches:
             w.contact = False
@@ -750,9 +752,29 @@ class CollisionChecker:
             out[key] = at
         return out
 
+    def _inside_static_meshes(self) -> set[int]:
+        """The arm-side bodies whose box at the first sample lies inside the box of a closed mesh of
+        the cell (they may be wholly inside it)."""
+        boxes = []
+        seen = set()
+        for b in self._static:
+            if b.mesh is not None and b.solid and b.whole not in seen:
+                seen.add(b.whole)
+                boxes.append(b.whole_aabb())
+        if not boxes or self._box_lo is None:
+            return set()
+        lo, hi = self._box_lo[0], self._box_hi[0]  # (B, 3)
+        inside = np.zeros(len(lo), dtype=bool)
+        for olo, ohi in boxes:
+            inside |= np.all(lo >= olo, axis=1) & np.all(hi <= ohi, axis=1)
+        cols = {i: key for key, i in self._box_col.items()}
+        return {cols[i] for i in np.nonzero(inside)[0]}
+
     def _solid_mesh(self, w: _Watch) -> bool:
         """Whether a body of one side may lie wholly inside a closed mesh of the other at the first
         sample: its box inside the mesh's box."""
+        if w.b is None and not any(b.mesh is not None and b.solid for b in w.a.bodies):
+            return any(id(b) in self._inside0 for b in w.a.bodies)
         others = self._static if w.b is None else w.b.bodies
         for inners, outers in ((w.a.bodies, others), (others, w.a.bodies)):
             meshes = [b for b in outers if b.mesh is not None and b.solid]
@@ -797,8 +819,10 @@ class CollisionChecker:
         A, C = w.A, w.C
         # a step is free when the boxes at its two ends are further apart than it can close
         todo = np.nonzero(~w.free)[0]
-        if n == 0 or A[0] <= 0.0 or self._solid_mesh(w):
-            u = 0.0  # (a solid wholly inside a closed mesh is far from its pieces' boxes: look)
+        if n == 0 or A[0] <= 0.0 or (len(todo) and todo[0] == 0):
+            u = 0.0
+        elif self._solid_mesh(w):
+            u = 0.0  # a solid wholly inside a closed mesh is far from its pieces' boxes: look
         elif len(todo) == 0:
             return
         else:
