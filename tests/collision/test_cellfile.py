@@ -73,6 +73,8 @@ def test_a_good_file(tmp_path):
     assert post.frame == "fPallet[2]" and np.allclose(post.pose[:3, 3], (10, 20, 30))
     assert np.allclose(post.pose[:3, :3] @ [0, 1, 0], [0, 0, 1])  # rx = 90: y turned onto z
     assert lamp.shape.size == (30,) and np.allclose(lamp.pose, np.eye(4))
+    assert [o.shape.describe() for o in cell.obstacles] == ["box 800 x 1200 x 40 mm", "cylinder r 40 x 1500 mm",
+                                                            "sphere r 30 mm"]
     body, jaw = cell.tools
     assert body.tool == "flange" and body.touch_links is None
     assert jaw.tool == "tGripper" and jaw.touch_links == ("link_6",)

@@ -51,9 +51,6 @@ class ArmModel:
     def n_joints(self) -> int:
         return len(self.links.joint_names)
 
-    def prismatic(self) -> np.ndarray:
-        return np.array(self.links.prismatic, dtype=bool)
-
     def _touch_links(self) -> tuple[str, ...]:
         out: list[str] = []
         n = self.flange_link

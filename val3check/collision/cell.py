@@ -9,7 +9,6 @@ are grasped by a tool on `close` (or `open`) and left in the cell on the other i
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -30,10 +29,6 @@ class MeshData:
     faces: np.ndarray = field(repr=False)
     solid: bool = True
 
-    def radius(self, origin: np.ndarray) -> float:
-        """Largest distance from `origin` (a point in the mesh's frame) to a vertex."""
-        return float(np.sqrt(((self.vertices - origin) ** 2).sum(axis=1).max()))
-
 
 @dataclass(frozen=True)
 class Shape:
@@ -43,17 +38,6 @@ class Shape:
     kind: str
     size: tuple[float, ...] = ()
     mesh: MeshData | None = None
-
-    def radius(self) -> float:
-        """Largest distance from the shape's origin to one of its points (mm)."""
-        if self.kind == "box":
-            return 0.5 * math.sqrt(sum(s * s for s in self.size))
-        if self.kind == "cylinder":
-            return math.hypot(self.size[0], 0.5 * self.size[1])
-        if self.kind == "sphere":
-            return self.size[0]
-        assert self.mesh is not None
-        return self.mesh.radius(np.zeros(3))
 
     def describe(self) -> str:
         if self.kind == "box":

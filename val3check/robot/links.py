@@ -40,18 +40,6 @@ class Solid:
     origin: np.ndarray
     mesh: str = ""
 
-    def radius(self) -> float:
-        """An upper bound of the distance from the link origin to any point of the solid (mm);
-        for meshes, the caller measures the loaded vertices instead (inf here)."""
-        c = float(np.linalg.norm(self.origin[:3, 3]))
-        if self.kind == "box":
-            return c + 0.5 * math.sqrt(sum(s * s for s in self.size))
-        if self.kind == "cylinder":
-            return c + math.hypot(self.size[0], 0.5 * self.size[1])
-        if self.kind == "sphere":
-            return c + self.size[0]
-        return math.inf
-
 
 @dataclass(frozen=True)
 class _Edge:
