@@ -44,7 +44,7 @@ def _simulate(tmp_path, ex):
     from interpretation.simsupport import sim
 
     result = sim(tmp_path, ex.code, globals_=ex.globals, locals_=ex.locals, programs=ex.programs,
-                 scenario=ex.scenario, duration=ex.duration)
+                 scenario=ex.scenario, duration=ex.duration, links=ex.links or None)
     return result.diagnostics
 
 

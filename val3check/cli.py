@@ -16,6 +16,7 @@ import sys
 from . import __version__
 
 EXIT_OK, EXIT_FINDINGS, EXIT_USAGE = 0, 1, 2
+MAX_DURATION = 1e7  # seconds (about 115 days): --duration inf or nan is a usage error
 FORMATS = ("text", "json", "sarif", "junit", "github")
 
 
@@ -57,6 +58,8 @@ def build_parser() -> argparse.ArgumentParser:
     sim.add_argument("--scenario", metavar="FILE", help="I/O scenario (TOML, docs/scenario.md)")
     sim.add_argument("--max-wall", type=float, default=60.0, metavar="S", help="wall-clock budget in seconds (default: 60)")
     sim.add_argument("--max-lines", type=int, default=50_000_000, metavar="N", help="budget of executed VAL 3 lines")
+    sim.add_argument("--max-memory", type=float, default=512.0, metavar="MB",
+                     help="memory budget in MB, loading included (default: 512)")
     sim.add_argument("--fail-on", choices=("error", "warning", "info", "never"), help="lowest runtime diagnostic severity that makes the exit code 1 (default: error)")
     sim.add_argument("--disk-root", action="append", default=[], metavar="DIR", help="folder where Disk:// libraries are also searched (repeatable)")
     sim.add_argument("--robot", metavar="NAME|URDF", help="the arm model: a catalogue name (case-insensitive, `val3check robots`), a URDF, an arm.cfx, or none (default: the usr/configs/arm.cfx of the controller tree holding APP, else none)")
@@ -126,31 +129,44 @@ def _settings(args: argparse.Namespace, first_path: str):
     try:
         settings = Settings()
         if args.config:
-            if not os.path.isfile(args.config):
+            if not os.path.lexists(args.config):
                 raise ConfigError(f"{args.config}: configuration file not found")
             settings = load_settings(args.config)
         elif not args.isolated:
-            found = find_config(first_path)
+            found = find_config(first_path, warn=lambda m: print(f"val3check: warning: {_shown(m)}", file=sys.stderr))
             if found:
                 settings = load_settings(found)
     except ConfigError as exc:
-        print(f"val3check: error: {exc}", file=sys.stderr)
+        print(f"val3check: error: {_shown(str(exc))}", file=sys.stderr)
         return None
     return settings
 
 
 def _write(text: str, output: str | None) -> bool:
+    # Reports are UTF-8; a character that cannot be encoded (a lone surrogate from a file name
+    # that is not UTF-8) is escaped rather than ending the run with UnicodeEncodeError.
     if output is None:
-        sys.stdout.write(text)
+        try:
+            sys.stdout.write(text)
+        except UnicodeEncodeError:
+            enc = sys.stdout.encoding or "utf-8"
+            sys.stdout.write(text.encode(enc, "backslashreplace").decode(enc))
         sys.stdout.flush()
         return True
     try:
-        with open(output, "w", encoding="utf-8", newline="\n") as fh:
+        with open(output, "w", encoding="utf-8", errors="backslashreplace", newline="\n") as fh:
             fh.write(text)
-    except OSError as exc:
-        print(f"val3check: error: cannot write {output}: {exc.strerror or exc}", file=sys.stderr)
+    except (OSError, ValueError) as exc:
+        print(f"val3check: error: cannot write {_shown(output)}: {getattr(exc, 'strerror', None) or exc}",
+              file=sys.stderr)
         return False
     return True
+
+
+def _shown(path: str) -> str:
+    from .lint import printable_path
+
+    return printable_path(path)
 
 
 def _sim(args: argparse.Namespace) -> int:
@@ -161,8 +177,18 @@ def _sim(args: argparse.Namespace) -> int:
     if args.fail_on:
         settings.fail_on = args.fail_on
     settings.disk_roots = [os.path.abspath(d) for d in args.disk_root] + settings.disk_roots
-    if not args.duration > 0 or not args.max_wall > 0 or args.max_lines < 1:
-        print("val3check: error: --duration, --max-wall and --max-lines must be positive", file=sys.stderr)
+    if not 0 < args.duration <= MAX_DURATION or not 0 < args.max_wall <= MAX_DURATION or args.max_lines < 1:
+        print(f"val3check: error: --duration and --max-wall must be positive numbers of seconds (at most {MAX_DURATION:g}),"
+              " --max-lines a positive number", file=sys.stderr)
+        return EXIT_USAGE
+    if not 0 < args.max_memory <= 1 << 20:
+        print("val3check: error: --max-memory must be a positive number of MB", file=sys.stderr)
+        return EXIT_USAGE
+    from .rules.catalogue import catalogue
+
+    bad = settings.unknown_codes(list(catalogue()))
+    if bad:
+        print(f"val3check: error: unknown rule code or prefix: {', '.join(bad)} (see `val3check rules`)", file=sys.stderr)
         return EXIT_USAGE
 
     from .diagnostics import Severity
@@ -173,10 +199,11 @@ def _sim(args: argparse.Namespace) -> int:
     apps = [outcome.workspace.apps[k] for k in outcome.workspace.targets]
     if outcome.unreadable or not apps:
         sys.stdout.write(render("text", outcome.result))
-        print(f"val3check sim: error: no application could be read at {args.app}", file=sys.stderr)
+        print(f"val3check sim: error: no application could be read at {_shown(args.app)}", file=sys.stderr)
         return EXIT_USAGE
     if len(apps) != 1:
-        print(f"val3check sim: error: {args.app} holds {len(apps)} applications; name one of them", file=sys.stderr)
+        print(f"val3check sim: error: {_shown(args.app)} holds {len(apps)} applications; name one of them",
+              file=sys.stderr)
         return EXIT_USAGE
     errors = [d for d in outcome.result.diagnostics if d.severity is not None and d.severity >= Severity.ERROR]
     if errors:
@@ -199,19 +226,19 @@ def _sim(args: argparse.Namespace) -> int:
     try:
         robot, note = choose_sim_robot(args.robot, app.path)
     except RobotError as exc:
-        print(f"val3check sim: --robot: {exc}", file=sys.stderr)
+        print(f"val3check sim: --robot: {_shown(str(exc))}", file=sys.stderr)
         return EXIT_USAGE
     if note:
-        print(f"val3check sim: note: {note}", file=sys.stderr)
+        print(f"val3check sim: note: {_shown(note)}", file=sys.stderr)
     scenario = None
     try:
         if args.scenario:
             scenario = load_scenario(args.scenario)
         options = SimOptions(duration=args.duration, max_wall=args.max_wall, max_lines=args.max_lines,
-                             disk_roots=list(settings.disk_roots), robot=robot)
+                             max_memory_mb=args.max_memory, disk_roots=list(settings.disk_roots), robot=robot)
         result = simulate(outcome.workspace, app, options, scenario)
     except ScenarioError as exc:
-        print(f"val3check sim: bad scenario: {exc}", file=sys.stderr)
+        print(f"val3check sim: bad scenario: {_shown(str(exc))}", file=sys.stderr)
         return EXIT_USAGE
     report = build_report(result, settings, catalogue(), __version__, result.link_names)
     if args.report == "json":
@@ -305,7 +332,7 @@ def _robots(args: argparse.Namespace) -> int:
         else:
             models = [load_robot(n) for n in names()]
     except RobotError as exc:
-        print(f"val3check: error: {exc}", file=sys.stderr)
+        print(f"val3check: error: {_shown(str(exc))}", file=sys.stderr)
         return EXIT_USAGE
     detail = bool(args.robot or args.app)
     if args.format == "json":

@@ -90,14 +90,16 @@ def _glob_match(rel: str, pattern: str) -> bool:
     return fnmatch.fnmatchcase(rel, pattern + "/*")
 
 
-def find_config(start: str) -> str | None:
-    folder = os.path.abspath(start)
+def find_config(start: str, warn=None) -> str | None:  # noqa: ANN001
+    """The first val3check.toml, or pyproject.toml with a [tool.val3check] table, at or above
+    `start`. A pyproject.toml that cannot be read is skipped, and said so through `warn`."""
+    folder = os.path.abspath(start) if start else os.getcwd()
     if not os.path.isdir(folder):
         folder = os.path.dirname(folder)
     while True:
         for name in CONFIG_NAMES:
             candidate = os.path.join(folder, name)
-            if os.path.isfile(candidate) and _has_section(candidate, name):
+            if os.path.isfile(candidate) and _has_section(candidate, name, warn):
                 return candidate
         parent = os.path.dirname(folder)
         if parent == folder:
@@ -105,30 +107,74 @@ def find_config(start: str) -> str | None:
         folder = parent
 
 
+MAX_CONFIG_SIZE = 4 * 1024 * 1024  # bytes: a configuration is a few lines
+MAX_FILE_SIZE_LIMIT = 1 << 30  # max-file-size cannot exceed 1 GiB
+
+
 def _read_toml(path: str) -> dict:
+    """The TOML document at `path`, read through val3check.confine (a regular file, its size
+    checked before reading); ConfigError for anything else."""
     import tomllib  # only when there is a configuration to read (start-up time)
 
+    from .confine import Refused, Roots, read_bytes
+
     try:
-        with open(path, "rb") as fh:
-            return tomllib.load(fh)
-    except (OSError, tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        data = read_bytes(path, Roots.user_given(), MAX_CONFIG_SIZE)
+        return tomllib.loads(data.decode("utf-8"))
+    except Refused as exc:
+        raise ConfigError(f"{path}: cannot read configuration: {exc.reason}") from None
+    except UnicodeDecodeError:
+        raise ConfigError(f"{path}: cannot read configuration: not UTF-8") from None
+    except tomllib.TOMLDecodeError as exc:
         raise ConfigError(f"{path}: cannot read configuration: {exc}") from None
+    except RecursionError:
+        raise ConfigError(f"{path}: cannot read configuration: tables or arrays nested too deeply") from None
 
 
-def _has_section(path: str, name: str) -> bool:
+def _read_bytes_capped(path: str) -> bytes:
+    from .confine import Refused, Roots, read_bytes
+
+    try:
+        return read_bytes(path, Roots.user_given(), MAX_CONFIG_SIZE)
+    except Refused as exc:
+        raise ConfigError(f"{path}: cannot read configuration: {exc.reason}") from None
+
+
+def _tool_table(data: dict, path: str) -> dict | None:
+    """`[tool.val3check]`, None when absent; ConfigError when `tool` or it is not a table."""
+    tool = data.get("tool")
+    if tool is None:
+        return None
+    if not isinstance(tool, dict):
+        raise ConfigError(f"{path}: 'tool' must be a table")
+    section = tool.get("val3check")
+    if section is not None and not isinstance(section, dict):
+        raise ConfigError(f"{path}: [tool.val3check] must be a table")
+    return section
+
+
+def _has_section(path: str, name: str, warn=None) -> bool:  # noqa: ANN001
     if name != "pyproject.toml":
         return True
     try:
-        with open(path, "rb") as fh:
-            if not _TOOL_SECTION.search(fh.read()):
-                return False  # most pyproject.toml files are not ours: no need to parse them
-    except OSError:
+        data = _read_bytes_capped(path)
+    except ConfigError as exc:
+        if warn is not None:
+            warn(f"{exc}; this pyproject.toml is ignored")
         return False
+    if not _TOOL_SECTION.search(data):
+        return False  # most pyproject.toml files are not ours: no need to parse them
     try:
-        data = _read_toml(path)
-    except ConfigError:
+        tool = _read_toml(path).get("tool")
+    except ConfigError as exc:
+        if warn is not None:
+            warn(f"{exc}; this pyproject.toml is ignored")
         return False
-    return "val3check" in data.get("tool", {})
+    if tool is not None and not isinstance(tool, dict):
+        if warn is not None:
+            warn(f"{path}: 'tool' is not a table; this pyproject.toml is ignored")
+        return False
+    return tool is not None and "val3check" in tool  # a [tool.val3check] of the wrong type: load_settings says so
 
 
 def _str_list(value, key: str, path: str) -> list[str]:
@@ -148,9 +194,11 @@ KNOWN_KEYS = {
 def load_settings(path: str) -> Settings:
     data = _read_toml(path)
     if os.path.basename(path) == "pyproject.toml":
-        data = data.get("tool", {}).get("val3check", {})
-    elif "tool" in data and "val3check" in data["tool"]:
-        data = data["tool"]["val3check"]
+        data = _tool_table(data, path) or {}
+    elif "tool" in data:
+        section = _tool_table(data, path)
+        if section is not None:
+            data = section
     unknown = sorted(set(data) - KNOWN_KEYS)
     if unknown:
         raise ConfigError(f"{path}: unknown option(s): {', '.join(unknown)} (known: {', '.join(sorted(KNOWN_KEYS))})")
@@ -171,15 +219,16 @@ def load_settings(path: str) -> Settings:
         s.severity = {k.upper(): Severity.parse(str(v)) for k, v in sev.items()}
     except ValueError as exc:
         raise ConfigError(f"{path}: severity: {exc}") from None
-    fail_on = str(data.get("fail-on", "error")).lower()
+    fail_on = data.get("fail-on", "error")
+    fail_on = fail_on.lower() if isinstance(fail_on, str) else ""
     if fail_on not in FAIL_ON_CHOICES:
         raise ConfigError(f"{path}: 'fail-on' must be one of {', '.join(FAIL_ON_CHOICES)}")
     s.fail_on = fail_on
     s.disk_roots = [os.path.normpath(os.path.join(root, d)) for d in _str_list(data.get("disk-roots", []), "disk-roots", path)]
     s.exclude = _str_list(data.get("exclude", []), "exclude", path)
     size = data.get("max-file-size", s.max_file_size)
-    if not isinstance(size, int) or isinstance(size, bool) or size <= 0:
-        raise ConfigError(f"{path}: 'max-file-size' must be a positive number of bytes")
+    if not isinstance(size, int) or isinstance(size, bool) or not 0 < size <= MAX_FILE_SIZE_LIMIT:
+        raise ConfigError(f"{path}: 'max-file-size' must be a number of bytes from 1 to {MAX_FILE_SIZE_LIMIT}")
     s.max_file_size = size
     if "target" in data:
         try:

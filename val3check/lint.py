@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import gc
 import os
+import re
+
 from .records import dataclass
 
 from . import __version__, suppression
@@ -31,7 +33,9 @@ class LintRun:
 
 
 def display_path(path: str) -> str:
-    """Relative to the current directory when inside it, POSIX slashes: stable across machines."""
+    """Relative to the current directory when inside it, POSIX slashes: stable across machines.
+    Printable in every format: bytes that are not UTF-8 show as `\\xE9`, control characters as
+    `\\x1b` (a file name must not drive the terminal)."""
     if not path:
         return path
     absolute = os.path.abspath(path)
@@ -40,7 +44,24 @@ def display_path(path: str) -> str:
     except ValueError:  # another drive on Windows
         rel = absolute
     chosen = absolute if rel == ".." or rel.startswith(".." + os.sep) else rel
-    return chosen.replace(os.sep, "/")
+    return printable_path(chosen.replace(os.sep, "/"))
+
+
+MAX_MESSAGE = 1000  # characters: a message that quotes a hostile file (a 5000-parameter signature) is cut
+
+
+def _capped(message: str) -> str:
+    if len(message) <= MAX_MESSAGE:
+        return message
+    return message[:MAX_MESSAGE] + f"… ({len(message)} characters)"
+
+
+_UNPRINTABLE = re.compile(r"[\x00-\x1f\x7f\udc80-\udcff]")
+
+
+def printable_path(text: str) -> str:
+    """`text` with undecodable bytes (os.fsdecode's surrogates) and control characters escaped."""
+    return _UNPRINTABLE.sub(lambda m: f"\\x{ord(m.group()) & 0xFF:02x}", text)
 
 
 def app_target(app: Application, settings: Settings) -> Target:
@@ -90,7 +111,7 @@ def _run(paths: list[str], settings: Settings) -> LintRun:
         severity = settings.severity.get(d.code) or (rule.severity if rule else Severity.ERROR)
         shown = Diagnostic(
             code=d.code,
-            message=d.message,
+            message=_capped(d.message),
             path=display_path(d.path),
             line=d.line,
             col=d.col,
@@ -107,6 +128,7 @@ def _run(paths: list[str], settings: Settings) -> LintRun:
         applications=sorted(display_path(app.path) for app in targets),
         rules=rules,
         tool_version=__version__,
+        quotable={display_path(f): f for f in sorted(workspace.quotable)},
     )
     missing_arg = any(not os.path.exists(p) for p in paths)
     return LintRun(result=result, workspace=workspace, unreadable=missing_arg or not targets)

@@ -15,3 +15,6 @@ class LintResult:
     applications: list[str]  # every application checked (display paths), sorted
     rules: dict[str, Rule] = field(default_factory=dict)  # the catalogue, by code
     tool_version: str = ""
+    # the files the run read as VAL 3, display path -> path on disk: the only ones a report may
+    # quote (None: any file, for results built by hand)
+    quotable: dict[str, str] | None = None

@@ -45,7 +45,9 @@ end</code></source>
 
 
 def test_disk_path_found_from_a_type_checked_on_its_own(tmp_path):
-    # App/Types/Msg uses Disk://App/Types/Header: checked alone, the disk root is above App.
+    # App/Types/Msg uses Disk://App/Types/Header: checked alone, the disk root is above App,
+    # inside the repository (its git top level: the walk up never leaves it).
+    (tmp_path / ".git").mkdir()
     app = tmp_path / "App"
     write(app / "Types" / "Header" / "Header.pjx", pjx(programs=()))
     msg = app / "Types" / "Msg"

@@ -9,6 +9,7 @@ import pytest
 from loadhelp import PGX_NS, XSI, codes, make_app, pgx, pjx, write
 
 from val3check.loading import LoadOptions, load
+from val3check.confine import Roots
 from val3check.loading.xmlread import read_xml
 
 BILLION_LAUGHS = """<?xml version="1.0"?>
@@ -135,7 +136,7 @@ def test_invalid_utf8_position_counts_code_points_and_crlf(tmp_path):
     data = "<a>\r\n\u00e9\u00e9\u00e9".encode("utf-8") + b"\xc3(" + b"</a>"
     f = tmp_path / "x.pgx"
     f.write_bytes(data)
-    res = read_xml(str(f), 1 << 20)
+    res = read_xml(str(f), 1 << 20, Roots.user_given())
     assert res.root is None
     assert [(d.code, d.line, d.col) for d in res.diagnostics] == [("F003", 2, 4)]
 
@@ -175,7 +176,7 @@ def test_lone_cr_line_ends(tmp_path):
 def test_malformed_xml(tmp_path, text, line, col, words):
     f = tmp_path / "start.pgx"
     f.write_text(text)
-    res = read_xml(str(f), 1 << 20)
+    res = read_xml(str(f), 1 << 20, Roots.user_given())
     assert res.root is None
     [d] = res.diagnostics
     assert d.code == "F004"

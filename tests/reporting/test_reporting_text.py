@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import builtins
 import re
 
 from val3check.diagnostics import Severity
@@ -126,15 +125,17 @@ def test_multiline_span_underlines_to_end_of_line(workdir, make_result, d):
 
 def test_file_read_once(workdir, make_result, d, monkeypatch):
     (workdir / "a.pgx").write_text("a\nb\nc\n", encoding="utf-8")
+    from val3check import confine
+
     opened = []
-    real_open = builtins.open
+    real_read = confine.read_bytes
 
-    def counting_open(file, *args, **kwargs):
-        if str(file).endswith("a.pgx"):
-            opened.append(file)
-        return real_open(file, *args, **kwargs)
+    def counting_read(path, *args, **kwargs):
+        if str(path).endswith("a.pgx"):
+            opened.append(path)
+        return real_read(path, *args, **kwargs)
 
-    monkeypatch.setattr(builtins, "open", counting_open)
+    monkeypatch.setattr(confine, "read_bytes", counting_read)
     render("text", make_result([d("S301", "x", "a.pgx", n, 1) for n in (1, 2, 3)]))
     assert len(opened) == 1
 

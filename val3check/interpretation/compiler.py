@@ -21,6 +21,7 @@ for runtime diagnostics and for reporting where a blocked task waits.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -371,6 +372,8 @@ class ProgramCompiler:
         """(python code, VAL 3 type) of an rvalue. `want` is the expected type (for `{...}`)."""
         tn = type(node)
         if tn is A.Number:
+            if not math.isfinite(node.value):  # F017 in lint; a library is not linted for sim
+                raise self.err(f"numeric constant {node.text[:40]} is beyond the range of a num (F017)", node)
             return repr(float(node.value)), "num"
         if tn is A.String:
             return repr(clip_string(node.value)), "string"  # 3.4.1: at most 128 bytes
@@ -546,6 +549,8 @@ class ProgramCompiler:
     def coerce(self, code: str, have: str, want: str | None) -> str:
         if want == "bool" and have == "dio":
             return f"IOR({code})"
+        if want == "num" and have == "aio":  # an aio read as a num, as lint accepts it (3.6.2 aioGet)
+            return f"I_aioget(T, A, {code})"
         if want in ("num", "string") and have == "sio":
             return f"(yield from SIOR(T, {code}, {want!r}))"
         return code
@@ -936,6 +941,10 @@ class ProgramCompiler:
 
     def line(self) -> None:
         """Count one VAL 3 line (5.4) and hand over when the turn is used up."""
+        if len(self.out) > MAX_SOURCE_LINES:
+            origin = self.program.origin
+            raise CompileError(f"program {self.program.name}() is too large for the simulator (more than"
+                               f" {MAX_SOURCE_LINES} lines of generated code)", origin.line, origin.col)
         self.emit("T.q -= 1")
         self.emit("if T.q < 0: yield")
 
@@ -1112,6 +1121,8 @@ class ProgramCompiler:
             vcode = f"(yield from SIOR(T, {vcode}, {t!r}))"
         elif t == "bool" and vt == "dio":
             vcode = f"IOR({vcode})"
+        elif t == "num" and vt == "aio":
+            vcode = self.coerce(vcode, vt, t)
         elif t not in ("num", "bool", "string") and vt not in ("num", "bool", "string") and type(value) is not A.Struct:
             vcode = f"CP({vcode})"  # 7.3: `=` copies (deep copy) structured and user-type values
         if as_expr:
@@ -1256,12 +1267,12 @@ class ProgramCompiler:
             vals = [self.coerce(*self.expr(v, want=st), st) for v in case.values]
             tests.append((i, " or ".join(f"_s == {v}" for v in vals) or "False"))
         code = lines
-        first = True
+        # flat tests, not an elif chain: Python's compiler nests elif, and thousands of cases
+        # would exhaust its recursion
         for i, test in tests:
-            code.append(f"{'if' if first else 'elif'} {test}: {n} = {i}")
-            first = False
+            code.append(f"if {n} < 0 and ({test}): {n} = {i}")
         if s.default is not None:
-            code.append(f"{'if' if first else 'else'}{' True' if first else ''}: {n} = {len(s.cases)}")
+            code.append(f"if {n} < 0: {n} = {len(s.cases)}")
         self.guarded(code, False)
         flag = f"{n}x"
         self.emit(f"{flag} = 0")
@@ -1300,12 +1311,27 @@ class ProgramCompiler:
                 params.append(f"a_{p.name}")
             else:
                 params.append(f"v_{p.name}")
-        self.cur = (prog.origin.line, prog.origin.col)
         body = prog.body
-        if body is not None:
-            self.cur = (body.line, body.col)
+        # 2.1.4.2: a task's execution memory holds the parameters and locals of every program of
+        # its call stack; a call that does not fit stops the task at the program's declaration
+        # (error 41), as does local data the simulator has no memory for (error 40).
+        self.cur = (prog.origin.line, prog.origin.col)
+        self.emit("while 1:")
+        self.ind += 1
+        self.emit("try:")
+        self.ind += 1
         self.emit(f"T.stack += {fb}")
-        self.emit("if T.stack > T.smax: T.stack -= " + str(fb) + "; raise E(41, 'execution memory of the task exceeded')")
+        self.emit(f"if T.stack > T.smax: T.stack -= {fb}; raise E(41, 'the parameters and locals of {prog.name}()"
+                  f" need {fb} bytes, the task has ' + str(T.smax - T.stack) + ' left of its ' + str(T.smax))")
+        self.ind -= 1
+        self.emit("except Exception as _e:")
+        self.ind += 1
+        self.emit("yield from FAIL(T, _e, False, None)")
+        self.emit("continue")
+        self.ind -= 1
+        self.emit("break")
+        self.ind -= 1
+        prologue_at = len(self.out)
         boxinit = ["None"] * self.nbox
         for p in prog.parameters:
             v = self.vars[p.name]
@@ -1324,6 +1350,12 @@ class ProgramCompiler:
             elif v.store == "obj":
                 cont = "COLLECTION" if v.cont == "collection" else "ARRAY"
                 self.emit(f"v_{loc.name} = LOCAL({v.t!r}, {cont!r}, {tuple(loc.sizes or (1,))!r}, {loc.name!r})")
+        if len(self.out) > prologue_at:  # the locals' values: allocated at the declaration too
+            init = self.out[prologue_at:]
+            del self.out[prologue_at:]
+            self.guarded([line.strip() for line in init], False)
+        if body is not None:
+            self.cur = (body.line, body.col)
         self.emit("try:")
         self.ind += 1
 
@@ -1357,6 +1389,10 @@ class ProgramCompiler:
         return f"DEFAULT({t!r}, {name!r})" if name else f"DEFAULT({t!r})"
 
 
+# A budget on the Python the compiler writes: 150,000 lines (about 15,000 VAL 3 lines in one
+# program) compile in about 2 s and 700 MB; a 100,000-line program would need many GB.
+MAX_SOURCE_LINES = 150_000
+
 ENUM_VALUES_TYPES = frozenset({"shoulder", "elbow", "wrist", "blend"})
 
 
@@ -1375,6 +1411,10 @@ def compile_program(unit, program: Program, namespace: dict) -> Compiled:
         try:
             code = compile(result.source, result.filename, "exec")
             break
+        except MemoryError:
+            err = CompileError(f"program {program.name}() is too large for the simulator (out of memory while"
+                               " compiling it)", program.origin.line, program.origin.col)
+            return _failing(unit, program, err, namespace)
         except (SyntaxError, RecursionError) as exc:
             # Python allows 20 nested blocks: fewer sequences get a taskResume dispatch loop
             if max_level > 0 and isinstance(exc, SyntaxError):

@@ -64,11 +64,27 @@ def normalise(path: str, A) -> tuple[int, str, str]:
     return 0, display.lower(), display
 
 
+def _roots(M):
+    """The lint run's roots (val3check.confine): a path never leads outside them at run time either."""
+    roots = M.ws.roots
+    if roots is None:
+        from ..confine import Roots
+
+        roots = M.ws.roots = Roots([*M.disk_roots, os.path.dirname(M.app.folder)])
+    return roots
+
+
 def _real_path(M, A, path: str) -> str | None:
     text = path.strip()
     if text.lower().startswith("disk://"):
         text = "Disk://" + text[7:]
-    return resolve_library(text, A.model.path, M.disk_roots)
+    found = resolve_library(text, A.model.path, M.disk_roots, _roots(M))
+    if found is None:
+        # a library the loader found by name in the repository (issue 11 item 5)
+        for ref in (*A.model.libraries.values(), *A.model.types.values()):
+            if ref.resolved and ref.path.strip().replace("\\", "/").lower() == text.replace("\\", "/").lower():
+                return ref.resolved
+    return found
 
 
 def _model_for(M, resolved: str):
@@ -77,7 +93,7 @@ def _model_for(M, resolved: str):
         return app
     from ..loading import LoadOptions, load
 
-    ws2, _ = load([resolved], LoadOptions(disk_roots=list(M.disk_roots)))
+    ws2, _ = load([resolved], LoadOptions(disk_roots=list(M.disk_roots), extra_roots=_roots(M).folders))
     for k, v in ws2.apps.items():
         M.ws.apps.setdefault(k, v)
     return M.ws.apps.get(resolved)
@@ -235,8 +251,9 @@ def _lib_list(M, A, path: str, arr: Arr) -> bool:
     if real is None:
         base = os.path.dirname(os.path.dirname(os.path.abspath(A.model.path)))
         rest = path.split("://", 1)[-1].strip("/")
-        cand = os.path.join(base, rest) if rest else base
-        folder = cand if os.path.isdir(cand) else None
+        cand = os.path.normpath(os.path.join(base, rest)) if rest else base
+        roots = _roots(M)  # never list a folder outside the run's roots (val3check.confine)
+        folder = cand if roots.holds(cand) and roots.allows(cand) and os.path.isdir(cand) else None
     else:
         folder = os.path.dirname(os.path.dirname(real))
     if folder:

@@ -30,12 +30,14 @@ from .libraries import SystemIO, is_system_io
 from .geom import NAMESPACE as GEOM_NAMESPACE
 from .geom import NO_ARM, Arm
 from .memory import Cell, TypeSpace, resolve_fathers
+from .memory_budget import MemoryBudget
 from .values import Arr, Coll, IOPoint, Screen, copy_globals, store
 
 TICK_US = 4000  # the controller's cycle (4 ms)
 LINES_PER_CYCLE = 1000  # simulated cost: 4 µs per VAL 3 line
 LINE_US = TICK_US // LINES_PER_CYCLE
 SYNC_LINES = 3000  # 5.5: up to 3000 lines per sequencing of a synchronous task
+MAX_REACTIONS_PER_CYCLE = 10_000  # a scenario reaction firing more often within 4 ms is a loop (R008)
 START_PRIORITY = 10  # 5.2
 MAX_TASKS = 200
 TASK_NAME = re.compile(r"^[A-Za-z0-9_]{1,15}$")
@@ -55,6 +57,7 @@ class Budgets:
     max_transcript: int = 10_000
     max_io_log: int = 100_000
     stop_us: int = 2_000_000  # simulated time left to stop() after a run is cut short
+    max_memory_mb: float = 512.0  # growth of the process (memory_budget.py), loading included
 
 
 @dataclass
@@ -155,6 +158,7 @@ class Unit:
 
     def init_globals(self, saved: dict[str, Any] | None = None) -> None:
         restored = copy_globals({n: saved[n] for n in self.model.data if n in saved}) if saved is not None else {}
+        self.space.reserve_globals(d for n, d in self.model.data.items() if n not in restored)
         self.machine.cell.pending = []
         for name, d in self.model.data.items():
             if name in restored:
@@ -185,6 +189,7 @@ class Unit:
                 ns[f"d_{name}"] = c.data
         self.ns = ns
         for prog in self.model.programs.values():
+            M.check_load_budgets()
             if prog.body is None and prog.code is not None:
                 parse_program(prog)
             compiled = compile_program(self, prog, ns)
@@ -239,6 +244,7 @@ class Machine:
         self.budgets = budgets or Budgets()
         self.disk_roots = list(disk_roots or [])
         self.cell = Cell()
+        self.cell.budget = MemoryBudget(self.budgets.max_memory_mb, clock=self._wall_check)
         # the arm model (val3check.robot.RobotModel) and its commanded position, or None (geom.py)
         self.arm: Arm | None = Arm(robot) if robot is not None else None
         self.ctl = Controller()
@@ -267,12 +273,14 @@ class Machine:
         self.key_last = -1
         self.key_seen = 0
         self.reactions: list = []  # (IOPoint, value, delay_us, [(IOPoint, value)])
+        self.reaction_lines: list[int] = []  # the scenario line of each reaction (R008)
+        self.scenario_path = ""
         self.sio_replies: list = []
         self.total_lines = 0
         self.end_reason = ""
         self.phase = "start"
         self.stop_task: Task | None = None
-        self.wall_start = 0.0
+        self.wall_start = _time.monotonic()  # --max-wall covers loading and compiling too
         self.end_time = 0
         self.destroyed: list[str] = []
         self.base_ns = self._base_namespace()
@@ -771,8 +779,18 @@ class Machine:
         self.tasks.append(T)
         self.history.append(T)
 
+    def _wall_check(self) -> None:
+        if _time.monotonic() > self.wall_start + self.budgets.wall_s:
+            raise EndRun("wall-clock")
+
+    def check_load_budgets(self) -> None:
+        """While the application is loaded and compiled: the wall-clock and memory budgets."""
+        self._wall_check()
+        why = self.cell.budget.over()
+        if why:
+            raise EndRun("budget:" + why)
+
     def run(self) -> None:
-        self.wall_start = _time.monotonic()
         self.start()
         try:
             self._loop(self.budgets.duration_us)
@@ -894,8 +912,12 @@ class Machine:
             if self.now >= limit_us:
                 raise EndRun("stop-timeout" if stopping else "duration")
             cycles += 1
-            if cycles & 63 == 0 and _time.monotonic() > wall_deadline:
+            if _time.monotonic() > wall_deadline:
                 raise EndRun("wall-clock")
+            if cycles & 255 == 0:
+                why = self.cell.budget.over()
+                if why:
+                    raise EndRun("budget:" + why)
             if self.total_lines > budgets.max_lines:
                 raise EndRun("steps")
             busy = self._cycle()
@@ -912,6 +934,7 @@ class Machine:
 
     def _apply_events(self) -> None:
         ev = self.events
+        fired: dict[int, int] = {}  # reactions fired in this cycle, by index
         while ev and ev[0][0] <= self.now:
             at, _, kind, payload = heapq.heappop(ev)
             if kind == "set":
@@ -919,8 +942,11 @@ class Machine:
                     if io.value != value:
                         io.value = value
                         self.log_io(at, io, value, "scenario")
-                        for watched, v, delay, actions in self.reactions:
+                        for k, (watched, v, delay, actions) in enumerate(self.reactions):
                             if watched is io and io.value == v:
+                                fired[k] = fired.get(k, 0) + 1
+                                if fired[k] > MAX_REACTIONS_PER_CYCLE:
+                                    self._reaction_loop(at, fired)
                                 self.push_event(at + delay, "set", actions)
             elif kind == "react":
                 pass
@@ -935,6 +961,20 @@ class Machine:
                 for k, v in payload.items():
                     setattr(self.ctl, k, v)
             # "key" events only wake the scheduler up
+
+    def _reaction_loop(self, at: int, fired: dict[int, int]) -> None:
+        """Scenario reactions that set each other's inputs without delay never let time move on:
+        said once (R008) at the first reaction of the loop, and the run ends."""
+        lines = [self.reaction_lines[k] if k < len(self.reaction_lines) else 0 for k in sorted(fired)
+                 if fired[k] > MAX_REACTIONS_PER_CYCLE // 2]
+        names = sorted({self.reactions[k][0].link for k in fired if fired[k] > MAX_REACTIONS_PER_CYCLE // 2})
+        where = ", ".join(f"line {n}" for n in lines if n) or "see [[reactions]]"
+        self.diags.append(Diag(
+            "R008", f"the scenario's reactions to {', '.join(names)} set each other's inputs again and again at"
+            f" {at / 1e6:g} s ({MAX_REACTIONS_PER_CYCLE} times within one 4 ms cycle; {where}): time cannot move on",
+            self.scenario_path or self.app.path, min((n for n in lines if n), default=0), 1 if any(lines) else 0, at,
+            "", ""))
+        raise EndRun(f"budget:the scenario's reactions loop at {at / 1e6:g} s (R008)")
 
     def _cycle(self) -> bool:
         """One 4 ms cycle. Returns True when the line budget was spent (busy), False when every
@@ -1086,7 +1126,7 @@ def _error_code(e: BaseException) -> tuple[int, str]:
     if isinstance(e, RecursionError):
         return 41, "call depth"
     if isinstance(e, MemoryError):
-        return 40, ""
+        return 40, str(e)
     if isinstance(e, EndRun):
         raise e
     return 61, f"{e.__class__.__name__}: {e}"

@@ -8,6 +8,7 @@ converts the loader's `Data`/`Value` records into run-time values (`values.py`).
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass, field
 from typing import Any
@@ -17,6 +18,10 @@ from ..geometry.points import Point
 from ..geometry.trsf import Trsf
 from ..loading.model import Application, Container, Data, Value, Workspace
 from ..loading.types import DEFAULTS, base_type, is_builtin
+from .memory_budget import UNKNOWN_BYTES, VALUE_BYTES, MemoryBudgetExceeded
+
+MAX_TYPE_NESTING = 64  # user types inside user types (real ones: 2 or 3)
+TOO_MUCH = 1e15  # bytes: the price of what cannot be built
 from .values import (
     ENUM_SPELLING,
     JOINT_FIELDS,
@@ -39,6 +44,8 @@ class Cell:
         self.flange = new_flange(self.io("dio", "valve1"))
         # (node or point, "fPallet[0]"): data-file references waiting for every global to exist
         self.pending: list[tuple[Any, str]] = []
+        self.budget = None  # memory_budget.MemoryBudget: containers are priced before they are built
+        self.nesting = 0  # user-type values being built inside each other
 
     def io(self, kind: str, link: str) -> IOPoint:
         if not link:
@@ -117,6 +124,7 @@ class TypeSpace:
         self.cell = cell
         self._cache: dict[str, TypeSpace] = cache if cache is not None else {}
         self._users: dict[str, UserType | None] = {}
+        self._costs: dict[str, float] = {}
 
     # ---- user types ---------------------------------------------------------------------------
 
@@ -141,6 +149,58 @@ class TypeSpace:
         if sp is None:
             sp = self._cache[key] = TypeSpace(self.ws, app, self.cell, self._cache)
         return sp
+
+    def value_cost(self, t: str, depth: int = 0) -> float:
+        """Estimated Python bytes of one value of type `t` (user types: their fields; nested
+        beyond MAX_TYPE_NESTING: more than any budget)."""
+        b = base_type(t)
+        if b in VALUE_BYTES:
+            return VALUE_BYTES[b]
+        if t in self._costs:
+            return self._costs[t]
+        ut = self.user_type(t)
+        if ut is None:
+            return UNKNOWN_BYTES
+        if depth >= MAX_TYPE_NESTING:
+            return TOO_MUCH
+        sp = self.space_of(ut.app)
+        cost = min(TOO_MUCH, UNKNOWN_BYTES + sum(math.prod(d.sizes or (1,)) * sp.value_cost(d.type, depth + 1)
+                                                 for d in ut.fields.values()))
+        self._costs[t] = cost
+        return cost
+
+    def _nest(self, t: str) -> None:
+        """One more user type inside another: bounded, like the memory (a chain of 1000 types)."""
+        if self.cell.nesting >= MAX_TYPE_NESTING:
+            raise MemoryBudgetExceeded(f"user type {t}: values nested more than {MAX_TYPE_NESTING} user types deep"
+                                       " are not simulated")
+        self.cell.nesting += 1
+
+    def reserve_globals(self, datas) -> None:  # noqa: ANN001
+        """Price all the globals of an application at once, before the first is built: data
+        files that ask for gigabytes are refused at once rather than after seconds of building."""
+        if self.cell.budget is None:
+            return
+        total, biggest, name = 0.0, 0.0, ""
+        for d in datas:
+            if d.container is not Container.COLLECTION:
+                cost = self.value_cost(d.type)
+                if cost >= TOO_MUCH:
+                    self._reserve(d.type, 1, f"the global {d.name}")
+                price = math.prod(max(1, int(x)) for x in (d.sizes or (1,))) * cost
+                total += price
+                if price > biggest:
+                    biggest, name = price, d.name
+        self.cell.budget.reserve(total, f"the global data of {self.app.name} (the largest: {name}, about"
+                                        f" {biggest / (1 << 20):,.0f} MB)")
+
+    def _reserve(self, t: str, n: int, what: str) -> None:
+        if self.cell.budget is not None:
+            cost = self.value_cost(t)
+            if cost >= TOO_MUCH:
+                raise MemoryBudgetExceeded(f"{what}: user types nested more than {MAX_TYPE_NESTING} deep are not"
+                                           " simulated")
+            self.cell.budget.reserve(n * cost, what)
 
     def field_info(self, tname: str) -> dict[str, Data] | None:
         ut = self.user_type(tname)
@@ -172,7 +232,11 @@ class TypeSpace:
         if ut is None:
             return None
         sp = self.space_of(ut.app)
-        return {n: sp.container(d, in_user=True, local=local) for n, d in ut.fields.items()}
+        self._nest(t)
+        try:
+            return {n: sp.container(d, in_user=True, local=local) for n, d in ut.fields.items()}
+        finally:
+            self.cell.nesting -= 1
 
     def from_fields(self, t: str, fields: dict, members: dict, name: str = "", local: bool = False) -> Any:
         """A value from a loader `Value.fields`/`members` (types.py keys: tmax/rmax, ioLink).
@@ -215,9 +279,13 @@ class TypeSpace:
             return None
         sp = self.space_of(ut.app)
         out = {}
-        for n, d in ut.fields.items():
-            out[n] = sp.container(members[n], d, in_user=True, local=local) if n in members else sp.container(
-                d, in_user=True, local=local)
+        self._nest(t)
+        try:
+            for n, d in ut.fields.items():
+                out[n] = sp.container(members[n], d, in_user=True, local=local) if n in members else sp.container(
+                    d, in_user=True, local=local)
+        finally:
+            self.cell.nesting -= 1
         return out
 
     @staticmethod
@@ -254,6 +322,7 @@ class TypeSpace:
         n = 1
         for s in dims:
             n *= s
+        self._reserve(t, n, f"the global {dname} ({' x '.join(map(str, dims))} values of {t})")
         given: dict[int, Value] = {}
         for v in data.values:
             idx = _flat(v.key, dims)
@@ -285,13 +354,14 @@ class TypeSpace:
         for s in dims:
             n *= s
         bt = base_type(t)
+        self._reserve(bt, n, f"the local {name} ({' x '.join(map(str, dims))} values of {bt})")
         return Arr(bt, [self.default(bt, True, name if n == 1 else f"{name}[{i}]") for i in range(n)], dims, local=True)
 
 
 def _flat(key: str, dims: tuple[int, ...]) -> int | None:
     try:
         parts = [int(float(p)) for p in key.replace(",", " ").split()]
-    except ValueError:
+    except (ValueError, OverflowError):  # "1e400": no index (N014 in lint)
         return None
     if len(parts) != len(dims):
         if len(parts) == 1 and len(dims) == 1:

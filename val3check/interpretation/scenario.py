@@ -10,6 +10,7 @@ signal, key or a value of the wrong type is an error that names the line.
 from __future__ import annotations
 
 import datetime
+import math
 import re
 import tomllib
 from dataclasses import dataclass, field
@@ -33,12 +34,20 @@ class Scenario:
     data: dict = field(default_factory=dict)
 
 
+MAX_SCENARIO_SIZE = 8 * 1024 * 1024  # bytes: a scenario is a few pages of TOML
+MAX_SECONDS = 1e7  # a time, duration or delay (about 115 days): more is a mistake
+MAX_NESTING = 32  # tables and arrays inside each other: the format needs 3
+
+
 def load_scenario(path: str) -> Scenario:
+    """Read a scenario file: a regular file (not a FIFO or a device: val3check.confine), at most
+    MAX_SCENARIO_SIZE bytes, UTF-8 TOML nested at most MAX_NESTING deep."""
+    from ..confine import Refused, Roots, read_bytes
+
     try:
-        with open(path, "rb") as fh:
-            raw = fh.read()
-    except OSError as exc:
-        raise ScenarioError(path, 0, f"cannot read: {exc.strerror or exc}") from None
+        raw = read_bytes(path, Roots.user_given(), MAX_SCENARIO_SIZE)
+    except Refused as exc:
+        raise ScenarioError(path, 0, f"cannot read: {exc.reason}") from None
     try:
         text = raw.decode("utf-8")
         data = tomllib.loads(text)
@@ -47,7 +56,34 @@ def load_scenario(path: str) -> Scenario:
     except tomllib.TOMLDecodeError as exc:
         m = re.search(r"line (\d+)", str(exc))
         raise ScenarioError(path, int(m.group(1)) if m else 0, f"invalid TOML: {exc}") from None
+    except (RecursionError, MemoryError):
+        raise ScenarioError(path, 0, f"tables or arrays nested too deeply (at most {MAX_NESTING})") from None
+    if _depth(data) > MAX_NESTING:
+        raise ScenarioError(path, 0, f"tables or arrays nested too deeply (at most {MAX_NESTING})")
     return Scenario(path, text, data)
+
+
+def _depth(value: Any) -> int:
+    """How deep tables and arrays nest (iterative: a hostile file must not exhaust the stack)."""
+    deepest, stack = 0, [(value, 1)]
+    while stack:
+        v, d = stack.pop()
+        if isinstance(v, dict):
+            items = v.values()
+        elif isinstance(v, list):
+            items = v
+        else:
+            continue
+        deepest = max(deepest, d)
+        if deepest > MAX_NESTING:
+            return deepest
+        stack.extend((x, d + 1) for x in items)
+    return deepest
+
+
+def _finite(v: Any) -> bool:
+    """A TOML number val3check can compute with: not a bool, not nan or inf."""
+    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and abs(v) <= 1e300
 
 
 class _Lines:
@@ -80,7 +116,9 @@ class _Lines:
 
 
 def _seconds(v: Any) -> int | None:
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or v < 0:
+    """Microseconds from a number of seconds in [0, MAX_SECONDS]; None for anything else
+    (nan, inf, negative, not a number)."""
+    if not _finite(v) or not 0 <= v <= MAX_SECONDS:
         return None
     return int(round(v * 1_000_000))
 
@@ -124,8 +162,8 @@ class Applier:
             if not isinstance(v, bool):
                 self.fail(line, f"{name}: a dio takes true or false, not {v!r}")
             return v
-        if isinstance(v, bool) or not isinstance(v, (int, float)):
-            self.fail(line, f"{name}: an aio takes a number, not {v!r}")
+        if not _finite(v):
+            self.fail(line, f"{name}: an aio takes a number (finite), not {v!r}")
         return float(v)
 
     def settings(self, table: Any, line: int, what: str) -> list[tuple[IOPoint, Any]]:
@@ -141,6 +179,7 @@ class Applier:
 
     def apply(self) -> None:
         d = self.sc.data
+        self.M.scenario_path = self.sc.path
         known = {"version", "description", "inputs", "events", "reactions", "keys", "serial", "controller", "io", "robot"}
         for k in d:
             if k not in known:
@@ -159,7 +198,7 @@ class Applier:
             self._keys(ev, {"at", "set"}, line, "[[events]]")
             at = _seconds(ev.get("at"))
             if at is None:
-                self.fail(self.lines.key("at", line) or line, "[[events]] needs at = seconds (a number >= 0)")
+                self.fail(self.lines.key("at", line) or line, "[[events]] needs at = seconds (a finite number from 0 to 1e7)")
             M.push_event(at, "set", self.settings(ev.get("set", {}), line, "[[events]] set"))
         for i, r in enumerate(_list(d, "reactions", self)):
             line = self.lines.section("reactions", i)
@@ -171,8 +210,9 @@ class Applier:
             becomes = self.value(io, r.get("becomes", True), self.lines.key("becomes", line) or line, name)
             after = _seconds(r.get("after", 0))
             if after is None:
-                self.fail(self.lines.key("after", line) or line, "after = seconds (a number >= 0)")
+                self.fail(self.lines.key("after", line) or line, "after = seconds (a finite number from 0 to 1e7)")
             M.reactions.append((io, becomes, after, self.settings(r.get("set", {}), line, "[[reactions]] set")))
+            M.reaction_lines.append(line)
         from .machine import Key
 
         keys = []
@@ -181,7 +221,7 @@ class Applier:
             self._keys(k, {"at", "key", "text", "hold"}, line, "[[keys]]")
             at = _seconds(k.get("at", 0))
             if at is None:
-                self.fail(self.lines.key("at", line) or line, "[[keys]] at = seconds (a number >= 0)")
+                self.fail(self.lines.key("at", line) or line, "[[keys]] at = seconds (a finite number from 0 to 1e7)")
             code = k.get("key", 270 if "text" in k else None)
             if isinstance(code, bool) or not isinstance(code, int) or not -1 < code < 1000:
                 self.fail(self.lines.key("key", line) or line, "[[keys]] key = a key code (4.3), e.g. 270 for Return")
@@ -213,7 +253,7 @@ class Applier:
             else:
                 at = _seconds(s.get("at", 0))
                 if at is None:
-                    self.fail(self.lines.key("at", line) or line, "[[serial]] at = seconds (a number >= 0)")
+                    self.fail(self.lines.key("at", line) or line, "[[serial]] at = seconds (a finite number from 0 to 1e7)")
                 M.push_event(at, "sio", (io, data))
         if "controller" in d:
             self._controller(d["controller"])
@@ -233,8 +273,8 @@ class Applier:
             return
         ln = self.lines.key("joints", line) or line
         j = table["joints"]
-        if not isinstance(j, list) or not j or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in j):
-            self.fail(ln, "[robot] joints = [numbers], one per axis, in degrees")
+        if not isinstance(j, list) or not j or not all(_finite(v) for v in j):
+            self.fail(ln, "[robot] joints = [finite numbers], one per axis, in degrees")
         arm = self.M.arm
         if arm is None:
             return
@@ -309,13 +349,13 @@ class Applier:
             if k not in spec:
                 self.fail(ln, f"[controller]: unknown key {k!r}")
             types, rng = spec[k]
-            if isinstance(v, bool) and types is not bool:
+            if isinstance(v, bool) and types is not bool or isinstance(v, float) and not _finite(v):
                 self.fail(ln, f"[controller] {k}: bad value {v!r}")
             if not isinstance(v, types) or (rng is not None and v not in rng):
                 self.fail(ln, f"[controller] {k}: bad value {v!r}")
             if k == "power_delay":
-                if v < 0:
-                    self.fail(ln, "[controller] power_delay: seconds >= 0")
+                if _seconds(v) is None:
+                    self.fail(ln, f"[controller] power_delay: seconds from 0 to {MAX_SECONDS:g}")
                 ctl.power_delay_us = int(round(v * 1_000_000))
             elif k == "monitor_speed":
                 if not 0 <= v <= 100:
@@ -348,6 +388,11 @@ class Applier:
                         if ck not in ("working_mode", "working_state", "es_status", "powered", "monitor_speed",
                                       "safety_fault", "calibrated"):
                             self.fail(ln, f"[controller] changes: cannot change {ck!r}")
+                        ctypes, crng = spec[ck]
+                        if (isinstance(cv, bool) and ctypes is not bool or not isinstance(cv, ctypes)
+                                or crng is not None and cv not in crng
+                                or ck == "monitor_speed" and not (_finite(cv) and 0 <= cv <= 100)):
+                            self.fail(ln, f"[controller] changes: {ck}: bad value {cv!r}")
                         payload[ck] = cv
                     self.M.push_event(_seconds(ch["at"]), "ctl", payload)
             else:

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ..loading.model import Application, Workspace
-from .machine import Budgets, Diag, Machine
+from .machine import Budgets, Diag, EndRun, Machine
 
 END_REASONS = {
     "ended": "the application ended (its last task ended, then stop() ran)",
@@ -32,6 +32,7 @@ class SimOptions:
     max_wall: float = 60.0  # wall-clock seconds
     max_lines: int = 50_000_000
     max_transcript: int = 10_000
+    max_memory_mb: float = 512.0  # growth of the process, loading included (memory_budget.py)
     scenario: str | None = None
     disk_roots: list[str] = field(default_factory=list)
     # the arm model (val3check.robot.RobotModel) or None: see `choose_sim_robot`
@@ -63,13 +64,19 @@ class SimResult:
 def simulate(ws: Workspace, app: Application, options: SimOptions | None = None, scenario: Any = None) -> SimResult:
     options = options or SimOptions()
     budgets = Budgets(duration_us=int(round(options.duration * 1_000_000)), wall_s=options.max_wall,
-                      max_lines=options.max_lines, max_transcript=options.max_transcript)
+                      max_lines=options.max_lines, max_transcript=options.max_transcript,
+                      max_memory_mb=options.max_memory_mb)
     M = Machine(ws, app, budgets=budgets, disk_roots=options.disk_roots, robot=options.robot)
-    M.load_main()
-    if scenario is not None:
-        from .scenario import apply_scenario
+    try:
+        M.load_main()
+        if scenario is not None:
+            from .scenario import apply_scenario
 
-        apply_scenario(M, scenario)
+            apply_scenario(M, scenario)
+    except (EndRun, MemoryError, RecursionError) as stop:  # a budget reached before the first line ran
+        M.end_reason = (stop.reason if isinstance(stop, EndRun) else f"budget:{stop}" if isinstance(stop, MemoryError)
+                        else "budget:the application's values are nested too deeply for the simulator")
+        return collect(M)
     M.run()
     return collect(M)
 

@@ -3,8 +3,10 @@
     ws, diagnostics = load(["path/to/App", "other/App2/App2.pjx"], LoadOptions(disk_roots=[...]))
 
 `load` never raises for bad input: unreadable or malformed files, missing listed files,
-libraries that cannot be found... all become Diagnostics (codes F001-F011, L001-L005, see
-`rules/`) and loading goes on with the next file. Every path in the result is absolute and
+libraries that cannot be found... all become Diagnostics (codes F001-F016, L001-L005, see
+`rules/`) and loading goes on with the next file. Every file is read through
+`val3check.confine`: a path written in a file never leads outside the run's roots (the paths
+given, their repository, the disk roots, each target's Disk:// folder and controller tree). Every path in the result is absolute and
 normalised (os.path.abspath). Output is deterministic (sorted listings, file order).
 
 What `paths` may name:

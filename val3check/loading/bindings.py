@@ -57,15 +57,15 @@ def _strings(doc: object) -> list[str]:
 
 def bound_names(folder: str, max_size: int) -> tuple[set[str], list[str]]:
     """(lower-case names found in the application's bindings files, the files read)."""
+    from ..confine import Refused, Roots, read_bytes
+
     names: set[str] = set()
     read: list[str] = []
+    roots = Roots([folder])
     for path in _files(folder):
-        try:
-            if os.path.getsize(path) > max_size:
-                continue
-            with open(path, "rb") as fh:
-                doc = json.loads(fh.read().decode("utf-8-sig"))
-        except (OSError, ValueError, RecursionError):
+        try:  # the one file gate (val3check.confine): inside the folder, a regular file, its size first
+            doc = json.loads(read_bytes(path, roots, max_size).decode("utf-8-sig"))
+        except (Refused, ValueError, RecursionError):
             continue  # not ours to report: the page editor owns these files
         read.append(path)
         for text in _strings(doc):

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import os
 
+from ..confine import Roots
 from .xmlread import read_xml
 
 _LEVELS = 3  # usr/usrapp/App, usr/usrapp/Group/App, usr/usrapp/Group/Sub/App
@@ -37,7 +38,9 @@ def find_arm_cfx(app_folder: str) -> str | None:
 
 def read_arm_id(cfx_path: str, max_size: int) -> str | None:
     """The arm id an arm.cfx declares; None when it cannot be read or has none."""
-    res = read_xml(cfx_path, max_size)
+    # val3check.confine: the file, links resolved, must lie in the controller tree's usr folder
+    usr = os.path.dirname(os.path.dirname(os.path.abspath(cfx_path)))
+    res = read_xml(cfx_path, max_size, Roots([usr]))
     if res.root is None:
         return None
     stack = [res.root]

@@ -6,6 +6,7 @@ import errno
 import os
 from ..records import dataclass, field
 
+from ..confine import Refused, Roots, check, repository_root
 from ..diagnostics import Diagnostic
 from . import reader as rd
 from . import resolve as rs
@@ -19,12 +20,16 @@ SKIP_DIRS = frozenset({"node_modules", "__pycache__", "site-packages", "venv", "
 _EXT_PROJECT = ".pjx"
 _EXT_PROGRAM = ".pgx"
 _EXT_DATA = ".dtx"
+_VAL3_EXTS = (_EXT_PROJECT, _EXT_PROGRAM, _EXT_DATA)
 
 
 @dataclass
 class LoadOptions:
     disk_roots: list[str] = field(default_factory=list)  # --disk-root DIR / config entry, searched after the defaults
     max_file_size: int = 16 * 1024 * 1024  # bytes; larger files get a diagnostic and are skipped
+    # more folders that paths written in files may lead into (the run's roots, when a library
+    # is loaded again by the simulator)
+    extra_roots: list[str] = field(default_factory=list)
 
 
 def _key(path: str) -> str:
@@ -45,10 +50,15 @@ def _keep_first(app: Application, table: dict, item, kind: str, sink: rd.Sink) -
     ))
 
 
-def _inside(path: str, folder: str) -> bool:
-    """`path` is in `folder` or below it, symbolic links resolved."""
-    real, top = os.path.realpath(path), os.path.realpath(folder)
+def _inside(path: str, folder: str, top: str | None = None) -> bool:
+    """`path` is in `folder` or below it, symbolic links resolved (`top`: the folder's real path)."""
+    real, top = os.path.realpath(path), top or os.path.realpath(folder)
     return os.path.commonpath([real, top]) == top
+
+
+def _is_io(ref) -> bool:  # noqa: ANN001
+    """The controller's own I/O library (L003): never looked for by name."""
+    return isinstance(ref, LibraryRef) and (ref.alias.lower() == "io" or rs.library_name(ref.path).lower() == "io")
 
 
 def _stem(rel: str) -> str:
@@ -76,19 +86,47 @@ class Loader:
         self.failed: set[str] = set()  # project files that could not be loaded
         self.lines_read = 0
         self.bytes_read = 0
+        # Where paths written in files may lead (val3check.confine): grows with each target.
+        self.roots = Roots([*options.disk_roots, *options.extra_roots])
+        self.ws.roots = self.roots
+        self.repos: list[str] = []  # repository roots of the targets (git top level, else the target)
+        self.index = rs.RepositoryIndex(SKIP_DIRS)
+        self._real_folders: dict[str, str] = {}  # application folder -> its real path
 
     # -- reading ------------------------------------------------------------------------------
 
     def _read(self, path: str) -> Node | None:
-        res = read_xml(path, self.options.max_file_size)
+        res = read_xml(path, self.options.max_file_size, self.roots)
         self.diags.extend(res.diagnostics)
         self.lines_read += res.lines
         self.bytes_read += res.size
+        if res.size and (_ext(path) in _VAL3_EXTS or (res.root is not None and rd.classify(res.root) is not None)):
+            # only files read as VAL 3 are ever quoted in a report (source excerpts)
+            self.ws.quotable.add(os.path.abspath(path))
         return res.root
+
+    def _allow_target(self, path: str) -> None:
+        """A path the user named: its folder and its repository become roots."""
+        folder = path if os.path.isdir(path) else os.path.dirname(path)
+        for f in (folder, os.path.dirname(os.path.realpath(path)) if not os.path.isdir(path) else None):
+            if f is None:
+                continue
+            self.roots.add(f)
+            repo = repository_root(f)
+            self.roots.add(repo)
+            if repo not in self.repos:
+                self.repos.append(repo)
 
     def _add_target(self, key: str) -> None:
         if key not in self.ws.targets:
             self.ws.targets.append(key)
+        app = self.ws.apps.get(key)
+        if app is not None and app.layout != "pgx-only":
+            # its Disk:// folder (the controller's usr/usrapp) and its controller tree
+            self.roots.add(os.path.dirname(app.folder))
+            ctrl = rs.controller_usrapp(app.folder)
+            if ctrl is not None:
+                self.roots.add(ctrl)
 
     # -- projects -----------------------------------------------------------------------------
 
@@ -120,8 +158,13 @@ class Loader:
         self.ws.apps[pjx] = app
         folder = os.path.dirname(pjx)
         seen: dict[str, Node] = {}
+        seen_text: dict[tuple[str, str], Node] = {}  # the same entry written again: no file system work
         for kind, entries in (("program", pf.programs), ("data", pf.data)):
             for rel, node in entries:
+                first = seen_text.setdefault((kind, rel.replace("\\", "/")), node)
+                if first is not node:
+                    sink.add("F011", node, f"{kind} file '{rel}' is listed twice (first on line {first.line}); read once")
+                    continue
                 path = self._listed_file(rel, node, folder, kind, sink)
                 if path is None:
                     app.unread.add(kind)
@@ -169,7 +212,10 @@ class Loader:
     def _listed_file(self, rel: str, node: Node, folder: str, kind: str, sink: rd.Sink) -> str | None:
         path = rs.find_path(folder, rel)
         if path is not None and os.path.isfile(path):
-            if not _inside(path, folder):
+            top = self._real_folders.get(folder)
+            if top is None:
+                top = self._real_folders[folder] = os.path.realpath(folder)
+            if not _inside(path, folder, top):
                 # A project lists its own files; reading (and quoting) a file elsewhere on the
                 # machine because a project names it would leak it into reports.
                 sink.add("F013", node, f"{kind} file '{rel}' listed here is outside the application folder: not read")
@@ -179,7 +225,12 @@ class Loader:
         if path is not None and os.path.isdir(path):
             sink.add("F001", node, f"{kind} file '{rel}' listed here is a folder, not a file")
         elif path is not None and os.path.lexists(path):
-            sink.add("F001", node, f"{kind} file '{rel}' listed here cannot be read (broken or looping symbolic link?)")
+            try:
+                check(path, Roots.user_given())
+                why = "cannot be read"
+            except Refused as exc:
+                why = exc.reason
+            sink.add("F001", node, f"{kind} file '{rel}' listed here: {why}")
         else:
             sink.add("F001", node, f"{kind} file '{rel}' listed here was not found")
         return None
@@ -257,7 +308,7 @@ class Loader:
 
     def _project_listing(self, pjx: str, target: str) -> bool:
         """Does this project list `target` among its programs or data? (no diagnostics)"""
-        res = read_xml(pjx, self.options.max_file_size)
+        res = read_xml(pjx, self.options.max_file_size, self.roots)
         if res.root is None or rd.classify(res.root) is None or rd.classify(res.root)[0] != "project":
             return False
         pf = rd.read_project(res.root, rd.Sink(pjx))
@@ -272,7 +323,11 @@ class Loader:
     # -- discovery ----------------------------------------------------------------------------
 
     def add_path(self, raw: str) -> None:
+        if not raw:
+            self.diags.append(Diagnostic("F001", "an empty path was given: name a file or folder", "."))
+            return
         path = os.path.abspath(raw)
+        self._allow_target(path)
         if not os.path.lexists(path):
             self.diags.append(Diagnostic("F001", "file or folder not found", path))
             return
@@ -302,7 +357,7 @@ class Loader:
             self._add_member_file(path, ext)
             return
         # Any other name: look at the content.
-        res = read_xml(path, self.options.max_file_size)
+        res = read_xml(path, self.options.max_file_size, self.roots)
         if res.root is None:
             self.diags.extend(res.diagnostics)
             return
@@ -381,20 +436,28 @@ class Loader:
             projects, programs, subdirs = [], [], []
             for n in names:
                 p = os.path.join(folder, n)
+                e = _ext(n)
                 if os.path.isdir(p):
                     if n.startswith(".") or n in SKIP_DIRS or os.path.isfile(os.path.join(p, "pyvenv.cfg")):
                         continue
+                    if not self.roots.allows(p):
+                        self._outside(p, "folder")
+                        continue
                     subdirs.append(p)
-                elif os.path.isfile(p):
-                    e = _ext(n)
-                    if e == _EXT_PROJECT:
-                        projects.append(p)
-                    elif e == _EXT_PROGRAM:
-                        programs.append(p)
+                elif e in (_EXT_PROJECT, _EXT_PROGRAM):
+                    # a FIFO or device, or a link that leads out: reading it reports it (F001, F014)
+                    if os.path.exists(p):
+                        (projects if e == _EXT_PROJECT else programs).append(p)
             if projects or programs:
                 out.append(_Folder(folder, projects, programs))
             stack.extend(reversed(subdirs))  # pre-order, sorted
         return out
+
+    def _outside(self, path: str, what: str) -> None:
+        self.diags.append(Diagnostic(
+            "F014", f"symbolic link to a {what} outside the folders being checked and the configured roots: not followed",
+            path,
+        ))
 
     def _add_folder(self, top: str) -> None:
         folders = self._walk(top)
@@ -470,24 +533,76 @@ class Loader:
         self._cycles("type")
 
     def _resolve(self, app: Application, ref: LibraryRef | TypeRef, kind: str) -> Application | None:
-        resolved = rs.resolve_library(ref.path, app.path, self.options.disk_roots)
+        found = rs.locate_library(ref.path, app.path, self.options.disk_roots, self.roots)
+        resolved = found.path
+        candidates: list[str] = []
+        if resolved is None and not _is_io(ref):
+            candidates = self._in_repository(app, ref)
+            if len(candidates) == 1:
+                resolved = candidates[0]
+                o = ref.origin
+                what = f"library {ref.alias}" if isinstance(ref, LibraryRef) else f"user type {ref.name}"
+                self.diags.append(Diagnostic(
+                    "F016",
+                    f"{what}: '{ref.path}' is not at its Disk:// place; using the application found by name in"
+                    f" the repository: {self._shown(resolved)}",
+                    o.path, o.line, o.col,
+                ))
         if resolved is None:
-            self.diags.append(self._not_found(ref, kind))
+            if found.outside and len(candidates) < 2:
+                self.diags.append(self._outside_ref(ref))
+            else:
+                self.diags.append(self._not_found(ref, kind, candidates))
             return None
         ref.resolved = resolved
         if resolved in self.ws.apps:
             return None
         return self.load_project(resolved)
 
-    def _not_found(self, ref: LibraryRef | TypeRef, kind: str) -> Diagnostic:
+    def _in_repository(self, app: Application, ref: LibraryRef | TypeRef) -> list[str]:
+        """Applications named like the library in the repositories that hold the declaring
+        project (issue 11 item 5), other than that project."""
+        name = rs.library_name(ref.path)
+        out: list[str] = []
+        for repo in self.repos:
+            if not self.roots.holds(os.path.realpath(app.path)) or not _inside(app.path, repo):
+                continue
+            for cand in self.index.find(repo, name):
+                if _key(cand) != _key(app.path) and self.roots.allows(cand) and cand not in out:
+                    out.append(cand)
+        return out
+
+    @staticmethod
+    def _shown(path: str) -> str:
+        """As reports show paths: relative to the current folder when inside it."""
+        rel = os.path.relpath(path)
+        return (path if rel == ".." or rel.startswith(".." + os.sep) else rel).replace(os.sep, "/")
+
+    def _outside_ref(self, ref: LibraryRef | TypeRef) -> Diagnostic:
         o = ref.origin
-        tail = ref.path.replace("\\", "/").rstrip("/").rsplit("/", 1)[-1]
-        stem = tail[:-4] if tail.lower().endswith(".pjx") else tail
+        if isinstance(ref, LibraryRef):
+            what, tail = f"library {ref.alias}", f"uses of {ref.alias}: symbols are not checked"
+        else:
+            what, tail = f"user type {ref.name}", "its fields are not checked"
+        return Diagnostic(
+            "F014",
+            f"{what}: the path '{ref.path}' leads outside the application and the configured roots (its"
+            f" repository, --disk-root, disk-roots): not read; {tail}",
+            o.path, o.line, o.col,
+        )
+
+    def _not_found(self, ref: LibraryRef | TypeRef, kind: str, candidates: list[str] = ()) -> Diagnostic:
+        o = ref.origin
+        stem = rs.library_name(ref.path)
         where = (
             "relative to the project folder"
             if ref.path.startswith(("./", "../", ".\\", "..\\"))
             else "in the folder that contains the application folder, in each --disk-root and in the controller's usr/usrapp"
         )
+        if candidates:
+            where += (f"; {len(candidates)} applications named {stem} in the repository: "
+                      + ", ".join(self._shown(c) for c in candidates[:10])
+                      + (", ..." if len(candidates) > 10 else "") + " (name the right folder with --disk-root)")
         if isinstance(ref, LibraryRef):
             if ref.alias.lower() == "io" or stem.lower() == "io":
                 return Diagnostic(

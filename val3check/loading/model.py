@@ -159,7 +159,7 @@ class Application:
     def version_major(self) -> int | None:
         """6, 7 or 8 from "s7.11"; None when unknown."""
         v = self.version.strip().lower()
-        if len(v) >= 2 and v[0] == "s" and v[1].isdigit():
+        if len(v) >= 2 and v[0] == "s" and v[1] in "0123456789":
             return int(v[1])
         return None
 
@@ -174,6 +174,11 @@ class Workspace:
 
     targets: list[str] = field(default_factory=list)  # keys into `apps`, in discovery order
     apps: dict[str, Application] = field(default_factory=dict)
+    # where paths written in files may lead (val3check.confine.Roots), set by the loader; the
+    # simulator's libLoad resolves paths within the same roots
+    roots: Any = None
+    # files read as VAL 3 (absolute paths): the only files a report may quote
+    quotable: set[str] = field(default_factory=set)
 
     def library(self, app: Application, alias: str) -> Application | None:
         ref = app.libraries.get(alias)

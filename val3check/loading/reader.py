@@ -8,6 +8,7 @@ file is still read.
 
 from __future__ import annotations
 
+import math
 import re
 from ..records import dataclass, field
 from typing import Any
@@ -94,6 +95,11 @@ def parse_num(text: str) -> float | None:
     return None
 
 
+def _short(text: str, limit: int = 60) -> str:
+    """A value as quoted in a message: long ones cut (a hostile file may hold megabytes)."""
+    return text if len(text) <= limit else text[:limit] + f"... ({len(text)} characters)"
+
+
 def parse_bool(text: str) -> bool | None:
     low = text.strip().lower()
     if low == "true":
@@ -103,6 +109,20 @@ def parse_bool(text: str) -> bool | None:
     return None
 
 
+_DIGITS = re.compile(r"[0-9]+")
+HUGE = 10**12  # what a longer run of digits counts as: beyond every limit, and no 4,300-digit int()
+
+
+def parse_uint(text: str) -> int | None:
+    """A non-negative integer written in ASCII digits ("²" and other Unicode digits are not),
+    None otherwise; more than 12 digits count as HUGE (Python refuses to convert 4,300)."""
+    text = text.strip()
+    if not _DIGITS.fullmatch(text):
+        return None
+    digits = text.lstrip("0") or "0"
+    return int(digits) if len(digits) <= 12 else HUGE
+
+
 def parse_sizes(text: str) -> tuple[int, ...] | None:
     """ "3 4" -> (3, 4); None when not 1 to 3 positive integers."""
     parts = text.replace(",", " ").split()
@@ -110,9 +130,10 @@ def parse_sizes(text: str) -> tuple[int, ...] | None:
         return None
     out = []
     for p in parts:
-        if not p.isdigit() or int(p) < 1:
+        n = parse_uint(p)
+        if n is None or n < 1:
             return None
-        out.append(int(p))
+        out.append(n)
     return tuple(out)
 
 
@@ -212,11 +233,20 @@ def read_program(node: Node, sink: Sink) -> Program | None:
                 loc = _read_local(ln, sink, what)
                 if loc is not None:
                     locals_.append(loc)
-    code_node = node.find("code")
+    codes = node.findall("code")
+    code_node = codes[0] if codes else None
     if code_node is None:
         src = node.find("source")
         if src is not None:
-            code_node = src.find("code")
+            codes = src.findall("code")
+            code_node = codes[0] if codes else None
+    for extra in codes[1:]:
+        sink.add("F015", extra, f"program {name} has a second <{extra.tag}> element (the first is on line"
+                 f" {code_node.line}): it is not read")
+    for child in code_node.children if code_node is not None else ():
+        sink.add("F015", child, f"program {name}: the element <{child.tag}> inside <{code_node.tag}> is not VAL 3"
+                 " code (a '<' that should be written &lt;, or code outside its CDATA section?): its content is"
+                 " not read")
     if code_node is None:
         sink.add(
             "F010",
@@ -320,7 +350,10 @@ def read_data_s7(root: Node, sink: Sink) -> list[Data]:
     return out
 
 
-def read_data_node(node: Node, sink: Sink, access: str | None, owner: str = "") -> Data | None:
+MAX_FIELD_DEPTH = 16  # user-type values inside user-type values: real types nest 2 or 3 deep
+
+
+def read_data_node(node: Node, sink: Sink, access: str | None, owner: str = "", depth: int = 0) -> Data | None:
     """A <Data> (global) or a <Field> of a user-type value (access given: "public")."""
     kind = "field" if access is not None else "global"
     name = _required(node, sink, "name", f"{owner}{'<' + node.tag + '>'}")
@@ -350,7 +383,7 @@ def read_data_node(node: Node, sink: Sink, access: str | None, owner: str = "") 
     values = []
     for vn in node.children:
         if vn.ltag == "value":
-            values.append(read_value(vn, sink, typ, container, sizes, f"{owner}{name}"))
+            values.append(read_value(vn, sink, typ, container, sizes, f"{owner}{name}", depth))
     return _make_data(name, typ, container, sizes, access, values, _origin(sink, node))
 
 
@@ -369,7 +402,7 @@ def _check_key(node: Node, sink: Sink, key: str, container: Container, sizes: tu
             sink.f007(node, f"{what}: a collection key cannot be empty (manual 2.3.4)")
         return
     parts = key.replace(",", " ").split()  # SRS writes "1 2"; some tools write "1,2"
-    if not parts or not all(p.isdigit() for p in parts):
+    if not parts or not all(parse_uint(p) is not None for p in parts):
         sink.f007(node, f'{what}: invalid key "{key}" (expected an index such as "0" or "1 2")')
         return
     dims = sizes or (1,)
@@ -377,7 +410,7 @@ def _check_key(node: Node, sink: Sink, key: str, container: Container, sizes: tu
         sink.f007(node, f'{what}: key "{key}" has {len(parts)} indices but the array has {len(dims)} dimensions')
         return
     for p, n in zip(parts, dims, strict=True):
-        if int(p) >= n:
+        if parse_uint(p) >= n:
             sink.f007(node, f'{what}: index "{key}" is outside the array (size "{" ".join(map(str, dims))}")')
             return
 
@@ -385,7 +418,8 @@ def _check_key(node: Node, sink: Sink, key: str, container: Container, sizes: tu
 _SKIP_ATTRS = frozenset({"key", "index", "fatherid", "xsi:type", "name"})
 
 
-def read_value(node: Node, sink: Sink, typ: str, container: Container, sizes: tuple[int, ...], owner: str) -> Value:
+def read_value(node: Node, sink: Sink, typ: str, container: Container, sizes: tuple[int, ...], owner: str,
+               depth: int = 0) -> Value:
     key = node.get("key")
     if key is None:
         key = node.get("index", "0") or "0"
@@ -400,14 +434,17 @@ def read_value(node: Node, sink: Sink, typ: str, container: Container, sizes: tu
     fields, given = convert_fields(node, sink, typ, attrs, what)
     members: dict[str, Data] = {}
     if t.is_user_type(typ):
-        for fn in node.children:
-            if fn.ltag == "field":
-                d = read_data_node(fn, sink, "public", f"{owner}[{key}].")
-                if d is not None:
-                    if d.name in members:
-                        sink.add("F011", fn, f"{what}: field {d.name} is written twice; the first one is kept")
-                    else:
-                        members[d.name] = d
+        fields_ = [fn for fn in node.children if fn.ltag == "field"]
+        if fields_ and depth >= MAX_FIELD_DEPTH:
+            sink.f007(fields_[0], f"{what}: user-type values nested more than {MAX_FIELD_DEPTH} deep: not read")
+            fields_ = []
+        for fn in fields_:
+            d = read_data_node(fn, sink, "public", f"{owner}[{key}].", depth + 1)
+            if d is not None:
+                if d.name in members:
+                    sink.add("F011", fn, f"{what}: field {d.name} is written twice; the first one is kept")
+                else:
+                    members[d.name] = d
     return Value(key, fields, given, _origin(sink, node), members, father)
 
 
@@ -424,13 +461,18 @@ def convert_fields(
     for attr, raw in attrs.items():
         k = t.field_key(typ, attr)
         k = lower_keys.get(k.lower(), k)
-        if k not in fields and not (base == "joint" and re.fullmatch(r"j\d+", k)):
+        if k not in fields and not (base == "joint" and re.fullmatch(r"j[1-9][0-9]?", k)):
             continue  # unknown attribute: ignored (be liberal)
         kind = t.field_kind(typ, k)
         if kind == "num":
             v = parse_num(raw)
             if v is None:
-                sink.f007(node, f'{what}: {attr}="{raw}" is not a number; the default is used')
+                sink.f007(node, f'{what}: {attr}="{_short(raw)}" is not a number; the default is used')
+                continue
+            if not math.isfinite(v):
+                # 3.2.1: a num is a double (about 14 significant digits): 1e400 is none
+                sink.f007(node, f'{what}: {attr}="{_short(raw)}" is beyond the range of a num (about ±1.8e308,'
+                          " manual 3.2.1); the default is used")
                 continue
             fields[k] = v
         elif kind == "bool":
@@ -496,8 +538,8 @@ def _read_data_s6(node: Node, sink: Sink) -> Data | None:
             n = 0
             for vn in value_nodes:
                 idx = (vn.get("index") or vn.get("key") or "0").strip()
-                if idx.isdigit():
-                    n = max(n, int(idx) + 1)
+                if parse_uint(idx) is not None:
+                    n = max(n, parse_uint(idx) + 1)
             parsed = (max(n, 1),)
         sizes = parsed
     values = []
@@ -550,8 +592,8 @@ def read_project(root: Node, sink: Sink) -> ProjectFile:
         pf.version = (params.get("version") or "").strip()
         raw = params.get("stackSize")
         if raw is not None:
-            if raw.strip().isdigit():
-                pf.stack_size = int(raw)
+            if parse_uint(raw) is not None:
+                pf.stack_size = parse_uint(raw)
             else:
                 sink.f007(
                     params, f'invalid stackSize "{raw}" (expected a number of bytes); read as 5000 (manual 2.1.4.2)'

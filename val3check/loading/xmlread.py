@@ -14,8 +14,6 @@ CDATA or from escaped text (`&gt;` is one character of code but four columns of 
 
 from __future__ import annotations
 
-import os
-import stat
 from ..records import dataclass, field
 from xml.parsers import expat
 
@@ -25,6 +23,8 @@ from defusedxml.common import (
     ExternalReferenceForbidden,
 )
 
+from .. import confine
+from ..confine import Roots
 from ..diagnostics import Diagnostic
 from ..positions import Position, SourceMap
 
@@ -113,6 +113,7 @@ def _init_plain() -> None:
 
 _init_plain()
 _CODE_NO_ELEMENTS = expat.errors.codes[expat.errors.XML_ERROR_NO_ELEMENTS]
+_CODE_INVALID_TOKEN = expat.errors.codes[expat.errors.XML_ERROR_INVALID_TOKEN]
 _CODE_TAG_MISMATCH = expat.errors.codes[expat.errors.XML_ERROR_TAG_MISMATCH]
 _CODE_UNCLOSED_CDATA = expat.errors.codes[expat.errors.XML_ERROR_UNCLOSED_CDATA_SECTION]
 _CODE_UNDEFINED_ENTITY = expat.errors.codes[expat.errors.XML_ERROR_UNDEFINED_ENTITY]
@@ -253,50 +254,13 @@ def _line_col_of_offset(prefix: str) -> tuple[int, int]:
     return line, len(prefix) - last  # last == -1 -> len + 1
 
 
-def read_bytes(path: str, max_size: int) -> tuple[bytes | None, list[Diagnostic]]:
-    """The file's bytes, or None with F001 (cannot read) / F002 (too large)."""
+def read_bytes(path: str, max_size: int, roots: Roots) -> tuple[bytes | None, list[Diagnostic]]:
+    """The file's bytes, or None with F001 (cannot read), F002 (too large) or F014 (outside the
+    allowed roots): `val3check.confine.read_bytes` decides."""
     try:
-        st = os.stat(path)
-    except FileNotFoundError:
-        return None, [Diagnostic("F001", "file not found", path)]
-    except OSError as exc:
-        return None, [Diagnostic("F001", f"cannot read the file: {_os_reason(exc)}", path)]
-    if stat.S_ISDIR(st.st_mode):
-        return None, [Diagnostic("F001", "expected a file but this is a folder", path)]
-    if not stat.S_ISREG(st.st_mode):
-        return None, [Diagnostic("F001", "not a regular file (device, pipe or socket): not read", path)]
-    if st.st_size > max_size:
-        return None, [
-            Diagnostic(
-                "F002",
-                f"file too large ({_human(st.st_size)}, limit {_human(max_size)}): not read",
-                path,
-            )
-        ]
-    try:
-        with open(path, "rb") as fh:
-            data = fh.read(max_size + 1)
-    except OSError as exc:
-        return None, [Diagnostic("F001", f"cannot read the file: {_os_reason(exc)}", path)]
-    if len(data) > max_size:  # grew while reading
-        return None, [Diagnostic("F002", f"file too large (more than {_human(max_size)}): not read", path)]
-    return data, []
-
-
-def _human(n: int) -> str:
-    if n >= 1024 * 1024:
-        return f"{n / (1024 * 1024):.1f} MB"
-    if n >= 1024:
-        return f"{n / 1024:.1f} KB"
-    return f"{n} bytes"
-
-
-def _os_reason(exc: OSError) -> str:
-    if isinstance(exc, PermissionError):
-        return "permission denied"
-    if exc.strerror:
-        return exc.strerror.lower()
-    return type(exc).__name__
+        return confine.read_bytes(path, roots, max_size), []
+    except confine.Refused as exc:
+        return None, [Diagnostic(exc.code, exc.reason, path)]
 
 
 def decode(data: bytes, path: str) -> tuple[bytes | None, list[Diagnostic]]:
@@ -306,6 +270,13 @@ def decode(data: bytes, path: str) -> tuple[bytes | None, list[Diagnostic]]:
     """
     if data.startswith(b"\xef\xbb\xbf"):
         data = data[3:]
+    elif data.startswith((b"\xff\xfe\x00\x00", b"\x00\x00\xfe\xff")):  # before UTF-16: same first bytes
+        try:
+            return data.decode("utf-32").encode("utf-8"), []
+        except UnicodeDecodeError:
+            return None, [
+                Diagnostic("F003", "the file starts with a UTF-32 byte-order mark but is not valid UTF-32", path)
+            ]
     elif data.startswith((b"\xff\xfe", b"\xfe\xff")):
         try:
             return data.decode("utf-16").encode("utf-8"), []
@@ -531,6 +502,10 @@ def _expat_diagnostic(exc: expat.ExpatError, parser, data: bytes, path: str, sta
         if start >= 0:
             line, col = _line_col_of_offset(data[:start].decode("utf-8", "replace"))
         return Diagnostic("F004", "malformed XML: " + _PLAIN[code], path, line, col)
+    if code == _CODE_INVALID_TOKEN:
+        better = _invalid_token(parser.ErrorByteIndex, data, path)
+        if better is not None:
+            return better
     if code == _CODE_NO_ELEMENTS:
         if not data.strip():
             return Diagnostic("F004", "malformed XML: the file is empty", path, 0, 0)
@@ -550,9 +525,39 @@ def _expat_diagnostic(exc: expat.ExpatError, parser, data: bytes, path: str, sta
     return Diagnostic("F004", f"malformed XML: {msg}", path, line, col)
 
 
-def read_xml(path: str, max_size: int) -> XmlResult:
-    """Read, decode and parse one file: F001/F002/F003/F004/F005 diagnostics, never raises."""
-    data, diags = read_bytes(path, max_size)
+def _invalid_token(bi: int, data: bytes, path: str) -> Diagnostic | None:
+    """Say what the 'invalid token' really is: a control character, or the `]]>` that ended a
+    CDATA section early (a string of code holding "]]>") rather than the one expat stops at."""
+    if not 0 <= bi < len(data):
+        return None
+    byte = data[bi]
+    if byte < 0x20 and byte not in (0x09, 0x0A, 0x0D):
+        line, col = _line_col_of_offset(data[:bi].decode("utf-8", "replace"))
+        return Diagnostic(
+            "F004",
+            f"malformed XML: the control character U+{byte:04X} is not allowed in an XML file, even in a CDATA"
+            " section; remove it (in a string, build it with chr())",
+            path, line, col,
+        )
+    here = data.find(b"]]>", max(0, bi - 2), bi + 3)  # expat points at one of its characters
+    if here >= 0:
+        bi = here
+        start = data.rfind(b"<![CDATA[", 0, bi)
+        early = data.find(b"]]>", start + 9, bi) if start >= 0 else -1
+        if early >= 0:
+            line, col = _line_col_of_offset(data[:early].decode("utf-8", "replace"))
+            return Diagnostic(
+                "F004",
+                "malformed XML: this ']]>' ends the CDATA section of the code early (a string holding ']]>'?),"
+                " so the code after it is read as XML; write the string as \"]]\" + \">\"",
+                path, line, col,
+            )
+    return None
+
+
+def read_xml(path: str, max_size: int, roots: Roots) -> XmlResult:
+    """Read, decode and parse one file: F001/F002/F003/F004/F005/F014 diagnostics, never raises."""
+    data, diags = read_bytes(path, max_size, roots)
     if data is None:
         return XmlResult(None, diags)
     size = len(data)

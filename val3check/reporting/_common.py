@@ -61,20 +61,31 @@ class SourceCache:
 
     Lines are split on "\\n" only (as the positions in diagnostics count them), with a trailing
     "\\r" removed. A missing or unreadable file gives None: the reporters then omit the snippet.
+    Only files the run read as VAL 3 (`quotable`: display path -> path on disk) are ever quoted:
+    a finding about any other file (outside the application, not VAL 3) names it but never shows
+    its content. `quotable=None` (results built by hand) allows any regular file.
     """
 
-    def __init__(self) -> None:
+    MAX_SIZE = 64 * 1024 * 1024
+
+    def __init__(self, quotable: dict[str, str] | None = None) -> None:
         self._files: dict[str, list[str] | None] = {}
+        self._quotable = quotable
 
     def lines(self, path: str) -> list[str] | None:
         if path not in self._files:
-            try:
-                with open(path, encoding="utf-8-sig", errors="replace", newline="") as fh:
-                    text = fh.read()
-            except (OSError, ValueError):
-                self._files[path] = None
-            else:
-                self._files[path] = [ln[:-1] if ln.endswith("\r") else ln for ln in text.split("\n")]
+            self._files[path] = None
+            real = path if self._quotable is None else self._quotable.get(path)
+            if real is not None:
+                from ..confine import Refused, Roots, read_bytes
+
+                try:
+                    data = read_bytes(real, Roots.user_given(), self.MAX_SIZE)
+                except Refused:
+                    pass
+                else:
+                    text = data.decode("utf-8-sig", errors="replace")
+                    self._files[path] = [ln[:-1] if ln.endswith("\r") else ln for ln in text.split("\n")]
         return self._files[path]
 
     def line(self, path: str, line: int) -> str | None:

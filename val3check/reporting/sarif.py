@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import os
 import re
 from typing import TYPE_CHECKING, Any
 from urllib.parse import quote
@@ -69,7 +70,10 @@ def _rule_descriptor(code: str, rule: "Rule | None") -> dict[str, Any]:
 
 
 def artifact_location(path: str) -> dict[str, str]:
-    posix = path.replace("\\", "/")
+    # Windows paths get forward slashes; on POSIX a backslash is part of a name (display paths
+    # write an undecodable byte as \xE9) and is percent-encoded like any other character.
+    windows = os.sep == "\\" or _DRIVE.match(path) or path.startswith("\\\\")
+    posix = path.replace("\\", "/") if windows else path
     if posix.startswith("//"):  # UNC path
         return {"uri": "file:" + quote(posix)}
     if posix.startswith("/"):
@@ -103,7 +107,7 @@ def _fingerprint(diag: Diagnostic, sources: SourceCache) -> str:
 def report(result: "LintResult") -> dict[str, Any]:
     codes = sorted({d.code for d in result.diagnostics})
     index = {code: i for i, code in enumerate(codes)}
-    sources = SourceCache()
+    sources = SourceCache(result.quotable)
     seen: dict[str, int] = {}
     results = []
     for diag in result.diagnostics:

@@ -49,12 +49,19 @@ class _Style:
 
 def _width(text: str) -> int:
     """Display width of a prefix of a source line (tabs expanded from the start of the line)."""
-    return len(text.expandtabs(TAB_SIZE))
+    return len(text.expandtabs(TAB_SIZE)) if "\t" in text else len(text)
+
+
+# A source line longer than this is shown as a window around the finding (a generated or hostile
+# file may hold a megabyte on one line, and thousands of findings on it).
+MAX_SHOWN = 160
 
 
 def _column_offset(source: str, col: int) -> int:
     """Display offset of 1-based code-point column `col` of `source` (may lie past the end)."""
     index = col - 1
+    if "\t" not in source:
+        return index
     if index <= len(source):
         return _width(source[:index])
     return _width(source) + (index - len(source))
@@ -62,8 +69,8 @@ def _column_offset(source: str, col: int) -> int:
 
 def _underline(diag: Diagnostic, source: str) -> tuple[int, int] | None:
     """(start, end) display offsets of the caret run under `source`, or None for no caret line."""
-    display = source.expandtabs(TAB_SIZE)
     if diag.col <= 0:  # no column: underline the whole (non-blank) line
+        display = source.expandtabs(TAB_SIZE)
         stripped = display.strip()
         if not stripped:
             return None
@@ -75,7 +82,7 @@ def _underline(diag: Diagnostic, source: str) -> tuple[int, int] | None:
         if diag.end_col is not None and diag.end_col > diag.col:
             end = _column_offset(source, diag.end_col)  # end_col is exclusive
     elif diag.end_line is not None and diag.end_line > diag.line:
-        end = max(end, len(display.rstrip()))  # span continues below: underline to end of line
+        end = max(end, _width(source.rstrip()))  # span continues below: underline to end of line
     return start, max(end, start + 1)
 
 
@@ -91,19 +98,35 @@ def _header(diag: Diagnostic, severity: Severity, style: _Style) -> str:
     return f"{where}: {code} {label} {printable(diag.message, keep_newlines=True)}"
 
 
-def _snippet(diag: Diagnostic, severity: Severity, sources: SourceCache, style: _Style) -> list[str]:
+def _snippet(diag: Diagnostic, severity: Severity, sources: SourceCache, style: _Style,
+             prepared: dict | None = None) -> list[str]:
     if diag.line <= 0:
         return []
-    source = sources.line(diag.path, diag.line)
-    if source is None:
-        return []
-    source = printable(source)
+    key = (diag.path, diag.line)
+    if prepared is not None and key in prepared:
+        source, display = prepared[key]
+    else:
+        source = sources.line(diag.path, diag.line)
+        if source is None:
+            return []
+        source = printable(source)
+        display = source.expandtabs(TAB_SIZE).rstrip() if "\t" in source else source.rstrip()
+        if prepared is not None:
+            prepared[key] = (source, display)
     number = str(diag.line)
     pad = " " * len(number)
     bar = style("|", _GUTTER)
-    display = source.expandtabs(TAB_SIZE).rstrip()
-    lines = [f"{pad} {bar}", f"{style(number, _GUTTER)} {bar}" + (f" {display}" if display else "")]
     span = _underline(diag, source)
+    if len(display) > MAX_SHOWN:
+        lo = max(0, (span[0] if span else 0) - MAX_SHOWN // 4)
+        hi = lo + MAX_SHOWN
+        head, tail = ("…" if lo > 0 else ""), ("…" if hi < len(display) else "")
+        shown = head + display[lo:hi] + tail
+        if span is not None:
+            start, end = span[0] - lo + len(head), min(span[1], hi) - lo + len(head)
+            span = (start, max(end, start + 1))
+        display = shown
+    lines = [f"{pad} {bar}", f"{style(number, _GUTTER)} {bar}" + (f" {display}" if display else "")]
     if span is not None:
         start, end = span
         carets = style("^" * (end - start), _BOLD, _SEVERITY_COLOR[severity])
@@ -160,11 +183,12 @@ def render(result: "LintResult", *, color: bool = False, statistics: bool = Fals
             out.extend(_statistics(result, style))
             out.append("")
     else:
-        sources = SourceCache()
+        sources = SourceCache(result.quotable)
+        prepared: dict = {}
         for diag in result.diagnostics:
             severity = severity_of(diag, result)
             out.append(_header(diag, severity, style))
-            out.extend(_snippet(diag, severity, sources, style))
+            out.extend(_snippet(diag, severity, sources, style, prepared))
             out.append("")
     line = summary(result)
     out.append(style(line, _PASS if not result.diagnostics else _BOLD))

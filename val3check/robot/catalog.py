@@ -112,14 +112,17 @@ def read_arm_cfx(path: str | os.PathLike) -> str:
 
 
 def find_arm_cfx(app_path: str | os.PathLike) -> Path | None:
-    """usr/configs/arm.cfx of the controller tree that holds app_path (searching upwards)."""
+    """usr/configs/arm.cfx of the controller tree that holds app_path (searching upwards).
+
+    Only a controller tree counts (val3check.confine: nothing is read because of where a file
+    happens to sit): `<ctrl>/usr/configs/arm.cfx` when app_path is in `<ctrl>/usr/usrapp`."""
     p = Path(app_path).resolve()
     if p.is_file():
         p = p.parent
     for folder in (p, *p.parents):
-        for cand in (folder / "usr" / "configs" / "arm.cfx", folder / "configs" / "arm.cfx"):
-            if cand.is_file():
-                return cand
+        if folder.name.lower() == "usrapp" and folder.parent.name.lower() == "usr":
+            cand = folder.parent / "configs" / "arm.cfx"
+            return cand if cand.is_file() else None
     return None
 
 

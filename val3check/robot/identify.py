@@ -54,13 +54,12 @@ class Match:
 
 def read_arm_config(path: str | os.PathLike) -> ArmConfig:
     """The arm, mount and axis 3 length of a usr/configs/arm.cfx."""
-    from defusedxml import ElementTree as ET
-    from defusedxml.common import DefusedXmlException
+    from .urdf import parse_xml_file  # val3check.confine: a regular file, its size checked, no entity
 
     try:
-        root = ET.parse(str(path)).getroot()
-    except (OSError, ET.ParseError, DefusedXmlException) as exc:
-        raise RobotError(f"{path}: cannot read the arm configuration: {exc}") from None
+        root = parse_xml_file(str(path), what="arm configuration")
+    except RobotError as exc:
+        raise RobotError(f"cannot read the arm configuration: {exc}") from None
     values: dict[str, str] = {}
     for el in root.iter():
         name, value = el.get("name"), el.get("value")

@@ -163,13 +163,17 @@ def load_robot_file(path: str | os.PathLike, app_path=None):
 
     from .models import load_robot
 
+    from ..confine import Refused, Roots, read_bytes
+
     p = Path(path)
-    try:
-        data = tomllib.loads(p.read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise RobotError(f"{p}: cannot read the robot file: {exc.strerror or exc}") from None
+    try:  # val3check.confine: a regular file (not a FIFO or /dev/zero), 1 MB at most
+        data = tomllib.loads(read_bytes(str(p), Roots.user_given(), 1 << 20).decode("utf-8"))
+    except Refused as exc:
+        raise RobotError(f"{p}: cannot read the robot file: {exc.reason}") from None
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise RobotError(f"{p}: not a valid TOML robot file: {exc}") from None
+    except RecursionError:
+        raise RobotError(f"{p}: not a valid TOML robot file: nested too deeply") from None
     extra = [k for k in data if k not in ("arm", "name", "assume")]
     if extra:
         raise RobotError(f"{p}: unknown key {', '.join(map(repr, extra))}: a robot file has arm, name and [assume]")

@@ -42,21 +42,12 @@ def _numbers(text: str | None, n: int, what: str, path: str) -> tuple[float, ...
 
 def read_link_solids(path: str | Path, kind: str = "collision") -> dict[str, list[Solid]]:
     """Every link's `<collision>` (or `<visual>`, kind="visual") solids, in file order."""
-    from defusedxml import DefusedXmlException, ElementTree as ET
+    from .urdf import parse_xml_file  # val3check.confine: a regular file, its size checked, no entity
 
     if kind not in ("collision", "visual"):
         raise ValueError(f"kind is 'collision' or 'visual', not {kind!r}")
     path = str(path)
-    try:
-        root = ET.parse(path).getroot()
-    except FileNotFoundError:
-        raise RobotError(f"{path}: no such file") from None
-    except OSError as exc:
-        raise RobotError(f"{path}: cannot read: {exc.strerror or exc}") from None
-    except ET.ParseError as exc:
-        raise RobotError(f"{path}: not well-formed XML: {exc}") from None
-    except DefusedXmlException:  # never follow entities (DTDs, external references)
-        raise RobotError(f"{path}: XML entities and DTDs are not allowed in a URDF") from None
+    root = parse_xml_file(path, what="URDF")
     if root.tag != "robot":
         raise RobotError(f"{path}: not a URDF (the root element is <{root.tag}>, not <robot>)")
     out: dict[str, list[Solid]] = {}

@@ -63,7 +63,7 @@ class UrdfInfo:
         link = tip
         while link != root:
             j = by_child.get(link)
-            if j is None:
+            if j is None or len(out) > len(self.joints):  # a cycle (read_urdf refuses them)
                 return None  # type: ignore[return-value]
             out.append(j)
             link = j.parent
@@ -83,31 +83,82 @@ def _floats(text: str | None, n: int, default: tuple, what: str, path: str) -> t
         vals = tuple(float(t) for t in text.split())
     except ValueError:
         raise RobotError(f"{path}: {what} is not {n} numbers: {text!r}") from None
-    if len(vals) != n:
-        raise RobotError(f"{path}: {what} is not {n} numbers: {text!r}")
+    if len(vals) != n or not all(math.isfinite(v) for v in vals):
+        raise RobotError(f"{path}: {what} is not {n} finite numbers: {text[:80]!r}")
     return vals
 
 
 def _opt(el, attr: str) -> float | None:
     if el is None or el.get(attr) is None:
         return None
-    return float(el.get(attr))
+    v = float(el.get(attr))
+    if not math.isfinite(v):
+        raise ValueError(f"{attr}={el.get(attr)[:40]!r} is not a finite number")
+    return v
+
+
+MAX_URDF_SIZE = 32 * 1024 * 1024  # bytes: arm URDFs are a few KB (meshes are separate files)
+
+
+def parse_xml_file(path: str, roots=None, what: str = "file"):  # noqa: ANN001
+    """The root element of a robot XML file (URDF, arm.cfx), read through val3check.confine
+    (regular file, size checked first, inside `roots` when given) and parsed with defusedxml
+    (no entity, no DTD is ever followed); RobotError for anything else."""
+    from defusedxml import DefusedXmlException
+    from defusedxml import ElementTree as ET
+
+    from ..confine import Refused, Roots, read_bytes
+
+    try:
+        data = read_bytes(path, roots or Roots.user_given(), MAX_URDF_SIZE)
+    except Refused as exc:
+        raise RobotError(f"{path}: {'no such file' if exc.reason == 'file not found' else exc.reason}") from None
+    try:
+        return ET.fromstring(data, forbid_dtd=True)
+    except DefusedXmlException:
+        raise RobotError(f"{path}: the {what} declares a DTD or entities, which are never followed: not read") from None
+    except ET.ParseError as exc:
+        raise RobotError(f"{path}: not well-formed XML: {exc}") from None
+    except (RecursionError, MemoryError, ValueError) as exc:
+        raise RobotError(f"{path}: cannot be parsed: {type(exc).__name__}") from None
+
+
+MAX_OFFSET_M = 1e4  # a joint origin beyond 10 km is no arm: the transforms would overflow
+
+
+def _check_tree(path: str, joints: dict[str, UrdfJoint]) -> None:
+    """URDF joints form a tree: each link is the child of one joint at most, and following the
+    parents from any link ends (a cycle would make every walk down the chain endless). Axes are
+    not zero, limits are in order, origins are within MAX_OFFSET_M."""
+    by_child: dict[str, UrdfJoint] = {}
+    for j in joints.values():
+        if j.kind != "fixed" and math.sqrt(sum(a * a for a in j.axis)) < 1e-12:
+            raise RobotError(f"{path}: joint {j.name!r} has the axis 0 0 0: an axis needs a direction")
+        if j.lower is not None and j.upper is not None and j.lower > j.upper:
+            raise RobotError(f"{path}: joint {j.name!r}: lower limit {j.lower:g} above upper limit {j.upper:g}")
+        if any(abs(v) > MAX_OFFSET_M for v in j.xyz):
+            raise RobotError(f"{path}: joint {j.name!r}: origin xyz beyond {MAX_OFFSET_M:g} m")
+        if j.parent == j.child:
+            raise RobotError(f"{path}: joint {j.name!r} connects link {j.child!r} to itself")
+        if j.child in by_child:
+            raise RobotError(f"{path}: link {j.child!r} is the child of two joints ({by_child[j.child].name!r}, {j.name!r})")
+        by_child[j.child] = j
+    done: set[str] = set()
+    for start in by_child:
+        seen: list[str] = []
+        link = start
+        while link in by_child and link not in done:
+            if link in seen:
+                names = " -> ".join(seen[seen.index(link):] + [link])
+                raise RobotError(f"{path}: the joints form a cycle through the links {names}: a URDF is a tree")
+            seen.append(link)
+            link = by_child[link].parent
+        done.update(seen)
 
 
 def read_urdf(path: str | Path) -> UrdfInfo:
-    from defusedxml import DefusedXmlException, ElementTree as ET
-
     path = str(path)
-    try:
-        root = ET.parse(path).getroot()
-    except FileNotFoundError:
-        raise RobotError(f"{path}: no such file") from None
-    except OSError as exc:
-        raise RobotError(f"{path}: cannot read: {exc.strerror or exc}") from None
-    except ET.ParseError as exc:
-        raise RobotError(f"{path}: not well-formed XML: {exc}") from None
-    except DefusedXmlException:  # never follow entities (DTDs, external references)
-        raise RobotError(f"{path}: XML entities and DTDs are not allowed in a URDF") from None
+    root = parse_xml_file(path, what="URDF")
     if root.tag != "robot":
         raise RobotError(f"{path}: not a URDF (the root element is <{root.tag}>, not <robot>)")
     links = {el.get("name") for el in root.findall("link")}
@@ -136,6 +187,7 @@ def read_urdf(path: str | Path) -> UrdfInfo:
             )
         except ValueError as exc:
             raise RobotError(f"{path}: joint {name!r}: bad <limit>: {exc}") from None
+    _check_tree(path, joints)
     meta_el = root.find("val3check")
     meta = dict(meta_el.attrib) if meta_el is not None else None
     meta_joints = {}

@@ -40,6 +40,7 @@ class Example:
     version: str = "s7.11"  # the application's VAL 3 version
     duration: float = 10.0  # runtime (R) examples: simulated seconds
     scenario: str | None = None  # runtime (R) examples: the text of an I/O scenario file
+    links: dict[str, str] = field(default_factory=dict)  # runtime (R) examples: dio/aio/sio global -> physical link
     config: str | None = None  # a val3check.toml written at the example root and used
     byte_escapes: bool = False  # `\xHH` in `files` stands for the byte HH (for encoding rules)
 
@@ -85,6 +86,7 @@ def _example(raw: dict, where: str) -> Example:
         version=raw.get("version", "s7.11"),
         duration=float(raw.get("duration", 10.0)),
         scenario=raw.get("scenario"),
+        links=dict(raw.get("links", {})),
         config=raw.get("config"),
         byte_escapes=bool(raw.get("byte-escapes", False)),
     )

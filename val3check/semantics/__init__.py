@@ -3,7 +3,9 @@
 `analyse(workspace, app)` returns the findings of every semantic rule family:
 - `checker`  : what the controller's compiler refuses: names, types, containers, parameters,
                libraries and user types (N, T and L codes);
-- `patterns` : what compiles but is probably wrong (S codes).
+- `patterns` : what compiles but is probably wrong (S codes);
+- `limits`   : the manual's limits on sizes and numbers, and data-file references (T026,
+               T027, F017, N014).
 Programs whose code did not parse (`program.body is None`) are skipped.
 """
 
@@ -17,8 +19,9 @@ from ..loading.model import Application, Workspace
 def analyse(workspace: Workspace, app: Application, target: Target | None = None) -> list[Diagnostic]:
     """`target`: the controller/version/arm `app` is checked for (language/target.py); by
     default the version its project file writes, arm unknown."""
-    from . import checker, patterns
+    from . import checker, limits, patterns
 
     found = checker.check_application(workspace, app, target)
     found.extend(patterns.check_application(workspace, app))
+    found.extend(limits.check_application(workspace, app))
     return found

@@ -1,0 +1,307 @@
+"""What the fuzz suite generates and what it checks (issue 9): shared by test_hostile_fuzz.py
+(bounded, in CI) and bench/fuzz.py (the long run).
+
+Every check runs one input through a phase of val3check in-process and asserts the promise:
+the input ends cleanly -- a diagnostic or a result, never an exception, never an internal error
+of the interpreter -- within its budgets, and no finding names or quotes a file outside the
+folder the input was written to.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import tempfile
+import time
+from pathlib import Path
+
+from hypothesis import strategies as st
+
+ROOT = Path(__file__).resolve().parent.parent.parent
+SEEDS = ROOT / "fixtures" / "valid"
+
+# ---- seeds: real applications, file by file ------------------------------------------------------
+
+
+def seed_apps() -> list[tuple[str, dict[str, bytes]]]:
+    """Every application folder of fixtures/valid: (name, {file name: bytes})."""
+    out = []
+    for pjx in sorted(SEEDS.rglob("*.pjx")):
+        folder = pjx.parent
+        files = {p.name: p.read_bytes() for p in sorted(folder.iterdir()) if p.is_file()}
+        out.append((folder.name, files))
+    return out
+
+
+SEED_APPS = seed_apps()
+
+# Values a hostile or broken file writes where val3check expects something sensible.
+HOSTILE_VALUES = [
+    "", " ", "0", "-1", "99999999", "9999 9999", "1" * 30, "9" * 5000, "1e400", "-1e400", "nan", "inf",
+    "1e-400", "0x10", "²", "٣", "1 2 3 4", "1,2", "\x00", "a\x07b", "x" * 20000, "fA[1e400]", "fA[", "world[0]",
+    "Disk://../../../../../../etc/passwd", "/proc/self/environ", "../" * 12 + "etc/passwd", "/dev/zero",
+    "Disk://", "USB0://x", "\\\\server\\share", "private", "reference", "collection", "array", "element",
+    "true", "false", "lefty", "é" * 200, "<", "&amp;", "]]>", "{}", "'", '"',
+]
+HOSTILE_TOKENS = [
+    b"<", b">", b"&", b"]]>", b"<![CDATA[", b'"', b"\xff", b"\x00", b"&#0;", b"&#x110000;", b"\r", b"xsi:",
+    b"</Code>", b"<Code>", b' size="0"', b' size="99999999"', b' size="9999 9999"', b' fatherId="fA[1e400]"',
+    b'<!DOCTYPE x [<!ENTITY e "e">]>', b"&e;", b'<!ENTITY % p SYSTEM "file:///etc/passwd">',
+    b'<Library alias="z" path="Disk://../../../../etc/passwd" />', b'<Type name="Z" path="/proc/self/environ" />',
+    b'<Program file="/etc/passwd" />', b'<Data file="../../../../etc/hostname" />', b"\xef\xbb\xbf", b"\xff\xfe",
+    b"\n" * 50, b"1e999", b"9" * 400, b"begin", b"end", b"endIf", b"while true", b"call start()",
+]
+
+
+@st.composite
+def mutated_app(draw) -> tuple[str, dict[str, bytes]]:
+    """A real application with 1 to 4 mutations: truncation, a hostile token, a deleted or
+    duplicated span, an attribute value replaced by a hostile one, random bytes."""
+    name, files = draw(st.sampled_from(SEED_APPS))
+    files = dict(files)
+    for _ in range(draw(st.integers(1, 4))):
+        victim = draw(st.sampled_from(sorted(files)))
+        data = bytearray(files[victim])
+        pos = draw(st.integers(0, len(data)))
+        op = draw(st.integers(0, 5))
+        if op == 0:
+            data = data[:pos]
+        elif op == 1:
+            data[pos:pos] = draw(st.sampled_from(HOSTILE_TOKENS))
+        elif op == 2:
+            del data[pos:pos + draw(st.integers(1, 40))]
+        elif op == 3:
+            span = data[pos:pos + draw(st.integers(1, 200))]
+            data[pos:pos] = span * draw(st.integers(1, 20))
+        elif op == 4:
+            text = bytes(data)
+            quotes = [i for i in range(len(text)) if text[i] == 0x22]
+            if len(quotes) >= 2:
+                k = draw(st.integers(0, len(quotes) - 2))
+                a, b = quotes[k], quotes[k + 1]
+                value = draw(st.sampled_from(HOSTILE_VALUES)).encode("utf-8", "surrogatepass")
+                data[a + 1:b] = value.replace(b'"', b"&quot;")
+        else:
+            data = bytearray(draw(st.binary(max_size=300)))
+        files[victim] = bytes(data)
+    return name, files
+
+
+# ---- VAL 3 programs -------------------------------------------------------------------------------
+
+NUM_VARS = ["nX", "nY", "nI", "l_n"]
+STR_VARS = ["sX", "l_s"]
+GLOBALS = ["num nX", "num nY", "num nI", "string sX", "bool bX", "num nArr[5]", "string sColl[\"\"]", "dio diX",
+           "aio aiX", "pointRx pP", "frame fF", "trsf trT", "joint jJ", "tool tT"]
+LOCALS = ["num l_n", "string l_s", "num l_a[3]"]
+
+_num_atom = st.one_of(
+    st.sampled_from(NUM_VARS + ["nArr[0]", "nArr[nI]", "nArr[-1]", "nArr[7]", "size(nArr)", "pP.trsf.x", "jJ.j1",
+                                "len(sX)", "asc(sX, 0)", "toNum(sX, nY, bX)", "getMonoClock()", "aiX"]),
+    st.sampled_from(["0", "1", "-1", "0.5", "1e308", "1e-308", "4.9e-324", "12345678901234567890", "1e15", "360"]),
+    st.integers(-10**6, 10**6).map(str),
+)
+_str_atom = st.one_of(
+    st.sampled_from(STR_VARS + ['""', '"abc"', '"' + "é" * 70 + '"', 'chr(0)', 'chr(65)', 'sColl["k"]',
+                                'toString("", nX)', 'left(sX, nY)', 'mid(sX, nX, nY)', 'right(sX, -1)',
+                                'sX + sX', 'replace(sX, nX, nY, "z")', 'toString("5.3", nX)']),
+)
+
+
+def _num_expr(depth: int):
+    if depth <= 0:
+        return _num_atom
+    sub = _num_expr(depth - 1)
+    return st.one_of(
+        _num_atom,
+        st.tuples(sub, st.sampled_from(["+", "-", "*", "/", "%"]), sub).map(lambda t: f"({t[0]} {t[1]} {t[2]})"),
+        st.tuples(st.sampled_from(["sin", "cos", "tan", "asin", "acos", "atan", "abs", "sqrt", "exp", "ln", "log",
+                                   "roundUp", "roundDown", "round", "sel"]), sub)
+        .map(lambda t: f"{t[0]}({t[1]})" if t[0] != "sel" else f"sel(bX, {t[1]}, 1)"),
+        st.tuples(st.sampled_from(["min", "max", "power", "limit"]), sub, sub)
+        .map(lambda t: f"{t[0]}({t[1]}, {t[2]})" if t[0] != "limit" else f"limit({t[1]}, 0, {t[2]})"),
+    )
+
+
+NUM = _num_expr(2)
+BOOL = st.one_of(
+    st.sampled_from(["true", "false", "bX", "diX", "!bX", "isDefined(sColl[sX])", "bX and diX", "bX xor true"]),
+    st.tuples(NUM, st.sampled_from(["<", "<=", "==", "!=", ">", ">="]), NUM).map(lambda t: f"{t[0]} {t[1]} {t[2]}"),
+)
+
+
+def _statements(depth: int):
+    simple = st.one_of(
+        st.tuples(st.sampled_from(NUM_VARS + ["nArr[nI]", "pP.trsf.x", "jJ.j3", "nArr[0]"]), NUM)
+        .map(lambda t: f"{t[0]} = {t[1]}"),
+        st.tuples(st.sampled_from(STR_VARS + ['sColl["k"]', "sColl[sX]"]), _str_atom).map(lambda t: f"{t[0]} = {t[1]}"),
+        BOOL.map(lambda b: f"bX = {b}"),
+        BOOL.map(lambda b: f"diX = {b}"),
+        NUM.map(lambda n: f"delay({n})"),
+        NUM.map(lambda n: f"aiX = {n}"),
+        _str_atom.map(lambda s: f"putln({s})"),
+        NUM.map(lambda n: f"put({n})"),
+        st.sampled_from([
+            "call sub(nX)", "call sub(nArr[nI])", "call start()", "return", "wait(bX)", "watch(bX, 0.1)",
+            'taskCreate "t1", 10, sub(nY)', 'taskCreate "t1", nX, sub(nY)', 'taskKill("t1")', 'taskSuspend("t1")',
+            'taskResume("t1", 0)', "resize(nArr, 1, nX)", 'insert(sColl["a"])', 'delete(sColl["a"])',
+            "cls()", "userPage()", "l_a[l_n] = 1", "pP = compose(pP, fF, trT)", "trT = trT * trT",
+            "jJ = herej()", "nX = getKey()", 'sX = toString("", nX)', "nX = size(l_a)", "nX = l_a[3]",
+            "nY = nArr[nArr[nArr[0]]]",
+        ]),
+    )
+    if depth <= 0:
+        return simple
+    block = st.lists(_statements(depth - 1), min_size=0, max_size=4).map(lambda xs: "\n".join(xs))
+    return st.one_of(
+        simple,
+        st.tuples(BOOL, block, block).map(lambda t: f"if {t[0]}\n{t[1]}\nelse\n{t[2]}\nendIf"),
+        st.tuples(NUM, NUM, NUM, block).map(lambda t: f"for nI = {t[0]} to {t[1]} step {t[2]}\n{t[3]}\nendFor"),
+        st.tuples(BOOL, block).map(lambda t: f"while {t[0]}\n{t[1]}\nendWhile"),
+        st.tuples(block, BOOL).map(lambda t: f"do\n{t[0]}\nuntil {t[1]}"),
+        st.tuples(NUM, block, block).map(
+            lambda t: f"switch {t[0]}\ncase 1, 2\n{t[1]}\nbreak\ndefault\n{t[2]}\nbreak\nendSwitch"),
+    )
+
+
+PROGRAM = st.lists(_statements(2), min_size=1, max_size=8).map(lambda xs: "begin\n" + "\n".join(xs) + "\nend\n")
+SUB = st.lists(_statements(1), min_size=0, max_size=4).map(lambda xs: "begin\n" + "\n".join(xs) + "\nend\n")
+
+
+# ---- configuration and scenario documents --------------------------------------------------------
+
+def _toml_value(v) -> str:  # noqa: ANN001
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, int):
+        return str(v)
+    if isinstance(v, float):
+        return "nan" if math.isnan(v) else ("inf" if v > 0 else "-inf") if math.isinf(v) else repr(v)
+    if isinstance(v, str):
+        return '"' + v.replace("\\", "\\\\").replace('"', '\\"').replace("\n", "\\n") + '"'
+    if isinstance(v, list):
+        return "[" + ", ".join(_toml_value(x) for x in v) + "]"
+    if isinstance(v, dict):
+        return "{" + ", ".join(f"{_key(k)} = {_toml_value(x)}" for k, x in v.items()) + "}"
+    raise TypeError(v)
+
+
+def _key(k: str) -> str:
+    return k if k and all(c.isalnum() or c in "-_" for c in k) else _toml_value(k)
+
+
+def toml_text(doc: dict) -> str:
+    """A TOML document: top-level scalars first, then tables ([name]) and arrays of tables."""
+    lines, tables = [], []
+    for k, v in doc.items():
+        if isinstance(v, dict):
+            tables.append(f"[{_key(k)}]\n" + "".join(f"{_key(a)} = {_toml_value(b)}\n" for a, b in v.items()))
+        elif isinstance(v, list) and v and all(isinstance(x, dict) for x in v):
+            for x in v:
+                tables.append(f"[[{_key(k)}]]\n" + "".join(f"{_key(a)} = {_toml_value(b)}\n" for a, b in x.items()))
+        else:
+            lines.append(f"{_key(k)} = {_toml_value(v)}\n")
+    return "".join(lines) + "\n".join(tables)
+
+
+SCALARS = st.one_of(
+    st.booleans(), st.integers(-2**63, 2**63 - 1), st.floats(allow_nan=True, allow_infinity=True),
+    st.sampled_from(HOSTILE_VALUES), st.text(max_size=20),
+)
+VALUES = st.recursive(SCALARS, lambda inner: st.one_of(st.lists(inner, max_size=4),
+                                                       st.dictionaries(st.text(max_size=8), inner, max_size=4)),
+                      max_leaves=12)
+
+CONFIG_KEYS = ["select", "extend-select", "ignore", "per-file-ignores", "severity", "fail-on", "disk-roots",
+               "exclude", "max-file-size", "tool", "unknown"]
+CONFIG = st.dictionaries(st.sampled_from(CONFIG_KEYS), VALUES, max_size=5)
+
+SIGNALS = ["diX", "doY", "aiX", "siX", "nX", "missing", "BasicIO-1\\%I0", "io:bIn0"]
+SCENARIO_KEYS = ["version", "description", "inputs", "events", "reactions", "keys", "serial", "controller", "io",
+                 "robot", "bogus"]
+TIMES = st.one_of(st.floats(allow_nan=True, allow_infinity=True), st.integers(-5, 10**12), st.sampled_from([0, 0.1, 1]))
+_event = st.fixed_dictionaries({"at": TIMES}, optional={"set": st.dictionaries(st.sampled_from(SIGNALS), SCALARS,
+                                                                                max_size=3)})
+_reaction = st.fixed_dictionaries(
+    {"when": st.sampled_from(SIGNALS)},
+    optional={"becomes": SCALARS, "after": TIMES, "set": st.dictionaries(st.sampled_from(SIGNALS), SCALARS, max_size=2)})
+_key_press = st.fixed_dictionaries({}, optional={"at": TIMES, "key": st.integers(-5, 2000), "text": SCALARS,
+                                                 "hold": TIMES})
+_serial = st.fixed_dictionaries({"sio": st.sampled_from(SIGNALS)},
+                                optional={"at": TIMES, "send": SCALARS, "bytes": st.lists(st.integers(-1, 300)),
+                                          "when_sent": SCALARS, "after": TIMES})
+SCENARIO = st.fixed_dictionaries({}, optional={
+    "version": st.one_of(st.just(1), SCALARS),
+    "inputs": st.dictionaries(st.sampled_from(SIGNALS), SCALARS, max_size=4),
+    "events": st.lists(_event, max_size=4),
+    "reactions": st.lists(_reaction, max_size=3),
+    "keys": st.lists(_key_press, max_size=3),
+    "serial": st.lists(_serial, max_size=2),
+    "controller": st.dictionaries(st.sampled_from(["working_mode", "powered", "power_delay", "monitor_speed", "date",
+                                                   "changes", "profiles", "languages", "bogus"]), VALUES, max_size=4),
+    "io": st.dictionaries(st.sampled_from(SIGNALS), VALUES, max_size=2),
+    "robot": st.dictionaries(st.sampled_from(["joints", "bogus"]), VALUES, max_size=2),
+    "bogus": VALUES,
+})
+
+
+# ---- the checks ---------------------------------------------------------------------------------------
+
+def known_codes() -> set[str]:
+    from val3check.rules.catalogue import catalogue
+
+    return set(catalogue())
+
+
+_KNOWN: set[str] | None = None
+
+
+def check_lint_result(run, folder: Path) -> None:  # noqa: ANN001
+    """Every finding has a known code, a position, and a path inside `folder`; every format renders."""
+    global _KNOWN
+    if _KNOWN is None:
+        _KNOWN = known_codes()
+    from val3check.reporting import FORMATS, render
+
+    for d in run.result.diagnostics:
+        assert d.code in _KNOWN, d
+        assert d.line >= 0 and d.col >= 0, d
+        assert os.path.realpath(os.path.abspath(d.path)).startswith(os.path.realpath(folder)), d
+    for fmt in FORMATS:
+        render(fmt, run.result)
+
+
+def lint_files(files: dict[str, bytes], settings=None):  # noqa: ANN001
+    """Write `files` (relative path -> bytes) in a fresh folder and lint it: (run, folder)."""
+    from val3check.config import Settings
+    from val3check.lint import run
+
+    tmp = Path(tempfile.mkdtemp(prefix="val3fuzz"))
+    (tmp / ".git").mkdir()  # the repository: nothing above it may be read
+    for rel, data in files.items():
+        p = tmp / rel
+        p.parent.mkdir(parents=True, exist_ok=True)
+        p.write_bytes(data)
+    old = os.getcwd()
+    os.chdir(tmp)
+    try:
+        result = run(["."], settings or Settings())
+        check_lint_result(result, tmp)
+    finally:
+        os.chdir(old)
+    return result, tmp
+
+
+def check_sim(ws, app, *, scenario=None, duration: float = 1.0, max_wall: float = 2.0):  # noqa: ANN001
+    """Run the application with small budgets: it ends (a result), within the wall budget plus a
+    margin, without an internal error of the interpreter."""
+    from val3check.interpretation.simulate import SimOptions, simulate
+
+    t = time.monotonic()
+    result = simulate(ws, app, SimOptions(duration=duration, max_wall=max_wall, max_lines=200_000,
+                                          max_memory_mb=300), scenario)
+    elapsed = time.monotonic() - t
+    assert elapsed < max_wall + 3.0, f"the run took {elapsed:.1f} s, budget {max_wall} s"
+    for d in result.diagnostics:
+        assert d.error != 61 and "internal error" not in d.message, d
+    return result
