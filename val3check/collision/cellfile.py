@@ -56,16 +56,13 @@ def read_cell(path: str | os.PathLike, app_dir: str | os.PathLike | None = None,
     """Read and check a cell file. Mesh files may lie in the cell file's folder, the application's
     folder (`app_dir`) or one of `roots`. Lengths are in the cell's `unit` (default: the
     application's, `app_unit`); the Cell holds millimetres."""
+    from .. import confine
+
     shown = str(path)
-    if os.path.exists(path) and not os.path.isfile(path):
-        raise CellError([(shown, 0, 0, "the cell file is not a regular file")])
-    try:
-        size = os.path.getsize(path)
-        if size > MAX_CELL_BYTES:
-            raise CellError([(shown, 0, 0, f"the cell file is {size} bytes, more than the {MAX_CELL_BYTES} read")])
-        raw = Path(path).read_bytes()
-    except OSError as exc:
-        raise CellError([(shown, 0, 0, f"cannot read the cell file: {exc.strerror or exc}")]) from None
+    try:  # a path the user gave (or found beside the application): read wherever it is, if a plain file
+        raw = confine.read_bytes(os.fspath(path), confine.Roots.user_given(), MAX_CELL_BYTES)
+    except confine.Refused as exc:
+        raise CellError([(shown, 0, 0, f"cannot read the cell file: {exc.reason}")]) from None
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError as exc:
@@ -296,7 +293,8 @@ class _Reader:
                 if self._mesh_bytes > meshes.MAX_TOTAL_MESH_BYTES:
                     raise meshes.MeshProblem(f"mesh file {name!r}: the cell's meshes add up to more than "
                                              f"{meshes.MAX_TOTAL_MESH_BYTES} bytes")
-                self._meshes[key] = meshes.load_mesh(target, name, scale, solid)  # type: ignore[arg-type]
+                self._meshes[key] = meshes.load_mesh(target, name, scale, solid,
+                                                     roots=[self.folder, *self.roots])  # type: ignore[arg-type]
         except OSError as exc:
             self.fail(path + ("file",), f"{label}: mesh file {name!r}: cannot read: {exc.strerror or exc}")
             return None

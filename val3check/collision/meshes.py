@@ -44,19 +44,19 @@ def resolve_mesh_path(name: str, cell_dir: str | os.PathLike, roots: list[str | 
 
 
 def load_mesh(path: Path, shown: str, scale: tuple[float, float, float], solid: bool,
-              max_bytes: int = MAX_MESH_BYTES) -> MeshData:
-    """Read a mesh file; vertices multiplied by `scale` (per axis: the cell's unit in mm times the
-    entry's own scale). `shown` is the name used in messages."""
+              max_bytes: int = MAX_MESH_BYTES, roots: list | None = None) -> MeshData:
+    """Read a mesh file through the file gate (val3check/confine.py: a regular file, inside
+    `roots` when given, size checked); vertices multiplied by `scale` (per axis: the cell's unit
+    in mm times the entry's own scale). `shown` is the name used in messages."""
+    from .. import confine
+
+    gate = confine.Roots([os.fspath(r) for r in roots]) if roots else confine.Roots.user_given()
     try:
-        size = path.stat().st_size
-    except OSError as exc:
-        raise MeshProblem(f"mesh file {shown!r}: cannot read: {exc.strerror or exc}") from None
-    if size > max_bytes:
-        raise MeshProblem(f"mesh file {shown!r} is {size} bytes, more than the {max_bytes} read")
-    try:
-        data = path.read_bytes()
-    except OSError as exc:
-        raise MeshProblem(f"mesh file {shown!r}: cannot read: {exc.strerror or exc}") from None
+        data = confine.read_bytes(os.fspath(path), gate, max_bytes)
+    except confine.Refused as exc:
+        if exc.code == "F002":
+            raise MeshProblem(f"mesh file {shown!r} is larger than the {max_bytes} bytes read") from None
+        raise MeshProblem(f"mesh file {shown!r}: cannot read: {exc.reason}") from None
     import trimesh
 
     kind = FILE_TYPES[path.suffix.lower()]
