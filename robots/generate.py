@@ -271,8 +271,9 @@ def collision_solids(arm: dict) -> dict[str, list[tuple]]:
         ],
         # elbow housing around axis 3
         "link_3": [("elbow", r["elbow"], 2 * r["elbow"], (0, 0, 0), ALONG_Y)],
-        # forearm tube turning with axis 4, from the elbow to the wrist centre
-        "link_4": [("forearm", r["fore"], c3, (0, 0, c3 / 2), "0 0 0")],
+        # forearm tube turning with axis 4, from the elbow to the wrist housing (which covers the
+        # wrist centre): ending there lets the flange turn to 90 degrees beside it, as on the arm
+        "link_4": [("forearm", r["fore"], c3 - r["wrist"], (0, 0, (c3 - r["wrist"]) / 2), "0 0 0")],
         # wrist: housing around axis 5 and the part between the wrist centre and the flange
         "link_5": [
             ("wrist", r["wrist"], 2 * r["wrist"], (0, 0, 0), ALONG_Y),
@@ -412,6 +413,15 @@ def urdf(name: str, arm: dict, arms: dict[str, dict]) -> str:
         torque = f' max_torque_nm="{_f(torques[i - 1])}"' if torques[i - 1] is not None else ""
         lines.append(f'    <joint name="joint_{i}" nominal_speed_deg_s="{_f(speeds[i - 1])}" acceleration_deg_s2="{_f(acc)}"{torque}/>')
     lines += provenance_lines(name, arm, assumptions, missing)
+    # Link pairs never checked against each other besides those val3check computes (adjacent, always
+    # or never in collision: robots/README.md, "Allowed collisions"): where these cylinders, centred
+    # on the arm's plane, meet while the real casings pass beside each other.
+    lines += [
+        '    <disable_collisions link1="base_link" link2="link_2" reason="user"/>'
+        "  <!-- the upper arm swings beside the base column -->",
+        '    <disable_collisions link1="link_4" link2="link_6" reason="user"/>'
+        "  <!-- the flange turns inside the forearm's fork -->",
+    ]
     lines.append("  </val3check>")
     lines.append("")
     lines += _links(collision_solids(arm))

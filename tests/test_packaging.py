@@ -30,7 +30,7 @@ def test_the_base_install_has_no_robotics_stack():
     base = {_name(r) for r in PYPROJECT["project"]["dependencies"]}
     assert base == {"lark", "defusedxml"}
     extras = PYPROJECT["project"]["optional-dependencies"]
-    assert {"pin", "numpy", "toppra"} <= {_name(r) for r in extras["sim"]}
+    assert {"pin", "numpy", "toppra", "python-fcl", "trimesh"} <= {_name(r) for r in extras["sim"]}
     assert "val3check[sim]" in extras["test"]  # the README's test command installs everything
 
 

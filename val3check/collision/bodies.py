@@ -1,0 +1,272 @@
+"""Solids as python-fcl objects, with what the broad phase and the motion bound need.
+
+A `Body` is one convex piece of a solid: an fcl object whose distance to another is exact
+(box, cylinder, sphere, or the convex hull of a convex mesh), or, for a piece of a non-convex
+mesh, the convex hull of its triangles (a distance that is a lower bound) together with the
+triangles themselves (`exact`, an fcl BVH) for the exact distance and for contacts. Each body
+keeps its pose in the frame of the group that carries it (`local`), an oriented box around it (for
+a world-aligned box at any pose) and a few points that bound it (for the motion bound).
+
+fcl measures between a cylinder and a triangle mesh slowly (milliseconds for 5,000 triangles at
+an angle) but between convex shapes in microseconds: hence the pieces. `make_bodies` cuts a
+non-convex mesh into pieces of at most PIECE triangles (median cuts along the longest side).
+"""
+
+from __future__ import annotations
+
+import math
+
+import fcl
+import numpy as np
+
+PIECE = 128  # triangles per piece of a non-convex mesh
+_SIDES = 32  # polygon around a cylinder for its bounding points
+
+
+def fcl_geometry(kind: str, size: tuple[float, ...], vertices=None, faces=None):
+    """The fcl geometry of a box (x, y, z), cylinder (radius, length along z), sphere (radius),
+    triangle mesh ("mesh": vertices, faces) or convex polyhedron ("convex": vertices, faces)."""
+    if kind == "box":
+        return fcl.Box(*size)
+    if kind == "cylinder":
+        return fcl.Cylinder(size[0], size[1])
+    if kind == "sphere":
+        return fcl.Sphere(size[0])
+    if kind == "mesh":
+        m = fcl.BVHModel()
+        m.beginModel(len(vertices), len(faces))
+        m.addSubModel(np.ascontiguousarray(vertices, dtype=float), np.ascontiguousarray(faces, dtype=np.int32))
+        m.endModel()
+        return m
+    if kind == "convex":
+        f = np.asarray(faces, dtype=np.int64)
+        flat = np.hstack([np.full((len(f), 1), 3), f]).ravel()
+        return fcl.Convex(np.ascontiguousarray(vertices, dtype=float), len(f), flat)
+    raise ValueError(f"unknown solid {kind!r}")
+
+
+class Body:
+    """One convex piece of a solid.
+
+    kind: link, tool, part or obstacle; owner: the link name, tool variable, part name or obstacle
+    name; label: how reports name it ("link_4 (forearm)", "obstacle 'table'"); local: pose in the
+    carrying frame (link, flange, or world); obj: fcl object (exact distances when `exact` is None);
+    exact: fcl BVH of the piece's triangles, or None; mesh: (vertices, faces) of the whole closed
+    mesh the piece belongs to (for point-in-mesh), or None."""
+
+    __slots__ = ("axis", "center", "exact", "half", "kind", "label", "lb", "local", "mesh", "name", "obj", "owner",
+                 "points", "pose", "radius", "solid", "whole", "whole_box")
+
+    def __init__(self, kind: str, owner: str, name: str, label: str, shape_kind: str, size: tuple[float, ...],
+                 local: np.ndarray, vertices=None, faces=None, solid: bool = True, exact=None, mesh=None,
+                 whole: int = 0) -> None:
+        self.kind = kind
+        self.owner = owner
+        self.name = name
+        self.label = label
+        self.local = np.asarray(local, dtype=float)
+        self.obj = fcl.CollisionObject(fcl_geometry(shape_kind, size, vertices, faces), fcl.Transform())
+        self.exact = exact
+        self.lb = False  # True: obj is the hull of a piece, its distance a lower bound (exact: the BVH)
+        self.mesh = mesh
+        self.solid = solid
+        self.whole = whole  # id of the solid the piece belongs to (pieces of one mesh share it)
+        self.pose = np.eye(4)
+        # bounding points in the body's own frame, and its axis of revolution (point, direction) if any
+        if shape_kind == "box":
+            hx, hy, hz = (0.5 * s for s in size)
+            self.points = np.array([[sx * hx, sy * hy, sz * hz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
+            self.axis = None
+            self.radius = 0.0
+        elif shape_kind == "cylinder":
+            r = size[0] / math.cos(math.pi / _SIDES)
+            a = np.arange(_SIDES) * 2 * math.pi / _SIDES
+            ring = np.stack([r * np.cos(a), r * np.sin(a), np.zeros(_SIDES)], axis=1)
+            self.points = np.concatenate([ring + [0, 0, -0.5 * size[1]], ring + [0, 0, 0.5 * size[1]]])
+            self.axis = (np.zeros(3), np.array([0.0, 0.0, 1.0]))
+            self.radius = 0.0
+        elif shape_kind == "sphere":
+            self.points = np.zeros((1, 3))
+            self.axis = (np.zeros(3), None)  # symmetric about any line through its centre
+            self.radius = float(size[0])
+        else:
+            self.points = np.asarray(vertices, dtype=float)
+            self.axis = None
+            self.radius = 0.0
+        lo = self.points.min(axis=0) - self.radius
+        hi = self.points.max(axis=0) + self.radius
+        self.center, self.half = 0.5 * (lo + hi), 0.5 * (hi - lo)
+        self.whole_box = (self.center, self.half)  # box around the whole solid a piece belongs to
+
+    def place(self, frame: np.ndarray) -> None:
+        """Put the body at `frame` @ local (world, mm)."""
+        T = frame @ self.local
+        self.pose = T
+        self.obj.setRotation(T[:3, :3])
+        self.obj.setTranslation(T[:3, 3])
+
+    def exact_obj(self):
+        """The fcl object for an exact distance or a contact (the triangles of a mesh), at the body's pose."""
+        if self.exact is None:
+            return self.obj
+        self.exact.setRotation(self.pose[:3, :3])
+        self.exact.setTranslation(self.pose[:3, 3])
+        return self.exact
+
+    def aabb(self) -> tuple[np.ndarray, np.ndarray]:
+        """World-aligned box (low, high) around the body at its current pose."""
+        R = self.pose[:3, :3]
+        c = R @ self.center + self.pose[:3, 3]
+        h = np.abs(R) @ self.half
+        return c - h, c + h
+
+    def whole_aabb(self) -> tuple[np.ndarray, np.ndarray]:
+        """World-aligned box around the whole solid (all the pieces of its mesh)."""
+        R = self.pose[:3, :3]
+        c = R @ self.whole_box[0] + self.pose[:3, 3]
+        h = np.abs(R) @ self.whole_box[1]
+        return c - h, c + h
+
+    def reach(self) -> float:
+        """Largest distance from the carrying frame's origin to a point of the body."""
+        p = self.points @ self.local[:3, :3].T + self.local[:3, 3]
+        return float(np.sqrt((p * p).sum(axis=1)).max()) + self.radius
+
+    def from_line(self, point: np.ndarray, direction: np.ndarray) -> float:
+        """Largest distance from a line (in the carrying frame) to a point of the body; 0 when the
+        body is a solid of revolution about that line (turning about it moves none of its points)."""
+        R, t = self.local[:3, :3], self.local[:3, 3]
+        if self.axis is not None:
+            c = R @ self.axis[0] + t - point
+            on_line = np.linalg.norm(c - (c @ direction) * direction) < 1e-9
+            if on_line and (self.axis[1] is None or abs(abs(float((R @ self.axis[1]) @ direction)) - 1.0) < 1e-12):
+                return 0.0
+        p = self.points @ R.T + t - point
+        along = p @ direction
+        d = np.sqrt(np.maximum((p * p).sum(axis=1) - along * along, 0.0))
+        return float(d.max()) + self.radius
+
+    def __repr__(self) -> str:
+        return f"Body({self.label})"
+
+
+def make_bodies(kind: str, owner: str, name: str, label: str, shape_kind: str, size: tuple[float, ...],
+                local: np.ndarray, vertices=None, faces=None, solid: bool = True) -> list[Body]:
+    """The bodies of one solid: one for a primitive or a convex mesh, pieces for another mesh."""
+    if shape_kind != "mesh":
+        b = Body(kind, owner, name, label, shape_kind, size, local, solid=solid)
+        b.whole = id(b)
+        return [b]
+    v = np.asarray(vertices, dtype=float)
+    f = np.asarray(faces, dtype=np.int64)
+    whole_mesh = (v, f) if solid else None
+    key = object()
+    lo, hi = v.min(axis=0), v.max(axis=0)
+    whole_box = (0.5 * (lo + hi), 0.5 * (hi - lo))
+    out = []
+    for pv, pf, hv, hf, bvh, lb in _pieces(v, f):
+        exact = fcl.CollisionObject(bvh, fcl.Transform())
+        if hv is None:  # a flat piece: its triangles are the convex object too
+            b = Body(kind, owner, name, label, "mesh", (), local, pv, pf, solid=solid, exact=exact, mesh=whole_mesh)
+        else:
+            b = Body(kind, owner, name, label, "convex", (), local, hv, hf, solid=solid, exact=exact, mesh=whole_mesh)
+            b.lb = lb
+        b.whole = id(key)
+        b.whole_box = whole_box
+        out.append(b)
+    return out
+
+
+_PIECES: dict[bytes, list] = {}
+
+
+def _pieces(v: np.ndarray, f: np.ndarray) -> list:
+    """(vertices, faces, hull vertices, hull faces, BVH geometry, hull is a lower bound only) per
+    piece; one piece (the hull, exact) for a convex closed mesh. Computed once per mesh."""
+    import hashlib
+
+    import trimesh
+
+    key = hashlib.sha1(v.tobytes() + f.tobytes()).digest()
+    if key in _PIECES:
+        return _PIECES[key]
+    out = []
+    if trimesh.Trimesh(v, f, process=False).is_convex:
+        hull = _hull(v, f)
+        if hull is not None:
+            out.append((v, f, hull[0], hull[1], fcl_geometry("mesh", (), v, f), False))
+    if not out:
+        for idx in _split(v, f):
+            used, inv = np.unique(f[idx], return_inverse=True)
+            pv, pf = v[used], inv.reshape(-1, 3)
+            ph = _hull(pv, pf)
+            out.append((pv, pf, None if ph is None else ph[0], None if ph is None else ph[1],
+                        fcl_geometry("mesh", (), pv, pf), True))
+    if len(_PIECES) > 64:
+        _PIECES.clear()
+    _PIECES[key] = out
+    return out
+
+
+def _split(v: np.ndarray, f: np.ndarray) -> list[np.ndarray]:
+    """Indices of the faces of each piece: median cuts of the face centres along the longest side."""
+    centres = v[f].mean(axis=1)
+    todo = [np.arange(len(f))]
+    out = []
+    while todo:
+        idx = todo.pop()
+        if len(idx) <= PIECE:
+            out.append(idx)
+            continue
+        c = centres[idx]
+        axis = int(np.argmax(c.max(axis=0) - c.min(axis=0)))
+        order = idx[np.argsort(c[:, axis], kind="stable")]
+        half = len(order) // 2
+        todo.extend((order[half:], order[:half]))
+    return out
+
+
+def _hull(v: np.ndarray, f: np.ndarray):
+    """(vertices, faces) of the convex hull, or None when the points are flat or too few."""
+    import trimesh
+
+    try:
+        h = trimesh.convex.convex_hull(v)
+    except Exception:  # qhull refuses flat or degenerate point sets
+        return None
+    if len(h.faces) < 4 or h.volume <= 1e-9:
+        return None
+    return np.asarray(h.vertices, dtype=float), np.asarray(h.faces, dtype=np.int64)
+
+
+def aabb_gap(lo_a: np.ndarray, hi_a: np.ndarray, lo_b: np.ndarray, hi_b: np.ndarray) -> np.ndarray:
+    """Distance between world-aligned boxes (0 when they overlap), broadcast over leading axes."""
+    gap = np.maximum(0.0, np.maximum(lo_a - hi_b, lo_b - hi_a))
+    return np.sqrt((gap * gap).sum(axis=-1))
+
+
+# Three fixed, unrelated directions for the ray-parity test (no axis-aligned ray grazes box edges).
+_RAYS = np.array([[0.5773, 0.6172, 0.5345], [-0.7071, 0.3015, 0.6396], [0.2673, -0.8018, 0.5345]])
+
+
+def point_inside(vertices: np.ndarray, faces: np.ndarray, point: np.ndarray) -> bool:
+    """Whether `point` is inside a closed (watertight) triangle mesh: the number of faces a ray
+    from the point crosses is odd. Three rays vote, so a ray through an edge cannot decide alone."""
+    a = vertices[faces[:, 0]]
+    e1 = vertices[faces[:, 1]] - a
+    e2 = vertices[faces[:, 2]] - a
+    votes = 0
+    for d in _RAYS:
+        d = d / np.linalg.norm(d)
+        p = np.cross(d, e2)
+        det = (e1 * p).sum(axis=1)
+        ok = np.abs(det) > 1e-12
+        inv = np.where(ok, 1.0 / np.where(ok, det, 1.0), 0.0)
+        s = point - a
+        u = (s * p).sum(axis=1) * inv
+        q = np.cross(s, e1)
+        v = (q * d).sum(axis=1) * inv
+        t = (q * e2).sum(axis=1) * inv
+        hits = ok & (u >= 0.0) & (v >= 0.0) & (u + v <= 1.0) & (t > 0.0)
+        votes += int(hits.sum()) % 2
+    return votes >= 2

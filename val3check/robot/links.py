@@ -1,0 +1,356 @@
+"""Every link of an arm with its collision solids, and where each link is for given joint values.
+
+The kinematics of `kinematics.py` gives the flange; collision checking needs every link. This
+module reads the URDF's `<collision>` elements (box, cylinder, sphere, mesh) and the whole link
+tree, and computes each link's pose in the VAL 3 world frame (millimetres) from VAL 3 joint
+values (degrees for revolute axes, millimetres for prismatic ones). It also gives what the
+collision package needs to bound motion between two configurations (`reach_from_joint`) and the
+link graph of MoveIt's allowed-collision matrix (`adjacent_pairs`).
+
+Pure data plus numpy; no collision library here (val3check/collision/ builds the solids).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .errors import RobotError
+from .urdf import UrdfInfo, read_urdf
+
+_MOVING = ("revolute", "continuous", "prismatic")
+
+
+@dataclass(frozen=True)
+class Solid:
+    """One `<collision>` element of a link. Lengths in mm; `origin` is its 4x4 pose in the link frame.
+
+    kind "box": size = (x, y, z); "cylinder": (radius, length) along the local z, centred;
+    "sphere": (radius,); "mesh": size = scale (x, y, z) applied to the file's metres, and `mesh`
+    is the file's path (resolved beside the URDF)."""
+
+    link: str
+    name: str
+    kind: str
+    size: tuple[float, ...]
+    origin: np.ndarray
+    mesh: str = ""
+
+
+@dataclass(frozen=True)
+class _Edge:
+    """The joint from `parent` to `child`: fixed origin (4x4, mm), axis, kind, index in q (or -1)."""
+
+    parent: str
+    child: str
+    origin: np.ndarray
+    axis: np.ndarray
+    kind: str
+    index: int
+    name: str
+
+
+class ArmLinks:
+    """The link tree of an arm model, in the VAL 3 world frame.
+
+    links        link names, parents before children (the root first)
+    solids       every collision solid (`Solid`), in URDF order
+    joint_names  the model's joints, in the order of the joint values
+    poses(q)     {link: 4x4 pose in world (mm)} for VAL 3 joint values q
+    """
+
+    def __init__(self, info: UrdfInfo, solids: list[Solid], joint_names: tuple[str, ...], world: str):
+        self.path = info.path
+        self.joint_names = tuple(joint_names)
+        self.solids = tuple(solids)
+        root = info.root_link()
+        if not root:
+            raise RobotError(f"{info.path}: the links do not form one tree with a single root")
+        children: dict[str, list] = {}
+        for j in info.joints.values():
+            children.setdefault(j.parent, []).append(j)
+        index = {n: i for i, n in enumerate(self.joint_names)}
+        missing = [n for n in self.joint_names if n not in info.joints]
+        if missing:
+            raise RobotError(f"{info.path}: no joint named {missing[0]!r}")
+        self.edges: dict[str, _Edge] = {}  # by child link
+        order = [root]
+        stack = [root]
+        seen = {root}
+        while stack:
+            link = stack.pop()
+            for j in sorted(children.get(link, []), key=lambda j: j.name):
+                if j.child in seen:
+                    raise RobotError(f"{info.path}: link {j.child!r} has two parents")
+                seen.add(j.child)
+                T = _transform(j.xyz, j.rpy)
+                ax = np.asarray(j.axis, dtype=float)
+                n = float(np.linalg.norm(ax))
+                kind = j.kind if j.kind in _MOVING else "fixed"
+                if kind != "fixed" and n == 0.0:
+                    raise RobotError(f"{info.path}: joint {j.name!r} has a zero axis")
+                self.edges[j.child] = _Edge(link, j.child, T, ax / n if n else ax, kind, index.get(j.name, -1), j.name)
+                order.append(j.child)
+                stack.append(j.child)
+        self.links = tuple(order)
+        if world not in seen:
+            raise RobotError(f"{info.path}: no link named {world!r} (the world frame)")
+        # pose of the root in the VAL 3 world frame: the inverse of root -> world (fixed joints)
+        T = np.eye(4)
+        link = world
+        while link != root:
+            e = self.edges[link]
+            if e.kind != "fixed":
+                raise RobotError(f"{info.path}: the world frame {world!r} must be fixed to the base")
+            T = e.origin @ T
+            link = e.parent
+        self.root = root
+        self.root_in_world = np.linalg.inv(T)
+        self.world = world
+        # the model's joint indices that move each link, root side first
+        self._movers: dict[str, tuple[int, ...]] = {}
+        for link in self.links:
+            chain: list[int] = []
+            n = link
+            while n != root:
+                e = self.edges[n]
+                if e.kind != "fixed" and e.index >= 0:
+                    chain.append(e.index)
+                n = e.parent
+            self._movers[link] = tuple(reversed(chain))
+        # the FK plan: (link, parent, fixed origin, index of its joint motion or -1), parents first
+        moving = [e for e in (self.edges[n] for n in self.links[1:]) if e.kind != "fixed" and e.index >= 0]
+        slot = {e.child: i for i, e in enumerate(moving)}
+        self._plan = [(n, self.edges[n].parent, self.edges[n].origin, slot.get(n, -1)) for n in self.links[1:]]
+        self._axes = np.array([e.axis for e in moving]).reshape(-1, 3)
+        self._kinds_prismatic = np.array([e.kind == "prismatic" for e in moving], dtype=bool)
+        self._qindex = np.array([e.index for e in moving], dtype=int)
+        self.prismatic = tuple(
+            any(e.index == i and e.kind == "prismatic" for e in self.edges.values()) for i in range(len(self.joint_names))
+        )
+
+    # ---- forward kinematics ---------------------------------------------------------------------
+
+    def poses(self, q) -> dict[str, np.ndarray]:
+        """{link: 4x4 pose in the VAL 3 world frame, mm} for VAL 3 joint values (deg, or mm for a
+        prismatic axis). Joints that are not the model's (a gripper finger…) stay at zero."""
+        M = _motions_one(self._axes, self._kinds_prismatic, np.asarray(q, dtype=float)[self._qindex])
+        out = {self.root: self.root_in_world}
+        for link, parent, origin, m in self._plan:
+            T = out[parent] @ origin
+            out[link] = T if m < 0 else T @ M[m]
+        return out
+
+    def poses_many(self, Q) -> dict[str, np.ndarray]:
+        """`poses` for many joint positions at once: Q is (N, joints); each pose (N, 4, 4)."""
+        Q = np.asarray(Q, dtype=float)
+        n = len(Q)
+        out = {self.root: np.broadcast_to(self.root_in_world, (n, 4, 4))}
+        for link in self.links[1:]:
+            e = self.edges[link]
+            T = out[e.parent] @ e.origin
+            if e.kind != "fixed" and e.index >= 0:
+                T = T @ _motions(e.kind, e.axis, Q[:, e.index])
+            out[link] = T
+        return out
+
+    def movers(self, link: str) -> tuple[int, ...]:
+        """Indices (in the joint values) of the joints that move `link`, from the base outwards."""
+        return self._movers[link]
+
+    def reach_from_joint(self, link: str) -> dict[int, float]:
+        """For each joint i moving `link`: an upper bound, valid in every configuration, of the
+        distance from joint i's axis to the origin of `link` (mm): the lengths of the fixed offsets
+        between them, end to end (the joints in between only turn them)."""
+        out: dict[int, float] = {}
+        acc = 0.0
+        n = link
+        while n != self.root:
+            e = self.edges[n]
+            if e.kind != "fixed" and e.index >= 0:
+                out[e.index] = acc
+            acc += float(np.linalg.norm(e.origin[:3, 3]))
+            n = e.parent
+        return out
+
+    def adjacent_pairs(self, with_geometry: set[str]) -> set[tuple[str, str]]:
+        """MoveIt's adjacent links: joined by one joint, or through links without geometry (those
+        are removed and their neighbours joined). Pairs sorted by name, geometry links only."""
+        graph: dict[str, set[str]] = {n: set() for n in self.links}
+        for e in self.edges.values():
+            graph[e.parent].add(e.child)
+            graph[e.child].add(e.parent)
+        for n in self.links:
+            if n in with_geometry:
+                continue
+            nbrs = sorted(graph[n])
+            for a in nbrs:
+                for b in nbrs:
+                    if a != b:
+                        graph[a].add(b)
+        out = set()
+        for a in with_geometry:
+            for b in graph.get(a, ()):
+                if b in with_geometry and a != b:
+                    out.add((min(a, b), max(a, b)))
+        return out
+
+
+def arm_links(model) -> ArmLinks:
+    """The `ArmLinks` of a `RobotModel` (read from its URDF)."""
+    info = read_urdf(model.source)
+    solids = read_collision_solids(info.path)
+    return ArmLinks(info, solids, tuple(model.joint_names), model.world_frame)
+
+
+def read_collision_solids(path: str | os.PathLike) -> list[Solid]:
+    """The `<collision>` elements of every link of a URDF, in mm. A mesh file is resolved beside the
+    URDF (relative path or file://) and must stay inside the URDF's folder."""
+    from defusedxml import ElementTree as ET
+
+    path = str(path)
+    try:
+        root = ET.parse(path).getroot()
+    except (OSError, ET.ParseError) as exc:
+        raise RobotError(f"{path}: cannot read the URDF: {exc}") from None
+    base = Path(path).resolve().parent
+    out: list[Solid] = []
+    for link in root.findall("link"):
+        lname = link.get("name", "")
+        for i, col in enumerate(link.findall("collision")):
+            name = col.get("name") or f"{lname}#{i + 1}"
+            o = col.find("origin")
+            xyz = _floats(o.get("xyz") if o is not None else None, 3, (0.0, 0.0, 0.0), path, lname)
+            rpy = _floats(o.get("rpy") if o is not None else None, 3, (0.0, 0.0, 0.0), path, lname)
+            origin = _transform(xyz, rpy)
+            g = col.find("geometry")
+            shape = None if g is None or len(g) == 0 else g[0]
+            if shape is None:
+                raise RobotError(f"{path}: link {lname!r}: <collision> without <geometry>")
+            tag = shape.tag
+            where = f"{path}: link {lname!r}, collision {name!r}"
+            if tag == "box":
+                size = tuple(v * 1000.0 for v in _floats(shape.get("size"), 3, None, path, lname))
+            elif tag == "cylinder":
+                size = (_num(shape.get("radius"), where, "radius") * 1000.0, _num(shape.get("length"), where, "length") * 1000.0)
+            elif tag == "sphere":
+                size = (_num(shape.get("radius"), where, "radius") * 1000.0,)
+            elif tag == "mesh":
+                size = tuple(v * 1000.0 for v in _floats(shape.get("scale"), 3, (1.0, 1.0, 1.0), path, lname))
+                mesh = _mesh_path(shape.get("filename", ""), base, where)
+                out.append(Solid(lname, name, "mesh", size, origin, mesh))
+                continue
+            else:
+                raise RobotError(f"{where}: <{tag}> is not a URDF collision geometry (box, cylinder, sphere, mesh)")
+            if any(not (s > 0.0 and math.isfinite(s)) for s in size):
+                raise RobotError(f"{where}: <{tag}> needs positive sizes")
+            out.append(Solid(lname, name, tag, size, origin))
+    return out
+
+
+def _mesh_path(filename: str, base: Path, where: str) -> str:
+    """A collision mesh's file: relative to the URDF (or file://), or package://NAME/... found in a
+    folder NAME above the URDF (as ROS resolves it from a package's share folder); it must stay
+    inside that folder."""
+    if filename.startswith("file://"):
+        filename = filename[len("file://"):]
+    root = base
+    if filename.startswith("package://"):
+        pkg, _, rest = filename[len("package://"):].partition("/")
+        for folder in (base, *base.parents):
+            if folder.name == pkg:
+                root, filename = folder, rest
+                break
+        else:
+            raise RobotError(f"{where}: mesh {filename!r}: no folder {pkg!r} above the URDF to resolve package:// in")
+    if not filename or "://" in filename:
+        raise RobotError(f"{where}: mesh {filename!r}: give a path relative to the URDF")
+    p = (root / filename).resolve()
+    if root not in p.parents:
+        raise RobotError(f"{where}: mesh {filename!r} is outside the URDF's folder")
+    return str(p)
+
+
+def _num(text, where: str, what: str) -> float:
+    try:
+        return float(text)
+    except (TypeError, ValueError):
+        raise RobotError(f"{where}: {what}={text!r} is not a number") from None
+
+
+def _floats(text, n, default, path, link) -> tuple[float, ...]:
+    if text is None:
+        if default is None:
+            raise RobotError(f"{path}: link {link!r}: a collision size is missing")
+        return default
+    try:
+        vals = tuple(float(t) for t in text.split())
+    except ValueError:
+        raise RobotError(f"{path}: link {link!r}: {text!r} is not {n} numbers") from None
+    if len(vals) != n or not all(math.isfinite(v) for v in vals):
+        raise RobotError(f"{path}: link {link!r}: {text!r} is not {n} numbers")
+    return vals
+
+
+def _transform(xyz, rpy) -> np.ndarray:
+    """URDF origin (metres, rpy: R = Rz(y)·Ry(p)·Rx(r)) -> 4x4 in mm."""
+    r, p, y = rpy
+    cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
+    T = np.eye(4)
+    T[:3, :3] = (
+        (cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr),
+        (sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr),
+        (-sp, cp * sr, cp * cr),
+    )
+    T[:3, 3] = [v * 1000.0 for v in xyz]
+    return T
+
+
+def _motions_one(axes: np.ndarray, prismatic: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """The motions of several joints (one value each) at once: (J, 4, 4), a turn of the value in
+    degrees about the joint's axis (Rodrigues), or a slide of the value in mm along it."""
+    n = len(values)
+    a = np.where(prismatic, 0.0, np.radians(values))
+    c, s = np.cos(a), np.sin(a)
+    C = 1.0 - c
+    x, y, z = axes[:, 0], axes[:, 1], axes[:, 2]
+    T = np.zeros((n, 4, 4))
+    T[:, 0, 0] = c + x * x * C
+    T[:, 0, 1] = x * y * C - z * s
+    T[:, 0, 2] = x * z * C + y * s
+    T[:, 1, 0] = y * x * C + z * s
+    T[:, 1, 1] = c + y * y * C
+    T[:, 1, 2] = y * z * C - x * s
+    T[:, 2, 0] = z * x * C - y * s
+    T[:, 2, 1] = z * y * C + x * s
+    T[:, 2, 2] = c + z * z * C
+    T[:, :3, 3] = np.where(prismatic, values, 0.0)[:, None] * axes
+    T[:, 3, 3] = 1.0
+    return T
+
+
+def _motions(kind: str, axis: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """The motion of one joint for an array of values: (N, 4, 4)."""
+    n = len(values)
+    T = np.tile(np.eye(4), (n, 1, 1))
+    if kind == "prismatic":
+        T[:, :3, 3] = values[:, None] * axis[None, :]
+        return T
+    a = np.radians(values)
+    c, s = np.cos(a), np.sin(a)
+    C = 1.0 - c
+    x, y, z = axis
+    T[:, 0, 0] = c + x * x * C
+    T[:, 0, 1] = x * y * C - z * s
+    T[:, 0, 2] = x * z * C + y * s
+    T[:, 1, 0] = y * x * C + z * s
+    T[:, 1, 1] = c + y * y * C
+    T[:, 1, 2] = y * z * C - x * s
+    T[:, 2, 0] = z * x * C - y * s
+    T[:, 2, 1] = z * y * C + x * s
+    T[:, 2, 2] = c + z * z * C
+    return T
