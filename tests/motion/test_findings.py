@@ -41,27 +41,39 @@ def test_mdesc_defaults_are_the_manuals():
         tvel=254.0, leave=50.8, reach=25.4, blend="Cartesian")
 
 
+def deferred(q, command, now=0.0):
+    """A command the arm cannot execute is recorded (it returns its id), reported, and the next
+    motion instruction raises 150 (12.1: "point hors d'atteinte, singularité, problème de
+    configuration"); resetMotion clears it."""
+    i = q.record(command, now)
+    assert isinstance(i, int)
+    f = q.findings[-1]
+    assert f.error == 150 and q.failure is f
+    with pytest.raises(MotionError) as e:
+        q.record(movej(HOME), now)
+    assert e.value.code == 150 and e.value.finding is None
+    with pytest.raises(MotionError) as e:
+        q.wait_end_move(now)
+    assert e.value.code == 150
+    q.reset_motion(now)
+    assert q.failure is None
+    return f
+
+
 def test_unreachable_point():
     q = queue()
     far = point(dx=2000.0, name="pFar")
-    with pytest.raises(MotionError) as e:
-        q.record(movej(far, line=12), 0.0)
-    assert e.value.code == 154
-    f = e.value.finding
+    f = deferred(q, movej(far, line=12))
     assert f.code == F.UNREACHABLE and f.source.line == 12 and "pFar" in f.message and f.severity == "error"
-    with pytest.raises(MotionError) as e:
-        q.record(movel(far, line=13), 0.0)
-    assert e.value.finding.code == F.UNREACHABLE
+    assert deferred(q, movel(far, line=13)).code == F.UNREACHABLE
 
 
 def test_joint_target_outside_the_limits():
     q = queue()
     target = HOME.copy()
     target[1] = 130.0  # j2 limit 127.5
-    with pytest.raises(MotionError) as e:
-        q.record(movej(target, line=4), 0.0)
-    f = e.value.finding
-    assert e.value.code == 154 and f.code == F.JOINT_LIMIT
+    f = deferred(q, movej(target, line=4))
+    assert f.code == F.JOINT_LIMIT
     assert f.data["axis"] == 2 and f.data["excess_deg"] == pytest.approx(2.5)
     assert "j2" in f.message and "2.500" in f.message
 
@@ -71,10 +83,8 @@ def test_point_reachable_only_outside_the_limits_names_the_axis():
     j = HOME.copy()
     j[4] = -125.0  # below j5's limit of -121
     T = pose(j)
-    with pytest.raises(MotionError) as e:
-        q.record(movej(Target.point(T, ("righty" if KIN.shoulder_value(j[None])[0] < 0 else "lefty",
-                                        "epositive", "wnegative"))), 0.0)
-    f = e.value.finding
+    f = deferred(q, movej(Target.point(T, ("righty" if KIN.shoulder_value(j[None])[0] < 0 else "lefty",
+                                           "epositive", "wnegative"))))
     assert f.code == F.JOINT_LIMIT and f.data["axis"] == 5 and f.data["excess_deg"] == pytest.approx(4.0, abs=1e-6)
 
 
@@ -102,10 +112,8 @@ def test_movel_path_outside_the_joint_limits_is_150_on_the_next_instruction():
 def test_imposed_configuration_change_in_movel():
     q = queue()
     other = "righty" if KIN.shoulder_value(HOME[None])[0] >= 0 else "lefty"
-    with pytest.raises(MotionError) as e:
-        q.record(movel(point(dy=50.0, config=(other, "esame", "wsame")), line=9), 0.0)
-    f = e.value.finding
-    assert e.value.code == 154 and f.code == F.CONFIG_CHANGE and f.data["field"] == "shoulder"
+    f = deferred(q, movel(point(dy=50.0, config=(other, "esame", "wsame")), line=9))
+    assert f.code == F.CONFIG_CHANGE and f.data["field"] == "shoulder" and f.source.line == 9
     # free and same are fine
     q.record(movel(point(dy=50.0, config=("sfree", "efree", "wsame"))), 0.0)
     run(q)
@@ -116,10 +124,8 @@ def test_movel_target_only_reachable_in_another_configuration():
     start = np.array([0.0, 20.0, 100.0, 180.0, -60.0, 180.0])  # wnegative
     q = queue(joints=start)
     target = Target.point(pose([0.0, 20.0, 100.0, 0.0, 125.0, 0.0]), ("sfree", "efree", "wfree"))
-    with pytest.raises(MotionError) as e:
-        q.record(movel(target, line=8), 0.0)
-    f = e.value.finding
-    assert e.value.code == 154 and f.code == F.JOINT_LIMIT and f.data["axis"] == 5
+    f = deferred(q, movel(target, line=8))
+    assert f.code == F.JOINT_LIMIT and f.data["axis"] == 5
     # movej may change configuration: it goes there
     q.record(movej(target), 0.0)
     t = run(q)

@@ -43,7 +43,7 @@ from .findings import Finding, MotionError, Source
 from .kin import ArmKin
 from .mdesc import Limits, MDesc
 from .paths import BLEND_SHAPES, JointBlend, JointLine, JointSpline, Path, Span, tcp_rates
-from .timing import Grid, brake_stop, topp, trapezoid
+from .timing import Grid, brake_stop, duration, lower_bound_time, topp, trapezoid
 from .tracking import track
 from .trajectory import Profile, Trajectory
 
@@ -95,6 +95,7 @@ class Cmd:
     tool_name: str = ""
     target_name: str = ""
     checked: bool = False
+    rest_time: float | None = None  # alone, from rest to rest (`_rest_time`)
 
 
 class MotionQueue:
@@ -124,6 +125,9 @@ class MotionQueue:
         self._keys = 0
         self._by_key: dict[int, Cmd] = {}
         self.fallbacks = 0
+        self.stops_chosen = 0  # junctions where stopping at the via point was chosen (`_blend_pays`)
+        self._trial = None  # the timing of the last blend trial, reused by the plan that follows
+        self._samples: dict = {}  # samples of spans timed in trials, reused when the span is added
 
     # ---- recording ---------------------------------------------------------------------------
 
@@ -173,8 +177,6 @@ class MotionQueue:
 
     def _add_connection(self, q_s, target, now, src) -> None:
         """resetMotion(jStart): a point-to-point move to jStart at reduced speed first (10.1.3)."""
-        if not self.model.in_limits(target):
-            raise MotionError(154, "resetMotion: the start position is outside the joint limits")
         c = self._new_cmd("connection", src, now, q_s, MDesc(blend="off"), None)
         c.reduced = True
         c.q_end = np.asarray(target, dtype=float)
@@ -191,7 +193,10 @@ class MotionQueue:
         c.target_name = command.target.name
         c.blend = md.blend
         if command.kind == "movej":
-            c.q_end = self._movej_target(command, q_s, tool, now)
+            q_end = self._movej_target(c, command, q_s, tool, now)
+            if q_end is None:
+                return c
+            c.q_end = q_end
             if np.max(np.abs(c.q_end - q_s)) <= JOINT_EQ:
                 self.findings.append(Finding(
                     F.NO_OP, "movej: the target is the position the motion starts from: the arm does not move",
@@ -204,7 +209,21 @@ class MotionQueue:
         self._cartesian(c, command, q_s, tool, now)
         return c
 
-    def _movej_target(self, command: MoveCommand, q_s, tool, now) -> np.ndarray:
+    def _defer(self, c: Cmd, f: Finding) -> None:
+        """A command the arm cannot execute (its target out of reach, outside the joint limits,
+        in another configuration, or its path): it is recorded and returns its identifier, the
+        arm stops before it, and the next motion instruction, waitEndMove, open or close raises
+        150 (12.1: "un mouvement demandé précédemment n'a pas pu être terminé (point hors
+        d'atteinte, singularité, problème de configuration...)"; waitEndMove, 10.6: "destination
+        hors d'atteinte")."""
+        if f.error != 150:
+            f = Finding(f.code, f.message, f.source, f.time, f.move_id, 150, f.data)
+        c.state = "failed"
+        self.findings.append(f)
+        self.failure = f
+
+    def _movej_target(self, c: Cmd, command: MoveCommand, q_s, tool, now) -> np.ndarray | None:
+        """The joint target of a movej; None when the arm cannot go there (`_defer`)."""
         tg = command.target
         src = command.source
         kin = self.kin
@@ -215,8 +234,8 @@ class MotionQueue:
             over = np.maximum(kin.lo - j, j - kin.hi)
             if np.any(over > 1e-7):
                 ax = int(np.argmax(over))
-                f = self._limit_finding("movej: the joint target", ax, float(over[ax]), j[ax], src, now)
-                raise MotionError(154, f.message, f)
+                self._defer(c, self._limit_finding("movej: the joint target", ax, float(over[ax]), j[ax], src, now))
+                return None
             return j
         T = tg.pose if tool is None else tg.pose @ np.linalg.inv(tool)
         from ..robot.errors import Unreachable
@@ -224,29 +243,36 @@ class MotionQueue:
         try:
             j = self.model.solve(T[:3, :4].tolist(), tg.config, initial=tuple(q_s))
         except Unreachable as exc:
-            f = self._unreachable_finding("movej", tg, T, q_s, exc.reason, src, now)
-            raise MotionError(154, f.message, f) from None
+            self._defer(c, self._unreachable_finding("movej", tg, T, q_s, exc.reason, src, now))
+            return None
         return np.asarray(j, dtype=float)
 
     def _cartesian(self, c: Cmd, command: MoveCommand, q_s, tool, now) -> None:
         kin = self.kin
         src = command.source
         kind = command.kind
+        T_end = command.target.pose
+        T0 = kin.tcp(q_s[None], tool)[0]
+        try:  # an arc that three positions do not define is an invalid instruction (154)
+            curve = Line(T0, T_end) if kind == "movel" else Arc(T0, command.via.pose, T_end)
+        except ArcError as exc:
+            f = Finding(F.CIRCLE, str(exc), src, now, error=154, data=dict(exc.data, what=exc.what))
+            raise MotionError(154, f.message, f) from None
         code0 = int(kin.config_codes(q_s)[0])
         cfg0 = kin.config_name(code0)
+        fields = ("shoulder", "elbow", "wrist")[:len(cfg0)]
         # 10.1.4.2: a line or a circle cannot change configuration
-        for field_name, want, have in zip(("shoulder", "elbow", "wrist"), command.target.config, cfg0):
+        for field_name, want, have in zip(fields, command.target.config, cfg0):
             w = want.lower()
             if w.endswith("same") or w.endswith("free"):
                 continue
             if w != have:
-                f = Finding(F.CONFIG_CHANGE,
-                            f"{kind}: the target imposes {field_name} {w} but the motion starts in {have}: a "
-                            f"straight line or a circle cannot change configuration (10.1.4.2); use movej, or "
-                            f"{field_name[0]}same/{field_name[0]}free", src, now, error=154,
-                            data={"field": field_name, "requested": w, "start": have})
-                raise MotionError(154, f.message, f)
-        T_end = command.target.pose
+                self._defer(c, Finding(
+                    F.CONFIG_CHANGE, f"{kind}: the target imposes {field_name} {w} but the motion starts in {have}: "
+                    f"a straight line or a circle cannot change configuration (10.1.4.2); use movej, or "
+                    f"{field_name[0]}same/{field_name[0]}free", src, now,
+                    data={"field": field_name, "requested": w, "start": have}))
+                return
         flange_end = T_end if tool is None else T_end @ np.linalg.inv(tool)
         sols, sol_codes = kin.solutions(flange_end)
         codes = {int(x) for x in sol_codes}
@@ -256,12 +282,13 @@ class MotionQueue:
                 f = Finding(F.CONFIG_CHANGE,
                             f"{kind}: the target can only be reached in configuration {'/'.join(other)}, not in the "
                             f"start configuration {'/'.join(cfg0)}: a straight line or a circle cannot change "
-                            "configuration (10.1.4.2); use movej", src, now, error=154,
+                            "configuration (10.1.4.2); use movej", src, now,
                             data={"start": list(cfg0), "target": list(other)})
             else:
-                f = Finding(F.UNREACHABLE, f"{kind}: the target is out of the arm's reach{_name(command.target)}",
-                            src, now, error=154, data={"target_mm": _r(T_end[:3, 3])})
-            raise MotionError(154, f.message, f)
+                f = Finding(F.UNREACHABLE, f"{kind}: the target{_name(command.target)} is out of the arm's reach",
+                            src, now, data={"target_mm": _r(T_end[:3, 3])})
+            self._defer(c, f)
+            return
         # the target in the start configuration: within the joint limits?
         mine = self._turns(sols[sol_codes == code0], q_s)
         over = np.maximum(kin.lo - mine, mine - kin.hi).max(axis=1)
@@ -269,25 +296,16 @@ class MotionQueue:
             best = mine[int(np.argmin(over))]
             ex = np.maximum(kin.lo - best, best - kin.hi)
             ax = int(np.argmax(ex))
-            f = self._limit_finding(f"{kind}: the target{_name(command.target)} in the start configuration "
-                                    f"{'/'.join(cfg0)}", ax, float(ex[ax]), float(best[ax]), src, now)
-            raise MotionError(154, f.message, f)
-        T0 = kin.tcp(q_s[None], tool)[0]
-        try:
-            curve = Line(T0, T_end) if kind == "movel" else Arc(T0, command.via.pose, T_end)
-        except ArcError as exc:
-            f = Finding(F.CIRCLE, str(exc), src, now, error=154, data=dict(exc.data, what=exc.what))
-            raise MotionError(154, f.message, f) from None
+            self._defer(c, self._limit_finding(f"{kind}: the target{_name(command.target)} in the start configuration "
+                                               f"{'/'.join(cfg0)}", ax, float(ex[ax]), float(best[ax]), src, now))
+            return
         c.curve = curve
         if curve.length_mm < 1e-6 and curve.angle_deg < 1e-6:
             c.blend = "off"
             return
         tr = track(kin, curve, tool, q_s, code0)
         if tr.failure is not None:
-            c.state = "failed"
-            f = self._path_failure(kind, tr.failure, curve, src, now)
-            self.findings.append(f)
-            self.failure = f
+            self._defer(c, self._path_failure(kind, tr.failure, curve, src, now))
             return
         c.geom = JointSpline(tr.lam, tr.Q, tr.D)
         c.geom.sing = tr.sing
@@ -296,7 +314,7 @@ class MotionQueue:
 
     # ---- findings ------------------------------------------------------------------------------
 
-    def _limit_finding(self, what, ax, amount, value, src, now, error=154) -> Finding:
+    def _limit_finding(self, what, ax, amount, value, src, now, error=150) -> Finding:
         lo, hi = self.model.joint_limits[ax]
         side = "below" if value < lo else "above"
         u = "°" if self.kin.revolute[ax] else " mm"
@@ -330,7 +348,7 @@ class MotionQueue:
                    f"{'/'.join(tg.config)} (same fields relative to the start {'/'.join(self.model.config_of(q_s))})")
         else:
             msg = f"{kind}: the point{_name(tg)} is out of the arm's reach"
-        return Finding(F.UNREACHABLE, msg, src, now, error=154,
+        return Finding(F.UNREACHABLE, msg, src, now, error=150,
                        data={"target_mm": _r(T[:3, 3]), "reason": reason, "config": list(tg.config)})
 
     def _turns(self, sols: np.ndarray, q_s: np.ndarray) -> np.ndarray:
@@ -426,10 +444,13 @@ class MotionQueue:
         self.open = None
         hard = True
         if prev is not None:
-            blend = self._make_blend(prev, c) if c.geom is not None else None
-            if blend is None:
+            cand = self._blend_candidate(prev, c) if c.geom is not None else None
+            if cand is not None and not self._blend_pays(prev, c, cand, now):
+                cand = None  # stopping at the via point is faster: the arm does that
+            if cand is None:
                 self._close(prev)
             else:
+                self._commit_blend(prev, c, cand)
                 hard = False
         self.pending.append(c)
         self.history.append(c)
@@ -447,7 +468,7 @@ class MotionQueue:
             b = c.lam_leave if c.blend != "off" else 1.0
             s0 = self.path.end
             if b > c.lam_in + 1e-12:
-                sp = Span(c.geom, c.lam_in, b, [(c.key, 0.0)], smooth=not hard, tool=c.tool)
+                sp = self._span(c.geom, c.lam_in, b, [(c.key, 0.0)], smooth=not hard, tool=c.tool)
                 self.path.append(sp)
                 c.spans.append(sp)
             c.S_nom = (s0, self.path.end, b)
@@ -461,7 +482,7 @@ class MotionQueue:
     def _close(self, c: Cmd) -> None:
         """The command goes to its target and stops there (no blend): the rest of its path."""
         if c.lam_leave < 1.0 - 1e-12:
-            sp = Span(c.geom, c.lam_leave, 1.0, [(c.key, 0.0)], smooth=True, tool=c.tool)
+            sp = self._span(c.geom, c.lam_leave, 1.0, [(c.key, 0.0)], smooth=True, tool=c.tool)
             self.path.append(sp)
             c.spans.append(sp)
             if c.S_nom is not None:
@@ -476,9 +497,10 @@ class MotionQueue:
             self._close(self.open)
             self.open = None
 
-    def _make_blend(self, prev: Cmd, c: Cmd) -> Span | None:
-        """The blend from prev's leave point to c's reach point (10.1.2), appended to the path;
-        None (and nothing appended) when the two cannot be blended."""
+    def _blend_candidate(self, prev: Cmd, c: Cmd):
+        """The blend from prev's leave point to c's reach point (10.1.2): (geometry, λ of the
+        reach point on c, the share of the blend that belongs to prev), or None when the two
+        cannot be blended. Nothing is changed yet (`_commit_blend`)."""
         lam_r = self._distance_lambda(c, prev.mdesc.reach, from_end=False)
         if lam_r is None or lam_r >= 1.0 - 1e-9:
             return None
@@ -502,8 +524,11 @@ class MotionQueue:
             shapes = [JointBlend(qL, vL, qR, vR, ell_l, ell_r, shape) for shape in BLEND_SHAPES]
             geom = shapes[0] if len(shapes) == 1 else min(shapes, key=lambda g: self._blend_time(g, prev, c))
         # the blend belongs to prev up to the point proportional to the two sides
-        split = geom.ell * ell_l / (ell_l + ell_r)
-        sp = Span(geom, 0.0, 1.0, [(prev.key, 0.0), (c.key, split)], smooth=True, tool=prev.tool)
+        return geom, lam_r, geom.ell * ell_l / (ell_l + ell_r)
+
+    def _commit_blend(self, prev: Cmd, c: Cmd, cand) -> Span:
+        geom, lam_r, split = cand
+        sp = self._span(geom, 0.0, 1.0, [(prev.key, 0.0), (c.key, split)], smooth=True, tool=prev.tool)
         off = self.path.append(sp)
         prev.spans.append(sp)
         c.spans.append(sp)
@@ -512,6 +537,102 @@ class MotionQueue:
         c.S_begin = off + split
         c.lam_in = lam_r
         return sp
+
+    def _blend_pays(self, prev: Cmd, c: Cmd, cand, now: float) -> bool:
+        """Whether the arm gets to c's target through the blend no later than by stopping at
+        the via point (prev's target), from the state the re-timing will start from.
+
+        10.1.2.1: blending is there to make the motion faster, and 10.1.2.3 lets the controller
+        choose the blend's shape for speed; a blend of an awkward shape (very different leave
+        and reach) can be slower than the stop it replaces, and then the arm stops at the via
+        point instead. The blend is timed exactly (as the queue will time it, c closed at its
+        target); the stop gets a lower bound (each piece from rest to rest timed with the
+        loosest of its own limits, exact on straight joint lines), so the blend is kept only
+        when it is certainly no slower. By induction over the commands (docs/motion.md), a
+        chain recorded ahead of the arm is then never slower than the same commands unblended."""
+        geom, lam_r, split = cand
+        prof = self.profile
+        if self._pending is not None:
+            t0 = self._pending[0]
+        elif self._can_move():
+            t0 = max(now, prof.T[prof.final_decel_start()])
+        else:
+            t0 = prof.t_end
+        s0, v0, _ = prof.state(t0)
+        if t0 >= prof.t_end:
+            s0, v0 = prof.s_end, 0.0
+        blended = [self._span(geom, 0.0, 1.0, [(prev.key, 0.0), (c.key, split)], smooth=True, tool=prev.tool),
+                   self._span(c.geom, lam_r, 1.0, [(c.key, 0.0)], smooth=True, tool=c.tool)]
+        tail = self._span(prev.geom, prev.lam_leave, 1.0, [(prev.key, 0.0)], smooth=True, tool=prev.tool)
+        t_blend, pieces = self._trial_duration(s0, v0, blended)
+        t_stop = self._trial_duration(s0, v0, [tail])[0] + self._rest_time(c)
+        for sp in blended + [tail]:  # the one chosen is sampled once
+            self._remember(sp)
+        if t_blend <= t_stop * (1.0 + 1e-9):
+            # when c ends there (no blend after it), this timing is the plan that follows
+            self._trial = (t0, blended, pieces) if c.blend == "off" else None
+            return True
+        self.stops_chosen += 1
+        self._trial = None
+        return False
+
+    def _span(self, geom, a, b, owners, smooth, tool) -> Span:
+        """A span, with the samples of an identical one timed in a trial (`_blend_pays`)."""
+        sp = Span(geom, a, b, owners, smooth, tool)
+        hit = self._samples.get((id(geom), a, b))
+        if hit is not None and hit[0] is geom and hit[1] is tool:
+            sp._cache = hit[2]
+        return sp
+
+    def _remember(self, sp: Span) -> None:
+        if sp._cache is not None:
+            if len(self._samples) > 64:
+                self._samples.clear()
+            self._samples[(id(sp.geom), sp.a, sp.b)] = (sp.geom, sp.tool, sp._cache)
+
+    def _rest_time(self, c: Cmd) -> float:
+        """The time of command c alone, from rest at its start to rest at its target."""
+        if c.rest_time is None:
+            sp = self._span(c.geom, 0.0, 1.0, [(c.key, 0.0)], smooth=False, tool=c.tool)
+            trial = Path(c.q_start)
+            trial.append(sp)
+            grid, owners = self._grid(0.0, trial.end, trial)
+            c.rest_time = duration(*self._time(grid, owners, 0.0, report=False))
+            self._remember(sp)
+        return c.rest_time
+
+    def _trial_duration(self, s0: float, v0: float, extra: list, lower_bound: bool = False):
+        """How long the arm takes from path position s0 at speed v0 to the end of the path
+        followed by the spans `extra` (not added to the path), timed as `_plan_from` times it,
+        and the pieces' profiles (s shifted to the path's positions). `lower_bound`: each piece
+        that is not a straight joint line gets the time of the loosest of its own limits (a
+        lower bound of its time-optimal profile, `timing.lower_bound`)."""
+        path = self.path
+        trial = Path(path.q_rest)
+        shift = 0.0
+        if path.spans:
+            i0, _ = path.locate(s0)
+            for sp in path.spans[i0:]:
+                trial.append(Span(sp.geom, sp.a, sp.b, sp.owners, sp.smooth, sp.tool, _cache=sp._cache))
+            shift = path.offsets[i0]
+        a = s0 - shift
+        for sp in extra:
+            trial.append(sp)
+        total = 0.0
+        pieces = []
+        for b in trial.stops_after(a) + [trial.end]:
+            if b - a <= 1e-12:
+                a = b
+                continue
+            grid, owners = self._grid(a, b, trial)
+            if lower_bound and not _straight(grid, owners):
+                total += lower_bound_time(grid, v0)
+            else:
+                s, sd = self._time(grid, owners, v0, report=False)
+                total += duration(s, sd)
+                pieces.append((s + shift, sd))
+            a, v0 = b, 0.0
+        return total, pieces
 
     def _blend_time(self, geom, prev: Cmd, c: Cmd) -> float:
         """An estimate of the time to go through a blend: its length at the speed its curvature
@@ -616,6 +737,14 @@ class MotionQueue:
             if sd_r > 0:  # numerically at the end: stop there
                 prof.SD[-1] = 0.0
             return
+        trial, self._trial = self._trial, None
+        if trial is not None and trial[0] == t_r and len(self.path.spans) >= len(trial[1]) and all(
+                _same_span(x, y) for x, y in zip(self.path.spans[-len(trial[1]):], trial[1])) and trial[2] and abs(trial[2][0][0][0] - s_r) <= 1e-12 and abs(trial[2][-1][0][-1] - self.path.end) <= 1e-9:
+            t_cur = max(t_r, prof.t_end)
+            for s_, sd_ in trial[2]:  # the blend trial timed exactly this (`_blend_pays`)
+                prof.append(t_cur, s_, sd_)
+                t_cur = prof.t_end
+            return
         stops = self.path.stops_after(s_r) + [self.path.end]
         a, v0 = s_r, sd_r
         t_cur = max(t_r, prof.t_end)
@@ -637,17 +766,18 @@ class MotionQueue:
             self._limits[c.key] = lim
         return lim
 
-    def _grid(self, a: float, b: float) -> tuple[Grid, np.ndarray]:
+    def _grid(self, a: float, b: float, path: Path | None = None) -> tuple[Grid, np.ndarray]:
         """The path between global a and b sampled for the time parameterisation, and the key of
         the command that owns each gridpoint (at least MIN_GRID gridpoints: toppra cannot start and
         stop within fewer)."""
-        grid, own = self._grid_spans(a, b)
+        grid, own = self._grid_spans(a, b, path=path)
         if len(grid) >= MIN_GRID:
             return grid, own
-        return self._grid_spans(a, b, np.linspace(a, b, MIN_GRID))
+        return self._grid_spans(a, b, np.linspace(a, b, MIN_GRID), path=path)
 
-    def _grid_spans(self, a: float, b: float, points: np.ndarray | None = None) -> tuple[Grid, np.ndarray]:
-        path = self.path
+    def _grid_spans(self, a: float, b: float, points: np.ndarray | None = None,
+                    path: Path | None = None) -> tuple[Grid, np.ndarray]:
+        path = self.path if path is None else path
         if points is not None:  # exactly these points (a short piece of path)
             parts = []
             for s_ in points:
@@ -726,13 +856,11 @@ class MotionQueue:
             V[m], A[m], D[m], tv[m], rv[m] = lim.V, lim.A, lim.D, lim.tvel, lim.rvel
         return Grid(s, q1, q2, pt, rt, V, A, D, tv, rv), own
 
-    def _time(self, grid: Grid, owners: np.ndarray, v0: float) -> tuple[np.ndarray, np.ndarray]:
+    def _time(self, grid: Grid, owners: np.ndarray, v0: float, report: bool = True) -> tuple[np.ndarray, np.ndarray]:
         """The profile of one stop-to-stop piece: exact on a straight joint line with one set of
         limits, toppra otherwise."""
         s = grid.s
-        straight = np.all(np.abs(grid.q2) < 1e-12) and np.all(owners == owners[0]) and \
-            np.allclose(grid.q1, grid.q1[0], atol=1e-12)
-        if straight:
+        if _straight(grid, owners):
             aq = np.abs(grid.q1[0])
             mv = aq > 1e-12
             V = float(np.min(grid.V[0][mv] / aq[mv]))
@@ -742,7 +870,7 @@ class MotionQueue:
                 ss, sd = trapezoid(float(s[-1] - s[0]), v0, V, A, D)
                 return ss + s[0], sd
         res = topp(grid, v0)
-        if res.fallback:
+        if res.fallback and report:
             self.fallbacks += 1
             key = int(owners[0])
             c = self._by_key.get(key)
@@ -883,7 +1011,15 @@ class MotionQueue:
 
     def reset_motion(self, now: float, joints=None) -> None:
         """resetMotion / resetMotion(jStart): stop on the path, cancel every command, ids back
-        to 0; with jStart the next command first connects to it (10.1.3)."""
+        to 0; with jStart the next command first connects to it (10.1.3). A jStart with another
+        number of axes is error 81, one outside the joint limits error 70 (an invalid parameter:
+        no connection move could reach it)."""
+        if joints is not None:
+            j = np.asarray(joints, dtype=float)
+            if len(j) != len(self.kin.lo):
+                raise MotionError(81, f"resetMotion: a joint value with {len(j)} axes for the {len(self.kin.lo)}-axis arm")
+            if not self.model.in_limits(tuple(j)):
+                raise MotionError(70, "resetMotion: the start position is outside the software joint limits")
         self._brake(now)
         s_stop = self.profile.s_end
         for c in self.pending:
@@ -1017,6 +1153,16 @@ class MotionQueue:
             data={"singularity": sp.which, "distance": round(sp.distance, 4), "along_mm": round(at, 3),
                   "axis": sp.axis + 1, "needed_deg_s": round(sp.needed, 3), "limit_deg_s": round(sp.nominal, 3),
                   "tcp_cap_mm_s": round(sp.cap, 3), "reference_mm_s": round(sp.reference, 3)}))
+
+
+def _same_span(x: Span, y: Span) -> bool:
+    return x.geom is y.geom and x.a == y.a and x.b == y.b and x.smooth == y.smooth
+
+
+def _straight(grid: Grid, owners: np.ndarray) -> bool:
+    """A straight joint line with one set of limits (the exact trapezoid applies)."""
+    return bool(np.all(np.abs(grid.q2) < 1e-12) and np.all(owners == owners[0])
+                and np.allclose(grid.q1, grid.q1[0], atol=1e-12))
 
 
 def _r(v) -> list[float]:
