@@ -127,6 +127,7 @@ class MotionQueue:
         self.fallbacks = 0
         self.stops_chosen = 0  # junctions where stopping at the via point was chosen (`_blend_pays`)
         self._trial = None  # the timing of the last blend trial, reused by the plan that follows
+        self._fell = False  # the last time parameterisation fell back to the safe profile
         self._samples: dict = {}  # samples of spans timed in trials, reused when the span is added
 
     # ---- recording ---------------------------------------------------------------------------
@@ -628,9 +629,13 @@ class MotionQueue:
             if lower_bound and not _straight(grid, owners):
                 total += lower_bound_time(grid, v0)
             else:
+                self._fell = False
                 s, sd = self._time(grid, owners, v0, report=False)
                 total += duration(s, sd)
-                pieces.append((s + shift, sd))
+                if self._fell:  # not reused: the plan reports it (R019)
+                    pieces = None
+                if pieces is not None:
+                    pieces.append((s + shift, sd))
             a, v0 = b, 0.0
         return total, pieces
 
@@ -870,6 +875,7 @@ class MotionQueue:
                 ss, sd = trapezoid(float(s[-1] - s[0]), v0, V, A, D)
                 return ss + s[0], sd
         res = topp(grid, v0)
+        self._fell = res.fallback
         if res.fallback and report:
             self.fallbacks += 1
             key = int(owners[0])
