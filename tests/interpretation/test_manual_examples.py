@@ -2200,7 +2200,8 @@ def test_8_1_enablepower_example(tmp_path, controller, powered):
     # in remote mode the arm is powered (after the scenario's power_delay, 0.5 s by default);
     # in local, manual or test mode enablePower() has no effect but logs a message. (The
     # printed example uses println, a typo of putln.)
-    r = sim(tmp_path, ENABLE_POWER, globals_=["num nEnd"], scenario="[controller]\n" + controller)
+    # (a run starts with the arm powered; this example is about the power coming on)
+    r = sim(tmp_path, ENABLE_POWER, globals_=["num nEnd"], scenario="[controller]\npowered = false\n" + controller)
     if powered:
         assert out(r) == [] and gv(r, "nEnd") == pytest.approx(0.5, abs=0.005)
     else:
@@ -2221,7 +2222,7 @@ def test_8_1_power_state(tmp_path):
   b[3] = isPowered()
   b[4] = isCalibrated()
 end
-""", globals_=["bool b[5]"])
+""", globals_=["bool b[5]"], scenario="[controller]\npowered = false\n")
     assert gv(r, "b") == [False, False, True, False, True]
     r = sim(tmp_path / "uncal", "begin\n  bC = isCalibrated()\nend\n", globals_=["bool bC"],
             scenario="[controller]\ncalibrated = false\n")
@@ -2434,19 +2435,52 @@ end
     assert out(r) == ["Signal Bus\\Slave2\\%IW4en erreur", "Description :capteur de pression"]
 
 
-@pytest.mark.parametrize("code,instruction", [
-    ("""  diLampe = false
+def test_2_2_5_while_example_with_issettled(tmp_path):
+    # the arm has not moved: it is settled, the lamp loop does not run (no arm model needed:
+    # isSettled() acts on an idle arm, issue 11 item 14)
+    r = sim(tmp_path, """begin
+  diLampe = false
   while (isSettled() == false)
     diLampe = !diLampe
     delay(0.5)
   endWhile
-  diLampe = false""", "isSettled"),
-    ("""  for nPos = 90 to -90 step -10
+  diLampe = false
+end
+""", globals_=["dio diLampe"], links={"diLampe": "lamp"})
+    assert codes(r) == [] and r.end_reason == "ended" and r.sim_time_us < 10_000
+
+
+def test_2_2_5_for_example_moves_the_arm(tmp_path):
+    """The for loop of 2.2.5: joint 1 from 90° to -90° by steps of 10°, each move waited for."""
+    from val3check.robot import load_robot
+
+    tx = load_robot("TX2-60")
+    r = sim(tmp_path, """begin
+  for nPos = 90 to -90 step -10
     jDest.j1 = nPos
     movej(jDest, flange, mNomSpeed)
     waitEndMove()
-  endFor""", "movej"),
-    ("""  while true
+  endFor
+  jEnd = herej()
+end
+""", globals_=["num nPos", "joint jDest", "joint jEnd", "mdesc mNomSpeed"], robot=tx)
+    assert codes(r) == [] and r.end_reason == "ended"
+    assert gv(r, "jEnd")["j1"] == pytest.approx(-90.0, abs=1e-9)
+    v, a = tx.nominal_speeds[0], tx.accelerations[0]
+
+    def bang(d):  # trapezoid or triangle, accel = decel (mdesc at 100 %)
+        return d / v + v / a if d >= v * v / a else 2 * (d / a) ** 0.5
+
+    moves = [bang(90.0)] + [bang(10.0)] * 18
+    # each waitEndMove() returns at the first 4 ms tick at or after the end of its move
+    assert sum(moves) <= r.sim_time_us / 1e6 <= sum(moves) + 19 * 0.004 + 0.004
+
+
+def test_8_1_getmonitorspeed_example_with_stopmove(tmp_path):
+    # 8.1: the first cycles must run at 10 %: stopMove() holds the arm until the operator lowers
+    # the monitor speed (here the scenario at 2 s), then restartMove()
+    r = sim(tmp_path, """begin
+  while true
     if (nCycle < 2)
       if (getMonitorSpeed() > 10)
         stopMove()
@@ -2457,14 +2491,8 @@ end
       restartMove()
     endif
     delay(0)
-  endWhile""", "stopMove"),
-])
-def test_examples_needing_the_arm_stop_with_r002(tmp_path, code, instruction):
-    # the while example of 2.2.5, the for example of 2.2.5 and the getMonitorSpeed example of
-    # 8.1 need the arm model (chapters 9-11): the task stops there with R002, nothing invented
-    r = sim(tmp_path, "begin\n" + code + "\nend\n", globals_=["dio diLampe", "num nPos", "joint jDest",
-                                                               "mdesc mNomSpeed", "num nCycle"],
-            links={"diLampe": "lamp"})
-    assert codes(r) == ["R002"]
-    assert instruction in r.diagnostics[0].message
-    assert r.end_reason == "stalled"
+  endWhile
+end
+""", globals_=["num nCycle"], duration=3.0, scenario="[controller]\nchanges = [{ at = 2.0, monitor_speed = 10 }]\n")
+    assert out(r) == ["La vitesse moniteur doit rester à 10% pour le premier cycle"]
+    assert r.end_reason == "duration" and codes(r) == ["R007"]

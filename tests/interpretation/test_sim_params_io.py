@@ -174,7 +174,7 @@ def test_controller_state(tmp_path):
   putln(workingMode(nState))
   putln(getMonitorSpeed())
 end
-""", globals_=["num nState"], scenario="[controller]\nworking_mode = 2\nmonitor_speed = 10\n")
+""", globals_=["num nState"], scenario="[controller]\nworking_mode = 2\nmonitor_speed = 10\npowered = false\n")
     assert out(r) == ["no power", "2", "10"]
 
 

@@ -15,7 +15,7 @@ from val3check.cli import main
 from val3check.simulation.scenario import ScenarioError
 from val3check.robot import load_robot
 
-from .simsupport import build, codes, errors, gv, run_folder, sim
+from .simsupport import build, code_pos, codes, errors, gv, out, run_folder, sim
 
 ROOT = Path(__file__).resolve().parents[2]
 TX2_60 = load_robot("tx2-60")
@@ -167,38 +167,45 @@ def test_scenario_joints_are_checked(tmp_path):
         rsim(tmp_path / "c", "begin\nend\n", scenario="[robot]\nspeed = 3\n")
 
 
-# ---- movej: checks before motion ---------------------------------------------------------------------
+# ---- movej: what the arm cannot execute ------------------------------------------------------------
 
 
-def test_movej_to_an_unreachable_point_is_error_154(tmp_path):
+def test_movej_to_an_unreachable_point_is_reported_and_150_follows(tmp_path):
+    """12.1: 150 "un mouvement demandé précédemment n'a pas pu être terminé (point hors
+    d'atteinte...)": the command is recorded, reported at its line (R010), and the next motion
+    instruction stops with 150."""
     r = rsim(tmp_path, """begin
   pFar.trsf = {2000, 0, 0, 0, 0, 0}
   pFar.config = {sfree, efree, wfree}
   movej(pFar, flange, mD)
+  putln("recorded")
+  waitEndMove()
   putln("not reached")
 end
 """)
-    assert errors(r) == [154]
-    assert "reach" in r.diagnostics[0].message
+    assert out(r) == ["recorded"]
+    assert codes(r) == ["R010", "R001"] and errors(r) == [150]
+    far, stop = r.diagnostics
+    assert "reach" in far.message and far.line == code_pos(r, 4, 3)[0]
+    assert stop.line == code_pos(r, 6, 3)[0] and "pFar" in stop.message
 
 
-def test_movej_outside_the_joint_limits_is_error_154(tmp_path):
-    r = rsim(tmp_path, "begin\n  movej({0, 0, 0, 0, 0, 300}, flange, mD)\nend\n")
-    assert errors(r) == [154]
-    assert "limits" in r.diagnostics[0].message
+def test_movej_outside_the_joint_limits_is_reported(tmp_path):
+    r = rsim(tmp_path, "begin\n  movej({0, 0, 0, 0, 0, 300}, flange, mD)\n  waitEndMove()\nend\n")
+    assert codes(r) == ["R011", "R001"] and errors(r) == [150]
+    assert "j6" in r.diagnostics[0].message and "limit" in r.diagnostics[0].message
 
 
-def test_movej_reachable_stays_r002(tmp_path):
+def test_movej_reachable_moves(tmp_path):
     r = rsim(tmp_path, """begin
   pA = jointToPoint(flange, world, {10, -20, 95, 30, 40, -50})
   movej(pA, flange, mD)
+  waitEndMove()
+  jA = herej()
 end
 """)
-    assert codes(r) == ["R002"]
-    msg = r.diagnostics[0].message
-    assert "movej" in msg and "TX2-60" in msg and "does not simulate" in msg
-    r = rsim(tmp_path / "j", "begin\n  movej({10, -20, 95, 30, 40, -50}, flange, mD)\nend\n")
-    assert codes(r) == ["R002"]
+    assert codes(r) == []
+    assert jv(r, "jA") == pytest.approx((10, -20, 95, 30, 40, -50), abs=1e-6)
 
 
 def test_movej_checks_the_point_reference_first(tmp_path):
@@ -252,8 +259,10 @@ def test_arm_cfx_of_the_controller_tree_chooses_the_robot(tmp_path, capsys):
     code, text, err = _json(["sim", str(welder), "--report", "json"], capsys)
     data = json.loads(text)
     assert data["robot"] == {"name": "TX2-60", "initial_joints": [0, 0, 0, 0, 0, 0]}  # tx2-60-S1
-    # pStart (fatherId fJig, 620 mm in front of the arm, tool 310 mm long) is out of reach: 154
-    assert [d["error"] for d in data["diagnostics"] if d["code"] == "R001"] == [154]
+    # pStart (fatherId fJig, 620 mm in front of the arm, tool 310 mm long) is out of reach: R010,
+    # then 150 at the next motion instruction (12.1)
+    assert [d["code"] for d in data["diagnostics"]][:1] == ["R010"]
+    assert [d["error"] for d in data["diagnostics"] if d["code"] == "R001"] == [150]
     assert _json(["sim", str(welder), "--report", "json"], capsys)[1] == text  # byte-identical
     # --robot none: no model, movej stops with R002
     code, text, err = _json(["sim", str(welder), "--report", "json", "--robot", "none"], capsys)

@@ -51,6 +51,11 @@ class Arm(Protocol):
     @property
     def joint_limits(self) -> tuple[tuple[float, float], ...]: ...
 
+    def joint_limits_in(self, millimeter_unit: bool) -> tuple[tuple[float, float], ...]:
+        """The software joint limits with a prismatic axis (a SCARA's joint 3) in the caller's
+        length unit (isInRange)."""
+        ...
+
     @property
     def initial_joints(self) -> Joints:
         """Where the arm stands when the run starts."""
@@ -60,8 +65,9 @@ class Arm(Protocol):
         """The initial commanded position (the scenario's `[robot] joints`)."""
         ...
 
-    def joints_at(self, time_us: int) -> Joints:
-        """The commanded joint position at a simulated time (herej(), here(), 9.2.3/9.6.3)."""
+    def joints_at(self, time_us: int, millimeter_unit: bool = True) -> Joints:
+        """The commanded joint position at a simulated time (herej(), here(), 9.2.3/9.6.3), a
+        prismatic axis in the caller's length unit."""
         ...
 
     def kinematics(self, millimeter_unit: bool) -> Kinematics:
@@ -78,4 +84,16 @@ class Arm(Protocol):
     def motion_done(self, time_us: int) -> bool:
         """The motion queue is empty at that time: the last motion command has ended
         (waitEndMove(), and open()/close() before they act, 9.5.4)."""
+        ...
+
+    def end_motion(self, time_us: int) -> None:
+        """What waitEndMove() does before it waits, and open()/close() before they act (9.5.4,
+        10.6): cancel the blend of the last command; raise Val3RuntimeError(150) when a motion
+        recorded before cannot be executed."""
+        ...
+
+    def waiting_reason(self) -> tuple[str, str] | None:
+        """Why recorded motion cannot go on, for the report of a task waiting for it: (rule
+        code, words naming the condition and the scenario key or instruction that changes it),
+        or None."""
         ...

@@ -13,7 +13,7 @@ class Controller:
     working_mode: int = 4  # remote (8.1 workingMode)
     working_state: int = 0
     es_status: int = 0
-    powered: bool = False
+    powered: bool = True  # the arm is powered at the start, as the operator at the pendant has it (issue 12)
     power_delay_us: int = 500_000  # enablePower(): the power comes on this much later
     calibrated: bool = True
     monitor_speed: float = 100.0

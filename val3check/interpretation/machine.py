@@ -168,6 +168,22 @@ class Machine:
                                     time_us=diagnostic.time_us, task=diagnostic.task, program=diagnostic.program)
         self.diags.append(diagnostic)
 
+    def tool_action(self, task: Task, action: str, tool: Any, millimeter_unit: bool) -> None:
+        """open()/close() of `tool` (9.5.4), recorded with the tool's centre point in the flange."""
+        from ..geometry.frames import root_pose
+        from ..geometry.trsf import Trsf
+        from .recorder import ToolEvent
+
+        if len(self.recorder.tool_events) >= self.recorder.max_io_log:
+            return
+        x, y, z, rx, ry, rz = Trsf.from_pose(root_pose(tool)).as_tuple()
+        s = 1.0 if millimeter_unit else 25.4
+        grip = getattr(tool.gripper, "link", "") or ""
+        where = self.where(task)
+        self.recorder.tool_events.append(ToolEvent(
+            self.clock.time_of(task), task.name, action, tool.name or "", grip,
+            (x * s, y * s, z * s, rx, ry, rz), where or (self.app.path, 0, 0, task.program)))
+
     def output_changed(self, task: Task, io: IOPoint) -> None:
         self.cell_subsystem.output_changed(io, self.clock.time_of(task), task.name)
 
@@ -219,7 +235,8 @@ class Machine:
         task.errdetail = detail
         text = RUNTIME_CODES.get(code, "runtime error")
         extra = f" ({detail})" if detail and detail not in text else ""
-        self.add_diag("R001", f"error {code}: {text}{extra}", task, pos, code)
+        # a motion instruction's error has the rule of its cause (R017 mdesc, R015 movec...)
+        self.add_diag(getattr(e, "rule", None) or "R001", f"error {code}: {text}{extra}", task, pos, code)
 
     def library_failed(self, owner: Unit, alias: str, display: str, code: int, meaning: str, findings: list,
                        task: Task | None) -> None:
@@ -323,6 +340,8 @@ class Machine:
             self._stop_did_not_end(f"still running at --duration {self.budgets.duration_us / 1e6:g} s")
         if reason == "deadlock":
             self._report_blocked()
+        else:
+            self._report_motion_waits()
         if reason not in ("ended", "wall-clock"):
             self._stop_after(reason)
         self._destroy_remaining()
@@ -344,14 +363,41 @@ class Machine:
                 continue
             w = self.where(task)
             path, line, col, prog = w if w else (self.app.path, 0, 0, task.program)
+            code = "R003"
             if task.state is SUSPENDED:
                 msg = f"task {task.name} is suspended and no task can resume it"
             else:
-                msg = f"task {task.name} is blocked in {self.blocked_on(task)}: nothing scheduled can change what it " \
-                      f"waits for"
+                why = self._motion_reason(task)
+                if why is not None:
+                    code, text = why
+                    msg = f"task {task.name} waits in {self.blocked_on(task)} for a motion that cannot happen: {text}"
+                else:
+                    msg = f"task {task.name} waits in {self.blocked_on(task)}, which nothing scheduled can change"
+                    hint = getattr(task.cond, "hint", "")
+                    if hint:
+                        msg += f" ({hint})"
             task.errpos = (path, line, col, prog)
-            self.diags.append(Diagnostic("R003", msg, path, line, col, time_us=self.clock.now, task=task.name,
+            self.diags.append(Diagnostic(code, msg, path, line, col, time_us=self.clock.now, task=task.name,
                                          program=prog))
+
+    def _motion_reason(self, task: Task) -> tuple[str, str] | None:
+        """(rule, why) when the task waits for the arm's motion and the arm cannot move."""
+        if task.state is not WAIT or not getattr(task.cond, "motion", False):
+            return None
+        return self.arm.waiting_reason()
+
+    def _report_motion_waits(self) -> None:
+        """At the end of a run that did not end in a deadlock: the tasks still waiting for a
+        motion that power never allows (R018)."""
+        for task in self.scheduler.tasks:
+            why = self._motion_reason(task)
+            if why is None or why[0] != "R018":
+                continue
+            w = self.where(task)
+            path, line, col, prog = w if w else (self.app.path, 0, 0, task.program)
+            self.diags.append(Diagnostic("R018", f"task {task.name} waits in {self.blocked_on(task)} for a motion "
+                                                 f"that cannot happen: {why[1]}", path, line, col,
+                                         time_us=self.clock.now, task=task.name, program=prog))
 
     def _stop_after(self, reason: str) -> None:
         """As when the application is stopped from the pendant (2.1.3, 5.2): the start task is

@@ -30,6 +30,21 @@ class IOEvent(NamedTuple):
     source: str  # the task that wrote it, or "scenario"
 
 
+class ToolEvent(NamedTuple):
+    """open() or close() of a tool (9.5.4), when the gripper output is set (after the end of
+    the motion it waited for): the tool's name, its gripper's link, and its centre point in the
+    flange (x, y, z in millimetres, rx, ry, rz in degrees, 9.5): for collision checking (what the
+    gripper holds) and traces."""
+
+    time_us: int
+    task: str
+    action: str  # "open" | "close"
+    tool: str  # the tool variable's name ("" for a local or an anonymous value)
+    gripper: str  # the link of its dio
+    tcp_in_flange: tuple  # (x, y, z, rx, ry, rz), mm and degrees
+    position: tuple  # (path, line, col, program) of the instruction
+
+
 def sio_text(data: bytes) -> Any:
     """How the I/O log shows bytes sent or received on a sio: the text when they are UTF-8,
     else the list of the byte values."""
@@ -47,6 +62,7 @@ class Recorder:
     def __init__(self, max_transcript: int, max_io_log: int, full: Callable[[str, Any], None]) -> None:
         self.transcript: list[TranscriptEntry] = []
         self.io_log: list[IOEvent] = []
+        self.tool_events: list[ToolEvent] = []  # bounded by the I/O log's budget (each sets an output)
         self.max_transcript = max_transcript
         self.max_io_log = max_io_log
         self._full = full

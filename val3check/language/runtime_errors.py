@@ -53,8 +53,9 @@ RUNTIME_CODES: dict[int, str] = {
 class Val3RuntimeError(Exception):
     """An instruction could not complete: the task stops with `code` (manual 12.1)."""
 
-    def __init__(self, code: int, detail: str = "") -> None:
+    def __init__(self, code: int, detail: str = "", rule: str | None = None) -> None:
         self.code = code
         self.detail = detail
+        self.rule = rule  # the rule of the diagnostic when not R001 (a motion instruction's cause)
         text = RUNTIME_CODES.get(code, "runtime error")
         super().__init__(f"error {code}: {text}" + (f": {detail}" if detail else ""))

@@ -1,9 +1,9 @@
 """The arm as the interpreter sees it: the `Arm` port (interpretation/arm_port.py) and a
 `Subsystem` of the scheduler (interpretation/subsystem.py).
 
-`MotionlessArm` is the arm of this version: it stands at its initial joint position (all
-zeros, or the scenario's `[robot] joints`) for the whole run, and its motion queue is always
-empty. With no arm model (`model` None) only what needs no model works (`motion_done`).
+`MotionlessArm` stands at its initial joint position (all zeros, or the scenario's `[robot]
+joints`) for the whole run, and its motion queue is always empty: the arm of tests and tools
+that need no motion. `sim` runs use `arm.MovingArm`.
 
 Units are converted here and nowhere else: the arm model (val3check.robot) works in
 millimetres, an application in its own length unit (2.1.4.1, `millimeterUnit`): 25.4 mm per
@@ -23,14 +23,35 @@ INCH_MM = 25.4
 
 class UnitKinematics:
     """A `RobotModel` seen by the geometry (`geometry.arm.Kinematics`) in an application's
-    length unit: poses in and out are scaled by `scale` (millimetres per unit)."""
+    length unit: poses in and out are scaled by `scale` (millimetres per unit), and so are the
+    values of prismatic axes (a SCARA's joint 3)."""
 
     def __init__(self, model: Any, scale: float) -> None:
         self.model = model
         self.scale = scale
+        kinds = getattr(model, "joint_kinds", None) or ()
+        self._lin = tuple(i for i, k in enumerate(kinds) if k == "prismatic") if scale != 1.0 else ()
+
+    def _jin(self, joints):
+        if not self._lin:
+            return joints
+        j = list(joints)
+        for i in self._lin:
+            if i < len(j):
+                j[i] = j[i] * self.scale
+        return tuple(j)
+
+    def _jout(self, joints):
+        if not self._lin:
+            return joints
+        j = list(joints)
+        for i in self._lin:
+            if i < len(j):
+                j[i] = j[i] / self.scale
+        return tuple(j)
 
     def fk(self, joints):
-        x, y, z, rx, ry, rz = self.model.fk(joints)
+        x, y, z, rx, ry, rz = self.model.fk(self._jin(joints))
         s = self.scale
         if s != 1.0:
             x, y, z = x / s, y / s, z / s
@@ -40,18 +61,36 @@ class UnitKinematics:
         x, y, z, rx, ry, rz = pose
         s = self.scale
         try:
-            return self.model.ik((x * s, y * s, z * s, rx, ry, rz), config=tuple(config), near=near)
+            sols = self.model.ik((x * s, y * s, z * s, rx, ry, rz), config=tuple(config),
+                                 near=None if near is None else self._jin(near))
         except IKUnsupported as exc:
             raise KinematicsUnsupported(str(exc)) from None
+        return [self._jout(j) for j in sols] if self._lin else sols
 
     def config_of(self, joints):
         try:
-            return self.model.config_of(joints)
+            return self.model.config_of(self._jin(joints))
         except IKUnsupported as exc:
             raise KinematicsUnsupported(str(exc)) from None
 
     def in_limits(self, joints) -> bool:
-        return self.model.in_limits(joints)
+        return self.model.in_limits(self._jin(joints))
+
+
+def solve_in_unit(model: Any, flange: Pose6, config: Sequence[str], millimeter_unit: bool,
+                  initial: Sequence[float]) -> Joints:
+    """movej's check (10.6): the joint position reaching `flange` (in the caller's length unit),
+    joints in the caller's unit; raises TargetUnreachable or KinematicsUnsupported."""
+    k = UnitKinematics(model, 1.0 if millimeter_unit else INCH_MM)
+    x, y, z, rx, ry, rz = flange
+    s = k.scale
+    try:
+        j = model.solve((x * s, y * s, z * s, rx, ry, rz), tuple(config), initial=k._jin(tuple(initial)))
+    except Unreachable as exc:
+        raise TargetUnreachable(str(exc), exc.reason) from None
+    except IKUnsupported as exc:
+        raise KinematicsUnsupported(str(exc)) from None
+    return tuple(k._jout(tuple(j)))
 
 
 class MotionlessArm:
@@ -77,6 +116,13 @@ class MotionlessArm:
     def joint_limits(self) -> tuple[tuple[float, float], ...]:
         return tuple(self.model.joint_limits)
 
+    def joint_limits_in(self, millimeter_unit: bool) -> tuple[tuple[float, float], ...]:
+        k = self.kinematics(millimeter_unit)
+        lim = tuple(self.model.joint_limits)
+        if not k._lin:
+            return lim
+        return tuple(zip(k._jout(tuple(lo for lo, _ in lim)), k._jout(tuple(hi for _, hi in lim))))
+
     @property
     def initial_joints(self) -> Joints:
         return self._initial
@@ -84,8 +130,14 @@ class MotionlessArm:
     def start_at(self, joints: Sequence[float]) -> None:
         self._initial = tuple(float(v) + 0.0 for v in joints)
 
-    def joints_at(self, time_us: int) -> Joints:
-        return self._initial  # the arm does not move in this version
+    def joints_at(self, time_us: int, millimeter_unit: bool = True) -> Joints:
+        return self._initial  # an arm that does not move (tests, tools)
+
+    def end_motion(self, time_us: int) -> None:
+        pass  # nothing is ever recorded
+
+    def waiting_reason(self):
+        return None
 
     def kinematics(self, millimeter_unit: bool) -> UnitKinematics:
         k = self._kin.get(millimeter_unit)
@@ -94,14 +146,7 @@ class MotionlessArm:
         return k
 
     def solve(self, flange: Pose6, config: Sequence[str], millimeter_unit: bool, initial: Sequence[float]) -> Joints:
-        x, y, z, rx, ry, rz = flange
-        s = 1.0 if millimeter_unit else INCH_MM
-        try:
-            return tuple(self.model.solve((x * s, y * s, z * s, rx, ry, rz), tuple(config), initial=tuple(initial)))
-        except Unreachable as exc:
-            raise TargetUnreachable(str(exc), exc.reason) from None
-        except IKUnsupported as exc:
-            raise KinematicsUnsupported(str(exc)) from None
+        return solve_in_unit(self.model, flange, config, millimeter_unit, initial)
 
     def motion_done(self, time_us: int) -> bool:
         return True  # no motion command is ever accepted: the queue is always empty

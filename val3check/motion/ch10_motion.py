@@ -1,52 +1,284 @@
-"""Chapter 10: the motion instructions, as this version simulates them.
+"""Chapter 10: the motion instructions, on the arm of the run (arm.MovingArm).
 
-`movej` checks what it can tell exactly, then stops the task with R002: motion is not
-simulated yet. The other instructions of chapter 10 (movel, movec, waitEndMove, stopMove...)
-have no handler: the registry stops them with R002 (interpretation/registry.py).
+Each handler converts the VAL 3 values (points and tools with their references, joints,
+mdesc) at the instruction, as the controller does when it records a command, and hands them to
+the arm, which converts units and records the command in its motion queue (docs/motion.md).
+The position of the instruction (file, line, column, program, task) goes with the command: the
+motion diagnostics (R010-R019) point at it.
+
+Errors (12.1): an invalid mdesc field stops the task at the instruction with 100-106 (R017), an
+arc that movec cannot define with 154 (R015), a joint or point of the other arm family (Rx on an
+RS/TS arm or the reverse) with 81 (R001); a command the arm cannot execute (target out of reach
+or outside the joint limits, a configuration change imposed on a line, a path through a
+singularity) is recorded, reported at its line, and the next motion instruction, waitEndMove(),
+open() or close() stops with 150.
+
+Without an arm model the arm is idle: isEmpty(), isSettled(), resetMotion(), waitEndMove(),
+stopMove(), restartMove(), autoConnectMove(), getMoveId(), setMoveId() and getSpeed() act on it
+(issue 11 item 14); movej, movel, movec, resetMotion(joint), getPositionErr and getJointForce
+stop the task with R002, saying how to name the arm.
 """
 
 from __future__ import annotations
 
+import numpy as np
+
 from ..geometry import frames as geo_frames
-from ..geometry import jointops
 from ..geometry import points as geo_points
-from ..geometry import rotation
 from ..geometry.frames import Tool
-from ..geometry.trsf import Trsf
-from ..interpretation.arm_port import KinematicsUnsupported, TargetUnreachable
-from ..interpretation.chapters.ch09_geometry import check_axes, ct, jt, millimeter_unit, unsupported
-from ..interpretation.not_simulated import ARM_LIMIT, SimLimit
+from ..geometry.points import Point
+from ..interpretation.chapters.ch09_geometry import ct, jd, jt, millimeter_unit, wait_end_of_motion
+from ..interpretation.not_simulated import ARM_LIMIT, NO_ARM, SimLimit
+from ..interpretation.waiting import WAIT
 from ..language.runtime_errors import Val3RuntimeError
+from .commands import Target
+from .findings import MotionError, Source
+from .queue import QueueFull
 
 E = Val3RuntimeError
+US = 1_000_000
 
 
-def I_movej(task, unit, target, tool: Tool, mdesc: dict) -> float:
-    """10.6 movej: motion is not simulated in this version (R002), but a target that the arm
-    model shows no joint position can reach (out of reach, outside the joint limits, or not in
-    the point's configuration from the commanded position) is error 154 (12.1: "cible hors de
-    portée"), as the manual says movej raises it. Errors 160-165 of the tool and point first."""
+# ---- conversions ---------------------------------------------------------------------------------
+
+
+def _matrix(pose) -> np.ndarray:
+    """A geometry pose (R, p, angles) as a 4x4 matrix (the caller's length unit)."""
+    r, p, _ = pose
+    m = np.eye(4)
+    m[:3, :3] = np.array(r, dtype=float).reshape(3, 3)
+    m[:3, 3] = p
+    return m
+
+
+def _source(task) -> Source:
+    w = task.machine.where(task)
+    if w is None:
+        return Source(task.machine.app.path, 0, 0, task.program, task.name)
+    path, line, col, program = w
+    return Source(path, line, col, program, task.name)
+
+
+def _arm(task, what: str):
+    """The arm with its model; without one the task stops with R002, saying how to name it."""
+    arm = task.machine.arm
+    if not arm.has_model:
+        raise SimLimit(ARM_LIMIT, what, f"{what} moves the arm, and the run has no arm model: {NO_ARM[len('needs the arm model: '):]}")
+    return arm
+
+
+def _check_family(arm, value, what: str) -> None:
+    """81 (12.1: "point/joint/config incompatible avec le bras"): a joint with another number
+    of axes, or a point whose configuration has the fields of the other arm family (RX/TX:
+    shoulder, elbow, wrist; RS/TS: shoulder only, 9.7.2)."""
+    if type(value) is dict:
+        if len(value) != arm.axes:
+            raise E(81, f"{what}: a joint value with {len(value)} axes for the {arm.axes}-axis arm {arm.name}")
+        return
+    fields = len(value.config)
+    want = len(getattr(arm.model, "config_fields", ("shoulder", "elbow", "wrist")))
+    if fields != want:
+        fam = "RS/TS (pointRs)" if fields == 1 else "RX/TX (pointRx)"
+        raise E(81, f"{what}: {value.name or 'the point'} is a point of an {fam} arm, not of the {arm.name}")
+
+
+def _point(task, p: Point, what: str) -> Target:
+    geo_points.check_defined(p)
+    ref = p.ref
+    frame = getattr(ref, "name", "") or ("world" if ref is not None and ref.is_root else "")
+    return Target.point(_matrix(geo_points.world_pose(p)), ct(p.config), p.name or "", frame)
+
+
+def _tool(tool: Tool) -> np.ndarray | None:
+    pose = geo_frames.root_pose(tool)
+    return None if tool.is_root else _matrix(pose)
+
+
+def _record(task, unit, kind: str, target: Target, via: Target | None, tool: Tool, mdesc: dict):
+    """Record the command (10.2.1); a full queue: wait until the arm completes the command it is
+    executing, then record (the instruction waits, as the manual says)."""
+    arm = task.machine.arm
+    clock = task.machine.clock
+    source = _source(task)
+    tool_m = _tool(tool)
+    mm = millimeter_unit(unit)
+    name = tool.name or ("flange" if tool.is_root else "")
+    while True:
+        try:
+            r = arm.record(kind, target, tool_m, mdesc, via, source, name, mm, clock.time_of(task))
+        except MotionError as exc:
+            rule = exc.finding.code if exc.finding is not None else None
+            raise E(exc.code, exc.message, rule=rule) from None
+        if not isinstance(r, QueueFull):
+            return float(r)
+        room = lambda: arm.has_room(clock.now)  # noqa: E731
+        room.motion = True
+        yield from WAIT(task, room, False, f"{kind} (the motion queue is full)")
+
+
+# ---- instructions of 10.6 --------------------------------------------------------------------------
+
+
+def I_movej(task, unit, target, tool: Tool, mdesc: dict):
+    """10.6 movej(joint|point, tool, mdesc): records a joint move; returns its identifier."""
+    arm = _arm(task, "movej")
+    geo_frames.check_defined(tool)
+    _check_family(arm, target, "movej")
+    if type(target) is dict:
+        tg = Target.joint(jt(target))
+    else:
+        tg = _point(task, target, "movej")
+    return (yield from _record(task, unit, "movej", tg, None, tool, mdesc))
+
+
+def I_movel(task, unit, target: Point, tool: Tool, mdesc: dict):
+    """10.6 movel(point, tool, mdesc): records a straight line of the tool centre point."""
+    arm = _arm(task, "movel")
+    geo_frames.check_defined(tool)
+    _check_family(arm, target, "movel")
+    return (yield from _record(task, unit, "movel", _point(task, target, "movel"), None, tool, mdesc))
+
+
+def I_movec(task, unit, via: Point, target: Point, tool: Tool, mdesc: dict):
+    """10.6 movec(intermediate, target, tool, mdesc): records an arc."""
+    arm = _arm(task, "movec")
+    geo_frames.check_defined(tool)
+    _check_family(arm, via, "movec")
+    _check_family(arm, target, "movec")
+    tg = _point(task, target, "movec")
+    return (yield from _record(task, unit, "movec", tg, _point(task, via, "movec"), tool, mdesc))
+
+
+def I_waitendmove(task, unit):
+    """10.6 waitEndMove(): cancels the blend of the last command and waits until the commanded
+    position reaches its target; 150 when a recorded command cannot be executed."""
+    yield from wait_end_of_motion(task, "waitEndMove")
+
+
+def _now(task) -> int:
+    return task.machine.clock.time_of(task)
+
+
+def I_isempty(task, unit) -> bool:
+    """10.6 isEmpty(): every recorded command has been executed."""
+    return task.machine.arm.motion_done(_now(task))
+
+
+def I_issettled(task, unit) -> bool:
+    """10.6 isSettled(): the arm is at rest for 50 ms (the commanded position: no following
+    error in the simulation)."""
+    arm = task.machine.arm
+    q = arm.sync(_now(task)) if arm.has_model else None
+    return True if q is None else q.is_settled(_now(task) / US)
+
+
+def I_stopmove(task, unit) -> None:
+    """10.6 stopMove(): stops the arm on its path (the current command's deceleration) and
+    holds the motion; returns at once."""
+    arm = task.machine.arm
+    q = arm.sync(_now(task)) if arm.has_model else None
+    if q is not None:
+        q.stop_move(_now(task) / US)
+
+
+def I_restartmove(task, unit) -> None:
+    """10.6 restartMove(): resumes a motion held by stopMove()."""
+    arm = task.machine.arm
+    q = arm.sync(_now(task)) if arm.has_model else None
+    if q is not None:
+        q.restart_move(_now(task) / US)
+
+
+def I_resetmotion(task, unit, start: dict | None = None) -> None:
+    """10.6 resetMotion() / resetMotion(jStart): stops the arm on its path, cancels every
+    command, identifiers back to 0; with jStart the next command first connects to it."""
+    arm = task.machine.arm
+    if start is not None:
+        arm = _arm(task, "resetMotion")
+        _check_family(arm, start, "resetMotion")
+    q = arm.sync(_now(task)) if arm.has_model else None
+    if q is None:
+        return
+    joints = None if start is None else arm.joints_in(jt(start), millimeter_unit(unit))
+    try:
+        q.reset_motion(_now(task) / US, joints)
+    except MotionError as exc:
+        raise E(exc.code, exc.message) from None
+
+
+def I_autoconnectmove(task, unit, active: bool | None = None):
+    """10.6 autoConnectMove(bool) / autoConnectMove(): the setting is kept and returned; the
+    connection move is always made automatically (no operator in the simulation)."""
+    arm = task.machine.arm
+    if active is None:
+        return bool(arm.auto_connect)
+    arm.auto_connect = bool(active)
+    if arm.has_model and arm.queue is not None:
+        arm.queue.auto_connect = bool(active)
+    return None
+
+
+def I_getspeed(task, unit, tool: Tool) -> float:
+    """10.6 getSpeed(tool): the TCP translation speed from the commanded joint speeds, in the
+    application's length unit per second."""
     geo_frames.check_defined(tool)
     arm = task.machine.arm
-    if type(target) is dict:  # a joint position
-        if arm.has_model:
-            j = jt(target)
-            check_axes(arm, j, "movej")
-            if not jointops.is_in_range(j, arm.joint_limits):
-                raise E(154, f"movej: the joint position is outside the software joint limits of {arm.name}")
-    else:
-        flange = rotation.pose_mul(geo_points.world_pose(target), rotation.pose_inv(geo_frames.root_pose(tool)))
-        if arm.has_model:
-            pose = Trsf.from_pose(flange).as_tuple()
-            now = task.machine.clock.time_of(task)
-            try:
-                arm.solve(pose, ct(target.config), millimeter_unit(unit), arm.joints_at(now))
-            except TargetUnreachable as exc:
-                raise E(154, f"movej: no joint position of {arm.name} reaches the point ({exc})") from None
-            except KinematicsUnsupported as exc:
-                raise unsupported("movej", arm, exc) from None
-    raise SimLimit(ARM_LIMIT, "movej")
+    q = arm.sync(_now(task)) if arm.has_model else None
+    if q is None:
+        return 0.0
+    m = _tool(tool)
+    mm = millimeter_unit(unit)
+    s = 1.0 if mm else 25.4
+    if m is not None:
+        m = m.copy()
+        m[:3, 3] *= s
+    return q.get_speed(m, _now(task) / US) / s
+
+
+def I_getpositionerr(task, unit) -> dict:
+    """10.6 getPositionErr(): zero on every axis (the simulated arm follows its command exactly)."""
+    arm = _arm(task, "getPositionErr")
+    return jd((0.0,) * arm.axes)
+
+
+def I_getjointforce(task, unit, forces) -> None:
+    """10.6 getJointForce(nForce[]): the inverse dynamics of the commanded motion, when the arm
+    model has masses; the Stäubli models have none (not public): R002."""
+    arm = _arm(task, "getJointForce")
+    q = arm.sync(_now(task))
+    f = q.joint_force(_now(task) / US)
+    if f is None:
+        raise SimLimit(ARM_LIMIT, "getJointForce", f"getJointForce needs the masses and inertias of the arm, which the "
+                                                   f"model {arm.name} does not have (Stäubli does not publish them)")
+    if forces.size() < len(f):
+        raise E(70, f"getJointForce: the array holds {forces.size()} values for {len(f)} axes")
+    for i, v in enumerate(f):
+        forces.data[forces.off + i] = float(v)
+
+
+def I_getmoveid(task, unit) -> float:
+    """10.6 getMoveId(): the command being executed (integer part) and its progress."""
+    arm = task.machine.arm
+    q = arm.sync(_now(task)) if arm.has_model else None
+    return 0.0 if q is None else float(q.get_move_id(_now(task) / US))
+
+
+def I_setmoveid(task, unit, n: float) -> float:
+    """10.6 setMoveId(n): the identifier of the next command. The manual does not say what it
+    returns: the identifier set."""
+    arm = task.machine.arm
+    q = arm.sync(_now(task)) if arm.has_model else None
+    if q is not None:
+        q.set_move_id(n)
+    return float(n)
 
 
 def register(registry) -> None:
-    registry.instruction("movej", I_movej)
+    for name, func in (("movej", I_movej), ("movel", I_movel), ("movec", I_movec), ("waitEndMove", I_waitendmove)):
+        registry.instruction(name, func, blocking=True)
+    for name, func in (("isEmpty", I_isempty), ("isSettled", I_issettled), ("stopMove", I_stopmove),
+                       ("restartMove", I_restartmove), ("resetMotion", I_resetmotion),
+                       ("autoConnectMove", I_autoconnectmove), ("getSpeed", I_getspeed),
+                       ("getPositionErr", I_getpositionerr), ("getJointForce", I_getjointforce),
+                       ("getMoveId", I_getmoveid), ("setMoveId", I_setmoveid)):
+        registry.instruction(name, func)

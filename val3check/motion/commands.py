@@ -27,17 +27,18 @@ class Target:
     pose: np.ndarray | None = None
     config: tuple[str, ...] = ("ssame", "esame", "wsame")
     name: str = ""
+    frame: str = ""  # the name of the point's reference frame (reports)
 
     @classmethod
     def joint(cls, joints, name: str = "") -> "Target":
         return cls(joints=tuple(float(v) for v in joints), name=name)
 
     @classmethod
-    def point(cls, pose, config=("ssame", "esame", "wsame"), name: str = "") -> "Target":
+    def point(cls, pose, config=("ssame", "esame", "wsame"), name: str = "", frame: str = "") -> "Target":
         p = np.asarray(pose, dtype=float)
         if p.shape == (3, 4):
             p = np.vstack([p, [0.0, 0.0, 0.0, 1.0]])
-        return cls(pose=p, config=tuple(config), name=name)
+        return cls(pose=p, config=tuple(config), name=name, frame=frame)
 
     @property
     def is_joint(self) -> bool:

@@ -44,7 +44,9 @@ class Source:
     task: str = ""
 
     def label(self) -> str:
-        return f"{self.path}:{self.line}" if self.path else f"line {self.line}"
+        """Where, in a message: the file's name and the line."""
+        name = self.path.replace("\\", "/").rsplit("/", 1)[-1]
+        return f"{name}:{self.line}" if name else f"line {self.line}"
 
 
 @dataclass(frozen=True)

@@ -400,8 +400,7 @@ class MotionQueue:
 
     def _failure_text(self) -> str:
         f = self.failure
-        return (f"a motion recorded before cannot be executed ({f.source.label()}: {f.message}); "
-                "resetMotion() clears the motion queue")
+        return f"{f.source.label()}: {f.message}; resetMotion() clears the motion queue"
 
     # ---- building the path -----------------------------------------------------------------------
 

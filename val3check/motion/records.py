@@ -54,7 +54,7 @@ def _round(v):
     return None if v is None else round(v, 6)
 
 
-def _time_leaving(profile, s0: float) -> float | None:
+def time_leaving(profile, s0: float) -> float | None:
     """The last time the path parameter is at or before s0 (when the arm leaves s0)."""
     S = profile.S
     k = bisect.bisect_right(S, s0 + 1e-9) - 1
@@ -91,7 +91,7 @@ def motion_records(queue) -> list[MotionRecord]:
         s1 = c.S_end if c.S_end is not None else min(prof.s_end, c.S_prov or prof.s_end)
         if c.state in ("cancelled", "pending"):
             s1 = min(s1, prof.s_end)
-        start = _time_leaving(prof, s0)
+        start = time_leaving(prof, s0)
         end = c.t_done if c.state == "done" else prof.time_at(s1)
         if s1 - s0 <= 1e-12:
             out.append(MotionRecord(c.id, c.kind, src, c.state, c.recorded, start, end if end is not None else start,

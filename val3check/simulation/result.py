@@ -1,5 +1,7 @@
 """What a run hands to the reports: `SimResult` (reporting/sim_report.py, sim_text.py,
-sim_json.py; docs/sim-report.md)."""
+sim_json.py; docs/sim-report.md), with `MotionRun`, what the arm did (motion table, cycle
+times, the trajectory, the tools' open/close events): the interface the HTML/MCAP traces and
+the collision checks read (docs/sim-report.md, "For developers")."""
 
 from __future__ import annotations
 
@@ -7,7 +9,7 @@ from dataclasses import dataclass, field
 
 from ..diagnostics import Diagnostic
 from ..interpretation.machine import Machine
-from ..interpretation.recorder import IOEvent, TranscriptEntry
+from ..interpretation.recorder import IOEvent, ToolEvent, TranscriptEntry
 
 END_REASONS = {
     "ended": "the application ended (its last task ended, then stop() ran)",
@@ -17,6 +19,7 @@ END_REASONS = {
     "wall-clock": "the wall-clock budget was reached",
     "steps": "the budget of executed lines was reached",
     "no-start": "the application has no start() program",
+    "cycles": "the arm started the cycle after the last one asked for (--cycles)",
 }
 
 
@@ -41,6 +44,40 @@ class TaskSummary:
 
 
 @dataclass
+class MotionRun:
+    """What the arm did in a run (docs/sim-report.md, "For developers"). Times in simulated
+    seconds, joints in degrees (a SCARA's axis 3 in mm), lengths in mm.
+
+    - `records`: one `motion.records.MotionRecord` per command recorded (connection moves
+      included), in recording order: id, source position and task, kind, state, record, start
+      and end times, TCP length and peak speed, the limit active most of the time, target and
+      tool names; `commands[i]` is the queue's command behind `records[i]` (its `tool`: the TCP
+      in the flange as a 4x4 matrix in mm, None for the flange; `geom`: its joint path);
+    - `trajectory`: the arm's joint trajectory (`motion.trajectory.Trajectory`: `position(t)`,
+      `velocity(t)`, `sample(t0, t1, dt=0.004)` on the controller's 4 ms clock);
+    - `tool_events`: every open()/close() with its time, task, tool name, gripper link and the
+      tool's centre point in the flange (mm, degrees);
+    - `cycles`: per task that moves the arm in a loop, `motion.cycle.CycleStats` (the loop's
+      first motion instruction, the start of each pass, min/median/max cycle time);
+    - `busy_s`, `idle_s`: the arm's moving and standing time over the run.
+    """
+
+    model: object  # the val3check.robot.RobotModel
+    records: list
+    commands: list
+    trajectory: object
+    tool_events: list[ToolEvent]
+    cycles: dict
+    busy_s: float
+    idle_s: float
+    end_s: float
+
+    def sample(self, t0: float = 0.0, t1: float | None = None, dt: float = 0.004):
+        """(times (N,), joint positions (N, axes), joint velocities (N, axes)) every `dt` s."""
+        return self.trajectory.sample(t0, self.end_s if t1 is None else t1, dt)
+
+
+@dataclass
 class SimResult:
     application: str
     app_path: str
@@ -60,6 +97,8 @@ class SimResult:
     # The application's globals at the end of the run (name -> Arr/Coll of run-time values,
     # interpretation/values.py): for tests and tools; not part of the reports.
     globals: dict = field(default_factory=dict, repr=False)
+    motion: MotionRun | None = None  # what the arm did (None without an arm model)
+    tool_events: list[ToolEvent] = field(default_factory=list)
 
 
 def collect(machine: Machine) -> SimResult:
@@ -98,6 +137,8 @@ def collect(machine: Machine) -> SimResult:
             position=where,
             lines=t.lines,
         ))
+    motion = _motion(machine, diags)
+    diags.sort(key=lambda d: d.time_us if d.time_us is not None else 0)  # stable: by time, then as recorded
     page = machine.user_page.default
     screen = {"title": page.title, "lines": page.text()}
     arm = machine.arm
@@ -105,4 +146,26 @@ def collect(machine: Machine) -> SimResult:
     return SimResult(machine.app.name, machine.app.path, reason, message, machine.end_time,
                      machine.scheduler.total_lines, tasks, diags, machine.recorder.transcript, machine.recorder.io_log,
                      screen, list(machine.destroyed), {k: sorted(v) for k, v in machine.link_names.items()},
-                     robot=robot, globals=dict(machine.main.globals) if machine.main is not None else {})
+                     robot=robot, globals=dict(machine.main.globals) if machine.main is not None else {},
+                     motion=motion, tool_events=list(machine.recorder.tool_events))
+
+
+def _motion(machine: Machine, diags: list[Diagnostic]) -> MotionRun | None:
+    """The arm's findings as diagnostics (added to `diags`), and its MotionRun."""
+    arm = machine.arm
+    q = getattr(arm, "_queue", None)
+    if q is None:
+        return None
+    from ..motion.cycle import cycle_stats
+    from ..motion.records import busy_time, motion_records
+
+    end_s = machine.end_time / 1_000_000
+    q.advance(end_s)
+    for f in q.findings:
+        src = f.source
+        diags.append(Diagnostic(f.code, f.message, src.path, src.line, src.col, time_us=int(round(f.time * 1e6)),
+                                task=src.task, program=src.program, error=f.error))
+    records = motion_records(q)
+    busy, idle = busy_time(q.trajectory.profile, end_s)
+    return MotionRun(arm.model, records, list(q.history), q.trajectory, list(machine.recorder.tool_events),
+                     cycle_stats(records), busy, idle, end_s)

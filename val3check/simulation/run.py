@@ -29,7 +29,7 @@ from ..interpretation.registry import Registry
 from ..interpretation.scheduler import EndRun
 from ..loading.model import Application, Workspace
 from ..motion import ch10_motion
-from ..motion.arm_state import MotionlessArm
+from ..motion.arm import MovingArm
 from .result import SimResult, collect
 from .scenario import Scenario, apply_scenario
 
@@ -49,6 +49,7 @@ class SimOptions:
     disk_roots: list[str] = field(default_factory=list)
     # the arm model (val3check.robot.RobotModel) or None: see robot_choice.choose_sim_robot
     robot: Any = None
+    cycles: int | None = None  # --cycles N: end the run when the arm starts cycle N + 1
 
 
 def build_registry() -> Registry:
@@ -65,8 +66,10 @@ def build_machine(ws: Workspace, app: Application, options: SimOptions, *, regis
     budgets = Budgets(duration_us=int(round(options.duration * 1_000_000)), wall_s=options.max_wall,
                       max_lines=options.max_lines, max_transcript=options.max_transcript,
                       max_memory_mb=options.max_memory_mb)
-    arm = arm if arm is not None else MotionlessArm(options.robot)
+    arm = arm if arm is not None else MovingArm(options.robot, cycles=options.cycles)
     machine = Machine(ws, app, registry or build_registry(), arm, budgets=budgets, disk_roots=options.disk_roots)
+    if hasattr(arm, "bind"):
+        arm.bind(machine.controller)  # its power and monitor speed (chapter 8)
     machine.add_subsystem(arm)  # after the cell: inputs are refreshed before the arm moves
     return machine
 

@@ -183,13 +183,15 @@ def JABS(a: dict) -> dict:
 
 def I_herej(task, unit) -> dict:
     """9.2.3 herej(): the commanded joint position."""
-    return jd(arm_of(task, "herej").joints_at(task.machine.clock.time_of(task)))
+    return jd(arm_of(task, "herej").joints_at(task.machine.clock.time_of(task), millimeter_unit(unit)))
 
 
 def I_isinrange(task, unit, j: dict) -> bool:
     """9.2.3 isInRange(joint): within the model's software joint limits, bounds included."""
     arm = arm_of(task, "isInRange")
-    return jointops.is_in_range(jt(j), arm.joint_limits)
+    jj = jt(j)
+    check_axes(arm, jj, "isInRange")
+    return jointops.is_in_range(jj, arm.joint_limits_in(millimeter_unit(unit)))
 
 
 def I_distance(task, unit, a, b) -> float:
@@ -247,8 +249,8 @@ def I_here(task, unit, tool: Tool, ref: Frame) -> Point:
     geo_frames.check_defined(ref)
     arm = arm_of(task, "here")
     try:
-        p = geo_arm.here(arm.kinematics(millimeter_unit(unit)), arm.joints_at(task.machine.clock.time_of(task)),
-                         tool, ref)
+        mm = millimeter_unit(unit)
+        p = geo_arm.here(arm.kinematics(mm), arm.joints_at(task.machine.clock.time_of(task), mm), tool, ref)
     except KinematicsUnsupported as exc:
         raise unsupported("here", arm, exc) from None
     return _point(p, p.config)
@@ -298,25 +300,33 @@ def I_config(task, unit, j: dict) -> dict:
 
 
 def wait_end_of_motion(task, what: str):
-    """9.5.4: open() and close() first wait for the end of the motion (waitEndMove(), 10.6):
-    the task waits on the arm's motion queue; the clock jumps to the end of the motion."""
+    """waitEndMove() (10.6), and open()/close() before they act (9.5.4): the blend of the last
+    command is cancelled (error 150 when a motion recorded before cannot be executed), then the
+    task waits on the arm's motion queue; the clock jumps to the end of the motion."""
     arm = task.machine.arm
     clock = task.machine.clock
-    yield from WAIT(task, lambda: arm.motion_done(clock.now), False, f"{what} (end of motion)")
+    arm.end_motion(clock.time_of(task))
+    done = lambda: arm.motion_done(clock.now)  # noqa: E731
+    done.motion = True  # the deadlock report asks the arm why (machine._report_blocked)
+    yield from WAIT(task, done, False, f"{what} (end of motion)")
+
+
+def _tool_action(task, unit, tool: Tool, action: str, value: bool, seconds: float):
+    yield from wait_end_of_motion(task, action)
+    machine = task.machine
+    machine.tool_action(task, action, tool, millimeter_unit(unit))
+    IOW(task, tool.gripper, value)
+    yield from DELAY(task, seconds)
 
 
 def I_open(task, unit, tool: Tool):
     """9.5.4 open(tool): waitEndMove(), gripper = true, delay(otime)."""
-    yield from wait_end_of_motion(task, "open")
-    IOW(task, tool.gripper, True)
-    yield from DELAY(task, tool.otime)
+    yield from _tool_action(task, unit, tool, "open", True, tool.otime)
 
 
 def I_close(task, unit, tool: Tool):
     """9.5.4 close(tool): waitEndMove(), gripper = false, delay(ctime)."""
-    yield from wait_end_of_motion(task, "close")
-    IOW(task, tool.gripper, False)
-    yield from DELAY(task, tool.ctime)
+    yield from _tool_action(task, unit, tool, "close", False, tool.ctime)
 
 
 def register(registry) -> None:

@@ -1,0 +1,256 @@
+"""The arm of a run: the `Arm` port (interpretation/arm_port.py) and a `Subsystem` of the
+scheduler (interpretation/subsystem.py) over the motion queue of chapter 10 (queue.py).
+
+    arm = MovingArm(model, cycles=None)     # model: val3check.robot.RobotModel, or None
+    build_machine(..., arm=arm)             # simulation/run.py; arm.bind(machine.controller)
+
+What the interpreter reads (herej, here, open/close, the chapter 10 handlers of ch10_motion.py)
+is the commanded position of the queue at the simulated time asked; the scheduler asks
+`next_time` (the next moment a command completes, the arm comes to rest or has been at rest
+50 ms: nothing is polled every 4 ms) and calls `advance` at the start of each cycle.
+
+The controller's arm power and monitor speed (chapter 8, `interpretation/controller.py`, set by
+the scenario, enablePower/disablePower and setMonitorSpeed) are followed at each cycle and at
+each motion instruction: the queue holds the motion while the power is off and re-times it
+when the monitor speed changes (docs/motion.md).
+
+Units are converted here and nowhere else (2.1.4.1): poses, tvel, leave and reach in the
+application's length unit, and the prismatic axis of a SCARA (joint 3) in it too; the queue
+works in millimetres and degrees, seconds.
+
+Without an arm model (`model` None) the arm is idle: what acts on an idle arm works
+(`isEmpty()`, `resetMotion()`, `autoConnectMove()`, `waitEndMove()`...), motion commands stop
+the task with R002 saying how to name the arm (ch10_motion.py).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from ..interpretation.arm_port import Joints, Pose6
+from ..interpretation.scheduler import EndRun
+from ..language.runtime_errors import Val3RuntimeError
+from .arm_state import INCH_MM, UnitKinematics, solve_in_unit
+from .commands import MoveCommand, Target
+from .cycle import CycleCounter
+from .findings import MotionError, Source
+from .mdesc import MDesc
+from .queue import MotionQueue, QueueFull
+
+US = 1_000_000
+
+
+class MovingArm:
+    """See the module docstring."""
+
+    def __init__(self, model: Any = None, *, cycles: int | None = None) -> None:
+        self.model = model
+        self.name: str | None = model.name if model is not None else None
+        self._initial: Joints = (0.0,) * len(model.joint_limits) if model is not None else ()
+        self._kin: dict[bool, UnitKinematics] = {}
+        self._queue: MotionQueue | None = None
+        self.controller: Any = None
+        self.auto_connect = False  # autoConnectMove (kept; the connection move is always automatic)
+        self.counter = CycleCounter()
+        self.cycles_goal = cycles  # --cycles N: the run ends when the arm starts cycle N + 1
+        self._end_cmd = None  # that command, once recorded
+        self.prismatic = tuple(k == "prismatic" for k in (getattr(model, "joint_kinds", None) or ())) \
+            if model is not None else ()
+
+    def bind(self, controller: Any) -> None:
+        """The controller whose power and monitor speed the arm follows (chapter 8)."""
+        self.controller = controller
+
+    # ---- the queue -----------------------------------------------------------------------------
+
+    @property
+    def queue(self) -> MotionQueue | None:
+        """The motion queue (None without an arm model), created at the first use with the
+        controller's power and monitor speed of that moment."""
+        if self._queue is None and self.model is not None:
+            ctl = self.controller
+            self._queue = MotionQueue(self.model, np.array(self._initial, dtype=float),
+                                      powered=True if ctl is None else bool(ctl.powered),
+                                      monitor=100.0 if ctl is None else float(ctl.monitor_speed))
+        return self._queue
+
+    def sync(self, time_us: int) -> MotionQueue | None:
+        """The queue, with the controller's power and monitor speed applied at `time_us`."""
+        q = self.queue
+        ctl = self.controller
+        if q is not None and ctl is not None:
+            t = time_us / US
+            if bool(ctl.powered) != q.powered:
+                q.set_power(bool(ctl.powered), t)
+            if float(ctl.monitor_speed) != q.monitor:
+                q.set_monitor_speed(float(ctl.monitor_speed), t)
+        return q
+
+    # ---- the Arm port ----------------------------------------------------------------------------
+
+    @property
+    def has_model(self) -> bool:
+        return self.model is not None
+
+    @property
+    def axes(self) -> int:
+        return len(self.model.joint_limits)
+
+    @property
+    def joint_limits(self) -> tuple[tuple[float, float], ...]:
+        return tuple(self.model.joint_limits)
+
+    def joint_limits_in(self, millimeter_unit: bool) -> tuple[tuple[float, float], ...]:
+        """The joint limits with a prismatic axis in the caller's length unit."""
+        return tuple((self._out(lo, k, millimeter_unit), self._out(hi, k, millimeter_unit))
+                     for k, (lo, hi) in enumerate(self.model.joint_limits))
+
+    @property
+    def initial_joints(self) -> Joints:
+        return self._initial
+
+    def start_at(self, joints: Sequence[float]) -> None:
+        self._initial = tuple(float(v) + 0.0 for v in joints)
+        self._queue = None
+
+    def joints_at(self, time_us: int, millimeter_unit: bool = True) -> Joints:
+        q = self.sync(time_us)
+        if q is None:
+            return self._initial
+        j = q.position(time_us / US)
+        return self.joints_out(j, millimeter_unit)
+
+    def kinematics(self, millimeter_unit: bool) -> UnitKinematics:
+        k = self._kin.get(millimeter_unit)
+        if k is None:
+            k = self._kin[millimeter_unit] = UnitKinematics(self.model, 1.0 if millimeter_unit else INCH_MM)
+        return k
+
+    def solve(self, flange: Pose6, config: Sequence[str], millimeter_unit: bool, initial: Sequence[float]) -> Joints:
+        return solve_in_unit(self.model, flange, config, millimeter_unit, initial)
+
+    def motion_done(self, time_us: int) -> bool:
+        q = self.sync(time_us)
+        return q is None or q.is_empty(time_us / US)
+
+    def end_motion(self, time_us: int) -> None:
+        """What waitEndMove() does before it waits (and open()/close(), 9.5.4): cancel the blend
+        of the last command; error 150 when a recorded command cannot be executed."""
+        q = self.sync(time_us)
+        if q is None:
+            return
+        try:
+            q.wait_end_move(time_us / US)
+        except MotionError as exc:
+            raise Val3RuntimeError(exc.code, exc.message) from None
+
+    def has_room(self, time_us: int) -> bool:
+        """A place in the motion queue (a motion instruction that found it full waits for this)."""
+        q = self.sync(time_us)
+        if q is None:
+            return True
+        q.advance(time_us / US)
+        return len(q.pending) < q.capacity
+
+    def waiting_reason(self) -> tuple[str, str] | None:
+        """Why recorded motion cannot go on, for a task that waits for it: (rule, words naming
+        the condition and what changes it), or None when the arm can move."""
+        q = self._queue
+        if q is None or (not q.pending and q.open is None):
+            return None
+        if not q.powered:
+            ctl = self.controller
+            if ctl is not None and (ctl.working_mode != 4 or ctl.es_status != 0):
+                how = ("and enablePower() cannot power it outside remote mode or under an emergency stop: "
+                       "set [controller] working_mode = 4 and es_status = 0, or powered = true, in the scenario")
+            else:
+                how = ("nothing powers it: the program can call enablePower() (remote mode), or the scenario "
+                       "can start it powered ([controller] powered = true, the default) or power it later "
+                       "([controller] changes = [{ at = ..., powered = true }])")
+            return "R018", f"the arm is not powered, {how}"
+        if q.held:
+            return "R003", "stopMove() holds the motion and no task calls restartMove() or resetMotion()"
+        return None
+
+    # ---- the Subsystem -----------------------------------------------------------------------------
+
+    def next_time(self, now_us: int) -> int | None:
+        q = self.sync(now_us)
+        if q is None:
+            return None
+        t = q.next_time(now_us)
+        end = self._cycles_end()
+        if end is not None:
+            e = int(np.ceil(end * US - 1e-6))
+            if e > now_us and (t is None or e < t):
+                t = e
+        return t
+
+    def advance(self, to_us: int) -> None:
+        q = self.sync(to_us)
+        if q is None:
+            return
+        q.advance_us(to_us)
+        end = self._cycles_end()
+        if end is not None and end * US <= to_us + 1e-6:
+            raise EndRun("cycles")
+
+    def _cycles_end(self) -> float | None:
+        """When the arm starts the command that begins cycle N + 1 (--cycles N)."""
+        c = self._end_cmd
+        if c is None or c.S_begin is None or c.state == "cancelled":
+            return None
+        from .records import time_leaving
+
+        return time_leaving(self._queue.trajectory.profile, c.S_begin)
+
+    # ---- for the chapter 10 handlers -------------------------------------------------------------------
+
+    def record(self, kind: str, target: Target, tool_in_flange, md: dict, via: Target | None, source: Source,
+               tool_name: str, millimeter_unit: bool, time_us: int):
+        """movej/movel/movec: the command's identifier, or QueueFull. Poses of `target`/`via`
+        and `tool_in_flange` are 4x4 matrices in the caller's length unit; joints too (a
+        SCARA's axis 3). Raises MotionError (mdesc 100-106, 154, 150, 81)."""
+        q = self.sync(time_us)
+        s = 1.0 if millimeter_unit else INCH_MM
+        target = self._target_in_mm(target, s)
+        via = None if via is None else self._target_in_mm(via, s)
+        tool = None
+        if tool_in_flange is not None:
+            tool = np.array(tool_in_flange, dtype=float)
+            tool[:3, 3] *= s
+        cmd = MoveCommand(kind, target, MDesc.from_fields(md, s), tool=tool, via=via, source=source,
+                          tool_name=tool_name)
+        r = q.record(cmd, time_us / US)
+        if not isinstance(r, QueueFull):
+            task = source.task
+            self.counter.note(task, source)
+            if self.cycles_goal is not None and self._end_cmd is None and \
+                    self.counter.completed(task) >= self.cycles_goal:
+                self._end_cmd = q.history[-1]
+        return r
+
+    def _target_in_mm(self, tg: Target, s: float) -> Target:
+        if tg.is_joint:
+            return Target.joint(self.joints_in(tg.joints, s == 1.0), tg.name)
+        pose = np.array(tg.pose, dtype=float)
+        pose[:3, 3] *= s
+        return Target(pose=pose, config=tg.config, name=tg.name, frame=tg.frame)
+
+    def joints_in(self, joints: Sequence[float], millimeter_unit: bool) -> tuple[float, ...]:
+        """Joint values of the application (a prismatic axis in its length unit) in the model's."""
+        if millimeter_unit or not any(self.prismatic):
+            return tuple(float(v) for v in joints)
+        return tuple(float(v) * INCH_MM if k < len(self.prismatic) and self.prismatic[k] else float(v)
+                     for k, v in enumerate(joints))
+
+    def joints_out(self, joints: Sequence[float], millimeter_unit: bool) -> Joints:
+        return tuple(self._out(float(v), k, millimeter_unit) + 0.0 for k, v in enumerate(joints))
+
+    def _out(self, v: float, k: int, millimeter_unit: bool) -> float:
+        if millimeter_unit or not (k < len(self.prismatic) and self.prismatic[k]):
+            return v
+        return v / INCH_MM
