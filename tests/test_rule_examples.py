@@ -46,11 +46,16 @@ def _simulate(tmp_path, ex):
     (`code`: a generated application; `files`: an application tree, `target` the one run)."""
     from interpretation.simsupport import run_folder, sim
 
+    robot = None
+    if ex.robot:
+        from val3check.robot import load_robot
+
+        robot = load_robot(ex.robot)
     if ex.code is None:
         write_files(tmp_path, ex.files)
-        return run_folder(tmp_path / ex.target, tmp_path=tmp_path, duration=ex.duration).diagnostics
+        return run_folder(tmp_path / ex.target, tmp_path=tmp_path, duration=ex.duration, robot=robot).diagnostics
     result = sim(tmp_path, ex.code, globals_=ex.globals, locals_=ex.locals, programs=ex.programs,
-                 scenario=ex.scenario, duration=ex.duration, links=ex.links or None)
+                 scenario=ex.scenario, duration=ex.duration, links=ex.links or None, robot=robot)
     return result.diagnostics
 
 

@@ -225,7 +225,7 @@ end
     assert a == b
     assert a[0] == 1
     data = json.loads(a[1])
-    assert data["version"] == 1
+    assert data["version"] == 2
     assert data["end"]["reason"] == "stalled"
     d = data["diagnostics"][0]
     assert (d["code"], d["error"], d["task"], d["program"]) == ("R001", 10, "Example~", "start")

@@ -37,9 +37,9 @@ def test_model_of_a_run_with_an_arm_model(capsys):
     assert ex["lines"][d["line"] - ex["first_line"]] == lines[d["line"] - 1]
     assert model["scene"]["arm"]["name"] == "TX2-60" and model["scene"]["joints"] == [0.0] * 6
     assert model["trajectory"] is None and model["tasks"] == []
-    assert any("does not move" in n for n in model["limitations"])
+    assert any("does not show the arm's motion" in n for n in model["limitations"])
     html = render(model)
-    assert "The arm does not move in this version" in html and 'id="play"' not in html
+    assert "does not show the arm" in html and 'id="play"' not in html
 
 
 def test_model_of_a_run_that_passes_and_the_fail_on_threshold(capsys):
@@ -58,6 +58,8 @@ def test_excerpts_quote_only_files_of_the_application(capsys, tmp_path):
     report = sim_json("Cell", capsys, "--robot", "tx2-60")
     secret = tmp_path / "secret.pgx"
     secret.write_text("line 1\nthe secret\n", encoding="utf-8")
+    while len(report["diagnostics"]) < 2:  # two diagnostics to point elsewhere
+        report["diagnostics"].append(dict(report["diagnostics"][0]))
     report["diagnostics"][0].update(path=str(secret), line=2)
     report["diagnostics"][1].update(path="fixtures/valid/Cell/../../../README.md", line=1)
     model = model_from_sim_report(report)
@@ -66,8 +68,8 @@ def test_excerpts_quote_only_files_of_the_application(capsys, tmp_path):
 
 
 def test_not_a_sim_report():
-    for bad in ({}, {"version": 2, "end": {}, "summary": {}}, [], {"version": 1}):
-        with pytest.raises(ModelError, match="not a version 1 report"):
+    for bad in ({}, {"version": 3, "end": {}, "summary": {}}, [], {"version": 1}):
+        with pytest.raises(ModelError, match="not a version 1 or 2 report"):
             model_from_sim_report(bad)
 
 

@@ -24,7 +24,7 @@ from ..diagnostics import Diagnostic
 from ..loading.model import Application, Workspace
 from ..language.runtime_errors import RUNTIME_CODES, Val3RuntimeError
 from .cell import Cell, CellSubsystem
-from .clock import Clock
+from .clock import TICK_US, Clock
 from .compiler import Compiled
 from .controller import Controller
 from .libraries import autoload_libraries
@@ -331,7 +331,8 @@ class Machine:
         except EndRun as stop:
             reason = stop.reason
         self.end_reason = reason
-        self.end_time = self.clock.now
+        # the run ends after the last line of the cycle it ended in (never before a time reported in it)
+        self.end_time = self.clock.end_of_cycle() if reason in ("deadlock", "stalled", "cycles") else self.clock.now
         self._snapshot_tasks()
         if reason == "stop-timeout":
             # the application ended and its stop() was still running at --duration: the run
@@ -408,6 +409,11 @@ class Machine:
             if t.unit is self.main and t.name == f"{self.app.name}~":
                 self.scheduler.kill(t)
                 t.end_state = "destroyed"
+        if reason in ("deadlock", "stalled", "cycles") and self.clock.cycle_lines:
+            # the run ended in a cycle that ran lines: stop() starts at the next cycle, so that
+            # its times follow those of the run
+            self.clock.now += TICK_US
+            self.clock.cycle_lines = 0
         self.start_stop_program()
         limit = self.clock.now + self.budgets.stop_us
         try:

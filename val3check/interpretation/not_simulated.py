@@ -25,22 +25,24 @@ class SimLimit(Exception):
         self.message = message
 
 
-NO_ARM = ("needs the arm model: pass --robot NAME (a catalogue arm such as tx2-60, listed by `val3check robots`), "
-          "--robot path/to/arm.urdf, or run the application from a controller tree whose usr/configs/arm.cfx "
-          "names the arm")
+NO_ARM = ("needs an arm model: --robot NAME (`val3check robots` lists them) or --robot arm.urdf, or run the "
+          "application from a controller tree whose usr/configs/arm.cfx names the arm")
 HARDWARE = frozenset({"setlatch", "getlatch", "getdh", "getdefaultdh", "setdh"})
+OPTIONS = {"movejf": "compliance", "movelf": "compliance", "iscompliant": "compliance", "altermovej": "alter",
+           "altermovel": "alter", "altermovec": "alter", "alterbegin": "alter", "alterend": "alter", "alter": "alter",
+           "alterstoptime": "alter", "resetturn": "continuous axis"}
 
 
 def arm_message(what: str, arm_name: str | None) -> str:
-    """R002: why the arm instruction stops the task, and (without an arm model) how to give one."""
-    if what.lower() in HARDWARE:
-        return f"instruction {what} needs the arm's hardware (position capture, calibration), which this " \
-               f"version does not simulate"
-    text = f"instruction {what} moves the arm or reads its motion, which this version does not simulate (chapter 10)"
+    """R002: why the arm instruction stops the task, in a few words, and what would let it run."""
+    low = what.lower()
+    if low in HARDWARE:
+        return f"{what} needs the arm's hardware (position capture, calibration): not simulated"
+    if low in OPTIONS:
+        return f"{what} (the {OPTIONS[low]} option, chapter 11) is not simulated"
     if arm_name is None:
-        return f"{text}; the run has no arm model either (to have movej targets checked, " \
-               f"{NO_ARM[len('needs the arm model: '):]})"
-    return f"{text}; the arm model {arm_name} stays at its initial joint position"
+        return f"{what} {NO_ARM}"
+    return f"{what} is not simulated"
 
 
 def ARM(name: str, *args: Any) -> Any:

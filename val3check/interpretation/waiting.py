@@ -38,14 +38,17 @@ def DELAY(task, s: float, what: str = "delay"):
     task.waiting_for = ""
 
 
-def WAIT(task, fn, tdep: bool, what: str = "wait"):
+def WAIT(task, fn, tdep: bool, what: str = "wait", hint: str = ""):
     """5.10 wait: the condition is evaluated again at each turn; no hand-over when it is
     already true. While it waits, the scheduler evaluates `task.cond` itself and resumes the
     task only when it is true (with True), or with None when it raised (evaluated again here,
     so that the error stops the task at its line). `tdep`: the condition changes with time
-    alone (clock()), so the clock steps cycle by cycle instead of jumping."""
+    alone (clock()), so the clock steps cycle by cycle instead of jumping. `hint`: what would
+    make the condition true (the scenario key), for the deadlock report."""
     if fn():
         return
+    if hint:
+        fn.hint = hint
     task.tdep = tdep
     task.wake = None
     task.cond = fn

@@ -63,7 +63,7 @@ def _arm(task, what: str):
     """The arm with its model; without one the task stops with R002, saying how to name it."""
     arm = task.machine.arm
     if not arm.has_model:
-        raise SimLimit(ARM_LIMIT, what, f"{what} moves the arm, and the run has no arm model: {NO_ARM[len('needs the arm model: '):]}")
+        raise SimLimit(ARM_LIMIT, what, f"{what} {NO_ARM}")
     return arm
 
 

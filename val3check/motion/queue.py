@@ -94,6 +94,7 @@ class Cmd:
     reduced: bool = False  # connection move at reduced speed
     tool_name: str = ""
     target_name: str = ""
+    frame_name: str = ""  # the reference frame of a point target
     checked: bool = False
     rest_time: float | None = None  # alone, from rest to rest (`_rest_time`)
 
@@ -192,6 +193,7 @@ class MotionQueue:
         c = self._new_cmd(command.kind, command.source, now, q_s, md, tool)
         c.tool_name = command.tool_name
         c.target_name = command.target.name
+        c.frame_name = command.target.frame
         c.blend = md.blend
         if command.kind == "movej":
             q_end = self._movej_target(c, command, q_s, tool, now)

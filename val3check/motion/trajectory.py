@@ -176,13 +176,52 @@ class Trajectory:
         return self.path.q([s], 1)[0] * sd
 
     def sample(self, t0: float, t1: float, dt: float = TICK) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(times, joint positions (N, 6), joint velocities (N, 6)) on the 4 ms clock from t0 to t1."""
+        """(times, joint positions (N, axes), joint velocities (N, axes)) on the 4 ms clock from
+        t0 to t1."""
         k0 = math.ceil(t0 / dt - 1e-9)
         k1 = math.floor(t1 / dt + 1e-9)
         times = np.arange(k0, k1 + 1) * dt
         if len(times) == 0:
-            return times, np.zeros((0, 6)), np.zeros((0, 6))
+            n = len(self.path.q_rest)
+            return times, np.zeros((0, n)), np.zeros((0, n))
         s, sd = self.profile.states(times)
         q = self.path.q(s)
         qd = self.path.q(s, 1) * sd[:, None]
         return times, q, qd
+
+    def moving(self, t_end: float) -> list[tuple[float, float]]:
+        """The intervals [start, end] of simulated time in which the arm moves, up to t_end."""
+        T, SD = self.profile.T, self.profile.SD
+        out: list[tuple[float, float]] = []
+        for i in range(len(T) - 1):
+            if T[i] >= t_end:
+                break
+            if SD[i] > 0.0 or SD[i + 1] > 0.0:
+                a, b = T[i], min(T[i + 1], t_end)
+                if out and a <= out[-1][1] + 1e-12:
+                    out[-1] = (out[-1][0], b)
+                else:
+                    out.append((a, b))
+        return out
+
+    def segments(self, t_end: float, dt: float = TICK):
+        """The trajectory on the clock of period dt, only where the arm moves: for each moving
+        interval, (first tick index k, positions (N, axes), velocities (N, axes)) at the ticks
+        k·dt ... from the last tick at or before the motion starts to the first at or after it
+        ends (both at rest). Between segments the arm stands where the previous one ended."""
+        out = []
+        last = -1
+        for a, b in self.moving(t_end):
+            k0 = max(math.floor(a / dt + 1e-9), last + 1)
+            k1 = math.ceil(b / dt - 1e-9)
+            if k1 < k0:
+                continue
+            if out and k0 == last + 1:  # touching the previous segment: one segment
+                k_prev, qp, vp = out.pop()
+                _, q, v = self.sample(k0 * dt, k1 * dt, dt)
+                out.append((k_prev, np.vstack([qp, q]), np.vstack([vp, v])))
+            else:
+                _, q, v = self.sample(k0 * dt, k1 * dt, dt)
+                out.append((k0, q, v))
+            last = k1
+        return out

@@ -1,22 +1,32 @@
 """`val3check sim --report json`: the documented, versioned run report (docs/sim-report.md).
 
-Deterministic byte for byte: keys sorted, 2-space indent, ASCII only, times in simulated
-seconds, no wall-clock value. Bump VERSION on any incompatible change.
+Deterministic byte for byte: keys sorted, 2-space indent, ASCII only, no wall-clock value.
+Numbers are written as plain decimals (never `1.6e-05`): times in simulated seconds rounded to
+the microsecond, joint positions to 1e-4 degree (or mm), velocities to 1e-3 per second, other
+figures to 1e-3. Arrays of numbers are written on one line, so that the 4 ms trajectory stays
+compact. Bump VERSION on any incompatible change.
 """
 
 from __future__ import annotations
 
 import json
+import math
+import statistics
 from typing import Any
 
 from ..diagnostics import Severity
 from ._common import TOOL_NAME
 
-VERSION = 1
+VERSION = 2
+TICK_S = 0.004
 
 
 def _t(us: int | None) -> float | None:
     return None if us is None else round(us / 1_000_000, 6)
+
+
+def _s(x: float | None, digits: int = 6) -> float | None:
+    return None if x is None else round(float(x), digits)
 
 
 def _pos(pos) -> dict | None:
@@ -32,14 +42,100 @@ def _diagnostic(run: Any, d) -> dict[str, Any]:
             "task": d.task or None, "program": d.program or None, "error": d.error}
 
 
+def _pose(v) -> list[float] | None:
+    return None if v is None else [round(float(x), 4) for x in v]
+
+
+def _matrix_pose(m) -> list[float] | None:
+    """A 4x4 matrix (mm) as [x, y, z, rx, ry, rz] (mm, degrees, 9.3.2)."""
+    if m is None:
+        return None
+    from ..geometry.rotation import angles_of
+
+    r = tuple(float(m[i][j]) for i in range(3) for j in range(3))
+    rx, ry, rz = angles_of(r)
+    return [round(float(m[0][3]), 4), round(float(m[1][3]), 4), round(float(m[2][3]), 4),
+            round(rx, 4), round(ry, 4), round(rz, 4)]
+
+
+def _motion(run: Any) -> dict | None:
+    m = run.result.motion
+    if m is None:
+        return None
+    motions = []
+    for rec, cmd in zip(m.records, m.commands):
+        d = rec.as_dict()
+        where = run.display((d["path"], d["line"], d["col"], ""))
+        motions.append({
+            "id": d["id"], "kind": d["kind"], "path": where[0] if where else None, "line": d["line"] or None,
+            "column": d["col"] or None, "task": d["task"] or None, "state": d["state"],
+            "recorded": d["recorded"], "start": d["start"], "end": d["end"], "duration": d["duration"],
+            "length_mm": d["length_mm"], "peak_tcp_mm_s": d["peak_tcp_mm_s"],
+            "dominant_limit": d["dominant_limit"] or None,
+            "limit_seconds": {k: round(v, 6) for k, v in d["limit_seconds"].items()},
+            "target": d["target"] or None, "frame": getattr(cmd, "frame_name", "") or None, "tool": d["tool"] or None,
+            "tool_in_flange": _matrix_pose(cmd.tool) if cmd.kind != "connection" else None,
+            "joints_start": _pose(cmd.q_start), "joints_end": _pose(cmd.q_end) if cmd.state != "failed" else None,
+        })
+    cycles = []
+    for task in sorted(m.cycles):
+        st = m.cycles[task]
+        if st.marker is None:
+            continue
+        where = run.display((st.marker[0], st.marker[1], st.marker[2], ""))
+        times = st.times
+        cycles.append({"task": task, "path": where[0], "line": st.marker[1], "column": st.marker[2],
+                       "cycles": st.count, "starts": [_s(x) for x in st.starts], "times": [_s(x) for x in times],
+                       "min": _s(min(times)) if times else None, "max": _s(max(times)) if times else None,
+                       "median": _s(statistics.median(times)) if times else None})
+    segments = []
+    for k0, q, v in m.trajectory.segments(m.end_s, TICK_S):
+        segments.append({"start": round(k0 * TICK_S, 6), "first_tick": k0,
+                         "positions": [[round(float(x), 4) for x in row] for row in q],
+                         "velocities": [[round(float(x), 3) for x in row] for row in v]})
+    model = m.model
+    return {
+        "summary": {
+            "commands": sum(1 for r in m.records if r.id is not None),
+            "done": sum(1 for r in m.records if r.state == "done"),
+            "failed": sum(1 for r in m.records if r.state == "failed"),
+            "cancelled": sum(1 for r in m.records if r.state == "cancelled"),
+            "moving": _s(m.busy_s), "idle": _s(m.idle_s),
+            "tcp_length_mm": round(sum(r.length_mm for r in m.records), 3),
+        },
+        "cycles": cycles,
+        "motions": motions,
+        "tool_events": [
+            {"time": _t(e.time_us), "task": e.task, "action": e.action, "tool": e.tool or None,
+             "gripper": e.gripper or None, "tcp_in_flange": _pose(e.tcp_in_flange),
+             **{k: v for k, v in (_pos(run.display(e.position)) or {}).items() if k != "program"}}
+            for e in m.tool_events
+        ],
+        "trajectory": {
+            "period": TICK_S,
+            "axes": len(model.joint_limits),
+            "units": list(getattr(model, "joint_units", None) or ["deg"] * len(model.joint_limits)),
+            "segments": segments,
+        },
+    }
+
+
 def report(run: Any) -> dict[str, Any]:
     """`run` is a `SimReport` (sim_report.py): the SimResult plus kept diagnostics."""
     r = run.result
+    robot = None
+    if r.robot:
+        robot = dict(r.robot)
+        if r.motion is not None:
+            model = r.motion.model
+            robot.update(axes=len(model.joint_limits),
+                         joint_limits=[[lo, hi] for lo, hi in model.joint_limits],
+                         nominal_speeds=list(model.nominal_speeds), accelerations=list(model.accelerations))
     return {
         "version": VERSION,
         "tool": {"name": TOOL_NAME, "version": run.tool_version},
         "application": {"name": r.application, "path": run.app_path},
-        "robot": r.robot,
+        "robot": robot,
         "end": {"reason": r.end_reason, "message": r.end_message},
         "simulated_duration": _t(r.sim_time_us),
         "lines_executed": r.lines,
@@ -72,6 +168,7 @@ def report(run: Any) -> dict[str, Any]:
         ],
         "destroyed": list(r.destroyed),
         "diagnostics": [_diagnostic(run, d) for d in run.diagnostics],
+        "motion": _motion(run),
         "transcript": [
             {"time": _t(e.time_us), "task": e.task, "kind": e.kind, "text": e.text, "screen": e.screen}
             for e in r.transcript
@@ -85,5 +182,59 @@ def report(run: Any) -> dict[str, Any]:
     }
 
 
+# ---- the writer ---------------------------------------------------------------------------------------
+
+
+def number(x: float) -> str:
+    """A float as a plain JSON decimal: `0.000016`, never `1.6e-05`; integral values keep `.0`."""
+    if not math.isfinite(x):
+        return "null"
+    text = repr(float(x))
+    if "e" in text or "E" in text:
+        text = format(x, ".12f").rstrip("0")
+        if text.endswith("."):
+            text += "0"
+    if text == "-0.0":
+        text = "0.0"
+    return text
+
+
+def _scalar(v: Any) -> str:
+    if v is None:
+        return "null"
+    if v is True:
+        return "true"
+    if v is False:
+        return "false"
+    if isinstance(v, int):
+        return str(v)
+    if isinstance(v, float):
+        return number(v)
+    return json.dumps(v, ensure_ascii=True)
+
+
+def _flat(v: Any) -> bool:
+    return isinstance(v, list) and all(not isinstance(x, (list, dict)) for x in v) and all(
+        not isinstance(x, str) for x in v)
+
+
+def dumps(obj: Any, indent: int = 0) -> str:
+    """Sorted keys, 2-space indent, ASCII; a list of numbers on one line."""
+    pad = "  " * indent
+    inner = "  " * (indent + 1)
+    if isinstance(obj, dict):
+        if not obj:
+            return "{}"
+        items = [f"{inner}{json.dumps(str(k), ensure_ascii=True)}: {dumps(obj[k], indent + 1)}" for k in sorted(obj)]
+        return "{\n" + ",\n".join(items) + "\n" + pad + "}"
+    if isinstance(obj, list):
+        if not obj:
+            return "[]"
+        if _flat(obj):
+            return "[" + ", ".join(_scalar(x) for x in obj) + "]"
+        return "[\n" + ",\n".join(inner + dumps(x, indent + 1) for x in obj) + "\n" + pad + "]"
+    return _scalar(obj)
+
+
 def render(run: Any) -> str:
-    return json.dumps(report(run), indent=2, sort_keys=True, ensure_ascii=True) + "\n"
+    return dumps(report(run)) + "\n"

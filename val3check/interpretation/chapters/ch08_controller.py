@@ -23,7 +23,9 @@ def I_enablepower(task, unit) -> None:
     comes after the scenario's power_delay."""
     machine = task.machine
     ctl = machine.controller
-    if ctl.working_mode != 4 or ctl.es_status != 0 or ctl.powered:
+    if ctl.powered:
+        return
+    if ctl.working_mode != 4 or ctl.es_status != 0:
         machine.transcript_add(task, "logMsg", "enablePower refused: not in remote mode or emergency stop", None)
         return
     machine.cell_subsystem.schedule(machine.clock.time_of(task) + ctl.power_delay_us, PowerChange(True))

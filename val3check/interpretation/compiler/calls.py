@@ -289,7 +289,34 @@ class CallCompiler:
 
     def i_wait(self, node):
         fn, tdep = self._cond_lambda(node.args[0])
-        return Code(f"(yield from WAIT(T, {fn}, {tdep}))", "void")
+        what, hint = self._wait_words(node)
+        return Code(f"(yield from WAIT(T, {fn}, {tdep}, {what!r}, {hint!r}))", "void")
+
+    def _wait_words(self, node) -> tuple[str, str]:
+        """What a wait waits for, in the program's words (its line, for the deadlock report,
+        R003), and which inputs of the condition a scenario could set."""
+        code = self.program.code or ""
+        text = "wait"
+        cmap = self.program.code_map
+        for k, line in enumerate(code.split("\n"), 1):
+            if cmap.to_file(k, 1).line == node.line:
+                text = line.strip()
+                break
+        if len(text) > 80:
+            text = text[:77] + "..."
+        names = []
+        for n in ast.walk(node.args[0]):
+            if type(n) in (ast.Name, ast.LibraryName):
+                try:
+                    v = self.var_of(n)
+                except CompileError:
+                    v = None
+                if v is not None and v.t in ("dio", "aio") and v.store in ("g", "lib") and n.name not in names:
+                    names.append(n.name if type(n) is ast.Name else f"{n.alias}:{n.name}")
+        hint = ""
+        if names:
+            hint = f"the scenario can set {', '.join(names)}: [inputs] or [[events]] (docs/scenario.md)"
+        return text, hint
 
     def i_watch(self, node):
         fn, tdep = self._cond_lambda(node.args[0])

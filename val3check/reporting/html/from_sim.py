@@ -1,13 +1,13 @@
-"""A report model from the sim's JSON report (docs/sim-report.md, version 1) and the arm model.
+"""A report model from the sim's JSON report (docs/sim-report.md, versions 1 and 2) and the arm model.
 
     model = model_from_sim_report(json.load(open("run.json")), fail_on="error")
 
 What the JSON report holds goes in as it is: how the run ended, the diagnostics (with their
 source excerpt, read from the application's folder and the given roots only), the I/O log, the
 transcript and the final user page, and the arm model of the run (`robot.name`, a catalogue arm,
-or `arm_urdf`) at its initial joint position. What version 1 of the report does not record is
-absent and said so in `limitations` (shown at the top of the page): the tasks' states over time,
-and any motion (the simulator does not move the arm yet).
+or `arm_urdf`) at its initial joint position. What is not drawn yet is absent and said so in
+`limitations` (shown at the top of the page): the tasks' states over time, and the arm's motion
+(version 2's `motion`: the next version of the page draws it).
 """
 
 from __future__ import annotations
@@ -49,13 +49,14 @@ def _excerpt(cache: SourceCache, path: str | None, line: int | None, roots: list
 
 def model_from_sim_report(report: dict[str, Any], *, fail_on: str = "error", arm_urdf: str | None = None,
                           roots: list[str] | None = None, title: str | None = None) -> dict:
-    """The report model of a run described by the sim's JSON report (a dict, version 1).
+    """The report model of a run described by the sim's JSON report (a dict, version 1 or 2).
 
     `roots`: folders whose files may be quoted in the excerpts (default: the folder of the
     application's project file). `arm_urdf`: the arm's URDF when `robot.name` is not a catalogue
-    arm. Raises ModelError for a report that is not a version 1 sim report."""
-    if not isinstance(report, dict) or report.get("version") != 1 or "end" not in report or "summary" not in report:
-        raise ModelError("not a version 1 report of `val3check sim --report json` (docs/sim-report.md)")
+    arm. Raises ModelError for a report that is not a version 1 or 2 sim report."""
+    if not isinstance(report, dict) or report.get("version") not in (1, 2) or "end" not in report \
+            or "summary" not in report:
+        raise ModelError("not a version 1 or 2 report of `val3check sim --report json` (docs/sim-report.md)")
     app = report.get("application") or {}
     if roots is None:
         roots = [str(Path(app.get("path") or ".").parent)]
@@ -69,12 +70,13 @@ def model_from_sim_report(report: dict[str, Any], *, fail_on: str = "error", arm
     counts = {s: int(report["summary"].get(s, 0)) for s in ("error", "warning", "info")}
     threshold = SEVERITY_ORDER.get(fail_on)
     passed = threshold is None or not any(SEVERITY_ORDER[s] >= threshold and counts[s] for s in counts)
-    limitations = ["The sim report does not record what each task was doing over time (version 1): no task timeline."]
+    limitations = ["The sim report does not record what each task was doing over time: no task timeline."]
     robot = report.get("robot")
     scene = None
     if robot:
-        limitations.append(f"The arm does not move in this version of the simulator: no trajectory and no motion table; "
-                           f"the 3D view shows {robot['name']} at its initial joint position.")
+        limitations.append(f"This page does not show the arm's motion yet (the motion table and the trajectory of the "
+                           f"sim report, version 2, are not drawn): the 3D view shows {robot['name']} at its initial "
+                           f"joint position.")
         from ...robot import load_robot
         from .arm import arm_chain
 
