@@ -18,7 +18,9 @@ from .structures import UNKNOWN, Code, CompileError, VariableArg
 
 # Functions whose value changes with time alone: a wait on them cannot be skipped over by
 # jumping to the next event (the clock is stepped instead).
-TIME_DEPENDENT = frozenset({"clock", "getdate", "watch"})
+# The arm's position and progress change continuously while it moves (chapter 10): a wait on
+# `getMoveId() >= 15.8` is evaluated every cycle, as on the controller.
+TIME_DEPENDENT = frozenset({"clock", "getdate", "watch", "getmoveid", "herej", "here", "getspeed", "issettled"})
 
 # Instructions the compiler writes itself (registered as inline by their chapter module).
 INLINE_FORMS = {
