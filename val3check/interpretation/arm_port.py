@@ -46,6 +46,12 @@ class Arm(Protocol):
     def has_model(self) -> bool: ...
 
     @property
+    def type_family(self) -> str:
+        """ "Rx" (six-axis RX/TX arms, and without an arm model) or "Rs" (SCARA RS/TS arms): the
+        fields of joint and config values (9.7.2); a value of the other family is error 81."""
+        ...
+
+    @property
     def axes(self) -> int: ...
 
     @property

@@ -32,6 +32,7 @@ class Cell:
         self.pending: list[tuple[Any, str]] = []
         self.budget = None  # memory_budget.MemoryBudget: containers are priced before they are built
         self.nesting = 0  # user-type values being built inside each other
+        self.arm_family = "Rx"  # "Rs" on a SCARA arm: joint values j1..j4, config the shoulder only
 
     def io(self, kind: str, link: str) -> IOPoint:
         if not link:

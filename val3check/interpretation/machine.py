@@ -73,6 +73,8 @@ class Machine:
         self.wall_start = _time.monotonic()  # --max-wall covers loading and compiling too
         self.cell = Cell()
         self.cell.budget = MemoryBudget(self.budgets.max_memory_mb, clock=self._wall_check)
+        # joint and config values have the fields of the arm's family (9.7.2; RX/TX without a model)
+        self.cell.arm_family = getattr(arm, "type_family", "Rx") or "Rx"
         self.controller = Controller()
         self.user_page = UserPage()
         self.recorder = Recorder(self.budgets.max_transcript, self.budgets.max_io_log, self._record_full)

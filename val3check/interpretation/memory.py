@@ -17,14 +17,14 @@ from ..geometry.frames import Frame, Tool
 from ..geometry.points import Point
 from ..geometry.trsf import Trsf
 from ..loading.model import Application, Container, Data, Value, Workspace
-from ..loading.types import DEFAULTS, base_type, is_builtin
+from ..loading.types import DEFAULTS, arm_family, base_type, is_builtin
 from .memory_budget import UNKNOWN_BYTES, VALUE_BYTES, MemoryBudgetExceeded
 
 MAX_TYPE_NESTING = 64  # user types inside user types (real ones: 2 or 3)
 TOO_MUCH = 1e15  # bytes: the price of what cannot be built
 from .values import (
     ENUM_SPELLING,
-    JOINT_FIELDS,
+    FAMILY_FIELDS,
     Arr,
     Coll,
     IOPoint,
@@ -200,7 +200,7 @@ class TypeSpace:
         if b == "screen":
             return Screen()
         if b in DEFAULTS:
-            v = self.from_fields(b, dict(DEFAULTS[b]), {}, name, local)
+            v = self.from_fields(t, {} if b == "joint" else dict(DEFAULTS[b]), {}, name, local)
             if b in ("frame", "tool", "point") and (not local if linked is None else linked):
                 v.ref = self.cell.flange if b == "tool" else self.cell.world
             return v
@@ -239,12 +239,12 @@ class TypeSpace:
                         otime=_num(fields, "otime"), ctime=_num(fields, "ctime"), name=name, local=local)
         if b == "point":
             p = Point(_trsf(fields), (), None, name=name, local=local)
-            p.config = self._config(fields)
+            p.config = self._config(fields, self.family(t))
             return p
         if b == "config":
-            return self._config(fields)
+            return self._config(fields, self.family(t))
         if b == "joint":
-            keys = [k for k in fields if k[:1] == "j" and k[1:].isdigit()] or list(JOINT_FIELDS)
+            keys = [k for k in fields if k[:1] == "j" and k[1:].isdigit()] or list(FAMILY_FIELDS[self.family(t)]["joint"])
             return {k: _num(fields, k) for k in sorted(keys, key=lambda s: int(s[1:]))}
         if b == "mdesc":
             return {f: _enum(fields.get(f), d) if type(d) is str else _num(fields, f, d)
@@ -263,9 +263,15 @@ class TypeSpace:
             self.cell.nesting -= 1
         return out
 
+    def family(self, t: str) -> str:
+        """The arm family of a value of type `t`: its own (`pointRs`, `jointRx`), or the arm
+        of the run's (`point`, `joint`: RX/TX without an arm model)."""
+        return arm_family(t) or getattr(self.cell, "arm_family", "Rx")
+
     @staticmethod
-    def _config(fields: dict) -> dict:
-        return {f: _enum(fields.get(f), d) for f, d in DEFAULTS["config"].items()}
+    def _config(fields: dict, family: str = "Rx") -> dict:
+        keep = FAMILY_FIELDS[family]["config"]
+        return {f: _enum(fields.get(f), d) for f, d in DEFAULTS["config"].items() if f in keep}
 
     def value_of(self, t: str, v: Value, name: str = "", in_user: bool = False, father: bool = True,
                  local: bool = False) -> Any:
@@ -287,9 +293,10 @@ class TypeSpace:
         user-type field, the type application's values are the defaults (7.1)."""
         shape = shape or data
         t = base_type(shape.type)
+        vt = shape.type if arm_family(shape.type) else t  # `pointRs`: the values of its arm family
         dname = data.name
         if shape.container is Container.COLLECTION:
-            return Coll(t, {v.key: self.value_of(t, v, f"{dname}[{v.key}]", in_user, True, local) for v in data.values},
+            return Coll(t, {v.key: self.value_of(vt, v, f"{dname}[{v.key}]", in_user, True, local) for v in data.values},
                         local)
         dims = tuple(max(1, int(s)) for s in (shape.sizes or (1,))) if data is shape else tuple(
             max(1, int(s)) for s in (data.sizes or shape.sizes or (1,)))
@@ -313,11 +320,11 @@ class TypeSpace:
             name = dname if n == 1 else f"{dname}[{i}]"
             src = given.get(i)
             if src is not None:
-                values.append(self.value_of(t, src, name, in_user, True, local))
+                values.append(self.value_of(vt, src, name, in_user, True, local))
             elif i in defaults:  # the type application's value: its fatherId is not ours
-                values.append(self.value_of(t, defaults[i], name, in_user, False, local))
+                values.append(self.value_of(vt, defaults[i], name, in_user, False, local))
             else:
-                values.append(self.default(t, local, name, not (in_user or local)))
+                values.append(self.default(vt, local, name, not (in_user or local)))
         return Arr(t, values, dims)
 
     def local_container(self, t: str, container: Container, sizes: tuple[int, ...], name: str = "") -> Arr | Coll:

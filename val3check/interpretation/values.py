@@ -31,7 +31,7 @@ from ..geometry.frames import Frame, Tool, copy_node
 from ..geometry.points import Point
 from ..geometry.trsf import Trsf
 from ..language.runtime_errors import Val3RuntimeError
-from ..language.types import load_types
+from ..language.types import load_families, load_types
 from ..loading.types import base_type
 
 MAX_CONTAINER = 9999  # 2.5.4: insert/append/resize limit a variable to 9999 values
@@ -52,6 +52,10 @@ FIELD_DEFAULTS: dict[str, dict[str, Any]] = {
     name: {f.name: f.default for f in bt.fields if f.default is not None}
     for name, bt in load_types().items() if bt.kind == "structured"}
 JOINT_FIELDS = tuple(STRUCT_FIELDS["joint"])
+# The fields of joint and config values on each arm family (types.toml [families]: RX/TX arms
+# j1..j6 and shoulder, elbow, wrist; RS/TS arms j1..j4 and shoulder, 9.7.2).
+FAMILY_FIELDS: dict[str, dict[str, tuple[str, ...]]] = {
+    name: {"joint": fam.joint_fields, "config": fam.config_fields} for name, fam in load_families().items()}
 ENUMS: dict[str, tuple[str, ...]] = {name: bt.values for name, bt in load_types().items() if bt.kind == "enum"}
 ENUM_CONSTANTS: dict[str, str] = {v.lower(): t for t, vs in ENUMS.items() for v in vs}
 ENUM_SPELLING: dict[str, str] = {v.lower(): v for vs in ENUMS.values() for v in vs}

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..language.types import load_types
+from ..language.types import load_families, load_types
 
 # Manual 2.3.2 (types simples) and 2.3.3 (types structurés). `trsf` is spelled `trs` in one
 # place of the French manual; `trsf` everywhere else and in files.
@@ -112,9 +112,23 @@ BOOL_FIELDS: frozenset[tuple[str, str]] = frozenset({("bool", "value")})
 
 
 def defaults(type_name: str) -> dict[str, Any]:
-    """A fresh dict of the fields of a built-in type with their defaults; {} for user types."""
+    """A fresh dict of the fields of a built-in type with their defaults; {} for user types.
+    A type of the RS/TS family (`jointRs`, `pointRs`, `configRs`) has the fields of that family
+    only: j1..j4, the shoulder (types.toml [families], 9.7.2)."""
     d = DEFAULTS.get(base_type(type_name))
-    return dict(d) if d is not None else {}
+    if d is None:
+        return {}
+    out = dict(d)
+    if arm_family(type_name) == "Rs":
+        fam = load_families()["Rs"]
+        base = base_type(type_name)
+        if base == "joint":
+            out = {k: v for k, v in out.items() if k in fam.joint_fields}
+        else:
+            for k in CONFIG_VALUES:
+                if k not in fam.config_fields:
+                    out.pop(k, None)
+    return out
 
 
 def field_key(type_name: str, field: str) -> str:

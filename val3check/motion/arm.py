@@ -96,6 +96,10 @@ class MovingArm:
         return self.model is not None
 
     @property
+    def type_family(self) -> str:
+        return getattr(self.model, "type_family", "Rx") if self.model is not None else "Rx"
+
+    @property
     def axes(self) -> int:
         return len(self.model.joint_limits)
 

@@ -15,6 +15,7 @@ from ...semantics import vtypes as vt
 from ..values import (
     ENUM_CONSTANTS,
     ENUM_SPELLING,
+    FAMILY_FIELDS,
     FIELD_DEFAULTS,
     OBJECT_TYPES,
     STRUCT_FIELDS,
@@ -332,6 +333,11 @@ class ExpressionCompiler:
             raise self.err(f"structured value {{...}} for type {want}", node)
         if len(node.fields) > len(order):
             raise self.err(f"too many fields for {b}", node)
+        if b in ("joint", "config"):
+            # one field per axis of the arm of the run, the shoulder only on RS/TS arms (9.7.2);
+            # a literal written with more keeps them (then error 81 where the arm uses it)
+            own = FAMILY_FIELDS[getattr(self.unit.machine.cell, "arm_family", "Rx")][b]
+            order = order[:max(len(own), len(node.fields))]
         parts = []
         codes = []
         defaults = FIELD_DEFAULTS[b]
