@@ -72,6 +72,7 @@ def build_parser() -> argparse.ArgumentParser:
     reach.add_argument("--format", choices=("text", "json"), default="text")
     reach.add_argument("-o", "--output", metavar="FILE", help="write the report to FILE instead of standard output")
     reach.add_argument("--disk-root", action="append", default=[], metavar="DIR", help="folder where Disk:// libraries are also searched (repeatable)")
+    reach.add_argument("--fail-on", choices=("error", "warning", "info", "never"), default="error", help="lowest finding severity that makes the exit code 1 (default: error; reach findings are warnings and infos, docs/motion.md)")
 
     robots = sub.add_parser("robots", help="list the arm models by family (reach, joint limits, speeds, assumptions) or show one")
     robots.add_argument("robot", nargs="?", metavar="ROBOT",
@@ -295,7 +296,7 @@ def _lint(args: argparse.Namespace) -> int:
 
 
 def _reach(args: argparse.Namespace) -> int:
-    """`val3check reach`: no run; 1 when a point or joint is out of reach or out of the limits."""
+    """`val3check reach`: no run; 1 when a finding is at or above --fail-on (as lint)."""
     from .loading import LoadOptions, load
     from .robot import RobotError, choose_robot
 
@@ -321,7 +322,10 @@ def _reach(args: argparse.Namespace) -> int:
     text = render_json(report) if args.format == "json" else render_text(report)
     if not _write(text, args.output):
         return EXIT_USAGE
-    return EXIT_FINDINGS if any(e.severity == "error" for e in report.entries) else EXIT_OK
+    if args.fail_on == "never":
+        return EXIT_OK
+    rank = {"info": 1, "warning": 2, "error": 3}
+    return EXIT_FINDINGS if any(rank[e.severity] >= rank[args.fail_on] for e in report.problems()) else EXIT_OK
 
 
 def _robots(args: argparse.Namespace) -> int:

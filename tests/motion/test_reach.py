@@ -27,7 +27,7 @@ def test_cell_points_resolved_through_their_frames():
     by = {(e.name, e.tool): e for e in r.entries}
     # pPlace[2] is in fPallet[1] (rz 180) in fCell: world (750, -500, 60), 900 mm away
     e = by[("pPlace[2]", "tGripper[0]")]
-    assert e.status == "unreachable" and e.severity == "error" and e.line == 27
+    assert e.status == "unreachable" and e.severity == "warning" and e.line == 27
     assert e.data["target_mm"] == [750.0, -500.0, 60.0]
     e = by[("pPick[1]", "tSuction[0]")]
     assert e.status == "limits" and e.data["axis"] == 5
@@ -70,7 +70,11 @@ def test_joints_outside_or_near_the_limits_and_points_near_a_singularity(tmp_pat
 
 def test_cli(tmp_path, capsys):
     out = tmp_path / "reach.json"
-    assert main(["reach", str(CELL), "--robot", "tx2-60", "--format", "json", "-o", str(out)]) == 1
+    # a point may be used with only some of the tools, or not at all: warnings, exit 0 by
+    # default, 1 with --fail-on warning (as lint)
+    assert main(["reach", str(CELL), "--robot", "tx2-60", "--format", "json", "-o", str(out)]) == 0
+    assert main(["reach", str(CELL), "--robot", "tx2-60", "--fail-on", "warning"]) == 1
+    assert main(["reach", str(CELL), "--robot", "tx2-60", "--fail-on", "never"]) == 0
     body = json.loads(out.read_text())
     assert body["version"] == 1 and body["robot"] == "TX2-60"
     assert {e["status"] for e in body["entries"]} == {"unreachable", "limits"}

@@ -10,7 +10,7 @@ import math
 import numpy as np
 import pytest
 
-from interpretation.simsupport import build, code_pos, codes, errors, gv, out, run_folder, sim
+from interpretation.simsupport import build, code_pos, codes, errors, gv, out, sim
 from val3check.cli import main
 from val3check.motion.kin import ArmKin
 from val3check.robot import load_robot

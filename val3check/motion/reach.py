@@ -36,8 +36,10 @@ from .kin import ArmKin
 INCH_MM = 25.4
 _FATHER = re.compile(r"^\s*([A-Za-z_]\w*)\s*(?:\[\s*([^\]]*?)\s*\])?\s*$")
 ORDER = {"unreachable": 0, "limits": 1, "config": 2, "unresolved": 3, "near-singularity": 4, "near-limit": 5, "ok": 6}
-SEVERITY = {"unreachable": "error", "limits": "error", "config": "error", "unresolved": "warning",
-            "near-singularity": "warning", "near-limit": "warning", "ok": "info"}
+# A point may be used with only some of the declared tools, or not at all: a static "unreachable"
+# is not certain to be a defect, so nothing here is an error (`sim` reports what a run does).
+SEVERITY = {"unreachable": "warning", "limits": "warning", "config": "warning", "unresolved": "warning",
+            "near-singularity": "info", "near-limit": "info", "ok": "info"}
 
 
 @dataclass
