@@ -214,7 +214,11 @@ def _sim(args: argparse.Namespace) -> int:
         return EXIT_USAGE
     errors = [d for d in outcome.result.diagnostics if d.severity is not None and d.severity >= Severity.ERROR]
     if errors:
-        sys.stderr.write(render("text", outcome.result))
+        from .result import LintResult
+
+        r = outcome.result  # only the errors that keep it from running, not every warning
+        sys.stderr.write(render("text", LintResult(errors, r.files, r.applications, r.rules, r.tool_version,
+                                                   r.quotable)))
         print(f"val3check sim: not run: the application has {len(errors)} error(s) (val3check lint); fix them first",
               file=sys.stderr)
         return EXIT_USAGE

@@ -232,9 +232,14 @@ end
     assert [t["name"] for t in data["tasks"]] == ["Example~", "t1", "~Example"]
 
 
-def test_cli_refuses_an_application_with_lint_errors(tmp_path, capsys):
-    folder = build(tmp_path, "begin\n  if true\nend\n")
+def test_cli_refuses_an_application_with_lint_errors_and_prints_only_them(tmp_path, capsys):
+    # a local never used (S001, a warning) and a syntax error in another program
+    folder = build(tmp_path, "begin\nend\n", locals_=["num l_nUnused"],
+                   programs={"other": {"code": "begin\n  if true\nend\n"}})
+    code, stdout, stderr = _run_cli(["lint", str(folder)], capsys)
+    assert "S001" in stdout and "F101" in stdout
     code, stdout, stderr = _run_cli(["sim", str(folder)], capsys)
+    assert code == 2 and "F101" in stderr and "S001" not in stderr
     assert code == 2
     assert "not run" in stderr and "F101" in stderr
 

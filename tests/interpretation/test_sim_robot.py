@@ -298,3 +298,34 @@ def test_no_robot_outside_a_controller_tree(tmp_path, capsys):
     assert data["robot"] is None
     d = data["diagnostics"][0]
     assert d["code"] == "R002" and "--robot" in d["message"]
+
+
+# ---- without an arm model (issue 11 item 14) ---------------------------------------------------------
+
+
+def test_idle_arm_instructions_need_no_model(tmp_path):
+    """resetMotion(), isEmpty(), autoConnectMove() at the top of start() act on an idle arm."""
+    r = sim(tmp_path, """begin
+  if isEmpty() == false
+    resetMotion()
+  endIf
+  resetMotion()
+  autoConnectMove(true)
+  bAuto = autoConnectMove()
+  bSettled = isSettled()
+  waitEndMove()
+  nId = getMoveId()
+  putln("ready")
+end
+""", globals_=["bool bAuto", "bool bSettled", "num nId"])
+    assert codes(r) == [] and out(r) == ["ready"] and r.end_reason == "ended"
+    assert gv(r, "bAuto") is True and gv(r, "bSettled") is True and gv(r, "nId") == 0
+
+
+@pytest.mark.parametrize("line", ["movej(jA, flange, mD)", "movel(pA, flange, mD)", "movec(pA, pA, flange, mD)"])
+def test_motion_without_a_model_says_how_to_name_the_arm(tmp_path, line):
+    r = sim(tmp_path, f"begin\n  putln(\"before\")\n  {line}\n  putln(\"after\")\nend\n",
+            globals_=["joint jA", "point pA", "mdesc mD"])
+    assert out(r) == ["before"] and codes(r) == ["R002"]
+    msg = r.diagnostics[0].message
+    assert line.split("(")[0] in msg and "--robot" in msg and "arm.cfx" in msg
