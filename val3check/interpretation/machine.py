@@ -181,7 +181,7 @@ class Machine:
         x, y, z, rx, ry, rz = Trsf.from_pose(root_pose(tool)).as_tuple()
         s = 1.0 if millimeter_unit else 25.4
         grip = getattr(tool.gripper, "link", "") or ""
-        where = self.where(task)
+        where = self.line_running()
         self.recorder.tool_events.append(ToolEvent(
             self.clock.time_of(task), task.name, action, tool.name or "", grip,
             (x * s, y * s, z * s, rx, ry, rz), where or (self.app.path, 0, 0, task.program)))
@@ -237,8 +237,11 @@ class Machine:
         task.errdetail = detail
         text = RUNTIME_CODES.get(code, "runtime error")
         extra = f" ({detail})" if detail and detail not in text else ""
-        # a motion instruction's error has the rule of its cause (R017 mdesc, R015 movec...)
-        self.add_diag(getattr(e, "rule", None) or "R001", f"error {code}: {text}{extra}", task, pos, code)
+        rule = getattr(e, "rule", None)
+        if rule:  # a motion instruction's error has the rule of its cause (R017 mdesc, R015 movec...)
+            self.add_diag(rule, f"error {code}: {detail}", task, pos, code)
+        else:
+            self.add_diag("R001", f"error {code}: {text}{extra}", task, pos, code)
 
     def library_failed(self, owner: Unit, alias: str, display: str, code: int, meaning: str, findings: list,
                        task: Task | None) -> None:
@@ -282,6 +285,22 @@ class Machine:
             if code is not None and frame is not None and code.co_filename in compiled:
                 yield compiled[code.co_filename], frame.f_lineno
             g = getattr(g, "gi_yieldfrom", None)
+
+    def line_running(self) -> tuple[str, int, int, str] | None:
+        """The file position of the VAL 3 line being executed now, for an instruction handler
+        (the innermost program on the Python stack; `where` only sees suspended tasks)."""
+        import sys
+
+        compiled = self.compiled
+        f = sys._getframe(1)
+        while f is not None:
+            c = compiled.get(f.f_code.co_filename)
+            if c is not None:
+                lc = c.pos.get(f.f_lineno)
+                if lc is not None:
+                    return (c.path, lc[0], lc[1], c.name)
+            f = f.f_back
+        return None
 
     def where(self, task: Task) -> tuple[str, int, int, str] | None:
         """The file position of the line a task is at (innermost VAL 3 program)."""

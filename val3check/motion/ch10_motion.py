@@ -52,7 +52,7 @@ def _matrix(pose) -> np.ndarray:
 
 
 def _source(task) -> Source:
-    w = task.machine.where(task)
+    w = task.machine.line_running()
     if w is None:
         return Source(task.machine.app.path, 0, 0, task.program, task.name)
     path, line, col, program = w
