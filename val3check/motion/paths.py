@@ -380,4 +380,4 @@ class Path:
         """Global s of every junction after s where the arm must stop (not smooth)."""
         i = max(bisect.bisect_right(self.offsets, s) - 1, 0)
         return [self.offsets[k] for k in range(i, len(self.spans))
-                if not self.spans[k].smooth and self.offsets[k] > s + 1e-12]
+                if not self.spans[k].smooth and self.offsets[k] > s + 1e-12 * max(1.0, abs(s))]

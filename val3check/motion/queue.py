@@ -43,7 +43,7 @@ from .findings import Finding, MotionError, Source
 from .kin import ArmKin
 from .mdesc import Limits, MDesc
 from .paths import BLEND_SHAPES, JointBlend, JointLine, JointSpline, Path, Span, tcp_rates
-from .timing import Grid, brake_stop, duration, lower_bound_time, topp, trapezoid
+from .timing import Grid, TimedProfile, brake_stop, duration, topp, trapezoid
 from .tracking import track
 from .trajectory import Profile, Trajectory
 
@@ -55,6 +55,8 @@ JOINT_EQ = 1e-6  # degrees: joint positions this close are the same position (9.
 # Commands recorded less than this apart while the arm starts from rest are timed together: in
 # that time the arm moves less than a micrometre, the same whichever way it is computed.
 MERGE_WINDOW = 0.001
+EXACT_REST = False
+TOPP_CACHE = 512  # time parameterisations remembered (`_topp`)
 MIN_GRID = 9  # gridpoints of the shortest piece of path given to toppra
 
 
@@ -129,6 +131,7 @@ class MotionQueue:
         self.stops_chosen = 0  # junctions where stopping at the via point was chosen (`_blend_pays`)
         self._trial = None  # the timing of the last blend trial, reused by the plan that follows
         self._fell = False  # the last time parameterisation fell back to the safe profile
+        self._topp_cache: dict = {}  # `_topp`
         self._samples: dict = {}  # samples of spans timed in trials, reused when the span is added
 
     # ---- recording ---------------------------------------------------------------------------
@@ -548,9 +551,8 @@ class MotionQueue:
         choose the blend's shape for speed; a blend of an awkward shape (very different leave
         and reach) can be slower than the stop it replaces, and then the arm stops at the via
         point instead. The blend is timed exactly (as the queue will time it, c closed at its
-        target); the stop gets a lower bound (each piece from rest to rest timed with the
-        loosest of its own limits, exact on straight joint lines), so the blend is kept only
-        when it is certainly no slower. By induction over the commands (docs/motion.md), a
+        target), and so is the stop (to the via point, then c alone from rest to rest); the
+        blend is kept when it is no slower. By induction over the commands (docs/motion.md), a
         chain recorded ahead of the arm is then never slower than the same commands unblended."""
         geom, lam_r, split = cand
         prof = self.profile
@@ -603,12 +605,10 @@ class MotionQueue:
             self._remember(sp)
         return c.rest_time
 
-    def _trial_duration(self, s0: float, v0: float, extra: list, lower_bound: bool = False):
+    def _trial_duration(self, s0: float, v0: float, extra: list):
         """How long the arm takes from path position s0 at speed v0 to the end of the path
         followed by the spans `extra` (not added to the path), timed as `_plan_from` times it,
-        and the pieces' profiles (s shifted to the path's positions). `lower_bound`: each piece
-        that is not a straight joint line gets the time of the loosest of its own limits (a
-        lower bound of its time-optimal profile, `timing.lower_bound`)."""
+        and the pieces' profiles (s shifted to the path's positions)."""
         path = self.path
         trial = Path(path.q_rest)
         shift = 0.0
@@ -623,20 +623,17 @@ class MotionQueue:
         total = 0.0
         pieces = []
         for b in trial.stops_after(a) + [trial.end]:
-            if b - a <= 1e-12:
+            if b - a <= _eps(b):
                 a = b
                 continue
             grid, owners = self._grid(a, b, trial)
-            if lower_bound and not _straight(grid, owners):
-                total += lower_bound_time(grid, v0)
-            else:
-                self._fell = False
-                s, sd = self._time(grid, owners, v0, report=False)
-                total += duration(s, sd)
-                if self._fell:  # not reused: the plan reports it (R019)
-                    pieces = None
-                if pieces is not None:
-                    pieces.append((s + shift, sd))
+            self._fell = False
+            s, sd = self._time(grid, owners, v0, report=False)
+            total += duration(s, sd)
+            if self._fell:  # not reused: the plan reports it (R019)
+                pieces = None
+            if pieces is not None:
+                pieces.append((s + shift, sd))
             a, v0 = b, 0.0
         return total, pieces
 
@@ -739,15 +736,22 @@ class MotionQueue:
         prof = self.profile
         prof.cut(t_r)
         s_r, sd_r = prof.s_end, prof.SD[-1]
-        if self.path.end - s_r <= 1e-12:
+        if self.path.end - s_r <= _eps(s_r):
             if sd_r > 0:  # numerically at the end: stop there
                 prof.SD[-1] = 0.0
             return
         trial, self._trial = self._trial, None
         if trial is not None and trial[0] == t_r and len(self.path.spans) >= len(trial[1]) and all(
-                _same_span(x, y) for x, y in zip(self.path.spans[-len(trial[1]):], trial[1])) and trial[2] and abs(trial[2][0][0][0] - s_r) <= 1e-12 and abs(trial[2][-1][0][-1] - self.path.end) <= 1e-9:
+                _same_span(x, y) for x, y in zip(self.path.spans[-len(trial[1]):], trial[1])) and trial[2] and abs(trial[2][0][0][0] - s_r) <= _eps(s_r) and abs(trial[2][-1][0][-1] - self.path.end) <= 1e-9 * max(
+                1.0, self.path.end):
             t_cur = max(t_r, prof.t_end)
-            for s_, sd_ in trial[2]:  # the blend trial timed exactly this (`_blend_pays`)
+            pieces = trial[2]
+            for i, (s_, sd_) in enumerate(pieces):  # the blend trial timed exactly this (`_blend_pays`)
+                s_ = s_.copy()
+                if i == 0:
+                    s_[0] = s_r
+                if i == len(pieces) - 1:
+                    s_[-1] = self.path.end  # exactly where the last command ends
                 prof.append(t_cur, s_, sd_)
                 t_cur = prof.t_end
             return
@@ -755,7 +759,7 @@ class MotionQueue:
         a, v0 = s_r, sd_r
         t_cur = max(t_r, prof.t_end)
         for b in stops:
-            if b - a <= 1e-12:
+            if b - a <= _eps(b):
                 a = b
                 continue
             grid, owners = self._grid(a, b)
@@ -875,7 +879,7 @@ class MotionQueue:
             if np.max(grid.pt) * V <= grid.tv[0] and np.max(grid.rt) * V <= grid.rv[0]:
                 ss, sd = trapezoid(float(s[-1] - s[0]), v0, V, A, D)
                 return ss + s[0], sd
-        res = topp(grid, v0)
+        res = self._topp(grid, v0)
         self._fell = res.fallback
         if res.fallback and report:
             self.fallbacks += 1
@@ -886,6 +890,27 @@ class MotionQueue:
                     F.FALLBACK, "the time-optimal parameterisation of this motion failed: a slower safe profile "
                     "is used (its times are an upper bound)", c.source, c.recorded, move_id=c.id))
         return res.s, res.sd
+
+    def _topp(self, grid: Grid, v0: float):
+        """timing.topp, remembered: a cyclic program times the same pieces of path again and
+        again (the same points, from rest), and an identical problem has an identical answer."""
+        s0 = grid.s[0]
+        key = (v0, (grid.s - s0).tobytes(), grid.q1.tobytes(), grid.q2.tobytes(), grid.pt.tobytes(),
+               grid.rt.tobytes(), grid.V.tobytes(), grid.A.tobytes(), grid.D.tobytes(), grid.tv.tobytes(),
+               grid.rv.tobytes())
+        hit = self._topp_cache.get(key)
+        if hit is not None:
+            s_rel, sd, fallback = hit
+            s = s_rel + s0
+            if len(s) == len(grid.s):  # toppra's answer is on the grid: exactly its positions
+                s = grid.s.copy()
+            s[0], s[-1] = grid.s[0], grid.s[-1]  # the ends exactly (a command ends there)
+            return TimedProfile(s, sd.copy(), fallback)
+        res = topp(grid, v0)
+        if len(self._topp_cache) >= TOPP_CACHE:
+            self._topp_cache.pop(next(iter(self._topp_cache)))
+        self._topp_cache[key] = (res.s - s0, res.sd.copy(), res.fallback)
+        return res
 
     # ---- time passes --------------------------------------------------------------------------------
 
@@ -1160,6 +1185,11 @@ class MotionQueue:
             data={"singularity": sp.which, "distance": round(sp.distance, 4), "along_mm": round(at, 3),
                   "axis": sp.axis + 1, "needed_deg_s": round(sp.needed, 3), "limit_deg_s": round(sp.nominal, 3),
                   "tcp_cap_mm_s": round(sp.cap, 3), "reference_mm_s": round(sp.reference, 3)}))
+
+
+def _eps(s: float) -> float:
+    """A tolerance on path positions: s grows over a run (and so do its rounding errors)."""
+    return 1e-12 * max(1.0, abs(s))
 
 
 def _same_span(x: Span, y: Span) -> bool:

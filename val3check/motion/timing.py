@@ -157,38 +157,6 @@ def duration(s: np.ndarray, sd: np.ndarray) -> float:
     return float(dt.sum())
 
 
-def lower_bound_time(grid: Grid, sd0: float = 0.0) -> float:
-    """A lower bound of the time-optimal profile's duration along `grid` from speed sd0 to rest:
-    the exact trapezoid with the loosest of the grid's bounds (the greatest path speed of the
-    velocity limit curve, the greatest path acceleration and deceleration any gridpoint allows
-    at any speed below it). Every profile the time parameterisation can give obeys these
-    looser bounds, so it takes at least this long."""
-    S = float(grid.s[-1] - grid.s[0])
-    if S <= 0.0:
-        return 0.0
-    xmax = grid.xmax()
-    up, lo = grid.accel_bounds()
-    a = grid.q1
-    moving = np.abs(a) > 1e-12
-    safe = np.where(moving, a, 1.0)
-    hi_best = np.zeros(len(grid))
-    lo_best = np.zeros(len(grid))
-    for x in (np.zeros(len(grid)), np.minimum(xmax, XMAX)):  # each bound is linear in ṡ²: ends
-        c = grid.q2 * x[:, None]
-        hi = (up - c) / safe
-        low = (-lo - c) / safe
-        hi, low = np.where(a < 0, low, hi), np.where(a < 0, hi, low)
-        hi_best = np.maximum(hi_best, np.where(moving, hi, np.inf).min(axis=1))
-        lo_best = np.minimum(lo_best, np.where(moving, low, -np.inf).max(axis=1))
-    V = math.sqrt(float(xmax.max()))
-    A = float(hi_best.max())
-    D = float(-lo_best.min())
-    if not (V > 0 and A > 0 and D > 0) or not all(map(math.isfinite, (V, A, D))):
-        return 0.0
-    s, sd = trapezoid(S, min(sd0, V), V, A, D)
-    return duration(s, sd)
-
-
 # ---- toppra ---------------------------------------------------------------------------------------
 
 _toppra = None

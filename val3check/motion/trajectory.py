@@ -111,7 +111,7 @@ class Profile:
     def time_at(self, s_target: float) -> float | None:
         """The first time at which s reaches s_target; None when the profile never gets there."""
         S = self.S
-        k = bisect.bisect_left(S, s_target - 1e-12)
+        k = bisect.bisect_left(S, s_target - 1e-12 * max(1.0, abs(s_target)))  # s grows over a run
         if k >= len(S):
             return None
         if k == 0:

@@ -58,6 +58,19 @@ def _matrix_pose(m) -> list[float] | None:
             round(rx, 4), round(ry, 4), round(rz, 4)]
 
 
+class Raw(str):
+    """JSON text written as it is (rows of the trajectory, formatted at once)."""
+
+
+def _rows(a, digits: int) -> list[Raw]:
+    """Each row of a 2-D array as a JSON array of numbers rounded to `digits` decimals (plain
+    decimals: with at most 4 decimals Python writes no exponent for them)."""
+    import numpy as np
+
+    r = np.round(np.asarray(a, dtype=float), digits) + 0.0  # + 0.0: no -0.0
+    return [Raw("[" + ", ".join(map(repr, row)) + "]") for row in r.tolist()]
+
+
 def _motion(run: Any) -> dict | None:
     m = run.result.motion
     if m is None:
@@ -91,8 +104,7 @@ def _motion(run: Any) -> dict | None:
     segments = []
     for k0, q, v in m.trajectory.segments(m.end_s, TICK_S):
         segments.append({"start": round(k0 * TICK_S, 6), "first_tick": k0,
-                         "positions": [[round(float(x), 4) for x in row] for row in q],
-                         "velocities": [[round(float(x), 3) for x in row] for row in v]})
+                         "positions": _rows(q, 4), "velocities": _rows(v, 3)})
     model = m.model
     return {
         "summary": {
@@ -200,6 +212,8 @@ def number(x: float) -> str:
 
 
 def _scalar(v: Any) -> str:
+    if type(v) is Raw:
+        return v
     if v is None:
         return "null"
     if v is True:
@@ -215,7 +229,7 @@ def _scalar(v: Any) -> str:
 
 def _flat(v: Any) -> bool:
     return isinstance(v, list) and all(not isinstance(x, (list, dict)) for x in v) and all(
-        not isinstance(x, str) for x in v)
+        not isinstance(x, str) or type(x) is Raw for x in v) and not (v and type(v[0]) is Raw)
 
 
 def dumps(obj: Any, indent: int = 0) -> str:
