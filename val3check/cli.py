@@ -53,6 +53,7 @@ def build_parser() -> argparse.ArgumentParser:
     sim = sub.add_parser("sim", help="run an application in the virtual controller (docs/sim.md)")
     sim.add_argument("app", metavar="APP", help="the application: its folder or .pjx")
     sim.add_argument("--duration", type=float, default=60.0, metavar="S", help="simulated seconds to run at most (default: 60)")
+    sim.add_argument("--cycles", type=int, metavar="N", help="end the run when the arm starts its cycle N + 1 (the loop of the task that moves it; docs/motion.md)")
     sim.add_argument("--report", choices=SIM_FORMATS, default="text", help="report format (default: text)")
     sim.add_argument("-o", "--output", metavar="FILE", help="write the report to FILE instead of standard output")
     sim.add_argument("--scenario", metavar="FILE", help="I/O scenario (TOML, docs/scenario.md)")
@@ -182,6 +183,9 @@ def _sim(args: argparse.Namespace) -> int:
         print(f"val3check: error: --duration and --max-wall must be positive numbers of seconds (at most {MAX_DURATION:g}),"
               " --max-lines a positive number", file=sys.stderr)
         return EXIT_USAGE
+    if args.cycles is not None and args.cycles < 1:
+        print("val3check: error: --cycles must be a positive number of cycles", file=sys.stderr)
+        return EXIT_USAGE
     if not 0 < args.max_memory <= 1 << 20:
         print("val3check: error: --max-memory must be a positive number of MB", file=sys.stderr)
         return EXIT_USAGE
@@ -245,7 +249,8 @@ def _sim(args: argparse.Namespace) -> int:
         if args.scenario:
             scenario = load_scenario(args.scenario)
         options = SimOptions(duration=args.duration, max_wall=args.max_wall, max_lines=args.max_lines,
-                             max_memory_mb=args.max_memory, disk_roots=list(settings.disk_roots), robot=robot)
+                             max_memory_mb=args.max_memory, disk_roots=list(settings.disk_roots), robot=robot,
+                             cycles=args.cycles)
         result = simulate(outcome.workspace, app, options, scenario)
     except ScenarioError as exc:
         print(f"val3check sim: bad scenario: {_shown(str(exc))}", file=sys.stderr)
