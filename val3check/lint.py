@@ -30,6 +30,8 @@ class LintRun:
     result: LintResult
     workspace: Workspace
     unreadable: bool  # nothing could be read at all: exit code 2
+    # every path named is excluded (--force-exclude), or holds only excluded files: exit code 0
+    nothing_to_check: bool = False
 
 
 def display_path(path: str) -> str:
@@ -86,11 +88,46 @@ def run(paths: list[str], settings: Settings) -> LintRun:
             gc.enable()
 
 
+def _given_and_exclusion(paths: list[str], settings: Settings):  # noqa: ANN202
+    """The paths to load and the exclusion that applies below them (val3check.exclusion): with
+    force-exclude, the named paths that match are dropped; without, they are checked and the
+    patterns that match them do not apply."""
+    exclusion = settings.exclusion()
+    if not settings.force_exclude:
+        return list(paths), [], exclusion.without_patterns_matching(list(paths))
+    kept, skipped = [], []
+    for p in paths:
+        (skipped if os.path.lexists(p) and exclusion.matches(p, os.path.isdir(p)) else kept).append(p)
+    return kept, skipped, exclusion
+
+
+@dataclass(slots=True)
+class Discovery:
+    """What a run checks, before any program is parsed (`--show-files`, `--show-settings`)."""
+
+    workspace: Workspace
+    targets: list[Application]  # the applications checked
+    found: list[Diagnostic]  # the loader's findings
+    given: list[str]  # the paths named, less those force-excluded
+    skipped: list[str]  # the paths named that force-exclude dropped
+    skip: object  # skip(path, is_folder) -> bool, or None: the exclusion that applies
+
+
+def discover(paths: list[str], settings: Settings) -> Discovery:
+    given, skipped, exclusion = _given_and_exclusion(paths, settings)
+    skip = exclusion.matches if exclusion.patterns else None
+    workspace, found = load(given, LoadOptions(disk_roots=list(settings.disk_roots), max_file_size=settings.max_file_size,
+                                               skip=skip))
+    targets = [workspace.apps[key] for key in workspace.targets]
+    if skip is not None:
+        targets = [app for app in targets if not skip(app.path, app.layout == "pgx-only")]
+    return Discovery(workspace, targets, found, given, skipped, skip)
+
+
 def _run(paths: list[str], settings: Settings) -> LintRun:
     rules = catalogue()
-    workspace, found = load(paths, LoadOptions(disk_roots=list(settings.disk_roots), max_file_size=settings.max_file_size))
-    targets = [workspace.apps[key] for key in workspace.targets]
-    targets = [app for app in targets if not settings.excluded(app.path)]
+    found_ = discover(paths, settings)
+    workspace, targets, found, skip = found_.workspace, found_.targets, found_.found, found_.skip
 
     suppressed: dict[tuple[str, int], set[str]] = {}
     files: set[str] = set()
@@ -103,7 +140,7 @@ def _run(paths: list[str], settings: Settings) -> LintRun:
 
     kept: dict[tuple, Diagnostic] = {}
     for d in found:
-        if not settings.enabled(d.code, d.path) or (settings.exclude and settings.excluded(d.path)):
+        if not settings.enabled(d.code, d.path) or (skip is not None and skip(d.path, False)):
             continue
         if suppression.is_suppressed(d.code, d.path, d.line, suppressed):
             continue
@@ -129,9 +166,26 @@ def _run(paths: list[str], settings: Settings) -> LintRun:
         rules=rules,
         tool_version=__version__,
         quotable={display_path(f): f for f in sorted(workspace.quotable)},
+        fail_on=settings.fail_on,
+        root=repository_base(paths, settings),
     )
     missing_arg = any(not os.path.exists(p) for p in paths)
-    return LintRun(result=result, workspace=workspace, unreadable=missing_arg or not targets)
+    named = {os.path.abspath(p) for p in found_.given}
+    # nothing left once the exclusions applied, and nothing wrong with the paths named
+    nothing = (not targets and bool(found_.skipped or workspace.excluded)
+               and not any(d.path in named for d in found))
+    return LintRun(result=result, workspace=workspace, unreadable=missing_arg or (not targets and not nothing),
+                   nothing_to_check=nothing and not missing_arg)
+
+
+def repository_base(paths: list[str], settings: Settings) -> str:
+    """What the CI formats make paths relative to: the git top level of the first path named,
+    else the configuration's folder, else the current folder."""
+    from .confine import git_top_level
+
+    first = os.path.abspath(paths[0] if paths else ".")
+    folder = first if os.path.isdir(first) else os.path.dirname(first)
+    return git_top_level(folder) or settings.root or os.getcwd()
 
 
 def exit_code(run_: LintRun, fail_on: str) -> int:
