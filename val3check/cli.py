@@ -74,6 +74,8 @@ def build_parser() -> argparse.ArgumentParser:
     _add_disk_root(lint)
     _add_config(lint)
     lint.add_argument("--statistics", action="store_true", help="show counts per rule instead of each finding")
+    lint.add_argument("--baseline", metavar="FILE", help="do not report the findings this baseline file records (see --update-baseline)")
+    lint.add_argument("--update-baseline", action="store_true", help="record every finding of this run in the --baseline file, and exit 0")
     lint.add_argument("--show-settings", action="store_true", help="show the configuration, the applications and the rules of this run, and exit")
     lint.add_argument("--show-files", action="store_true", help="list the files that would be checked, and exit")
     lint.add_argument("--color", choices=("auto", "always", "never"), default="auto",
@@ -351,7 +353,19 @@ def _lint(args: argparse.Namespace) -> int:
     from .lint import exit_code, run
     from .reporting import render
 
-    outcome = run(paths, settings)
+    baseline_path = os.path.abspath(args.baseline) if args.baseline else settings.baseline
+    if args.update_baseline:
+        return _update_baseline(paths, settings, baseline_path, args.quiet)
+    baseline = None
+    if baseline_path:
+        from .baseline import BaselineError, read_baseline
+
+        try:
+            baseline = read_baseline(baseline_path)
+        except BaselineError as exc:
+            print(f"val3check: error: {_shown(str(exc))}", file=sys.stderr)
+            return EXIT_USAGE
+    outcome = run(paths, settings, baseline=baseline)
     code = exit_code(outcome, settings.fail_on)
     if args.exit_zero and code == EXIT_FINDINGS:
         code = EXIT_OK
@@ -364,6 +378,32 @@ def _lint(args: argparse.Namespace) -> int:
         print("val3check: nothing to check: the paths given are excluded (exclude, extend-exclude, --force-exclude)",
               file=sys.stderr)
     return code
+
+
+def _update_baseline(paths: list[str], settings, baseline_path: str, quiet: bool) -> int:  # noqa: ANN001
+    from .baseline import Baseline, BaselineError
+    from .lint import display_path, run
+
+    if not baseline_path:
+        print("val3check: error: --update-baseline needs --baseline FILE (or `baseline` in the configuration)",
+              file=sys.stderr)
+        return EXIT_USAGE
+    outcome = run(paths, settings)
+    if outcome.unreadable:
+        from .reporting import render
+
+        sys.stdout.write(render("text", outcome.result))
+        print("val3check: error: the baseline was not written: the input could not be read", file=sys.stderr)
+        return EXIT_USAGE
+    try:
+        Baseline.of(baseline_path, outcome.findings).write()
+    except BaselineError as exc:
+        print(f"val3check: error: {_shown(str(exc))}", file=sys.stderr)
+        return EXIT_USAGE
+    if not quiet:
+        n = len(outcome.findings)
+        print(f"val3check: recorded {n} finding{'s' if n != 1 else ''} in {display_path(baseline_path)}", file=sys.stderr)
+    return EXIT_OK
 
 
 def _reach(args: argparse.Namespace) -> int:

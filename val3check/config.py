@@ -13,6 +13,7 @@ options override it. Keys (kebab-case, as ruff):
     exclude = ["build/"]            # gitignore patterns of what is skipped (replaces the default,
                                     # ["**/usr/templates/"]); extend-exclude adds to it
     force-exclude = true            # also skip the paths named on the command line that match
+    baseline = "val3check-baseline.json"   # findings recorded there are not reported (val3check.baseline)
     max-file-size = 16777216        # bytes; larger files are reported (F002) and skipped
     target = "CS9"                  # controller and/or VAL 3 version: "CS9", "s8.13", "CS8 s7.11"
                                     # (default: each application's project file version)
@@ -53,6 +54,7 @@ class Settings:
     exclude: list[str] = field(default_factory=lambda: list(DEFAULT_EXCLUDE))  # gitignore patterns
     extend_exclude: list[str] = field(default_factory=list)
     force_exclude: bool = False  # the paths named on the command line are excluded too
+    baseline: str = ""  # the baseline file (absolute), "" for none
     max_file_size: int = 16 * 1024 * 1024
     target: TargetSpec | None = None  # None: each application's project file version
     root: str = ""  # folder of the configuration file, "" when none was found
@@ -196,7 +198,7 @@ def _str_list(value, key: str, path: str) -> list[str]:
 
 KNOWN_KEYS = {
     "select", "extend-select", "ignore", "per-file-ignores", "severity", "fail-on", "disk-roots", "exclude", "max-file-size",
-    "target", "extend-exclude", "force-exclude",
+    "target", "extend-exclude", "force-exclude", "baseline",
 }
 
 
@@ -241,6 +243,10 @@ def load_settings(path: str) -> Settings:
     if not isinstance(force, bool):
         raise ConfigError(f"{path}: 'force-exclude' must be true or false")
     s.force_exclude = force
+    baseline = data.get("baseline", "")
+    if not isinstance(baseline, str):
+        raise ConfigError(f"{path}: 'baseline' must be the path of a file")
+    s.baseline = os.path.normpath(os.path.join(root, baseline)) if baseline else ""
     size = data.get("max-file-size", s.max_file_size)
     if not isinstance(size, int) or isinstance(size, bool) or not 0 < size <= MAX_FILE_SIZE_LIMIT:
         raise ConfigError(f"{path}: 'max-file-size' must be a number of bytes from 1 to {MAX_FILE_SIZE_LIMIT}")

@@ -34,6 +34,9 @@ class LoadOptions:
     # skip(path, is_folder): the configuration excludes it (val3check.exclusion); a folder walk
     # neither enters such a folder nor reads such a file
     skip: Callable[[str, bool], bool] | None = None
+    # absolute path -> unsaved text to read instead of the file on disk (an editor's buffer,
+    # `--stdin-filename`); read through the same gate (val3check.confine)
+    overlay: dict[str, bytes] | None = None
 
 
 def _key(path: str) -> str:
@@ -101,7 +104,7 @@ class Loader:
     # -- reading ------------------------------------------------------------------------------
 
     def _read(self, path: str) -> Node | None:
-        res = read_xml(path, self.options.max_file_size, self.roots)
+        res = read_xml(path, self.options.max_file_size, self.roots, self.options.overlay)
         self.diags.extend(res.diagnostics)
         self.lines_read += res.lines
         self.bytes_read += res.size
@@ -313,7 +316,7 @@ class Loader:
 
     def _project_listing(self, pjx: str, target: str) -> bool:
         """Does this project list `target` among its programs or data? (no diagnostics)"""
-        res = read_xml(pjx, self.options.max_file_size, self.roots)
+        res = read_xml(pjx, self.options.max_file_size, self.roots, self.options.overlay)
         if res.root is None or rd.classify(res.root) is None or rd.classify(res.root)[0] != "project":
             return False
         pf = rd.read_project(res.root, rd.Sink(pjx))
@@ -362,7 +365,7 @@ class Loader:
             self._add_member_file(path, ext)
             return
         # Any other name: look at the content.
-        res = read_xml(path, self.options.max_file_size, self.roots)
+        res = read_xml(path, self.options.max_file_size, self.roots, self.options.overlay)
         if res.root is None:
             if any(d.code in ("F001", "F002", "F014") for d in res.diagnostics):
                 self.diags.extend(res.diagnostics)  # not read at all: say why

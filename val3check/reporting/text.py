@@ -164,6 +164,8 @@ def _statistics(result: "LintResult", style: _Style) -> list[str]:
 
 def summary(result: "LintResult") -> str:
     checked = plural(len(result.files), "file") + " checked"
+    if result.baselined:
+        checked += f"; {plural(result.baselined, 'finding')} of the baseline not shown"
     if not result.diagnostics:
         return f"All checks passed ({checked})."
     counts = severity_counts(result)
