@@ -218,3 +218,23 @@ def test_sim_accepts_the_one_format_flag_and_defaults_to_the_current_folder(tmp_
         r = val3check("sim", "--duration", "1", flag, "json", cwd=folder)
         assert r.returncode == 0, r.stderr
         assert json.loads(r.stdout)["application"]["name"] == "Example"
+
+
+def test_stdin_filename_checks_the_unsaved_text_in_its_application(tmp_path):
+    from val3check.testing import program_file
+
+    folder = write_app(tmp_path, GOOD, globals_=["num nX"], programs={"pick": {"code": "begin\n  if true\nend\n"}})
+    on_disk = (folder / "start.pgx").read_bytes()
+    edited = program_file("start", "begin\n  nX = 1\n  nY = 2\n  call pick()\nend\n")
+    r = val3check("lint", "--stdin-filename", "Example/start.pgx", "--output-format", "concise", cwd=tmp_path,
+                  stdin=edited)
+    assert r.returncode == 1, r.stdout + r.stderr
+    lines = [x for x in r.stdout.splitlines() if ": " in x and "[" in x]
+    # nY is not a global of the application; pick.pgx's own syntax error is not this file's
+    assert len(lines) == 1 and lines[0].startswith("Example/start.pgx:6:3: N001 [error]"), r.stdout
+    assert "(1 file checked)" in r.stdout
+    assert (folder / "start.pgx").read_bytes() == on_disk  # nothing written
+    r = val3check("lint", "--stdin-filename", "Example/start.pgx", cwd=tmp_path, stdin=program_file("start", GOOD))
+    assert r.returncode == 0 and "All checks passed (1 file checked)" in r.stdout
+    r = val3check("lint", "--stdin-filename", "Example/new.pgx", cwd=tmp_path, stdin=edited)
+    assert r.returncode == 2 and "no such file" in r.stderr

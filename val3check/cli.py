@@ -78,6 +78,8 @@ def build_parser() -> argparse.ArgumentParser:
     lint.add_argument("--update-baseline", action="store_true", help="record every finding of this run in the --baseline file, and exit 0")
     lint.add_argument("--show-settings", action="store_true", help="show the configuration, the applications and the rules of this run, and exit")
     lint.add_argument("--show-files", action="store_true", help="list the files that would be checked, and exit")
+    lint.add_argument("--stdin-filename", metavar="PATH", help="check the text read from standard input as if it were the file PATH, "
+                      "in the context of its application (for editors); only its findings are reported")
     lint.add_argument("--color", choices=("auto", "always", "never"), default="auto",
                       help="colour the text output (auto: on a terminal; NO_COLOR and FORCE_COLOR are honoured)")
 
@@ -334,6 +336,8 @@ def _lint_settings(args: argparse.Namespace, paths: list[str]):  # noqa: ANN202
 
 
 def _lint(args: argparse.Namespace) -> int:
+    if args.stdin_filename and not args.paths:
+        args.paths = [args.stdin_filename]
     paths = _targets(args.paths)
     settings = _lint_settings(args, paths)
     if settings is None:
@@ -365,7 +369,15 @@ def _lint(args: argparse.Namespace) -> int:
         except BaselineError as exc:
             print(f"val3check: error: {_shown(str(exc))}", file=sys.stderr)
             return EXIT_USAGE
-    outcome = run(paths, settings, baseline=baseline)
+    overlay = only = None
+    if args.stdin_filename:
+        only = os.path.abspath(args.stdin_filename)
+        if not os.path.isfile(only):
+            print(f"val3check: error: --stdin-filename {_shown(args.stdin_filename)}: no such file; the file must exist "
+                  "(its application is read from the disk, its text from standard input)", file=sys.stderr)
+            return EXIT_USAGE
+        overlay = {only: sys.stdin.buffer.read(settings.max_file_size + 1)}
+    outcome = run(paths, settings, baseline=baseline, overlay=overlay, only=only)
     code = exit_code(outcome, settings.fail_on)
     if args.exit_zero and code == EXIT_FINDINGS:
         code = EXIT_OK
