@@ -20,7 +20,7 @@ LAYER_OF = {
     "parsing": "parsing",
     "semantics": "semantics",
     "records": "base", "confine": "base",
-    "lint": "lint", "config": "lint", "suppression": "lint", "result": "lint", "exclusion": "lint", "baseline": "lint",
+    "lint": "lint", "config": "lint", "suppression": "lint", "result": "lint", "exclusion": "lint", "baseline": "lint", "fixes": "lint",
     "geometry": "geometry",
     "robot": "robot",
     "interpretation": "interpretation",

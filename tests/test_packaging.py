@@ -17,7 +17,7 @@ SIM_STACK = {"pin", "pinocchio", "numpy", "scipy", "toppra", "python-fcl", "fcl"
 # the packages of the lint layers (tests/test_architecture.py LINT_PATH)
 LINT_PACKAGES = ("language", "loading", "parsing", "semantics", "rules")
 LINT_MODULES = ("__init__.py", "__main__.py", "cli.py", "diagnostics.py", "positions.py", "resources.py", "lint.py",
-                "config.py", "exclusion.py", "suppression.py", "baseline.py", "result.py")
+                "config.py", "exclusion.py", "suppression.py", "baseline.py", "fixes.py", "result.py")
 
 
 def _name(requirement: str) -> str:

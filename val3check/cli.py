@@ -74,6 +74,8 @@ def build_parser() -> argparse.ArgumentParser:
     _add_disk_root(lint)
     _add_config(lint)
     lint.add_argument("--statistics", action="store_true", help="show counts per rule instead of each finding")
+    lint.add_argument("--fix", action="store_true", help="apply the fixes that are certain (rules marked [fix] in `val3check rules`), then report what is left")
+    lint.add_argument("--diff", action="store_true", help="print the fixes --fix would make as a unified diff, change nothing; exit 1 when there are some")
     lint.add_argument("--baseline", metavar="FILE", help="do not report the findings this baseline file records (see --update-baseline)")
     lint.add_argument("--update-baseline", action="store_true", help="record every finding of this run in the --baseline file, and exit 0")
     lint.add_argument("--show-settings", action="store_true", help="show the configuration, the applications and the rules of this run, and exit")
@@ -378,6 +380,33 @@ def _lint(args: argparse.Namespace) -> int:
             return EXIT_USAGE
         overlay = {only: sys.stdin.buffer.read(settings.max_file_size + 1)}
     outcome = run(paths, settings, baseline=baseline, overlay=overlay, only=only)
+    if (args.fix or args.diff) and not outcome.unreadable:
+        if overlay is not None:
+            print("val3check: error: --fix and --diff edit files: not with --stdin-filename", file=sys.stderr)
+            return EXIT_USAGE
+        from .fixes import plan
+        from .lint import display_path
+
+        fixes = plan(outcome.findings, outcome.workspace)
+        if args.diff:
+            if not _write(fixes.diff(display_path), args.output):
+                return EXIT_USAGE
+            if not args.quiet:
+                print(f"val3check: {fixes.count} fix{'es' if fixes.count != 1 else ''} would be made"
+                      f" in {len(fixes.edits)} file{'s' if len(fixes.edits) != 1 else ''}", file=sys.stderr)
+            return EXIT_FINDINGS if fixes.count else EXIT_OK
+        try:
+            fixes.write()
+        except OSError as exc:
+            print(f"val3check: error: cannot write a fixed file: {exc}", file=sys.stderr)
+            return EXIT_USAGE
+        if fixes.count:
+            outcome = run(paths, settings, baseline=baseline)
+        if not args.quiet:
+            print(f"val3check: fixed {fixes.count} finding{'s' if fixes.count != 1 else ''}"
+                  f" in {len(fixes.edits)} file{'s' if len(fixes.edits) != 1 else ''}", file=sys.stderr)
+            for d, why in fixes.not_fixed:
+                print(f"val3check: not fixed: {display_path(d.path)}:{d.line}: {d.code}: {why}", file=sys.stderr)
     code = exit_code(outcome, settings.fail_on)
     if args.exit_zero and code == EXIT_FINDINGS:
         code = EXIT_OK

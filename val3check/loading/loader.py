@@ -521,7 +521,7 @@ class Loader:
                         "F012",
                         f"program file not listed in {os.path.basename(owner)}: it is not part of the"
                         " application and is not checked",
-                        p,
+                        p, fix=("list-program", owner),
                     ))
                 continue
             # No project here or above, or none could be read: the programs alone.
