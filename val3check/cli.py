@@ -91,6 +91,8 @@ def build_parser() -> argparse.ArgumentParser:
     _add_format(sim, SIM_FORMATS, "--report")
     sim.add_argument("-o", "--output", metavar="FILE", help="write the report to FILE instead of standard output")
     sim.add_argument("--scenario", metavar="FILE", help="I/O scenario (TOML, docs/scenario.md)")
+    sim.add_argument("--init-scenario", metavar="FILE", help="write a scenario skeleton listing what the application reads "
+                     "or waits on (inputs, sio, keys, controller state) with their defaults, and exit")
     sim.add_argument("--max-wall", type=float, default=60.0, metavar="S", help="wall-clock budget in seconds (default: 60)")
     sim.add_argument("--max-lines", type=int, default=50_000_000, metavar="N", help="budget of executed VAL 3 lines")
     sim.add_argument("--max-memory", type=float, default=512.0, metavar="MB",
@@ -229,7 +231,7 @@ def _sim(args: argparse.Namespace) -> int:
         return EXIT_USAGE
     from .simulation.requirements import install_hint, missing_sim_packages
 
-    missing = missing_sim_packages()
+    missing = missing_sim_packages() if not args.init_scenario else []
     if missing:
         print(f"val3check: error: {install_hint(missing)}", file=sys.stderr)
         return EXIT_USAGE
@@ -245,9 +247,9 @@ def _sim(args: argparse.Namespace) -> int:
         print(f"val3check sim: error: no application could be read at {_shown(args.app)}", file=sys.stderr)
         return EXIT_USAGE
     if len(apps) != 1:
-        print(f"val3check sim: error: {_shown(args.app)} holds {len(apps)} applications; name one of them",
-              file=sys.stderr)
-        return EXIT_USAGE
+        apps = _app_of_folder(args.app, apps)
+        if apps is None:
+            return EXIT_USAGE
     errors = [d for d in outcome.result.diagnostics if d.severity is not None and d.severity >= Severity.ERROR]
     if errors:
         sys.stderr.write(render("text", outcome.result))
@@ -255,6 +257,8 @@ def _sim(args: argparse.Namespace) -> int:
               file=sys.stderr)
         return EXIT_USAGE
     app = apps[0]
+    if args.init_scenario:
+        return _init_scenario(outcome.workspace, app, args.init_scenario)
     if not any(n.lower() == "start" for n in app.programs):
         print(f"val3check sim: not run: {app.name} has no start() program (2.1.2)", file=sys.stderr)
         return EXIT_USAGE
@@ -335,6 +339,37 @@ def _lint_settings(args: argparse.Namespace, paths: list[str]):  # noqa: ANN202
         print(f"val3check: error: unknown rule code or prefix: {', '.join(bad)} (see `val3check rules`)", file=sys.stderr)
         return None
     return settings
+
+
+def _init_scenario(workspace, app, path: str) -> int:  # noqa: ANN001
+    from .simulation.scenario_skeleton import skeleton
+
+    if os.path.lexists(path):
+        print(f"val3check sim: error: {_shown(path)} exists; --init-scenario writes a new file", file=sys.stderr)
+        return EXIT_USAGE
+    if not _write(skeleton(workspace, app, _shown(os.path.relpath(app.path))), path):
+        return EXIT_USAGE
+    print(f"val3check sim: wrote the scenario skeleton {_shown(path)}; run it with --scenario {_shown(path)}",
+          file=sys.stderr)
+    return EXIT_OK
+
+
+def _app_of_folder(folder: str, apps: list) -> list | None:  # noqa: ANN001
+    """`sim DIR` where DIR holds its own .pjx and its libraries in sub-folders: the application
+    of DIR itself (`DIR/DIR.pjx`, or the only .pjx in DIR), as a controller's usr/usrapp/DIR
+    would be loaded; said on standard error. None (after the error) when DIR has no such one."""
+    from .loading.resolve import project_in_folder
+
+    main = project_in_folder(folder) if os.path.isdir(folder) else None
+    chosen = [a for a in apps if main is not None and os.path.normcase(a.path) == os.path.normcase(main)]
+    if not chosen:
+        names = ", ".join(_shown(os.path.relpath(a.path)) for a in apps[:8]) + (", ..." if len(apps) > 8 else "")
+        print(f"val3check sim: error: {_shown(folder)} holds {len(apps)} applications ({names}); name one of them",
+              file=sys.stderr)
+        return None
+    print(f"val3check sim: note: {_shown(folder)} holds {len(apps)} applications; running"
+          f" {_shown(os.path.relpath(chosen[0].path))}, the one named after the folder", file=sys.stderr)
+    return chosen
 
 
 def _lint(args: argparse.Namespace) -> int:
