@@ -1,5 +1,5 @@
 """Command line: `val3check lint`, `val3check sim`, `val3check reach`, `val3check robots`, `val3check rules`,
-`val3check rule CODE`.
+`val3check rule CODE`, `val3check server` (the language server).
 
 Exit codes (README): 0 nothing at or above --fail-on; 1 findings; 2 usage error, bad
 configuration, or input that could not be read at all. `sim` (docs/sim.md): 0 the run raised
@@ -117,6 +117,9 @@ def build_parser() -> argparse.ArgumentParser:
     robots.add_argument("--app", metavar="PATH", help="show the arm chosen from the controller tree holding PATH (usr/configs/arm.cfx)")
     _add_format(robots, ("text", "json"))
 
+    server = sub.add_parser("server", help="run the language server for editors, over stdio (docs/editors.md)")
+    server.add_argument("--stdio", action="store_true", help="talk LSP over standard input and output (the default and only transport)")
+
     rules = sub.add_parser("rules", help="list the rule catalogue")
     _add_format(rules, ("text", "json"))
     rule = sub.add_parser("rule", help="explain one rule, or every rule with --all")
@@ -141,6 +144,8 @@ def main(argv: list[str] | None = None) -> int:
             return _rules(args)
         if args.command == "rule":
             return _rule(args)
+        if args.command == "server":
+            return _server()
     except BrokenPipeError:  # `val3check rules | head`
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return EXIT_OK
@@ -537,6 +542,20 @@ def _robots(args: argparse.Namespace) -> int:
         sys.stdout.write(json.dumps(body, indent=2, ensure_ascii=False) + "\n")
         return EXIT_OK
     sys.stdout.write(render_detail(models[0]) if detail else render_list(models, known_without_model()))
+    return EXIT_OK
+
+
+def _server() -> int:
+    from .lsp import missing_packages
+
+    missing = missing_packages()
+    if missing:
+        print(f"val3check: error: `val3check server` needs the lsp extra: pip install 'val3check[lsp]'"
+              f" (missing: {', '.join(missing)})", file=sys.stderr)
+        return EXIT_USAGE
+    from .lsp.server import main as serve
+
+    serve()
     return EXIT_OK
 
 
