@@ -16,7 +16,7 @@ from urllib.parse import unquote, urlparse
 
 import pytest
 
-from val3check.testing import database_xml, program_file, write_app, write_files
+from val3check.testing import write_app
 
 ROOT = Path(__file__).resolve().parent.parent
 pytest.importorskip("pygls", reason="the lsp extra is not installed (pip install -e '.[test]')")
