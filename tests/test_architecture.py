@@ -20,13 +20,14 @@ LAYER_OF = {
     "parsing": "parsing",
     "semantics": "semantics",
     "records": "base", "confine": "base",
-    "lint": "lint", "config": "lint", "suppression": "lint", "result": "lint",
+    "lint": "lint", "config": "lint", "suppression": "lint", "result": "lint", "exclusion": "lint", "baseline": "lint", "fixes": "lint",
     "geometry": "geometry",
     "robot": "robot",
     "interpretation": "interpretation",
     "motion": "motion", "collision": "collision",
     "simulation": "simulation",
     "reporting": "reporting",
+    "lsp": "lsp",
     "cli": "cli", "__main__": "cli", "testing": "cli",
 }
 _BELOW_INTERPRETATION = {"base", "language", "loading", "parsing", "semantics", "geometry", "robot"}
@@ -46,6 +47,8 @@ ALLOWED = {
     "collision": _BELOW_INTERPRETATION | {"interpretation"},
     "simulation": _BELOW_SIMULATION,
     "reporting": _BELOW_SIMULATION | {"simulation"},
+    # the language server: the lint pipeline and what it stands on, never the simulator
+    "lsp": {"base", "language", "loading", "parsing", "semantics", "lint"},
     "cli": set(LAYER_OF.values()),
 }
 # The lint pipeline: what `val3check lint` may load (it installs without the sim extra).

@@ -1,12 +1,16 @@
-"""The pre-commit hook works through pre-commit itself, on a temporary repository.
+"""The pre-commit hook through pre-commit itself, configured as the README says, in fresh
+repositories (issue 16 items 2 and 3).
 
-pre-commit installs val3check from this checkout into its own environment (uncommitted changes
-included, via `try-repo`), so this needs the package index to be reachable, as in CI.
+A mirror of this checkout (uncommitted changes included) is made into a git repository tagged
+`v<version>`, the tag the README's snippet names; the snippet is used with only its `repo:`
+pointed at the mirror. pre-commit installs val3check from it into its own environment, so this
+needs the package index to be reachable, as in CI.
 """
 
 from __future__ import annotations
 
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -14,15 +18,34 @@ from pathlib import Path
 
 import pytest
 
+from val3check import __version__
 from val3check.testing import write_app
 
 ROOT = Path(__file__).resolve().parent.parent
 _BESIDE = Path(sys.executable).parent / "pre-commit"  # the one installed with the test extra
 PRE_COMMIT = str(_BESIDE) if _BESIDE.exists() else (shutil.which("pre-commit") or str(_BESIDE))
+pytestmark = pytest.mark.skipif(not Path(PRE_COMMIT).exists(),
+                                reason="pre-commit is not installed (pip install -e '.[test]')")
 
 
-def git(repo: Path, *args: str) -> None:
-    subprocess.run(["git", *args], cwd=repo, check=True, capture_output=True)
+def git(repo: Path, *args: str) -> str:
+    env = dict(os.environ, GIT_CONFIG_NOSYSTEM="1", GIT_AUTHOR_NAME="t", GIT_AUTHOR_EMAIL="t@example.invalid",
+               GIT_COMMITTER_NAME="t", GIT_COMMITTER_EMAIL="t@example.invalid")
+    return subprocess.run(["git", *args], cwd=repo, check=True, capture_output=True, text=True, env=env).stdout
+
+
+def readme_snippet() -> str:
+    """The README's pre-commit configuration (the first YAML block of its pre-commit section)."""
+    text = (ROOT / "README.md").read_text(encoding="utf-8")
+    section = text[text.index("### pre-commit"):]
+    return re.search(r"```yaml\n(.*?)```", section, re.S).group(1)
+
+
+def test_the_readme_names_the_tag_of_this_version():
+    assert re.search(r"^\s*rev:\s*(\S+)", readme_snippet(), re.M).group(1) == f"v{__version__}"
+    import tomllib
+
+    assert tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["version"] == __version__
 
 
 @pytest.fixture(scope="module")
@@ -31,31 +54,69 @@ def home(tmp_path_factory):
     return tmp_path_factory.mktemp("pre-commit-home")
 
 
-def try_repo(repo: Path, home: Path) -> subprocess.CompletedProcess:
-    env = dict(os.environ, PRE_COMMIT_HOME=str(home), GIT_CONFIG_NOSYSTEM="1")
-    return subprocess.run(
-        [PRE_COMMIT, "try-repo", str(ROOT), "val3check", "--all-files", "--verbose"],
-        cwd=repo, capture_output=True, text=True, env=env, timeout=900,
-    )
+@pytest.fixture(scope="module")
+def mirror(tmp_path_factory):
+    """This checkout as a repository of its own, tagged as the README says."""
+    repo = tmp_path_factory.mktemp("mirror")
+    files = subprocess.run(["git", "ls-files", "-co", "--exclude-standard"], cwd=ROOT, check=True,
+                           capture_output=True, text=True).stdout.split("\n")
+    for rel in filter(None, files):
+        source = ROOT / rel
+        if source.is_file():
+            (repo / rel).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(source, repo / rel)
+    git(repo, "init", "-q")
+    git(repo, "add", "-A")
+    git(repo, "commit", "-qm", "mirror")
+    git(repo, "tag", f"v{__version__}")
+    return repo
 
 
-@pytest.mark.skipif(not Path(PRE_COMMIT).exists(), reason="pre-commit is not installed (pip install -e '.[test]')")
-def test_hook_through_pre_commit(tmp_path, home):
+def _cell(tmp_path: Path, mirror: Path) -> Path:
     repo = tmp_path / "cell"
     repo.mkdir()
     git(repo, "init", "-q")
-    git(repo, "config", "user.email", "t@example.invalid")
-    git(repo, "config", "user.name", "t")
+    config = re.sub(r"(?m)^(\s*- repo:)\s*\S+.*$", rf"\1 {mirror}", readme_snippet())
+    (repo / ".pre-commit-config.yaml").write_text(config)
+    return repo
+
+
+def run(repo: Path, home: Path, *args: str) -> subprocess.CompletedProcess:
+    env = dict(os.environ, PRE_COMMIT_HOME=str(home), GIT_CONFIG_NOSYSTEM="1")
+    return subprocess.run([PRE_COMMIT, "run", *args, "--verbose"], cwd=repo, capture_output=True, text=True,
+                          env=env, timeout=900)
+
+
+def test_the_readme_snippet_in_a_fresh_repository(tmp_path, home, mirror):
+    repo = _cell(tmp_path, mirror)
     write_app(repo, "begin\n  nX = 1\nend\n", name="Good", globals_=["num nX"])
     (repo / "notes.txt").write_text("not VAL 3\n")
     git(repo, "add", "-A")
-    ok = try_repo(repo, home)
+    ok = run(repo, home, "--all-files")
     assert ok.returncode == 0, ok.stdout + ok.stderr
     assert "Passed" in ok.stdout
 
     write_app(repo, "begin\n  while true\n  endFor\nend\n", name="Bad")
     git(repo, "add", "-A")
-    bad = try_repo(repo, home)
+    bad = run(repo, home, "--all-files")
     assert bad.returncode == 1, bad.stdout + bad.stderr
     assert "Failed" in bad.stdout
     assert "Bad/start.pgx:6:3: F101" in bad.stdout
+
+
+def test_a_commit_touching_only_excluded_files_passes(tmp_path, home, mirror):
+    repo = _cell(tmp_path, mirror)
+    write_app(repo, "begin\n  nX = 1\nend\n", name="Good", globals_=["num nX"])
+    git(repo, "add", "-A")
+    git(repo, "commit", "-qm", "the cell")
+    # Stäubli's templates of a controller tree (excluded by default), with an error val3check would report
+    write_app(repo / "controller" / "usr" / "templates", "begin\n  if true\nend\n", name="Tpl")
+    git(repo, "add", "-A")
+    r = run(repo, home)  # the staged files, as `git commit` runs it
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "Passed" in r.stdout and "nothing to check" in r.stdout
+    # the same files without the exclusion fail
+    (repo / "val3check.toml").write_text("exclude = []\n")
+    git(repo, "add", "-A")
+    r = run(repo, home)
+    assert r.returncode == 1 and "Tpl/start.pgx" in r.stdout

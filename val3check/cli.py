@@ -1,5 +1,5 @@
 """Command line: `val3check lint`, `val3check sim`, `val3check reach`, `val3check robots`, `val3check rules`,
-`val3check rule CODE`.
+`val3check rule CODE`, `val3check server` (the language server).
 
 Exit codes (README): 0 nothing at or above --fail-on; 1 findings; 2 usage error, bad
 configuration, or input that could not be read at all. `sim` (docs/sim.md): 0 the run raised
@@ -31,6 +31,27 @@ def _codes(text: str) -> list[str]:
     return [c.strip().upper() for c in text.split(",") if c.strip()]
 
 
+def _add_format(parser: argparse.ArgumentParser, choices, *also: str, default: str = "text") -> None:
+    """`--output-format` (ruff's name) and `--format`, one option across the commands; `also`:
+    further synonyms (`sim --report`)."""
+    parser.add_argument("--output-format", "--format", *also, dest="format", choices=choices, default=default,
+                        help=f"output format (default: {default})")
+
+
+def _add_config(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--config", metavar="FILE", help="configuration file (default: val3check.toml or pyproject.toml found upwards)")
+    parser.add_argument("--isolated", action="store_true", help="ignore every configuration file")
+
+
+def _add_disk_root(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--disk-root", action="append", default=[], metavar="DIR",
+                        help="folder where Disk:// libraries and types are also searched (repeatable)")
+
+
+def _patterns(text: str) -> list[str]:
+    return [p.strip() for p in text.split(",") if p.strip()]
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = _Parser(prog="val3check", description="Check Stäubli VAL 3 applications.")
     p.add_argument("--version", action="version", version=f"val3check {__version__}")
@@ -38,39 +59,54 @@ def build_parser() -> argparse.ArgumentParser:
 
     lint = sub.add_parser("lint", help="check applications (.pjx, .pgx, folders, controller trees)")
     lint.add_argument("paths", nargs="*", metavar="PATH", help="files or folders (default: .)")
-    lint.add_argument("--format", "--output-format", dest="format", choices=FORMATS, default="text")
+    _add_format(lint, FORMATS)
     lint.add_argument("-o", "--output", metavar="FILE", help="write the report to FILE instead of standard output")
     lint.add_argument("--fail-on", choices=("error", "warning", "info", "never"), help="lowest severity that makes the exit code 1 (default: error)")
+    lint.add_argument("--exit-zero", action="store_true", help="exit 0 even when findings are reported (2 still means the input could not be read)")
+    lint.add_argument("-q", "--quiet", action="store_true", help="print the findings and nothing else (no summary, no notes)")
     lint.add_argument("--select", type=_codes, metavar="CODES", help="comma-separated codes or prefixes to enable (replaces the configured list)")
     lint.add_argument("--extend-select", type=_codes, metavar="CODES", help="codes or prefixes to enable in addition")
     lint.add_argument("--ignore", type=_codes, metavar="CODES", help="codes or prefixes to disable (added to the configured list)")
-    lint.add_argument("--disk-root", action="append", default=[], metavar="DIR", help="folder where Disk:// libraries and types are also searched (repeatable)")
-    lint.add_argument("--config", metavar="FILE", help="configuration file (default: val3check.toml or pyproject.toml found upwards)")
-    lint.add_argument("--isolated", action="store_true", help="ignore every configuration file")
+    lint.add_argument("--exclude", type=_patterns, metavar="PATTERNS", help="comma-separated gitignore patterns of paths to skip (replaces the configured list and the default, **/usr/templates/)")
+    lint.add_argument("--extend-exclude", type=_patterns, metavar="PATTERNS", help="gitignore patterns to skip in addition")
+    lint.add_argument("--force-exclude", action=argparse.BooleanOptionalAction, default=None,
+                      help="skip the paths named on the command line too when they match an exclusion (as pre-commit hooks need)")
+    _add_disk_root(lint)
+    _add_config(lint)
     lint.add_argument("--statistics", action="store_true", help="show counts per rule instead of each finding")
-    lint.add_argument("--color", choices=("auto", "always", "never"), default="auto")
+    lint.add_argument("--fix", action="store_true", help="apply the fixes that are certain (rules marked [fix] in `val3check rules`), then report what is left")
+    lint.add_argument("--diff", action="store_true", help="print the fixes --fix would make as a unified diff, change nothing; exit 1 when there are some")
+    lint.add_argument("--baseline", metavar="FILE", help="do not report the findings this baseline file records (see --update-baseline)")
+    lint.add_argument("--update-baseline", action="store_true", help="record every finding of this run in the --baseline file, and exit 0")
+    lint.add_argument("--show-settings", action="store_true", help="show the configuration, the applications and the rules of this run, and exit")
+    lint.add_argument("--show-files", action="store_true", help="list the files that would be checked, and exit")
+    lint.add_argument("--stdin-filename", metavar="PATH", help="check the text read from standard input as if it were the file PATH, "
+                      "in the context of its application (for editors); only its findings are reported")
+    lint.add_argument("--color", choices=("auto", "always", "never"), default="auto",
+                      help="colour the text output (auto: on a terminal; NO_COLOR and FORCE_COLOR are honoured)")
 
     sim = sub.add_parser("sim", help="run an application in the virtual controller (docs/sim.md)")
-    sim.add_argument("app", metavar="APP", help="the application: its folder or .pjx")
+    sim.add_argument("app", nargs="?", default=".", metavar="APP", help="the application: its folder or .pjx (default: .)")
     sim.add_argument("--duration", type=float, default=60.0, metavar="S", help="simulated seconds to run at most (default: 60)")
     sim.add_argument("--cycles", type=int, metavar="N", help="end the run when the arm starts its cycle N + 1 (the loop of the task that moves it; docs/motion.md)")
-    sim.add_argument("--report", choices=SIM_FORMATS, default="text", help="report format (default: text)")
+    _add_format(sim, SIM_FORMATS, "--report")
     sim.add_argument("-o", "--output", metavar="FILE", help="write the report to FILE instead of standard output")
     sim.add_argument("--scenario", metavar="FILE", help="I/O scenario (TOML, docs/scenario.md)")
+    sim.add_argument("--init-scenario", metavar="FILE", help="write a scenario skeleton listing what the application reads "
+                     "or waits on (inputs, sio, keys, controller state) with their defaults, and exit")
     sim.add_argument("--max-wall", type=float, default=60.0, metavar="S", help="wall-clock budget in seconds (default: 60)")
     sim.add_argument("--max-lines", type=int, default=50_000_000, metavar="N", help="budget of executed VAL 3 lines")
     sim.add_argument("--max-memory", type=float, default=512.0, metavar="MB",
                      help="memory budget in MB, loading included (default: 512)")
     sim.add_argument("--fail-on", choices=("error", "warning", "info", "never"), help="lowest runtime diagnostic severity that makes the exit code 1 (default: error)")
-    sim.add_argument("--disk-root", action="append", default=[], metavar="DIR", help="folder where Disk:// libraries are also searched (repeatable)")
+    _add_disk_root(sim)
     sim.add_argument("--robot", metavar="NAME|URDF", help="the arm model: a catalogue name (case-insensitive, `val3check robots`), a URDF, an arm.cfx, or none (default: the usr/configs/arm.cfx of the controller tree holding APP, else none)")
-    sim.add_argument("--config", metavar="FILE", help="configuration file (default: val3check.toml or pyproject.toml found upwards)")
-    sim.add_argument("--isolated", action="store_true", help="ignore every configuration file")
+    _add_config(sim)
 
     reach = sub.add_parser("reach", help="check that the arm reaches every point and joint of the data files (docs/motion.md)")
     reach.add_argument("app", metavar="APP", help="the application: its folder or .pjx")
     reach.add_argument("--robot", metavar="NAME|URDF", help="the arm model (default: the usr/configs/arm.cfx of the controller tree holding APP)")
-    reach.add_argument("--format", choices=("text", "json"), default="text")
+    _add_format(reach, ("text", "json"))
     reach.add_argument("-o", "--output", metavar="FILE", help="write the report to FILE instead of standard output")
     reach.add_argument("--disk-root", action="append", default=[], metavar="DIR", help="folder where Disk:// libraries are also searched (repeatable)")
     reach.add_argument("--fail-on", choices=("error", "warning", "info", "never"), default="error", help="lowest finding severity that makes the exit code 1 (default: error; reach findings are warnings and infos, docs/motion.md)")
@@ -81,12 +117,17 @@ def build_parser() -> argparse.ArgumentParser:
                              "(.toml): show that model, its facts and assumptions")
     robots.add_argument("--robot", dest="robot_opt", metavar="ROBOT", help="same as ROBOT")
     robots.add_argument("--app", metavar="PATH", help="show the arm chosen from the controller tree holding PATH (usr/configs/arm.cfx)")
-    robots.add_argument("--format", choices=("text", "json"), default="text")
+    _add_format(robots, ("text", "json"))
+
+    server = sub.add_parser("server", help="run the language server for editors, over stdio (docs/editors.md)")
+    server.add_argument("--stdio", action="store_true", help="talk LSP over standard input and output (the default and only transport)")
 
     rules = sub.add_parser("rules", help="list the rule catalogue")
-    rules.add_argument("--format", choices=("text", "json"), default="text")
-    rule = sub.add_parser("rule", help="explain one rule")
-    rule.add_argument("code", metavar="CODE")
+    _add_format(rules, ("text", "json"))
+    rule = sub.add_parser("rule", help="explain one rule, or every rule with --all")
+    rule.add_argument("code", nargs="?", metavar="CODE")
+    rule.add_argument("--all", action="store_true", help="explain every rule")
+    _add_format(rule, ("text", "json"))
     return p
 
 
@@ -105,6 +146,8 @@ def main(argv: list[str] | None = None) -> int:
             return _rules(args)
         if args.command == "rule":
             return _rule(args)
+        if args.command == "server":
+            return _server()
     except BrokenPipeError:  # `val3check rules | head`
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return EXIT_OK
@@ -125,7 +168,7 @@ def _targets(paths: list[str]) -> list[str]:
     return out
 
 
-def _settings(args: argparse.Namespace, first_path: str):
+def _settings(args: argparse.Namespace, first_path: str, quiet: bool = False):
     from .config import ConfigError, Settings, find_config, load_settings
 
     try:
@@ -135,7 +178,8 @@ def _settings(args: argparse.Namespace, first_path: str):
                 raise ConfigError(f"{args.config}: configuration file not found")
             settings = load_settings(args.config)
         elif not args.isolated:
-            found = find_config(first_path, warn=lambda m: print(f"val3check: warning: {_shown(m)}", file=sys.stderr))
+            found = find_config(first_path, warn=None if quiet else
+                                lambda m: print(f"val3check: warning: {_shown(m)}", file=sys.stderr))
             if found:
                 settings = load_settings(found)
     except ConfigError as exc:
@@ -197,7 +241,7 @@ def _sim(args: argparse.Namespace) -> int:
         return EXIT_USAGE
     from .simulation.requirements import install_hint, missing_sim_packages
 
-    missing = missing_sim_packages()
+    missing = missing_sim_packages() if not args.init_scenario else []
     if missing:
         print(f"val3check: error: {install_hint(missing)}", file=sys.stderr)
         return EXIT_USAGE
@@ -213,9 +257,9 @@ def _sim(args: argparse.Namespace) -> int:
         print(f"val3check sim: error: no application could be read at {_shown(args.app)}", file=sys.stderr)
         return EXIT_USAGE
     if len(apps) != 1:
-        print(f"val3check sim: error: {_shown(args.app)} holds {len(apps)} applications; name one of them",
-              file=sys.stderr)
-        return EXIT_USAGE
+        apps = _app_of_folder(args.app, apps)
+        if apps is None:
+            return EXIT_USAGE
     errors = [d for d in outcome.result.diagnostics if d.severity is not None and d.severity >= Severity.ERROR]
     if errors:
         from .result import LintResult
@@ -227,6 +271,8 @@ def _sim(args: argparse.Namespace) -> int:
               file=sys.stderr)
         return EXIT_USAGE
     app = apps[0]
+    if args.init_scenario:
+        return _init_scenario(outcome.workspace, app, args.init_scenario)
     if not any(n.lower() == "start" for n in app.programs):
         print(f"val3check sim: not run: {app.name} has no start() program (2.1.2)", file=sys.stderr)
         return EXIT_USAGE
@@ -256,7 +302,7 @@ def _sim(args: argparse.Namespace) -> int:
         print(f"val3check sim: bad scenario: {_shown(str(exc))}", file=sys.stderr)
         return EXIT_USAGE
     report = build_report(result, settings, catalogue(), __version__)
-    if args.report == "json":
+    if args.format == "json":
         from .reporting.sim_json import render as render_sim
     else:
         from .reporting.sim_text import render as render_sim
@@ -268,11 +314,23 @@ def _sim(args: argparse.Namespace) -> int:
     return EXIT_FINDINGS if any(d.severity >= threshold for d in report.diagnostics) else EXIT_OK
 
 
-def _lint(args: argparse.Namespace) -> int:
-    paths = _targets(args.paths)
-    settings = _settings(args, paths[0])
+def _use_color(choice: str, to_file: bool) -> bool:
+    """--color always/never wins; then NO_COLOR (set and not empty) turns colour off and
+    FORCE_COLOR (set and not empty) on; else colour on a terminal only."""
+    if choice != "auto":
+        return choice == "always"
+    if to_file or os.environ.get("NO_COLOR"):
+        return False
+    if os.environ.get("FORCE_COLOR"):
+        return True
+    return sys.stdout.isatty()
+
+
+def _lint_settings(args: argparse.Namespace, paths: list[str]):  # noqa: ANN202
+    """The configuration with the command line's options applied; None after a usage error."""
+    settings = _settings(args, paths[0], quiet=args.quiet)
     if settings is None:
-        return EXIT_USAGE
+        return None
     if args.select is not None:
         settings.select = args.select
     if args.extend_select:
@@ -281,6 +339,12 @@ def _lint(args: argparse.Namespace) -> int:
         settings.ignore += args.ignore
     if args.fail_on:
         settings.fail_on = args.fail_on
+    if args.exclude is not None:
+        settings.exclude = args.exclude
+    if args.extend_exclude:
+        settings.extend_exclude += args.extend_exclude
+    if args.force_exclude is not None:
+        settings.force_exclude = args.force_exclude
     settings.disk_roots = [os.path.abspath(d) for d in args.disk_root] + settings.disk_roots
 
     from .rules.catalogue import catalogue
@@ -288,20 +352,149 @@ def _lint(args: argparse.Namespace) -> int:
     bad = settings.unknown_codes(list(catalogue()))
     if bad:
         print(f"val3check: error: unknown rule code or prefix: {', '.join(bad)} (see `val3check rules`)", file=sys.stderr)
+        return None
+    return settings
+
+
+def _init_scenario(workspace, app, path: str) -> int:  # noqa: ANN001
+    from .simulation.scenario_skeleton import skeleton
+
+    if os.path.lexists(path):
+        print(f"val3check sim: error: {_shown(path)} exists; --init-scenario writes a new file", file=sys.stderr)
         return EXIT_USAGE
+    if not _write(skeleton(workspace, app, _shown(os.path.relpath(app.path))), path):
+        return EXIT_USAGE
+    print(f"val3check sim: wrote the scenario skeleton {_shown(path)}; run it with --scenario {_shown(path)}",
+          file=sys.stderr)
+    return EXIT_OK
+
+
+def _app_of_folder(folder: str, apps: list) -> list | None:  # noqa: ANN001
+    """`sim DIR` where DIR holds its own .pjx and its libraries in sub-folders: the application
+    of DIR itself (`DIR/DIR.pjx`, or the only .pjx in DIR), as a controller's usr/usrapp/DIR
+    would be loaded; said on standard error. None (after the error) when DIR has no such one."""
+    from .loading.resolve import project_in_folder
+
+    main = project_in_folder(folder) if os.path.isdir(folder) else None
+    chosen = [a for a in apps if main is not None and os.path.normcase(a.path) == os.path.normcase(main)]
+    if not chosen:
+        names = ", ".join(_shown(os.path.relpath(a.path)) for a in apps[:8]) + (", ..." if len(apps) > 8 else "")
+        print(f"val3check sim: error: {_shown(folder)} holds {len(apps)} applications ({names}); name one of them",
+              file=sys.stderr)
+        return None
+    print(f"val3check sim: note: {_shown(folder)} holds {len(apps)} applications; running"
+          f" {_shown(os.path.relpath(chosen[0].path))}, the one named after the folder", file=sys.stderr)
+    return chosen
+
+
+def _lint(args: argparse.Namespace) -> int:
+    if args.stdin_filename and not args.paths:
+        args.paths = [args.stdin_filename]
+    paths = _targets(args.paths)
+    settings = _lint_settings(args, paths)
+    if settings is None:
+        return EXIT_USAGE
+    if args.show_settings or args.show_files:
+        from .reporting.settings import render_files, render_settings
+        from .lint import discover
+        from .rules.catalogue import catalogue
+
+        found = discover(paths, settings)
+        if args.show_files:
+            text = render_files(found)
+        else:
+            text = render_settings(settings, found, catalogue(), json_format=args.format == "json")
+        return EXIT_OK if _write(text, args.output) else EXIT_USAGE
 
     from .lint import exit_code, run
     from .reporting import render
 
-    outcome = run(paths, settings)
-    to_file = args.output is not None
-    color = args.color == "always" or (
-        args.color == "auto" and not to_file and sys.stdout.isatty() and "NO_COLOR" not in os.environ
-    )
-    text = render(args.format, outcome.result, color=color, statistics=args.statistics)
+    baseline_path = os.path.abspath(args.baseline) if args.baseline else settings.baseline
+    if args.update_baseline:
+        return _update_baseline(paths, settings, baseline_path, args.quiet)
+    baseline = None
+    if baseline_path:
+        from .baseline import BaselineError, read_baseline
+
+        try:
+            baseline = read_baseline(baseline_path)
+        except BaselineError as exc:
+            print(f"val3check: error: {_shown(str(exc))}", file=sys.stderr)
+            return EXIT_USAGE
+    overlay = only = None
+    if args.stdin_filename:
+        only = os.path.abspath(args.stdin_filename)
+        if not os.path.isfile(only):
+            print(f"val3check: error: --stdin-filename {_shown(args.stdin_filename)}: no such file; the file must exist "
+                  "(its application is read from the disk, its text from standard input)", file=sys.stderr)
+            return EXIT_USAGE
+        overlay = {only: sys.stdin.buffer.read(settings.max_file_size + 1)}
+    outcome = run(paths, settings, baseline=baseline, overlay=overlay, only=only)
+    if (args.fix or args.diff) and not outcome.unreadable:
+        if overlay is not None:
+            print("val3check: error: --fix and --diff edit files: not with --stdin-filename", file=sys.stderr)
+            return EXIT_USAGE
+        from .fixes import plan
+        from .lint import display_path
+
+        fixes = plan(outcome.findings, outcome.workspace)
+        if args.diff:
+            if not _write(fixes.diff(display_path), args.output):
+                return EXIT_USAGE
+            if not args.quiet:
+                print(f"val3check: {fixes.count} fix{'es' if fixes.count != 1 else ''} would be made"
+                      f" in {len(fixes.edits)} file{'s' if len(fixes.edits) != 1 else ''}", file=sys.stderr)
+            return EXIT_FINDINGS if fixes.count else EXIT_OK
+        try:
+            fixes.write()
+        except OSError as exc:
+            print(f"val3check: error: cannot write a fixed file: {exc}", file=sys.stderr)
+            return EXIT_USAGE
+        if fixes.count:
+            outcome = run(paths, settings, baseline=baseline)
+        if not args.quiet:
+            print(f"val3check: fixed {fixes.count} finding{'s' if fixes.count != 1 else ''}"
+                  f" in {len(fixes.edits)} file{'s' if len(fixes.edits) != 1 else ''}", file=sys.stderr)
+            for d, why in fixes.not_fixed:
+                print(f"val3check: not fixed: {display_path(d.path)}:{d.line}: {d.code}: {why}", file=sys.stderr)
+    code = exit_code(outcome, settings.fail_on)
+    if args.exit_zero and code == EXIT_FINDINGS:
+        code = EXIT_OK
+    color = _use_color(args.color, args.output is not None)
+    text = render(args.format, outcome.result, color=color, statistics=args.statistics, quiet=args.quiet,
+                  exit_code=code)
     if not _write(text, args.output):
         return EXIT_USAGE
-    return exit_code(outcome, settings.fail_on)
+    if outcome.nothing_to_check and not args.quiet:
+        print("val3check: nothing to check: the paths given are excluded (exclude, extend-exclude, --force-exclude)",
+              file=sys.stderr)
+    return code
+
+
+def _update_baseline(paths: list[str], settings, baseline_path: str, quiet: bool) -> int:  # noqa: ANN001
+    from .baseline import Baseline, BaselineError
+    from .lint import display_path, run
+
+    if not baseline_path:
+        print("val3check: error: --update-baseline needs --baseline FILE (or `baseline` in the configuration)",
+              file=sys.stderr)
+        return EXIT_USAGE
+    outcome = run(paths, settings)
+    if outcome.unreadable:
+        from .reporting import render
+
+        sys.stdout.write(render("text", outcome.result))
+        print("val3check: error: the baseline was not written: the input could not be read", file=sys.stderr)
+        return EXIT_USAGE
+    try:
+        Baseline.of(baseline_path, outcome.findings).write()
+    except BaselineError as exc:
+        print(f"val3check: error: {_shown(str(exc))}", file=sys.stderr)
+        return EXIT_USAGE
+    if not quiet:
+        n = len(outcome.findings)
+        print(f"val3check: recorded {n} finding{'s' if n != 1 else ''} in {display_path(baseline_path)}", file=sys.stderr)
+    return EXIT_OK
 
 
 def _reach(args: argparse.Namespace) -> int:
@@ -365,49 +558,47 @@ def _robots(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+def _server() -> int:
+    from .lsp import missing_packages
+
+    missing = missing_packages()
+    if missing:
+        print(f"val3check: error: `val3check server` needs the lsp extra: pip install 'val3check[lsp]'"
+              f" (missing: {', '.join(missing)})", file=sys.stderr)
+        return EXIT_USAGE
+    from .lsp.server import main as serve
+
+    serve()
+    return EXIT_OK
+
+
 def _rules(args: argparse.Namespace) -> int:
-    from .rules.catalogue import FAMILIES, catalogue
+    from .reporting.rules import listing_json, listing_text
+    from .rules.catalogue import catalogue
 
     rules = catalogue()
-    if args.format == "json":
-        import json
-
-        items = [
-            {"code": r.code, "name": r.name, "family": r.family_name, "severity": r.severity.label, "manual": r.manual, "summary": r.summary}
-            for r in rules.values()
-        ]
-        sys.stdout.write(json.dumps({"rules": items, "version": 1}, indent=2, sort_keys=True, ensure_ascii=False) + "\n")
-        return EXIT_OK
-    for letter, family in FAMILIES.items():
-        members = [r for r in rules.values() if r.family == letter]
-        if not members:
-            continue
-        print(f"{letter}  {family}")
-        for r in members:
-            manual = f"  (manual {r.manual})" if r.manual else ""
-            print(f"  {r.code}  {r.severity.label:<7}  {r.name}: {r.summary}{manual}")
+    sys.stdout.write(listing_json(rules) if args.format == "json" else listing_text(rules))
     return EXIT_OK
 
 
 def _rule(args: argparse.Namespace) -> int:
+    from .reporting.rules import explain_json, explain_text
     from .rules.catalogue import catalogue
 
     rules = catalogue()
-    rule = rules.get(args.code.strip().upper())
-    if rule is None:
-        print(f"val3check: error: no rule {args.code!r} (see `val3check rules`)", file=sys.stderr)
+    if args.all == bool(args.code):
+        print("val3check: error: name one rule (`val3check rule F101`) or give --all", file=sys.stderr)
         return EXIT_USAGE
-    out = [f"{rule.code} {rule.name}", "", f"Family: {rule.family_name}", f"Default severity: {rule.severity.label}"]
-    if rule.manual:
-        out.append(f"Manual: section {rule.manual} (VAL 3 s7 reference manual)")
-    out += ["", rule.summary, ""]
-    if rule.explanation:
-        out += [rule.explanation, ""]
-    for title, examples in (("Fails", rule.bad), ("Passes", rule.good)):
-        for ex in examples:
-            out.append(f"{title}: {ex.description}" if ex.description else f"{title}:")
-            body = ex.code if ex.code is not None else "\n".join(f"--- {name}\n{text}" for name, text in sorted(ex.files.items()))
-            out += ["    " + line for line in body.rstrip("\n").split("\n")]
-            out.append("")
-    sys.stdout.write("\n".join(out).rstrip("\n") + "\n")
+    if args.all:
+        chosen = list(rules.values())
+    else:
+        rule = rules.get(args.code.strip().upper())
+        if rule is None:
+            print(f"val3check: error: no rule {args.code!r} (see `val3check rules`)", file=sys.stderr)
+            return EXIT_USAGE
+        chosen = [rule]
+    if args.format == "json":
+        sys.stdout.write(explain_json(chosen, single=not args.all))
+    else:
+        sys.stdout.write("\n".join(explain_text(r) for r in chosen))
     return EXIT_OK

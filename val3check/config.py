@@ -10,7 +10,10 @@ options override it. Keys (kebab-case, as ruff):
     severity = { S101 = "error" }   # change a rule's severity
     fail-on = "error"               # error | warning | info | never
     disk-roots = ["../controller/usr/usrapp"]    # where `Disk://` libraries are also searched
-    exclude = ["build/**"]          # applications whose path matches are skipped
+    exclude = ["build/"]            # gitignore patterns of what is skipped (replaces the default,
+                                    # ["**/usr/templates/"]); extend-exclude adds to it
+    force-exclude = true            # also skip the paths named on the command line that match
+    baseline = "val3check-baseline.json"   # findings recorded there are not reported (val3check.baseline)
     max-file-size = 16777216        # bytes; larger files are reported (F002) and skipped
     target = "CS9"                  # controller and/or VAL 3 version: "CS9", "s8.13", "CS8 s7.11"
                                     # (default: each application's project file version)
@@ -22,6 +25,8 @@ import fnmatch
 import os
 import re
 from .records import dataclass, field
+
+from .exclusion import DEFAULT_EXCLUDE, Exclusion
 
 from .diagnostics import Severity
 from .language.target import TargetError, TargetSpec, parse_target
@@ -46,7 +51,10 @@ class Settings:
     severity: dict[str, Severity] = field(default_factory=dict)
     fail_on: str = "error"
     disk_roots: list[str] = field(default_factory=list)
-    exclude: list[str] = field(default_factory=list)
+    exclude: list[str] = field(default_factory=lambda: list(DEFAULT_EXCLUDE))  # gitignore patterns
+    extend_exclude: list[str] = field(default_factory=list)
+    force_exclude: bool = False  # the paths named on the command line are excluded too
+    baseline: str = ""  # the baseline file (absolute), "" for none
     max_file_size: int = 16 * 1024 * 1024
     target: TargetSpec | None = None  # None: each application's project file version
     root: str = ""  # folder of the configuration file, "" when none was found
@@ -72,9 +80,12 @@ class Settings:
             asked.update(values)
         return sorted(p for p in asked if p and not any(c.startswith(p) for c in known))
 
-    def excluded(self, path: str) -> bool:
-        rel = self._relative(path)
-        return any(_glob_match(rel, p) for p in self.exclude)
+    def exclusion(self) -> Exclusion:
+        """`exclude` and `extend-exclude`, relative to the configuration's folder."""
+        return Exclusion(self.exclude + self.extend_exclude, self.root or os.getcwd())
+
+    def excluded(self, path: str, is_dir: bool = False) -> bool:
+        return self.exclusion().matches(path, is_dir)
 
     def _relative(self, path: str) -> str:
         base = self.root or os.getcwd()
@@ -187,7 +198,7 @@ def _str_list(value, key: str, path: str) -> list[str]:
 
 KNOWN_KEYS = {
     "select", "extend-select", "ignore", "per-file-ignores", "severity", "fail-on", "disk-roots", "exclude", "max-file-size",
-    "target",
+    "target", "extend-exclude", "force-exclude", "baseline",
 }
 
 
@@ -225,7 +236,17 @@ def load_settings(path: str) -> Settings:
         raise ConfigError(f"{path}: 'fail-on' must be one of {', '.join(FAIL_ON_CHOICES)}")
     s.fail_on = fail_on
     s.disk_roots = [os.path.normpath(os.path.join(root, d)) for d in _str_list(data.get("disk-roots", []), "disk-roots", path)]
-    s.exclude = _str_list(data.get("exclude", []), "exclude", path)
+    if "exclude" in data:
+        s.exclude = _str_list(data["exclude"], "exclude", path)
+    s.extend_exclude = _str_list(data.get("extend-exclude", []), "extend-exclude", path)
+    force = data.get("force-exclude", False)
+    if not isinstance(force, bool):
+        raise ConfigError(f"{path}: 'force-exclude' must be true or false")
+    s.force_exclude = force
+    baseline = data.get("baseline", "")
+    if not isinstance(baseline, str):
+        raise ConfigError(f"{path}: 'baseline' must be the path of a file")
+    s.baseline = os.path.normpath(os.path.join(root, baseline)) if baseline else ""
     size = data.get("max-file-size", s.max_file_size)
     if not isinstance(size, int) or isinstance(size, bool) or not 0 < size <= MAX_FILE_SIZE_LIMIT:
         raise ConfigError(f"{path}: 'max-file-size' must be a number of bytes from 1 to {MAX_FILE_SIZE_LIMIT}")

@@ -133,9 +133,21 @@ def kind_of(mode: int) -> str:
     return "a special file"
 
 
-def read_bytes(path: str, roots: Roots, max_size: int) -> bytes:
-    """The bytes of a file that may be read and is at most `max_size` bytes; else `Refused`."""
+def read_bytes(path: str, roots: Roots, max_size: int, overlay: dict[str, bytes] | None = None) -> bytes:
+    """The bytes of a file that may be read and is at most `max_size` bytes; else `Refused`.
+
+    `overlay` maps absolute paths to their unsaved text (an editor's buffer, standard input): such
+    a file passes the same checks (inside the roots, a regular file on disk, not special) and
+    its text is taken instead of the disk's."""
     real = check(path, roots)
+    if overlay:
+        text = overlay.get(os.path.abspath(path))
+        if text is None:
+            text = overlay.get(real)
+        if text is not None:
+            if len(text) > max_size:
+                raise Refused("F002", f"file too large ({human_size(len(text))}, limit {human_size(max_size)}): not read")
+            return bytes(text)
     try:
         st = os.stat(real)
         if st.st_size > max_size:

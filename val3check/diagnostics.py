@@ -51,6 +51,9 @@ class Diagnostic:
     task: str | None = None
     program: str | None = None
     error: int | None = None
+    # what `lint --fix` may do about it, for the rules whose fix is certain (val3check/fixes.py):
+    # ("rename", written, declared), ("remove-element", tag), ("list-program", project path)
+    fix: tuple | None = None
 
     @property
     def runtime(self) -> bool:

@@ -18,3 +18,11 @@ class LintResult:
     # the files the run read as VAL 3, display path -> path on disk: the only ones a report may
     # quote (None: any file, for results built by hand)
     quotable: dict[str, str] | None = None
+    # display path -> text read from elsewhere than the disk (--stdin-filename, an editor's
+    # unsaved buffer): quoted instead of the file
+    sources: dict[str, bytes] = field(default_factory=dict)
+    fail_on: str = "error"  # what fails the build (JUnit failures, the exit code)
+    # the folder the CI formats (SARIF, github) make paths relative to: the repository root
+    # (git top level), else the configuration's folder; "" -> the current folder
+    root: str = ""
+    baselined: int = 0  # findings hidden because the baseline file records them

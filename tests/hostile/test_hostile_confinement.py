@@ -171,7 +171,7 @@ def test_excerpts_only_from_files_read_as_val3(tmp_path):
     (tmp_path / "notes.txt").write_text(f"{SECRET} <\n")
     r = val3check("lint", "notes.txt", cwd=tmp_path)
     assert r.returncode == 2
-    assert "F004" in r.stdout and SECRET not in r.stdout  # named, never quoted
+    assert "F006" in r.stdout and "not a VAL 3 file" in r.stdout and SECRET not in r.stdout  # named, never quoted
     broken = tmp_path / "App"
     make_app(broken)
     (broken / "start.pgx").write_text("<Programs>\n  <oops & </Programs>\n")

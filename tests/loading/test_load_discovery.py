@@ -198,7 +198,7 @@ def test_same_application_named_twice_is_loaded_once(tmp_path):
 def test_other_file_names_are_sniffed(tmp_path):
     f = write(tmp_path / "notes.txt", "just text\n")
     ws, diags = load([str(f)])
-    assert [d.code for d in diags] == ["F004"]
+    assert [d.code for d in diags] == ["F006"] and "not a VAL 3 file" in diags[0].message
     f = write(tmp_path / "page.xml", "<html/>\n")
     ws, diags = load([str(f)])
     assert [d.code for d in diags] == ["F006"]

@@ -11,7 +11,7 @@ from val3check import reporting
 
 
 def test_formats():
-    assert reporting.FORMATS == ("text", "json", "sarif", "junit", "github")
+    assert reporting.FORMATS == ("text", "concise", "json", "sarif", "junit", "github")
 
 
 def test_unknown_format(make_result):

@@ -51,6 +51,7 @@ def test_contents(make_result, d):
         "files_checked": 4,
         "files_with_diagnostics": 3,
         "applications_checked": 2,
+        "baselined": 0,
     }
     by_message = {x["message"]: x for x in data["diagnostics"]}
     assert [x["path"] for x in data["diagnostics"]] == ["a.pgx", "a.pgx", "a.pgx", "b.pgx", "c/d.pgx"]

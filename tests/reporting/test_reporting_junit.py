@@ -28,7 +28,9 @@ def parse(text):
 
 
 def test_well_formed_and_counts(make_result, d):
-    text = render("junit", sample(make_result, d))
+    result = sample(make_result, d)
+    result.fail_on = "warning"
+    text = render("junit", result)
     assert text.isascii()
     root = parse(text)
     assert root.tag == "testsuites"
@@ -37,7 +39,7 @@ def test_well_formed_and_counts(make_result, d):
     suite = suites[0]
     cases = suite.findall("testcase")
     failures = suite.findall("testcase/failure")
-    assert len(failures) == 4  # info findings are not failures
+    assert len(failures) == 4  # info findings are below --fail-on warning
     assert all(len(c.findall("failure")) <= 1 for c in cases)
     # 4 failing findings + passing cases for c.pgx (info only) and clean.pgx
     assert len(cases) == 6
@@ -55,8 +57,34 @@ def test_well_formed_and_counts(make_result, d):
     assert "z/extra.pgx" in classnames  # a finding in a file not listed in `files` is kept
 
 
-def test_failure_contents_round_trip(make_result, d):
+def test_failures_are_what_fails_the_build(make_result, d):
+    """Default --fail-on error: warnings are not failures; they go to the file's system-out."""
     suite = parse(render("junit", sample(make_result, d))).find("testsuite")
+    failing = [c for c in suite.findall("testcase") if c.find("failure") is not None]
+    assert sorted(c.find("failure").get("type") for c in failing) == ["F001", "F101"]
+    assert suite.get("failures") == "2"
+    a_cases = [c for c in suite.findall("testcase") if c.get("classname") == "a.pgx"]
+    assert len(a_cases) == 1  # the F101 failure; the S301 warning is in its system-out
+    assert "a.pgx:14: S301 [warning]" in a_cases[0].find("system-out").text
+    extra = [c for c in suite.findall("testcase") if c.get("classname") == "z/extra.pgx"]
+    assert [c.get("name") for c in extra] == ["val3check"] and extra[0].find("failure") is None
+    result = sample(make_result, d)
+    result.fail_on = "never"
+    assert parse(render("junit", result)).get("failures") == "0"
+
+
+def test_cases_carry_file_and_line(make_result, d):
+    suite = parse(render("junit", sample(make_result, d))).find("testsuite")
+    by_type = {c.find("failure").get("type"): c for c in suite.findall("testcase") if c.find("failure") is not None}
+    assert by_type["F101"].get("file") == "a.pgx" and by_type["F101"].get("line") == "12"
+    assert by_type["F001"].get("file") == "b.pgx" and by_type["F001"].get("line") is None  # the whole file
+    assert all(c.get("file") == c.get("classname") for c in suite.findall("testcase"))
+
+
+def test_failure_contents_round_trip(make_result, d):
+    result = sample(make_result, d)
+    result.fail_on = "warning"
+    suite = parse(render("junit", result)).find("testsuite")
     by_type = {}
     for case in suite.findall("testcase"):
         failure = case.find("failure")

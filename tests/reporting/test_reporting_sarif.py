@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import jsonschema
@@ -146,3 +147,43 @@ def test_fingerprint_distinguishes_findings(make_result, d, workdir):
     line2, line3, line4 = prints[1], prints[3], prints[4]
     assert line2.endswith(":1") and line3.endswith(":1") and line4.endswith(":2")
     assert line2.split(":")[0] == line4.split(":")[0] != line3.split(":")[0]
+
+
+def test_paths_are_relative_to_the_repository_root(schema, make_result, d, workdir):
+    """A CI step run in a sub-folder: display paths are relative to it, SARIF's to the root."""
+    sub = workdir / "cells"
+    sub.mkdir()
+    (sub / "a.pgx").write_text("begin\nend\n", encoding="utf-8")
+    import os
+
+    os.chdir(sub)
+    result = make_result([d("F101", "x", "a.pgx", 1, 1)], files=["a.pgx"])
+    result.root = str(workdir)
+    sarif = json.loads(render("sarif", result, exit_code=1))
+    jsonschema.Draft7Validator(schema).validate(sarif)
+    run = sarif["runs"][0]
+    assert results(sarif)[0]["locations"][0]["physicalLocation"]["artifactLocation"] == {
+        "uri": "cells/a.pgx", "uriBaseId": "%SRCROOT%"}
+    assert run["originalUriBaseIds"] == {"%SRCROOT%": {"uri": workdir.as_uri() + "/"}}
+    assert run["invocations"] == [{"executionSuccessful": True, "exitCode": 1}]
+    # the fingerprint uses the repository path: the same from any working folder
+    first = fingerprints(result)
+    os.chdir(workdir)
+    again = make_result([d("F101", "x", "cells/a.pgx", 1, 1)], files=["cells/a.pgx"])
+    again.root = str(workdir)
+    assert fingerprints(again) == first
+
+
+def test_tool_links_and_invocations(schema, make_result, d, workdir):
+    sarif = json.loads(render("sarif", sample(make_result, d, workdir), exit_code=2))
+    jsonschema.Draft7Validator(schema).validate(sarif)
+    driver = sarif["runs"][0]["tool"]["driver"]
+    assert driver["informationUri"] == "https://pypi.org/project/val3check/"
+    assert all(r["helpUri"] == "https://pypi.org/project/val3check/1.2.3/" for r in driver["rules"] if "name" in r)
+    assert sarif["runs"][0]["invocations"] == [{"executionSuccessful": False, "exitCode": 2}]
+    # the format checker of the schema: helpUri, informationUri and the base URI are absolute URIs
+    checker = jsonschema.Draft7Validator.FORMAT_CHECKER
+    for uri in [driver["informationUri"], sarif["runs"][0]["originalUriBaseIds"]["%SRCROOT%"]["uri"],
+                *(r["helpUri"] for r in driver["rules"] if "helpUri" in r)]:
+        assert re.match(r"^[a-z][a-z0-9+.-]*:", uri), uri
+        checker.check(uri, "uri") if "uri" in checker.checkers else None

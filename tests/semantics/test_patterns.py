@@ -359,7 +359,8 @@ def test_comments_and_strings(tmp_path):
     f = app(tmp_path, code, globals_=["num nA", "string sA"])
     first = at(f, "start.pgx", "begin")[0]
     got = sorted((x[0], x[2] - first + 1, x[3]) for x in s_found(f))
-    assert got == [("S010", 3, 10), ("S010", 10, 5), ("S011", 6, 8), ("S011", 7, 8), ("S011", 8, 8)]
+    # the directive on line 4 suppresses nothing (S021, issue 16)
+    assert got == [("S010", 3, 10), ("S010", 10, 5), ("S011", 6, 8), ("S011", 7, 8), ("S011", 8, 8), ("S021", 4, 10)]
 
 
 # ------------------------------------------------------------------ S012 wait

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import errno
 import os
+from collections.abc import Callable
 from ..records import dataclass, field
 
 from ..confine import Refused, Roots, check, repository_root
@@ -30,6 +31,12 @@ class LoadOptions:
     # more folders that paths written in files may lead into (the run's roots, when a library
     # is loaded again by the simulator)
     extra_roots: list[str] = field(default_factory=list)
+    # skip(path, is_folder): the configuration excludes it (val3check.exclusion); a folder walk
+    # neither enters such a folder nor reads such a file
+    skip: Callable[[str, bool], bool] | None = None
+    # absolute path -> unsaved text to read instead of the file on disk (an editor's buffer,
+    # `--stdin-filename`); read through the same gate (val3check.confine)
+    overlay: dict[str, bytes] | None = None
 
 
 def _key(path: str) -> str:
@@ -92,11 +99,12 @@ class Loader:
         self.repos: list[str] = []  # repository roots of the targets (git top level, else the target)
         self.index = rs.RepositoryIndex(SKIP_DIRS)
         self._real_folders: dict[str, str] = {}  # application folder -> its real path
+        self.excluded = 0  # folders and files a walk skipped because the configuration excludes them
 
     # -- reading ------------------------------------------------------------------------------
 
     def _read(self, path: str) -> Node | None:
-        res = read_xml(path, self.options.max_file_size, self.roots)
+        res = read_xml(path, self.options.max_file_size, self.roots, self.options.overlay)
         self.diags.extend(res.diagnostics)
         self.lines_read += res.lines
         self.bytes_read += res.size
@@ -308,7 +316,7 @@ class Loader:
 
     def _project_listing(self, pjx: str, target: str) -> bool:
         """Does this project list `target` among its programs or data? (no diagnostics)"""
-        res = read_xml(pjx, self.options.max_file_size, self.roots)
+        res = read_xml(pjx, self.options.max_file_size, self.roots, self.options.overlay)
         if res.root is None or rd.classify(res.root) is None or rd.classify(res.root)[0] != "project":
             return False
         pf = rd.read_project(res.root, rd.Sink(pjx))
@@ -357,9 +365,19 @@ class Loader:
             self._add_member_file(path, ext)
             return
         # Any other name: look at the content.
-        res = read_xml(path, self.options.max_file_size, self.roots)
+        res = read_xml(path, self.options.max_file_size, self.roots, self.options.overlay)
         if res.root is None:
-            self.diags.extend(res.diagnostics)
+            if any(d.code in ("F001", "F002", "F014") for d in res.diagnostics):
+                self.diags.extend(res.diagnostics)  # not read at all: say why
+                return
+            # A file named on the command line that is not even XML (a README, a script...):
+            # what it is not matters, not where its XML would break (issue 16 item 10).
+            self.diags.append(Diagnostic(
+                "F006",
+                "not a VAL 3 file (it is not XML); expected a .pjx project, a .pgx program file, a .dtx data file"
+                " or an application folder",
+                path,
+            ))
             return
         got = rd.classify(res.root)
         if got is not None and got[0] == "project":
@@ -434,17 +452,24 @@ class Loader:
                 self.diags.append(Diagnostic("F001", f"cannot list the folder: {reason}", folder))
                 continue
             projects, programs, subdirs = [], [], []
+            skip = self.options.skip
             for n in names:
                 p = os.path.join(folder, n)
                 e = _ext(n)
                 if os.path.isdir(p):
                     if n.startswith(".") or n in SKIP_DIRS or os.path.isfile(os.path.join(p, "pyvenv.cfg")):
                         continue
+                    if skip is not None and skip(p, True):
+                        self.excluded += 1
+                        continue
                     if not self.roots.allows(p):
                         self._outside(p, "folder")
                         continue
                     subdirs.append(p)
                 elif e in (_EXT_PROJECT, _EXT_PROGRAM):
+                    if skip is not None and skip(p, False):
+                        self.excluded += 1
+                        continue
                     # a FIFO or device, or a link that leads out: reading it reports it (F001, F014)
                     if os.path.exists(p):
                         (projects if e == _EXT_PROJECT else programs).append(p)
@@ -460,8 +485,11 @@ class Loader:
         ))
 
     def _add_folder(self, top: str) -> None:
+        before = self.excluded
         folders = self._walk(top)
         if not folders:
+            if self.excluded > before:
+                return  # everything here is excluded: nothing to check, nothing wrong
             self.diags.append(
                 Diagnostic("F008", "no VAL 3 application (.pjx project or .pgx program file) found in this folder", top)
             )
@@ -493,7 +521,7 @@ class Loader:
                         "F012",
                         f"program file not listed in {os.path.basename(owner)}: it is not part of the"
                         " application and is not checked",
-                        p,
+                        p, fix=("list-program", owner),
                     ))
                 continue
             # No project here or above, or none could be read: the programs alone.
@@ -743,4 +771,5 @@ def load_paths(paths: list[str], options: LoadOptions) -> tuple[Workspace, list[
             reason = getattr(exc, "strerror", None) or str(exc)
             loader.diags.append(Diagnostic("F001", f"cannot read: {reason}", os.path.abspath(p)))
     loader.resolve_all()
+    loader.ws.excluded = loader.excluded
     return loader.ws, loader.diags, loader

@@ -179,6 +179,7 @@ class Workspace:
     roots: Any = None
     # files read as VAL 3 (absolute paths): the only files a report may quote
     quotable: set[str] = field(default_factory=set)
+    excluded: int = 0  # folders and files skipped because the configuration excludes them
 
     def library(self, app: Application, alias: str) -> Application | None:
         ref = app.libraries.get(alias)

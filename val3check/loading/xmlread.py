@@ -254,11 +254,12 @@ def _line_col_of_offset(prefix: str) -> tuple[int, int]:
     return line, len(prefix) - last  # last == -1 -> len + 1
 
 
-def read_bytes(path: str, max_size: int, roots: Roots) -> tuple[bytes | None, list[Diagnostic]]:
-    """The file's bytes, or None with F001 (cannot read), F002 (too large) or F014 (outside the
-    allowed roots): `val3check.confine.read_bytes` decides."""
+def read_bytes(path: str, max_size: int, roots: Roots,
+               overlay: dict[str, bytes] | None = None) -> tuple[bytes | None, list[Diagnostic]]:
+    """The file's bytes (or its unsaved text from `overlay`), or None with F001 (cannot read),
+    F002 (too large) or F014 (outside the allowed roots): `val3check.confine.read_bytes` decides."""
     try:
-        return confine.read_bytes(path, roots, max_size), []
+        return confine.read_bytes(path, roots, max_size, overlay), []
     except confine.Refused as exc:
         return None, [Diagnostic(exc.code, exc.reason, path)]
 
@@ -555,9 +556,10 @@ def _invalid_token(bi: int, data: bytes, path: str) -> Diagnostic | None:
     return None
 
 
-def read_xml(path: str, max_size: int, roots: Roots) -> XmlResult:
-    """Read, decode and parse one file: F001/F002/F003/F004/F005/F014 diagnostics, never raises."""
-    data, diags = read_bytes(path, max_size, roots)
+def read_xml(path: str, max_size: int, roots: Roots, overlay: dict[str, bytes] | None = None) -> XmlResult:
+    """Read, decode and parse one file: F001/F002/F003/F004/F005/F014 diagnostics, never raises.
+    `overlay`: absolute path -> unsaved text read instead of the file (confine.read_bytes)."""
+    data, diags = read_bytes(path, max_size, roots, overlay)
     if data is None:
         return XmlResult(None, diags)
     size = len(data)

@@ -12,11 +12,12 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from ..result import LintResult
 
-FORMATS = ("text", "json", "sarif", "junit", "github")  # `val3check lint --format`
+FORMATS = ("text", "concise", "json", "sarif", "junit", "github")  # `val3check lint --output-format`
 SIM_FORMATS = ("text", "json")  # `val3check sim --report`: sim_text.py, sim_json.py
 
 _MODULES = {
     "text": "text",
+    "concise": "text",
     "json": "json_format",
     "sarif": "sarif",
     "junit": "junit",
@@ -24,17 +25,23 @@ _MODULES = {
 }
 
 
-def render(fmt: str, result: "LintResult", *, color: bool = False, statistics: bool = False) -> str:
+def render(fmt: str, result: "LintResult", *, color: bool = False, statistics: bool = False, quiet: bool = False,
+           exit_code: int | None = None) -> str:
     """Render `result` in format `fmt` (one of FORMATS).
 
-    `color` and `statistics` only affect the `text` format; the machine-readable formats ignore
-    them. The returned string ends with a newline unless it is empty (`github` with no findings).
+    `color` and `quiet` (findings only, no summary) affect `text` and `concise`; `statistics`
+    (counts per rule) `text`, `concise` and `json`; `exit_code` (the run's, for SARIF's
+    `invocations`) `sarif`. The returned string ends with a newline unless it is empty.
     """
     try:
         module_name = _MODULES[fmt]
     except KeyError:
         raise ValueError(f"unknown output format {fmt!r} (expected one of {', '.join(FORMATS)})") from None
     module = import_module(f"{__name__}.{module_name}")
-    if fmt == "text":
-        return module.render(result, color=color, statistics=statistics)
+    if fmt in ("text", "concise"):
+        return module.render(result, color=color, statistics=statistics, quiet=quiet, concise=fmt == "concise")
+    if fmt == "json":
+        return module.render(result, statistics=statistics)
+    if fmt == "sarif":
+        return module.render(result, exit_code=exit_code)
     return module.render(result)

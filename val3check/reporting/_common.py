@@ -20,6 +20,25 @@ def tool_version(result: "LintResult") -> str:
     return __version__
 
 
+def root_of(result: "LintResult") -> str:
+    """The folder the CI formats make paths relative to (absolute)."""
+    import os
+
+    return os.path.abspath(result.root) if result.root else os.getcwd()
+
+
+def repository_path(display: str, root: str) -> str:
+    """A display path (relative to the current folder, or absolute) made relative to `root`
+    with `/` separators; absolute when it lies outside `root`."""
+    import os
+
+    absolute = os.path.abspath(display)
+    rel = os.path.relpath(absolute, root)
+    if rel == ".." or rel.startswith(".." + os.sep) or os.path.isabs(rel):
+        return absolute.replace(os.sep, "/") if os.sep != "/" else absolute
+    return rel.replace(os.sep, "/")
+
+
 def severity_of(diag: Diagnostic, result: "LintResult") -> Severity:
     """The diagnostic's severity; the pipeline always sets it, the fallbacks are defensive."""
     if diag.severity is not None:
@@ -68,15 +87,19 @@ class SourceCache:
 
     MAX_SIZE = 64 * 1024 * 1024
 
-    def __init__(self, quotable: dict[str, str] | None = None) -> None:
+    def __init__(self, quotable: dict[str, str] | None = None, sources: dict[str, bytes] | None = None) -> None:
         self._files: dict[str, list[str] | None] = {}
         self._quotable = quotable
+        self._sources = sources or {}  # display path -> unsaved text (an editor's buffer, stdin)
 
     def lines(self, path: str) -> list[str] | None:
         if path not in self._files:
             self._files[path] = None
             real = path if self._quotable is None else self._quotable.get(path)
-            if real is not None:
+            if path in self._sources:
+                text = self._sources[path].decode("utf-8-sig", errors="replace")
+                self._files[path] = [ln[:-1] if ln.endswith("\r") else ln for ln in text.split("\n")]
+            elif real is not None:
                 from ..confine import Refused, Roots, read_bytes
 
                 try:

@@ -2,7 +2,8 @@
 
     ::error file=App/start.pgx,line=12,col=5,endLine=12,endColumn=13,title=F101 syntax-error::unexpected 'endWhile'
 
-error -> `::error`, warning -> `::warning`, info -> `::notice`. Whole-file findings (line 0)
+error -> `::error`, warning -> `::warning`, info -> `::notice`. `file` is relative to the
+repository root (`LintResult.root`), as GitHub expects, whatever the step's working directory. Whole-file findings (line 0)
 carry no line/col, findings without a column no col/endColumn. Escaping follows the Actions
 runner: in the message `%`, `\\r`, `\\n` become `%25`, `%0D`, `%0A`; in property values also `:`
 and `,` become `%3A` and `%2C`. No findings: empty output.
@@ -13,7 +14,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from ..diagnostics import Diagnostic, Severity
-from ._common import rule_name, severity_of
+from ._common import repository_path, root_of, rule_name, severity_of
 
 if TYPE_CHECKING:
     from ..result import LintResult
@@ -29,8 +30,8 @@ def escape_property(text: str) -> str:
     return escape_data(text).replace(":", "%3A").replace(",", "%2C")
 
 
-def _properties(diag: Diagnostic, result: "LintResult") -> list[tuple[str, str]]:
-    props = [("file", diag.path)]
+def _properties(diag: Diagnostic, result: "LintResult", root: str) -> list[tuple[str, str]]:
+    props = [("file", repository_path(diag.path, root))]
     if diag.line > 0:
         props.append(("line", str(diag.line)))
         end_line = diag.end_line if diag.end_line is not None and diag.end_line >= diag.line else None
@@ -47,8 +48,9 @@ def _properties(diag: Diagnostic, result: "LintResult") -> list[tuple[str, str]]
 
 def render(result: "LintResult") -> str:
     lines = []
+    root = root_of(result)
     for diag in result.diagnostics:
         command = COMMANDS[severity_of(diag, result)]
-        props = ",".join(f"{key}={escape_property(value)}" for key, value in _properties(diag, result))
+        props = ",".join(f"{key}={escape_property(value)}" for key, value in _properties(diag, result, root))
         lines.append(f"::{command} {props}::{escape_data(diag.message)}")
     return "".join(line + "\n" for line in lines)

@@ -55,6 +55,7 @@ def report(result: "LintResult") -> dict[str, Any]:
             "files_checked": len(result.files),
             "files_with_diagnostics": len({d.path for d in result.diagnostics}),
             "applications_checked": len(result.applications),
+            "baselined": result.baselined,
         },
         "files": list(result.files),
         "applications": list(result.applications),
@@ -62,5 +63,23 @@ def report(result: "LintResult") -> dict[str, Any]:
     }
 
 
-def render(result: "LintResult") -> str:
-    return json.dumps(report(result), indent=2, sort_keys=True, ensure_ascii=True) + "\n"
+def statistics_report(result: "LintResult") -> dict[str, Any]:
+    """`--statistics --output-format json`: counts per rule, most frequent first, then by code."""
+    counts: dict[str, int] = {}
+    severities: dict[str, Severity] = {}
+    for diag in result.diagnostics:
+        counts[diag.code] = counts.get(diag.code, 0) + 1
+        sev = severity_of(diag, result)
+        severities[diag.code] = max(sev, severities.get(diag.code, sev))
+    rows = []
+    for code, n in sorted(counts.items(), key=lambda item: (-item[1], item[0])):
+        rule = result.rules.get(code)
+        rows.append({"code": code, "name": rule.name if rule is not None else None, "count": n,
+                     "severity": severities[code].label, "fixable": bool(rule is not None and rule.fix)})
+    body = report(result)
+    return {"version": VERSION, "tool": body["tool"], "summary": body["summary"], "statistics": rows}
+
+
+def render(result: "LintResult", *, statistics: bool = False) -> str:
+    body = statistics_report(result) if statistics else report(result)
+    return json.dumps(body, indent=2, sort_keys=True, ensure_ascii=True) + "\n"

@@ -2,13 +2,15 @@
 
 Layout: `<testsuites>` holding one `<testsuite name="val3check">`.
 
-Many JUnit consumers show only the first `<failure>` of a test case, so every finding at or
-above warning gets a test case of its own (classname = file path, name = "CODE name at L:C"),
-holding exactly one `<failure>`; each file examined without such a finding gets one passing test
-case (classname = file path, name = "val3check"). Info findings never fail: they are listed in
-the `<system-out>` of the file's passing test case. So `tests` = passing files + failing
-findings, `failures` = failing findings, `errors` = `skipped` = 0, and a clean file still shows
-up as a passed test.
+A failure is what fails the build: a finding at or above `--fail-on` (`LintResult.fail_on`,
+error by default; none with `never`), so the report's `failures` is 0 exactly when the exit code
+is 0 (`--exit-zero` aside). Many JUnit consumers show only the first `<failure>` of a test case,
+so every such finding gets a test case of its own (classname = file path, name = "CODE name at
+L:C", with `file` and `line` attributes) holding exactly one `<failure>`; each file examined
+without one gets one passing test case (classname = file path, name = "val3check", `file`).
+Findings below `--fail-on` never fail: they are listed in the `<system-out>` of the file's first
+test case. So `tests` = passing files + failing findings, `failures` = failing findings,
+`errors` = `skipped` = 0, and a clean file still shows up as a passed test.
 
 Escaping is done by ElementTree; characters that XML 1.0 cannot hold (C0 controls) become
 U+FFFD and non-ASCII characters become character references, so the output is pure ASCII.
@@ -54,19 +56,33 @@ def _finding_line(diag: Diagnostic, severity: Severity) -> str:
     return f"{_position(diag)}: {diag.code} [{severity.label}] {diag.message}"
 
 
+def _fails(severity: Severity, fail_on: str) -> bool:
+    return fail_on != "never" and severity >= Severity.parse(fail_on)
+
+
+def _case(path: str, name: str, line: int = 0) -> ET.Element:
+    attrs = {"classname": _xml(path), "name": _xml(name), "file": _xml(path)}
+    if line > 0:
+        attrs["line"] = str(line)
+    attrs["time"] = "0"
+    return ET.Element("testcase", attrs)
+
+
 def render(result: "LintResult") -> str:
     paths = sorted(set(result.files) | {d.path for d in result.diagnostics})
     failing: dict[str, list[tuple[Diagnostic, Severity]]] = {p: [] for p in paths}
-    infos: dict[str, list[tuple[Diagnostic, Severity]]] = {p: [] for p in paths}
+    lower: dict[str, list[tuple[Diagnostic, Severity]]] = {p: [] for p in paths}
+    fail_on = result.fail_on or "error"
     for diag in result.diagnostics:
         severity = severity_of(diag, result)
-        (failing if severity >= Severity.WARNING else infos)[diag.path].append((diag, severity))
+        (failing if _fails(severity, fail_on) else lower)[diag.path].append((diag, severity))
 
     cases: list[ET.Element] = []
     n_failures = 0
     for path in paths:
+        first = None
         for diag, severity in failing[path]:
-            case = ET.Element("testcase", {"classname": _xml(path), "name": _xml(_case_name(diag, result)), "time": "0"})
+            case = _case(path, _case_name(diag, result), diag.line)
             failure = ET.SubElement(
                 case, "failure", {"message": _xml(f"{diag.code}: {diag.message}"), "type": _xml(diag.code)}
             )
@@ -74,13 +90,14 @@ def render(result: "LintResult") -> str:
             summary = result.rules[diag.code].summary if diag.code in result.rules else ""
             failure.text = _xml(f"{text}\n{summary}" if summary else text)
             cases.append(case)
+            first = first if first is not None else case
             n_failures += 1
-        if not failing[path]:
-            case = ET.Element("testcase", {"classname": _xml(path), "name": TOOL_NAME, "time": "0"})
-            if infos[path]:
-                out = ET.SubElement(case, "system-out")
-                out.text = _xml("\n".join(_finding_line(d, s) for d, s in infos[path]))
-            cases.append(case)
+        if first is None:
+            first = _case(path, TOOL_NAME)
+            cases.append(first)
+        if lower[path]:
+            out = ET.SubElement(first, "system-out")
+            out.text = _xml("\n".join(_finding_line(d, s) for d, s in lower[path]))
 
     counts = {"tests": str(len(cases)), "failures": str(n_failures), "errors": "0", "skipped": "0", "time": "0"}
     root = ET.Element("testsuites", {"name": TOOL_NAME, **counts})

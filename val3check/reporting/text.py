@@ -11,6 +11,8 @@ A whole-file finding (line 0) prints only the header `path: CODE [severity] mess
 without a column (col 0) prints `path:line:` and underlines the whole line. Tabs in the source
 line are expanded to TAB_SIZE columns, in the caret line too, so the caret stays aligned.
 With `statistics=True` a table of counts per code replaces the findings (as ruff --statistics).
+`concise=True` prints the header line of each finding only (`--output-format concise`, for
+editors' problem matchers); `quiet=True` leaves out the summary line.
 """
 
 from __future__ import annotations
@@ -86,7 +88,7 @@ def _underline(diag: Diagnostic, source: str) -> tuple[int, int] | None:
     return start, max(end, start + 1)
 
 
-def _header(diag: Diagnostic, severity: Severity, style: _Style) -> str:
+def _header(diag: Diagnostic, severity: Severity, style: _Style, one_line: bool = False) -> str:
     where = style(diag.path, _BOLD)
     if diag.line > 0:
         where += f":{diag.line}"
@@ -95,7 +97,8 @@ def _header(diag: Diagnostic, severity: Severity, style: _Style) -> str:
     colour = _SEVERITY_COLOR[severity]
     code = style(diag.code, _BOLD, colour)
     label = style(f"[{severity.label}]", colour)
-    return f"{where}: {code} {label} {printable(diag.message, keep_newlines=True)}"
+    message = printable(diag.message, keep_newlines=not one_line)
+    return f"{where}: {code} {label} {message}"
 
 
 def _snippet(diag: Diagnostic, severity: Severity, sources: SourceCache, style: _Style,
@@ -161,6 +164,8 @@ def _statistics(result: "LintResult", style: _Style) -> list[str]:
 
 def summary(result: "LintResult") -> str:
     checked = plural(len(result.files), "file") + " checked"
+    if result.baselined:
+        checked += f"; {plural(result.baselined, 'finding')} of the baseline not shown"
     if not result.diagnostics:
         return f"All checks passed ({checked})."
     counts = severity_counts(result)
@@ -175,21 +180,31 @@ def summary(result: "LintResult") -> str:
     return f"Found {', '.join(parts)} in {plural(files, 'file')} ({checked})."
 
 
-def render(result: "LintResult", *, color: bool = False, statistics: bool = False) -> str:
+def render(result: "LintResult", *, color: bool = False, statistics: bool = False, quiet: bool = False,
+           concise: bool = False) -> str:
     style = _Style(color)
     out: list[str] = []
     if statistics:
         if result.diagnostics:
             out.extend(_statistics(result, style))
             out.append("")
+    elif concise:
+        for diag in result.diagnostics:
+            out.append(_header(diag, severity_of(diag, result), style, one_line=True))
+        if result.diagnostics:
+            out.append("")
     else:
-        sources = SourceCache(result.quotable)
+        sources = SourceCache(result.quotable, result.sources)
         prepared: dict = {}
         for diag in result.diagnostics:
             severity = severity_of(diag, result)
             out.append(_header(diag, severity, style))
             out.extend(_snippet(diag, severity, sources, style, prepared))
             out.append("")
+    if quiet:
+        while out and out[-1] == "":
+            out.pop()
+        return "".join(line + "\n" for line in out)
     line = summary(result)
     out.append(style(line, _PASS if not result.diagnostics else _BOLD))
     return "\n".join(out) + "\n"

@@ -56,6 +56,7 @@ class Rule:
     explanation: str
     bad: tuple[Example, ...] = field(default=())
     good: tuple[Example, ...] = field(default=())
+    fix: str = ""  # what `val3check lint --fix` does for a finding of this rule ("": no automatic fix)
 
     @property
     def family(self) -> str:
@@ -115,6 +116,7 @@ def load_rule(path: str | os.PathLike) -> Rule:
             explanation=raw.get("explanation", "").strip(),
             bad=tuple(_example(e, f"{path} [[bad]]") for e in raw.get("bad", ())),
             good=tuple(_example(e, f"{path} [[good]]") for e in raw.get("good", ())),
+            fix=raw.get("fix", "").strip(),
         )
     except (KeyError, ValueError) as exc:
         raise CatalogueError(f"{path}: missing or invalid field {exc}") from None

@@ -109,11 +109,13 @@ class Context:
         self.path = program.origin.path
 
     def report(self, code: str, message: str, line: int, col: int, end_line: int | None = None,
-               end_col: int | None = None, path: str | None = None) -> None:
-        self.diags.append(Diagnostic(code, message, path or self.path, line, col, end_line, end_col))
+               end_col: int | None = None, path: str | None = None, fix: tuple | None = None) -> None:
+        self.diags.append(Diagnostic(code, message, path or self.path, line, col, end_line, end_col, fix=fix))
 
-    def report_at(self, code: str, message: str, node: object) -> None:
-        """At a node of the tree: its start, and its end when the node knows it."""
+    def report_at(self, code: str, message: str, node: object, fix: tuple | None = None) -> None:
+        """At a node of the tree: its start, and its end when the node knows it. `fix`: what
+        `lint --fix` may do (diagnostics.Diagnostic.fix)."""
         end_line = getattr(node, "end_line", None)
         end_col = getattr(node, "end_col", None) if end_line is not None else None
-        self.diags.append(Diagnostic(code, message, self.path, node.line, node.col, end_line, end_col))  # type: ignore[attr-defined]
+        self.diags.append(Diagnostic(code, message, self.path, node.line, node.col, end_line, end_col,  # type: ignore[attr-defined]
+                                     fix=fix))

@@ -156,7 +156,8 @@ class ExprTyper:
         sym = ctx.scope.lookup_ci(name)  # type: ignore[union-attr]
         if sym is not None:
             kind = "parameter" if sym.kind == S.PARAM else sym.kind
-            ctx.report_at("N006", M.case_mismatch(kind, name, sym.name), node)
+            ctx.report_at("N006", M.case_mismatch(kind, name, sym.name), node,
+                fix=("rename", name, sym.name))
             return sym.val
         if not ctx.globals_known or not ctx.names_complete("data"):
             return UNKNOWN_VAL  # maybe a global that could not be read
@@ -180,7 +181,8 @@ class ExprTyper:
         if lib is None:
             other = ctx.table.library_alias_ci(alias)
             if other is not None:
-                ctx.report_at("N006", M.case_mismatch("library identifier", alias, other), node)
+                ctx.report_at("N006", M.case_mismatch("library identifier", alias, other), node,
+                    fix=("rename", alias, other, "", ":"))
                 lib = ctx.table.library(other)
                 return None if lib is S.MISSING else lib
             if ctx.globals_known and alias.lower() != "io":
@@ -207,7 +209,8 @@ class ExprTyper:
             return UNKNOWN_VAL
         other = lib.lookup_ci(name)
         if other is not None:
-            ctx.report_at("N006", M.case_mismatch("library symbol", name, other), node)
+            ctx.report_at("N006", M.case_mismatch("library symbol", name, other), node,
+                fix=("rename", name, other, ":", ""))
             sym, _ = lib.data_symbol(other)
             return sym.val if sym is not None else UNKNOWN_VAL
         if ctx.names_complete("data", lib.app) and not ctx.program_may_exist(name, lib.app):
@@ -282,7 +285,8 @@ class ExprTyper:
                 low = name.lower()
                 sym = next((s for n, s in fields.items() if n.lower() == low), None)
                 if sym is not None:
-                    ctx.report("N006", M.case_mismatch("field", name, sym.name), node.name_line, node.name_col)
+                    ctx.report("N006", M.case_mismatch("field", name, sym.name), node.name_line, node.name_col,
+                        fix=("rename", name, sym.name))
             if sym is None and t.app is not None and not ctx.names_complete("data", t.app):
                 return vt.Val(UNKNOWN, var=base.var, root=base.root, field=True) if base.var else UNKNOWN_VAL
             if sym is None or sym.decl.access != "public":
@@ -302,7 +306,8 @@ class ExprTyper:
                 return vt.Val(UNKNOWN, var=base.var, root=base.root, field=True) if base.var else UNKNOWN_VAL
             canon, ft, exact = hit
             if not exact:
-                ctx.report("N006", M.case_mismatch("field", name, canon), node.name_line, node.name_col)
+                ctx.report("N006", M.case_mismatch("field", name, canon), node.name_line, node.name_col,
+                    fix=("rename", name, canon))
             return vt.Val(ft, ELEMENT, 0, True, base.var, base.root, False, 0, True)
         ctx.report("T012", M.no_field(t.name, name), node.name_line, node.name_col,
                    node.name_line, node.name_col + len(name))

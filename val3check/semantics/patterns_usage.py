@@ -253,7 +253,7 @@ def unused_in_program(program: Program, facts: ProgramFacts, interface: bool, is
         if local.name.lower() not in mentioned:
             o = local.origin
             out.append(Diagnostic(M.UNUSED_LOCAL, M.unused_local(local.name, program.name), o.path or path,
-                                  o.line, o.col))
+                                  o.line, o.col, fix=("remove-element", local.name)))
     if not interface and not is_task:
         for param in program.parameters:
             if param.name.lower() not in mentioned:

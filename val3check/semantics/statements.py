@@ -134,7 +134,8 @@ class StatementChecker(ExprTyper):
                     return None, label, vals
                 other = lib.lookup_ci(target.name)
                 if other is not None and lib.app.programs.get(other) is not None:
-                    ctx.report_at("N006", M.case_mismatch("library program", target.name, other), target)
+                    ctx.report_at("N006", M.case_mismatch("library program", target.name, other), target,
+                        fix=("rename", target.name, other, ":", ""))
                     prog, why = lib.program(other)
                 else:
                     if not ctx.program_may_exist(target.name, lib.app) and ctx.names_complete("data", lib.app):
@@ -153,7 +154,8 @@ class StatementChecker(ExprTyper):
         if prog is None:
             prog = table.program_ci(name)
             if prog is not None:
-                ctx.report_at("N006", M.case_mismatch("program", name, prog.name), target)
+                ctx.report_at("N006", M.case_mismatch("program", name, prog.name), target,
+                    fix=("rename", name, prog.name))
         if prog is None:
             ins = lookup_instruction(name)
             if ins is not None:

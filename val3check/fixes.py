@@ -1,0 +1,315 @@
+"""`val3check lint --fix` / `--diff`: the fixes that are certain, written byte for byte.
+
+Three rules have one (their rule files say so under `fix`):
+
+- N006 (name-case-mismatch): the name is written as it is declared. val3check found no
+  declaration with the written case, only one with another case, so the rewritten name means
+  what the controller means whether it compares names with or without case.
+- S001 (unused-local): the `<Local>` element is removed (its whole line when it is alone on it):
+  the program never mentions the local.
+- F012 (program-file-not-listed): the file is listed in the project, after the last
+  `<Program>` entry and written like it, when it is a readable program file none of whose
+  programs clashes with a program of the application.
+
+Everything else in the file stays as it was, byte for byte: the encoding mark, line endings,
+CDATA sections, escapes, blanks. An edit is made only where the bytes are what the finding
+says (the name at its column, a `<Local name="...">` element at its position); the edited file
+must still be well-formed XML, or none of its edits is made. Files that are not UTF-8 (UTF-16
+with a byte-order mark) are not edited.
+"""
+
+from __future__ import annotations
+
+import difflib
+import os
+import re
+
+from .diagnostics import Diagnostic
+from .records import dataclass, field
+
+MAX_SIZE = 64 * 1024 * 1024
+_IDENT = re.compile(r"[A-Za-z0-9_]")
+
+
+@dataclass(slots=True)
+class Edit:
+    start: int  # byte offsets in the file
+    end: int
+    text: bytes
+    code: str
+
+
+@dataclass(slots=True)
+class FixPlan:
+    edits: dict[str, list[Edit]] = field(default_factory=dict)  # absolute path -> edits
+    originals: dict[str, bytes] = field(default_factory=dict)
+    not_fixed: list[tuple[Diagnostic, str]] = field(default_factory=list)  # and why
+
+    @property
+    def count(self) -> int:
+        return sum(len(e) for e in self.edits.values())
+
+    def result(self, path: str) -> bytes:
+        data = self.originals[path]
+        out, at = [], 0
+        for e in sorted(self.edits[path], key=lambda e: (e.start, e.end)):
+            out += [data[at:e.start], e.text]
+            at = e.end
+        out.append(data[at:])
+        return b"".join(out)
+
+    def diff(self, shown) -> str:  # noqa: ANN001
+        """A unified diff of every file changed; `shown(path)` names a file as reports do."""
+        chunks = []
+        for path in sorted(self.edits):
+            old = self.originals[path].decode("utf-8", "surrogateescape").splitlines(keepends=True)
+            new = self.result(path).decode("utf-8", "surrogateescape").splitlines(keepends=True)
+            name = shown(path)
+            chunks.append("".join(difflib.unified_diff(old, new, f"a/{name}", f"b/{name}")))
+        return "".join(c if c.endswith("\n") else c + "\n\\ No newline at end of file\n" for c in chunks if c)
+
+    def write(self) -> None:
+        """Each changed file replaced at once (a temporary file renamed over it), its mode kept."""
+        for path in sorted(self.edits):
+            tmp = path + ".val3check-fix"
+            mode = os.stat(path).st_mode & 0o7777
+            with open(tmp, "wb") as fh:
+                fh.write(self.result(path))
+            os.chmod(tmp, mode)
+            os.replace(tmp, path)
+
+
+class _File:
+    """A file's bytes with the positions of its lines (as expat counts them)."""
+
+    def __init__(self, data: bytes) -> None:
+        self.data = data
+        self.bom = 3 if data.startswith(b"\xef\xbb\xbf") else 0
+        self.starts = [0]
+        i, n = 0, len(data)
+        while i < n:
+            c = data[i]
+            if c == 0x0A or (c == 0x0D and (i + 1 >= n or data[i + 1] != 0x0A)):
+                self.starts.append(i + 1)
+            i += 1
+
+    def line_span(self, line: int) -> tuple[int, int, int]:
+        """(start, end of its text, start of the next line) of 1-based `line`, in bytes."""
+        start = self.starts[line - 1] + (self.bom if line == 1 else 0)
+        nxt = self.starts[line] if line < len(self.starts) else len(self.data)
+        end = nxt
+        while end > start and self.data[end - 1] in (0x0A, 0x0D):
+            end -= 1
+        return start, end, nxt
+
+    def line_text(self, line: int) -> str:
+        start, end, _ = self.line_span(line)
+        return self.data[start:end].decode("utf-8")
+
+    def offset(self, line: int, col: int) -> int:
+        """Byte offset of 1-based code-point column `col` of `line`."""
+        start, _, _ = self.line_span(line)
+        return start + len(self.line_text(line)[: col - 1].encode("utf-8"))
+
+
+def _read(path: str) -> bytes | None:
+    from .confine import Refused, Roots, read_bytes
+
+    try:
+        data = read_bytes(path, Roots.user_given(), MAX_SIZE)
+    except Refused:
+        return None
+    if data.startswith((b"\xff\xfe", b"\xfe\xff")):
+        return None
+    try:
+        data.decode("utf-8")
+    except UnicodeDecodeError:
+        return None
+    return data
+
+
+def _rename(d: Diagnostic, f: _File) -> Edit | str:
+    written, declared = d.fix[1], d.fix[2]
+    before = d.fix[3] if len(d.fix) > 3 else ""
+    after = d.fix[4] if len(d.fix) > 4 else ""
+    if d.line < 1 or d.line >= len(f.starts) + 1 or written.lower() != declared.lower():
+        return "the name is not where the finding says"
+    text = f.line_text(d.line)
+    stop = d.end_col - 1 if d.end_line == d.line and d.end_col else len(text)
+    for m in re.finditer(re.escape(written), text[: max(stop, d.col - 1 + len(written))]):
+        p = m.start()
+        if p < d.col - 1:
+            continue
+        if (p > 0 and _IDENT.match(text[p - 1])) or (m.end() < len(text) and _IDENT.match(text[m.end()])):
+            continue
+        if before and (p == 0 or text[p - 1] != before):
+            continue
+        if after and text[m.end():m.end() + 1] != after:
+            continue
+        start = f.offset(d.line, p + 1)
+        return Edit(start, start + len(written.encode("utf-8")), declared.encode("utf-8"), d.code)
+    return "the name is not where the finding says"
+
+
+def _remove_element(d: Diagnostic, f: _File) -> Edit | str:
+    name = d.fix[1]
+    if d.line < 1 or d.line > len(f.starts) or d.col < 1:
+        return "the element is not where the finding says"
+    at = f.offset(d.line, d.col)
+    m = re.compile(rb"<([A-Za-z_][\w.-]*)\b").match(f.data, at)
+    if m is None:
+        return "the element is not where the finding says"
+    tag = m.group(1)
+    close = f.data.find(b">", at)
+    if close < 0:
+        return "the element is not closed"
+    element = f.data[at:close + 1]
+    if not re.search(rb"""\bname\s*=\s*(["'])""" + re.escape(name.encode()) + rb"\1", element):
+        return "the element does not declare that name"
+    end = close + 1
+    if not element.endswith(b"/>"):
+        closing = re.compile(rb"</" + re.escape(tag) + rb"\s*>").search(f.data, end)
+        inner = f.data[end:closing.start()] if closing else b"<"
+        if closing is None or b"<" in inner:
+            return "the element holds other elements"
+        end = closing.end()
+    start_line, _, _ = f.line_span(d.line)
+    # the line holding the end of the element
+    end_line = max(i for i, s in enumerate(f.starts, 1) if s <= end)
+    _, text_end, nxt = f.line_span(end_line)
+    if not f.data[start_line:at].strip() and not f.data[end:text_end].strip():
+        return Edit(start_line, nxt, b"", d.code)  # alone on its lines: they go with it
+    return Edit(at, end, b"", d.code)
+
+
+_PROGRAM = re.compile(rb"<Program\b[^>]*?\bfile\s*=\s*([\"'])(.*?)\1[^>]*?/>", re.IGNORECASE | re.DOTALL)
+_SECTION = re.compile(rb"<(Programs|programSection)\b[^>]*(?<!/)>(.*?)</\1\s*>", re.IGNORECASE | re.DOTALL)
+
+
+def _escape(text: str, quote: bytes) -> bytes:
+    out = text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+    out = out.replace('"', "&quot;") if quote == b'"' else out.replace("'", "&apos;")
+    return out.encode("utf-8")
+
+
+def _listable(pgx: str, owner, workspace) -> str | None:  # noqa: ANN001
+    """Why the program file cannot be listed for sure, or None."""
+    from .confine import Roots
+    from .loading import reader as rd
+    from .loading.xmlread import read_xml
+
+    res = read_xml(pgx, MAX_SIZE, Roots.user_given())
+    kind = rd.classify(res.root) if res.root is not None else None
+    if kind is None or kind[0] != "programs":
+        return "the file is not a readable VAL 3 program file"
+    names = [p.get("name") or "" for p in res.root.findall("program")]
+    if not names or not all(names):
+        return "the file declares no program"
+    app = workspace.apps.get(owner) if workspace is not None else None
+    if app is None:
+        return "its application was not loaded"
+    existing = {n.lower() for n in app.programs}
+    clash = [n for n in names if n.lower() in existing]
+    if clash:
+        return f"its program {clash[0]} has the name of a program of the application"
+    return None
+
+
+def _list_programs(pjx: str, findings: list[Diagnostic], data: bytes, workspace) -> tuple[Edit | None, list]:  # noqa: ANN001
+    """One insertion after the project's last `<Program>` entry for every file to list."""
+    refused = []
+    section = _SECTION.search(data)
+    entries = list(_PROGRAM.finditer(data, section.start(2), section.end(2))) if section else []
+    if not entries:
+        return None, [(d, "the project lists no program to write the new entry like") for d in findings]
+    last = entries[-1]
+    f = _File(data)
+    line = max(i for i, s in enumerate(f.starts, 1) if s <= last.start())
+    line_start, text_end, nxt = f.line_span(line)
+    if data[last.end():text_end].strip():
+        return None, [(d, "the last program entry shares its line with other elements") for d in findings]
+    newline = data[text_end:nxt] or (b"\r\n" if b"\r\n" in data else b"\n")
+    indent = data[line_start:last.start()]
+    backslash = any(b"\\" in e.group(2) for e in entries)
+    listed = {e.group(2).decode("utf-8", "replace").replace("\\", "/").lower() for e in entries}
+    quote = last.group(1)
+    added = []
+    for d in sorted(findings, key=lambda d: d.path):
+        why = _listable(d.path, pjx, workspace)
+        rel = os.path.relpath(os.path.abspath(d.path), os.path.dirname(pjx)).replace(os.sep, "/")
+        if why is None and rel.lower() in listed:
+            why = "the project already lists it"
+        if why is not None:
+            refused.append((d, why))
+            continue
+        value = rel.replace("/", "\\") if backslash else rel
+        entry = data[last.start():last.start(2)] + _escape(value, quote) + data[last.end(2):last.end()]
+        added.append(indent + entry)
+        listed.add(rel.lower())
+    if not added:
+        return None, refused
+    text = b"".join(newline + a for a in added)
+    return Edit(text_end, text_end, text, "F012"), refused
+
+
+def plan(findings: list[Diagnostic], workspace=None) -> FixPlan:  # noqa: ANN001
+    """The edits that fix `findings` (paths as on disk) whose fix is certain."""
+    from .loading.xmlread import parse
+
+    fp = FixPlan()
+    files: dict[str, _File | None] = {}
+
+    def file_of(path: str) -> _File | None:
+        if path not in files:
+            data = _read(path)
+            files[path] = _File(data) if data is not None else None
+        return files[path]
+
+    per_file: dict[str, list[Edit]] = {}
+    listing: dict[str, list[Diagnostic]] = {}
+    for d in findings:
+        if not d.fix:
+            continue
+        kind = d.fix[0]
+        if kind == "list-program":
+            listing.setdefault(d.fix[1], []).append(d)
+            continue
+        f = file_of(d.path)
+        if f is None:
+            fp.not_fixed.append((d, "the file is not UTF-8 or cannot be read"))
+            continue
+        made = _rename(d, f) if kind == "rename" else _remove_element(d, f) if kind == "remove-element" else "unknown fix"
+        if isinstance(made, str):
+            fp.not_fixed.append((d, made))
+        else:
+            per_file.setdefault(d.path, []).append(made)
+    for pjx, found in sorted(listing.items()):
+        f = file_of(pjx)
+        if f is None:
+            fp.not_fixed += [(d, "the project file is not UTF-8 or cannot be read") for d in found]
+            continue
+        edit, refused = _list_programs(pjx, found, f.data, workspace)
+        fp.not_fixed += refused
+        if edit is not None:
+            per_file.setdefault(pjx, []).append(edit)
+    for path, edits in sorted(per_file.items()):
+        edits.sort(key=lambda e: (e.start, e.end))
+        kept: list[Edit] = []
+        for e in edits:
+            if kept and e.start < kept[-1].end:
+                continue  # overlapping: the next run fixes it
+            if kept and (e.start, e.end, e.text) == (kept[-1].start, kept[-1].end, kept[-1].text):
+                continue
+            kept.append(e)
+        fp.originals[path] = files[path].data
+        fp.edits[path] = kept
+        root, _problems = parse(_strip_bom(fp.result(path)), path)
+        if root is None:  # never leave a file that does not read (should not happen)
+            fp.not_fixed += [(d, "the fixed file would not be well-formed XML") for d in findings
+                             if d.path == path or (d.fix and d.fix[0] == "list-program" and d.fix[1] == path)]
+            del fp.edits[path]
+    return fp
+
+
+def _strip_bom(data: bytes) -> bytes:
+    return data[3:] if data.startswith(b"\xef\xbb\xbf") else data
