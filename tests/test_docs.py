@@ -367,7 +367,9 @@ def _python_api(block: Block, tmp: Path) -> None:
         used = set(re.findall(rf"(?<![\w.]){re.escape(var)}\.([A-Za-z_]\w*)", block.text))
         source = inspect.getsource(obj) if inspect.isclass(obj) else ""
         # a class's attributes include those its methods set (`self.findings = []`)
-        missing = sorted(a for a in used if not hasattr(obj, a) and not re.search(rf"self\.{a}\b\s*[:=]", source))
+        fields = getattr(obj, "__dataclass_fields__", {})  # a dataclass's fields without default
+        missing = sorted(a for a in used if not hasattr(obj, a) and a not in fields
+                         and not re.search(rf"self\.{a}\b\s*[:=]", source))
         assert not missing, f"{block.id}: {spec} has no {missing}"
 
 
