@@ -421,6 +421,7 @@ end
         assert 2 * one + 0.1 <= t <= 2 * one + 0.1 + 0.004 + 1e-6
     r = run(tmp_path / "b", code, ["mdesc mD", "point pA"], duration=60.0, cycles=2)
     assert r.end_reason == "cycles" and r.motion.cycles["Example~"].count == 2
+    assert "R006" not in codes(r)  # stop() ran and ended
     assert r.sim_time_us / 1e6 < 3 * (2 * one + 0.2) + 1.0
 
 
@@ -469,3 +470,28 @@ end
     assert lines[1].startswith("arm model: TX2-60")
     first = next(i for i, s in enumerate(lines) if "R011" in s)
     assert first < next(i for i, s in enumerate(lines) if s.startswith("tasks:"))
+
+
+def test_getjointforce_is_the_inverse_dynamics_when_the_model_has_masses(tmp_path):
+    from val3check.robot import from_urdf
+    from val3check.robot.catalog import example_robot_urdf
+
+    code = """begin
+  movej({0, -60, 80, -90, -90, 0}, flange, mD)
+  waitEndMove()
+  getJointForce(nForce)
+end
+"""
+    r = run(tmp_path / "tx", code, ["mdesc mD", "num nForce[6]"])
+    assert codes(r) == ["R002"] and "masses" in r.diagnostics[0].message  # Stäubli: not public
+    urdf = example_robot_urdf("ur_description/urdf/ur5_robot.urdf")
+    if urdf is None:
+        pytest.skip("example-robot-data is not installed")
+    import pinocchio as pin
+
+    ur5 = from_urdf(urdf, world_frame="base_link", flange_frame="tool0")
+    r = run(tmp_path / "ur5", code, ["mdesc mD", "num nForce[6]"], robot=ur5)
+    assert codes(r) == []
+    model, data = ur5.pinocchio()
+    g = pin.computeGeneralizedGravity(model, data, np.radians([0, -60, 80, -90, -90, 0]))
+    assert gv(r, "nForce") == pytest.approx(list(g), abs=1e-6)

@@ -200,6 +200,8 @@ class MovingArm:
         q.advance_us(to_us)
         end = self._cycles_end()
         if end is not None and end * US <= to_us + 1e-6:
+            self._end_cmd = None  # once: stop() then runs as after any end of a run
+            self.cycles_goal = None
             raise EndRun("cycles")
 
     def _cycles_end(self) -> float | None:
