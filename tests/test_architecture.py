@@ -27,6 +27,7 @@ LAYER_OF = {
     "motion": "motion", "collision": "collision",
     "simulation": "simulation",
     "reporting": "reporting",
+    "batch": "batch",
     "lsp": "lsp",
     "cli": "cli", "__main__": "cli", "testing": "cli",
 }
@@ -47,6 +48,8 @@ ALLOWED = {
     "collision": _BELOW_INTERPRETATION | {"interpretation"},
     "simulation": _BELOW_SIMULATION,
     "reporting": _BELOW_SIMULATION | {"simulation"},
+    # many cases of `sim`, on all cores or a cluster: runs simulations and writes their reports
+    "batch": _BELOW_SIMULATION | {"simulation", "reporting"},
     # the language server: the lint pipeline and what it stands on, never the simulator
     "lsp": {"base", "language", "loading", "parsing", "semantics", "lint"},
     "cli": set(LAYER_OF.values()),

@@ -52,6 +52,17 @@ def _patterns(text: str) -> list[str]:
     return [p.strip() for p in text.split(",") if p.strip()]
 
 
+def _add_batch(sim: argparse.ArgumentParser) -> None:
+    """`sim` on several cases (docs/batch.md, val3check/batch)."""
+    b = sim.add_argument_group("batch (several applications, arms, scenarios: docs/batch.md)")
+    b.add_argument("--sweep", metavar="FILE", help="sweep file (TOML): the applications, arms, scenarios, cells and overrides to combine")
+    b.add_argument("-j", "--jobs", type=int, metavar="N", help="cases run at once in processes on this machine (default: the number of cores)")
+    b.add_argument("--executor", choices=("local", "dask"), default="local", help="where cases run: local processes, or a Dask cluster (the dask extra)")
+    b.add_argument("--scheduler", metavar="ADDRESS", help="the Dask scheduler's address, tcp://host:8786 (with --executor dask)")
+    b.add_argument("--out-dir", metavar="DIR", help="write the summary (text, JSON, JUnit, index.html) and each case's report under DIR")
+    b.add_argument("--fail-fast", action="store_true", help="stop at the first case that does not pass")
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = _Parser(prog="val3check", description="Check Stäubli VAL 3 applications.")
     p.add_argument("--version", action="version", version=f"val3check {__version__}")
@@ -86,7 +97,8 @@ def build_parser() -> argparse.ArgumentParser:
                       help="colour the text output (auto: on a terminal; NO_COLOR and FORCE_COLOR are honoured)")
 
     sim = sub.add_parser("sim", help="run an application in the virtual controller (docs/sim.md)")
-    sim.add_argument("app", nargs="?", default=".", metavar="APP", help="the application: its folder or .pjx (default: .)")
+    sim.add_argument("app", nargs="*", metavar="APP", help="the application: its folder or .pjx (default: .); several"
+                     " applications, folders of applications, controller trees or globs run as a batch (docs/batch.md)")
     sim.add_argument("--duration", type=float, default=60.0, metavar="S", help="simulated seconds to run at most (default: 60)")
     sim.add_argument("--cycles", type=int, metavar="N", help="end the run when the arm starts its cycle N + 1 (the loop of the task that moves it; docs/motion.md)")
     _add_format(sim, SIM_FORMATS, "--report")
@@ -100,8 +112,9 @@ def build_parser() -> argparse.ArgumentParser:
                      help="memory budget in MB, loading included (default: 512)")
     sim.add_argument("--fail-on", choices=("error", "warning", "info", "never"), help="lowest runtime diagnostic severity that makes the exit code 1 (default: error)")
     _add_disk_root(sim)
-    sim.add_argument("--robot", metavar="NAME|URDF", help="the arm model: a catalogue name (case-insensitive, `val3check robots`), a URDF, an arm.cfx, or none (default: the usr/configs/arm.cfx of the controller tree holding APP, else none)")
+    sim.add_argument("--robot", action="append", metavar="NAME|URDF", help="the arm model: a catalogue name (case-insensitive, `val3check robots`), a URDF, an arm.cfx, or none (default: the usr/configs/arm.cfx of the controller tree holding APP, else none); repeat it to run a batch on each arm")
     _add_config(sim)
+    _add_batch(sim)
 
     reach = sub.add_parser("reach", help="check that the arm reaches every point and joint of the data files (docs/motion.md)")
     reach.add_argument("app", metavar="APP", help="the application: its folder or .pjx")
@@ -217,7 +230,13 @@ def _shown(path: str) -> str:
 
 def _sim(args: argparse.Namespace) -> int:
     """Lint first (in-process); run only an application without error-level findings."""
-    settings = _settings(args, args.app)
+    from .batch.command import wanted
+
+    batch = wanted(args)
+    if not batch:
+        args.app = args.app[0] if args.app else "."
+        args.robot = args.robot[0] if args.robot else None
+    settings = _settings(args, args.app[0] if batch and args.app else "." if batch else args.app)
     if settings is None:
         return EXIT_USAGE
     if args.fail_on:
@@ -245,6 +264,10 @@ def _sim(args: argparse.Namespace) -> int:
     if missing:
         print(f"val3check: error: {install_hint(missing)}", file=sys.stderr)
         return EXIT_USAGE
+    if batch:
+        from .batch.command import run as run_batch
+
+        return run_batch(args, settings, __version__, _write)
 
     from .diagnostics import Severity
     from .lint import run

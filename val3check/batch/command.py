@@ -1,0 +1,171 @@
+"""`val3check sim` with several applications, several arms, --sweep, --jobs, --executor or
+--out-dir: the batch (docs/batch.md). cli.py parses the options and hands them here.
+
+Exit codes: 0 every case passed; 1 a case failed at --fail-on, was not run (lint errors, no
+start(), bad scenario) or crashed; 2 the batch could not be made (usage, bad sweep file, no
+application, executor unavailable)."""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+import sys
+import time
+from typing import Any
+
+from .cases import Axes, CaseError, RunOptions, list_cases, product_cases
+from .outdir import OutDirError, prepare, write_case, write_summaries
+from .progress import Progress
+from .summary import render_json, render_text
+from .sweep import SweepError, load_sweep
+from .worker import CaseOutcome, summary_of
+
+EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
+_GLOB_CHARS = set("*?[")
+_ROBOT_FILES = (".urdf", ".cfx", ".toml")
+
+
+def wanted(args: Any) -> bool:
+    """Whether the command line asks for a batch; otherwise `sim` runs one application as before."""
+    return bool(len(args.app) > 1 or args.sweep or len(args.robot or []) > 1 or args.out_dir or args.jobs is not None
+                or args.executor != "local" or any(_GLOB_CHARS & set(a) for a in args.app))
+
+
+def cells_supported() -> bool:
+    """Whether the single run takes a cell (SimOptions.cell, added with `sim --cell`)."""
+    from ..simulation import SimOptions
+
+    return "cell" in {f.name for f in dataclasses.fields(SimOptions)}
+
+
+def _err(message: str) -> int:
+    print(f"val3check sim: error: {message}", file=sys.stderr)
+    return EXIT_USAGE
+
+
+def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
+    """`write(text, output) -> bool`: the command line's writer (standard output or -o FILE)."""
+    from ..lint import display_path
+
+    if args.init_scenario:
+        return _err("--init-scenario writes the skeleton of one application: not with several, --sweep or --jobs")
+    if args.jobs is not None and args.jobs < 1:
+        return _err("--jobs must be a positive number of processes")
+    if args.executor == "dask" and not args.scheduler:
+        return _err("--executor dask needs --scheduler ADDRESS (tcp://host:8786)")
+    if args.scheduler and args.executor != "dask":
+        return _err("--scheduler goes with --executor dask")
+    try:
+        axes, sweep = _axes(args)
+    except SweepError as exc:
+        return _err(f"bad sweep file: {display_path(str(exc))}")
+    except CaseError as exc:
+        return _err(str(exc))
+    listed_cells = sweep is not None and any(c.get("cell") for c in sweep.cases)
+    if (any(axes.cells) or listed_cells) and not cells_supported():
+        return _err("cells are not supported by `val3check sim` yet (collision checks with a cell come with"
+                    " `sim --cell`); remove the cells from the sweep")
+    options = RunOptions(duration=args.duration, max_wall=args.max_wall, max_lines=args.max_lines,
+                         max_memory_mb=args.max_memory, cycles=args.cycles, fail_on=settings.fail_on)
+    try:
+        if sweep is not None and sweep.mode == "list":
+            cases = list_cases(sweep, axes, settings, options)
+        else:
+            cases = product_cases(axes, settings, options)
+    except SweepError as exc:
+        return _err(f"bad sweep file: {display_path(str(exc))}")
+    except CaseError as exc:
+        return _err(str(exc))
+    if args.out_dir:
+        try:
+            prepare(args.out_dir)
+        except OutDirError as exc:
+            return _err(str(exc))
+
+    outcomes: list[CaseOutcome] = []
+    progress = Progress(len(cases))
+    failed = [False]
+
+    def on_done(outcome: CaseOutcome) -> None:
+        ok = outcome.summary.verdict == "pass"
+        if args.out_dir and outcome.outputs:
+            write_case(args.out_dir, outcome)
+        outcomes.append(outcome)
+        failed[0] = failed[0] or not ok
+        progress.update(ok)
+
+    def stop() -> bool:
+        return args.fail_fast and failed[0]
+
+    from .executors import ExecutorError, run_dask, run_pool, run_serial
+
+    start = time.monotonic()
+    try:
+        if args.executor == "dask":
+            run_dask(cases, args.scheduler, on_done, stop)
+        else:
+            jobs = min(args.jobs or os.cpu_count() or 1, len(cases))
+            if jobs <= 1:
+                run_serial(cases, on_done, stop)
+            else:
+                run_pool(cases, jobs, on_done, stop)
+    except ExecutorError as exc:
+        progress.finish()
+        return _err(str(exc))
+    except KeyboardInterrupt:
+        progress.finish()
+        print("val3check sim: interrupted", file=sys.stderr)
+        return 130
+    progress.finish()
+    ran = {o.summary.key for o in outcomes}
+    outcomes += [CaseOutcome(summary_of(c, "skipped", "not run: --fail-fast stopped the batch at a failure"))
+                 for c in cases if c.key() not in ran]
+    summaries = [o.summary for o in outcomes]
+    text = render_json(summaries, tool_version) if args.format == "json" else render_text(summaries)
+    if not write(text, args.output):
+        return EXIT_USAGE
+    if args.out_dir:
+        write_summaries(args.out_dir, outcomes, tool_version)
+        print(f"val3check sim: wrote the summary and {sum(len(o.outputs) for o in outcomes)} case report(s) in "
+              f"{display_path(args.out_dir)} (index.html)", file=sys.stderr)
+    if sys.stderr.isatty():
+        print(f"val3check sim: {len(cases)} cases in {time.monotonic() - start:.1f} s", file=sys.stderr)
+    return EXIT_FAILED if any(s.verdict in ("fail", "not-run", "crash") for s in summaries) else EXIT_OK
+
+
+def _axes(args: Any) -> tuple[Axes, Any]:
+    """The command line's values, and the sweep file's; an axis given by both is an error."""
+    sweep = load_sweep(args.sweep) if args.sweep else None
+    cli_cell = getattr(args, "cell", None)  # `sim --cell`, when the single run has it
+    axes = Axes(apps=list(args.app), arms=list(args.robot or []), scenarios=[args.scenario] if args.scenario else [],
+                cells=[cli_cell] if cli_cell else [], overrides=[])
+    if sweep is None:
+        axes.apps = axes.apps or ["."]
+        return axes, None
+    if sweep.mode == "product":
+        for name, given, from_sweep in (("applications", axes.apps, sweep.applications), ("arms", axes.arms, sweep.arms),
+                                        ("scenarios", axes.scenarios, sweep.scenarios), ("cells", axes.cells, sweep.cells)):
+            if given and from_sweep:
+                raise CaseError(f"{name} are given both on the command line and in {args.sweep}: keep one")
+        axes.apps = axes.apps or [sweep.resolve(e) for e in sweep.applications] or ["."]
+        axes.arms = axes.arms or [sweep.resolve(e) if e.value.lower().endswith(_ROBOT_FILES) else e.value
+                                  for e in sweep.arms]
+        axes.scenarios = axes.scenarios or [None if e is None else sweep.resolve(e) for e in sweep.scenarios]
+        axes.cells = axes.cells or [None if e is None else sweep.resolve(e) for e in sweep.cells]
+        axes.overrides = sweep.overrides
+        if sweep.applications and not args.app:
+            _check_globs(sweep)
+    elif args.app:
+        raise CaseError(f"{args.sweep} lists its cases ([[case]]): name no application on the command line")
+    return axes, sweep
+
+
+def _check_globs(sweep: Any) -> None:
+    """A sweep's application that matches nothing is reported at its line."""
+    from .cases import expand
+
+    for e in sweep.applications:
+        try:
+            expand([sweep.resolve(e)])
+        except CaseError as exc:
+            raise SweepError(sweep.path, e.line, e.col, str(exc)) from None

@@ -1,0 +1,189 @@
+"""One case, run where it lands (this process, a pool process, a Dask worker).
+
+The case's files are written under a private temporary folder that mirrors their absolute
+paths, and the run happens with the current folder set to the mirror of the folder the batch
+was started from: display paths in the report are then those of a single `val3check sim`, and
+the mirror's prefix is taken out of everything that comes back (absolute paths read as on the
+machine that made the case). The steps are those of the single run (cli.py `_sim`): lint,
+refuse an application with errors or without start(), choose the arm, read the scenario,
+simulate, build the report. Any exception is the case's result ("crash"), never the batch's."""
+
+from __future__ import annotations
+
+import copy
+import os
+import shutil
+import statistics
+import tempfile
+import time
+import traceback
+from dataclasses import dataclass, field
+
+from .cases import Case
+from .outputs import case_outputs
+
+VERDICTS = ("pass", "fail", "not-run", "crash", "skipped")
+
+
+@dataclass(frozen=True)
+class CaseSummary:
+    """What the summary shows of a case: small, picklable, deterministic (no wall time)."""
+
+    key: tuple
+    name: str  # file stem of the case's outputs (Case.name)
+    app: str
+    app_name: str
+    arm: str  # --robot as given ("" for the default)
+    model: str  # the arm model run ("none" without one)
+    scenario: str
+    cell: str
+    overrides: tuple  # ((key, value), ...)
+    verdict: str  # one of VERDICTS
+    errors: int = 0  # runtime diagnostics of severity error
+    warnings: int = 0
+    cycle_time: float | None = None  # s: median cycle of the first task (by name) that cycles the arm
+    cycles: int = 0
+    end: str = ""  # how the run ended (SimResult end reason)
+    reason: str = ""  # why the verdict is not "pass": the first failing diagnostic, the error, the crash
+
+    def as_dict(self) -> dict:
+        return {"application": self.app, "name": self.app_name, "arm": self.arm or None, "model": self.model,
+                "scenario": self.scenario or None, "cell": self.cell or None, "overrides": dict(self.overrides),
+                "verdict": self.verdict, "errors": self.errors, "warnings": self.warnings,
+                "cycle_time": self.cycle_time, "cycles": self.cycles, "end": self.end or None,
+                "reason": self.reason or None, "report": self.name}
+
+
+@dataclass
+class CaseOutcome:
+    summary: CaseSummary
+    outputs: dict[str, bytes] = field(default_factory=dict)  # file suffix (".json") -> bytes
+    wall_s: float = 0.0  # for the progress estimate and benchmarks; never in the summary
+
+
+def summary_of(case: Case, verdict: str, reason: str = "", **kw) -> CaseSummary:  # noqa: ANN003
+    return CaseSummary(key=case.key(), name=case.name(), app=case.app, app_name=case.app_name, arm=case.arm,
+                       model=kw.pop("model", "none"), scenario=case.scenario, cell=case.cell,
+                       overrides=tuple(sorted(case.overrides.as_dict().items())), verdict=verdict, reason=reason, **kw)
+
+
+def run_chunk(cases: list[Case]) -> list[CaseOutcome]:
+    """Several cases in one task (the Dask executor's unit of work)."""
+    return [run_case(c) for c in cases]
+
+
+def run_case(case: Case) -> CaseOutcome:
+    start = time.perf_counter()
+    here = os.getcwd()
+    tmp = tempfile.mkdtemp(prefix="val3check-case-")
+    mirror = os.path.join(tmp, "m")
+    try:
+        for path, data in case.files:
+            target = _mirrored(mirror, path)
+            os.makedirs(os.path.dirname(target), exist_ok=True)
+            with open(target, "wb") as fh:
+                fh.write(data)
+        cwd = _mirrored(mirror, case.cwd)
+        os.makedirs(cwd, exist_ok=True)
+        os.chdir(cwd)
+        try:
+            outcome = _run(case, mirror)
+        except Exception as exc:  # noqa: BLE001 - a crashing case is reported, the batch goes on
+            last = traceback.extract_tb(exc.__traceback__)[-1:]
+            where = f" (at {os.path.basename(last[0].filename)}:{last[0].lineno})" if last else ""
+            outcome = CaseOutcome(summary_of(case, "crash", f"{type(exc).__name__}: {exc}{where}"))
+    finally:
+        os.chdir(here)
+        shutil.rmtree(tmp, ignore_errors=True)
+    outcome = _unmirrored(outcome, mirror)
+    outcome.wall_s = time.perf_counter() - start
+    return outcome
+
+
+def _mirrored(mirror: str, path: str) -> str:
+    drive, rest = os.path.splitdrive(os.path.abspath(path))
+    return os.path.join(mirror, drive.replace(":", ""), rest.lstrip("\\/"))
+
+
+def _unmirrored(outcome: CaseOutcome, mirror: str) -> CaseOutcome:
+    """Absolute paths as on the machine that made the case."""
+    s = outcome.summary
+    fix = {f: getattr(s, f).replace(mirror, "") for f in ("reason", "model", "end")}
+    summary = CaseSummary(**{**s.__dict__, **fix})
+    prefix = mirror.encode("utf-8")
+    return CaseOutcome(summary, {k: v.replace(prefix, b"") for k, v in outcome.outputs.items()}, outcome.wall_s)
+
+
+def _run(case: Case, mirror: str) -> CaseOutcome:
+    from .. import __version__
+    from ..diagnostics import Severity
+    from ..lint import display_path, run
+    from ..reporting.sim_report import build_report
+    from ..robot import RobotError
+    from ..rules.catalogue import catalogue
+    from ..simulation import SimOptions, choose_sim_robot, simulate
+    from ..simulation.scenario import Scenario, ScenarioError, load_scenario
+
+    settings = copy.deepcopy(case.settings)
+    settings.disk_roots = [_mirrored(mirror, d) for d in settings.disk_roots]
+    if settings.root:
+        settings.root = _mirrored(mirror, settings.root)
+    app_path = _mirrored(mirror, case.app_path)
+    outcome = run([app_path], settings)
+    apps = [a for a in (outcome.workspace.apps[k] for k in outcome.workspace.targets)
+            if os.path.normcase(a.path) == os.path.normcase(app_path)]
+    if outcome.unreadable or not apps:
+        return CaseOutcome(summary_of(case, "not-run", "the application could not be read"))
+    app = apps[0]
+    errors = [d for d in outcome.result.diagnostics if d.severity is not None and d.severity >= Severity.ERROR]
+    if errors:
+        d = errors[0]
+        return CaseOutcome(summary_of(case, "not-run", f"{len(errors)} lint error(s), the first: "
+                                      f"{d.path}:{d.line}:{d.col}: {d.code} {d.message}"))
+    if not any(n.lower() == "start" for n in app.programs):
+        return CaseOutcome(summary_of(case, "not-run", f"{app.name} has no start() program (2.1.2)"))
+    spec = _mirrored(mirror, case.robot_path) if case.robot_path else (case.arm or None)
+    try:
+        robot, _note = choose_sim_robot(spec, app.path)
+    except RobotError as exc:
+        return CaseOutcome(summary_of(case, "not-run", f"--robot: {exc}"))
+    model = getattr(robot, "name", None) or "none"
+    ov, opts = case.overrides, case.options
+    try:
+        scenario = load_scenario(display_path(_mirrored(mirror, case.scenario_path))) if case.scenario_path else None
+        if ov.monitor_speed is not None:  # as the scenario's [controller] monitor_speed would set it
+            scenario = scenario or Scenario("", "", {})
+            scenario.data = {**scenario.data, "controller": {**scenario.data.get("controller", {}),
+                                                             "monitor_speed": ov.monitor_speed}}
+        options = SimOptions(duration=ov.duration or opts.duration, max_wall=opts.max_wall, max_lines=opts.max_lines,
+                             max_memory_mb=opts.max_memory_mb, disk_roots=list(settings.disk_roots), robot=robot,
+                             cycles=ov.cycles or opts.cycles)
+        if case.cell_path:  # only when the single run has cells (checked before the batch starts)
+            options.cell = _mirrored(mirror, case.cell_path)
+        result = simulate(outcome.workspace, app, options, scenario)
+    except ScenarioError as exc:
+        return CaseOutcome(summary_of(case, "not-run", f"bad scenario: {exc}", model=model))
+    report = build_report(result, settings, catalogue(), __version__)
+    errors_n = sum(1 for d in report.diagnostics if d.severity >= Severity.ERROR)
+    warnings_n = sum(1 for d in report.diagnostics if d.severity == Severity.WARNING)
+    failing = [] if opts.fail_on == "never" else [d for d in report.diagnostics
+                                                  if d.severity >= Severity.parse(opts.fail_on)]
+    reason = ""
+    if failing:
+        d = failing[0]
+        loc = f"{d.path}:{d.line}:{d.col}" if d.line else d.path
+        reason = f"{loc}: {d.code} {d.severity.label}: {d.message}"
+    cycle_time, cycles = _cycle(result.motion)
+    summary = summary_of(case, "fail" if failing else "pass", reason, model=model, errors=errors_n,
+                         warnings=warnings_n, cycle_time=cycle_time, cycles=cycles, end=result.end_reason)
+    return CaseOutcome(summary, case_outputs(report))
+
+
+def _cycle(motion) -> tuple[float | None, int]:  # noqa: ANN001
+    if motion is None:
+        return None, 0
+    for task in sorted(motion.cycles):
+        st = motion.cycles[task]
+        if st.times:
+            return round(statistics.median(st.times), 6), st.count
+    return None, 0
