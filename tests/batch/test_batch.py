@@ -1,0 +1,341 @@
+"""Batch simulation (issue 17): several applications and globs, the sweep file (product, list,
+mistakes at their line and column), -j determinism, the Dask executor on a LocalCluster, the
+summary formats, --out-dir names, --fail-fast, crashes isolated, exit codes."""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import xml.etree.ElementTree as ET
+from dataclasses import replace
+from pathlib import Path
+
+import pytest
+
+from val3check.batch.cases import Axes, RunOptions, product_cases
+from val3check.batch.outdir import OutDirError, inside
+from val3check.batch.progress import Progress
+from val3check.batch.summary import render_html, render_junit
+from val3check.batch.sweep import Overrides, SweepError, load_sweep
+from val3check.batch.worker import CaseSummary
+from val3check.cli import main
+from val3check.config import Settings
+from val3check.testing import write_app
+
+ROOT = Path(__file__).resolve().parent.parent.parent
+PICKPLACE = ROOT / "fixtures" / "valid" / "PickPlace"
+SCENARIO = ROOT / "fixtures" / "scenarios" / "pickplace.toml"
+FAST = ["--duration", "4.5"]
+
+
+@pytest.fixture
+def cell(tmp_path, monkeypatch):
+    """Two copies of PickPlace under apps/, the scenario, in the current folder."""
+    for name in ("A", "B"):
+        shutil.copytree(PICKPLACE, tmp_path / "apps" / name)
+    shutil.copy(SCENARIO, tmp_path / "pickplace.toml")
+    monkeypatch.chdir(tmp_path)
+    return tmp_path
+
+
+def sim(capsys, *args):
+    code = main(["sim", *map(str, args)])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def cases_of(out: str) -> list[dict]:
+    return json.loads(out)["cases"]
+
+
+# -- applications, globs --------------------------------------------------------------------
+
+def test_several_applications_by_glob_run_one_case_each_in_order(cell, capsys):
+    code, out, err = sim(capsys, "apps/*", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST,
+                         "--format", "json", "-j", "1")
+    assert code == 0, err
+    cases = cases_of(out)
+    assert [c["application"] for c in cases] == ["apps/A/PickPlace.pjx", "apps/B/PickPlace.pjx"]
+    assert all(c["verdict"] == "pass" and c["model"] == "TX2-60" and c["cycles"] == 1 for c in cases)
+    assert cases[0]["cycle_time"] == pytest.approx(2.748243)
+
+
+def test_a_folder_of_applications_and_a_controller_tree(cell, capsys):
+    shutil.copytree(ROOT / "fixtures" / "valid" / "controller", cell / "ctrl")
+    code, out, err = sim(capsys, "apps", "ctrl", *FAST, "--format", "json", "-j", "1")
+    cases = cases_of(out)
+    # WeldLib is Welder's library: not a case; Welder takes the controller tree's arm.cfx
+    assert [c["application"] for c in cases] == ["apps/A/PickPlace.pjx", "apps/B/PickPlace.pjx",
+                                                 "ctrl/usr/usrapp/Welder/Welder.pjx"], err
+    assert cases[2]["arm"] is None
+
+
+def test_a_glob_that_matches_nothing_is_a_usage_error(cell, capsys):
+    code, _, err = sim(capsys, "apps/*", "nothing/*", *FAST)
+    assert code == 2 and "nothing/*: no file or folder matches" in err
+
+
+def test_a_failing_application_does_not_stop_the_batch(cell, capsys):
+    write_app(cell / "apps", "begin\n  x = 1\nend\n", name="Broken")  # x undeclared: a lint error
+    code, out, err = sim(capsys, "apps/*", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST,
+                         "--format", "json", "-j", "1")
+    cases = {c["name"]: c for c in cases_of(out)}
+    assert code == 1
+    assert cases["Broken"]["verdict"] == "not-run" and "lint error" in cases["Broken"]["reason"]
+    assert [cases[n]["verdict"] for n in ("PickPlace",)] == ["pass"]
+
+
+def test_a_crashing_case_is_reported_and_the_others_run(cell, capsys, monkeypatch):
+    from val3check.batch import worker
+
+    real = worker._run
+
+    def crash_on_b(case, mirror):
+        if "/B/" in case.app:
+            raise RuntimeError("boom")
+        return real(case, mirror)
+
+    monkeypatch.setattr(worker, "_run", crash_on_b)
+    code, out, _ = sim(capsys, "apps/*", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST, "--format", "json",
+                       "-j", "1")
+    cases = cases_of(out)
+    assert code == 1
+    assert [c["verdict"] for c in cases] == ["pass", "crash"]
+    assert cases[1]["reason"].startswith("RuntimeError: boom")
+
+
+class _DiesWhenUnpickled:
+    """A case setting whose unpickling ends the worker process (as a crash in native code would)."""
+
+    def __reduce__(self):
+        return (os._exit, (7,))
+
+
+def test_a_worker_process_that_dies_takes_only_its_case(cell):
+    from val3check.batch.executors import run_pool
+
+    cases = product_cases(Axes(["apps/*"], ["tx2-60"], ["pickplace.toml"], [], []), Settings(), RunOptions(duration=2.0))
+    killer = replace(cases[1], settings=_DiesWhenUnpickled())
+    got = []
+    run_pool([cases[0], killer], 2, got.append, lambda: False)
+    verdicts = {o.summary.app: o.summary.verdict for o in got}
+    assert verdicts == {"apps/A/PickPlace.pjx": "pass", "apps/B/PickPlace.pjx": "crash"}
+    assert "process running the case died" in next(o.summary.reason for o in got if o.summary.verdict == "crash")
+
+
+# -- the sweep file -------------------------------------------------------------------------
+
+def test_sweep_product_of_every_axis(cell):
+    (cell / "slow.toml").write_text('version = 1\n[controller]\nmonitor_speed = 50\n')
+    (cell / "sweep.toml").write_text(
+        'applications = ["apps/*"]\narms = ["tx2-60", "tx2-90", "tx2-40"]\n'
+        'scenarios = ["pickplace.toml", "none"]\n[[overrides]]\nmonitor_speed = 50\n[[overrides]]\ncycles = 1\n')
+    from val3check.batch.command import _axes
+
+    class Args:
+        app, robot, scenario, sweep = [], None, None, "sweep.toml"
+
+    axes, sweep = _axes(Args)
+    cases = product_cases(axes, Settings(), RunOptions())
+    assert len(cases) == 2 * 3 * 2 * 2
+    assert cases == sorted(cases, key=lambda c: c.key())
+    assert {c.scenario for c in cases} == {"pickplace.toml", ""}
+    assert {c.overrides for c in cases} == {Overrides(monitor_speed=50.0), Overrides(cycles=1)}
+    assert len({c.name() for c in cases}) == len(cases)
+
+
+def test_sweep_list_with_overrides_that_change_the_run(cell, capsys):
+    (cell / "sweep.toml").write_text(
+        '[[case]]\napplication = "apps/A"\narm = "tx2-60"\nscenario = "pickplace.toml"\n\n'
+        '[[case]]\napplication = "apps/A"\narm = "tx2-60"\nscenario = "pickplace.toml"\nmonitor_speed = 50\n'
+        'duration = 12\n')
+    code, out, err = sim(capsys, "--sweep", "sweep.toml", *FAST, "--format", "json", "-j", "1")
+    assert code == 0, err
+    full, half = cases_of(out)
+    assert full["overrides"] == {} and half["overrides"] == {"monitor_speed": 50.0, "duration": 12.0}
+    assert half["cycle_time"] > full["cycle_time"] * 1.2  # the arm moves at half speed
+
+
+@pytest.mark.parametrize("text, line, col, words", [
+    ('arms = ["tx2-60"]\nrobots = ["tx2-90"]\n', 2, 1, "unknown key 'robots'"),
+    ('arms = ["tx2-60"]\n[[overrides]]\nmonitor_speed = 150\n', 3, 17, "monitor_speed: a percentage"),
+    ('arms = ["tx2-60"]\n[[overrides]]\ncycles = 0\n', 3, 10, "cycles: a positive whole number"),
+    ('arms = ["tx2-60", 3]\n', 1, 19, "arms[1]: expected a non-empty string"),
+    ('arms = ["tx2-60"]\nx = = 1\n', 2, 5, "invalid TOML"),
+    ('applications = ["apps/A"]\n[[case]]\napplication = "apps/A"\n', 1, 1, "do not mix"),
+    ('[[case]]\narm = "tx2-60"\n', 1, 1, "no application"),
+    ('version = 2\n', 1, 11, "unsupported sweep version"),
+])
+def test_invalid_sweep_files_are_reported_at_their_line_and_column(cell, text, line, col, words):
+    (cell / "sweep.toml").write_text(text)
+    with pytest.raises(SweepError) as exc:
+        load_sweep("sweep.toml")
+    assert (exc.value.line, exc.value.col) == (line, col), str(exc.value)
+    assert words in exc.value.message
+
+
+def test_a_sweep_application_that_matches_nothing_is_reported_at_its_line(cell, capsys):
+    (cell / "sweep.toml").write_text('arms = ["tx2-60"]\napplications = [\n  "apps/A",\n  "nowhere/*",\n]\n')
+    code, _, err = sim(capsys, "--sweep", "sweep.toml", *FAST)
+    assert code == 2 and "sweep.toml:4:3: nowhere/*: no file or folder matches" in err, err
+
+
+def test_an_axis_given_twice_and_cells_are_usage_errors(cell, capsys):
+    (cell / "sweep.toml").write_text('arms = ["tx2-60"]\n')
+    code, _, err = sim(capsys, "apps/A", "--robot", "tx2-90", "--sweep", "sweep.toml", *FAST)
+    assert code == 2 and "arms are given both" in err
+    (cell / "c.toml").write_text("")
+    (cell / "sweep.toml").write_text('arms = ["tx2-60"]\ncells = ["c.toml"]\n')
+    from val3check.batch.command import cells_supported
+
+    code, _, err = sim(capsys, "apps/A", "--sweep", "sweep.toml", *FAST)
+    if not cells_supported():
+        assert code == 2 and "cells are not supported by `val3check sim` yet" in err
+
+
+# -- executors: -j and Dask give the same results ------------------------------------------
+
+ARGS = ["apps/*", "--robot", "tx2-60", "--robot", "tx2-90", "--scenario", "pickplace.toml", *FAST]
+
+
+def _outputs(folder: Path) -> dict[str, bytes]:
+    return {str(p.relative_to(folder)): p.read_bytes() for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+def test_jobs_1_and_2_give_byte_identical_summaries_and_reports(cell, capsys):
+    code1, out1, _ = sim(capsys, *ARGS, "-j", "1", "--out-dir", "o1")
+    code2, out2, _ = sim(capsys, *ARGS, "-j", "2", "--out-dir", "o2")
+    assert code1 == code2 == 0
+    assert out1 == out2 and sum(line.startswith("pass ") for line in out1.splitlines()) == 4
+    one, two = _outputs(cell / "o1"), _outputs(cell / "o2")
+    assert one == two
+    assert len([k for k in one if k.startswith("cases/")]) == 4
+
+
+def test_a_case_report_is_the_single_runs_report(cell, capsys):
+    code, _, _ = sim(capsys, "apps/A", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST, "--out-dir", "o")
+    assert code == 0
+    (report,) = (cell / "o" / "cases").iterdir()
+    code, single, _ = sim(capsys, "apps/A", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST, "--format", "json")
+    assert report.read_text() == single
+
+
+@pytest.mark.dask
+def test_dask_local_cluster_gives_the_same_summary(cell, capsys):
+    distributed = pytest.importorskip("distributed")
+    _, serial, _ = sim(capsys, *ARGS, "-j", "1", "--format", "json")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as lc:
+        code, out, err = sim(capsys, *ARGS, "--executor", "dask", "--scheduler", lc.scheduler_address,
+                             "--format", "json")
+    assert code == 0, err
+    assert out == serial
+
+
+def test_dask_needs_a_scheduler_and_says_so(cell, capsys):
+    code, _, err = sim(capsys, *ARGS, "--executor", "dask")
+    assert code == 2 and "--executor dask needs --scheduler" in err
+
+
+def test_dask_chunks_keep_a_few_tasks_per_worker():
+    from val3check.batch.executors import chunk_size
+
+    assert chunk_size(200, 2) == 16 and chunk_size(10, 2) == 2 and chunk_size(1, 8) == 1
+    assert chunk_size(10_000, 500) == 5
+
+
+# -- summary, out-dir, fail-fast, exit codes -----------------------------------------------
+
+def test_out_dir_holds_every_summary_format(cell, capsys):
+    write_app(cell / "apps", "begin\n  x = 1\nend\n", name="Broken")
+    code, text, _ = sim(capsys, "apps/*", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST, "-j", "1",
+                        "--out-dir", "out")
+    assert code == 1
+    out = cell / "out"
+    assert (out / "summary.txt").read_text() == text
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["counts"] == {"pass": 2, "not-run": 1}
+    suite = ET.parse(out / "junit.xml").getroot()
+    cases = suite.findall(".//testcase")
+    assert len(cases) == 3 and suite.get("errors") == "1" and suite.get("tests") == "3"
+    assert [c.get("classname") for c in cases] == ["apps/A/PickPlace.pjx", "apps/B/PickPlace.pjx",
+                                                   "apps/Broken/Broken.pjx"]
+    assert cases[2].find("error") is not None and cases[0].find("error") is None
+    index = (out / "index.html").read_text()
+    for c in summary["cases"]:
+        if c["verdict"] == "pass":
+            assert f'href="cases/{c["report"]}.json"' in index
+            assert (out / "cases" / f'{c["report"]}.json').is_file()
+    assert "apps/Broken/Broken.pjx" in index and "<script" not in index
+
+
+def _summary(**kw) -> CaseSummary:
+    base = dict(key=("a",), name="n", app="a.pjx", app_name="a", arm="tx2-60", model="TX2-60", scenario="",
+                cell="", overrides=(), verdict="pass")
+    return CaseSummary(**{**base, **kw})
+
+
+def test_html_index_and_junit_escape_what_comes_from_the_input():
+    s = _summary(app='<img src=x onerror="alert(1)">.pjx', verdict="fail", reason="a < b & \"c\"",
+                 name="n<x>")
+    page = render_html([s], {"n<x>.json"}, "0")
+    assert "<img" not in page and "&lt;img src=x onerror=&quot;alert(1)&quot;&gt;.pjx" in page
+    assert 'href="cases/n%3Cx%3E.json"' in page
+    root = ET.fromstring(render_junit([s]))
+    assert root.find(".//failure").get("message") == 'a < b & "c"'
+
+
+def test_case_names_are_safe_and_stay_in_the_out_dir(cell, tmp_path):
+    (case,) = product_cases(Axes(["apps/A"], ["tx2-60"], [], [], []), Settings(), RunOptions())
+    hostile = replace(case, app_name="../../etc/passwd", scenario="../../x/..\\evil name.toml", arm="..")
+    name = hostile.name()
+    assert "/" not in name and "\\" not in name and not name.startswith(".") and ".." not in name.split("__")[0]
+    assert inside(str(tmp_path), "cases/" + name + ".json").startswith(str(tmp_path.resolve()))
+    for bad in ("../x.json", "/etc/x", "cases/../../x"):
+        with pytest.raises(OutDirError):
+            inside(str(tmp_path / "out"), bad)
+    (tmp_path / "out").mkdir()
+    os.symlink("/tmp", tmp_path / "out" / "link")
+    with pytest.raises(OutDirError):
+        inside(str(tmp_path / "out"), "link/x.json")
+
+
+def test_fail_fast_stops_at_the_first_failure(cell, capsys):
+    # --fail-on info: the run's R007 (duration reached) fails each case
+    code, out, _ = sim(capsys, *ARGS, "--fail-on", "info", "--fail-fast", "-j", "1", "--format", "json")
+    assert code == 1
+    assert [c["verdict"] for c in cases_of(out)] == ["fail", "skipped", "skipped", "skipped"]
+    assert "R007" in cases_of(out)[0]["reason"]
+    code, out, _ = sim(capsys, *ARGS, "--fail-on", "info", "-j", "1", "--format", "json")
+    assert [c["verdict"] for c in cases_of(out)] == ["fail"] * 4
+
+
+def test_exit_codes(cell, capsys):
+    assert sim(capsys, "apps/*", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST, "-j", "1")[0] == 0
+    assert sim(capsys, "apps/*", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST, "-j", "1",
+               "--fail-on", "info")[0] == 1
+    assert sim(capsys, "apps/*", "--robot", "tx2-60", *FAST, "-j", "1")[0] == 1  # R003 without the scenario
+    (cell / "sweep.toml").write_text("nonsense = 1\n")
+    assert sim(capsys, "--sweep", "sweep.toml", *FAST)[0] == 2
+    assert sim(capsys, "apps/*", "-j", "0")[0] == 2
+    assert sim(capsys, "apps/*", "--robot", "nosuch-arm", *FAST, "-j", "1")[0] == 1  # each case: not run
+
+
+def test_progress_line():
+    import io
+
+    stream = io.StringIO()
+    p = Progress(4, stream, enabled=True)
+    p.start = 0.0
+    p.update(True)
+    p.update(False)
+    assert p.line(now=10.0) == "2/4 cases, 1 failed, 0:10 elapsed, about 0:10 left"
+    assert "\r" in stream.getvalue()
+    quiet = io.StringIO()
+    Progress(2, quiet).update(True)  # not a terminal: nothing
+    assert quiet.getvalue() == ""
+
+
+def test_one_application_without_batch_options_runs_as_before(cell, capsys):
+    code, out, _ = sim(capsys, "apps/A", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST)
+    assert code == 0 and out.startswith("val3check sim: PickPlace (apps/A/PickPlace.pjx)")
