@@ -1,0 +1,95 @@
+"""Batch simulation on this machine and on a Dask cluster (issue 17):
+
+200 small cases (fixtures/valid/PickPlace with fixtures/scenarios/pickplace.toml, 2 arms ×
+100 monitor speeds, 3 simulated seconds each), run with -j 1 (in this process), -j 2 (a pool
+of 2 processes) and the Dask executor on a LocalCluster of 2 worker processes of 1 thread.
+Prints the wall time of each, the speed-up of -j 2 over -j 1, the Dask executor's overhead per
+case against -j 2, the mean cost of a case where it runs, and checks that the three summaries
+are identical. The machine is shared: run it when it is quiet, and read the per-case figures.
+
+Run: python bench/bench_batch.py [--cases N] [--duration S]   (writes only into a temporary folder)
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+from val3check.batch.cases import Axes, RunOptions, product_cases  # noqa: E402
+from val3check.batch.executors import chunk_size, run_dask, run_pool, run_serial  # noqa: E402
+from val3check.batch.summary import render_json  # noqa: E402
+from val3check.batch.sweep import Overrides  # noqa: E402
+from val3check.config import Settings  # noqa: E402
+
+
+def make_cases(n: int, duration: float) -> list:
+    arms = ["tx2-60", "tx2-90"]
+    speeds = [Overrides(monitor_speed=float(100 - i)) for i in range(max(1, n // len(arms)))]
+    os.chdir(ROOT)
+    axes = Axes(["fixtures/valid/PickPlace"], arms, ["fixtures/scenarios/pickplace.toml"], [], speeds)
+    return product_cases(axes, Settings(), RunOptions(duration=duration))[:n]
+
+
+def timed(label: str, run) -> tuple[float, list]:  # noqa: ANN001
+    got: list = []
+    first: list = []
+
+    def done(outcome) -> None:  # noqa: ANN001
+        if not first:
+            first.append(time.perf_counter() - t0)
+        got.append(outcome)
+
+    t0 = time.perf_counter()
+    run(done)
+    wall = time.perf_counter() - t0
+    print(f"{label:<28} {wall:7.2f} s wall, {wall / len(got) * 1000:7.1f} ms per case ({len(got)} cases);"
+          f" first case back after {first[0]:.2f} s", flush=True)
+    return wall, got
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--cases", type=int, default=200, help="number of cases (default: 200)")
+    ap.add_argument("--duration", type=float, default=3.0, help="simulated seconds per case (default: 3)")
+    args = ap.parse_args()
+    t0 = time.perf_counter()
+    cases = make_cases(args.cases, args.duration)
+    make = time.perf_counter() - t0
+    size = sum(len(d) for c in cases for _, d in c.files)
+    print(f"{len(cases)} cases made in {make:.2f} s; {size / len(cases) / 1024:.1f} kB of files carried per case; "
+          f"{os.cpu_count()} cores")
+    never = lambda: False  # noqa: E731
+
+    t1, serial = timed("-j 1 (this process)", lambda done: run_serial(cases, done, never))
+    t2, pooled = timed("-j 2 (process pool)", lambda done: run_pool(cases, 2, done, never))
+
+    from distributed import LocalCluster
+
+    s0 = time.perf_counter()
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as lc:
+        start = time.perf_counter() - s0
+        print(f"LocalCluster (2 workers × 1 thread) started in {start:.2f} s; "
+              f"chunk {chunk_size(len(cases), 2)} cases per task")
+        td, dasked = timed("dask LocalCluster", lambda done: run_dask(cases, lc.scheduler_address, done, never))
+
+    per_case = statistics.mean(o.wall_s for o in serial)
+    print(f"mean case where it runs: {per_case * 1000:.1f} ms (median {statistics.median(o.wall_s for o in serial) * 1000:.1f})")
+    print(f"speed-up -j 2 over -j 1: {t1 / t2:.2f}x")
+    print(f"dask overhead against -j 2: {(td - t2) / len(cases) * 1000:+.1f} ms per case "
+          f"({(td - t2) / t2 * 100:+.1f} %), cluster start not counted")
+    same = render_json([o.summary for o in serial], "x") == render_json([o.summary for o in pooled], "x") \
+        == render_json([o.summary for o in dasked], "x")
+    print(f"summaries identical across -j 1, -j 2, dask: {same}")
+    if not same:
+        raise SystemExit(1)
+
+
+if __name__ == "__main__":
+    main()
