@@ -64,7 +64,7 @@ def main() -> None:
     make = time.perf_counter() - t0
     size = sum(len(d) for c in cases for _, d in c.files)
     print(f"{len(cases)} cases made in {make:.2f} s; {size / len(cases) / 1024:.1f} kB of files carried per case; "
-          f"{os.cpu_count()} cores")
+          f"{os.cpu_count()} cores; load average before: {os.getloadavg()[0]:.2f}")
     never = lambda: False  # noqa: E731
 
     t1, serial = timed("-j 1 (this process)", lambda done: run_serial(cases, done, never))
@@ -79,13 +79,15 @@ def main() -> None:
               f"chunk {chunk_size(len(cases), 2)} cases per task")
         td, dasked = timed("dask LocalCluster", lambda done: run_dask(cases, lc.scheduler_address, done, never))
 
-    per_case = statistics.mean(o.wall_s for o in serial)
-    print(f"mean case where it runs: {per_case * 1000:.1f} ms (median {statistics.median(o.wall_s for o in serial) * 1000:.1f})")
+    for label, got in (("-j 1", serial), ("-j 2", pooled), ("dask", dasked)):
+        print(f"case cost with {label:<5}: wall {statistics.mean(o.wall_s for o in got) * 1000:6.1f} ms,"
+              f" CPU {statistics.mean(o.cpu_s for o in got) * 1000:6.1f} ms (means where the cases ran)")
     print(f"speed-up -j 2 over -j 1: {t1 / t2:.2f}x")
     print(f"dask overhead against -j 2: {(td - t2) / len(cases) * 1000:+.1f} ms per case "
           f"({(td - t2) / t2 * 100:+.1f} %), cluster start not counted")
     same = render_json([o.summary for o in serial], "x") == render_json([o.summary for o in pooled], "x") \
         == render_json([o.summary for o in dasked], "x")
+    print(f"load average after: {os.getloadavg()[0]:.2f} (other jobs on the machine take cores from -j 2)")
     print(f"summaries identical across -j 1, -j 2, dask: {same}")
     if not same:
         raise SystemExit(1)

@@ -12,6 +12,7 @@ Each fenced block says how it is checked with a comment on the line before it:
 | `config` | TOML | a valid configuration (`val3check.toml`, or `pyproject.toml` for `[tool.val3check]`) naming only existing rules |
 | `scenario` | TOML | runs with `val3check sim` on an application declaring every signal it names |
 | `cell` | TOML | read by `val3check.collision.read_cell` (its mesh files made) |
+| `sweep` | TOML | a valid sweep file (`val3check.batch.sweep.load_sweep`, docs/batch.md) |
 | `output ARGS` | text | exactly what `val3check ARGS` prints in a copy of `docs/examples` (its own repository) |
 | `json-keys sim` / `json-keys html-model` | a JSON outline | its keys are those of a real sim JSON report / of the HTML report model's schema |
 | `python-api NAME=module[:Class] ...` | Python | its imports run; every `NAME.attr` it uses exists |
@@ -440,7 +441,15 @@ def _json(block: Block, tmp: Path) -> None:
     json.loads(block.text)
 
 
+def _sweep(block: Block, tmp: Path) -> None:
+    from val3check.batch.sweep import load_sweep
+
+    (tmp / "sweep.toml").write_text(block.text, encoding="utf-8")
+    load_sweep(str(tmp / "sweep.toml"))
+
+
 CHECKS = {
+    "sweep": _sweep,
     "commands": lambda b, t: _commands(b, t, run=True), "help": lambda b, t: _commands(b, t, run=False),
     "config": _config, "scenario": _scenario, "cell": _cell, "output": _output, "json-keys": _json_keys,
     "python-api": _python_api, "python-protocol": _python_protocol, "precommit": _precommit,
