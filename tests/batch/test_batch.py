@@ -199,18 +199,29 @@ def test_an_axis_given_twice_and_cells_are_usage_errors(cell, capsys):
 ARGS = ["apps/*", "--robot", "tx2-60", "--robot", "tx2-90", "--scenario", "pickplace.toml", *FAST]
 
 
+def _sweep_3_arms_2_scenarios(folder: Path) -> list[str]:
+    """Real applications × 3 arms (one a URDF file, carried with the case) × 2 scenarios."""
+    shutil.copy(ROOT / "robots" / "tx2-60l.urdf", folder / "long.urdf")
+    (folder / "slow.toml").write_text(SCENARIO.read_text() + "\n[controller]\nmonitor_speed = 40\n")
+    (folder / "sweep.toml").write_text('applications = ["apps/*"]\narms = ["tx2-60", "tx2-90", "long.urdf"]\n'
+                                       'scenarios = ["pickplace.toml", "slow.toml"]\n')
+    return ["--sweep", "sweep.toml", *FAST]
+
+
 def _outputs(folder: Path) -> dict[str, bytes]:
     return {str(p.relative_to(folder)): p.read_bytes() for p in sorted(folder.rglob("*")) if p.is_file()}
 
 
 def test_jobs_1_and_2_give_byte_identical_summaries_and_reports(cell, capsys):
-    code1, out1, _ = sim(capsys, *ARGS, "-j", "1", "--out-dir", "o1")
-    code2, out2, _ = sim(capsys, *ARGS, "-j", "2", "--out-dir", "o2")
+    args = _sweep_3_arms_2_scenarios(cell)
+    code1, out1, _ = sim(capsys, *args, "-j", "1", "--out-dir", "o1")
+    code2, out2, _ = sim(capsys, *args, "-j", "2", "--out-dir", "o2")
     assert code1 == code2 == 0
-    assert out1 == out2 and sum(line.startswith("pass ") for line in out1.splitlines()) == 4
+    assert out1 == out2 and sum(line.startswith("pass ") for line in out1.splitlines()) == 12
     one, two = _outputs(cell / "o1"), _outputs(cell / "o2")
     assert one == two
-    assert len([k for k in one if k.startswith("cases/")]) == 4
+    assert len([k for k in one if k.startswith("cases/")]) == 12
+    assert "long.urdf" in out1 and "TX2-60L" in one["summary.json"].decode()
 
 
 def test_a_case_report_is_the_single_runs_report(cell, capsys):
@@ -224,12 +235,13 @@ def test_a_case_report_is_the_single_runs_report(cell, capsys):
 @pytest.mark.dask
 def test_dask_local_cluster_gives_the_same_summary(cell, capsys):
     distributed = pytest.importorskip("distributed")
-    _, serial, _ = sim(capsys, *ARGS, "-j", "1", "--format", "json")
+    args = _sweep_3_arms_2_scenarios(cell)
+    _, serial, _ = sim(capsys, *args, "-j", "1", "--format", "json")
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as lc:
-        code, out, err = sim(capsys, *ARGS, "--executor", "dask", "--scheduler", lc.scheduler_address,
+        code, out, err = sim(capsys, *args, "--executor", "dask", "--scheduler", lc.scheduler_address,
                              "--format", "json")
     assert code == 0, err
-    assert out == serial
+    assert out == serial and len(cases_of(out)) == 12
 
 
 def test_dask_needs_a_scheduler_and_says_so(cell, capsys):
