@@ -115,7 +115,8 @@ class _DiesWhenUnpickled:
 def test_a_worker_process_that_dies_takes_only_its_case(cell):
     from val3check.batch.executors import run_pool
 
-    cases = product_cases(Axes(["apps/*"], ["tx2-60"], ["pickplace.toml"], [], []), Settings(), RunOptions(duration=2.0))
+    axes = Axes(["apps/*"], ["tx2-60"], ["pickplace.toml"], [], [])
+    cases = product_cases(axes, Settings(), RunOptions(duration=2.0))
     killer = replace(cases[1], settings=_DiesWhenUnpickled())
     got = []
     run_pool([cases[0], killer], 2, got.append, lambda: False)
@@ -228,7 +229,8 @@ def test_a_case_report_is_the_single_runs_report(cell, capsys):
     code, _, _ = sim(capsys, "apps/A", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST, "--out-dir", "o")
     assert code == 0
     (report,) = (cell / "o" / "cases").iterdir()
-    code, single, _ = sim(capsys, "apps/A", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST, "--format", "json")
+    code, single, _ = sim(capsys, "apps/A", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST,
+                          "--format", "json")
     assert report.read_text() == single
 
 

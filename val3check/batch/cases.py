@@ -198,12 +198,12 @@ def product_cases(axes: Axes, settings, options: RunOptions) -> list[Case]:  # n
 def list_cases(sweep: Sweep, defaults: Axes, settings, options: RunOptions) -> list[Case]:  # noqa: ANN001
     """The [[case]] tables of a sweep; what a table leaves out comes from the command line."""
     cases = []
-    for entry in sweep.cases:
-        def path(k: str, default: Any) -> Any:
-            if k not in entry:
-                return default
-            return None if entry[k] is None else sweep.resolve(entry[k])
+    def path(entry: dict, k: str, default: Any) -> Any:
+        if k not in entry:
+            return default
+        return None if entry[k] is None else sweep.resolve(entry[k])
 
+    for entry in sweep.cases:
         app_entry: Entry = entry["application"]
         try:
             apps = find_apps(expand([sweep.resolve(app_entry)]), settings)
@@ -212,8 +212,8 @@ def list_cases(sweep: Sweep, defaults: Axes, settings, options: RunOptions) -> l
         arm = entry["arm"].value if "arm" in entry else (defaults.arms[0] if defaults.arms else "")
         if "arm" in entry and arm.lower().endswith((".urdf", ".cfx", ".toml")):
             arm = sweep.resolve(entry["arm"])
-        scenario = path("scenario", defaults.scenarios[0] if defaults.scenarios else None)
-        cell = path("cell", defaults.cells[0] if defaults.cells else None)
+        scenario = path(entry, "scenario", defaults.scenarios[0] if defaults.scenarios else None)
+        cell = path(entry, "cell", defaults.cells[0] if defaults.cells else None)
         cases += [_case(app, arm, scenario, cell, entry["overrides"], settings, options) for app in apps]
     return _unique(cases)
 
@@ -240,8 +240,8 @@ def _case(app: _App, arm: str, scenario: str | None, cell: str | None, ov: Overr
         robot_path, data = _input_file(arm, "robot")
         files.append((robot_path, data))
         arm = display_path(robot_path)
-    return Case(app=display_path(app.path), app_name=app.name, arm=arm, scenario=display_path(sc_path) if sc_path else "",
-                cell=display_path(cell_path) if cell_path else "", overrides=ov, app_path=app.path,
+    return Case(app=display_path(app.path), app_name=app.name, arm=arm,
+                scenario=display_path(sc_path) if sc_path else "", cell=display_path(cell_path) if cell_path else "", overrides=ov, app_path=app.path,
                 scenario_path=sc_path, cell_path=cell_path, robot_path=robot_path, cwd=os.getcwd(),
                 settings=settings, options=options, files=tuple(sorted(dict(files).items())))
 

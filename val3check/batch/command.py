@@ -143,8 +143,9 @@ def _axes(args: Any) -> tuple[Axes, Any]:
         axes.apps = axes.apps or ["."]
         return axes, None
     if sweep.mode == "product":
-        for name, given, from_sweep in (("applications", axes.apps, sweep.applications), ("arms", axes.arms, sweep.arms),
-                                        ("scenarios", axes.scenarios, sweep.scenarios), ("cells", axes.cells, sweep.cells)):
+        both = (("applications", axes.apps, sweep.applications), ("arms", axes.arms, sweep.arms),
+                ("scenarios", axes.scenarios, sweep.scenarios), ("cells", axes.cells, sweep.cells))
+        for name, given, from_sweep in both:
             if given and from_sweep:
                 raise CaseError(f"{name} are given both on the command line and in {args.sweep}: keep one")
         axes.apps = axes.apps or [sweep.resolve(e) for e in sweep.applications] or ["."]

@@ -112,7 +112,7 @@ def run_dask(cases: list[Case], address: str, on_done: OnDone, stop: Stop, chunk
         size = chunk or chunk_size(len(cases), len(threads))
         chunks = [cases[i:i + size] for i in range(0, len(cases), size)]
         futures = client.map(run_chunk, chunks, pure=False)
-        which = {f.key: c for f, c in zip(futures, chunks)}
+        which = {f.key: c for f, c in zip(futures, chunks, strict=True)}
         for f in as_completed(futures):
             try:
                 outcomes = f.result()

@@ -21,7 +21,9 @@ class Progress:
 
     def line(self, now: float | None = None) -> str:
         elapsed = (time.monotonic() if now is None else now) - self.start
-        left = f", about {_clock(elapsed / self.done * (self.total - self.done))} left" if 0 < self.done < self.total else ""
+        left = ""
+        if 0 < self.done < self.total:
+            left = f", about {_clock(elapsed / self.done * (self.total - self.done))} left"
         return (f"{self.done}/{self.total} cases, {self.failed} failed, {_clock(elapsed)} elapsed{left}")
 
     def update(self, passed: bool) -> None:

@@ -54,7 +54,7 @@ def render_text(summaries: list[CaseSummary]) -> str:
     rows = [HEADERS] + [_row(s) for s in ordered(summaries)]
     keep = [i for i in range(len(HEADERS)) if i not in (4, 5) or any(r[i] != "-" for r in rows[1:])]
     widths = [max(len(r[i]) for r in rows) for i in keep]
-    lines = ["  ".join(r[i].ljust(w) for i, w in zip(keep, widths)).rstrip() for r in rows]
+    lines = ["  ".join(r[i].ljust(w) for i, w in zip(keep, widths, strict=True)).rstrip() for r in rows]
     out = [_headline(summaries), ""] + lines
     failed = [s for s in ordered(summaries) if s.verdict != "pass"]
     if failed:
@@ -122,4 +122,5 @@ def render_html(summaries: list[CaseSummary], reports: set[str], tool_version: s
             "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; style-src 'unsafe-inline'\">"
             f"<title>val3check sim batch</title><style>{_STYLE}</style></head><body>\n"
             f"<h1>{e(_headline(summaries))}</h1>\n<p>val3check {e(tool_version)}</p>\n"
-            f"<table><thead><tr>{head}</tr></thead><tbody>\n" + "\n".join(rows) + "\n</tbody></table>\n</body></html>\n")
+            f"<table><thead><tr>{head}</tr></thead><tbody>\n" + "\n".join(rows)
+            + "\n</tbody></table>\n</body></html>\n")

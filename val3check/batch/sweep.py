@@ -124,8 +124,8 @@ class _Reader:
             mode = "list"
             extra = [k for k in ("overrides", *AXES) if k in data]
             if extra:
-                self.fail((extra[0],), f"{extra[0]!r} and [[case]] do not mix: a sweep is either the product of its axes"
-                          " or a list of [[case]] tables", key=True)
+                self.fail((extra[0],), f"{extra[0]!r} and [[case]] do not mix: a sweep is either the product of its"
+                          " axes or a list of [[case]] tables", key=True)
         else:
             mode = "product"
         if data.get("mode", mode) != mode:
