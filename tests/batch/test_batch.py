@@ -353,3 +353,16 @@ def test_progress_line():
 def test_one_application_without_batch_options_runs_as_before(cell, capsys):
     code, out, _ = sim(capsys, "apps/A", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST)
     assert code == 0 and out.startswith("val3check sim: PickPlace (apps/A/PickPlace.pjx)")
+
+
+def test_reports_travel_back_only_when_they_are_written(cell):
+    from val3check.batch.worker import run_case
+
+    axes = Axes(["apps/A"], ["tx2-60"], ["pickplace.toml"], [], [])
+    (with_reports,) = product_cases(axes, Settings(), RunOptions(duration=2.0))
+    (without,) = product_cases(axes, Settings(), RunOptions(duration=2.0, reports=False))
+    got, bare = run_case(with_reports), run_case(without)
+    assert bare.outputs == {} and bare.summary == got.summary
+    report = json.loads(got.files()[".json"])
+    assert report["application"]["path"] == "apps/A/PickPlace.pjx"  # as the single run shows it, no temporary path
+    assert len(got.outputs[".json"]) < len(got.files()[".json"]) / 2  # compressed on the way back

@@ -36,6 +36,7 @@ class RunOptions:
     max_memory_mb: float = 512.0
     cycles: int | None = None
     fail_on: str = "error"
+    reports: bool = True  # render each case's reports and send them back (only --out-dir writes them)
 
 
 @dataclass(frozen=True)

@@ -18,7 +18,7 @@ from .outdir import OutDirError, prepare, write_case, write_summaries
 from .progress import Progress
 from .summary import render_json, render_text
 from .sweep import SweepError, load_sweep
-from .worker import CaseOutcome, summary_of
+from .worker import CaseOutcome, CaseSummary, summary_of
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
 _GLOB_CHARS = set("*?[")
@@ -66,7 +66,8 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
         return _err("cells are not supported by `val3check sim` yet (collision checks with a cell come with"
                     " `sim --cell`); remove the cells from the sweep")
     options = RunOptions(duration=args.duration, max_wall=args.max_wall, max_lines=args.max_lines,
-                         max_memory_mb=args.max_memory, cycles=args.cycles, fail_on=settings.fail_on)
+                         max_memory_mb=args.max_memory, cycles=args.cycles, fail_on=settings.fail_on,
+                         reports=bool(args.out_dir))
     try:
         if sweep is not None and sweep.mode == "list":
             cases = list_cases(sweep, axes, settings, options)
@@ -82,15 +83,16 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
         except OutDirError as exc:
             return _err(str(exc))
 
-    outcomes: list[CaseOutcome] = []
+    summaries: list[CaseSummary] = []
+    reports: set[str] = set()  # the files written under --out-dir/cases
     progress = Progress(len(cases))
     failed = [False]
 
-    def on_done(outcome: CaseOutcome) -> None:
+    def on_done(outcome: CaseOutcome) -> None:  # written at once: the reports are not kept in memory
         ok = outcome.summary.verdict == "pass"
         if args.out_dir and outcome.outputs:
-            write_case(args.out_dir, outcome)
-        outcomes.append(outcome)
+            reports.update(write_case(args.out_dir, outcome))
+        summaries.append(outcome.summary)
         failed[0] = failed[0] or not ok
         progress.update(ok)
 
@@ -117,16 +119,15 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
         print("val3check sim: interrupted", file=sys.stderr)
         return 130
     progress.finish()
-    ran = {o.summary.key for o in outcomes}
-    outcomes += [CaseOutcome(summary_of(c, "skipped", "not run: --fail-fast stopped the batch at a failure"))
-                 for c in cases if c.key() not in ran]
-    summaries = [o.summary for o in outcomes]
+    ran = {s.key for s in summaries}
+    summaries += [summary_of(c, "skipped", "not run: --fail-fast stopped the batch at a failure")
+                  for c in cases if c.key() not in ran]
     text = render_json(summaries, tool_version) if args.format == "json" else render_text(summaries)
     if not write(text, args.output):
         return EXIT_USAGE
     if args.out_dir:
-        write_summaries(args.out_dir, outcomes, tool_version)
-        print(f"val3check sim: wrote the summary and {sum(len(o.outputs) for o in outcomes)} case report(s) in "
+        write_summaries(args.out_dir, summaries, reports, tool_version)
+        print(f"val3check sim: wrote the summary and {len(reports)} case report(s) in "
               f"{display_path(args.out_dir)} (index.html)", file=sys.stderr)
     if sys.stderr.isatty():
         print(f"val3check sim: {len(cases)} cases in {time.monotonic() - start:.1f} s", file=sys.stderr)

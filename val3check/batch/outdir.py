@@ -12,7 +12,7 @@ from __future__ import annotations
 import os
 
 from .summary import CASES_DIR, render_html, render_json, render_junit, render_text
-from .worker import CaseOutcome
+from .worker import CaseOutcome, CaseSummary
 
 
 class OutDirError(Exception):
@@ -38,16 +38,15 @@ def write_case(out_dir: str, outcome: CaseOutcome) -> list[str]:
     folder = inside(out_dir, CASES_DIR)
     os.makedirs(folder, exist_ok=True)
     written = []
-    for suffix, data in sorted(outcome.outputs.items()):
+    for suffix, data in sorted(outcome.files().items()):
         name = outcome.summary.name + suffix
         _write(inside(folder, name), data)
         written.append(name)
     return written
 
 
-def write_summaries(out_dir: str, outcomes: list[CaseOutcome], tool_version: str) -> None:
-    summaries = [o.summary for o in outcomes]
-    reports = {o.summary.name + s for o in outcomes for s in o.outputs}
+def write_summaries(out_dir: str, summaries: list[CaseSummary], reports: set[str], tool_version: str) -> None:
+    """`reports`: the file names written under cases/ (write_case), that the index links to."""
     for name, text in (("summary.txt", render_text(summaries)), ("summary.json", render_json(summaries, tool_version)),
                        ("junit.xml", render_junit(summaries)),
                        ("index.html", render_html(summaries, reports, tool_version))):
