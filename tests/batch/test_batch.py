@@ -366,3 +366,11 @@ def test_reports_travel_back_only_when_they_are_written(cell):
     report = json.loads(got.files()[".json"])
     assert report["application"]["path"] == "apps/A/PickPlace.pjx"  # as the single run shows it, no temporary path
     assert len(got.outputs[".json"]) < len(got.files()[".json"]) / 2  # compressed on the way back
+
+
+def test_dask_not_installed_is_said_clearly(cell, capsys, monkeypatch):
+    import sys
+
+    monkeypatch.setitem(sys.modules, "distributed", None)  # `import distributed` raises ImportError
+    code, _, err = sim(capsys, *ARGS, "--executor", "dask", "--scheduler", "tcp://127.0.0.1:8786")
+    assert code == 2 and "pip install 'val3check[dask]'" in err
