@@ -374,3 +374,9 @@ def test_dask_not_installed_is_said_clearly(cell, capsys, monkeypatch):
     monkeypatch.setitem(sys.modules, "distributed", None)  # `import distributed` raises ImportError
     code, _, err = sim(capsys, *ARGS, "--executor", "dask", "--scheduler", "tcp://127.0.0.1:8786")
     assert code == 2 and "pip install 'val3check[dask]'" in err
+
+
+def test_fail_fast_with_a_pool_reports_every_case(cell, capsys):
+    code, out, _ = sim(capsys, *ARGS, "--fail-on", "info", "--fail-fast", "-j", "2", "--format", "json")
+    verdicts = [c["verdict"] for c in cases_of(out)]
+    assert code == 1 and len(verdicts) == 4 and "fail" in verdicts and set(verdicts) <= {"fail", "skipped"}

@@ -106,7 +106,7 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
         if args.executor == "dask":
             run_dask(cases, args.scheduler, on_done, stop)
         else:
-            jobs = min(args.jobs or os.cpu_count() or 1, len(cases))
+            jobs = min(args.jobs or _cores(), len(cases))
             if jobs <= 1:
                 run_serial(cases, on_done, stop)
             else:
@@ -132,6 +132,14 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
     if sys.stderr.isatty():
         print(f"val3check sim: {len(cases)} cases in {time.monotonic() - start:.1f} s", file=sys.stderr)
     return EXIT_FAILED if any(s.verdict in ("fail", "not-run", "crash") for s in summaries) else EXIT_OK
+
+
+def _cores() -> int:
+    """The cores this process may use (a container's or taskset's limit), else the machine's."""
+    try:
+        return len(os.sched_getaffinity(0)) or 1
+    except AttributeError:  # not on Linux
+        return os.cpu_count() or 1
 
 
 def _axes(args: Any) -> tuple[Axes, Any]:

@@ -57,10 +57,17 @@ def run_pool(cases: list[Case], jobs: int, on_done: OnDone, stop: Stop) -> None:
             done, _ = wait(running, return_when=FIRST_COMPLETED)
             for f in sorted(done, key=lambda f: running[f].key()):
                 case = running.pop(f)
+                if f.cancelled():
+                    continue
                 try:
                     on_done(f.result())
                 except BrokenProcessPool:
                     broken.append(case)
+            if stop():  # --fail-fast: the cases not started yet are not started
+                for f in list(running):
+                    if f.cancel():
+                        running.pop(f)
+                todo = []
             if broken:
                 broken += list(running.values()) + todo
                 running, todo = {}, []
