@@ -91,7 +91,9 @@ def render_junit(summaries: list[CaseSummary]) -> str:
             out.append(f"      <error type={quoteattr(s.verdict)} message={quoteattr(reason)}>{escape(reason)}</error>")
         elif s.verdict == "skipped":
             out.append(f"      <skipped message={quoteattr(reason)} />")
-        props = f"errors {s.errors}, cycle time {_cycle(s)}, model {s.model}, report {CASES_DIR}/{s.name}.json"
+        props = f"errors {s.errors}, cycle time {_cycle(s)}, model {s.model}"
+        if s.verdict in ("pass", "fail"):  # a run, so a report (under --out-dir)
+            props += f", report {CASES_DIR}/{s.name}.json"
         out.append(f"      <system-out>{escape(props)}</system-out>")
         out.append("    </testcase>")
     out += ["  </testsuite>", "</testsuites>"]
