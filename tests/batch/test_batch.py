@@ -380,3 +380,14 @@ def test_fail_fast_with_a_pool_reports_every_case(cell, capsys):
     code, out, _ = sim(capsys, *ARGS, "--fail-on", "info", "--fail-fast", "-j", "2", "--format", "json")
     verdicts = [c["verdict"] for c in cases_of(out)]
     assert code == 1 and len(verdicts) == 4 and "fail" in verdicts and set(verdicts) <= {"fail", "skipped"}
+
+
+def test_an_unreadable_project_is_a_case_not_run_with_the_loaders_reason(cell, capsys):
+    (cell / "apps" / "Bad").mkdir()
+    (cell / "apps" / "Bad" / "Bad.pjx").write_text("<Project garbage")
+    code, out, _ = sim(capsys, "apps/*", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST,
+                       "--format", "json", "-j", "1")
+    cases = {c["application"]: c for c in cases_of(out)}
+    assert code == 1 and cases["apps/Bad/Bad.pjx"]["verdict"] == "not-run"
+    assert "could not be read: apps/Bad/Bad.pjx:" in cases["apps/Bad/Bad.pjx"]["reason"]
+    assert cases["apps/A/PickPlace.pjx"]["verdict"] == "pass"

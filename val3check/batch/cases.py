@@ -127,6 +127,15 @@ def find_apps(paths: list[str], settings) -> list[_App]:  # noqa: ANN001
         if app.path in used:
             continue
         apps.append(_App(app.path, app.name, _bundle(ws, app, settings.max_file_size)))
+    # a project file the loader could not read is a case too (not run, with the loader's reason),
+    # never silently left out of the batch
+    known = {a.path for a in found.targets} | used
+    for d in found.found:
+        if d.path.lower().endswith(".pjx") and d.path not in known and os.path.isfile(d.path):
+            known.add(d.path)
+            data = _read(d.path, settings.max_file_size)
+            apps.append(_App(d.path, os.path.splitext(os.path.basename(d.path))[0],
+                             ((d.path, data),) if data is not None else ()))
     if not apps:
         raise CaseError(f"no application found in {', '.join(display_path(p) for p in paths)}")
     return sorted(apps, key=lambda a: display_path(a.path))

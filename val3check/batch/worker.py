@@ -141,7 +141,10 @@ def _run(case: Case, mirror: str) -> CaseOutcome:
     apps = [a for a in (outcome.workspace.apps[k] for k in outcome.workspace.targets)
             if os.path.normcase(a.path) == os.path.normcase(app_path)]
     if outcome.unreadable or not apps:
-        return CaseOutcome(summary_of(case, "not-run", "the application could not be read"))
+        first = next((d for d in outcome.result.diagnostics if d.severity is not None and d.severity >= Severity.ERROR),
+                     None)
+        why = f": {d.path}:{d.line}:{d.col}: {d.code} {d.message}" if (d := first) else ""
+        return CaseOutcome(summary_of(case, "not-run", f"the application could not be read{why}"))
     app = apps[0]
     errors = [d for d in outcome.result.diagnostics if d.severity is not None and d.severity >= Severity.ERROR]
     if errors:
