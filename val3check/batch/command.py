@@ -49,6 +49,9 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
 
     if args.init_scenario:
         return _err("--init-scenario writes the skeleton of one application: not with several, --sweep or --jobs")
+    if args.format not in ("text", "json"):
+        return _err(f"--report {args.format}: a batch prints its summary as text or json; --out-dir DIR writes"
+                    " every format (summary.json, junit.xml, index.html) and each case's reports")
     if args.jobs is not None and args.jobs < 1:
         return _err("--jobs must be a positive number of processes")
     if args.executor == "dask" and not args.scheduler:
