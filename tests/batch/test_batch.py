@@ -391,3 +391,11 @@ def test_an_unreadable_project_is_a_case_not_run_with_the_loaders_reason(cell, c
     assert code == 1 and cases["apps/Bad/Bad.pjx"]["verdict"] == "not-run"
     assert "could not be read: apps/Bad/Bad.pjx:" in cases["apps/Bad/Bad.pjx"]["reason"]
     assert cases["apps/A/PickPlace.pjx"]["verdict"] == "pass"
+
+
+def test_the_dask_extra_and_ci_installing_it():
+    import tomllib
+
+    extras = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["optional-dependencies"]
+    assert any(r.startswith("dask[distributed]") for r in extras["dask"])
+    assert "val3check[dask]" in extras["test"]  # CI runs the executor's tests
