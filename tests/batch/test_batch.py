@@ -249,6 +249,10 @@ def test_dask_local_cluster_gives_the_same_summary(cell, capsys):
 def test_dask_needs_a_scheduler_and_says_so(cell, capsys):
     code, _, err = sim(capsys, *ARGS, "--executor", "dask")
     assert code == 2 and "--executor dask needs --scheduler" in err
+    code, _, err = sim(capsys, *ARGS, "--scheduler", "tcp://127.0.0.1:8786")
+    assert code == 2 and "--scheduler goes with --executor dask" in err
+    code, _, err = sim(capsys, *ARGS, "--executor", "dask", "--scheduler", "tcp://127.0.0.1:8786", "-j", "2")
+    assert code == 2 and "--jobs is for the local executor" in err
 
 
 def test_dask_chunks_keep_a_few_tasks_per_worker():

@@ -56,6 +56,8 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
         return _err("--jobs must be a positive number of processes")
     if args.executor == "dask" and not args.scheduler:
         return _err("--executor dask needs --scheduler ADDRESS (tcp://host:8786)")
+    if args.executor == "dask" and args.jobs is not None:
+        return _err("--jobs is for the local executor; with Dask, the workers' processes set the parallelism")
     if args.scheduler and args.executor != "dask":
         return _err("--scheduler goes with --executor dask")
     try:
