@@ -332,7 +332,9 @@ def test_exit_codes(cell, capsys):
     assert sim(capsys, "apps/*", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST, "-j", "1")[0] == 0
     assert sim(capsys, "apps/*", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST, "-j", "1",
                "--fail-on", "info")[0] == 1
-    assert sim(capsys, "apps/*", "--robot", "tx2-60", *FAST, "-j", "1")[0] == 1  # R003 without the scenario
+    # without the scenario the run ends waiting on an input nothing sets: R009, a warning
+    assert sim(capsys, "apps/*", "--robot", "tx2-60", *FAST, "-j", "1")[0] == 0
+    assert sim(capsys, "apps/*", "--robot", "tx2-60", *FAST, "-j", "1", "--fail-on", "warning")[0] == 1
     (cell / "sweep.toml").write_text("nonsense = 1\n")
     assert sim(capsys, "--sweep", "sweep.toml", *FAST)[0] == 2
     assert sim(capsys, "apps/*", "-j", "0")[0] == 2
