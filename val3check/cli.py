@@ -402,7 +402,8 @@ def _app_of_folder(folder: str, apps: list) -> list | None:  # noqa: ANN001
     chosen = [a for a in apps if main is not None and os.path.normcase(a.path) == os.path.normcase(main)]
     if not chosen:
         names = ", ".join(_shown(os.path.relpath(a.path)) for a in apps[:8]) + (", ..." if len(apps) > 8 else "")
-        print(f"val3check sim: error: {_shown(folder)} holds {len(apps)} applications ({names}); name one of them",
+        print(f"val3check sim: error: {_shown(folder)} holds {len(apps)} applications ({names}); name one of them"
+              f", or run them all as a batch: val3check sim {_shown(folder)} -j {os.cpu_count() or 1} (docs/batch.md)",
               file=sys.stderr)
         return None
     print(f"val3check sim: note: {_shown(folder)} holds {len(apps)} applications; running"
