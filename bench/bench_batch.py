@@ -87,7 +87,7 @@ def main() -> None:
             print(f"  LocalCluster (2 workers × 1 thread) started in {start:.2f} s (not counted); "
                   f"chunk {chunk_size(len(cases), 2)} cases per task")
             keep("dask", timed("dask LocalCluster", lambda done: run_dask(cases, lc.scheduler_address, done, never)))
-    (t1, serial, f1), (t2, pooled, f2), (td, dasked, fd) = best["j1"], best["j2"], best["dask"]
+    (t1, serial, f1), (t2, pooled, f2), (td, dasked, _) = best["j1"], best["j2"], best["dask"]
     print(f"best of {args.repeat}: -j 1 {t1:.2f} s, -j 2 {t2:.2f} s, dask {td:.2f} s")
 
     for label, got in (("-j 1", serial), ("-j 2", pooled), ("dask", dasked)):
