@@ -93,12 +93,11 @@ def run_case(case: Case) -> CaseOutcome:
         cwd = _mirrored(mirror, case.cwd)
         os.makedirs(cwd, exist_ok=True)
         os.chdir(cwd)
-        try:
-            outcome = _run(case, mirror)
-        except Exception as exc:  # noqa: BLE001 - a crashing case is reported, the batch goes on
-            last = traceback.extract_tb(exc.__traceback__)[-1:]
-            where = f" (at {os.path.basename(last[0].filename)}:{last[0].lineno})" if last else ""
-            outcome = CaseOutcome(summary_of(case, "crash", f"{type(exc).__name__}: {exc}{where}"))
+        outcome = _run(case, mirror)
+    except Exception as exc:  # noqa: BLE001 - a crashing case is reported, the batch goes on
+        last = traceback.extract_tb(exc.__traceback__)[-1:]
+        where = f" (at {os.path.basename(last[0].filename)}:{last[0].lineno})" if last else ""
+        outcome = CaseOutcome(summary_of(case, "crash", f"{type(exc).__name__}: {exc}{where}"))
     finally:
         os.chdir(here)
         shutil.rmtree(tmp, ignore_errors=True)
