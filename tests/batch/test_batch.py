@@ -405,3 +405,13 @@ def test_the_dask_extra_and_ci_installing_it():
     extras = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["optional-dependencies"]
     assert any(r.startswith("dask[distributed]") for r in extras["dask"])
     assert "val3check[dask]" in extras["test"]  # CI runs the executor's tests
+
+
+def test_sweep_paths_are_relative_to_the_sweep_file(cell, capsys):
+    (cell / "sweeps").mkdir()
+    (cell / "sweeps" / "s.toml").write_text('applications = ["../apps/B"]\narms = ["tx2-60"]\n'
+                                            'scenarios = ["../pickplace.toml"]\n')
+    code, out, err = sim(capsys, "--sweep", "sweeps/s.toml", *FAST, "--format", "json", "-j", "1")
+    assert code == 0, err
+    (case,) = cases_of(out)
+    assert (case["application"], case["scenario"]) == ("apps/B/PickPlace.pjx", "pickplace.toml")
