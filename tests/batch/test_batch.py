@@ -258,8 +258,8 @@ def test_dask_needs_a_scheduler_and_says_so(cell, capsys):
 def test_dask_chunks_keep_a_few_tasks_per_worker():
     from val3check.batch.executors import chunk_size
 
-    assert chunk_size(200, 2) == 16 and chunk_size(10, 2) == 2 and chunk_size(1, 8) == 1
-    assert chunk_size(10_000, 500) == 5
+    assert chunk_size(200, 2) == 8 and chunk_size(40, 2) == 3 and chunk_size(10, 2) == 1 and chunk_size(1, 8) == 1
+    assert chunk_size(10_000, 320) == 4
 
 
 # -- summary, out-dir, fail-fast, exit codes -----------------------------------------------

@@ -91,11 +91,12 @@ def _isolated(case: Case) -> CaseOutcome:
 
 
 def chunk_size(n_cases: int, n_workers: int) -> int:
-    """Cases per Dask task: about 4 tasks per worker thread (the slowest task bounds the end
-    of the batch, small tasks balance it), at most 16 cases (progress and --fail-fast stay
-    responsive), at least 1. A case costs ~0.1-1 s; a task ~1-3 ms on the scheduler plus its
-    cases' bytes: a chunk of a few cases keeps the overhead near 1 %."""
-    return max(1, min(16, math.ceil(n_cases / (4 * max(n_workers, 1)))))
+    """Cases per Dask task: about 8 tasks per worker (the last task to end bounds the batch:
+    small tasks balance it), at most 8 cases (progress and --fail-fast stay responsive), at
+    least 1. A case costs 30 ms (3 simulated s of a small cell) to 0.6 s (60 s) of CPU; a task
+    about 1 ms of the scheduler's time plus its cases' bytes: with a few cases per task the
+    overhead stays under 1 % (bench/bench_batch.py, docs/batch.md)."""
+    return max(1, min(8, math.ceil(n_cases / (8 * max(n_workers, 1)))))
 
 
 def run_dask(cases: list[Case], address: str, on_done: OnDone, stop: Stop, chunk: int | None = None) -> None:
