@@ -415,3 +415,34 @@ def test_sweep_paths_are_relative_to_the_sweep_file(cell, capsys):
     assert code == 0, err
     (case,) = cases_of(out)
     assert (case["application"], case["scenario"]) == ("apps/B/PickPlace.pjx", "pickplace.toml")
+
+
+class _DiesInADaskWorker:
+    """Ends the process that unpickles it where VAL3CHECK_TEST_DIE is set (the test's Dask
+    workers); elsewhere (the scheduler unpickles the tasks too, and pickles them again for the
+    worker) it comes back as itself."""
+
+    def __reduce__(self):
+        return (eval, ("__import__('os')._exit(7) if __import__('os').environ.get('VAL3CHECK_TEST_DIE') else "
+                       f"__import__('sys').modules[{__name__!r}]._DiesInADaskWorker()",))
+
+
+@pytest.mark.dask
+def test_dask_a_case_that_kills_its_worker_takes_only_itself(cell):
+    distributed = pytest.importorskip("distributed")
+    import dask
+
+    from val3check.batch.executors import run_dask
+
+    axes = Axes(["apps/*"], ["tx2-60"], ["pickplace.toml"], [], [])
+    good, other = product_cases(axes, Settings(), RunOptions(duration=2.0))
+    killer = replace(other, settings=_DiesInADaskWorker())
+    got = []
+    # no retry of a task whose worker died; the variable that arms the killer, in the workers only
+    with dask.config.set({"distributed.scheduler.allowed-failures": 0,
+                          "distributed.nanny.environ": {"VAL3CHECK_TEST_DIE": "1"}}):
+        with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None) as lc:
+            run_dask([good, killer], lc.scheduler_address, got.append, lambda: False, chunk=2)
+    verdicts = {o.summary.app: o.summary.verdict for o in got}
+    assert verdicts == {"apps/A/PickPlace.pjx": "pass", "apps/B/PickPlace.pjx": "crash"}
+    assert "KilledWorker" in next(o.summary.reason for o in got if o.summary.verdict == "crash")

@@ -99,6 +99,13 @@ def chunk_size(n_cases: int, n_workers: int) -> int:
     return max(1, min(8, math.ceil(n_cases / (8 * max(n_workers, 1)))))
 
 
+def _alone(client, case: Case) -> CaseOutcome:  # noqa: ANN001 - a distributed.Client
+    try:
+        return client.submit(run_chunk, [case], pure=False).result()[0]
+    except Exception as exc:  # noqa: BLE001
+        return CaseOutcome(summary_of(case, "crash", f"Dask: {type(exc).__name__}: {exc}"))
+
+
 def run_dask(cases: list[Case], address: str, on_done: OnDone, stop: Stop, chunk: int | None = None) -> None:
     try:
         from distributed import Client, as_completed
@@ -124,9 +131,10 @@ def run_dask(cases: list[Case], address: str, on_done: OnDone, stop: Stop, chunk
         for f in as_completed(futures):
             try:
                 outcomes = f.result()
-            except Exception as exc:  # noqa: BLE001 - a worker lost (KilledWorker), an error on the way
-                outcomes = [CaseOutcome(summary_of(c, "crash", f"Dask: {type(exc).__name__}: {exc}"))
-                            for c in which[f.key]]
+            except Exception:  # noqa: BLE001 - its worker died (KilledWorker), an error on the way
+                # one case may have taken the task down: each runs again alone, one after the
+                # other (two on the same worker would fall together), the culprit is the crash
+                outcomes = [_alone(client, c) for c in which[f.key]]
             for o in outcomes:
                 on_done(o)
             if stop():
