@@ -446,3 +446,14 @@ def test_dask_a_case_that_kills_its_worker_takes_only_itself(cell):
     verdicts = {o.summary.app: o.summary.verdict for o in got}
     assert verdicts == {"apps/A/PickPlace.pjx": "pass", "apps/B/PickPlace.pjx": "crash"}
     assert "KilledWorker" in next(o.summary.reason for o in got if o.summary.verdict == "crash")
+
+
+@pytest.mark.parametrize("text, line, col, words", [
+    ('arms = ["tx2-60"]\nscenarios = [\n  "pickplace.toml",\n  "missing.toml",\n]\n', 4, 3, "scenario missing.toml"),
+    ('[[case]]\napplication = "apps/A"\narm = "nowhere.urdf"\n', 3, 7, "arm nowhere.urdf: no such file"),
+    ('[[case]]\napplication = "apps/A"\nscenario = "gone.toml"\n', 3, 12, "scenario gone.toml"),
+])
+def test_a_missing_file_of_the_sweep_is_reported_at_its_line(cell, capsys, text, line, col, words):
+    (cell / "sweep.toml").write_text(text)
+    code, _, err = sim(capsys, "--sweep", "sweep.toml", *FAST, *(["apps/A"] if "[[case]]" not in text else []))
+    assert code == 2 and f"sweep.toml:{line}:{col}: {words}" in err, err

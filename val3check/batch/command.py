@@ -150,6 +150,8 @@ def _cores() -> int:
 def _axes(args: Any) -> tuple[Axes, Any]:
     """The command line's values, and the sweep file's; an axis given by both is an error."""
     sweep = load_sweep(args.sweep) if args.sweep else None
+    if sweep is not None:
+        check_files(sweep)
     cli_cell = getattr(args, "cell", None)  # `sim --cell`, when the single run has it
     axes = Axes(apps=list(args.app), arms=list(args.robot or []), scenarios=[args.scenario] if args.scenario else [],
                 cells=[cli_cell] if cli_cell else [], overrides=[])
@@ -184,3 +186,16 @@ def _check_globs(sweep: Any) -> None:
             expand([sweep.resolve(e)])
         except CaseError as exc:
             raise SweepError(sweep.path, e.line, e.col, str(exc)) from None
+
+
+def check_files(sweep: Any) -> None:
+    """A scenario, cell or robot file of the sweep that does not exist, at its line and column."""
+    entries = [("scenario", e) for e in sweep.scenarios] + [("cell", e) for e in sweep.cells]
+    entries += [("arm", e) for e in sweep.arms if e.value.lower().endswith(_ROBOT_FILES)]
+    for case in sweep.cases:
+        entries += [(k, case[k]) for k in ("scenario", "cell") if case.get(k) is not None]
+        if "arm" in case and case["arm"].value.lower().endswith(_ROBOT_FILES):
+            entries.append(("arm", case["arm"]))
+    for kind, e in entries:
+        if e is not None and not os.path.isfile(sweep.resolve(e)):
+            raise SweepError(sweep.path, e.line, e.col, f"{kind} {e.value}: no such file")
