@@ -252,6 +252,7 @@ def _case(app: _App, arm: str, scenario: str | None, cell: str | None, ov: Overr
         arm = display_path(robot_path)
     shown = {"scenario": display_path(sc_path) if sc_path else "", "cell": display_path(cell_path) if cell_path else ""}
     return Case(app=display_path(app.path), app_name=app.name, arm=arm, **shown, overrides=ov, app_path=app.path,
-                scenario_path=sc_path, cell_path=cell_path, robot_path=robot_path, cwd=os.getcwd(), settings=settings, options=options, files=tuple(sorted(dict(files).items())))
+                scenario_path=sc_path, cell_path=cell_path, robot_path=robot_path, cwd=os.getcwd(), settings=settings,
+                options=options, files=tuple(sorted(dict(files).items())))
 
 
