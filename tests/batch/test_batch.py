@@ -457,3 +457,18 @@ def test_a_missing_file_of_the_sweep_is_reported_at_its_line(cell, capsys, text,
     (cell / "sweep.toml").write_text(text)
     code, _, err = sim(capsys, "--sweep", "sweep.toml", *FAST, *(["apps/A"] if "[[case]]" not in text else []))
     assert code == 2 and f"sweep.toml:{line}:{col}: {words}" in err, err
+
+
+@pytest.mark.dask
+def test_dask_workers_must_exist_and_run_one_thread(cell, monkeypatch):
+    distributed = pytest.importorskip("distributed")
+    from val3check.batch import executors
+
+    monkeypatch.setattr(executors, "WAIT_FOR_WORKERS_S", 1)
+    (case,) = product_cases(Axes(["apps/A"], ["tx2-60"], ["pickplace.toml"], [], []), Settings(), RunOptions())
+    with distributed.LocalCluster(n_workers=0, processes=False, dashboard_address=None) as lc:
+        with pytest.raises(executors.ExecutorError, match="has no worker"):
+            executors.run_dask([case], lc.scheduler_address, print, lambda: False)
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False, dashboard_address=None) as lc:
+        with pytest.raises(executors.ExecutorError, match="must run one thread each"):
+            executors.run_dask([case], lc.scheduler_address, print, lambda: False)

@@ -23,6 +23,9 @@ OnDone = Callable[[CaseOutcome], None]
 Stop = Callable[[], bool]
 
 
+WAIT_FOR_WORKERS_S = 120  # a cluster's first worker may still be queued as a batch job
+
+
 class ExecutorError(Exception):
     """The executor cannot run (Dask missing, scheduler unreachable): a usage error."""
 
@@ -117,8 +120,13 @@ def run_dask(cases: list[Case], address: str, on_done: OnDone, stop: Stop, chunk
         raise ExecutorError(f"cannot reach the Dask scheduler at {address}: {exc}") from None
     try:
         threads = client.nthreads()
-        if not threads:
-            raise ExecutorError(f"the Dask scheduler at {address} has no worker")
+        if not threads:  # workers still starting (dask-jobqueue submits them as batch jobs)
+            try:
+                client.wait_for_workers(1, timeout=WAIT_FOR_WORKERS_S)
+            except TimeoutError:
+                raise ExecutorError(f"the Dask scheduler at {address} has no worker "
+                                    f"(none joined in {WAIT_FOR_WORKERS_S} s)") from None
+            threads = client.nthreads()
         many = sorted(w for w, n in threads.items() if n != 1)
         if many:
             # a case sets its process's current folder and measures its memory: one at a time per process
