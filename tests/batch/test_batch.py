@@ -472,3 +472,15 @@ def test_dask_workers_must_exist_and_run_one_thread(cell, monkeypatch):
     with distributed.LocalCluster(n_workers=1, threads_per_worker=2, processes=False, dashboard_address=None) as lc:
         with pytest.raises(executors.ExecutorError, match="must run one thread each"):
             executors.run_dask([case], lc.scheduler_address, print, lambda: False)
+
+
+def test_the_bundled_sweep(capsys, monkeypatch):
+    monkeypatch.chdir(ROOT)
+    code, out, err = sim(capsys, "--sweep", "fixtures/sweeps/pickplace.toml", "--duration", "9", "-j", "1",
+                         "--format", "json")
+    assert code == 0, err
+    cases = cases_of(out)
+    assert [(c["arm"], c["overrides"]["monitor_speed"]) for c in cases] == [
+        (arm, speed) for arm in ("tx2-60", "tx2-60l", "tx2-90") for speed in (50.0, 100.0)]
+    for full, half in zip(cases[1::2], cases[0::2], strict=True):  # the arm moves at half speed: longer cycles
+        assert half["cycle_time"] > full["cycle_time"] * 1.2
