@@ -484,3 +484,15 @@ def test_the_bundled_sweep(capsys, monkeypatch):
         (arm, speed) for arm in ("tx2-60", "tx2-60l", "tx2-90") for speed in (50.0, 100.0)]
     for full, half in zip(cases[1::2], cases[0::2], strict=True):  # the arm moves at half speed: longer cycles
         assert half["cycle_time"] > full["cycle_time"] * 1.2
+
+
+@pytest.mark.parametrize("text, line, col", [
+    ('applications = ["apps/A"]\narms = ["tx2-60"]\nscenarios = ["/etc/hostname"]\n', 3, 14),
+    ('applications = ["apps/A", "/usr/*"]\n', 1, 27),
+    ('[[case]]\napplication = "../../.."\n', 2, 15),
+])
+def test_sweep_paths_stay_inside_its_folder_or_repository(cell, capsys, text, line, col):
+    (cell / "sweeps").mkdir()
+    (cell / "sweeps" / "s.toml").write_text(text)
+    code, _, err = sim(capsys, "--sweep", "sweeps/s.toml", *FAST)
+    assert code == 2 and f"s.toml:{line}:{col}:" in err and "leads outside" in err, err

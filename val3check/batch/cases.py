@@ -216,7 +216,10 @@ def list_cases(sweep: Sweep, defaults: Axes, settings, options: RunOptions) -> l
     for entry in sweep.cases:
         app_entry: Entry = entry["application"]
         try:
-            apps = find_apps(expand([sweep.resolve(app_entry)]), settings)
+            paths = expand([sweep.resolve(app_entry)])
+            for p in paths:
+                sweep.check_inside(app_entry, p)
+            apps = find_apps(paths, settings)
         except CaseError as exc:
             raise SweepError(sweep.path, app_entry.line, app_entry.col, str(exc)) from None
         arm = entry["arm"].value if "arm" in entry else (defaults.arms[0] if defaults.arms else "")

@@ -45,7 +45,7 @@ def _err(message: str) -> int:
 
 def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
     """`write(text, output) -> bool`: the command line's writer (standard output or -o FILE)."""
-    from ..lint import display_path
+    from ..lint import display_path, printable_path
 
     if args.init_scenario:
         return _err("--init-scenario writes the skeleton of one application: not with several, --sweep or --jobs")
@@ -63,7 +63,7 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
     try:
         axes, sweep = _axes(args)
     except SweepError as exc:
-        return _err(f"bad sweep file: {display_path(str(exc))}")
+        return _err(f"bad sweep file: {printable_path(str(exc))}")
     except CaseError as exc:
         return _err(str(exc))
     listed_cells = sweep is not None and any(c.get("cell") for c in sweep.cases)
@@ -79,7 +79,7 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
         else:
             cases = product_cases(axes, settings, options)
     except SweepError as exc:
-        return _err(f"bad sweep file: {display_path(str(exc))}")
+        return _err(f"bad sweep file: {printable_path(str(exc))}")
     except CaseError as exc:
         return _err(str(exc))
     if args.out_dir:
@@ -183,9 +183,11 @@ def _check_globs(sweep: Any) -> None:
 
     for e in sweep.applications:
         try:
-            expand([sweep.resolve(e)])
+            found = expand([sweep.resolve(e)])
         except CaseError as exc:
             raise SweepError(sweep.path, e.line, e.col, str(exc)) from None
+        for path in found:
+            sweep.check_inside(e, path)
 
 
 def check_files(sweep: Any) -> None:
@@ -197,5 +199,8 @@ def check_files(sweep: Any) -> None:
         if "arm" in case and case["arm"].value.lower().endswith(_ROBOT_FILES):
             entries.append(("arm", case["arm"]))
     for kind, e in entries:
-        if e is not None and not os.path.isfile(sweep.resolve(e)):
+        if e is None:
+            continue
+        sweep.check_inside(e, sweep.resolve(e))
+        if not os.path.isfile(sweep.resolve(e)):
             raise SweepError(sweep.path, e.line, e.col, f"{kind} {e.value}: no such file")

@@ -79,6 +79,25 @@ class Sweep:
         """A path written in the sweep, relative to the sweep file's folder."""
         return os.path.normpath(os.path.join(os.path.dirname(self.path), os.path.expanduser(entry.value)))
 
+    def roots(self) -> list[str]:
+        """Where the sweep's paths may lead (val3check.confine: a file read from a repository must
+        not reach outside it): the git repository holding the sweep file; outside any
+        repository, the sweep file's folder and the current folder."""
+        from ..confine import git_top_level
+
+        folder = os.path.dirname(os.path.abspath(self.path))
+        top = git_top_level(folder)
+        return [os.path.realpath(r) for r in ([top] if top else [folder, os.getcwd()])]
+
+    def check_inside(self, entry: Entry, path: str) -> None:
+        """SweepError at the entry's line when `path` (one it leads to) is outside roots()."""
+        real = os.path.realpath(path)
+        if not any(os.path.commonpath([real, r]) == r for r in self.roots()):
+            where = "the repository" if len(self.roots()) == 1 else "the folder"
+            raise SweepError(self.path, entry.line, entry.col,
+                             f"{entry.value}: leads outside {where} of the sweep file"
+                             " (paths in a sweep stay inside it)")
+
 
 def load_sweep(path: str) -> Sweep:
     from ..confine import Refused, Roots, read_bytes
