@@ -496,3 +496,10 @@ def test_sweep_paths_stay_inside_its_folder_or_repository(cell, capsys, text, li
     (cell / "sweeps" / "s.toml").write_text(text)
     code, _, err = sim(capsys, "--sweep", "sweeps/s.toml", *FAST)
     assert code == 2 and f"s.toml:{line}:{col}:" in err and "leads outside" in err, err
+
+
+def test_sweep_mode_must_match_its_shape(cell):
+    (cell / "sweep.toml").write_text('mode = "list"\narms = ["tx2-60"]\n')
+    with pytest.raises(SweepError, match=r'mode = "list" needs \[\[case\]\] tables') as exc:
+        load_sweep("sweep.toml")
+    assert (exc.value.line, exc.value.col) == (1, 8)

@@ -147,10 +147,12 @@ class _Reader:
                           " axes or a list of [[case]] tables", key=True)
         else:
             mode = "product"
-        if data.get("mode", mode) != mode:
-            self.fail(("mode",), f"mode {data['mode']!r} does not match the file: "
-                      + ("it has [[case]] tables, a list" if mode == "list" else "a product has no [[case]] tables;"
-                         " mode is \"product\" or \"list\""))
+        declared = data.get("mode", mode)
+        if declared not in ("product", "list"):
+            self.fail(("mode",), f'mode: "product" or "list", not {declared!r}')
+        if declared != mode:
+            self.fail(("mode",), 'mode = "list" needs [[case]] tables' if declared == "list"
+                      else 'mode = "product" does not go with [[case]] tables (a list)')
         sweep = Sweep(self.path, mode)
         if mode == "list":
             cases = data["case"]
