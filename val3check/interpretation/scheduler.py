@@ -24,6 +24,7 @@ from typing import Any
 
 from ..language.runtime_errors import RUNTIME_CODES, Val3RuntimeError
 from .clock import LINE_US, LINES_PER_CYCLE, TICK_US, Clock
+from .recorder import task_state_of
 
 SYNC_LINES = 3000  # 5.5: up to 3000 lines per sequencing of a synchronous task
 START_PRIORITY = 10  # 5.2
@@ -142,6 +143,8 @@ class Scheduler:
         self.total_lines = 0
         self._seq = 0
         self._created: list[Task] = []  # tasks created since the round's order was taken (5.4)
+        self._ran: set[Task] = set()  # tasks that ran a line in this cycle (the task timelines)
+        self._alive: dict[Task, None] = {}  # the tasks alive at the end of the last cycle
 
     def add_subsystem(self, subsystem: Any) -> None:
         self.subsystems.append(subsystem)
@@ -328,7 +331,39 @@ class Scheduler:
             if not progress:
                 break
         self.total_lines += clock.cycle_lines
+        self._note_states(now)
         return clock.cycle_lines >= LINES_PER_CYCLE
+
+    def _note_states(self, now: int) -> None:
+        """The task timelines (recorder.TaskStateChange): over this cycle, running for a task that
+        ran a line in it; from the next cycle on, the state it was left in."""
+        note = self.machine.recorder.task_state
+        after = now + TICK_US
+        ran = self._ran
+        alive = self._alive
+        live = set(self.tasks)
+        gone = [t for t in ran if t not in live] + [t for t in alive if t not in live and t not in ran]
+        for task in sorted(gone, key=lambda t: t.seq):  # ended or killed in this cycle
+            if task in ran:
+                note(now, task.name, "running", "", task)
+            note(after, task.name, "ended", "", task)
+            alive.pop(task, None)
+        for task in self.tasks:
+            st = task.state
+            if task in ran:
+                note(now, task.name, "running", "", task)
+            elif task not in alive:
+                note(now, task.name, "running" if st is READY else task_state_of(st.value, task.waiting_for), "",
+                     task)
+            state = task_state_of(st.value, task.waiting_for)
+            if task.period and state == "running":  # a synchronous task between its periods (5.5)
+                state, detail = "waiting", "period"
+            else:
+                detail = task.waiting_for if state in ("waiting", "blocked") else (st.report_name
+                                                                                    if state == "stopped" else "")
+            note(after, task.name, state, detail, task)
+            alive[task] = None
+        ran.clear()
 
     def _sync_turn(self, task: Task) -> None:
         """5.5/5.6: a synchronous task runs once per period; an overrun cancels the next one
@@ -378,6 +413,8 @@ class Scheduler:
         ran = quantum - max(task.q, 0)
         clock.cycle_lines += ran
         task.lines += ran
+        if ran > 0:
+            self._ran.add(task)
         clock.current = None
         st = task.state
         if st is RUNNING:
