@@ -304,6 +304,12 @@ def _sim(args: argparse.Namespace) -> int:
     report = build_report(result, settings, catalogue(), __version__)
     if args.format == "json":
         from .reporting.sim_json import render as render_sim
+    elif args.format == "html":
+        from functools import partial
+
+        from .reporting.html.from_run import render_run
+
+        render_sim = partial(render_run, fail_on=settings.fail_on)
     else:
         from .reporting.sim_text import render as render_sim
     if not _write(render_sim(report), args.output):
