@@ -57,7 +57,7 @@ def app_frames(result: Any) -> dict[str, Any]:
             except Exception:  # noqa: BLE001 - an undefined frame (error 163) is simply not drawn
                 continue
             M = np.eye(4)
-            M[:3, :3] = R
+            M[:3, :3] = np.reshape(R, (3, 3))  # row-major (geometry/rotation.py)
             M[:3, 3] = v
             out[f"{name}[{i}]"] = M
             if i == 0:
@@ -196,7 +196,9 @@ def _task_segments(result: Any, end: float) -> list[dict]:
     for name, segs in by_task.items():
         if segs and segs[-1]["end"] is None:
             segs[-1]["end"] = _r(end)
-        out.append({"name": name, "segments": [s for s in segs if s["end"] > s["start"]]})
+        segs = [s for s in segs if s["end"] > s["start"]]
+        if segs:  # (stop() runs after a run cut by --duration: at its very end)
+            out.append({"name": name, "segments": segs})
     return out
 
 
@@ -261,8 +263,19 @@ def _scene(result: Any, m: Any, cell: Any, limits: list[str]) -> dict:
         if counts:
             name = max(sorted(counts), key=counts.get)
             solids = []
-            if cell is not None:
-                solids = [_shape_solid(ts.name, ts.shape, ts.pose, limits) for ts in cell.tools if ts.tool == name]
+            if cell is not None:  # a tool solid sits in its tool variable's frame; the page's in the flange
+                tools = app_frames(result)
+                for ts in cell.tools:
+                    base = np.eye(4) if ts.tool == "flange" else tools.get(ts.tool)
+                    if base is None and ts.tool == name:
+                        base = np.asarray(tcp[name], dtype=float)
+                    if base is None:
+                        limits.append(f"The tool solid {ts.name!r} hangs on {ts.tool}, which the run did not define: "
+                                      "not drawn.")
+                        continue
+                    solids.append(_shape_solid(ts.name, ts.shape, base @ ts.pose, limits))
+                if cell.parts:
+                    limits.append("The parts of the cell file (what the tool carries) are not drawn.")
             scene["tool"] = {"name": name, "tcp": _m34(np.asarray(tcp[name], dtype=float)), "solids": solids}
     if cell is not None:
         frames = app_frames(result)
