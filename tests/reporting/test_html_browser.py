@@ -265,3 +265,37 @@ def test_report_of_a_real_application(chromium, app, options, capsys, tmp_path, 
         assert p.locator("#view3d").count() == 0 and "No 3D scene" in p.locator("#view3d-section").text_content()
     p.screenshot(path=str(tmp_path / f"{app}.png"), full_page=True)
     p.close()
+
+
+def test_sim_report_html_of_the_pick_and_place_cell(chromium, tmp_path, monkeypatch):
+    """`val3check sim --report html` on the bundled cell that moves: everything filled from the
+    real run, no console error, no request; the screenshots are looked at when this changes."""
+    monkeypatch.chdir(ROOT)
+    out = tmp_path / "report.html"
+    code = main(["sim", "fixtures/valid/PickPlace", "--robot", "tx2-60", "--scenario",
+                 "fixtures/scenarios/pickplace.toml", "--report", "html", "-o", str(out)])
+    assert code == 0
+    page = chromium.open(out)
+    _clean(page)
+    counts = page.evaluate("""() => ({
+        motions: document.querySelectorAll('table.motions tbody tr').length,
+        jointPlots: document.querySelectorAll('#joint-plots svg.chart').length,
+        tcpPlots: document.querySelectorAll('#tcp-plot svg.chart').length,
+        series: Array.from(document.querySelectorAll('#joint-plots path.series, #tcp-plot path.series'))
+                     .map((p) => p.getAttribute('d').length),
+        ganttLanes: Array.from(document.querySelectorAll('#gantt .lane-label, #gantt text')).map((e) => e.textContent),
+        ganttRects: document.querySelectorAll('#gantt svg rect').length,
+        ioRects: document.querySelectorAll('#io-lanes svg rect').length,
+        bars: document.querySelectorAll('.cyclebars svg rect[role=button]').length,
+        status: document.querySelector('.verdict .badge').textContent,
+        verdict: document.querySelector('.verdict').textContent,
+    })""")
+    assert counts["motions"] > 100 and counts["jointPlots"] == 12 and counts["tcpPlots"] == 1
+    assert len(counts["series"]) == 13 and min(counts["series"]) > 500
+    assert counts["ganttRects"] > 100 and counts["ioRects"] > 50 and counts["bars"] >= 18
+    assert counts["status"] == "PASSED" and "median of 18 complete cycles" in counts["verdict"]
+    assert any("robot" in t for t in counts["ganttLanes"])
+    assert _painted(page, [120, 80, 0], [255, 200, 60]) > 2000  # the arm
+    p = page.page
+    p.screenshot(path=str(tmp_path / "pickplace.png"), full_page=True)
+    p.close()

@@ -1,0 +1,181 @@
+"""`val3check sim --trace run.mcap` (reporting/mcap_trace.py), read back with the mcap reader:
+schemas and channels, message counts, time order, the transforms against the arm model's forward
+kinematics (here()) at the sampled times, the log, I/O and task channels, the URDF, determinism."""
+
+from __future__ import annotations
+
+import json
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+from mcap.reader import make_reader
+
+from val3check.cli import main
+from val3check.collision.cellfile import read_cell
+from val3check.reporting.mcap_trace import SCHEMAS, TOPICS, write_trace
+
+from .runhelp import APP, CELL, SCENARIO, pickplace
+
+FOXGLOVE = {"foxglove.FrameTransforms", "foxglove.PoseInFrame", "foxglove.SceneUpdate", "foxglove.Log"}
+
+
+@pytest.fixture(scope="module")
+def run():
+    return pickplace(20.0)
+
+
+@pytest.fixture(scope="module")
+def trace(run, tmp_path_factory):
+    result, report = run
+    path = tmp_path_factory.mktemp("mcap") / "run.mcap"
+    result.collision = SimpleNamespace(cell=read_cell(CELL), by_motion={})
+    try:
+        write_trace(report, str(path))
+    finally:
+        del result.collision
+    with open(path, "rb") as f:
+        reader = make_reader(f)
+        summary = reader.get_summary()
+        messages = [(ch.topic, sc.name, msg.log_time, msg.publish_time, json.loads(msg.data))
+                    for sc, ch, msg in reader.iter_messages(log_time_order=False)]
+        attachments = list(reader.iter_attachments())
+        metadata = list(reader.iter_metadata())
+    return SimpleNamespace(path=path, summary=summary, messages=messages, attachments=attachments, metadata=metadata)
+
+
+def _by(trace, topic):
+    return [m for m in trace.messages if m[0] == topic]
+
+
+def test_schemas_channels_and_counts(trace, run):
+    result, report = run
+    s = trace.summary
+    schemas = {sc.name: sc for sc in s.schemas.values()}
+    assert set(schemas) == set(TOPICS.values())
+    assert FOXGLOVE <= set(schemas)
+    for sc in schemas.values():
+        assert sc.encoding == "jsonschema" and json.loads(sc.data)["title"] == sc.name
+    channels = {ch.topic: ch for ch in s.channels.values()}
+    assert set(channels) == set(TOPICS)
+    assert all(ch.message_encoding == "json" and schemas[TOPICS[ch.topic]].id == ch.schema_id for ch in channels.values())
+    counts = {channels[t].id: n for t, n in ((t, len(_by(trace, t))) for t in TOPICS)}
+    assert s.statistics.channel_message_counts == counts
+    ticks = len(_by(trace, "/joint_states"))
+    segs = result.motion.trajectory.segments(result.motion.end_s, 0.004)
+    assert ticks == 1 + sum(len(q) for _, q, _ in segs) - (1 if segs and segs[0][0] == 0 else 0)
+    assert len(_by(trace, "/tf")) == ticks + 1  # and the application's frames and tools, once
+    assert len(_by(trace, "/tcp")) == ticks
+    assert len(_by(trace, "/io")) == len(result.io_log)
+    assert len(_by(trace, "/tasks")) == sum(1 for c in result.task_states if c.time_us <= result.sim_time_us)
+    assert len(_by(trace, "/log")) == len(result.transcript) + len(report.diagnostics)
+    assert len(_by(trace, "/scene")) == 1 and len(_by(trace, "/robot_description")) == 1
+
+
+def test_messages_are_in_time_order_on_the_simulated_clock(trace, run):
+    times = [m[2] for m in trace.messages]
+    assert times == sorted(times) and times[0] == 0
+    assert all(m[2] == m[3] for m in trace.messages)
+    # the arm's samples end with the run; stop() may still log and set outputs after a run cut by --duration
+    assert max(m[2] for m in trace.messages if m[0] in ("/tf", "/joint_states", "/tcp")) == run[0].sim_time_us * 1000
+    for topic, _, t, _, msg in trace.messages:
+        if "timestamp" in msg:
+            assert msg["timestamp"]["sec"] * 10**9 + msg["timestamp"]["nsec"] == t
+    assert trace.summary.statistics.message_start_time == 0
+
+
+def _matrix(tr):
+    x, y, z, w = (tr["rotation"][k] for k in "xyzw")
+    R = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                  [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                  [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+    M = np.eye(4)
+    M[:3, :3] = R
+    M[:3, 3] = [tr["translation"][k] * 1000.0 for k in "xyz"]
+    return M
+
+
+def test_transforms_reproduce_here_at_the_sampled_times(trace, run):
+    result, _ = run
+    model = result.motion.model
+    tfs = _by(trace, "/tf")
+    tcps = _by(trace, "/tcp")
+    joints = _by(trace, "/joint_states")
+    assert len(tfs) > 1000
+    checked = 0
+    for k in range(1, len(joints), 97):
+        _, _, t, _, js = joints[k]
+        if t < 1e9:
+            continue  # before the first motion: no tool yet (the TCP is the flange)
+        q = result.motion.trajectory.position(t / 1e9)
+        assert js["position"] == pytest.approx(list(q), abs=1e-9)
+        tf = next(m[4] for m in tfs if m[2] == t and len(m[4]["transforms"]) > 2)
+        by = {x["child_frame_id"]: x for x in tf["transforms"]}
+        assert all(x["parent_frame_id"] == model.world_frame for x in tf["transforms"] if x["child_frame_id"] != "tcp")
+        flange = _matrix(by[model.flange_frame])
+        here = np.array(model.fk_matrix(q))
+        assert np.abs(flange[:3] - here).max() < 1e-6  # mm (and rotation entries)
+        tcp = flange @ _matrix(by["tcp"])
+        pose = next(m[4] for m in tcps if m[2] == t)["pose"]
+        assert [pose["position"][a] * 1000 for a in "xyz"] == pytest.approx(tcp[:3, 3].tolist(), abs=1e-6)
+        tool = np.array(by["tcp"]["translation"]["z"]) * 1000
+        assert tool == pytest.approx(120.0)  # tGripper
+        here_tool = np.array(model.fk_matrix(q, np.array([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 120.0], [0, 0, 0, 1]])))
+        assert np.abs(tcp[:3] - here_tool).max() < 1e-6
+        checked += 1
+    assert checked > 10
+
+
+def test_frames_tools_scene_log_io_tasks_and_urdf(trace, run):
+    result, report = run
+    static = next(m[4] for m in _by(trace, "/tf") if m[2] == 0 and any(
+        x["child_frame_id"] == "fPallet" for x in m[4]["transforms"]))
+    by = {x["child_frame_id"]: x for x in static["transforms"]}
+    assert by["fPallet"]["parent_frame_id"] == "world" and by["fPallet"]["translation"]["x"] == pytest.approx(0.3)
+    assert by["tGripper"]["parent_frame_id"] == result.motion.model.flange_frame
+    (scene,) = _by(trace, "/scene")
+    ents = {e["id"]: e for e in scene[4]["entities"]}
+    assert set(ents) == {"obstacle/table", "obstacle/pallet", "obstacle/post", "tool/jaws", "tool/body"}
+    assert ents["obstacle/table"]["cubes"][0]["size"] == pytest.approx({"x": 0.9, "y": 1.2, "z": 0.04})
+    assert ents["obstacle/post"]["cylinders"][0]["size"]["z"] == pytest.approx(0.8)
+    assert ents["tool/jaws"]["frame_id"] == "flange" and ents["tool/jaws"]["frame_locked"]
+    logs = [m[4] for m in _by(trace, "/log")]
+    r007 = [x for x in logs if x["message"].startswith("R007 ")]
+    assert len(r007) == 1 and r007[0]["level"] == 2 and r007[0]["file"].endswith("PickPlace.pjx")
+    io = [m[4] for m in _by(trace, "/io")]
+    assert {x["link"] for x in io} >= {"BasicIO-1\\%Q0"} and all("names" in x for x in io)
+    tasks = [m[4] for m in _by(trace, "/tasks")]
+    assert {x["state"] for x in tasks if x["task"] == "robot"} == {"running", "waiting", "blocked"}
+    (desc,) = _by(trace, "/robot_description")
+    (att,) = trace.attachments
+    assert att.name == "tx2-60.urdf" and att.data.decode() == desc[4]["data"] and "<robot" in desc[4]["data"]
+    assert trace.metadata[0].metadata["robot"] == "TX2-60"
+
+
+def test_schema_field_names_are_foxglove_s():
+    """The fields val3check fills, by Foxglove's names (docs.foxglove.dev schemas)."""
+    tf = SCHEMAS["foxglove.FrameTransforms"]["properties"]["transforms"]["items"]["properties"]
+    assert set(tf) == {"timestamp", "parent_frame_id", "child_frame_id", "translation", "rotation"}
+    assert set(SCHEMAS["foxglove.PoseInFrame"]["properties"]) == {"timestamp", "frame_id", "pose"}
+    assert set(SCHEMAS["foxglove.Log"]["properties"]) == {"timestamp", "level", "message", "name", "file", "line"}
+    ent = SCHEMAS["foxglove.SceneUpdate"]["properties"]["entities"]["items"]["properties"]
+    assert {"frame_id", "id", "frame_locked", "cubes", "spheres", "cylinders", "triangles"} <= set(ent)
+
+
+def test_sim_trace_option_is_deterministic(tmp_path, monkeypatch, capsys):
+    outs = []
+    for n in (1, 2):
+        path = tmp_path / f"run{n}.mcap"
+        code = main(["sim", str(APP), "--robot", "tx2-60", "--scenario", str(SCENARIO), "--duration", "8",
+                     "--trace", str(path)])
+        assert code == 0
+        outs.append(path.read_bytes())
+    assert outs[0] == outs[1] and len(outs[0]) > 10_000
+    assert "cycle" in capsys.readouterr().out  # the text report still goes to stdout
+
+
+def test_trace_to_an_unwritable_place_is_a_clear_error(tmp_path, capsys):
+    code = main(["sim", str(APP), "--robot", "tx2-60", "--scenario", str(SCENARIO), "--duration", "2",
+                 "--trace", str(tmp_path / "no" / "such" / "dir" / "run.mcap")])
+    assert code == 2
+    assert "cannot write the trace" in capsys.readouterr().err
