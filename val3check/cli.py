@@ -311,6 +311,12 @@ def _sim(args: argparse.Namespace) -> int:
         from .reporting.html.from_run import render_run
 
         render_sim = partial(render_run, fail_on=settings.fail_on)
+    elif args.format == "junit":
+        from functools import partial
+
+        from .reporting.sim_junit import render as render_junit
+
+        render_sim = partial(render_junit, fail_on=settings.fail_on, scenario=args.scenario)
     else:
         from .reporting.sim_text import render as render_sim
     if not _write(render_sim(report), args.output):

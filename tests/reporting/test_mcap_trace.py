@@ -179,3 +179,24 @@ def test_trace_to_an_unwritable_place_is_a_clear_error(tmp_path, capsys):
                  "--trace", str(tmp_path / "no" / "such" / "dir" / "run.mcap")])
     assert code == 2
     assert "cannot write the trace" in capsys.readouterr().err
+
+
+def test_foxglove_layout_opens_the_trace_s_topics():
+    """docs/foxglove-layout.json: the 3D view (URDF from /robot_description, the scene), joint
+    plots, the log; every panel in the layout is configured and reads a topic the trace has."""
+    from pathlib import Path
+
+    layout = json.loads((Path(__file__).resolve().parents[2] / "docs" / "foxglove-layout.json").read_text())
+    panels = set(layout["configById"])
+
+    def leaves(node):
+        return [node] if isinstance(node, str) else leaves(node["first"]) + leaves(node["second"])
+
+    assert sorted(leaves(layout["layout"])) == sorted(panels)
+    text = json.dumps(layout["configById"])
+    import re
+
+    used = set(re.findall(r'"(/[a-z_]+)', text))
+    assert used and used <= set(TOPICS), used - set(TOPICS)
+    assert {"3D", "Plot", "Log"} <= {p.split("!")[0] for p in panels}
+    assert layout["configById"]["3D!val3check"]["layers"]["arm"]["topic"] == "/robot_description"
