@@ -295,10 +295,17 @@ def _sim(args: argparse.Namespace) -> int:
     try:
         if args.scenario:
             scenario = load_scenario(args.scenario)
+        from .reporting.progress import Progress
+
+        progress = Progress.for_stream(sys.stderr)  # only on a terminal
         options = SimOptions(duration=args.duration, max_wall=args.max_wall, max_lines=args.max_lines,
                              max_memory_mb=args.max_memory, disk_roots=list(settings.disk_roots), robot=robot,
-                             cycles=args.cycles)
-        result = simulate(outcome.workspace, app, options, scenario)
+                             cycles=args.cycles, progress=progress)
+        try:
+            result = simulate(outcome.workspace, app, options, scenario)
+        finally:
+            if progress is not None:
+                progress.close()
     except ScenarioError as exc:
         print(f"val3check sim: bad scenario: {_shown(str(exc))}", file=sys.stderr)
         return EXIT_USAGE

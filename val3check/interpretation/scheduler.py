@@ -265,6 +265,8 @@ class Scheduler:
                 why = memory.over()
                 if why:
                     raise EndRun("budget:" + why)
+            if cycles & 63 == 0 and machine.progress is not None:
+                machine.progress(clock.now)
             if self.total_lines > budgets.max_lines:
                 raise EndRun("steps")
             busy = self.cycle()
