@@ -15,6 +15,7 @@ while the arm stands still).
 
 from __future__ import annotations
 
+import heapq
 import json
 from pathlib import Path
 from typing import Any
@@ -22,6 +23,7 @@ from typing import Any
 TICK_S = 0.004
 MM = 0.001  # Foxglove works in metres
 CHUNK_SIZE = 1 << 20
+BLOCK = 2048  # ticks whose poses are computed at once
 LIBRARY = "val3check"
 
 # JSON Schemas of the messages: the field names and types of Foxglove's schemas (docs.foxglove.dev,
@@ -188,23 +190,77 @@ def _entity(ns: int, frame: str, ident: str, what: str, solids: list[tuple[str, 
 
 
 class _Messages:
+    """The messages other than the arm's ticks (few): collected, then sorted by time."""
+
     def __init__(self) -> None:
         self.items: list[tuple[int, int, int, bytes]] = []  # (time ns, topic order, seq, JSON)
 
+    @staticmethod
+    def encode(message: dict) -> bytes:
+        return json.dumps(message, separators=(",", ":"), ensure_ascii=False, allow_nan=False).encode("utf-8")
+
     def add(self, topic: str, ns: int, message: dict) -> None:
-        data = json.dumps(message, separators=(",", ":"), ensure_ascii=False, allow_nan=False).encode("utf-8")
-        self.items.append((ns, list(TOPICS).index(topic), len(self.items), data))
+        self.items.append((ns, list(TOPICS).index(topic), len(self.items), self.encode(message)))
 
 
-def trace_messages(report: Any, cell: Any = None) -> tuple[list[tuple[str, int, bytes]], dict]:
-    """Every message of the trace in time order: [(topic, time ns, JSON bytes)], and what the
-    file carries besides (`urdf`: the arm's URDF text or None)."""
+def _arm_ticks(links, model, movers, tools, times, Q, V, idx):
+    """The arm's messages (/tf, /tcp, /joint_states) tick by tick, made a block of ticks at a time
+    (memory stays bounded whatever the length of the run): (ns, topic order, 0, JSON bytes)."""
+    import numpy as np
+
+    world, flange = links.world, model.flange_frame
+    order = list(TOPICS)
+    o_tf, o_tcp, o_js = order.index("/tf"), order.index("/tcp"), order.index("/joint_states")
+    names_j, units = list(model.joint_names), list(model.joint_units)
+    limits = np.asarray(model.joint_limits, dtype=float)
+    lower, upper = limits[:, 0].tolist(), limits[:, 1].tolist()
+    speeds = [float(s) for s in model.nominal_speeds]
+    dump = _Messages.encode
+    for b0 in range(0, len(times), BLOCK):
+        sl = slice(b0, b0 + BLOCK)
+        poses = links.poses_many(Q[sl])
+        tool_at = np.stack([tools[j] if j >= 0 else np.eye(4) for j in idx[sl].tolist()])
+        tcp_world = poses[flange] @ tool_at
+        frames_p = {n: _m(poses[n][:, :3, 3]) for n in movers}
+        frames_q = {n: _q(poses[n][:, :3, :3]) for n in movers}
+        tool_p, tool_q = _m(tool_at[:, :3, 3]), _q(tool_at[:, :3, :3])
+        tcp_p, tcp_q = _m(tcp_world[:, :3, 3]), _q(tcp_world[:, :3, :3])
+        Ql, Vl = Q[sl].tolist(), V[sl].tolist()
+        for i, t in enumerate(times[sl].tolist()):
+            ns = _ns(round(t, 6))
+            st = _stamp(ns)
+            tfs = [_tf(st, world, n, frames_p[n][i], frames_q[n][i]) for n in movers]
+            tfs.append(_tf(st, flange, "tcp", tool_p[i], tool_q[i]))
+            yield ns, o_tf, 0, dump({"transforms": tfs})
+            yield ns, o_js, 0, dump({"timestamp": st, "name": names_j, "unit": units, "position": Ql[i],
+                                     "velocity": Vl[i], "lower": lower, "upper": upper, "nominal_speed": speeds})
+            yield ns, o_tcp, 0, dump({"timestamp": st, "frame_id": world, "pose": {
+                "position": dict(zip("xyz", tcp_p[i])), "orientation": dict(zip("xyzw", tcp_q[i]))}})
+
+
+def _m(P):
+    """Positions (mm) in metres, to 1e-10 m (1e-7 mm): shorter JSON, far below what is drawn."""
+    import numpy as np
+
+    return (np.round(P * MM, 10) + 0.0).tolist()
+
+
+def _q(R):
+    import numpy as np
+
+    return (np.round(quaternions(R), 12) + 0.0).tolist()
+
+
+def trace_messages(report: Any, cell: Any = None):
+    """Every message of the trace in time order, as an iterator of (topic, time ns, JSON bytes),
+    and what the file carries besides (`urdf`: (file name, text) of the arm's URDF, or None)."""
     import numpy as np
 
     from .html.from_run import app_frames
 
     result = report.result
     out = _Messages()
+    arm: Any = iter(())
     m = result.motion
     collision = getattr(result, "collision", None)
     if cell is None and collision is not None:
@@ -222,14 +278,12 @@ def trace_messages(report: Any, cell: Any = None) -> tuple[list[tuple[str, int, 
         urdf_text = Path(model.source).read_text(encoding="utf-8")
         extra["urdf"] = (Path(model.source).name, urdf_text)
         out.add("/robot_description", 0, {"data": urdf_text})
-        starts, tools, names = [], [], []
+        starts, tools = [], []
         for rec, cmd in zip(m.records, m.commands):
             if rec.start is not None and cmd.kind != "connection":
                 starts.append(rec.start)
                 tools.append(np.eye(4) if cmd.tool is None else np.asarray(cmd.tool, dtype=float))
-                names.append(rec.tool or "flange")
         flange = model.flange_frame
-        limits = np.asarray(model.joint_limits, dtype=float)
         # the ticks: t = 0, then every tick of every moving segment
         ks = [np.array([0])]
         qs = [np.asarray(m.trajectory.position(0.0), dtype=float)[None, :]]
@@ -243,29 +297,8 @@ def trace_messages(report: Any, cell: Any = None) -> tuple[list[tuple[str, int, 
             vs.append(v[keep])
         K, Q, V = np.concatenate(ks), np.concatenate(qs), np.concatenate(vs)
         times = K * TICK_S
-        poses = links.poses_many(Q)
         idx = np.searchsorted(np.asarray(starts), times, side="right") - 1 if starts else np.full(len(K), -1)
-        # positions (m) and quaternions of every link, the TCP in the flange and in the world, at once
-        tool_at = np.stack([tools[j] if j >= 0 else np.eye(4) for j in idx.tolist()]) if len(idx) else np.zeros((0, 4, 4))
-        tcp_world = poses[flange] @ tool_at
-        frames_p = {n: (poses[n][:, :3, 3] * MM).tolist() for n in movers}
-        frames_q = {n: quaternions(poses[n][:, :3, :3]).tolist() for n in movers}
-        tool_p, tool_q = (tool_at[:, :3, 3] * MM).tolist(), quaternions(tool_at[:, :3, :3]).tolist()
-        tcp_p, tcp_q = (tcp_world[:, :3, 3] * MM).tolist(), quaternions(tcp_world[:, :3, :3]).tolist()
-        names_j, units = list(model.joint_names), list(model.joint_units)
-        lower, upper = limits[:, 0].tolist(), limits[:, 1].tolist()
-        speeds = [float(s) for s in model.nominal_speeds]
-        Ql, Vl = Q.tolist(), V.tolist()
-        for i, t in enumerate(times.tolist()):
-            ns = _ns(round(t, 6))
-            st = _stamp(ns)
-            tfs = [_tf(st, world, n, frames_p[n][i], frames_q[n][i]) for n in movers]
-            tfs.append(_tf(st, flange, "tcp", tool_p[i], tool_q[i]))
-            out.add("/tf", ns, {"transforms": tfs})
-            out.add("/tcp", ns, {"timestamp": st, "frame_id": world, "pose": {
-                "position": dict(zip("xyz", tcp_p[i])), "orientation": dict(zip("xyzw", tcp_q[i]))}})
-            out.add("/joint_states", ns, {"timestamp": st, "name": names_j, "unit": units, "position": Ql[i],
-                                          "velocity": Vl[i], "lower": lower, "upper": upper, "nominal_speed": speeds})
+        arm = _arm_ticks(links, model, movers, tools, times, Q, V, idx)
         # the application's frames (world) and tools (flange), as the run left them
         fr = sorted((n, M) for n, M in frames.items() if not _is_tool(result, n))
         tl = sorted((n, M) for n, M in frames.items() if _is_tool(result, n))
@@ -312,7 +345,8 @@ def trace_messages(report: Any, cell: Any = None) -> tuple[list[tuple[str, int, 
         out.add("/tasks", ns, {"timestamp": _stamp(ns), "task": c.task, "state": c.state, "detail": c.detail})
     out.items.sort(key=lambda x: (x[0], x[1], x[2]))
     topics = list(TOPICS)
-    return [(topics[o], ns, data) for ns, o, _, data in out.items], extra
+    merged = heapq.merge(out.items, arm, key=lambda x: (x[0], x[1]))
+    return ((topics[o], ns, data) for ns, o, _, data in merged), extra
 
 
 def _is_tool(result: Any, name: str) -> bool:
@@ -325,21 +359,20 @@ def write_trace(report: Any, path: str, cell: Any = None) -> None:
     from mcap.writer import CompressionType, Writer
 
     messages, extra = trace_messages(report, cell)
-    used = [t for t in TOPICS if any(topic == t for topic, _, _ in messages)]
     with open(path, "wb") as f:
         w = Writer(f, chunk_size=CHUNK_SIZE, compression=CompressionType.ZSTD)
         w.start(profile="", library=LIBRARY)
-        schema_ids = {}
-        channel_ids = {}
-        for topic in used:
-            name = TOPICS[topic]
-            if name not in schema_ids:
-                schema = {"title": name, **SCHEMAS[name]}
-                schema_ids[name] = w.register_schema(name, "jsonschema",
-                                                     json.dumps(schema, separators=(",", ":")).encode("utf-8"))
-            channel_ids[topic] = w.register_channel(topic, "json", schema_ids[name])
+        schema_ids: dict[str, int] = {}
+        channel_ids: dict[str, int] = {}
         seq: dict[str, int] = {}
         for topic, ns, data in messages:
+            if topic not in channel_ids:  # registered when first used: a topic without message has no channel
+                name = TOPICS[topic]
+                if name not in schema_ids:
+                    schema = {"title": name, **SCHEMAS[name]}
+                    schema_ids[name] = w.register_schema(name, "jsonschema",
+                                                         json.dumps(schema, separators=(",", ":")).encode("utf-8"))
+                channel_ids[topic] = w.register_channel(topic, "json", schema_ids[name])
             seq[topic] = seq.get(topic, 0) + 1
             w.add_message(channel_ids[topic], log_time=ns, data=data, publish_time=ns, sequence=seq[topic])
         if extra["urdf"] is not None:
