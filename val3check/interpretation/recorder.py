@@ -56,9 +56,11 @@ class TaskStateChange(NamedTuple):
     detail: str  # what it waits for or is blocked on ("" when running)
 
 
-# What a waiting task waits for (task.waiting_for, waiting.py) that makes it `blocked` rather
-# than `waiting`: the arm (end of motion, a full motion queue), a mutex, a key, a serial line.
-_BLOCKING = ("end of motion", "motion queue", "mutex", "get", "sio")
+# What a waiting task waits for (task.waiting_for, as waiting.py's callers name it) that makes it
+# `blocked` rather than `waiting`: the arm (end of motion, a full motion queue), a mutex, a key
+# (get), a serial line. Anything else (wait(...), watch, delay) is waiting.
+_BLOCKED_EXACT = ("setMutex", "get", "sio read", "sioGet")
+_BLOCKED_SUFFIX = ("(end of motion)", "(the motion queue is full)")
 
 
 def task_state_of(state: str, waiting_for: str) -> str:
@@ -68,7 +70,8 @@ def task_state_of(state: str, waiting_for: str) -> str:
     if state == "delay":
         return "waiting"
     if state == "wait":
-        return "blocked" if any(w in waiting_for for w in _BLOCKING) else "waiting"
+        blocked = waiting_for in _BLOCKED_EXACT or waiting_for.endswith(_BLOCKED_SUFFIX)
+        return "blocked" if blocked else "waiting"
     if state in ("killed", "ended"):
         return "ended"
     return "stopped"  # suspended, error, held (not simulated)
