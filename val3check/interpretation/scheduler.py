@@ -144,7 +144,7 @@ class Scheduler:
         self._seq = 0
         self._created: list[Task] = []  # tasks created since the round's order was taken (5.4)
         self._ran: set[Task] = set()  # tasks that ran a line in this cycle (the task timelines)
-        self._alive: dict[Task, None] = {}  # the tasks alive at the end of the last cycle
+        self._alive: dict[Task, tuple] = {}  # the tasks alive at the end of the last cycle, their state
 
     def add_subsystem(self, subsystem: Any) -> None:
         self.subsystems.append(subsystem)
@@ -338,20 +338,29 @@ class Scheduler:
 
     def _note_states(self, now: int) -> None:
         """The task timelines (recorder.TaskStateChange): over this cycle, running for a task that
-        ran a line in it; from the next cycle on, the state it was left in."""
-        note = self.machine.recorder.task_state
-        after = now + TICK_US
+        ran a line in it; from the next cycle on, the state it was left in. A task that did not
+        run and whose state did not change costs one dict lookup."""
         ran = self._ran
-        alive = self._alive
-        live = set(self.tasks)
-        gone = [t for t in ran if t not in live] + [t for t in alive if t not in live and t not in ran]
-        for task in sorted(gone, key=lambda t: t.seq):  # ended or killed in this cycle
-            if task in ran:
-                note(now, task.name, "running", "", task)
-            note(after, task.name, "ended", "", task)
-            alive.pop(task, None)
-        for task in self.tasks:
+        alive = self._alive  # task -> (state, waiting_for) last noted
+        tasks = self.tasks
+        note = None
+        after = now + TICK_US
+        if ran or len(alive) != len(tasks):  # (a task ends or is killed only while some task runs)
+            note = self.machine.recorder.task_state
+            live = set(tasks)
+            gone = [t for t in ran if t not in live] + [t for t in alive if t not in live and t not in ran]
+            for task in sorted(gone, key=lambda t: t.seq):  # ended or killed in this cycle
+                if task in ran:
+                    note(now, task.name, "running", "", task)
+                note(after, task.name, "ended", "", task)
+                alive.pop(task, None)
+        for task in tasks:
             st = task.state
+            key = (st, task.waiting_for)
+            if task not in ran and alive.get(task) == key:
+                continue
+            if note is None:
+                note = self.machine.recorder.task_state
             if task in ran:
                 note(now, task.name, "running", "", task)
             elif task not in alive:
@@ -364,8 +373,9 @@ class Scheduler:
                 detail = task.waiting_for if state in ("waiting", "blocked") else (st.report_name
                                                                                     if state == "stopped" else "")
             note(after, task.name, state, detail, task)
-            alive[task] = None
-        ran.clear()
+            alive[task] = key
+        if ran:
+            ran.clear()
 
     def _sync_turn(self, task: Task) -> None:
         """5.5/5.6: a synchronous task runs once per period; an overrun cancels the next one
