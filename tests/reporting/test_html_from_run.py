@@ -119,7 +119,8 @@ def test_cell_obstacles_tool_solids_and_clearance(run):
     cell = read_cell(CELL)
     rec = next(r for r in result.motion.records if r.id is not None and r.start is not None)
     clear = MotionReport(MotionSpan(rec.id), np.zeros(0), np.zeros(0), np.zeros(0, bool),
-                         min_clearance=Clearance(42.5, rec.start, "tool:jaws", "table", (0, 0, 0), (0, 0, 1)))
+                         min_clearance=Clearance(42.5, rec.start, "tool tGripper 'jaws'", "obstacle 'table'",
+                                                         (0, 0, 0), (0, 0, 1)))
     result.collision = SimpleNamespace(cell=cell, by_motion={rec.id: clear})
     try:
         model = model_from_run(report)

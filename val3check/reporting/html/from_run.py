@@ -99,9 +99,19 @@ def _motions(report: Any, m: Any, end: float, clearances: dict) -> list[dict]:
         c = getattr(mr, "min_clearance", None)
         if c is not None:
             entry["min_clearance"] = _r(c.mm, 3)
-            entry["clearance_to"] = c.body_b if not str(c.body_b).startswith(("arm", "tool", "part")) else c.body_a
+            entry["clearance_to"] = _obstacle_of(c.body_a, c.body_b)
         out.append(entry)
     return out
+
+
+def _obstacle_of(a: str, b: str) -> str:
+    """The cell's side of a clearance: the collision checks name bodies "obstacle 'table'",
+    "link_4 (forearm)", "tool tGripper 'jaw'"... (collision/bodies.py): the obstacle's name."""
+    for label in (b, a):
+        if label.startswith("obstacle "):
+            name = label[len("obstacle "):]
+            return name[1:-1] if len(name) >= 2 and name[0] == name[-1] == "'" else name
+    return b
 
 
 def _cycles(report: Any, m: Any, end: float) -> tuple[list[dict], dict | None]:
