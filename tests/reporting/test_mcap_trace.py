@@ -69,7 +69,9 @@ def test_schemas_channels_and_counts(trace, run):
     assert len(_by(trace, "/io")) == len(result.io_log)
     assert len(_by(trace, "/tasks")) == sum(1 for c in result.task_states if c.time_us <= result.sim_time_us)
     assert len(_by(trace, "/log")) == len(result.transcript) + len(report.diagnostics)
-    assert len(_by(trace, "/scene")) == 1 and len(_by(trace, "/robot_description")) == 1
+    assert len(_by(trace, "/robot_description")) == 1
+    # the cell once, and the TCP marker at each change of tool: tGripper from the first motion on
+    assert len(_by(trace, "/scene")) == 2
 
 
 def test_messages_are_in_time_order_on_the_simulated_clock(trace, run):
@@ -133,12 +135,23 @@ def test_frames_tools_scene_log_io_tasks_and_urdf(trace, run):
     by = {x["child_frame_id"]: x for x in static["transforms"]}
     assert by["fPallet"]["parent_frame_id"] == "world" and by["fPallet"]["translation"]["x"] == pytest.approx(0.3)
     assert by["tGripper"]["parent_frame_id"] == result.motion.model.flange_frame
-    (scene,) = _by(trace, "/scene")
-    ents = {e["id"]: e for e in scene[4]["entities"]}
+    scenes = _by(trace, "/scene")
+    cell = next(m for m in scenes if m[2] == 0 and len(m[4]["entities"]) > 1)
+    ents = {e["id"]: e for e in cell[4]["entities"]}
     assert set(ents) == {"obstacle/table", "obstacle/pallet", "obstacle/post", "tool/jaws", "tool/body"}
     assert ents["obstacle/table"]["cubes"][0]["size"] == pytest.approx({"x": 0.9, "y": 1.2, "z": 0.04})
     assert ents["obstacle/post"]["cylinders"][0]["size"]["z"] == pytest.approx(0.8)
     assert ents["tool/jaws"]["frame_id"] == "flange" and ents["tool/jaws"]["frame_locked"]
+    (marker,) = [m for m in scenes if m is not cell]
+    first = min(r.start for r in result.motion.records if r.start is not None and r.kind != "connection")
+    assert marker[2] == round(first * 1e9)
+    (tcp,) = marker[4]["entities"]
+    assert tcp["id"] == "tcp" and tcp["metadata"] == [{"key": "tool", "value": "tGripper"}]
+    assert tcp["spheres"][0]["pose"]["position"]["z"] == pytest.approx(0.12)
+    (arrow,) = tcp["arrows"]  # +x turned onto the flange's z: the arrow points to the TCP
+    q = arrow["pose"]["orientation"]
+    x_axis = _matrix({"rotation": q, "translation": {"x": 0, "y": 0, "z": 0}})[:3, 0]
+    assert x_axis == pytest.approx([0, 0, 1]) and arrow["shaft_length"] + arrow["head_length"] == pytest.approx(0.12)
     logs = [m[4] for m in _by(trace, "/log")]
     r007 = [x for x in logs if x["message"].startswith("R007 ")]
     assert len(r007) == 1 and r007[0]["level"] == 2 and r007[0]["file"].endswith("PickPlace.pjx")
@@ -200,3 +213,15 @@ def test_foxglove_layout_opens_the_trace_s_topics():
     assert used and used <= set(TOPICS), used - set(TOPICS)
     assert {"3D", "Plot", "Log"} <= {p.split("!")[0] for p in panels}
     assert layout["configById"]["3D!val3check"]["layers"]["arm"]["topic"] == "/robot_description"
+
+
+def test_trace_of_a_run_without_an_arm_has_no_arm_topics(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(APP.parents[2])
+    path = tmp_path / "run.mcap"
+    main(["sim", "fixtures/valid/Supervisor", "--duration", "5", "--trace", str(path)])
+    capsys.readouterr()
+    with open(path, "rb") as f:
+        reader = make_reader(f)
+        topics = {ch.topic for ch in reader.get_summary().channels.values()}
+        assert list(reader.iter_attachments()) == []
+    assert topics and topics <= {"/log", "/io", "/tasks"} and "/tasks" in topics

@@ -49,6 +49,9 @@ SCHEMAS: dict[str, dict] = {
             "lifetime": _TIME, "frame_locked": {"type": "boolean"},
             "metadata": {"type": "array", "items": {"type": "object", "properties": {
                 "key": {"type": "string"}, "value": {"type": "string"}}}},
+            "arrows": {"type": "array", "items": {"type": "object", "properties": {
+                "pose": _POSE, "shaft_length": {"type": "number"}, "shaft_diameter": {"type": "number"},
+                "head_length": {"type": "number"}, "head_diameter": {"type": "number"}, "color": _COLOR}}},
             "cubes": {"type": "array", "items": _SOLID},
             "spheres": {"type": "array", "items": _SOLID},
             "cylinders": {"type": "array", "items": {"type": "object", "properties": {
@@ -88,7 +91,8 @@ TOPICS = {
     "/robot_description": "std_msgs/String",
 }
 LOG_LEVEL = {"info": 2, "warning": 3, "error": 4}  # foxglove.Log: INFO, WARNING, ERROR
-COLORS = {"obstacle": {"r": 0.45, "g": 0.55, "b": 0.65, "a": 0.8}, "tool": {"r": 0.25, "g": 0.25, "b": 0.28, "a": 1.0}}
+COLORS = {"obstacle": {"r": 0.45, "g": 0.55, "b": 0.65, "a": 0.8}, "tool": {"r": 0.25, "g": 0.25, "b": 0.28, "a": 1.0},
+          "tcp": {"r": 0.84, "g": 0.37, "b": 0.0, "a": 1.0}}
 
 
 def _ns(t: float) -> int:
@@ -167,6 +171,33 @@ def _solid(kind: str, size, pose) -> tuple[str, dict]:
         return "cylinders", {"pose": _pose(M), "size": {"x": d, "y": d, "z": float(size[1]) * MM},
                              "bottom_scale": 1.0, "top_scale": 1.0}
     raise ValueError(kind)
+
+
+def _tcp_marker(ns: int, flange: str, name: str, tool) -> dict:
+    """The current tool's TCP on the flange: an arrow from the flange's origin to the TCP and a
+    small sphere on it (the tool's solids come from the cell file, when there is one)."""
+    import numpy as np
+
+    T = np.asarray(tool, dtype=float)
+    d = T[:3, 3]
+    L = float(np.linalg.norm(d))
+    e: dict[str, Any] = {"timestamp": _stamp(ns), "frame_id": flange, "id": "tcp", "lifetime": {"sec": 0, "nsec": 0},
+                         "frame_locked": True, "metadata": [{"key": "tool", "value": name}],
+                         "arrows": [], "cubes": [], "spheres": [], "cylinders": [], "triangles": []}
+    ball = np.eye(4)
+    ball[:3, 3] = d
+    e["spheres"].append({"pose": _pose(ball), "size": {"x": 0.012, "y": 0.012, "z": 0.012}, "color": COLORS["tcp"]})
+    if L > 1.0:  # mm: an arrow along +x turned onto the flange -> TCP direction
+        x = d / L
+        helper = np.array([0.0, 0.0, 1.0]) if abs(x[2]) < 0.9 else np.array([1.0, 0.0, 0.0])
+        y = np.cross(helper, x)
+        y /= np.linalg.norm(y)
+        R = np.eye(4)
+        R[:3, :3] = np.column_stack([x, y, np.cross(x, y)])
+        head = min(0.2 * L, 20.0)
+        e["arrows"].append({"pose": _pose(R), "shaft_length": (L - head) * MM, "shaft_diameter": 0.006,
+                            "head_length": head * MM, "head_diameter": 0.014, "color": COLORS["tcp"]})
+    return e
 
 
 def _entity(ns: int, frame: str, ident: str, what: str, solids: list[tuple[str, Any, Any, Any]]) -> dict:
@@ -278,11 +309,12 @@ def trace_messages(report: Any, cell: Any = None):
         urdf_text = Path(model.source).read_text(encoding="utf-8")
         extra["urdf"] = (Path(model.source).name, urdf_text)
         out.add("/robot_description", 0, {"data": urdf_text})
-        starts, tools = [], []
+        starts, tools, tool_names = [], [], []
         for rec, cmd in zip(m.records, m.commands):
             if rec.start is not None and cmd.kind != "connection":
                 starts.append(rec.start)
                 tools.append(np.eye(4) if cmd.tool is None else np.asarray(cmd.tool, dtype=float))
+                tool_names.append(rec.tool or "flange")
         flange = model.flange_frame
         # the ticks: t = 0, then every tick of every moving segment
         ks = [np.array([0])]
@@ -309,6 +341,14 @@ def trace_messages(report: Any, cell: Any = None):
             static += _transforms(0, flange, [n for n, _ in tl], np.stack([M for _, M in tl]))
         if static:
             out.add("/tf", 0, {"transforms": static})
+        # the TCP marker, at each change of tool (from the start of the motion that uses it)
+        last = None
+        for t0, tool, name in zip(starts, tools, tool_names):
+            key = tool.round(9).tobytes()
+            if key != last:
+                ns = _ns(round(t0, 6))
+                out.add("/scene", ns, {"deletions": [], "entities": [_tcp_marker(ns, flange, name, tool)]})
+                last = key
         if cell is not None:
             ents = []
             for ob in cell.obstacles:
