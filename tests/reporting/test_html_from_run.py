@@ -148,3 +148,35 @@ def test_same_run_same_page(run):
     a = render(model_from_run(run[1]))
     b = render(model_from_run(run[1]))
     assert a == b and len(a) < 5_000_000
+
+
+def test_a_scara_run_joint_3_in_mm_and_its_tcp_speed(tmp_path):
+    from interpretation.simsupport import sim
+    from val3check.config import Settings
+    from val3check.reporting.sim_report import build_report
+    from val3check.robot import load_robot
+    from val3check.rules.catalogue import catalogue
+
+    ts = load_robot("TS2-60")
+    r = sim(tmp_path, """begin
+  movej({0, 90, 150, 0}, flange, mFast)
+  waitEndMove()
+  pA = here(flange, world)
+  pB = compose(pA, world, {0, 0, -50, 0, 0, 0})
+  mSlow.vel = 20
+  mSlow.blend = off
+  movel(pB, flange, mSlow)
+  waitEndMove()
+end
+""", globals_=["pointRs pA", "pointRs pB", "mdesc mFast", "mdesc mSlow"], robot=ts)
+    model = model_from_run(build_report(r, Settings(), catalogue(), "test"))
+    check_model(model)
+    tr = model["trajectory"]
+    assert [j["unit"] for j in tr["joints"]] == ["deg", "deg", "mm", "deg"]
+    movel = model["motions"][-1]
+    k = tr["times"].index(round(round((movel["start"] + movel["end"]) / 2 / 0.004) * 0.004, 6))
+    t, h = tr["times"][k], 1e-5
+    a = np.array(ts.fk_matrix(r.motion.trajectory.position(t - h)))[:, 3]
+    b = np.array(ts.fk_matrix(r.motion.trajectory.position(t + h)))[:, 3]
+    assert tr["tcp_speed"][k] == pytest.approx(np.linalg.norm(b - a) / (2 * h), rel=1e-3)
+    assert tr["tcp_speed"][k] > 10.0  # the straight line down, on the prismatic axis
