@@ -141,6 +141,7 @@ def test_cell_obstacles_tool_solids_and_clearance(run):
     first = next(mo for mo in model["motions"] if mo["motion_id"] == rec.id)
     assert (first["min_clearance"], first["clearance_to"]) == (42.5, "table")
     assert not any("No cell file" in s for s in model["limitations"])
+    assert any("parts of the cell file" in s for s in model["limitations"])  # said, not drawn (the trace draws them)
     assert "pallet" in render(model)
 
 

@@ -70,8 +70,15 @@ def test_schemas_channels_and_counts(trace, run):
     assert len(_by(trace, "/tasks")) == sum(1 for c in result.task_states if c.time_us <= result.sim_time_us)
     assert len(_by(trace, "/log")) == len(result.transcript) + len(report.diagnostics)
     assert len(_by(trace, "/robot_description")) == 1
-    # the cell once, and the TCP marker at each change of tool: tGripper from the first motion on
-    assert len(_by(trace, "/scene")) == 2
+    # the cell once, the TCP marker at each change of tool (tGripper from the first motion on), and
+    # the part: taken at each close(tGripper), left at the next open(tGripper)
+    moves = [e.action for e in result.motion.tool_events if e.tool == "tGripper"]
+    carried, part_updates = False, 0
+    for action in moves:
+        if (action == "close") != carried:
+            carried = not carried
+            part_updates += 1
+    assert part_updates >= 10 and len(_by(trace, "/scene")) == 2 + part_updates
 
 
 def test_messages_are_in_time_order_on_the_simulated_clock(trace, run):
@@ -137,12 +144,13 @@ def test_frames_tools_scene_log_io_tasks_and_urdf(trace, run):
     assert by["tGripper"]["parent_frame_id"] == result.motion.model.flange_frame
     scenes = _by(trace, "/scene")
     cell = next(m for m in scenes if m[2] == 0 and len(m[4]["entities"]) > 1)
+    parts = [m for m in scenes if m[4]["entities"][0]["id"].startswith("part/")]
     ents = {e["id"]: e for e in cell[4]["entities"]}
     assert set(ents) == {"obstacle/table", "obstacle/pallet", "obstacle/post", "tool/jaws", "tool/body"}
     assert ents["obstacle/table"]["cubes"][0]["size"] == pytest.approx({"x": 0.9, "y": 1.2, "z": 0.04})
     assert ents["obstacle/post"]["cylinders"][0]["size"]["z"] == pytest.approx(0.8)
     assert ents["tool/jaws"]["frame_id"] == "flange" and ents["tool/jaws"]["frame_locked"]
-    (marker,) = [m for m in scenes if m is not cell]
+    (marker,) = [m for m in scenes if m[4]["entities"][0]["id"] == "tcp"]
     first = min(r.start for r in result.motion.records if r.start is not None and r.kind != "connection")
     assert marker[2] == round(first * 1e9)
     (tcp,) = marker[4]["entities"]
@@ -152,6 +160,23 @@ def test_frames_tools_scene_log_io_tasks_and_urdf(trace, run):
     q = arrow["pose"]["orientation"]
     x_axis = _matrix({"rotation": q, "translation": {"x": 0, "y": 0, "z": 0}})[:3, 0]
     assert x_axis == pytest.approx([0, 0, 1]) and arrow["shaft_length"] + arrow["head_length"] == pytest.approx(0.12)
+    # the part rides on the flange from close(), and stays in the world where open() leaves it
+    model = result.motion.model
+    tool = np.eye(4)
+    tool[2, 3] = 120.0
+    centre = np.array([0.0, 0.0, 15.0, 1.0])
+    taken = [m for m in parts if m[4]["entities"][0]["frame_id"] == "flange"]
+    left = [m for m in parts if m[4]["entities"][0]["frame_id"] == "world"]
+    assert len(taken) == len(left) + (1 if len(taken) > len(left) else 0) and left
+    assert taken[0][4]["entities"][0]["cubes"][0]["pose"]["position"]["z"] == pytest.approx(0.135)
+    for m in left:
+        (e,) = m[4]["entities"]
+        assert m[4]["deletions"] == [{"timestamp": e["timestamp"], "type": 0, "id": "part/part"}]
+        q = result.motion.trajectory.position(m[2] / 1e9)
+        where = np.array(model.fk_matrix(q, tool)) @ centre
+        got = e["cubes"][0]["pose"]["position"]
+        assert [got[a] * 1000 for a in "xyz"] == pytest.approx(where.tolist(), abs=1e-6)
+    assert len({e["id"] for m in left for e in m[4]["entities"]}) == len(left)  # one entity per part left
     logs = [m[4] for m in _by(trace, "/log")]
     r007 = [x for x in logs if x["message"].startswith("R007 ")]
     assert len(r007) == 1 and r007[0]["level"] == 2 and r007[0]["file"].endswith("PickPlace.pjx")

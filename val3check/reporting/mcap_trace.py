@@ -43,7 +43,8 @@ SCHEMAS: dict[str, dict] = {
     "foxglove.PoseInFrame": {"type": "object", "properties": {
         "timestamp": _TIME, "frame_id": {"type": "string"}, "pose": _POSE}},
     "foxglove.SceneUpdate": {"type": "object", "properties": {
-        "deletions": {"type": "array", "items": {"type": "object"}},
+        "deletions": {"type": "array", "items": {"type": "object", "properties": {
+            "timestamp": _TIME, "type": {"type": "integer"}, "id": {"type": "string"}}}},
         "entities": {"type": "array", "items": {"type": "object", "properties": {
             "timestamp": _TIME, "frame_id": {"type": "string"}, "id": {"type": "string"},
             "lifetime": _TIME, "frame_locked": {"type": "boolean"},
@@ -92,7 +93,7 @@ TOPICS = {
 }
 LOG_LEVEL = {"info": 2, "warning": 3, "error": 4}  # foxglove.Log: INFO, WARNING, ERROR
 COLORS = {"obstacle": {"r": 0.45, "g": 0.55, "b": 0.65, "a": 0.8}, "tool": {"r": 0.25, "g": 0.25, "b": 0.28, "a": 1.0},
-          "tcp": {"r": 0.84, "g": 0.37, "b": 0.0, "a": 1.0}}
+          "tcp": {"r": 0.84, "g": 0.37, "b": 0.0, "a": 1.0}, "part": {"r": 0.0, "g": 0.62, "b": 0.45, "a": 1.0}}
 
 
 def _ns(t: float) -> int:
@@ -363,6 +364,8 @@ def trace_messages(report: Any, cell: Any = None):
                 ents.append(_entity(0, flange, f"tool/{ts.name}", "tool", [(ts.name, ts.shape, base @ ts.pose, None)]))
             if ents:
                 out.add("/scene", 0, {"deletions": [], "entities": ents})
+            if cell.parts:
+                _parts(out, cell, m, links, flange, world)
     for e in result.transcript:
         ns = _ns(e.time_us / 1e6)
         out.add("/log", ns, {"timestamp": _stamp(ns), "level": 2, "message": f"[{e.kind}] {e.text}",
@@ -387,6 +390,48 @@ def trace_messages(report: Any, cell: Any = None):
     topics = list(TOPICS)
     merged = heapq.merge(out.items, arm, key=lambda x: (x[0], x[1]))
     return ((topics[o], ns, data) for ns, o, _, data in merged), extra
+
+
+def _trsf(t):
+    """A VAL 3 trsf (mm, degrees, 9.3.2) as a 4x4 matrix."""
+    import numpy as np
+
+    from ..geometry.rotation import matrix
+
+    x, y, z, rx, ry, rz = (float(v) for v in t)
+    T = np.eye(4)
+    T[:3, :3] = np.reshape(matrix(rx, ry, rz), (3, 3))
+    T[:3, 3] = (x, y, z)
+    return T
+
+
+def _parts(out: "_Messages", cell: Any, m: Any, links: Any, flange: str, world: str) -> None:
+    """The cell's parts (docs/cell.md): a part appears on its tool when the program takes it (its
+    `grasp` instruction, open or close), rides with the flange, and stays in the world where it
+    was left (the other instruction): one entity per part left."""
+    names = list(dict.fromkeys(p.name for p in cell.parts))
+    carried: dict[str, Any] = {}
+    left = 0
+    for ev in m.tool_events:
+        ns = _ns(ev.time_us / 1e6)
+        T_tool = _trsf(ev.tcp_in_flange)
+        for name in names:
+            solids = [p for p in cell.parts if p.name == name and p.tool == ev.tool]
+            if not solids:
+                continue
+            shown = [(p.name, p.shape, T_tool @ p.pose, None) for p in solids]
+            if ev.action == solids[0].grasp and name not in carried:
+                carried[name] = T_tool
+                e = _entity(ns, flange, f"part/{name}", "part", shown)
+                out.add("/scene", ns, {"deletions": [], "entities": [e]})
+            elif ev.action != solids[0].grasp and name in carried:
+                del carried[name]
+                F = links.poses(m.trajectory.position(ev.time_us / 1e6))[flange]
+                left += 1
+                e = _entity(ns, world, f"part/{name}/{left}", "part",
+                            [(n, shape, F @ pose, None) for n, shape, pose, _ in shown])
+                out.add("/scene", ns, {"deletions": [{"timestamp": _stamp(ns), "type": 0, "id": f"part/{name}"}],
+                                       "entities": [e]})
 
 
 def _is_tool(result: Any, name: str) -> bool:
