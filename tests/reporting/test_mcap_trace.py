@@ -142,6 +142,7 @@ def test_frames_tools_scene_log_io_tasks_and_urdf(trace, run):
     by = {x["child_frame_id"]: x for x in static["transforms"]}
     assert by["fPallet"]["parent_frame_id"] == "world" and by["fPallet"]["translation"]["x"] == pytest.approx(0.3)
     assert by["tGripper"]["parent_frame_id"] == result.motion.model.flange_frame
+    assert "fPallet[0]" not in by  # a one-element array is its name
     scenes = _by(trace, "/scene")
     cell = next(m for m in scenes if m[2] == 0 and len(m[4]["entities"]) > 1)
     parts = [m for m in scenes if m[4]["entities"][0]["id"].startswith("part/")]

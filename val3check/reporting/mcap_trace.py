@@ -333,8 +333,9 @@ def trace_messages(report: Any, cell: Any = None):
         idx = np.searchsorted(np.asarray(starts), times, side="right") - 1 if starts else np.full(len(K), -1)
         arm = _arm_ticks(links, model, movers, tools, times, Q, V, idx)
         # the application's frames (world) and tools (flange), as the run left them
-        fr = sorted((n, M) for n, M in frames.items() if not _is_tool(result, n))
-        tl = sorted((n, M) for n, M in frames.items() if _is_tool(result, n))
+        shown = {n: M for n, M in frames.items() if "[" not in n or _size(result, n) > 1}  # fPallet, not fPallet[0] too
+        fr = sorted((n, M) for n, M in shown.items() if not _is_tool(result, n))
+        tl = sorted((n, M) for n, M in shown.items() if _is_tool(result, n))
         static = []
         if fr:
             static += _transforms(0, world, [n for n, _ in fr], np.stack([M for _, M in fr]))
@@ -432,6 +433,11 @@ def _parts(out: "_Messages", cell: Any, m: Any, links: Any, flange: str, world: 
                             [(n, shape, F @ pose, None) for n, shape, pose, _ in shown])
                 out.add("/scene", ns, {"deletions": [{"timestamp": _stamp(ns), "type": 0, "id": f"part/{name}"}],
                                        "entities": [e]})
+
+
+def _size(result: Any, name: str) -> int:
+    arr = (getattr(result, "globals", None) or {}).get(name.split("[", 1)[0])
+    return len(getattr(arr, "data", ()))
 
 
 def _is_tool(result: Any, name: str) -> bool:
