@@ -181,3 +181,18 @@ end
     b = np.array(ts.fk_matrix(r.motion.trajectory.position(t + h)))[:, 3]
     assert tr["tcp_speed"][k] == pytest.approx(np.linalg.norm(b - a) / (2 * h), rel=1e-3)
     assert tr["tcp_speed"][k] > 10.0  # the straight line down, on the prismatic axis
+
+
+def test_sim_report_html_same_input_same_bytes(tmp_path, monkeypatch):
+    from val3check.cli import main
+
+    from .runhelp import ROOT
+
+    monkeypatch.chdir(ROOT)
+    pages = []
+    for n in (1, 2):
+        out = tmp_path / f"r{n}.html"
+        assert main(["sim", "fixtures/valid/PickPlace", "--robot", "tx2-60", "--scenario",
+                     "fixtures/scenarios/pickplace.toml", "--duration", "10", "--report", "html", "-o", str(out)]) == 0
+        pages.append(out.read_bytes())
+    assert pages[0] == pages[1] and b"PickPlace" in pages[0]
