@@ -196,3 +196,11 @@ def test_sim_report_html_same_input_same_bytes(tmp_path, monkeypatch):
                      "fixtures/scenarios/pickplace.toml", "--duration", "10", "--report", "html", "-o", str(out)]) == 0
         pages.append(out.read_bytes())
     assert pages[0] == pages[1] and b"PickPlace" in pages[0]
+
+
+def test_a_long_run_is_sampled_at_a_multiple_of_4_ms():
+    from val3check.reporting.html.from_run import MAX_SAMPLES, sample_period
+
+    assert sample_period(60.0) == 0.004 and sample_period(600.0) == 0.004  # 150,001 samples
+    assert sample_period(600.004) == 0.008
+    assert sample_period(3600.0) == pytest.approx(0.024) and 3600.0 / 0.024 + 1 <= MAX_SAMPLES

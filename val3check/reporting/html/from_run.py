@@ -26,6 +26,7 @@ from .model import VERSION
 
 TICK_S = 0.004
 NO_LIMIT = 9999.0  # an mdesc's tvel at its default: no Cartesian speed limit (10.5.1)
+MAX_SAMPLES = 150_001  # ten minutes at 4 ms: a longer run is sampled at a multiple of 4 ms
 MAX_MESH_TRIANGLES = 50_000  # per mesh drawn: beyond, its bounding box (said in limitations)
 
 
@@ -171,12 +172,23 @@ def tcp_speeds(m: Any, links: Any, times, positions, velocities):
     return out
 
 
-def _trajectory(m: Any, links: Any) -> dict | None:
+def sample_period(end_s: float) -> float:
+    """The controller's 4 ms, or a multiple of it for a run longer than MAX_SAMPLES ticks (the
+    page draws at most 15,000 min/max buckets anyway: memory and size stay bounded)."""
+    ticks = int(end_s / TICK_S + 1e-9)
+    return TICK_S * max(1, -(-ticks // (MAX_SAMPLES - 1)))
+
+
+def _trajectory(m: Any, links: Any, limits: list[str]) -> dict | None:
     import numpy as np
 
     if not m.trajectory.moving(m.end_s):
         return None
-    times, q, v = m.sample(0.0, m.end_s, TICK_S)
+    dt = sample_period(m.end_s)
+    if dt > TICK_S:
+        limits.append(f"A long run: the plots and the 3D view sample the trajectory every {dt * 1000:g} ms "
+                      f"(a multiple of the controller's 4 ms), at most {MAX_SAMPLES} samples.")
+    times, q, v = m.sample(0.0, m.end_s, dt)
     times, q, v = np.asarray(times, dtype=float), np.asarray(q, dtype=float), np.asarray(v, dtype=float)
     model = m.model
     speed = tcp_speeds(m, links, times, q, v)
@@ -332,7 +344,7 @@ def model_from_run(report: Any, *, fail_on: str = "error", cell: Any = None, cle
         links = arm_links(m.model)
         motions = _motions(report, m, end, clearances)
         cycles, cycle_time = _cycles(report, m, end)
-        trajectory = _trajectory(m, links)
+        trajectory = _trajectory(m, links, limits)
         arm_timeline = _arm_timeline(m, end)
         if cell is None:
             limits.append("No cell file: the 3D view has no obstacles and the motions no clearance (docs/cell.md).")
