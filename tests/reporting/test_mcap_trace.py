@@ -104,35 +104,52 @@ def _matrix(tr):
     return M
 
 
+def _in_world(tree, frame, world):
+    """The pose (4x4, mm) of `frame` in `world`, from {child: (parent, 4x4)} (the transform tree)."""
+    def to_root(f):
+        M = np.eye(4)
+        while f in tree:
+            parent, T = tree[f]
+            M = T @ M
+            f = parent
+        return f, M
+
+    root, A = to_root(frame)
+    root_w, W = to_root(world)
+    assert root == root_w
+    return np.linalg.inv(W) @ A
+
+
 def test_transforms_reproduce_here_at_the_sampled_times(trace, run):
     result, _ = run
     model = result.motion.model
-    tfs = _by(trace, "/tf")
-    tcps = _by(trace, "/tcp")
-    joints = _by(trace, "/joint_states")
-    assert len(tfs) > 1000
+    tree = {}  # the latest transform of each frame, as a viewer keeps them
+    tcps = {m[2]: m[4] for m in _by(trace, "/tcp")}
+    joints = {m[2]: m[4] for m in _by(trace, "/joint_states")}
+    tool = np.eye(4)
+    tool[2, 3] = 120.0  # tGripper
     checked = 0
-    for k in range(1, len(joints), 97):
-        _, _, t, _, js = joints[k]
-        if t < 1e9:
-            continue  # before the first motion: no tool yet (the TCP is the flange)
+    for n, (topic, _, t, _, msg) in enumerate(m for m in trace.messages if m[0] == "/tf"):
+        for x in msg["transforms"]:
+            tree[x["child_frame_id"]] = (x["parent_frame_id"], _matrix(x))
+        if t < 1e9 or n % 97:
+            continue  # from the first motion on (before it, the TCP is the flange), every 97th tick
         q = result.motion.trajectory.position(t / 1e9)
-        assert js["position"] == pytest.approx(list(q), abs=1e-9)
-        tf = next(m[4] for m in tfs if m[2] == t and len(m[4]["transforms"]) > 2)
-        by = {x["child_frame_id"]: x for x in tf["transforms"]}
-        assert all(x["parent_frame_id"] == model.world_frame for x in tf["transforms"] if x["child_frame_id"] != "tcp")
-        flange = _matrix(by[model.flange_frame])
-        here = np.array(model.fk_matrix(q))
-        assert np.abs(flange[:3] - here).max() < 1e-6  # mm (and rotation entries)
-        tcp = flange @ _matrix(by["tcp"])
-        pose = next(m[4] for m in tcps if m[2] == t)["pose"]
+        assert joints[t]["position"] == pytest.approx(list(q), abs=1e-9)
+        flange = _in_world(tree, model.flange_frame, model.world_frame)
+        assert np.abs(flange[:3] - np.array(model.fk_matrix(q))).max() < 1e-6  # mm (and rotation entries)
+        tcp = _in_world(tree, "tcp", model.world_frame)
+        assert np.abs(tcp[:3] - np.array(model.fk_matrix(q, tool))).max() < 1e-6
+        pose = tcps[t]["pose"]
         assert [pose["position"][a] * 1000 for a in "xyz"] == pytest.approx(tcp[:3, 3].tolist(), abs=1e-6)
-        tool = np.array(by["tcp"]["translation"]["z"]) * 1000
-        assert tool == pytest.approx(120.0)  # tGripper
-        here_tool = np.array(model.fk_matrix(q, np.array([[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 120.0], [0, 0, 0, 1]])))
-        assert np.abs(tcp[:3] - here_tool).max() < 1e-6
         checked += 1
     assert checked > 10
+    # the tree is the URDF's: each link in its parent link (base_link -> world is fixed, like the URDF)
+    parents = {c: p for c, (p, _) in tree.items()}
+    assert parents["link_1"] == "base_link" and parents["flange"] == "link_6" and parents["world"] == "base_link"
+    assert parents["tcp"] == "flange"
+    moving = [m[4] for m in _by(trace, "/tf")][5]["transforms"]
+    assert [x["child_frame_id"] for x in moving] == [f"link_{i}" for i in range(1, 7)] + ["tcp"]
 
 
 def test_frames_tools_scene_log_io_tasks_and_urdf(trace, run):
@@ -140,7 +157,7 @@ def test_frames_tools_scene_log_io_tasks_and_urdf(trace, run):
     static = next(m[4] for m in _by(trace, "/tf") if m[2] == 0 and any(
         x["child_frame_id"] == "fPallet" for x in m[4]["transforms"]))
     by = {x["child_frame_id"]: x for x in static["transforms"]}
-    assert by["fPallet"]["parent_frame_id"] == "world" and by["fPallet"]["translation"]["x"] == pytest.approx(0.3)
+    assert by["fPallet"]["parent_frame_id"] == result.motion.model.world_frame and by["fPallet"]["translation"]["x"] == pytest.approx(0.3)
     assert by["tGripper"]["parent_frame_id"] == result.motion.model.flange_frame
     assert "fPallet[0]" not in by  # a one-element array is its name
     scenes = _by(trace, "/scene")

@@ -235,7 +235,18 @@ class _Messages:
         self.items.append((ns, list(TOPICS).index(topic), len(self.items), self.encode(message)))
 
 
-def _arm_ticks(links, model, movers, tools, times, Q, V, idx):
+def _rigid_inverse(P):
+    import numpy as np
+
+    out = np.zeros_like(P)
+    Rt = np.transpose(P[:, :3, :3], (0, 2, 1))
+    out[:, :3, :3] = Rt
+    out[:, :3, 3] = -np.einsum("nij,nj->ni", Rt, P[:, :3, 3])
+    out[:, 3, 3] = 1.0
+    return out
+
+
+def _arm_ticks(links, model, edges, tools, times, Q, V, idx):
     """The arm's messages (/tf, /tcp, /joint_states) tick by tick, made a block of ticks at a time
     (memory stays bounded whatever the length of the run): (ns, topic order, 0, JSON bytes)."""
     import numpy as np
@@ -253,15 +264,20 @@ def _arm_ticks(links, model, movers, tools, times, Q, V, idx):
         poses = links.poses_many(Q[sl])
         tool_at = np.stack([tools[j] if j >= 0 else np.eye(4) for j in idx[sl].tolist()])
         tcp_world = poses[flange] @ tool_at
-        frames_p = {n: _m(poses[n][:, :3, 3]) for n in movers}
-        frames_q = {n: _q(poses[n][:, :3, :3]) for n in movers}
+        # each link in its URDF parent (the URDF's own tree, so that Foxglove's URDF layer agrees):
+        # every edge at t = 0, then the joints that move
+        rel = {c: _rigid_inverse(poses[p]) @ poses[c] for p, c, moving in edges if moving or b0 == 0}
+        frames_p = {c: _m(M[:, :3, 3]) for c, M in rel.items()}
+        frames_q = {c: _q(M[:, :3, :3]) for c, M in rel.items()}
+        parents = {c: p for p, c, _ in edges}
         tool_p, tool_q = _m(tool_at[:, :3, 3]), _q(tool_at[:, :3, :3])
         tcp_p, tcp_q = _m(tcp_world[:, :3, 3]), _q(tcp_world[:, :3, :3])
         Ql, Vl = Q[sl].tolist(), V[sl].tolist()
         for i, t in enumerate(times[sl].tolist()):
             ns = _ns(round(t, 6))
             st = _stamp(ns)
-            tfs = [_tf(st, world, n, frames_p[n][i], frames_q[n][i]) for n in movers]
+            tfs = [_tf(st, parents[c], c, frames_p[c][i], frames_q[c][i]) for p, c, moving in edges
+                   if moving or (b0 == 0 and i == 0)]
             tfs.append(_tf(st, flange, "tcp", tool_p[i], tool_q[i]))
             yield ns, o_tf, 0, dump({"transforms": tfs})
             yield ns, o_js, 0, dump({"timestamp": st, "name": names_j, "unit": units, "position": Ql[i],
@@ -306,7 +322,8 @@ def trace_messages(report: Any, cell: Any = None):
         model = m.model
         links = arm_links(model)
         world = links.world
-        movers = [n for n in links.links if n != world]
+        edges = [(links.edges[c].parent, c, links.edges[c].kind != "fixed" and links.edges[c].index >= 0)
+                 for c in links.links[1:]]
         urdf_text = Path(model.source).read_text(encoding="utf-8")
         extra["urdf"] = (Path(model.source).name, urdf_text)
         out.add("/robot_description", 0, {"data": urdf_text})
@@ -331,7 +348,7 @@ def trace_messages(report: Any, cell: Any = None):
         K, Q, V = np.concatenate(ks), np.concatenate(qs), np.concatenate(vs)
         times = K * TICK_S
         idx = np.searchsorted(np.asarray(starts), times, side="right") - 1 if starts else np.full(len(K), -1)
-        arm = _arm_ticks(links, model, movers, tools, times, Q, V, idx)
+        arm = _arm_ticks(links, model, edges, tools, times, Q, V, idx)
         # the application's frames (world) and tools (flange), as the run left them
         shown = {n: M for n, M in frames.items() if "[" not in n or _size(result, n) > 1}  # fPallet, not fPallet[0] too
         fr = sorted((n, M) for n, M in shown.items() if not _is_tool(result, n))
