@@ -81,8 +81,8 @@ def _diagnostics(report: Any, roots: list[str]) -> list[dict]:
 def _motions(report: Any, m: Any, end: float, clearances: dict) -> list[dict]:
     out = []
     for rec, cmd in zip(m.records, m.commands):
-        if rec.start is None or rec.end is None:
-            continue  # failed before it moved (its diagnostic says why)
+        if rec.start is None or rec.end is None or rec.start > end:
+            continue  # failed before it moved (its diagnostic says why), or not started within the run
         src = rec.source
         where = report.display((src.path, src.line, src.col, ""))
         mdesc = cmd.mdesc
