@@ -310,23 +310,9 @@ def _sim(args: argparse.Namespace) -> int:
         print(f"val3check sim: bad scenario: {_shown(str(exc))}", file=sys.stderr)
         return EXIT_USAGE
     report = build_report(result, settings, catalogue(), __version__)
-    if args.format == "json":
-        from .reporting.sim_json import render as render_sim
-    elif args.format == "html":
-        from functools import partial
+    from .reporting.sim_render import render_sim
 
-        from .reporting.html.from_run import render_run
-
-        render_sim = partial(render_run, fail_on=settings.fail_on)
-    elif args.format == "junit":
-        from functools import partial
-
-        from .reporting.sim_junit import render as render_junit
-
-        render_sim = partial(render_junit, fail_on=settings.fail_on, scenario=args.scenario)
-    else:
-        from .reporting.sim_text import render as render_sim
-    if not _write(render_sim(report), args.output):
+    if not _write(render_sim(args.format, report, fail_on=settings.fail_on, scenario=args.scenario), args.output):
         return EXIT_USAGE
     if args.trace and not _write_trace(report, args.trace):
         return EXIT_USAGE
