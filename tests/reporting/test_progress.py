@@ -49,7 +49,7 @@ def test_sim_on_a_terminal_shows_progress_on_stderr_only(tmp_path):
     with open(report, "w") as out:
         proc = subprocess.Popen(
             [sys.executable, "-m", "val3check", "sim", "fixtures/valid/PickPlace", "--robot", "tx2-60",
-             "--scenario", "fixtures/scenarios/pickplace.toml", "--duration", "240"],
+             "--scenario", "fixtures/scenarios/pickplace.toml", "--duration", "600"],  # several seconds of wall time
             cwd=ROOT, stdout=out, stderr=slave, stdin=subprocess.DEVNULL)
     os.close(slave)
     seen = b""
