@@ -299,3 +299,39 @@ def test_sim_report_html_of_the_pick_and_place_cell(chromium, tmp_path, monkeypa
     p = page.page
     p.screenshot(path=str(tmp_path / "pickplace.png"), full_page=True)
     p.close()
+
+
+def test_real_run_with_a_cell_draws_its_obstacles_and_tool(chromium, tmp_path):
+    """A real run with the cell the collision checks give it (`result.collision.cell`): the
+    obstacles (one in the application's frame fPallet) and the tool's solids in the 3D view."""
+    from types import SimpleNamespace
+
+    from val3check.collision.cellfile import read_cell
+    from val3check.reporting.html.from_run import model_from_run
+
+    from .runhelp import CELL, pickplace
+
+    result, report = pickplace(20.0)
+    result.collision = SimpleNamespace(cell=read_cell(CELL), by_motion={})
+    try:
+        model = model_from_run(report)
+    finally:
+        del result.collision
+    path = tmp_path / "cell.html"
+    path.write_text(render(model), encoding="utf-8")
+    page = chromium.open(path)
+    _clean(page)
+    assert _painted(page, [60, 75, 90], [150, 175, 200]) > 2000  # the table, the pallet, the post
+    assert _painted(page, [120, 80, 0], [255, 200, 60]) > 2000  # the arm
+    page.page.evaluate("() => V3.time.setCursor(2.62)")  # the arm over the pick position
+    names = page.evaluate("""() => {
+        const v = V3.view, c = document.getElementById('view3d'), seen = new Set();
+        for (let x = 0; x < c.clientWidth; x += 6) for (let y = 0; y < c.clientHeight; y += 6) {
+            const n = v.pick(x, y); if (n) seen.add(n);
+        }
+        return Array.from(seen).sort();
+    }""")
+    page.page.locator("#view3d-section").screenshot(path=str(tmp_path / "cell-3d.png"))
+    page.page.close()
+    for expected in ("cell: table", "cell: pallet", "cell: post", "tool tGripper: jaws", "arm: link_2"):
+        assert any(n.startswith(expected) for n in names), (expected, names)

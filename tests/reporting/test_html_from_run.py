@@ -130,8 +130,8 @@ def test_cell_obstacles_tool_solids_and_clearance(run):
     check_model(model)
     obstacles = {o["name"]: o for o in model["scene"]["obstacles"]}
     assert set(obstacles) == {"table", "pallet", "post"}
-    assert obstacles["table"]["shape"] == "box" and obstacles["table"]["size"] == [900.0, 1200.0, 40.0]
-    assert [row[3] for row in obstacles["table"]["pose"]] == [350.0, 0.0, -130.0]
+    assert obstacles["table"]["shape"] == "box" and obstacles["table"]["size"] == [500.0, 1200.0, 40.0]
+    assert [row[3] for row in obstacles["table"]["pose"]] == [450.0, 0.0, -130.0]
     # the pallet sits in fPallet (300, 120, -80 in the world): at (70, 70, -10) in it
     fpallet = app_frames(result)["fPallet"]
     assert [row[3] for row in obstacles["pallet"]["pose"]] == pytest.approx(list(fpallet[:3, 3] + [70, 70, -10]))

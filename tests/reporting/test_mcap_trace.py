@@ -165,7 +165,7 @@ def test_frames_tools_scene_log_io_tasks_and_urdf(trace, run):
     parts = [m for m in scenes if m[4]["entities"][0]["id"].startswith("part/")]
     ents = {e["id"]: e for e in cell[4]["entities"]}
     assert set(ents) == {"obstacle/table", "obstacle/pallet", "obstacle/post", "tool/jaws", "tool/body"}
-    assert ents["obstacle/table"]["cubes"][0]["size"] == pytest.approx({"x": 0.9, "y": 1.2, "z": 0.04})
+    assert ents["obstacle/table"]["cubes"][0]["size"] == pytest.approx({"x": 0.5, "y": 1.2, "z": 0.04})
     assert ents["obstacle/post"]["cylinders"][0]["size"]["z"] == pytest.approx(0.8)
     assert ents["tool/jaws"]["frame_id"] == "flange" and ents["tool/jaws"]["frame_locked"]
     (marker,) = [m for m in scenes if m[4]["entities"][0]["id"] == "tcp"]
