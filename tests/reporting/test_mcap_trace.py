@@ -13,6 +13,7 @@ from mcap.reader import make_reader
 
 from val3check.cli import main
 from val3check.collision.cellfile import read_cell
+from val3check.collision.records import MotionReport, MotionSpan
 from val3check.reporting.mcap_trace import SCHEMAS, TOPICS, write_trace
 
 from .runhelp import APP, CELL, SCENARIO, pickplace
@@ -29,7 +30,10 @@ def run():
 def trace(run, tmp_path_factory):
     result, report = run
     path = tmp_path_factory.mktemp("mcap") / "run.mcap"
-    result.collision = SimpleNamespace(cell=read_cell(CELL), by_motion={})
+    rec = next(r for r in result.motion.records if r.id is not None and r.start is not None)
+    checked = MotionReport(MotionSpan(rec.id), np.array([rec.start, rec.start + 0.004, rec.start + 0.008]),
+                           np.array([80.0, 75.5, np.inf]), np.array([False, True, False]), margin_mm=10.0)
+    result.collision = SimpleNamespace(cell=read_cell(CELL), by_motion={rec.id: checked})
     try:
         write_trace(report, str(path))
     finally:
@@ -70,6 +74,10 @@ def test_schemas_channels_and_counts(trace, run):
     assert len(_by(trace, "/tasks")) == sum(1 for c in result.task_states if c.time_us <= result.sim_time_us)
     assert len(_by(trace, "/log")) == len(result.transcript) + len(report.diagnostics)
     assert len(_by(trace, "/robot_description")) == 1
+    # the per-sample clearance of the collision checks (a sample without a measure is left out)
+    clear = [m[4] for m in _by(trace, "/clearance")]
+    assert [(c["clearance_mm"], c["exact"], c["margin_mm"]) for c in clear] == [(80.0, False, 10.0), (75.5, True, 10.0)]
+    assert {c["motion"] for c in clear} == {next(r.id for r in result.motion.records if r.id is not None)}
     # the cell once, the TCP marker at each change of tool (tGripper from the first motion on), and
     # the part: taken at each close(tGripper), left at the next open(tGripper)
     moves = [e.action for e in result.motion.tool_events if e.tool == "tGripper"]

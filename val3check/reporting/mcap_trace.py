@@ -77,6 +77,9 @@ SCHEMAS: dict[str, dict] = {
     "val3check.IOChange": {"type": "object", "properties": {
         "timestamp": _TIME, "kind": {"type": "string"}, "link": {"type": "string"},
         "names": {"type": "array", "items": {"type": "string"}}, "value": {}, "source": {"type": "string"}}},
+    "val3check.Clearance": {"type": "object", "properties": {
+        "timestamp": _TIME, "motion": {"type": "integer"}, "clearance_mm": {"type": "number"},
+        "exact": {"type": "boolean"}, "margin_mm": {"type": "number"}}},
     "val3check.TaskState": {"type": "object", "properties": {
         "timestamp": _TIME, "task": {"type": "string"}, "state": {"type": "string"}, "detail": {"type": "string"}}},
 }
@@ -89,6 +92,7 @@ TOPICS = {
     "/log": "foxglove.Log",
     "/io": "val3check.IOChange",
     "/tasks": "val3check.TaskState",
+    "/clearance": "val3check.Clearance",
     "/robot_description": "std_msgs/String",
 }
 LOG_LEVEL = {"info": 2, "warning": 3, "error": 4}  # foxglove.Log: INFO, WARNING, ERROR
@@ -399,6 +403,19 @@ def trace_messages(report: Any, cell: Any = None):
         out.add("/io", ns, {"timestamp": _stamp(ns), "kind": e.kind, "link": e.link,
                             "names": list(report.link_names.get((e.kind, e.link), [])), "value": value,
                             "source": e.source})
+    # per-sample clearance to the cell, when the run checked collisions (result.collision.by_motion:
+    # motion id -> collision.records.MotionReport): a lower bound, exact where `exact`
+    for mid, mr in sorted((getattr(collision, "by_motion", None) or {}).items(), key=lambda kv: str(kv[0])):
+        times = getattr(mr, "times", None)
+        if times is None:
+            continue
+        for t, c, ex in zip(np.asarray(times, dtype=float).tolist(), np.asarray(mr.clearance, dtype=float).tolist(),
+                            np.asarray(mr.exact, dtype=bool).tolist()):
+            if c != c or c in (float("inf"), float("-inf")):
+                continue  # nothing measured at that sample
+            ns = _ns(round(t, 6))
+            out.add("/clearance", ns, {"timestamp": _stamp(ns), "motion": int(mid), "clearance_mm": round(c, 6),
+                                       "exact": ex, "margin_mm": float(getattr(mr, "margin_mm", 0.0))})
     for c in result.task_states:
         ns = _ns(c.time_us / 1e6)
         if ns > end_ns:  # stop() after a run cut by --duration, as the HTML report's timelines
