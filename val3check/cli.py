@@ -297,7 +297,7 @@ def _sim(args: argparse.Namespace) -> int:
             scenario = load_scenario(args.scenario)
         from .reporting.progress import Progress
 
-        progress = Progress.for_stream(sys.stderr)  # only on a terminal
+        progress = Progress.for_stream(sys.stderr, args.duration)  # only on a terminal
         options = SimOptions(duration=args.duration, max_wall=args.max_wall, max_lines=args.max_lines,
                              max_memory_mb=args.max_memory, disk_roots=list(settings.disk_roots), robot=robot,
                              cycles=args.cycles, progress=progress)

@@ -25,12 +25,12 @@ class FakeTTY(io.StringIO):
 def test_shown_after_a_second_at_most_ten_times_a_second_then_cleared():
     t = [0.0]
     out = FakeTTY()
-    p = Progress(out, clock=lambda: t[0])
+    p = Progress(out, clock=lambda: t[0], total_s=60.0)
     p(0.5, lambda: 1)
     assert out.getvalue() == ""  # a short run shows nothing
     t[0] = 1.2
     p(30.0, lambda: 12)
-    assert out.getvalue() == "\rval3check sim:    30.000 s simulated,    1.2 s wall, 12 motions done\x1b[K"
+    assert out.getvalue() == "\rval3check sim:    30.000 of 60 s simulated,    1.2 s wall, 12 motions done\x1b[K"
     t[0] = 1.25
     p(31.0, lambda: 13)  # too soon to redraw
     assert out.getvalue().count("\r") == 1
@@ -67,7 +67,7 @@ def test_sim_on_a_terminal_shows_progress_on_stderr_only(tmp_path):
     os.close(master)
     assert proc.wait(timeout=120) == 0
     text = seen.decode()
-    assert "s simulated," in text and "motions done" in text and text.endswith("\r\x1b[K")
+    assert "of 600 s simulated," in text and "motions done" in text and text.endswith("\r\x1b[K")
     assert "simulated," not in report.read_text()  # the report itself is untouched
 
 

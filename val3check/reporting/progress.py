@@ -19,20 +19,21 @@ EVERY_S = 0.1
 
 
 class Progress:
-    def __init__(self, stream: TextIO, clock: Callable[[], float] = time.monotonic) -> None:
+    def __init__(self, stream: TextIO, clock: Callable[[], float] = time.monotonic, total_s: float | None = None) -> None:
         self.stream = stream
+        self.total_s = total_s  # --duration, shown beside the simulated time
         self.clock = clock
         self.start = clock()
         self.next = self.start + SHOW_AFTER_S
         self.shown = False
 
     @classmethod
-    def for_stream(cls, stream: TextIO) -> "Progress | None":
+    def for_stream(cls, stream: TextIO, total_s: float | None = None) -> "Progress | None":
         try:
             tty = stream.isatty()
         except (AttributeError, ValueError):
             tty = False
-        return cls(stream) if tty else None
+        return cls(stream, total_s=total_s) if tty else None
 
     def __call__(self, sim_s: float, motions_done: Callable[[], int]) -> None:
         now = self.clock()
@@ -40,7 +41,9 @@ class Progress:
             return
         self.next = now + EVERY_S
         self.shown = True
-        line = f"val3check sim: {sim_s:9.3f} s simulated, {now - self.start:6.1f} s wall, {motions_done()} motions done"
+        of = f" of {self.total_s:g}" if self.total_s else ""
+        line = (f"val3check sim: {sim_s:9.3f}{of} s simulated, {now - self.start:6.1f} s wall, "
+                f"{motions_done()} motions done")
         self.stream.write("\r" + line + "\x1b[K")
         self.stream.flush()
 
