@@ -276,3 +276,18 @@ def test_trace_of_a_run_without_an_arm_has_no_arm_topics(tmp_path, monkeypatch, 
         topics = {ch.topic for ch in reader.get_summary().channels.values()}
         assert list(reader.iter_attachments()) == []
     assert topics and topics <= {"/log", "/io", "/tasks"} and "/tasks" in topics
+
+
+def test_quaternions_of_any_rotation():
+    """Every branch of the conversion (trace largest, or x, y, z largest), against the matrix."""
+    from val3check.reporting.mcap_trace import quaternions
+
+    rng = np.random.default_rng(7)
+    A = rng.normal(size=(400, 3, 3))
+    R = np.linalg.qr(A)[0] * np.sign(np.linalg.det(np.linalg.qr(A)[0]))[:, None, None]
+    R = np.concatenate([R, np.array([np.diag([1.0, -1, -1]), np.diag([-1.0, 1, -1]), np.diag([-1.0, -1, 1]), np.eye(3)])])
+    q = quaternions(R)
+    assert np.allclose(np.linalg.norm(q, axis=1), 1.0) and (q[:, 3] >= 0).all()
+    for Rk, qk in zip(R, q):
+        back = _matrix({"rotation": dict(zip("xyzw", qk)), "translation": {"x": 0, "y": 0, "z": 0}})[:3, :3]
+        assert np.abs(back - Rk).max() < 1e-12
