@@ -6,7 +6,7 @@ Each fenced block says how it is checked with a comment on the line before it:
 
 | kind | the block | what is checked |
 |---|---|---|
-| `commands` (default for `sh`) | command lines | each runs in a sandbox (an application `MyCell`, a controller tree, `prog.pgx`, a scenario `cell.toml`, a copy of `fixtures/valid/Cell`, its own `.git`): exit code 0 or 1, never a usage error; `[optional parts]` are left out and their options checked; `pip install` names existing extras; a `python script.py` or `python -m module` that would run for minutes is only asked for `--help`, which must list its options |
+| `commands` (default for `sh`) | command lines | each runs in a sandbox (an application `MyCell`, a controller tree, `prog.pgx`, a scenario `cell.toml`, copies of `fixtures/valid/Cell`, `fixtures/valid/PickPlace` and its scenario, its own `.git`): exit code 0 or 1, never a usage error; `[optional parts]` are left out and their options checked; `pip install` names existing extras; a `python script.py` or `python -m module` that would run for minutes is only asked for `--help`, which must list its options |
 | `help` | command lines | as `commands`, but no line is run: options are checked against `--help` / the parser |
 | `usage SUBCOMMAND` | a usage synopsis | every option it shows is an option of `val3check SUBCOMMAND` |
 | `config` | TOML | a valid configuration (`val3check.toml`, or `pyproject.toml` for `[tool.val3check]`) naming only existing rules |
@@ -126,6 +126,9 @@ def _sandbox(tmp: Path) -> Path:
     write_app(box, 'begin\n  putln("hello")\n  nCount = nCount + 1\nend\n', name="MyCell", globals_=["num nCount"])
     shutil.copytree(ROOT / "fixtures" / "valid" / "controller", box / "controller")
     shutil.copytree(ROOT / "fixtures" / "valid" / "Cell", box / "fixtures" / "valid" / "Cell")
+    shutil.copytree(ROOT / "fixtures" / "valid" / "PickPlace", box / "fixtures" / "valid" / "PickPlace")
+    (box / "fixtures" / "scenarios").mkdir()
+    shutil.copy(ROOT / "fixtures" / "scenarios" / "pickplace.toml", box / "fixtures" / "scenarios")
     (box / "prog.pgx").write_bytes((box / "MyCell" / "start.pgx").read_bytes())
     (box / "cell.toml").write_text('version = 1\ndescription = "the README\'s example"\n')
     return box

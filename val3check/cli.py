@@ -103,6 +103,7 @@ def build_parser() -> argparse.ArgumentParser:
     sim.add_argument("--cycles", type=int, metavar="N", help="end the run when the arm starts its cycle N + 1 (the loop of the task that moves it; docs/motion.md)")
     _add_format(sim, SIM_FORMATS, "--report")
     sim.add_argument("-o", "--output", metavar="FILE", help="write the report to FILE instead of standard output")
+    sim.add_argument("--trace", metavar="FILE", help="also write the run as an MCAP trace for Foxglove (docs/trace.md)")
     sim.add_argument("--scenario", metavar="FILE", help="I/O scenario (TOML, docs/scenario.md)")
     sim.add_argument("--init-scenario", metavar="FILE", help="write a scenario skeleton listing what the application reads "
                      "or waits on (inputs, sio, keys, controller state) with their defaults, and exit")
@@ -317,24 +318,43 @@ def _sim(args: argparse.Namespace) -> int:
     try:
         if args.scenario:
             scenario = load_scenario(args.scenario)
+        from .reporting.progress import Progress
+
+        progress = Progress.for_stream(sys.stderr, args.duration)  # only on a terminal
         options = SimOptions(duration=args.duration, max_wall=args.max_wall, max_lines=args.max_lines,
                              max_memory_mb=args.max_memory, disk_roots=list(settings.disk_roots), robot=robot,
-                             cycles=args.cycles)
-        result = simulate(outcome.workspace, app, options, scenario)
+                             cycles=args.cycles, progress=progress)
+        try:
+            result = simulate(outcome.workspace, app, options, scenario)
+        finally:
+            if progress is not None:
+                progress.close()
     except ScenarioError as exc:
         print(f"val3check sim: bad scenario: {_shown(str(exc))}", file=sys.stderr)
         return EXIT_USAGE
     report = build_report(result, settings, catalogue(), __version__)
-    if args.format == "json":
-        from .reporting.sim_json import render as render_sim
-    else:
-        from .reporting.sim_text import render as render_sim
-    if not _write(render_sim(report), args.output):
+    from .reporting.sim_render import render_sim
+
+    if not _write(render_sim(args.format, report, fail_on=settings.fail_on, scenario=args.scenario), args.output):
+        return EXIT_USAGE
+    if args.trace and not _write_trace(report, args.trace):
         return EXIT_USAGE
     if settings.fail_on == "never":
         return EXIT_OK
     threshold = Severity.parse(settings.fail_on)
     return EXIT_FINDINGS if any(d.severity >= threshold for d in report.diagnostics) else EXIT_OK
+
+
+def _write_trace(report, path: str) -> bool:
+    from .reporting.mcap_trace import write_trace
+
+    try:
+        write_trace(report, path)
+    except OSError as exc:
+        print(f"val3check sim: error: cannot write the trace {_shown(path)}: {_shown(exc.strerror or str(exc))}",
+              file=sys.stderr)
+        return False
+    return True
 
 
 def _use_color(choice: str, to_file: bool) -> bool:

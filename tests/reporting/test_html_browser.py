@@ -265,3 +265,73 @@ def test_report_of_a_real_application(chromium, app, options, capsys, tmp_path, 
         assert p.locator("#view3d").count() == 0 and "No 3D scene" in p.locator("#view3d-section").text_content()
     p.screenshot(path=str(tmp_path / f"{app}.png"), full_page=True)
     p.close()
+
+
+def test_sim_report_html_of_the_pick_and_place_cell(chromium, tmp_path, monkeypatch):
+    """`val3check sim --report html` on the bundled cell that moves: everything filled from the
+    real run, no console error, no request; the screenshots are looked at when this changes."""
+    monkeypatch.chdir(ROOT)
+    out = tmp_path / "report.html"
+    code = main(["sim", "fixtures/valid/PickPlace", "--robot", "tx2-60", "--scenario",
+                 "fixtures/scenarios/pickplace.toml", "--report", "html", "-o", str(out)])
+    assert code == 0
+    page = chromium.open(out)
+    _clean(page)
+    counts = page.evaluate("""() => ({
+        motions: document.querySelectorAll('table.motions tbody tr').length,
+        jointPlots: document.querySelectorAll('#joint-plots svg.chart').length,
+        tcpPlots: document.querySelectorAll('#tcp-plot svg.chart').length,
+        series: Array.from(document.querySelectorAll('#joint-plots path.series, #tcp-plot path.series'))
+                     .map((p) => p.getAttribute('d').length),
+        ganttLanes: Array.from(document.querySelectorAll('#gantt .lane-label, #gantt text')).map((e) => e.textContent),
+        ganttRects: document.querySelectorAll('#gantt svg rect').length,
+        ioRects: document.querySelectorAll('#io-lanes svg rect').length,
+        bars: document.querySelectorAll('.cyclebars svg rect[role=button]').length,
+        status: document.querySelector('.verdict .badge').textContent,
+        verdict: document.querySelector('.verdict').textContent,
+    })""")
+    assert counts["motions"] > 100 and counts["jointPlots"] == 12 and counts["tcpPlots"] == 1
+    assert len(counts["series"]) == 13 and min(counts["series"]) > 500
+    assert counts["ganttRects"] > 100 and counts["ioRects"] > 50 and counts["bars"] >= 18
+    assert counts["status"] == "PASSED" and "median of 18 complete cycles" in counts["verdict"]
+    assert any("robot" in t for t in counts["ganttLanes"])
+    assert _painted(page, [120, 80, 0], [255, 200, 60]) > 2000  # the arm
+    p = page.page
+    p.screenshot(path=str(tmp_path / "pickplace.png"), full_page=True)
+    p.close()
+
+
+def test_real_run_with_a_cell_draws_its_obstacles_and_tool(chromium, tmp_path):
+    """A real run with the cell the collision checks give it (`result.collision.cell`): the
+    obstacles (one in the application's frame fPallet) and the tool's solids in the 3D view."""
+    from types import SimpleNamespace
+
+    from val3check.collision.cellfile import read_cell
+    from val3check.reporting.html.from_run import model_from_run
+
+    from .runhelp import CELL, pickplace
+
+    result, report = pickplace(20.0)
+    result.collision = SimpleNamespace(cell=read_cell(CELL), by_motion={})
+    try:
+        model = model_from_run(report)
+    finally:
+        del result.collision
+    path = tmp_path / "cell.html"
+    path.write_text(render(model), encoding="utf-8")
+    page = chromium.open(path)
+    _clean(page)
+    assert _painted(page, [60, 75, 90], [150, 175, 200]) > 2000  # the table, the pallet, the post
+    assert _painted(page, [120, 80, 0], [255, 200, 60]) > 2000  # the arm
+    page.page.evaluate("() => V3.time.setCursor(2.62)")  # the arm over the pick position
+    names = page.evaluate("""() => {
+        const v = V3.view, c = document.getElementById('view3d'), seen = new Set();
+        for (let x = 0; x < c.clientWidth; x += 6) for (let y = 0; y < c.clientHeight; y += 6) {
+            const n = v.pick(x, y); if (n) seen.add(n);
+        }
+        return Array.from(seen).sort();
+    }""")
+    page.page.locator("#view3d-section").screenshot(path=str(tmp_path / "cell-3d.png"))
+    page.page.close()
+    for expected in ("cell: table", "cell: pallet", "cell: post", "tool tGripper: jaws", "arm: link_2"):
+        assert any(n.startswith(expected) for n in names), (expected, names)

@@ -37,9 +37,9 @@ def test_model_of_a_run_with_an_arm_model(capsys):
     assert ex["lines"][d["line"] - ex["first_line"]] == lines[d["line"] - 1]
     assert model["scene"]["arm"]["name"] == "TX2-60" and model["scene"]["joints"] == [0.0] * 6
     assert model["trajectory"] is None and model["tasks"] == []
-    assert any("does not show the arm's motion" in n for n in model["limitations"])
+    assert any("the arm's motion is not drawn" in n for n in model["limitations"])
     html = render(model)
-    assert "does not show the arm" in html and 'id="play"' not in html
+    assert "motion is not drawn" in html and 'id="play"' not in html
 
 
 def test_model_of_a_run_that_passes_and_the_fail_on_threshold(capsys):

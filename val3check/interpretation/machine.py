@@ -92,6 +92,7 @@ class Machine:
         self.end_reason = ""
         self.end_time = 0
         self.stopping = False  # stop() has been started
+        self.progress: Any = None  # called now and then with the simulated time (µs): a progress display
         self.stop_task: Task | None = None
         self.destroyed: list[str] = []
         self._libraries_reported: set[str] = set()

@@ -45,6 +45,38 @@ class ToolEvent(NamedTuple):
     position: tuple  # (path, line, col, program) of the instruction
 
 
+class TaskStateChange(NamedTuple):
+    """A task's state from `time_us` on, for the task timelines of the HTML report and the
+    traces. Sampled once per 4 ms cycle of the scheduler: a task that ran a line in a cycle is
+    `running` over that cycle, then in the state it was left in (docs/html-report.md, tasks)."""
+
+    time_us: int
+    task: str
+    state: str  # running | waiting | blocked | stopped | ended
+    detail: str  # what it waits for or is blocked on ("" when running)
+
+
+# What a waiting task waits for (task.waiting_for, as waiting.py's callers name it) that makes it
+# `blocked` rather than `waiting`: the arm (end of motion, a full motion queue), a mutex, a key
+# (get), a serial line. Anything else (wait(...), watch, delay) is waiting.
+_BLOCKED_EXACT = ("setMutex", "get", "sio read", "sioGet")
+_BLOCKED_SUFFIX = ("(end of motion)", "(the motion queue is full)")
+
+
+def task_state_of(state: str, waiting_for: str) -> str:
+    """The timeline state of a scheduler state (scheduler.TaskState values)."""
+    if state in ("ready", "run", "preempted", "yield"):
+        return "running"
+    if state == "delay":
+        return "waiting"
+    if state == "wait":
+        blocked = waiting_for in _BLOCKED_EXACT or waiting_for.endswith(_BLOCKED_SUFFIX)
+        return "blocked" if blocked else "waiting"
+    if state in ("killed", "ended"):
+        return "ended"
+    return "stopped"  # suspended, error, held (not simulated)
+
+
 def sio_text(data: bytes) -> Any:
     """How the I/O log shows bytes sent or received on a sio: the text when they are UTF-8,
     else the list of the byte values."""
@@ -63,6 +95,10 @@ class Recorder:
         self.transcript: list[TranscriptEntry] = []
         self.io_log: list[IOEvent] = []
         self.tool_events: list[ToolEvent] = []  # bounded by the I/O log's budget (each sets an output)
+        self.task_states: list[TaskStateChange] = []
+        self.max_task_states = 10 * max_io_log
+        self._last_state: dict[str, TaskStateChange] = {}  # by task name: its last change kept
+        self._pending_state: dict[str, TaskStateChange] = {}  # by task name: its last note
         self.max_transcript = max_transcript
         self.max_io_log = max_io_log
         self._full = full
@@ -87,3 +123,30 @@ class Recorder:
             return True
         self._budget("io_log", f"the I/O log is full ({self.max_io_log} events): later events are not recorded", task)
         return False
+
+    def task_state(self, time_us: int, task: str, state: str, detail: str = "", who: Any = None) -> None:
+        """`task` is in `state` from `time_us` on. A note at the same time as the task's previous
+        one replaces it; only changes are kept (`finish_task_states` flushes the last ones)."""
+        pending = self._pending_state.get(task)
+        if pending is not None and pending.time_us != time_us:
+            self._commit_state(pending, who)
+        self._pending_state[task] = TaskStateChange(time_us, task, state, detail)
+
+    def _commit_state(self, change: TaskStateChange, who: Any) -> None:
+        last = self._last_state.get(change.task)
+        if last is not None and last.state == change.state and last.detail == change.detail:
+            return
+        if len(self.task_states) >= self.max_task_states:
+            self._budget("task_states", f"the task timeline is full ({self.max_task_states} changes): later changes "
+                                        "are not recorded", who)
+            return
+        self._last_state[change.task] = change
+        self.task_states.append(change)
+
+    def finish_task_states(self) -> list[TaskStateChange]:
+        """Flush the last notes; the changes sorted by time (stable: in the order noted)."""
+        for change in list(self._pending_state.values()):
+            self._commit_state(change, None)
+        self._pending_state.clear()
+        self.task_states.sort(key=lambda c: c.time_us)
+        return self.task_states

@@ -24,6 +24,7 @@ from typing import Any
 
 from ..language.runtime_errors import RUNTIME_CODES, Val3RuntimeError
 from .clock import LINE_US, LINES_PER_CYCLE, TICK_US, Clock
+from .recorder import task_state_of
 
 SYNC_LINES = 3000  # 5.5: up to 3000 lines per sequencing of a synchronous task
 START_PRIORITY = 10  # 5.2
@@ -142,6 +143,8 @@ class Scheduler:
         self.total_lines = 0
         self._seq = 0
         self._created: list[Task] = []  # tasks created since the round's order was taken (5.4)
+        self._ran: set[Task] = set()  # tasks that ran a line in this cycle (the task timelines)
+        self._alive: dict[Task, tuple] = {}  # the tasks alive at the end of the last cycle, their state
 
     def add_subsystem(self, subsystem: Any) -> None:
         self.subsystems.append(subsystem)
@@ -262,6 +265,8 @@ class Scheduler:
                 why = memory.over()
                 if why:
                     raise EndRun("budget:" + why)
+            if cycles & 63 == 0 and machine.progress is not None:
+                machine.progress(clock.now)
             if self.total_lines > budgets.max_lines:
                 raise EndRun("steps")
             busy = self.cycle()
@@ -328,7 +333,49 @@ class Scheduler:
             if not progress:
                 break
         self.total_lines += clock.cycle_lines
+        self._note_states(now)
         return clock.cycle_lines >= LINES_PER_CYCLE
+
+    def _note_states(self, now: int) -> None:
+        """The task timelines (recorder.TaskStateChange): over this cycle, running for a task that
+        ran a line in it; from the next cycle on, the state it was left in. A task that did not
+        run and whose state did not change costs one dict lookup."""
+        ran = self._ran
+        alive = self._alive  # task -> (state, waiting_for) last noted
+        tasks = self.tasks
+        note = None
+        after = now + TICK_US
+        if ran or len(alive) != len(tasks):  # (a task ends or is killed only while some task runs)
+            note = self.machine.recorder.task_state
+            live = set(tasks)
+            gone = [t for t in ran if t not in live] + [t for t in alive if t not in live and t not in ran]
+            for task in sorted(gone, key=lambda t: t.seq):  # ended or killed in this cycle
+                if task in ran:
+                    note(now, task.name, "running", "", task)
+                note(after, task.name, "ended", "", task)
+                alive.pop(task, None)
+        for task in tasks:
+            st = task.state
+            key = (st, task.waiting_for)
+            if task not in ran and alive.get(task) == key:
+                continue
+            if note is None:
+                note = self.machine.recorder.task_state
+            if task in ran:
+                note(now, task.name, "running", "", task)
+            elif task not in alive:
+                note(now, task.name, "running" if st is READY else task_state_of(st.value, task.waiting_for), "",
+                     task)
+            state = task_state_of(st.value, task.waiting_for)
+            if task.period and state == "running":  # a synchronous task between its periods (5.5)
+                state, detail = "waiting", "period"
+            else:
+                detail = task.waiting_for if state in ("waiting", "blocked") else (st.report_name
+                                                                                    if state == "stopped" else "")
+            note(after, task.name, state, detail, task)
+            alive[task] = key
+        if ran:
+            ran.clear()
 
     def _sync_turn(self, task: Task) -> None:
         """5.5/5.6: a synchronous task runs once per period; an overrun cancels the next one
@@ -378,6 +425,8 @@ class Scheduler:
         ran = quantum - max(task.q, 0)
         clock.cycle_lines += ran
         task.lines += ran
+        if ran > 0:
+            self._ran.add(task)
         clock.current = None
         st = task.state
         if st is RUNNING:

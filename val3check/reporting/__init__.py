@@ -13,7 +13,7 @@ if TYPE_CHECKING:
     from ..result import LintResult
 
 FORMATS = ("text", "concise", "json", "sarif", "junit", "github")  # `val3check lint --output-format`
-SIM_FORMATS = ("text", "json")  # `val3check sim --report`: sim_text.py, sim_json.py
+SIM_FORMATS = ("text", "json", "html", "junit")  # `val3check sim --report`: sim_text, sim_json, html/from_run, sim_junit
 
 _MODULES = {
     "text": "text",

@@ -207,9 +207,10 @@ def arm_links(model) -> ArmLinks:
     return ArmLinks(info, solids, tuple(model.joint_names), model.world_frame)
 
 
-def read_collision_solids(path: str | os.PathLike) -> list[Solid]:
+def read_collision_solids(path: str | os.PathLike, resolve_meshes: bool = True) -> list[Solid]:
     """The `<collision>` elements of every link of a URDF, in mm. A mesh file is resolved beside the
-    URDF (relative path or file://) and must stay inside the URDF's folder."""
+    URDF (relative path or file://) and must stay inside the URDF's folder (`resolve_meshes=False`:
+    its name is kept as written, for a reader that does not open meshes)."""
     from defusedxml import ElementTree as ET
 
     path = str(path)
@@ -241,7 +242,7 @@ def read_collision_solids(path: str | os.PathLike) -> list[Solid]:
                 size = (_num(shape.get("radius"), where, "radius") * 1000.0,)
             elif tag == "mesh":
                 size = tuple(v * 1000.0 for v in _floats(shape.get("scale"), 3, (1.0, 1.0, 1.0), path, lname))
-                mesh = _mesh_path(shape.get("filename", ""), base, where)
+                mesh = _mesh_path(shape.get("filename", ""), base, where) if resolve_meshes else shape.get("filename", "")
                 out.append(Solid(lname, name, "mesh", size, origin, mesh))
                 continue
             else:

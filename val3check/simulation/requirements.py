@@ -8,7 +8,7 @@ from importlib.util import find_spec
 
 # module imported -> distribution to install (pyproject.toml [project.optional-dependencies] sim)
 SIM_MODULES = {"numpy": "numpy", "pinocchio": "pin", "toppra": "toppra", "fcl": "python-fcl", "trimesh": "trimesh",
-               "scipy": "scipy"}
+               "scipy": "scipy", "mcap": "mcap"}
 EXTRA = "sim"
 
 

@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 
 from ..diagnostics import Diagnostic
 from ..interpretation.machine import Machine
-from ..interpretation.recorder import IOEvent, ToolEvent, TranscriptEntry
+from ..interpretation.recorder import IOEvent, TaskStateChange, ToolEvent, TranscriptEntry
 
 END_REASONS = {
     "ended": "the application ended (its last task ended, then stop() ran)",
@@ -99,6 +99,9 @@ class SimResult:
     globals: dict = field(default_factory=dict, repr=False)
     motion: MotionRun | None = None  # what the arm did (None without an arm model)
     tool_events: list[ToolEvent] = field(default_factory=list)
+    # every task's state over time (running, waiting, blocked, stopped, ended), sampled per 4 ms
+    # cycle (interpretation/recorder.py): the task timelines of the HTML report and the traces
+    task_states: list[TaskStateChange] = field(default_factory=list)
 
 
 def collect(machine: Machine) -> SimResult:
@@ -147,7 +150,8 @@ def collect(machine: Machine) -> SimResult:
                      machine.scheduler.total_lines, tasks, diags, machine.recorder.transcript, machine.recorder.io_log,
                      screen, list(machine.destroyed), {k: sorted(v) for k, v in machine.link_names.items()},
                      robot=robot, globals=dict(machine.main.globals) if machine.main is not None else {},
-                     motion=motion, tool_events=list(machine.recorder.tool_events))
+                     motion=motion, tool_events=list(machine.recorder.tool_events),
+                     task_states=list(machine.recorder.finish_task_states()))
 
 
 def _motion(machine: Machine, diags: list[Diagnostic]) -> MotionRun | None:

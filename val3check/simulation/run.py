@@ -50,6 +50,9 @@ class SimOptions:
     # the arm model (val3check.robot.RobotModel) or None: see robot_choice.choose_sim_robot
     robot: Any = None
     cycles: int | None = None  # --cycles N: end the run when the arm starts cycle N + 1
+    # progress(simulated seconds, motions_done()), called now and then while the run goes (the
+    # progress display of `sim` on a terminal: reporting/progress.py)
+    progress: Any = None
 
 
 def build_registry() -> Registry:
@@ -71,6 +74,17 @@ def build_machine(ws: Workspace, app: Application, options: SimOptions, *, regis
     if hasattr(arm, "bind"):
         arm.bind(machine.controller)  # its power and monitor speed (chapter 8)
     machine.add_subsystem(arm)  # after the cell: inputs are refreshed before the arm moves
+    if options.progress is not None:
+        report = options.progress
+
+        def motions_done() -> int:
+            queue = getattr(arm, "_queue", None)
+            return sum(1 for c in queue.history if c.state == "done" and c.id is not None) if queue is not None else 0
+
+        def progress(now_us: int) -> None:
+            report(now_us / 1e6, motions_done)
+
+        machine.progress = progress
     return machine
 
 

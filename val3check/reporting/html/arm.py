@@ -19,7 +19,6 @@ from pathlib import Path
 from typing import Sequence
 
 from ...robot.errors import RobotError
-from ...robot.solids import read_link_solids
 from ...robot.urdf import IDENTITY, Mat, axis_angle, inverse, mul, read_urdf, transform
 
 MOVING = ("revolute", "continuous", "prismatic")
@@ -103,18 +102,23 @@ def arm_chain(urdf: str | Path, world_frame: str | None = None, flange_frame: st
             "upper": _r(j.upper * scale) if limited else None,
         })
     reached = {root} | {j["child"] for j in joints}
-    solids = read_link_solids(path)
+    from ...robot.links import read_collision_solids  # the collision checks' reader (numpy: sim path only)
+
+    solids: dict[str, list] = {}
+    for s in read_collision_solids(path, resolve_meshes=False):
+        solids.setdefault(s.link, []).append(s)
     links, skipped = [], []
     for lname in [root] + [j["child"] for j in joints]:
         out = []
         for s in solids.get(lname, []):
-            entry = {"name": s.name, "shape": s.shape, "pose": _mm(s.origin)}
-            if s.shape == "box":
-                entry["size"] = [_r(v * 1000.0) for v in s.size]
-            elif s.shape == "cylinder":
-                entry["radius"], entry["length"] = _r(s.size[0] * 1000.0), _r(s.size[1] * 1000.0)
-            elif s.shape == "sphere":
-                entry["radius"] = _r(s.size[0] * 1000.0)
+            entry = {"name": s.name, "shape": s.kind, "pose": [[_r(float(s.origin[i][k])) for k in range(4)]
+                                                                for i in range(3)]}
+            if s.kind == "box":
+                entry["size"] = [_r(v) for v in s.size]
+            elif s.kind == "cylinder":
+                entry["radius"], entry["length"] = _r(s.size[0]), _r(s.size[1])
+            elif s.kind == "sphere":
+                entry["radius"] = _r(s.size[0])
             else:
                 skipped.append(f"{lname}/{s.name}")
                 continue

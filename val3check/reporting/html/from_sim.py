@@ -70,13 +70,13 @@ def model_from_sim_report(report: dict[str, Any], *, fail_on: str = "error", arm
     counts = {s: int(report["summary"].get(s, 0)) for s in ("error", "warning", "info")}
     threshold = SEVERITY_ORDER.get(fail_on)
     passed = threshold is None or not any(SEVERITY_ORDER[s] >= threshold and counts[s] for s in counts)
-    limitations = ["The sim report does not record what each task was doing over time: no task timeline."]
+    limitations = ["The JSON sim report does not record what each task was doing over time: no task timeline "
+                   "(`val3check sim --report html` has it)."]
     robot = report.get("robot")
     scene = None
     if robot:
-        limitations.append(f"This page does not show the arm's motion yet (the motion table and the trajectory of the "
-                           f"sim report, version 2, are not drawn): the 3D view shows {robot['name']} at its initial "
-                           f"joint position.")
+        limitations.append(f"Built from the JSON report: the arm's motion is not drawn (the 3D view shows "
+                           f"{robot['name']} at its initial joint position); `val3check sim --report html` draws it.")
         from ...robot import load_robot
         from .arm import arm_chain
 

@@ -61,10 +61,33 @@
     f.push(bottom, top);
     return { v: v, f: f, closed: true };
   }
+  /* a box, each face cut into tiles of at most BOX_TILE mm (8 x 8 at most): the painter's sort
+     orders faces by their mean depth, and a table's whole top would hide a pallet lying on it */
+  const BOX_TILE = 150;
   function box(sx, sy, sz) {
-    const v = [];
-    for (let i = 0; i < 8; i++) v.push((i & 1 ? 0.5 : -0.5) * sx, (i & 2 ? 0.5 : -0.5) * sy, (i & 4 ? 0.5 : -0.5) * sz);
-    const f = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+    const v = [], f = [], size = [sx, sy, sz];
+    // outward normal axis and sign, then the two axes u, v with u x v = normal
+    [[0, 1, 1, 2], [0, -1, 2, 1], [1, 1, 2, 0], [1, -1, 0, 2], [2, 1, 0, 1], [2, -1, 1, 0]].forEach((d) => {
+      const ax = d[0], sg = d[1], u = d[2], w = d[3];
+      const nu = Math.min(8, Math.max(1, Math.ceil(size[u] / BOX_TILE)));
+      const nw = Math.min(8, Math.max(1, Math.ceil(size[w] / BOX_TILE)));
+      const base = v.length / 3;
+      for (let i = 0; i <= nu; i++) {
+        for (let j = 0; j <= nw; j++) {
+          const p = [0, 0, 0];
+          p[ax] = sg * 0.5 * size[ax];
+          p[u] = (i / nu - 0.5) * size[u];
+          p[w] = (j / nw - 0.5) * size[w];
+          v.push(p[0], p[1], p[2]);
+        }
+      }
+      for (let i = 0; i < nu; i++) {
+        for (let j = 0; j < nw; j++) {
+          const a = base + i * (nw + 1) + j;
+          f.push([a, a + nw + 1, a + nw + 2, a + 1]);
+        }
+      }
+    });
     return { v: v, f: f, closed: true };
   }
   function sphere(r, nlat, nlon) {

@@ -1,0 +1,207 @@
+"""The HTML report model built from a real run (reporting/html/from_run.py): every figure is
+held to the run it comes from, to the arm model, or to the cell file."""
+
+from __future__ import annotations
+
+import statistics
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from .runhelp import CELL, pickplace
+from val3check.collision.cellfile import read_cell
+from val3check.collision.records import Clearance, MotionReport, MotionSpan
+from val3check.reporting.html import check_model, render
+from val3check.reporting.html.from_run import app_frames, model_from_run
+
+
+@pytest.fixture(scope="module")
+def run():
+    return pickplace(20.0)
+
+
+@pytest.fixture(scope="module")
+def model(run):
+    model = model_from_run(run[1])
+    check_model(model)
+    return model
+
+
+def test_verdict_and_cycle_time_come_from_the_run(run, model):
+    result, _ = run
+    v = model["verdict"]
+    assert v["passed"] and v["end_reason"] == "duration" and v["simulated_duration"] == 20.0
+    assert v["counts"] == {"error": 0, "warning": 0, "info": 1}
+    st = result.motion.cycles["robot"]
+    assert v["cycle_time"]["seconds"] == pytest.approx(statistics.median(st.times), abs=1e-6)
+    assert v["cycle_time"]["task"] == "robot" and f"median of {st.count} complete cycles" in v["cycle_time"]["basis"]
+    (cy,) = model["cycles"]
+    its = cy["iterations"]
+    assert [it["complete"] for it in its] == [True] * st.count + [False]
+    assert [it["start"] for it in its] == pytest.approx(st.starts)
+    assert its[-1]["start"] + its[-1]["duration"] == pytest.approx(20.0)
+
+
+def test_motion_table_is_the_run_s_records(run, model):
+    result, _ = run
+    moved = [(r, c) for r, c in zip(result.motion.records, result.motion.commands)
+             if r.start is not None and r.start <= 20.0]  # (the next one is planned to start after the run)
+    assert len(model["motions"]) == len(moved) > 20
+    for mo, (rec, cmd) in zip(model["motions"], moved):
+        assert (mo["kind"], mo["line"], mo["task"] or "") == (rec.kind, rec.source.line, rec.source.task)
+        assert mo["start"] == pytest.approx(rec.start, abs=1e-6)
+        assert mo["dominant_limit"] == (rec.dominant or None)
+    # mApproach (tvel 250 mm/s, vel 50 %) on the two descents to the part and to the pallet
+    pick = next(mo for mo in model["motions"] if mo["target"] == "pPick")
+    assert (pick["kind"], pick["vel"], pick["tvel"]) == ("movel", 50.0, 250.0)
+
+
+def test_trajectory_samples_the_run_every_4_ms_and_tcp_speed_is_the_tool_s(run, model):
+    result, _ = run
+    tr = model["trajectory"]
+    assert tr["times"][0] == 0.0 and tr["times"][-1] == pytest.approx(20.0) and len(tr["times"]) == 5001
+    k = 1000  # 4 s
+    q = result.motion.trajectory.position(tr["times"][k])
+    assert [row[k] for row in tr["positions"]] == pytest.approx(list(q), abs=1e-5)
+    assert [j["name"] for j in tr["joints"]] == list(result.motion.model.joint_names)
+    # the TCP speed against a finite difference of the model's FK with tGripper (TCP 120 mm out)
+    model_ = result.motion.model
+    tool = np.eye(4)
+    tool[2, 3] = 120.0
+    for k in (470, 520, 1100):  # within motions, the tool in use: tGripper
+        t = tr["times"][k]
+        h = 1e-5
+        a = np.array(model_.fk_matrix(result.motion.trajectory.position(t - h), tool))[:, 3]
+        b = np.array(model_.fk_matrix(result.motion.trajectory.position(t + h), tool))[:, 3]
+        assert tr["tcp_speed"][k] == pytest.approx(np.linalg.norm(b - a) / (2 * h), rel=1e-3, abs=0.05)
+    assert max(tr["tcp_speed"]) <= 2000.0 * (1 + 1e-3)  # mFast's tvel
+
+
+def test_task_and_arm_timelines(run, model):
+    result, _ = run
+    tasks = {t["name"]: t["segments"] for t in model["tasks"]}
+    robot = tasks["robot"]
+    states = {s["state"] for s in robot}
+    assert states == {"running", "waiting", "blocked"}
+    assert any(s["detail"] == "wait(diPartPresent == true)" for s in robot if s["state"] == "waiting")
+    assert any("end of motion" in (s["detail"] or "") for s in robot if s["state"] == "blocked")
+    for segs in tasks.values():  # in order, not overlapping, within the run
+        for a, b in zip(segs, segs[1:]):
+            assert a["end"] <= b["start"] + 1e-9
+        assert segs[-1]["end"] <= 20.0
+    assert robot[-1]["end"] == 20.0  # alive at the end
+    assert tasks["PickPlace~"][-1]["end"] < 1.0  # start() ends once it has created the robot task
+    arm = model["arm_timeline"]
+    assert arm[0]["start"] == 0.0 and arm[-1]["end"] == 20.0
+    assert all(a["end"] == b["start"] for a, b in zip(arm, arm[1:]))
+    moving = sum(s["end"] - s["start"] for s in arm if s["state"] == "moving")
+    assert moving == pytest.approx(result.motion.busy_s, abs=1e-3)
+
+
+def test_io_transcript_and_diagnostics(run, model):
+    result, report = run
+    assert len(model["io"]) == len(result.io_log) > 10
+    assert model["io"][0]["names"]
+    assert [e["text"] for e in model["transcript"]] == [e.text for e in result.transcript]
+    (d,) = model["diagnostics"]
+    assert d["code"] == "R007" and d["severity"] == "info"
+
+
+def test_scene_has_the_arm_and_the_tool_but_no_cell_without_one(model):
+    scene = model["scene"]
+    assert scene["arm"]["name"] == "TX2-60" and scene["arm"]["joint_names"] == [f"joint_{i}" for i in range(1, 7)]
+    assert scene["tool"]["name"] == "tGripper" and scene["tool"]["tcp"][2][3] == 120.0
+    assert scene["obstacles"] == [] and any("No cell file" in s for s in model["limitations"])
+
+
+def test_cell_obstacles_tool_solids_and_clearance(run):
+    result, report = run
+    cell = read_cell(CELL)
+    rec = next(r for r in result.motion.records if r.id is not None and r.start is not None)
+    clear = MotionReport(MotionSpan(rec.id), np.zeros(0), np.zeros(0), np.zeros(0, bool),
+                         min_clearance=Clearance(42.5, rec.start, "tool tGripper 'jaws'", "obstacle 'table'",
+                                                         (0, 0, 0), (0, 0, 1)))
+    result.collision = SimpleNamespace(cell=cell, by_motion={rec.id: clear})
+    try:
+        model = model_from_run(report)
+    finally:
+        del result.collision
+    check_model(model)
+    obstacles = {o["name"]: o for o in model["scene"]["obstacles"]}
+    assert set(obstacles) == {"table", "pallet", "post"}
+    assert obstacles["table"]["shape"] == "box" and obstacles["table"]["size"] == [500.0, 1200.0, 40.0]
+    assert [row[3] for row in obstacles["table"]["pose"]] == [450.0, 0.0, -130.0]
+    # the pallet sits in fPallet (300, 120, -80 in the world): at (70, 70, -10) in it
+    fpallet = app_frames(result)["fPallet"]
+    assert [row[3] for row in obstacles["pallet"]["pose"]] == pytest.approx(list(fpallet[:3, 3] + [70, 70, -10]))
+    assert obstacles["post"]["radius"] == 40.0 and obstacles["post"]["length"] == 800.0
+    solids = {s["name"]: s for s in model["scene"]["tool"]["solids"]}
+    assert solids["body"]["pose"][2][3] == 30.0  # on the flange
+    assert solids["jaws"]["pose"][2][3] == pytest.approx(120.0 - 30.0)  # in tGripper, 120 mm out
+    first = next(mo for mo in model["motions"] if mo["motion_id"] == rec.id)
+    assert (first["min_clearance"], first["clearance_to"]) == (42.5, "table")
+    assert not any("No cell file" in s for s in model["limitations"])
+    assert any("parts of the cell file" in s for s in model["limitations"])  # said, not drawn (the trace draws them)
+    assert "pallet" in render(model)
+
+
+def test_same_run_same_page(run):
+    a = render(model_from_run(run[1]))
+    b = render(model_from_run(run[1]))
+    assert a == b and len(a) < 5_000_000
+
+
+def test_a_scara_run_joint_3_in_mm_and_its_tcp_speed(tmp_path):
+    from interpretation.simsupport import sim
+    from val3check.config import Settings
+    from val3check.reporting.sim_report import build_report
+    from val3check.robot import load_robot
+    from val3check.rules.catalogue import catalogue
+
+    ts = load_robot("TS2-60")
+    r = sim(tmp_path, """begin
+  movej({0, 90, 150, 0}, flange, mFast)
+  waitEndMove()
+  pA = here(flange, world)
+  pB = compose(pA, world, {0, 0, -50, 0, 0, 0})
+  mSlow.vel = 20
+  mSlow.blend = off
+  movel(pB, flange, mSlow)
+  waitEndMove()
+end
+""", globals_=["pointRs pA", "pointRs pB", "mdesc mFast", "mdesc mSlow"], robot=ts)
+    model = model_from_run(build_report(r, Settings(), catalogue(), "test"))
+    check_model(model)
+    tr = model["trajectory"]
+    assert [j["unit"] for j in tr["joints"]] == ["deg", "deg", "mm", "deg"]
+    movel = model["motions"][-1]
+    k = tr["times"].index(round(round((movel["start"] + movel["end"]) / 2 / 0.004) * 0.004, 6))
+    t, h = tr["times"][k], 1e-5
+    a = np.array(ts.fk_matrix(r.motion.trajectory.position(t - h)))[:, 3]
+    b = np.array(ts.fk_matrix(r.motion.trajectory.position(t + h)))[:, 3]
+    assert tr["tcp_speed"][k] == pytest.approx(np.linalg.norm(b - a) / (2 * h), rel=1e-3)
+    assert tr["tcp_speed"][k] > 10.0  # the straight line down, on the prismatic axis
+
+
+def test_sim_report_html_same_input_same_bytes(tmp_path, monkeypatch):
+    from val3check.cli import main
+
+    from .runhelp import ROOT
+
+    monkeypatch.chdir(ROOT)
+    pages = []
+    for n in (1, 2):
+        out = tmp_path / f"r{n}.html"
+        assert main(["sim", "fixtures/valid/PickPlace", "--robot", "tx2-60", "--scenario",
+                     "fixtures/scenarios/pickplace.toml", "--duration", "10", "--report", "html", "-o", str(out)]) == 0
+        pages.append(out.read_bytes())
+    assert pages[0] == pages[1] and b"PickPlace" in pages[0]
+
+
+def test_a_long_run_is_sampled_at_a_multiple_of_4_ms():
+    from val3check.reporting.html.from_run import MAX_SAMPLES, sample_period
+
+    assert sample_period(60.0) == 0.004 and sample_period(600.0) == 0.004  # 150,001 samples
+    assert sample_period(600.004) == 0.008
+    assert sample_period(3600.0) == pytest.approx(0.024) and 3600.0 / 0.024 + 1 <= MAX_SAMPLES

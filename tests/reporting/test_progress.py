@@ -1,0 +1,79 @@
+"""The progress display of `sim` (reporting/progress.py): on stderr, only on a terminal, only for a
+run longer than a second of wall time; never in the report or a pipe."""
+
+from __future__ import annotations
+
+import io
+import os
+import pty
+import select
+import subprocess
+import sys
+from pathlib import Path
+
+from val3check.cli import main
+from val3check.reporting.progress import Progress
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+class FakeTTY(io.StringIO):
+    def isatty(self) -> bool:
+        return True
+
+
+def test_shown_after_a_second_at_most_ten_times_a_second_then_cleared():
+    t = [0.0]
+    out = FakeTTY()
+    p = Progress(out, clock=lambda: t[0], total_s=60.0)
+    p(0.5, lambda: 1)
+    assert out.getvalue() == ""  # a short run shows nothing
+    t[0] = 1.2
+    p(30.0, lambda: 12)
+    assert out.getvalue() == "\rval3check sim:    30.000 of 60 s simulated,    1.2 s wall, 12 motions done\x1b[K"
+    t[0] = 1.25
+    p(31.0, lambda: 13)  # too soon to redraw
+    assert out.getvalue().count("\r") == 1
+    p.close()
+    assert out.getvalue().endswith("\r\x1b[K")
+
+
+def test_not_a_terminal_no_display():
+    assert Progress.for_stream(io.StringIO()) is None
+    assert isinstance(Progress.for_stream(FakeTTY()), Progress)
+
+
+def test_sim_on_a_terminal_shows_progress_on_stderr_only(tmp_path):
+    master, slave = pty.openpty()
+    report = tmp_path / "out.txt"
+    with open(report, "w") as out:
+        proc = subprocess.Popen(
+            [sys.executable, "-m", "val3check", "sim", "fixtures/valid/PickPlace", "--robot", "tx2-60",
+             "--scenario", "fixtures/scenarios/pickplace.toml", "--duration", "600"],  # several seconds of wall time
+            cwd=ROOT, stdout=out, stderr=slave, stdin=subprocess.DEVNULL)
+    os.close(slave)
+    seen = b""
+    while True:
+        ready, _, _ = select.select([master], [], [], 120)
+        if not ready:
+            break
+        try:
+            chunk = os.read(master, 4096)
+        except OSError:  # the child closed the terminal
+            break
+        if not chunk:
+            break
+        seen += chunk
+    os.close(master)
+    assert proc.wait(timeout=120) == 0
+    text = seen.decode()
+    assert "of 600 s simulated," in text and "motions done" in text and text.endswith("\r\x1b[K")
+    assert "simulated," not in report.read_text()  # the report itself is untouched
+
+
+def test_sim_into_a_pipe_or_a_file_shows_nothing(capsys, monkeypatch):
+    monkeypatch.chdir(ROOT)
+    main(["sim", "fixtures/valid/PickPlace", "--robot", "tx2-60", "--scenario", "fixtures/scenarios/pickplace.toml",
+          "--duration", "90"])
+    captured = capsys.readouterr()
+    assert "motions done" not in captured.err and "motions done" not in captured.out

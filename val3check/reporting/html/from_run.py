@@ -1,0 +1,392 @@
+"""The report model of a real run: a `SimReport` (its `SimResult` and the kept diagnostics).
+
+    model = model_from_run(report, fail_on="error")            # report: reporting.sim_report.SimReport
+    html = render(model)
+
+Everything comes from the run itself, not from its JSON: the motion table (`result.motion`
+records and commands), the cycle of each task that loops, the joint trajectory on the
+controller's 4 ms clock with the TCP speed of the tool in use, the tasks' states over time
+(`result.task_states`), the arm moving or idle, the I/O log, the transcript, and the 3D scene (the
+arm's chain and collision solids, the tool, the cell's obstacles).
+
+The cell and the per-motion clearance come from the collision checks when the run has them
+(`result.collision`: `.cell`, a `collision.cell.Cell`, and `.by_motion`, motion id ->
+`collision.records.MotionReport`), or are given (`cell=`, `clearances=`).
+"""
+
+from __future__ import annotations
+
+import statistics
+from pathlib import Path
+from typing import Any
+
+from .._common import SourceCache
+from .from_sim import SEVERITY_ORDER, _excerpt
+from .model import VERSION
+
+TICK_S = 0.004
+NO_LIMIT = 9999.0  # an mdesc's tvel at its default: no Cartesian speed limit (10.5.1)
+MAX_SAMPLES = 150_001  # ten minutes at 4 ms: a longer run is sampled at a multiple of 4 ms
+MAX_MESH_TRIANGLES = 50_000  # per mesh drawn: beyond, its bounding box (said in limitations)
+
+
+def _r(x: float | None, digits: int = 6) -> float | None:
+    return None if x is None else round(float(x), digits) + 0.0
+
+
+def _m34(M) -> list[list[float]]:
+    """A 4x4 (or 3x4) matrix as the model's 3x4 rows, mm."""
+    return [[_r(M[i][k], 9) for k in range(4)] for i in range(3)]
+
+
+def app_frames(result: Any) -> dict[str, Any]:
+    """The application's frame and tool variables at the end of the run, by name (and `name[i]`
+    for each element): 4x4 matrices (mm) in the world frame (frames) or the flange (tools)."""
+    import numpy as np
+
+    from ...geometry.frames import Frame, root_pose
+
+    out: dict[str, Any] = {}
+    for name, arr in sorted((getattr(result, "globals", None) or {}).items()):
+        if getattr(arr, "t", None) not in ("frame", "tool"):
+            continue
+        for i, node in enumerate(getattr(arr, "data", [])):
+            if not isinstance(node, Frame):
+                continue
+            try:
+                R, v, _ = root_pose(node)
+            except Exception:  # noqa: BLE001 - an undefined frame (error 163) is simply not drawn
+                continue
+            M = np.eye(4)
+            M[:3, :3] = np.reshape(R, (3, 3))  # row-major (geometry/rotation.py)
+            M[:3, 3] = v
+            out[f"{name}[{i}]"] = M
+            if i == 0:
+                out[name] = M
+    return out
+
+
+def _diagnostics(report: Any, roots: list[str]) -> list[dict]:
+    cache = SourceCache()
+    out = []
+    for d in report.diagnostics:
+        out.append({"code": d.code, "name": report.rule_name(d.code), "severity": d.severity.label,
+                    "message": d.message, "path": d.path, "line": d.line or None, "column": d.col or None,
+                    "time": _r(d.time_us / 1e6) if d.time_us is not None else None, "task": d.task or None,
+                    "program": d.program or None,
+                    "excerpt": _excerpt(cache, d.path, d.line, roots)})
+    return out
+
+
+def _motions(report: Any, m: Any, end: float, clearances: dict) -> list[dict]:
+    out = []
+    for rec, cmd in zip(m.records, m.commands):
+        if rec.start is None or rec.end is None or rec.start > end:
+            continue  # failed before it moved (its diagnostic says why), or not started within the run
+        src = rec.source
+        where = report.display((src.path, src.line, src.col, ""))
+        mdesc = cmd.mdesc
+        entry = {
+            "id": len(out) + 1, "kind": rec.kind, "path": where[0] if where else None, "line": src.line or None,
+            "column": src.col or None, "task": src.task or None, "target": rec.target or None,
+            "start": _r(rec.start), "end": _r(min(rec.end, end)), "duration": _r(min(rec.end, end) - rec.start),
+            "dominant_limit": rec.dominant or None,
+            "vel": _r(mdesc.vel, 3) if rec.kind != "connection" else None,
+            "tvel": _r(mdesc.tvel, 3) if rec.kind != "connection" and mdesc.tvel < NO_LIMIT else None,
+            "min_clearance": None, "clearance_to": None,
+            "state": rec.state, "motion_id": rec.id,
+        }
+        mr = clearances.get(rec.id) if rec.id is not None else None
+        c = getattr(mr, "min_clearance", None)
+        if c is not None:
+            entry["min_clearance"] = _r(c.mm, 3)
+            entry["clearance_to"] = _obstacle_of(c.body_a, c.body_b)
+        out.append(entry)
+    return out
+
+
+def _obstacle_of(a: str, b: str) -> str:
+    """The cell's side of a clearance: the collision checks name bodies "obstacle 'table'",
+    "link_4 (forearm)", "tool tGripper 'jaw'"... (collision/bodies.py): the obstacle's name."""
+    for label in (b, a):
+        if label.startswith("obstacle "):
+            name = label[len("obstacle "):]
+            return name[1:-1] if len(name) >= 2 and name[0] == name[-1] == "'" else name
+    return b
+
+
+def _cycles(report: Any, m: Any, end: float) -> tuple[list[dict], dict | None]:
+    cycles, best = [], None
+    for task in sorted(m.cycles):
+        st = m.cycles[task]
+        if st.marker is None or not st.starts:
+            continue
+        where = report.display((st.marker[0], st.marker[1], st.marker[2], ""))
+        its = [{"start": _r(a), "duration": _r(b - a), "complete": True} for a, b in zip(st.starts, st.starts[1:])]
+        if st.starts[-1] < end:
+            its.append({"start": _r(st.starts[-1]), "duration": _r(end - st.starts[-1]), "complete": False})
+        cycles.append({"task": task, "path": where[0], "line": st.marker[1],
+                       "label": f"from the motion at line {st.marker[1]} of {Path(where[0]).name}", "iterations": its})
+        if st.count and (best is None or st.count > best[1].count):
+            best = (where, st)
+    cycle_time = None
+    if best is not None:
+        where, st = best
+        cycle_time = {"seconds": _r(statistics.median(st.times)), "task": st.task,
+                      "basis": f"median of {st.count} complete cycles of task {st.task} (from the motion at line "
+                               f"{st.marker[1]} of {Path(where[0]).name})"}
+    return cycles, cycle_time
+
+
+def _tool_at(m: Any):
+    """(start times, tools) of the motions in order: the tool in use from each motion's start."""
+    starts, tools = [], []
+    for rec, cmd in zip(m.records, m.commands):
+        if rec.start is not None and cmd.kind != "connection":
+            starts.append(rec.start)
+            tools.append(cmd.tool)
+    return starts, tools
+
+
+def tcp_speeds(m: Any, links: Any, times, positions, velocities):
+    """The TCP's Cartesian speed (mm/s) at each sample, for the tool of the motion under way: the
+    TCP moved along the joint velocity over a small step (no spike when the tool changes)."""
+    import bisect
+
+    import numpy as np
+
+    flange = m.model.flange_frame
+    h = 1e-4  # s
+    P0 = links.poses_many(positions)[flange]
+    P1 = links.poses_many(positions + h * velocities)[flange]
+    starts, tools = _tool_at(m)
+    idx = np.array([max(bisect.bisect_right(starts, t) - 1, 0) for t in times]) if starts else np.zeros(len(times), int)
+    out = np.zeros(len(times))
+    for k in sorted(set(idx.tolist())):
+        sel = idx == k
+        tool = tools[k] if tools else None
+        p = np.array([0.0, 0.0, 0.0, 1.0]) if tool is None else np.asarray(tool, dtype=float)[:, 3]
+        a = P0[sel] @ p
+        b = P1[sel] @ p
+        out[sel] = np.linalg.norm((b - a)[:, :3], axis=1) / h
+    return out
+
+
+def sample_period(end_s: float) -> float:
+    """The controller's 4 ms, or a multiple of it for a run longer than MAX_SAMPLES ticks (the
+    page draws at most 15,000 min/max buckets anyway: memory and size stay bounded)."""
+    ticks = int(end_s / TICK_S + 1e-9)
+    return TICK_S * max(1, -(-ticks // (MAX_SAMPLES - 1)))
+
+
+def _trajectory(m: Any, links: Any, limits: list[str]) -> dict | None:
+    import numpy as np
+
+    if not m.trajectory.moving(m.end_s):
+        return None
+    dt = sample_period(m.end_s)
+    if dt > TICK_S:
+        limits.append(f"A long run: the plots and the 3D view sample the trajectory every {dt * 1000:g} ms "
+                      f"(a multiple of the controller's 4 ms), at most {MAX_SAMPLES} samples.")
+    times, q, v = m.sample(0.0, m.end_s, dt)
+    times, q, v = np.asarray(times, dtype=float), np.asarray(q, dtype=float), np.asarray(v, dtype=float)
+    model = m.model
+    speed = tcp_speeds(m, links, times, q, v)
+    return {
+        "joints": [{"name": n, "unit": u, "min": lo, "max": hi, "speed": s}
+                   for n, u, (lo, hi), s in zip(model.joint_names, model.joint_units, model.joint_limits,
+                                                model.nominal_speeds)],
+        "times": [_r(t) for t in times.tolist()],
+        "positions": (np.round(q.T, 6) + 0.0).tolist(),
+        "velocities": (np.round(v.T, 4) + 0.0).tolist(),
+        "tcp_speed": (np.round(speed, 3) + 0.0).tolist(),
+    }
+
+
+def _task_segments(result: Any, end: float) -> list[dict]:
+    by_task: dict[str, list[dict]] = {}
+    for c in result.task_states:
+        t = min(c.time_us / 1e6, end)
+        segs = by_task.setdefault(c.task, [])
+        if segs and segs[-1]["end"] is None:
+            segs[-1]["end"] = _r(t)
+            if segs[-1]["end"] <= segs[-1]["start"]:
+                segs.pop()
+        if c.state != "ended" and t < end:
+            segs.append({"start": _r(t), "end": None, "state": c.state, "detail": c.detail or None})
+    out = []
+    for name, segs in by_task.items():
+        if segs and segs[-1]["end"] is None:
+            segs[-1]["end"] = _r(end)
+        segs = [s for s in segs if s["end"] > s["start"]]
+        if segs:  # (stop() runs after a run cut by --duration: at its very end)
+            out.append({"name": name, "segments": segs})
+    return out
+
+
+def _arm_timeline(m: Any, end: float) -> list[dict]:
+    segs, t = [], 0.0
+    for a, b in m.trajectory.moving(m.end_s):
+        a, b = min(a, end), min(b, end)
+        if a > t:
+            segs.append({"start": _r(t), "end": _r(a), "state": "idle"})
+        if b > a:
+            segs.append({"start": _r(a), "end": _r(b), "state": "moving"})
+        t = max(t, b)
+    if t < end:
+        segs.append({"start": _r(t), "end": _r(end), "state": "idle"})
+    return segs
+
+
+def _shape_solid(name: str, shape: Any, pose, limits: list[str]) -> dict:
+    import numpy as np
+
+    s: dict[str, Any] = {"name": name, "pose": _m34(pose)}
+    if shape.kind == "box":
+        s.update(shape="box", size=[_r(x, 6) for x in shape.size])
+    elif shape.kind == "cylinder":
+        s.update(shape="cylinder", radius=_r(shape.size[0], 6), length=_r(shape.size[1], 6))
+    elif shape.kind == "sphere":
+        s.update(shape="sphere", radius=_r(shape.size[0], 6))
+    else:
+        v = np.asarray(shape.mesh.vertices, dtype=float)
+        f = np.asarray(shape.mesh.faces, dtype=int)
+        if len(f) > MAX_MESH_TRIANGLES:
+            lo, hi = v.min(axis=0), v.max(axis=0)
+            box = np.eye(4)
+            box[:3, 3] = (lo + hi) / 2
+            limits.append(f"The mesh {name!r} has {len(f)} triangles: the 3D view draws its bounding box.")
+            return {"name": name, "shape": "box", "size": [_r(x, 6) for x in (hi - lo)],
+                    "pose": _m34(np.asarray(pose) @ box)}
+        s.update(shape="mesh", vertices=(np.round(v, 4) + 0.0).tolist(), triangles=f.tolist())
+    return s
+
+
+def _scene(result: Any, m: Any, cell: Any, limits: list[str]) -> dict:
+    import numpy as np
+
+    from .arm import arm_chain
+
+    model = m.model if m is not None else None
+    scene: dict[str, Any] = {"arm": None, "tool": None, "obstacles": []}
+    if model is not None:
+        scene["arm"] = arm_chain(model.source, world_frame=model.world_frame, flange_frame=model.flange_frame,
+                                 joint_names=model.joint_names, name=model.name,
+                                 source=f"robots/{Path(model.source).name}" if "/robots/" in model.source
+                                 else Path(model.source).name)
+        scene["joints"] = [_r(x) for x in (result.robot or {}).get("initial_joints") or [0.0] * model.axes]
+        # the tool: the one the motions use most (the page draws one tool)
+        counts: dict[str, int] = {}
+        tcp: dict[str, Any] = {}
+        for rec, cmd in zip(m.records, m.commands):
+            if cmd.kind != "connection" and cmd.tool is not None and rec.tool:
+                counts[rec.tool] = counts.get(rec.tool, 0) + 1
+                tcp.setdefault(rec.tool, cmd.tool)
+        if counts:
+            name = max(sorted(counts), key=counts.get)
+            solids = []
+            if cell is not None:  # a tool solid sits in its tool variable's frame; the page's in the flange
+                tools = app_frames(result)
+                for ts in cell.tools:
+                    base = np.eye(4) if ts.tool == "flange" else tools.get(ts.tool)
+                    if base is None and ts.tool == name:
+                        base = np.asarray(tcp[name], dtype=float)
+                    if base is None:
+                        limits.append(f"The tool solid {ts.name!r} hangs on {ts.tool}, which the run did not define: "
+                                      "not drawn.")
+                        continue
+                    solids.append(_shape_solid(ts.name, ts.shape, base @ ts.pose, limits))
+                if cell.parts:
+                    limits.append("The parts of the cell file (what the tool carries) are not drawn.")
+            scene["tool"] = {"name": name, "tcp": _m34(np.asarray(tcp[name], dtype=float)), "solids": solids}
+    if cell is not None:
+        frames = app_frames(result)
+        for ob in cell.obstacles:
+            if ob.frame == "world":
+                place = np.eye(4)
+            else:
+                key = ob.frame.replace(" ", "")
+                place = frames.get(key)
+                if place is None:
+                    limits.append(f"The obstacle {ob.name!r} is placed in {ob.frame}, which the run did not define: "
+                                  "not drawn.")
+                    continue
+            scene["obstacles"].append(_shape_solid(ob.name, ob.shape, place @ ob.pose, limits))
+        if cell.frames():
+            limits.append("Obstacles placed in application frames are drawn where those frames are at the end of "
+                          "the run.")
+    return scene
+
+
+def model_from_run(report: Any, *, fail_on: str = "error", cell: Any = None, clearances: dict | None = None,
+                   roots: list[str] | None = None, title: str | None = None) -> dict:
+    """The report model (docs/html-report.md) of a run. `report`: a `reporting.sim_report.SimReport`.
+    `cell`, `clearances`: the cell and per-motion `MotionReport`s (default: `result.collision`'s).
+    `roots`: folders whose files the excerpts may quote (default: the application's folder)."""
+    result = report.result
+    collision = getattr(result, "collision", None)
+    if cell is None and collision is not None:
+        cell = getattr(collision, "cell", None)
+    if clearances is None:
+        clearances = dict(getattr(collision, "by_motion", None) or {})
+    if roots is None:
+        roots = [str(Path(result.app_path).parent)]
+    end = _r(result.sim_time_us / 1e6)
+    counts = {s: sum(1 for d in report.diagnostics if d.severity.label == s) for s in ("error", "warning", "info")}
+    threshold = SEVERITY_ORDER.get(fail_on)
+    passed = threshold is None or not any(SEVERITY_ORDER[s] >= threshold and counts[s] for s in counts)
+    limits: list[str] = []
+    m = result.motion
+    motions, cycles, cycle_time, trajectory, arm_timeline = [], [], None, None, []
+    if m is not None:
+        from ...robot.links import arm_links
+
+        links = arm_links(m.model)
+        motions = _motions(report, m, end, clearances)
+        cycles, cycle_time = _cycles(report, m, end)
+        trajectory = _trajectory(m, links, limits)
+        arm_timeline = _arm_timeline(m, end)
+        if cell is None:
+            limits.append("No cell file: the 3D view has no obstacles and the motions no clearance (docs/cell.md).")
+    elif result.robot is None:
+        limits.append("No arm model (--robot): no motion, trajectory or 3D view.")
+    scene = _scene(result, m, cell, limits) if m is not None else None
+    return {
+        "version": VERSION,
+        "title": title or result.application,
+        "tool": {"name": "val3check", "version": report.tool_version},
+        "application": {"name": result.application, "path": report.app_path},
+        "robot": {"name": m.model.name} if m is not None else None,
+        "synthetic": False,
+        "limitations": limits,
+        "verdict": {
+            "counts": counts,
+            "fail_on": fail_on,
+            "passed": passed,
+            "end_reason": result.end_reason,
+            "end_message": result.end_message,
+            "simulated_duration": end,
+            "cycle_time": cycle_time,
+        },
+        "diagnostics": _diagnostics(report, roots),
+        "motions": motions,
+        "cycles": cycles,
+        "trajectory": trajectory,
+        "tasks": _task_segments(result, end),
+        "arm_timeline": arm_timeline,
+        "io": [{"time": _r(e.time_us / 1e6), "kind": e.kind, "link": e.link,
+                "names": report.link_names.get((e.kind, e.link), []),
+                "value": e.value if not isinstance(e.value, float) or e.value == e.value else None,
+                "source": e.source} for e in result.io_log],
+        "transcript": [{"time": _r(e.time_us / 1e6), "task": e.task, "kind": e.kind, "text": e.text,
+                        "screen": e.screen} for e in result.transcript],
+        "screen": result.screen,
+        "scene": scene,
+    }
+
+
+def render_run(report: Any, *, fail_on: str = "error") -> str:
+    """`val3check sim --report html`: the page of a run."""
+    from .page import render
+
+    return render(model_from_run(report, fail_on=fail_on))

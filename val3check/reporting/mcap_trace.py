@@ -1,0 +1,512 @@
+"""`val3check sim --trace run.mcap`: the run as an MCAP file that opens in Foxglove (docs/trace.md).
+
+    write_trace(report, "run.mcap")        # report: reporting.sim_report.SimReport
+
+Messages are JSON with Foxglove's well-known schemas where one exists (`foxglove.FrameTransforms`,
+`foxglove.PoseInFrame`, `foxglove.SceneUpdate`, `foxglove.Log`) and val3check's own otherwise
+(joint states with their limits, I/O changes, task states). Stamped with the **simulated** time
+(nanoseconds from the start of the run), lengths in metres as Foxglove expects. The bytes depend
+on the run only: same run, same file (no wall-clock time, fixed chunking and compression).
+
+The arm's links are placed with the model's forward kinematics (`robot.links.ArmLinks`) at every
+4 ms tick where the arm moves (and once at the start; Foxglove keeps a frame's last transform
+while the arm stands still).
+"""
+
+from __future__ import annotations
+
+import heapq
+import json
+from pathlib import Path
+from typing import Any
+
+TICK_S = 0.004
+MM = 0.001  # Foxglove works in metres
+CHUNK_SIZE = 1 << 20
+BLOCK = 2048  # ticks whose poses are computed at once
+LIBRARY = "val3check"
+
+# JSON Schemas of the messages: the field names and types of Foxglove's schemas (docs.foxglove.dev,
+# "Schemas"), written out for the fields we fill.
+_TIME = {"type": "object", "properties": {"sec": {"type": "integer"}, "nsec": {"type": "integer"}}}
+_VEC3 = {"type": "object", "properties": {k: {"type": "number"} for k in "xyz"}}
+_QUAT = {"type": "object", "properties": {k: {"type": "number"} for k in "xyzw"}}
+_POSE = {"type": "object", "properties": {"position": _VEC3, "orientation": _QUAT}}
+_COLOR = {"type": "object", "properties": {k: {"type": "number"} for k in "rgba"}}
+_FRAME_TRANSFORM = {"type": "object", "properties": {
+    "timestamp": _TIME, "parent_frame_id": {"type": "string"}, "child_frame_id": {"type": "string"},
+    "translation": _VEC3, "rotation": _QUAT}}
+_SOLID = {"type": "object", "properties": {"pose": _POSE, "size": _VEC3, "color": _COLOR}}
+SCHEMAS: dict[str, dict] = {
+    "foxglove.FrameTransforms": {"type": "object", "properties": {
+        "transforms": {"type": "array", "items": _FRAME_TRANSFORM}}},
+    "foxglove.PoseInFrame": {"type": "object", "properties": {
+        "timestamp": _TIME, "frame_id": {"type": "string"}, "pose": _POSE}},
+    "foxglove.SceneUpdate": {"type": "object", "properties": {
+        "deletions": {"type": "array", "items": {"type": "object", "properties": {
+            "timestamp": _TIME, "type": {"type": "integer"}, "id": {"type": "string"}}}},
+        "entities": {"type": "array", "items": {"type": "object", "properties": {
+            "timestamp": _TIME, "frame_id": {"type": "string"}, "id": {"type": "string"},
+            "lifetime": _TIME, "frame_locked": {"type": "boolean"},
+            "metadata": {"type": "array", "items": {"type": "object", "properties": {
+                "key": {"type": "string"}, "value": {"type": "string"}}}},
+            "arrows": {"type": "array", "items": {"type": "object", "properties": {
+                "pose": _POSE, "shaft_length": {"type": "number"}, "shaft_diameter": {"type": "number"},
+                "head_length": {"type": "number"}, "head_diameter": {"type": "number"}, "color": _COLOR}}},
+            "cubes": {"type": "array", "items": _SOLID},
+            "spheres": {"type": "array", "items": _SOLID},
+            "cylinders": {"type": "array", "items": {"type": "object", "properties": {
+                "pose": _POSE, "size": _VEC3, "bottom_scale": {"type": "number"}, "top_scale": {"type": "number"},
+                "color": _COLOR}}},
+            "triangles": {"type": "array", "items": {"type": "object", "properties": {
+                "pose": _POSE, "points": {"type": "array", "items": _VEC3}, "color": _COLOR,
+                "indices": {"type": "array", "items": {"type": "integer"}}}}},
+        }}}}},
+    "foxglove.Log": {"type": "object", "properties": {
+        "timestamp": _TIME, "level": {"type": "integer"}, "message": {"type": "string"}, "name": {"type": "string"},
+        "file": {"type": "string"}, "line": {"type": "integer"}}},
+    "std_msgs/String": {"type": "object", "properties": {"data": {"type": "string"}}},
+    "val3check.JointState": {"type": "object", "properties": {
+        "timestamp": _TIME, "name": {"type": "array", "items": {"type": "string"}},
+        "unit": {"type": "array", "items": {"type": "string"}},
+        "position": {"type": "array", "items": {"type": "number"}},
+        "velocity": {"type": "array", "items": {"type": "number"}},
+        "lower": {"type": "array", "items": {"type": "number"}},
+        "upper": {"type": "array", "items": {"type": "number"}},
+        "nominal_speed": {"type": "array", "items": {"type": "number"}}}},
+    "val3check.IOChange": {"type": "object", "properties": {
+        "timestamp": _TIME, "kind": {"type": "string"}, "link": {"type": "string"},
+        "names": {"type": "array", "items": {"type": "string"}}, "value": {}, "source": {"type": "string"}}},
+    "val3check.Clearance": {"type": "object", "properties": {
+        "timestamp": _TIME, "motion": {"type": "integer"}, "clearance_mm": {"type": "number"},
+        "exact": {"type": "boolean"}, "margin_mm": {"type": "number"}}},
+    "val3check.TaskState": {"type": "object", "properties": {
+        "timestamp": _TIME, "task": {"type": "string"}, "state": {"type": "string"}, "detail": {"type": "string"}}},
+}
+# topic -> schema (in this order in the file)
+TOPICS = {
+    "/tf": "foxglove.FrameTransforms",
+    "/joint_states": "val3check.JointState",
+    "/tcp": "foxglove.PoseInFrame",
+    "/scene": "foxglove.SceneUpdate",
+    "/log": "foxglove.Log",
+    "/io": "val3check.IOChange",
+    "/tasks": "val3check.TaskState",
+    "/clearance": "val3check.Clearance",
+    "/robot_description": "std_msgs/String",
+}
+LOG_LEVEL = {"info": 2, "warning": 3, "error": 4}  # foxglove.Log: INFO, WARNING, ERROR
+COLORS = {"obstacle": {"r": 0.45, "g": 0.55, "b": 0.65, "a": 0.8}, "tool": {"r": 0.25, "g": 0.25, "b": 0.28, "a": 1.0},
+          "tcp": {"r": 0.84, "g": 0.37, "b": 0.0, "a": 1.0}, "part": {"r": 0.0, "g": 0.62, "b": 0.45, "a": 1.0}}
+
+
+def _ns(t: float) -> int:
+    return int(round(t * 1e9))
+
+
+def _stamp(ns: int) -> dict:
+    return {"sec": ns // 1_000_000_000, "nsec": ns % 1_000_000_000}
+
+
+def quaternions(R):
+    """Unit quaternions (x, y, z, w) of rotation matrices (N, 3, 3), w >= 0 (Shepperd's method:
+    the largest of w, x, y, z is computed first, so every branch is well conditioned)."""
+    import numpy as np
+
+    R = np.asarray(R, dtype=float).reshape(-1, 3, 3)
+    n = len(R)
+    q = np.zeros((n, 4))
+    t = np.stack([R[:, 0, 0] + R[:, 1, 1] + R[:, 2, 2], R[:, 0, 0], R[:, 1, 1], R[:, 2, 2]], axis=1)
+    k = np.argmax(t, axis=1)
+    for case in range(4):
+        s = k == case
+        if not s.any():
+            continue
+        r = R[s]
+        if case == 0:
+            w = np.sqrt(np.maximum(1.0 + t[s, 0], 0.0)) / 2
+            q[s] = np.stack([(r[:, 2, 1] - r[:, 1, 2]) / (4 * w), (r[:, 0, 2] - r[:, 2, 0]) / (4 * w),
+                             (r[:, 1, 0] - r[:, 0, 1]) / (4 * w), w], axis=1)
+        else:
+            i = case - 1
+            j, m = (i + 1) % 3, (i + 2) % 3
+            a = np.sqrt(np.maximum(1.0 + r[:, i, i] - r[:, j, j] - r[:, m, m], 0.0)) / 2
+            out = np.zeros((len(r), 4))
+            out[:, i] = a
+            out[:, j] = (r[:, j, i] + r[:, i, j]) / (4 * a)
+            out[:, m] = (r[:, m, i] + r[:, i, m]) / (4 * a)
+            out[:, 3] = (r[:, m, j] - r[:, j, m]) / (4 * a)
+            q[s] = out
+    q[q[:, 3] < 0] *= -1.0
+    return q
+
+
+def _pose(M) -> dict:
+    """A 4x4 (mm) as a foxglove.Pose (m)."""
+    x, y, z, w = quaternions(M[:3, :3])[0].tolist()
+    return {"position": {"x": float(M[0, 3]) * MM, "y": float(M[1, 3]) * MM, "z": float(M[2, 3]) * MM},
+            "orientation": {"x": x, "y": y, "z": z, "w": w}}
+
+
+def _transforms(ns: int, parent: str, names: list[str], mats) -> list[dict]:
+    """FrameTransform entries for frames `names` with poses `mats` (K, 4, 4, mm) in `parent`."""
+    q = quaternions(mats[:, :3, :3]).tolist()
+    p = (mats[:, :3, 3] * MM).tolist()
+    st = _stamp(ns)
+    return [_tf(st, parent, n, a, b) for n, a, b in zip(names, p, q)]
+
+
+def _tf(st: dict, parent: str, child: str, p, q) -> dict:
+    return {"timestamp": st, "parent_frame_id": parent, "child_frame_id": child,
+            "translation": {"x": p[0], "y": p[1], "z": p[2]}, "rotation": {"x": q[0], "y": q[1], "z": q[2], "w": q[3]}}
+
+
+def _solid(kind: str, size, pose) -> tuple[str, dict]:
+    """A cell or tool solid as a SceneEntity primitive (key, primitive); mm in, m out."""
+    import numpy as np
+
+    M = np.asarray(pose, dtype=float)
+    if kind == "box":
+        return "cubes", {"pose": _pose(M), "size": dict(zip("xyz", (float(v) * MM for v in size)))}
+    if kind == "sphere":
+        d = 2 * float(size[0]) * MM
+        return "spheres", {"pose": _pose(M), "size": {"x": d, "y": d, "z": d}}
+    if kind == "cylinder":
+        d = 2 * float(size[0]) * MM
+        return "cylinders", {"pose": _pose(M), "size": {"x": d, "y": d, "z": float(size[1]) * MM},
+                             "bottom_scale": 1.0, "top_scale": 1.0}
+    raise ValueError(kind)
+
+
+def _tcp_marker(ns: int, flange: str, name: str, tool) -> dict:
+    """The current tool's TCP on the flange: an arrow from the flange's origin to the TCP and a
+    small sphere on it (the tool's solids come from the cell file, when there is one)."""
+    import numpy as np
+
+    T = np.asarray(tool, dtype=float)
+    d = T[:3, 3]
+    L = float(np.linalg.norm(d))
+    e: dict[str, Any] = {"timestamp": _stamp(ns), "frame_id": flange, "id": "tcp", "lifetime": {"sec": 0, "nsec": 0},
+                         "frame_locked": True, "metadata": [{"key": "tool", "value": name}],
+                         "arrows": [], "cubes": [], "spheres": [], "cylinders": [], "triangles": []}
+    ball = np.eye(4)
+    ball[:3, 3] = d
+    e["spheres"].append({"pose": _pose(ball), "size": {"x": 0.012, "y": 0.012, "z": 0.012}, "color": COLORS["tcp"]})
+    if L > 1.0:  # mm: an arrow along +x turned onto the flange -> TCP direction
+        x = d / L
+        helper = np.array([0.0, 0.0, 1.0]) if abs(x[2]) < 0.9 else np.array([1.0, 0.0, 0.0])
+        y = np.cross(helper, x)
+        y /= np.linalg.norm(y)
+        R = np.eye(4)
+        R[:3, :3] = np.column_stack([x, y, np.cross(x, y)])
+        head = min(0.2 * L, 20.0)
+        e["arrows"].append({"pose": _pose(R), "shaft_length": (L - head) * MM, "shaft_diameter": 0.006,
+                            "head_length": head * MM, "head_diameter": 0.014, "color": COLORS["tcp"]})
+    return e
+
+
+def _entity(ns: int, frame: str, ident: str, what: str, solids: list[tuple[str, Any, Any, Any]]) -> dict:
+    import numpy as np
+
+    e: dict[str, Any] = {"timestamp": _stamp(ns), "frame_id": frame, "id": ident, "lifetime": {"sec": 0, "nsec": 0},
+                         "frame_locked": frame != "world", "metadata": [{"key": "kind", "value": what}],
+                         "cubes": [], "spheres": [], "cylinders": [], "triangles": []}
+    for name, shape, pose, _ in solids:
+        if shape.kind == "mesh":
+            v = np.asarray(shape.mesh.vertices, dtype=float) * MM
+            f = np.asarray(shape.mesh.faces, dtype=int)
+            e["triangles"].append({"pose": _pose(np.asarray(pose, dtype=float)),
+                                   "points": [{"x": a, "y": b, "z": c} for a, b, c in v.tolist()],
+                                   "indices": f.reshape(-1).tolist(), "color": COLORS[what]})
+            continue
+        key, prim = _solid(shape.kind, shape.size, pose)
+        prim["color"] = COLORS[what]
+        e[key].append(prim)
+    return e
+
+
+class _Messages:
+    """The messages other than the arm's ticks (few): collected, then sorted by time."""
+
+    def __init__(self) -> None:
+        self.items: list[tuple[int, int, int, bytes]] = []  # (time ns, topic order, seq, JSON)
+
+    @staticmethod
+    def encode(message: dict) -> bytes:
+        return json.dumps(message, separators=(",", ":"), ensure_ascii=False, allow_nan=False).encode("utf-8")
+
+    def add(self, topic: str, ns: int, message: dict) -> None:
+        self.items.append((ns, list(TOPICS).index(topic), len(self.items), self.encode(message)))
+
+
+def _rigid_inverse(P):
+    import numpy as np
+
+    out = np.zeros_like(P)
+    Rt = np.transpose(P[:, :3, :3], (0, 2, 1))
+    out[:, :3, :3] = Rt
+    out[:, :3, 3] = -np.einsum("nij,nj->ni", Rt, P[:, :3, 3])
+    out[:, 3, 3] = 1.0
+    return out
+
+
+def _arm_ticks(links, model, edges, tools, times, Q, V, idx):
+    """The arm's messages (/tf, /tcp, /joint_states) tick by tick, made a block of ticks at a time
+    (memory stays bounded whatever the length of the run): (ns, topic order, 0, JSON bytes)."""
+    import numpy as np
+
+    world, flange = links.world, model.flange_frame
+    order = list(TOPICS)
+    o_tf, o_tcp, o_js = order.index("/tf"), order.index("/tcp"), order.index("/joint_states")
+    names_j, units = list(model.joint_names), list(model.joint_units)
+    limits = np.asarray(model.joint_limits, dtype=float)
+    lower, upper = limits[:, 0].tolist(), limits[:, 1].tolist()
+    speeds = [float(s) for s in model.nominal_speeds]
+    dump = _Messages.encode
+    for b0 in range(0, len(times), BLOCK):
+        sl = slice(b0, b0 + BLOCK)
+        poses = links.poses_many(Q[sl])
+        tool_at = np.stack([tools[j] if j >= 0 else np.eye(4) for j in idx[sl].tolist()])
+        tcp_world = poses[flange] @ tool_at
+        # each link in its URDF parent (the URDF's own tree, so that Foxglove's URDF layer agrees):
+        # every edge at t = 0, then the joints that move
+        rel = {c: _rigid_inverse(poses[p]) @ poses[c] for p, c, moving in edges if moving or b0 == 0}
+        frames_p = {c: _m(M[:, :3, 3]) for c, M in rel.items()}
+        frames_q = {c: _q(M[:, :3, :3]) for c, M in rel.items()}
+        parents = {c: p for p, c, _ in edges}
+        tool_p, tool_q = _m(tool_at[:, :3, 3]), _q(tool_at[:, :3, :3])
+        tcp_p, tcp_q = _m(tcp_world[:, :3, 3]), _q(tcp_world[:, :3, :3])
+        Ql, Vl = Q[sl].tolist(), V[sl].tolist()
+        for i, t in enumerate(times[sl].tolist()):
+            ns = _ns(round(t, 6))
+            st = _stamp(ns)
+            tfs = [_tf(st, parents[c], c, frames_p[c][i], frames_q[c][i]) for p, c, moving in edges
+                   if moving or (b0 == 0 and i == 0)]
+            tfs.append(_tf(st, flange, "tcp", tool_p[i], tool_q[i]))
+            yield ns, o_tf, 0, dump({"transforms": tfs})
+            yield ns, o_js, 0, dump({"timestamp": st, "name": names_j, "unit": units, "position": Ql[i],
+                                     "velocity": Vl[i], "lower": lower, "upper": upper, "nominal_speed": speeds})
+            yield ns, o_tcp, 0, dump({"timestamp": st, "frame_id": world, "pose": {
+                "position": dict(zip("xyz", tcp_p[i])), "orientation": dict(zip("xyzw", tcp_q[i]))}})
+
+
+def _m(P):
+    """Positions (mm) in metres, to 1e-10 m (1e-7 mm): shorter JSON, far below what is drawn."""
+    import numpy as np
+
+    return (np.round(P * MM, 10) + 0.0).tolist()
+
+
+def _q(R):
+    import numpy as np
+
+    return (np.round(quaternions(R), 12) + 0.0).tolist()
+
+
+def trace_messages(report: Any, cell: Any = None):
+    """Every message of the trace in time order, as an iterator of (topic, time ns, JSON bytes),
+    and what the file carries besides (`urdf`: (file name, text) of the arm's URDF, or None)."""
+    import numpy as np
+
+    from .html.from_run import app_frames
+
+    result = report.result
+    out = _Messages()
+    arm: Any = iter(())
+    m = result.motion
+    collision = getattr(result, "collision", None)
+    if cell is None and collision is not None:
+        cell = getattr(collision, "cell", None)
+    end_ns = _ns(result.sim_time_us / 1e6)
+    extra: dict[str, Any] = {"urdf": None}
+    frames = app_frames(result)
+    if m is not None:
+        from ..robot.links import arm_links
+
+        model = m.model
+        links = arm_links(model)
+        world = links.world
+        edges = [(links.edges[c].parent, c, links.edges[c].kind != "fixed" and links.edges[c].index >= 0)
+                 for c in links.links[1:]]
+        urdf_text = Path(model.source).read_text(encoding="utf-8")
+        extra["urdf"] = (Path(model.source).name, urdf_text)
+        out.add("/robot_description", 0, {"data": urdf_text})
+        starts, tools, tool_names = [], [], []
+        for rec, cmd in zip(m.records, m.commands):
+            if rec.start is not None and cmd.kind != "connection":
+                starts.append(rec.start)
+                tools.append(np.eye(4) if cmd.tool is None else np.asarray(cmd.tool, dtype=float))
+                tool_names.append(rec.tool or "flange")
+        flange = model.flange_frame
+        # the ticks: t = 0, then every tick of every moving segment
+        ks = [np.array([0])]
+        qs = [np.asarray(m.trajectory.position(0.0), dtype=float)[None, :]]
+        vs = [np.zeros_like(qs[0])]
+        for k0, q, v in m.trajectory.segments(m.end_s, TICK_S):
+            q, v = np.asarray(q, dtype=float), np.asarray(v, dtype=float)
+            k = k0 + np.arange(len(q))
+            keep = k > 0
+            ks.append(k[keep])
+            qs.append(q[keep])
+            vs.append(v[keep])
+        K, Q, V = np.concatenate(ks), np.concatenate(qs), np.concatenate(vs)
+        times = K * TICK_S
+        idx = np.searchsorted(np.asarray(starts), times, side="right") - 1 if starts else np.full(len(K), -1)
+        arm = _arm_ticks(links, model, edges, tools, times, Q, V, idx)
+        # the application's frames (world) and tools (flange), as the run left them
+        shown = {n: M for n, M in frames.items() if "[" not in n or _size(result, n) > 1}  # fPallet, not fPallet[0] too
+        fr = sorted((n, M) for n, M in shown.items() if not _is_tool(result, n))
+        tl = sorted((n, M) for n, M in shown.items() if _is_tool(result, n))
+        static = []
+        if fr:
+            static += _transforms(0, world, [n for n, _ in fr], np.stack([M for _, M in fr]))
+        if tl:
+            static += _transforms(0, flange, [n for n, _ in tl], np.stack([M for _, M in tl]))
+        if static:
+            out.add("/tf", 0, {"transforms": static})
+        # the TCP marker, at each change of tool (from the start of the motion that uses it)
+        last = None
+        for t0, tool, name in zip(starts, tools, tool_names):
+            key = tool.round(9).tobytes()
+            if key != last:
+                ns = _ns(round(t0, 6))
+                out.add("/scene", ns, {"deletions": [], "entities": [_tcp_marker(ns, flange, name, tool)]})
+                last = key
+        if cell is not None:
+            ents = []
+            for ob in cell.obstacles:
+                base = np.eye(4) if ob.frame == "world" else frames.get(ob.frame.replace(" ", ""))
+                if base is None:
+                    continue
+                ents.append(_entity(0, world, f"obstacle/{ob.name}", "obstacle", [(ob.name, ob.shape, base @ ob.pose, None)]))
+            for ts in cell.tools:
+                base = np.eye(4) if ts.tool == "flange" else frames.get(ts.tool)
+                if base is None:
+                    continue
+                ents.append(_entity(0, flange, f"tool/{ts.name}", "tool", [(ts.name, ts.shape, base @ ts.pose, None)]))
+            if ents:
+                out.add("/scene", 0, {"deletions": [], "entities": ents})
+            if cell.parts:
+                _parts(out, cell, m, links, flange, world)
+    for e in result.transcript:
+        ns = _ns(e.time_us / 1e6)
+        out.add("/log", ns, {"timestamp": _stamp(ns), "level": 2, "message": f"[{e.kind}] {e.text}",
+                             "name": e.task or "user page", "file": "", "line": 0})
+    for d in report.diagnostics:
+        ns = min(_ns((d.time_us or 0) / 1e6), end_ns)
+        out.add("/log", ns, {"timestamp": _stamp(ns), "level": LOG_LEVEL.get(d.severity.label, 2),
+                             "message": f"{d.code} {d.message}", "name": d.task or "val3check",
+                             "file": d.path or "", "line": int(d.line or 0)})
+    for e in result.io_log:
+        ns = _ns(e.time_us / 1e6)
+        value = e.value if not isinstance(e.value, float) or e.value == e.value else None
+        out.add("/io", ns, {"timestamp": _stamp(ns), "kind": e.kind, "link": e.link,
+                            "names": list(report.link_names.get((e.kind, e.link), [])), "value": value,
+                            "source": e.source})
+    # per-sample clearance to the cell, when the run checked collisions (result.collision.by_motion:
+    # motion id -> collision.records.MotionReport): a lower bound, exact where `exact`
+    for mid, mr in sorted((getattr(collision, "by_motion", None) or {}).items(), key=lambda kv: str(kv[0])):
+        times = getattr(mr, "times", None)
+        if times is None:
+            continue
+        for t, c, ex in zip(np.asarray(times, dtype=float).tolist(), np.asarray(mr.clearance, dtype=float).tolist(),
+                            np.asarray(mr.exact, dtype=bool).tolist()):
+            if c != c or c in (float("inf"), float("-inf")):
+                continue  # nothing measured at that sample
+            ns = _ns(round(t, 6))
+            out.add("/clearance", ns, {"timestamp": _stamp(ns), "motion": int(mid), "clearance_mm": round(c, 6),
+                                       "exact": ex, "margin_mm": float(getattr(mr, "margin_mm", 0.0))})
+    for c in result.task_states:
+        ns = _ns(c.time_us / 1e6)
+        if ns > end_ns:  # stop() after a run cut by --duration, as the HTML report's timelines
+            continue
+        out.add("/tasks", ns, {"timestamp": _stamp(ns), "task": c.task, "state": c.state, "detail": c.detail})
+    out.items.sort(key=lambda x: (x[0], x[1], x[2]))
+    topics = list(TOPICS)
+    merged = heapq.merge(out.items, arm, key=lambda x: (x[0], x[1]))
+    return ((topics[o], ns, data) for ns, o, _, data in merged), extra
+
+
+def _trsf(t):
+    """A VAL 3 trsf (mm, degrees, 9.3.2) as a 4x4 matrix."""
+    import numpy as np
+
+    from ..geometry.rotation import matrix
+
+    x, y, z, rx, ry, rz = (float(v) for v in t)
+    T = np.eye(4)
+    T[:3, :3] = np.reshape(matrix(rx, ry, rz), (3, 3))
+    T[:3, 3] = (x, y, z)
+    return T
+
+
+def _parts(out: "_Messages", cell: Any, m: Any, links: Any, flange: str, world: str) -> None:
+    """The cell's parts (docs/cell.md): a part appears on its tool when the program takes it (its
+    `grasp` instruction, open or close), rides with the flange, and stays in the world where it
+    was left (the other instruction): one entity per part left."""
+    names = list(dict.fromkeys(p.name for p in cell.parts))
+    carried: dict[str, Any] = {}
+    left = 0
+    for ev in m.tool_events:
+        ns = _ns(ev.time_us / 1e6)
+        T_tool = _trsf(ev.tcp_in_flange)
+        for name in names:
+            solids = [p for p in cell.parts if p.name == name and p.tool == ev.tool]
+            if not solids:
+                continue
+            shown = [(p.name, p.shape, T_tool @ p.pose, None) for p in solids]
+            if ev.action == solids[0].grasp and name not in carried:
+                carried[name] = T_tool
+                e = _entity(ns, flange, f"part/{name}", "part", shown)
+                out.add("/scene", ns, {"deletions": [], "entities": [e]})
+            elif ev.action != solids[0].grasp and name in carried:
+                del carried[name]
+                F = links.poses(m.trajectory.position(ev.time_us / 1e6))[flange]
+                left += 1
+                e = _entity(ns, world, f"part/{name}/{left}", "part",
+                            [(n, shape, F @ pose, None) for n, shape, pose, _ in shown])
+                out.add("/scene", ns, {"deletions": [{"timestamp": _stamp(ns), "type": 0, "id": f"part/{name}"}],
+                                       "entities": [e]})
+
+
+def _size(result: Any, name: str) -> int:
+    arr = (getattr(result, "globals", None) or {}).get(name.split("[", 1)[0])
+    return len(getattr(arr, "data", ()))
+
+
+def _is_tool(result: Any, name: str) -> bool:
+    arr = (getattr(result, "globals", None) or {}).get(name.split("[", 1)[0])
+    return getattr(arr, "t", None) == "tool"
+
+
+def write_trace(report: Any, path: str, cell: Any = None) -> None:
+    """Write the MCAP trace of a run (`report`: a SimReport) to `path`."""
+    from mcap.writer import CompressionType, Writer
+
+    messages, extra = trace_messages(report, cell)
+    with open(path, "wb") as f:
+        w = Writer(f, chunk_size=CHUNK_SIZE, compression=CompressionType.ZSTD)
+        w.start(profile="", library=LIBRARY)
+        schema_ids: dict[str, int] = {}
+        channel_ids: dict[str, int] = {}
+        seq: dict[str, int] = {}
+        for topic, ns, data in messages:
+            if topic not in channel_ids:  # registered when first used: a topic without message has no channel
+                name = TOPICS[topic]
+                if name not in schema_ids:
+                    schema = {"title": name, **SCHEMAS[name]}
+                    schema_ids[name] = w.register_schema(name, "jsonschema",
+                                                         json.dumps(schema, separators=(",", ":")).encode("utf-8"))
+                channel_ids[topic] = w.register_channel(topic, "json", schema_ids[name])
+            seq[topic] = seq.get(topic, 0) + 1
+            w.add_message(channel_ids[topic], log_time=ns, data=data, publish_time=ns, sequence=seq[topic])
+        if extra["urdf"] is not None:
+            name, text = extra["urdf"]
+            w.add_attachment(create_time=0, log_time=0, name=name, media_type="application/xml",
+                             data=text.encode("utf-8"))
+        r = report.result
+        w.add_metadata("val3check", {"application": r.application, "app_path": report.app_path,
+                                     "robot": (r.robot or {}).get("name", ""), "end_reason": r.end_reason,
+                                     "simulated_duration_s": f"{r.sim_time_us / 1e6:.6f}",
+                                     "tool_version": report.tool_version})
+        w.finish()

@@ -1,0 +1,24 @@
+"""The report of a run in the format `sim --report` names (text, json, html, junit)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+
+def render_sim(fmt: str, report: Any, *, fail_on: str = "error", scenario: str | None = None) -> str:
+    """`report`: a SimReport (sim_report.py); `scenario`: the scenario file given, for JUnit."""
+    if fmt == "json":
+        from .sim_json import render
+
+        return render(report)
+    if fmt == "html":
+        from .html.from_run import render_run
+
+        return render_run(report, fail_on=fail_on)
+    if fmt == "junit":
+        from .sim_junit import render as render_junit
+
+        return render_junit(report, fail_on=fail_on, scenario=scenario)
+    from .sim_text import render as render_text
+
+    return render_text(report)
