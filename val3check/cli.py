@@ -61,6 +61,7 @@ def _add_batch(sim: argparse.ArgumentParser) -> None:
     b.add_argument("--scheduler", metavar="ADDRESS", help="the Dask scheduler's address, tcp://host:8786 (with --executor dask)")
     b.add_argument("--out-dir", metavar="DIR", help="write the summary (text, JSON, JUnit, index.html) and each case's report under DIR")
     b.add_argument("--fail-fast", action="store_true", help="stop at the first case that does not pass")
+    b.add_argument("--case-reports", default="json", metavar="KINDS", help="what --out-dir writes for each case, comma-separated: json, html, trace (default: json)")
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -282,7 +282,7 @@ def test_out_dir_holds_every_summary_format(cell, capsys):
     index = (out / "index.html").read_text()
     for c in summary["cases"]:
         if c["verdict"] == "pass":
-            assert f'href="cases/{c["report"]}.json"' in index
+            assert f'href="cases/{c["report"]}.json">JSON</a>' in index
             assert (out / "cases" / f'{c["report"]}.json').is_file()
     assert "apps/Broken/Broken.pjx" in index and "<script" not in index
 
@@ -503,3 +503,21 @@ def test_sweep_mode_must_match_its_shape(cell):
     with pytest.raises(SweepError, match=r'mode = "list" needs \[\[case\]\] tables') as exc:
         load_sweep("sweep.toml")
     assert (exc.value.line, exc.value.col) == (1, 8)
+
+
+def test_case_reports_html_and_trace_are_the_single_runs(cell, capsys):
+    code, _, err = sim(capsys, "apps/A", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST, "--out-dir", "o",
+                       "--case-reports", "json,html,trace")
+    assert code == 0, err
+    files = {p.suffix: p for p in (cell / "o" / "cases").iterdir()}
+    assert sorted(files) == [".html", ".json", ".mcap"]
+    single = ["apps/A", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST]
+    assert main(["sim", *single, "--report", "html", "-o", "one.html", "--trace", "one.mcap"]) == 0
+    assert files[".html"].read_bytes() == (cell / "one.html").read_bytes()
+    assert files[".mcap"].read_bytes() == (cell / "one.mcap").read_bytes()
+    index = (cell / "o" / "index.html").read_text()
+    assert f'href="cases/{files[".html"].name}">page</a>' in index and ">trace</a>" in index
+    code, _, err = sim(capsys, "apps/A", "--out-dir", "o", "--case-reports", "json,pdf")
+    assert code == 2 and "--case-reports: pdf" in err
+    code, _, err = sim(capsys, "apps/*", "--trace", "x.mcap")
+    assert code == 2 and "--case-reports json,trace" in err

@@ -37,6 +37,7 @@ class RunOptions:
     cycles: int | None = None
     fail_on: str = "error"
     reports: bool = True  # render each case's reports and send them back (only --out-dir writes them)
+    case_reports: tuple[str, ...] = ("json",)  # which (outputs.KINDS): --case-reports
 
 
 @dataclass(frozen=True)

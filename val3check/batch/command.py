@@ -52,6 +52,15 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
     if args.format not in ("text", "json"):
         return _err(f"--report {args.format}: a batch prints its summary as text or json; --out-dir DIR writes"
                     " every format (summary.json, junit.xml, index.html) and each case's reports")
+    from .outputs import KINDS
+
+    kinds = tuple(k for k in KINDS if k in {x.strip().lower() for x in args.case_reports.split(",")})
+    unknown = sorted({x.strip().lower() for x in args.case_reports.split(",")} - set(KINDS) - {""})
+    if unknown or not kinds:
+        return _err(f"--case-reports: {', '.join(unknown) or 'nothing'}; choose among {', '.join(KINDS)}")
+    if getattr(args, "trace", None):
+        return _err("--trace writes the trace of one run; in a batch, --out-dir DIR --case-reports json,trace"
+                    " writes one per case")
     if args.jobs is not None and args.jobs < 1:
         return _err("--jobs must be a positive number of processes")
     if args.executor == "dask" and not args.scheduler:
@@ -72,7 +81,7 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
                     " `sim --cell`); remove the cells from the sweep")
     options = RunOptions(duration=args.duration, max_wall=args.max_wall, max_lines=args.max_lines,
                          max_memory_mb=args.max_memory, cycles=args.cycles, fail_on=settings.fail_on,
-                         reports=bool(args.out_dir))
+                         reports=bool(args.out_dir), case_reports=kinds)
     try:
         if sweep is not None and sweep.mode == "list":
             cases = list_cases(sweep, axes, settings, options)

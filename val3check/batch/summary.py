@@ -108,14 +108,17 @@ th{background:#f3f3f3}td.n{text-align:right}.pass{color:#176117}.fail,.crash,.no
 
 def render_html(summaries: list[CaseSummary], reports: set[str], tool_version: str) -> str:
     """A self-contained page (no script, no remote resource); every text from a case escaped;
-    each case links to its report under cases/ when one was written (`reports`: file names)."""
+    each case links to its reports under cases/ that were written (`reports`: file names): the
+    HTML page, the JSON report, the MCAP trace."""
     e = html.escape
     rows = []
     for s in ordered(summaries):
         cells = _row(s)
         verdict = f'<td class="{e(s.verdict)}">{e(s.verdict)}</td>'
-        report = f"{s.name}.json"
-        link = (f'<a href="{e(CASES_DIR + "/" + quote(report))}">{e(report)}</a>' if report in reports else "-")
+        links = [f'<a href="{e(CASES_DIR + "/" + quote(s.name + suffix))}">{label}</a>'
+                 for suffix, label in ((".html", "page"), (".json", "JSON"), (".mcap", "trace"))
+                 if s.name + suffix in reports]
+        link = " · ".join(links) or "-"
         why = f'<div class="why">{e(s.reason)}</div>' if s.reason else ""
         rows.append("<tr>" + verdict + "".join(f"<td>{e(c)}</td>" for c in cells[1:6])
                     + f'<td class="n">{e(cells[6])}</td><td class="n">{e(cells[7])}</td><td>{link}{why}</td></tr>')

@@ -186,7 +186,7 @@ def _run(case: Case, mirror: str) -> CaseOutcome:
     cycle_time, cycles = _cycle(result.motion)
     summary = summary_of(case, "fail" if failing else "pass", reason, model=model, errors=errors_n,
                          warnings=warnings_n, cycle_time=cycle_time, cycles=cycles, end=result.end_reason)
-    return CaseOutcome(summary, case_outputs(report) if opts.reports else {})
+    return CaseOutcome(summary, case_outputs(report, opts.case_reports, opts.fail_on) if opts.reports else {})
 
 
 def _cycle(motion) -> tuple[float | None, int]:  # noqa: ANN001
