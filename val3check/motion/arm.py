@@ -59,6 +59,9 @@ class MovingArm:
         self._end_cmd = None  # that command, once recorded
         self.prismatic = tuple(k == "prismatic" for k in (getattr(model, "joint_kinds", None) or ())) \
             if model is not None else ()
+        # called (machine, time_us) after each motion instruction records a command: the collision
+        # checks read the frames and tools of the cell there (simulation/collision_run.py)
+        self.observer = None
 
     def bind(self, controller: Any) -> None:
         """The controller whose power and monitor speed the arm follows (chapter 8)."""

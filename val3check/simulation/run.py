@@ -50,6 +50,12 @@ class SimOptions:
     # the arm model (val3check.robot.RobotModel) or None: see robot_choice.choose_sim_robot
     robot: Any = None
     cycles: int | None = None  # --cycles N: end the run when the arm starts cycle N + 1
+    # collision checks (docs/cell.md): `collisions` checks every motion of the arm (against itself
+    # without a cell); `cell` the cell file (implies collisions), `cell_found` how it was chosen
+    # ("option", "found": collision_run.choose_cell)
+    collisions: bool = False
+    cell: str | None = None
+    cell_found: str = "option"
 
 
 def build_registry() -> Registry:
@@ -78,6 +84,7 @@ def simulate(ws: Workspace, app: Application, options: SimOptions | None = None,
              scenario: Scenario | None = None) -> SimResult:
     options = options or SimOptions()
     machine = build_machine(ws, app, options)
+    checks = _collision_setup(app, options, machine.arm)
     try:
         machine.load_main()
         if scenario is not None:
@@ -86,6 +93,40 @@ def simulate(ws: Workspace, app: Application, options: SimOptions | None = None,
         machine.end_reason = (stop.reason if isinstance(stop, EndRun) else f"budget:{stop}"
                               if isinstance(stop, MemoryError)
                               else "budget:the application's values are nested too deeply for the simulator")
-        return collect(machine)
+        return _collisions(collect(machine), app, options, checks)
     machine.run()
-    return collect(machine)
+    return _collisions(collect(machine), app, options, checks)
+
+
+def _collision_setup(app: Application, options: SimOptions, arm: Any):
+    """(cell, R030 diagnostics, value watch) when the run checks collisions, else None; the watch
+    reads the cell's frames and tools at each motion instruction."""
+    if not (options.collisions or options.cell) or not getattr(arm, "has_model", False):
+        return None
+    from . import collision_run
+
+    cell, diags = collision_run.load_cell(options.cell, app) if options.cell else (None, [])
+    watch = collision_run.ValueWatch(cell)
+    arm.observer = watch
+    return cell, diags, watch
+
+
+def _collisions(result: SimResult, app: Application, options: SimOptions, checks) -> SimResult:
+    """Check the motions of the run (SimResult.collision) and add the findings."""
+    if checks is None:
+        return result
+    from . import collision_run
+
+    cell, diags, watch = checks
+    found = list(diags)
+    if result.motion is not None:
+        unit_mm = 1.0 if getattr(app, "millimeter_unit", True) else 25.4
+        run, more = collision_run.check_run(result.motion, cell, watch, cell_path=options.cell,
+                                            cell_found=options.cell_found if options.cell else "none",
+                                            app_unit_mm=unit_mm)
+        result.collision = run
+        found.extend(more)
+    if found:
+        result.diagnostics = sorted([*result.diagnostics, *found],
+                                    key=lambda d: d.time_us if d.time_us is not None else 0)
+    return result
