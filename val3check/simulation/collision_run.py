@@ -224,18 +224,17 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, *, cell_path: s
 
 
 def _spans(motion: Any) -> list[tuple[int, float, float]]:
-    """(record index, start, end) of every command the arm ran, in time order; a command cut short
-    (resetMotion, end of the run) ends where the next one starts, or at the end of the run."""
+    """(record index, start, end) of every command the arm ran, in time order (stop() may move the
+    arm after the run's end); a command not ended ends where the next one starts, or at the end of
+    the run."""
     started = [(r.start, i) for i, r in enumerate(motion.records) if r.start is not None]
     started.sort()
     out = []
     for k, (start, i) in enumerate(started):
         end = motion.records[i].end
         if end is None:
-            end = started[k + 1][0] if k + 1 < len(started) else motion.end_s
-        end = min(end, motion.end_s)
-        if end >= start:
-            out.append((i, start, end))
+            end = started[k + 1][0] if k + 1 < len(started) else max(motion.end_s, start)
+        out.append((i, start, max(end, start)))
     return out
 
 

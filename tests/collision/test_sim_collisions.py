@@ -1,0 +1,408 @@
+"""Collisions checked along a simulated run (issue 14 phase 2): `sim` with a cell, against analytic
+geometry; the findings R030-R036 at the lines of the motion instructions; the PickPlace cell."""
+
+from __future__ import annotations
+
+import json
+import math
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+pytest.importorskip("fcl")
+
+from interpretation.simsupport import code_pos, run_folder, sim  # noqa: E402
+
+from val3check.motion.kin import ArmKin  # noqa: E402
+from val3check.robot import load_robot  # noqa: E402
+
+ROBOT = load_robot("TX2-60")
+KIN = ArmKin(ROBOT)
+DT = 0.004
+ROOT = Path(__file__).resolve().parents[2]
+PICKPLACE = ROOT / "fixtures" / "valid" / "PickPlace"
+SCENARIO = ROOT / "fixtures" / "scenarios" / "pickplace.toml"
+
+# A straight line of the tool centre point (tTool, 100 mm out of the flange, pointing down) along y
+# at x = 400, z = 100; a ball of radius 10 around the TCP is the tool's only solid.
+LINE = """
+begin
+  tTool.trsf = {0, 0, 100, 0, 0, 0}
+  pA.trsf = {400, -200, 100, 0, 180, 0}
+  pA.config = {sfree, efree, wfree}
+  pB = pA
+  pB.trsf.y = 200
+  mD.tvel = 200
+  movej(pA, tTool, mD)
+  movel(pB, tTool, mD)
+  waitEndMove()
+end
+"""
+LINE_GLOBALS = ["point pA", "point pB", "tool tTool", "mdesc mD"]
+TIP = """
+[[tool]]
+name = "tip"
+tool = "tTool"
+shape = "sphere"
+radius = 10
+"""
+
+
+def _cell(tmp_path: Path, text: str) -> str:
+    p = tmp_path / "cell.toml"
+    p.write_text("version = 1\n" + text, encoding="utf-8")
+    return str(p)
+
+
+def _run(tmp_path, code, globals_, cell_text, **kw):
+    cell = _cell(tmp_path, cell_text)
+    return sim(tmp_path, code, globals_=globals_, robot=ROBOT, collisions=True, cell=cell, **kw)
+
+
+def _tcp_y(r, t: float) -> float:
+    q = r.motion.trajectory.position(t)
+    return float(KIN.fk(np.asarray(q)[None])[0][1, 3])
+
+
+def _crossing(r, rec, y: float) -> float:
+    """When the TCP (the flange is 100 mm above it, same y: the tool points down) passes y on the
+    movel: bisection on the simulated trajectory."""
+    lo, hi = rec.start, rec.end
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if _tcp_y(r, mid) < y:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+def test_box_on_the_line_contact_at_its_time_and_line(tmp_path):
+    # a box 40 mm wide centred on the line at y = 50: the tip ball (r 10) meets its face y = 30 when
+    # the TCP reaches y = 20
+    r = _run(tmp_path, LINE, LINE_GLOBALS, TIP + """
+[[obstacle]]
+name = "block"
+shape = "box"
+size = [40, 40, 40]
+at = { x = 400, y = 50, z = 100 }
+""")
+    hits = [d for d in r.diagnostics if d.code == "R031"]
+    assert len(hits) == 1, r.diagnostics
+    d = hits[0]
+    assert (d.line, d.col) == code_pos(r, 10, 3) and d.task == "Example~" and d.program == "start"
+    assert "tool tTool 'tip' hits obstacle 'block'" in d.message
+    rec = r.motion.records[1]
+    assert rec.kind == "movel"
+    expected = _crossing(r, rec, 20.0)
+    assert abs(d.time_us / 1e6 - expected) <= DT
+    c = r.collision.by_motion[1].first_contact
+    assert abs(c.time - expected) <= DT and c.kind == "contact"
+    assert r.collision.contacts == [(1, c)]
+    # the movej before it is clean, and its clearance measured
+    assert r.collision.by_motion[0].first_contact is None
+
+
+@pytest.mark.parametrize("gap", [4.0, 12.5])
+def test_box_beside_the_line_near_miss_with_the_analytic_clearance(tmp_path, gap):
+    # a wide plate under the line, its top `gap` below the tip ball
+    r = _run(tmp_path, LINE, LINE_GLOBALS, "margin_mm = 15\n" + TIP + f"""
+[[obstacle]]
+name = "plate"
+shape = "box"
+size = [100, 200, 20]
+at = {{ x = 400, y = 0, z = {100 - 10 - gap - 10} }}
+""")
+    m = r.collision.by_motion[1].min_clearance
+    assert abs(m.mm - gap) <= 0.05 + 0.02 * gap  # docs/cell.md: within 0.05 mm + 2 %
+    assert {m.body_a, m.body_b} == {"tool tTool 'tip'", "obstacle 'plate'"}
+    near = [d for d in r.diagnostics if d.code == "R033"]
+    assert [(d.line, d.col) for d in near] == [code_pos(r, 10, 3)]
+    assert f"{m.mm:.1f} mm" in near[0].message and "margin 15 mm" in near[0].message
+    assert not [d for d in r.diagnostics if d.code in ("R031", "R032")]
+    # the per-sample clearance: a lower bound, the minimum among them
+    rep = r.collision.by_motion[1]
+    assert rep.clearance.min() == pytest.approx(m.mm, abs=1e-9)
+    t, c = r.collision.clearance_trace()
+    assert len(t) == len(c) == sum(len(x.times) for x in r.collision.by_motion.values())
+
+
+def test_without_margin_no_near_miss(tmp_path):
+    r = _run(tmp_path, LINE, LINE_GLOBALS, TIP + """
+[[obstacle]]
+name = "plate"
+shape = "box"
+size = [100, 200, 20]
+at = { x = 400, y = 0, z = 76 }
+""")
+    assert not [d for d in r.diagnostics if d.code.startswith("R03")]
+    assert r.collision.by_motion[1].min_clearance.mm == pytest.approx(4.0, abs=0.2)
+
+
+PICK = """
+begin
+  tGrip.trsf = {0, 0, 100, 0, 0, 0}
+  pPick.trsf = {400, -200, 40, 0, 180, 0}
+  pPick.config = {sfree, efree, wfree}
+  pPlace = pPick
+  pPlace.trsf.y = 200
+  movej(appro(pPick, {0, 0, -100, 0, 0, 0}), tGrip, mD)
+  movel(pPick, tGrip, mD)
+  close(tGrip)
+  movel(appro(pPick, {0, 0, -100, 0, 0, 0}), tGrip, mD)
+  movel(appro(pPlace, {0, 0, -100, 0, 0, 0}), tGrip, mD)
+  movel(pPlace, tGrip, mD)
+  open(tGrip)
+  movel(appro(pPlace, {0, 0, -100, 0, 0, 0}), tGrip, mD)
+  movel(appro(pPlace, {0, 0, 20, 0, 0, 0}), tGrip, mD)
+  waitEndMove()
+end
+"""
+PICK_GLOBALS = ["point pPick", "point pPlace", "tool tGrip", "mdesc mD"]
+# a 40 mm cube held with its top at the TCP, on a table whose top is at z = 0; the tool's tip is a
+# small ball 5 mm above the TCP (inside the gripper's fingers)
+PICK_CELL = """
+[[tool]]
+name = "finger"
+tool = "tGrip"
+shape = "sphere"
+radius = 4
+at = { z = -5 }
+
+[[obstacle]]
+name = "table"
+shape = "box"
+size = [200, 600, 40]
+at = { x = 400, z = -20 }
+
+[[part]]
+name = "brick"
+tool = "tGrip"
+grasp = "close"
+shape = "box"
+size = [40, 40, 40]
+at = { z = 20 }
+"""
+
+
+def test_part_carried_after_close_hits_a_wall_and_is_left_on_open(tmp_path):
+    # a wall between pick and place, its top 30 mm under the TCP's travel height (z = 140): the
+    # part (40 mm under the TCP) hits it, the finger above the TCP does not
+    wall = """
+[[obstacle]]
+name = "wall"
+shape = "box"
+size = [100, 20, 100]
+at = { x = 400, y = 0, z = 60 }
+"""
+    r = _run(tmp_path, PICK, PICK_GLOBALS, PICK_CELL + wall)
+    hits = [d for d in r.diagnostics if d.code == "R031"]
+    carried = [d for d in hits if "part 'brick' hits obstacle 'wall'" in d.message]
+    assert [(d.line, d.col) for d in carried] == [code_pos(r, 12, 3)], hits
+    # the part is left on the table on open: the last movel brings the finger 20 mm into it
+    left = [d for d in hits if "part 'brick'" in d.message and "wall" not in d.message]
+    assert [(d.line, d.col) for d in left] == [code_pos(r, 16, 3)], hits
+    assert "tool tGrip 'finger'" in left[0].message
+    assert not [d for d in r.diagnostics if d.code in ("R032", "R035")]
+
+
+def test_part_carried_and_set_down_clean(tmp_path):
+    # without the wall and without going back down on the part left: no finding; the part touches
+    # the table at pick and place only (allowed)
+    code = PICK.replace("  movel(appro(pPlace, {0, 0, 20, 0, 0, 0}), tGrip, mD)\n", "")
+    r = _run(tmp_path, code, PICK_GLOBALS, PICK_CELL)
+    assert not [d for d in r.diagnostics if d.code.startswith("R03")], r.diagnostics
+    assert len(r.collision.by_motion) == 6 and not r.collision.contacts and not r.collision.drops
+
+
+def test_obstacle_follows_the_frame_the_program_moves(tmp_path):
+    # the same line twice; between them the program moves fBlock under the line
+    code = """
+begin
+  tTool.trsf = {0, 0, 100, 0, 0, 0}
+  pA.trsf = {400, -200, 100, 0, 180, 0}
+  pA.config = {sfree, efree, wfree}
+  pB = pA
+  pB.trsf.y = 200
+  movej(pA, tTool, mD)
+  movel(pB, tTool, mD)
+  waitEndMove()
+  fBlock.trsf.x = 400
+  movel(pA, tTool, mD)
+  waitEndMove()
+end
+"""
+    r = _run(tmp_path, code, LINE_GLOBALS + ["frame fBlock"], TIP + """
+[[obstacle]]
+name = "block"
+shape = "box"
+frame = "fBlock"
+size = [40, 40, 40]
+at = { y = 50, z = 100 }
+""")
+    hits = [d for d in r.diagnostics if d.code == "R031"]
+    assert [(d.line, d.col) for d in hits] == [code_pos(r, 12, 3)], r.diagnostics
+    assert not [d for d in r.diagnostics if d.code == "R036"]
+
+
+def test_frame_without_value_leaves_the_obstacle_out_and_says_where(tmp_path):
+    r = _run(tmp_path, LINE, LINE_GLOBALS, TIP + """
+[[obstacle]]
+name = "block"
+shape = "box"
+frame = "fNowhere[3]"
+size = [40, 40, 40]
+at = { x = 400, y = 50, z = 100 }
+""")
+    found = [d for d in r.diagnostics if d.code.startswith("R03")]
+    assert [(d.code, Path(d.path).name, d.line) for d in found] == [("R036", "cell.toml", 9)]
+    assert "fNowhere[3]" in found[0].message
+
+
+def test_start_in_collision_reported_once(tmp_path):
+    # the arm stands with its flange in a ball; the movej away starts in collision; the contact is not
+    # reported again as a contact of that motion
+    code = """
+begin
+  pA.trsf = {400, 0, 100, 0, 180, 0}
+  pA.config = {sfree, efree, wfree}
+  movej(pA, flange, mD)
+  movej(pA, flange, mD)
+  waitEndMove()
+end
+"""
+    r = _run(tmp_path, code, ["point pA", "mdesc mD"], """
+[[obstacle]]
+name = "ball"
+shape = "sphere"
+radius = 40
+at = { x = 0, y = 20, z = 660 }
+""")
+    found = [(d.code, d.line) for d in r.diagnostics if d.code.startswith("R03")]
+    assert found == [("R032", code_pos(r, 5, 3)[0])]
+
+
+def test_cell_file_errors_are_diagnostics_and_the_arm_is_still_checked(tmp_path):
+    r = _run(tmp_path, LINE, LINE_GLOBALS, """
+[[obstacle]]
+name = "block"
+shape = "cube"
+""")
+    bad = [d for d in r.diagnostics if d.code == "R030"]
+    assert bad and all(Path(d.path).name == "cell.toml" and d.line >= 2 for d in bad)
+    assert r.collision is not None and r.collision.cell is None and len(r.collision.by_motion) == 2
+
+
+def test_without_cell_self_collision_only(tmp_path):
+    code = """
+begin
+  movej({-25, 13, 90, 154, 73, -172}, flange, mD)
+  movej({-25, 13, 150, 154, 73, -172}, flange, mD)
+  waitEndMove()
+end
+"""
+    r = sim(tmp_path, code, globals_=["mdesc mD"], robot=ROBOT, collisions=True)
+    found = [d for d in r.diagnostics if d.code.startswith("R03")]
+    assert found and {(d.code, d.line) for d in found} == {("R034", code_pos(r, 4, 3)[0])}
+    assert "self-collision" in found[0].message
+    assert r.collision.cell is None and r.collision.cell_path is None
+    assert r.collision.clearance_trace()[0].size == 0
+
+
+def test_no_collision_checks_unless_asked(tmp_path):
+    r = sim(tmp_path, LINE, globals_=LINE_GLOBALS, robot=ROBOT)
+    assert r.collision is None
+
+
+# ---- PickPlace, through the command line ------------------------------------------------------------------
+
+
+def _cli(args, capsys):
+    from val3check.cli import main
+
+    code = main(args)
+    out = capsys.readouterr()
+    return code, out.out, out.err
+
+
+def test_pickplace_cell_found_beside_the_application_is_clean(capsys):
+    code, out, err = _cli(["sim", str(PICKPLACE), "--robot", "tx2-60", "--scenario", str(SCENARIO),
+                           "--report", "json", "--duration", "20"], capsys)
+    assert code == 0, err
+    rep = json.loads(out)
+    c = rep["collision"]
+    assert c["cell"]["found"] == "found" and c["cell"]["path"].endswith("PickPlace/val3check-cell.toml")
+    assert c["summary"]["contacts"] == 0 and c["summary"]["near_misses"] == 0
+    assert c["summary"]["motions"] == sum(1 for m in rep["motion"]["motions"] if m["start"] is not None)
+    # the closest approach: the jaws 20 mm above the conveyor at pick and above the pallet at place
+    assert c["summary"]["min_clearance_mm"] == pytest.approx(20.0, abs=0.5)
+    assert not [d for d in rep["diagnostics"] if d["code"].startswith("R03")]
+
+
+def test_pickplace_text_names_the_cell(capsys):
+    code, out, _ = _cli(["sim", str(PICKPLACE), "--robot", "tx2-60", "--scenario", str(SCENARIO),
+                         "--duration", "8"], capsys)
+    assert code == 0
+    assert "collision: cell " in out and "(found beside the application)" in out
+    assert "closest approach to the cell per motion instruction:" in out and "no contact over" in out
+
+
+def test_pickplace_with_a_post_on_the_pallet_reports_the_place_movel(tmp_path, capsys):
+    app = tmp_path / "PickPlace"
+    shutil.copytree(PICKPLACE, app)
+    cell = (app / "val3check-cell.toml").read_text(encoding="utf-8")
+    # a post standing in slot 1 of the pallet (fPallet x = 70, y = 0), in the pallet's frame
+    (app / "val3check-cell.toml").write_text(cell + """
+[[obstacle]]
+name = "post"
+shape = "cylinder"
+radius = 15
+length = 200
+frame = "fPallet"
+at = { x = 70, z = 60 }
+""", encoding="utf-8")
+    code, out, _ = _cli(["sim", str(app), "--robot", "tx2-60", "--scenario", str(SCENARIO), "--report", "json",
+                         "--duration", "12"], capsys)
+    assert code == 1
+    rep = json.loads(out)
+    hits = [d for d in rep["diagnostics"] if d["code"] == "R031"]
+    assert hits
+    place = (app / "place.pgx").read_text(encoding="utf-8").split("\n")
+    line = next(i for i, t in enumerate(place, 1) if "movej(appro(l_pSlot" in t)
+    first = hits[0]
+    assert first["path"].endswith("place.pgx") and first["task"] == "robot"
+    assert first["line"] in (line, line + 1)  # the approach movej or the movel down
+    assert "obstacle 'post'" in first["message"]
+
+
+def test_no_cell_and_no_option_says_so(tmp_path, capsys):
+    app = tmp_path / "PickPlace"
+    shutil.copytree(PICKPLACE, app)
+    (app / "val3check-cell.toml").unlink()
+    code, out, _ = _cli(["sim", str(app), "--robot", "tx2-60", "--scenario", str(SCENARIO), "--duration", "6"],
+                        capsys)
+    assert code == 0
+    assert "collision: no cell file" in out and "against itself only" in out
+
+
+def test_cell_option_with_errors_points_at_the_cell_file(tmp_path, capsys):
+    cell = tmp_path / "bad.toml"
+    cell.write_text('version = 1\n[[obstacle]]\nname = "t"\nshape = "box"\nsize = [1, 2]\n', encoding="utf-8")
+    code, out, _ = _cli(["sim", str(PICKPLACE), "--robot", "tx2-60", "--scenario", str(SCENARIO), "--duration", "4",
+                         "--cell", str(cell)], capsys)
+    assert code == 1
+    assert "bad.toml:5:8: R030 error: cell file: " in out
+    assert "cannot be used (R030)" in out
+
+
+def test_json_collision_section_is_deterministic(capsys):
+    args = ["sim", str(PICKPLACE), "--robot", "tx2-60", "--scenario", str(SCENARIO), "--report", "json",
+            "--duration", "6"]
+    _, a, _ = _cli(args, capsys)
+    _, b, _ = _cli(args, capsys)
+    assert a == b
+    m = json.loads(a)["collision"]["motions"][1]
+    assert len(m["clearance"]["times"]) == len(m["clearance"]["mm"]) > 10
+    assert math.isclose(m["clearance"]["times"][0], m["start"])
