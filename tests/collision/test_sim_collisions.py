@@ -336,8 +336,10 @@ def test_pickplace_cell_found_beside_the_application_is_clean(capsys):
     assert c["cell"]["found"] == "found" and c["cell"]["path"].endswith("PickPlace/val3check-cell.toml")
     assert c["summary"]["contacts"] == 0 and c["summary"]["near_misses"] == 0
     assert c["summary"]["motions"] == sum(1 for m in rep["motion"]["motions"] if m["start"] is not None)
-    # the closest approach: the jaws 20 mm above the conveyor at pick and above the pallet at place
-    assert c["summary"]["min_clearance_mm"] == pytest.approx(20.0, abs=0.5)
+    # the closest approach: a jaw (outer face 32 mm from the cube's centre) beside the cube left in
+    # the next slot (70 mm pitch, 20 mm half width): 70 - 20 - 32 = 18 mm
+    assert c["summary"]["min_clearance_mm"] == pytest.approx(18.0, abs=0.05)
+    assert c["cell"]["parts"] == ["cube"]
     assert not [d for d in rep["diagnostics"] if d["code"].startswith("R03")]
 
 
@@ -406,3 +408,36 @@ def test_json_collision_section_is_deterministic(capsys):
     m = json.loads(a)["collision"]["motions"][1]
     assert len(m["clearance"]["times"]) == len(m["clearance"]["mm"]) > 10
     assert math.isclose(m["clearance"]["times"][0], m["start"])
+
+
+def test_pickplace_parts_stay_on_the_pallet_until_it_is_cleared(tmp_path, capsys):
+    # without `cleared_by` the cubes of the first pallet stay: the first cube of the second pallet is
+    # set down on the one in slot 0
+    app = tmp_path / "PickPlace"
+    shutil.copytree(PICKPLACE, app)
+    cell = (app / "val3check-cell.toml").read_text(encoding="utf-8")
+    assert 'cleared_by = "doPalletFull"' in cell
+    (app / "val3check-cell.toml").write_text(cell.replace('cleared_by = "doPalletFull"', ""), encoding="utf-8")
+    code, out, _ = _cli(["sim", str(app), "--robot", "tx2-60", "--scenario", str(SCENARIO), "--report", "json",
+                         "--duration", "35"], capsys)
+    rep = json.loads(out)
+    hits = [d for d in rep["diagnostics"] if d["code"] == "R031"]
+    assert code == 1 and hits
+    pallet_change = next(e["time"] for e in rep["io_log"] if e["link"].endswith("%Q1") and e["value"] is True)
+    place = (app / "place.pgx").read_text(encoding="utf-8").split("\n")
+    down = next(i for i, t in enumerate(place, 1) if "movel(l_pSlot, tGripper, mApproach)" in t)
+    first = hits[0]
+    assert first["time"] > pallet_change and first["line"] == down
+    assert "part 'cube' hits part 'cube'" in first["message"]
+
+
+def test_cleared_by_is_checked_where_it_is_written(tmp_path):
+    from val3check.collision import CellError, read_cell
+
+    p = tmp_path / "cell.toml"
+    p.write_text('version = 1\n[[part]]\nname = "c"\ntool = "tG"\nshape = "sphere"\nradius = 5\ncleared_by = 3\n',
+                 encoding="utf-8")
+    with pytest.raises(CellError) as exc:
+        read_cell(p)
+    assert [(line, col) for _, line, col, _ in exc.value.problems] == [(7, 14)]
+    assert "cleared_by must be the name or the link of a digital input or output" in str(exc.value)

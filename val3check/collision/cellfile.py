@@ -35,7 +35,7 @@ _ALL_SHAPE_KEYS = {"shape", "size", "radius", "length", "file", "scale", "solid"
 _ENTRY = {
     "obstacle": {"name", "frame", "at"} | _ALL_SHAPE_KEYS,
     "tool": {"name", "tool", "at", "touch_links"} | _ALL_SHAPE_KEYS,
-    "part": {"name", "tool", "grasp", "at"} | _ALL_SHAPE_KEYS,
+    "part": {"name", "tool", "grasp", "at", "cleared_by"} | _ALL_SHAPE_KEYS,
 }
 _TRSF = ("x", "y", "z", "rx", "ry", "rz")
 # a VAL 3 variable, optionally one array element: fPallet, fPallet[3], lib:fBase (a library's frame)
@@ -217,7 +217,13 @@ class _Reader:
             self.fail(path + ("grasp",), f"{label}: grasp must be \"close\" or \"open\" (the instruction that takes "
                       f"the part), not {_show(grasp)}")
             return None
-        return Part(name, tool, grasp, shape, pose, where)
+        cleared = e.get("cleared_by")
+        if cleared is not None and (not isinstance(cleared, str) or not cleared.strip()
+                                    or not all(c.isprintable() for c in cleared)):
+            self.fail(path + ("cleared_by",), f"{label}: cleared_by must be the name or the link of a digital "
+                      f"input or output of the application (doPalletFull), not {_show(cleared)}")
+            return None
+        return Part(name, tool, grasp, shape, pose, where, cleared.strip() if cleared else None)
 
     def shape(self, e: dict, path: tuple, label: str) -> Shape | None:
         kind = e.get("shape")
@@ -329,7 +335,10 @@ class _Reader:
 
     def check_parts(self, cell: Cell) -> None:
         grasp: dict[str, tuple[str, str]] = {}
+        cleared: dict[str, str | None] = {}
         for i, p in enumerate(cell.parts):
+            if cleared.setdefault(p.name, p.cleared_by) != p.cleared_by:
+                self.fail(("part", i, "cleared_by"), f"part {p.name!r}: its solids must have the same cleared_by")
             seen = grasp.setdefault(p.name, (p.tool, p.grasp))
             if seen != (p.tool, p.grasp):
                 self.fail(("part", i, "tool"), f"part {p.name!r}: its solids must hang on one tool with one grasp "

@@ -974,6 +974,16 @@ class CollisionChecker:
                 self._set_static([*self._placed_obstacles, *self._dropped])
         return drops
 
+    def clear_parts(self, name: str) -> int:
+        """The parts named `name` left in the cell are taken away (the cell's `cleared_by`): how many
+        solids left the cell."""
+        gone = {id(d) for d in self._dropped if d.owner == name}
+        if gone:
+            self._allowed = {k: v for k, v in self._allowed.items() if not (k & gone)}
+            self._dropped = [d for d in self._dropped if id(d) not in gone]
+            self._set_static([*self._placed_obstacles, *self._dropped])
+        return len(gone)
+
     def _arm_groups(self) -> list[_Group]:
         out = list(self.link_groups.values())
         if self.tool_group is not None:

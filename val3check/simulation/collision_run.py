@@ -183,10 +183,12 @@ def _same(a: dict, b: dict) -> bool:
 
 
 def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, *, cell_path: str | None = None,
-              cell_found: str = "none", app_unit_mm: float = 1.0) -> tuple[CollisionRun | None, list[Diagnostic]]:
+              cell_found: str = "none", app_unit_mm: float = 1.0, io_log=(),
+              link_names: dict | None = None) -> tuple[CollisionRun | None, list[Diagnostic]]:
     """Check every motion of `motion` (a simulation.result.MotionRun) in `cell` (None: the arm
-    against itself only), with the grippers' events; (CollisionRun, diagnostics R031-R036), or
-    (None, []) when the arm model has no collision solids."""
+    against itself only), with the grippers' events and the parts taken away (`cleared_by`, from
+    the run's `io_log`; `link_names`: (kind, link) -> the globals linked to it); (CollisionRun,
+    diagnostics R031-R036), or (None, []) when the arm model has no collision solids."""
     arm = arm_model(motion.model)
     if not arm.bodies:
         return None, []
@@ -196,13 +198,20 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, *, cell_path: s
     diags: list[Diagnostic] = []
     traj = motion.trajectory
     spans = _spans(motion)
-    events = sorted(motion.tool_events, key=lambda e: e.time_us)
+    events = _events(motion.tool_events, cell, io_log, link_names or {})
     names = _tool_names(cell)
     ev = 0
     previous: MotionReport | None = None
+
+    def event(e) -> list[Diagnostic]:
+        if isinstance(e, str):
+            checker.clear_parts(e)
+            return []
+        return _gripper(checker, e, names, traj, run)
+
     for index, start, end in spans:
-        while ev < len(events) and events[ev].time_us / US <= start + 1e-9:
-            diags.extend(_gripper(checker, events[ev], names, traj, run))
+        while ev < len(events) and events[ev][0] / US <= start + 1e-9:
+            diags.extend(event(events[ev][2]))
             ev += 1
         rec = motion.records[index]
         times, joints = _samples(traj, start, end)
@@ -212,7 +221,7 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, *, cell_path: s
         run.contacts.extend((index, c) for c in report.contacts)
         previous = report
     while ev < len(events):
-        diags.extend(_gripper(checker, events[ev], names, traj, run))
+        diags.extend(event(events[ev][2]))
         ev += 1
     for p in checker.problems:
         w = p.where
@@ -221,6 +230,27 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, *, cell_path: s
                                 program=""))
     run.checks = checker.measurements
     return run, diags
+
+
+def _events(tool_events, cell: Cell | None, io_log, link_names: dict) -> list[tuple[int, int, Any]]:
+    """(time_us, order, event) in time order: the grippers' ToolEvents, and the part names whose
+    `cleared_by` signal became true (a dio named or linked so)."""
+    out: list[tuple[int, int, Any]] = [(e.time_us, k, e) for k, e in enumerate(tool_events)]
+    clear: dict[str, list[str]] = {}
+    for p in cell.parts if cell is not None else ():
+        if p.cleared_by and p.name not in clear.setdefault(p.cleared_by, []):
+            clear[p.cleared_by].append(p.name)
+    if clear:
+        n = len(out)
+        for e in io_log:
+            if e.kind != "dio" or e.value is not True:
+                continue
+            for key in (e.link, *link_names.get(("dio", e.link), ())):
+                for name in clear.get(key, ()):
+                    out.append((e.time_us, n, name))
+                    n += 1
+    out.sort(key=lambda x: (x[0], x[1]))
+    return out
 
 
 def _spans(motion: Any) -> list[tuple[int, float, float]]:

@@ -123,7 +123,8 @@ def _collisions(result: SimResult, app: Application, options: SimOptions, checks
         unit_mm = 1.0 if getattr(app, "millimeter_unit", True) else 25.4
         run, more = collision_run.check_run(result.motion, cell, watch, cell_path=options.cell,
                                             cell_found=options.cell_found if options.cell else "none",
-                                            app_unit_mm=unit_mm)
+                                            app_unit_mm=unit_mm, io_log=result.io_log,
+                                            link_names=result.link_names)
         result.collision = run
         found.extend(more)
     if found:
