@@ -441,3 +441,36 @@ def test_cleared_by_is_checked_where_it_is_written(tmp_path):
         read_cell(p)
     assert [(line, col) for _, line, col, _ in exc.value.problems] == [(7, 14)]
     assert "cleared_by must be the name or the link of a digital input or output" in str(exc.value)
+
+
+def test_frame_changed_while_the_motion_before_runs_is_seen_by_the_next_one(tmp_path):
+    # line 11 is queued behind line 10; the program moves fBlock under the line while line 10 runs:
+    # line 10 started with the old value (clean), line 11 starts with the new one (contact)
+    code = """
+begin
+  tTool.trsf = {0, 0, 100, 0, 0, 0}
+  pA.trsf = {400, -200, 100, 0, 180, 0}
+  pA.config = {sfree, efree, wfree}
+  pB = pA
+  pB.trsf.y = 200
+  fBlock.trsf.x = -2000
+  movej(pA, tTool, mD)
+  waitEndMove()
+  movel(pB, tTool, mD)
+  movel(pA, tTool, mD)
+  fBlock.trsf.x = 400
+  waitEndMove()
+end
+"""
+    r = _run(tmp_path, code, LINE_GLOBALS + ["frame fBlock"], TIP + """
+[[obstacle]]
+name = "block"
+shape = "box"
+frame = "fBlock"
+size = [40, 40, 40]
+at = { y = 50, z = 100 }
+""")
+    hits = [d for d in r.diagnostics if d.code == "R031"]
+    assert [(d.line, d.col) for d in hits] == [code_pos(r, 12, 3)], r.diagnostics
+    assert r.collision.by_motion[1].first_contact is None
+    assert not [d for d in r.diagnostics if d.code in ("R032", "R036")]

@@ -112,7 +112,7 @@ def _record(task, unit, kind: str, target: Target, via: Target | None, tool: Too
         if not isinstance(r, QueueFull):
             observer = getattr(arm, "observer", None)
             if observer is not None:
-                observer(task.machine, clock.time_of(task))
+                observer(clock.time_of(task))
             return float(r)
         room = lambda: arm.has_room(clock.now)  # noqa: E731
         room.motion = True

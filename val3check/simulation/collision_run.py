@@ -3,14 +3,14 @@ its frames and tools, every motion of `SimResult.motion` through `collision.Coll
 the grippers' open/close, and the findings R030-R036 at the lines that commanded them.
 
     cell, diags = load_cell(path, app)                        # R030 for a cell file that cannot be used
-    watch = ValueWatch(cell)                                  # arm.observer: frames/tools at each motion instruction
+    watch = ValueWatch(cell, machine)                         # arm.observer: frames/tools as the run goes
     run, diags = check_run(motion_run, cell, watch, ...)      # -> CollisionRun, runtime diagnostics
 
 Frames and tools: the interpreter keeps only the current value of a variable. The watch reads the
-frames and tools the cell names each time a motion instruction records a command (ch10_motion),
-and keeps the values that changed, with their time; a motion is checked with the values of the
-last record at or before its start, which is what the program had when the motion started unless
-it changed a frame afterwards without recording another motion first (docs/cell.md).
+frames and tools the cell names each time a motion instruction records a command (ch10_motion)
+and each time the scheduler advances the arm (a command ends and the next one starts:
+motion/arm.py), and keeps the values that changed, with their time; a motion is checked with the
+last values read at or before its start (docs/cell.md).
 """
 
 from __future__ import annotations
@@ -27,6 +27,7 @@ from ..collision.cell import Cell
 from ..collision.records import Contact, MotionReport, PartDrop
 from ..diagnostics import Diagnostic
 from ..geometry import frames as geo_frames
+from ..interpretation.clock import TICK_US
 
 US = 1_000_000
 _NAME = re.compile(r"^(?:([A-Za-z_][A-Za-z0-9_]*):)?([A-Za-z_][A-Za-z0-9_]*)(?:\[\s*(\d+)\s*\])?$")
@@ -99,17 +100,22 @@ def load_cell(path: str, app) -> tuple[Cell | None, list[Diagnostic]]:
 
 class ValueWatch:
     """Reads the frames and tools a cell names (world poses of frames, tools in the flange, 4x4 in
-    the application's unit) when the program records a motion; `frame(name, t)` and `tool(name,
-    t)` give the values of the last reading at or before t. Set as `MovingArm.observer`."""
+    the application's unit) in `machine` (interpretation.machine.Machine) when called with the
+    simulated time; `frame(name, t)` and `tool(name, t)` give the values of the last reading at or
+    before t. Set as `MovingArm.observer`."""
 
-    def __init__(self, cell: Cell | None) -> None:
+    def __init__(self, cell: Cell | None, machine: Any = None) -> None:
+        self.machine = machine
         self.frames = sorted({o.frame for o in cell.obstacles if o.frame != "world"}) if cell else []
         self.tools = sorted({t.tool for t in (*cell.tools, *cell.parts) if t.tool != "flange"}) if cell else []
         self.times: list[float] = []
         self.values: list[dict[str, np.ndarray | None]] = []
 
-    def __call__(self, machine: Any, time_us: int) -> None:
-        if not self.frames and not self.tools:
+    def __call__(self, time_us: int, cycle: bool = False) -> None:
+        """Read at `time_us`; `cycle`: at the start of a scheduler cycle, before any line of it ran:
+        the values hold since the lines of the cycle before (no line runs between two cycles)."""
+        machine = self.machine
+        if machine is None or (not self.frames and not self.tools):
             return
         now: dict[str, np.ndarray | None] = {}
         for name in self.frames:
@@ -118,6 +124,9 @@ class ValueWatch:
             now["t:" + name] = _read(machine, name, geo_frames.Tool)
         if self.values and _same(now, self.values[-1]):
             return
+        if cycle:
+            last = int(round(self.times[-1] * US)) if self.times else 0
+            time_us = max(time_us - TICK_US + 1, last + 1)
         t = time_us / US
         if self.times and self.times[-1] == t:
             self.values[-1] = now

@@ -84,7 +84,7 @@ def simulate(ws: Workspace, app: Application, options: SimOptions | None = None,
              scenario: Scenario | None = None) -> SimResult:
     options = options or SimOptions()
     machine = build_machine(ws, app, options)
-    checks = _collision_setup(app, options, machine.arm)
+    checks = _collision_setup(app, options, machine)
     try:
         machine.load_main()
         if scenario is not None:
@@ -98,15 +98,17 @@ def simulate(ws: Workspace, app: Application, options: SimOptions | None = None,
     return _collisions(collect(machine), app, options, checks)
 
 
-def _collision_setup(app: Application, options: SimOptions, arm: Any):
+def _collision_setup(app: Application, options: SimOptions, machine: Machine):
     """(cell, R030 diagnostics, value watch) when the run checks collisions, else None; the watch
-    reads the cell's frames and tools at each motion instruction."""
+    reads the cell's frames and tools as the run goes (at each motion instruction, each time the
+    arm advances)."""
+    arm = machine.arm
     if not (options.collisions or options.cell) or not getattr(arm, "has_model", False):
         return None
     from . import collision_run
 
     cell, diags = collision_run.load_cell(options.cell, app) if options.cell else (None, [])
-    watch = collision_run.ValueWatch(cell)
+    watch = collision_run.ValueWatch(cell, machine)
     arm.observer = watch
     return cell, diags, watch
 
