@@ -50,7 +50,11 @@ def _simulate(tmp_path, ex):
     if ex.robot:
         from val3check.robot import load_robot
 
-        robot = load_robot(ex.robot)
+        from pathlib import Path
+
+        # a catalogue name, or a URDF of the repository (tests/data/robots/...)
+        root = Path(__file__).resolve().parent.parent
+        robot = load_robot(str(root / ex.robot) if ex.robot.endswith(".urdf") else ex.robot)
     opts = {}
     if ex.cell is not None:  # collision rules: the cell of the run
         (tmp_path / "cell.toml").write_text(ex.cell, encoding="utf-8")

@@ -193,14 +193,23 @@ def _same(a: dict, b: dict) -> bool:
 
 def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, *, cell_path: str | None = None,
               cell_found: str = "none", app_unit_mm: float = 1.0, io_log=(),
-              link_names: dict | None = None) -> tuple[CollisionRun | None, list[Diagnostic]]:
+              link_names: dict | None = None, app_path: str = "") -> tuple[CollisionRun | None, list[Diagnostic]]:
     """Check every motion of `motion` (a simulation.result.MotionRun) in `cell` (None: the arm
     against itself only), with the grippers' events and the parts taken away (`cleared_by`, from
     the run's `io_log`; `link_names`: (kind, link) -> the globals linked to it); (CollisionRun,
-    diagnostics R031-R036), or (None, []) when the arm model has no collision solids."""
-    arm = arm_model(motion.model)
-    if not arm.bodies:
-        return None, []
+    diagnostics R031-R036), or (None, [R037]) when there is nothing to check the motions with or
+    the arm's solids cannot be read."""
+    from ..robot import RobotError
+
+    name = getattr(motion.model, "name", "the arm")
+    try:
+        arm = arm_model(motion.model)
+    except RobotError as exc:
+        return None, [_not_checked(f"collisions not checked: the collision solids of {name} cannot be read: {exc}",
+                                   motion.end_s, app_path)]
+    if not arm.bodies and (cell is None or not (cell.tools or cell.parts)):
+        return None, [_not_checked(f"collisions not checked: the arm model {name} has no collision solids, and no "
+                                   "cell gives tool solids or parts", motion.end_s, app_path)]
     checker = CollisionChecker(arm, cell if cell is not None else Cell(path=""), frames=watch.frame,
                                tools=watch.tool, app_unit_mm=app_unit_mm)
     run = CollisionRun(cell, cell_path, cell_found, margin_mm=checker.margin)
@@ -239,6 +248,10 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, *, cell_path: s
                                 program=""))
     run.checks = checker.measurements
     return run, diags
+
+
+def _not_checked(message: str, end_s: float, path: str) -> Diagnostic:
+    return Diagnostic("R037", message, path, 0, 0, time_us=int(round(end_s * US)), task="", program="")
 
 
 def _events(tool_events, cell: Cell | None, io_log, link_names: dict) -> list[tuple[int, int, Any]]:

@@ -126,7 +126,7 @@ def _collisions(result: SimResult, app: Application, options: SimOptions, checks
         run, more = collision_run.check_run(result.motion, cell, watch, cell_path=options.cell,
                                             cell_found=options.cell_found if options.cell else "none",
                                             app_unit_mm=unit_mm, io_log=result.io_log,
-                                            link_names=result.link_names)
+                                            link_names=result.link_names, app_path=app.path)
         result.collision = run
         found.extend(more)
     if found:
