@@ -519,7 +519,7 @@ class CollisionChecker:
             w.contact = False
             w.first_contact = None
             w.landing = set()
-            w.landing = self._landing(w)
+            w.landing = self._landing(w) | self._still_allowed(w)
         report = MotionReport(motion, T, np.zeros(n), np.zeros(n, dtype=bool), margin_mm=self.margin,
                               tolerance_mm=self.tol)
         self._best = None
@@ -789,6 +789,23 @@ class CollisionChecker:
                 if any(np.all(lo >= olo) and np.all(hi <= ohi) for olo, ohi in boxes):
                     return True
         return False
+
+    def _still_allowed(self, w: _Watch) -> set[tuple[int, int]]:
+        """Body pairs of the watch allowed to touch since a grasp or a release (a part let go while
+        the arm still moved: resetMotion() in stop()): like landing pairs, out of the clearance of
+        the motion in which they move apart, checked for contact once apart."""
+        if not self._allowed:
+            return set()
+        a = {id(b) for b in w.a.bodies}
+        other = {id(b) for b in (self._static if w.b is None else w.b.bodies)}
+        out = set()
+        for key in self._allowed:
+            x, y = tuple(key)
+            if x in a and y in other:
+                out.add((x, y))
+            elif y in a and x in other:
+                out.add((y, x))
+        return out
 
     def _landing(self, w: _Watch) -> set[tuple[int, int]]:
         """Body pairs touching (within the touch tolerance, not deeper) at the motion's first or last
