@@ -394,10 +394,15 @@ class Machine:
                     code, text = why
                     msg = f"task {task.name} waits in {self.blocked_on(task)} for a motion that cannot happen: {text}"
                 else:
-                    msg = f"task {task.name} waits in {self.blocked_on(task)}, which nothing scheduled can change"
                     hint = getattr(task.cond, "hint", "")
                     if hint:
-                        msg += f" ({hint})"
+                        # the condition reads I/O: in the cell, the outside world can release it;
+                        # only the simulation has nobody to set it (R009, a warning)
+                        code = "R009"
+                        msg = (f"task {task.name} waits in {self.blocked_on(task)}, which only an input the "
+                               f"run does not drive can release ({hint})")
+                    else:
+                        msg = f"task {task.name} waits in {self.blocked_on(task)}, which nothing scheduled can change"
             task.errpos = (path, line, col, prog)
             self.diags.append(Diagnostic(code, msg, path, line, col, time_us=self.clock.now, task=task.name,
                                          program=prog))

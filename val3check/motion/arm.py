@@ -30,10 +30,10 @@ from typing import Any
 
 import numpy as np
 
-from ..interpretation.arm_port import Joints, Pose6
+from ..interpretation.arm_port import Joints
 from ..interpretation.scheduler import EndRun
 from ..language.runtime_errors import Val3RuntimeError
-from .arm_state import INCH_MM, UnitKinematics, solve_in_unit
+from .arm_state import INCH_MM, ModelArm
 from .commands import MoveCommand, Target
 from .cycle import CycleCounter
 from .findings import MotionError, Source
@@ -43,14 +43,11 @@ from .queue import MotionQueue, QueueFull
 US = 1_000_000
 
 
-class MovingArm:
+class MovingArm(ModelArm):
     """See the module docstring."""
 
     def __init__(self, model: Any = None, *, cycles: int | None = None) -> None:
-        self.model = model
-        self.name: str | None = model.name if model is not None else None
-        self._initial: Joints = (0.0,) * len(model.joint_limits) if model is not None else ()
-        self._kin: dict[bool, UnitKinematics] = {}
+        super().__init__(model)
         self._queue: MotionQueue | None = None
         self.controller: Any = None
         self.auto_connect = False  # autoConnectMove (kept; the connection move is always automatic)
@@ -96,33 +93,8 @@ class MovingArm:
 
     # ---- the Arm port ----------------------------------------------------------------------------
 
-    @property
-    def has_model(self) -> bool:
-        return self.model is not None
-
-    @property
-    def type_family(self) -> str:
-        return getattr(self.model, "type_family", "Rx") if self.model is not None else "Rx"
-
-    @property
-    def axes(self) -> int:
-        return len(self.model.joint_limits)
-
-    @property
-    def joint_limits(self) -> tuple[tuple[float, float], ...]:
-        return tuple(self.model.joint_limits)
-
-    def joint_limits_in(self, millimeter_unit: bool) -> tuple[tuple[float, float], ...]:
-        """The joint limits with a prismatic axis in the caller's length unit."""
-        return tuple((self._out(lo, k, millimeter_unit), self._out(hi, k, millimeter_unit))
-                     for k, (lo, hi) in enumerate(self.model.joint_limits))
-
-    @property
-    def initial_joints(self) -> Joints:
-        return self._initial
-
     def start_at(self, joints: Sequence[float]) -> None:
-        self._initial = tuple(float(v) + 0.0 for v in joints)
+        super().start_at(joints)
         self._queue = None
 
     def joints_at(self, time_us: int, millimeter_unit: bool = True) -> Joints:
@@ -131,15 +103,6 @@ class MovingArm:
             return self._initial
         j = q.position(time_us / US)
         return self.joints_out(j, millimeter_unit)
-
-    def kinematics(self, millimeter_unit: bool) -> UnitKinematics:
-        k = self._kin.get(millimeter_unit)
-        if k is None:
-            k = self._kin[millimeter_unit] = UnitKinematics(self.model, 1.0 if millimeter_unit else INCH_MM)
-        return k
-
-    def solve(self, flange: Pose6, config: Sequence[str], millimeter_unit: bool, initial: Sequence[float]) -> Joints:
-        return solve_in_unit(self.model, flange, config, millimeter_unit, initial)
 
     def motion_done(self, time_us: int) -> bool:
         q = self.sync(time_us)

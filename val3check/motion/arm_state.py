@@ -93,16 +93,16 @@ def solve_in_unit(model: Any, flange: Pose6, config: Sequence[str], millimeter_u
     return tuple(k._jout(tuple(j)))
 
 
-class MotionlessArm:
-    """See the module docstring. `model` is a `val3check.robot.RobotModel` or None."""
+class ModelArm:
+    """What every arm of a run knows from its model (the model-facing half of the Arm port):
+    its family, axes, limits and kinematics in the application's unit, and where it starts.
+    `model` is a `val3check.robot.RobotModel` or None."""
 
     def __init__(self, model: Any = None) -> None:
         self.model = model
         self.name: str | None = model.name if model is not None else None
         self._initial: Joints = (0.0,) * len(model.joint_limits) if model is not None else ()
         self._kin: dict[bool, UnitKinematics] = {}
-
-    # ---- the Arm port ----------------------------------------------------------------------------
 
     @property
     def has_model(self) -> bool:
@@ -121,6 +121,7 @@ class MotionlessArm:
         return tuple(self.model.joint_limits)
 
     def joint_limits_in(self, millimeter_unit: bool) -> tuple[tuple[float, float], ...]:
+        """The joint limits with a prismatic axis in the caller's length unit."""
         k = self.kinematics(millimeter_unit)
         lim = tuple(self.model.joint_limits)
         if not k._lin:
@@ -134,15 +135,6 @@ class MotionlessArm:
     def start_at(self, joints: Sequence[float]) -> None:
         self._initial = tuple(float(v) + 0.0 for v in joints)
 
-    def joints_at(self, time_us: int, millimeter_unit: bool = True) -> Joints:
-        return self._initial  # an arm that does not move (tests, tools)
-
-    def end_motion(self, time_us: int) -> None:
-        pass  # nothing is ever recorded
-
-    def waiting_reason(self):
-        return None
-
     def kinematics(self, millimeter_unit: bool) -> UnitKinematics:
         k = self._kin.get(millimeter_unit)
         if k is None:
@@ -151,6 +143,21 @@ class MotionlessArm:
 
     def solve(self, flange: Pose6, config: Sequence[str], millimeter_unit: bool, initial: Sequence[float]) -> Joints:
         return solve_in_unit(self.model, flange, config, millimeter_unit, initial)
+
+
+class MotionlessArm(ModelArm):
+    """See the module docstring."""
+
+    # ---- the Arm port ----------------------------------------------------------------------------
+
+    def joints_at(self, time_us: int, millimeter_unit: bool = True) -> Joints:
+        return self._initial  # an arm that does not move (tests, tools)
+
+    def end_motion(self, time_us: int) -> None:
+        pass  # nothing is ever recorded
+
+    def waiting_reason(self):
+        return None
 
     def motion_done(self, time_us: int) -> bool:
         return True  # no motion command is ever accepted: the queue is always empty
