@@ -13,7 +13,7 @@ import pytest
 
 pytest.importorskip("fcl")
 
-from interpretation.simsupport import code_pos, run_folder, sim  # noqa: E402
+from interpretation.simsupport import code_pos, sim  # noqa: E402
 
 from val3check.motion.kin import ArmKin  # noqa: E402
 from val3check.robot import load_robot  # noqa: E402
