@@ -474,3 +474,29 @@ at = { y = 50, z = 100 }
     assert [(d.line, d.col) for d in hits] == [code_pos(r, 12, 3)], r.diagnostics
     assert r.collision.by_motion[1].first_contact is None
     assert not [d for d in r.diagnostics if d.code in ("R032", "R036")]
+
+
+def test_an_obstacle_beside_the_base_is_no_near_miss_of_every_motion(tmp_path):
+    # a cabinet 5 mm from the arm's base (a cylinder of radius 111 mm up to z = -110), margin 10:
+    # the base never moves, so the motions' clearances are those of what they move
+    r = _run(tmp_path, LINE, LINE_GLOBALS, "margin_mm = 10\n" + TIP + """
+[[obstacle]]
+name = "cabinet"
+shape = "box"
+size = [100, 100, 100]
+at = { x = -166, z = -300 }
+""")
+    assert not [d for d in r.diagnostics if d.code.startswith("R03")], r.diagnostics
+    assert all(rep.min_clearance is None or "base_link" not in rep.min_clearance.body_a
+               for rep in r.collision.by_motion.values())
+    # moved into the base: the first motion starts in collision
+    (tmp_path / "in").mkdir()
+    r = _run(tmp_path / "in", LINE, LINE_GLOBALS, TIP + """
+[[obstacle]]
+name = "cabinet"
+shape = "box"
+size = [100, 100, 100]
+at = { x = -150, z = -300 }
+""")
+    found = [(d.code, d.message) for d in r.diagnostics if d.code.startswith("R03")]
+    assert len(found) == 1 and found[0][0] == "R032" and "base_link (base) hits obstacle 'cabinet'" in found[0][1]

@@ -526,7 +526,8 @@ class CollisionChecker:
         for w in watches:
             self._advance(w, report)
         report.contacts.sort(key=lambda c: c.time)
-        self._samples([w for w in watches if w.b is None], report)
+        # clearance of what the motion moves: a link no joint moves (the base) is checked for contact only
+        self._samples([w for w in watches if w.b is None and w.a.movers], report)
         if self._best is not None:
             d, u, (a, b, pa, pb) = self._best
             report.min_clearance = Clearance(float(d), self._t(u), a.label, b.label, pa, pb)
@@ -714,7 +715,7 @@ class CollisionChecker:
         if k == u:
             w.L[k] = max(w.L[k], d) if not exact else d
             w.E[k] = w.E[k] or exact
-        if w.b is None and exact and info is not None and (self._best is None or d < self._best[0]):
+        if w.b is None and w.a.movers and exact and info is not None and (self._best is None or d < self._best[0]):
             self._best = (d, u, info[:4])  # the clearance is to the cell: the static set
 
     def _apart_from(self) -> dict[frozenset[int], float]:

@@ -361,7 +361,11 @@ def _motion_findings(r: MotionReport, rec: Any, previous: MotionReport | None, m
 
     s = r.starts_in_collision
     if s is not None:
-        before = {(c.body_a, c.body_b) for c in previous.contacts} if previous is not None else set()
+        before = set()
+        if previous is not None:
+            before = {(c.body_a, c.body_b) for c in previous.contacts}
+            if previous.starts_in_collision is not None:
+                before.add((previous.starts_in_collision.body_a, previous.starts_in_collision.body_b))
         if (s.body_a, s.body_b) not in before:  # else the contact of the motion before goes on: said there
             code = "R034" if s.kind == "self" else "R032"
             diag(code, f"{rec.kind} starts in collision: {_contact_text(s)}", s.time)
