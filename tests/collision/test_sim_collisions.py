@@ -500,3 +500,11 @@ at = { x = -150, z = -300 }
 """)
     found = [(d.code, d.message) for d in r.diagnostics if d.code.startswith("R03")]
     assert len(found) == 1 and found[0][0] == "R032" and "base_link (base) hits obstacle 'cabinet'" in found[0][1]
+
+
+def test_a_cell_without_an_arm_model_is_said_not_checked(tmp_path):
+    r = sim(tmp_path, LINE.replace("movej(pA, tTool, mD)\n  movel(pB, tTool, mD)\n  waitEndMove()\n", ""),
+            globals_=LINE_GLOBALS, cell=_cell(tmp_path, TIP))
+    found = [d for d in r.diagnostics if d.code.startswith("R03")]
+    assert [d.code for d in found] == ["R037"] and "no arm model" in found[0].message
+    assert r.collision is None

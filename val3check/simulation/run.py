@@ -116,6 +116,12 @@ def _collision_setup(app: Application, options: SimOptions, machine: Machine):
 def _collisions(result: SimResult, app: Application, options: SimOptions, checks) -> SimResult:
     """Check the motions of the run (SimResult.collision) and add the findings."""
     if checks is None:
+        if options.cell and result.motion is None:  # said, not silently ignored
+            from ..diagnostics import Diagnostic
+
+            result.diagnostics.append(Diagnostic(
+                "R037", f"the cell {options.cell} is not checked: the run has no arm model (--robot NAME)",
+                app.path, 0, 0, time_us=result.sim_time_us, task="", program=""))
         return result
     from . import collision_run
 
