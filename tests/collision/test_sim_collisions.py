@@ -13,7 +13,7 @@ import pytest
 
 pytest.importorskip("fcl")
 
-from interpretation.simsupport import code_pos, sim  # noqa: E402
+from interpretation.simsupport import code_pos, run_folder, sim  # noqa: E402
 
 from val3check.motion.kin import ArmKin  # noqa: E402
 from val3check.robot import load_robot  # noqa: E402
@@ -508,3 +508,64 @@ def test_a_cell_without_an_arm_model_is_said_not_checked(tmp_path):
     found = [d for d in r.diagnostics if d.code.startswith("R03")]
     assert [d.code for d in found] == ["R037"] and "no arm model" in found[0].message
     assert r.collision is None
+
+
+def test_an_application_in_inches_with_its_cell_in_inches(tmp_path):
+    # the frame test in inches: program, frame values and cell (unit: the application's) in inches
+    from interpretation.simsupport import build
+
+    def i(mm: float) -> str:
+        return repr(mm / 25.4)
+
+    code = f"""
+begin
+  tTool.trsf = {{0, 0, {i(100)}, 0, 0, 0}}
+  pA.trsf = {{{i(400)}, {i(-200)}, {i(100)}, 0, 180, 0}}
+  pA.config = {{sfree, efree, wfree}}
+  pB = pA
+  pB.trsf.y = {i(200)}
+  fBlock.trsf.x = {i(-2000)}
+  movej(pA, tTool, mD)
+  movel(pB, tTool, mD)
+  waitEndMove()
+  fBlock.trsf.x = {i(400)}
+  movel(pA, tTool, mD)
+  waitEndMove()
+end
+"""
+    folder = build(tmp_path, code, globals_=LINE_GLOBALS + ["frame fBlock"])
+    pjx = folder / "Example.pjx"
+    pjx.write_text(pjx.read_text(encoding="utf-8").replace('millimeterUnit="true"', 'millimeterUnit="false"'),
+                   encoding="utf-8")
+    cell = _cell(tmp_path, f"""
+[[tool]]
+name = "tip"
+tool = "tTool"
+shape = "sphere"
+radius = {i(10)}
+
+[[obstacle]]
+name = "block"
+shape = "box"
+frame = "fBlock"
+size = [{i(40)}, {i(40)}, {i(40)}]
+at = {{ y = {i(50)}, z = {i(100)} }}
+""")
+    r = run_folder(folder, robot=ROBOT, collisions=True, cell=cell)
+    hits = [d for d in r.diagnostics if d.code == "R031"]
+    assert [(d.line, d.col) for d in hits] == [code_pos(r, 13, 3)], r.diagnostics
+    c = r.collision.by_motion[2].first_contact
+    # the tip (10 mm) meets the block's face (y = 30 mm) when the TCP, coming back, is at y = 80 mm
+    assert abs(c.time - _crossing_back(r, r.motion.records[2], 80.0)) <= DT
+    assert r.collision.by_motion[1].min_clearance.mm > 500
+
+
+def _crossing_back(r, rec, y: float) -> float:
+    lo, hi = rec.start, rec.end
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if _tcp_y(r, mid) > y:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
