@@ -100,7 +100,7 @@ def build_parser() -> argparse.ArgumentParser:
                      help="memory budget in MB, loading included (default: 512)")
     sim.add_argument("--fail-on", choices=("error", "warning", "info", "never"), help="lowest runtime diagnostic severity that makes the exit code 1 (default: error)")
     _add_disk_root(sim)
-    sim.add_argument("--cell", metavar="FILE", help="the cell around the arm, checked for collisions (TOML, docs/cell.md; default: val3check-cell.toml beside the application, else the arm against itself only)")
+    sim.add_argument("--cell", metavar="FILE", help="the cell around the arm, checked for collisions (TOML, docs/cell.md; default: val3check-cell.toml beside the application; none: the arm against itself only)")
     sim.add_argument("--robot", metavar="NAME|URDF", help="the arm model: a catalogue name (case-insensitive, `val3check robots`), a URDF, an arm.cfx, or none (default: the usr/configs/arm.cfx of the controller tree holding APP, else none)")
     _add_config(sim)
 

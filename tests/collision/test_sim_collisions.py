@@ -569,3 +569,11 @@ def _crossing_back(r, rec, y: float) -> float:
         else:
             hi = mid
     return 0.5 * (lo + hi)
+
+
+def test_cell_none_skips_the_cell_found_beside_the_application(capsys):
+    code, out, _ = _cli(["sim", str(PICKPLACE), "--robot", "tx2-60", "--scenario", str(SCENARIO), "--duration", "4",
+                         "--cell", "none"], capsys)
+    assert code == 0
+    assert "collision: no cell (--cell none): the arm is checked against itself only" in out
+    assert "closest approach" not in out

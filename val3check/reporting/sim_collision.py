@@ -17,6 +17,8 @@ def _where(run: Any, path: str, line: int) -> str:
 
 
 def _cell_line(run: Any, c: Any) -> str:
+    if c.cell_path is None and c.cell_found == "disabled":
+        return "collision: no cell (--cell none): the arm is checked against itself only"
     if c.cell_path is None:
         return ("collision: no cell file (--cell FILE, or val3check-cell.toml beside the application): "
                 "the arm is checked against itself only")
@@ -26,9 +28,12 @@ def _cell_line(run: Any, c: Any) -> str:
         return f"collision: the cell file {shown}{how} cannot be used (R030): the arm is checked against itself only"
     cell = c.cell
     parts = len({p.name for p in cell.parts})
-    return (f"collision: cell {shown}{how}: {len(cell.obstacles)} obstacle{'s' if len(cell.obstacles) != 1 else ''}, "
-            f"{len(cell.tools)} tool solid{'s' if len(cell.tools) != 1 else ''}, {parts} part{'s' if parts != 1 else ''}; "
-            f"margin {c.margin_mm:g} mm")
+    return (f"collision: cell {shown}{how}: {_n(len(cell.obstacles), 'obstacle')}, {_n(len(cell.tools), 'tool solid')}, "
+            f"{_n(parts, 'part')}; margin {c.margin_mm:g} mm")
+
+
+def _n(n: int, what: str) -> str:
+    return f"{n} {what}{'s' if n != 1 else ''}"
 
 
 def _by_instruction(run: Any) -> list[tuple[tuple, list[int]]]:

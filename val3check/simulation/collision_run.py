@@ -40,7 +40,7 @@ class CollisionRun:
     cell        the `collision.cell.Cell` checked against, or None (no cell: self-collision only)
     cell_path   the cell file (as given or found), or None
     cell_found  how it was chosen: "option" (--cell), "found" (val3check-cell.toml beside the
-                application) or "none"
+                application), "none" (no file there) or "disabled" (--cell none)
     by_motion   {index in result.motion.records: collision.records.MotionReport} for every motion
                 the arm ran (min_clearance, first_contact, starts_in_collision, too_close,
                 per-sample clearance)
@@ -77,7 +77,10 @@ class CollisionRun:
 
 def choose_cell(option: str | None, app_path: str) -> tuple[str | None, str]:
     """The cell file of a run: (path, how) with how "option" (--cell), "found" (beside the
-    application, collision.cellfile.CELL_FILE_NAME) or "none"."""
+    application, collision.cellfile.CELL_FILE_NAME), "none" (none there) or "disabled" (`--cell
+    none`): without a cell the arm is checked against itself only."""
+    if option == "none":
+        return None, "disabled"
     if option:
         return option, "option"
     found = find_cell(Path(app_path).parent)
@@ -322,7 +325,8 @@ def _tool_names(cell: Cell | None) -> dict[str, str]:
     return out
 
 
-def _gripper(checker: CollisionChecker, e: Any, names: dict[str, str], traj: Any, run: CollisionRun) -> list[Diagnostic]:
+def _gripper(checker: CollisionChecker, e: Any, names: dict[str, str], traj: Any,
+             run: CollisionRun) -> list[Diagnostic]:
     tool = names.get(e.tool)
     if tool is None:
         return []

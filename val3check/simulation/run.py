@@ -52,7 +52,7 @@ class SimOptions:
     cycles: int | None = None  # --cycles N: end the run when the arm starts cycle N + 1
     # collision checks (docs/cell.md): `collisions` checks every motion of the arm (against itself
     # without a cell); `cell` the cell file (implies collisions), `cell_found` how it was chosen
-    # ("option", "found": collision_run.choose_cell)
+    # ("option", "found", "disabled": collision_run.choose_cell)
     collisions: bool = False
     cell: str | None = None
     cell_found: str = "option"
@@ -129,8 +129,8 @@ def _collisions(result: SimResult, app: Application, options: SimOptions, checks
     found = list(diags)
     if result.motion is not None:
         unit_mm = 1.0 if getattr(app, "millimeter_unit", True) else 25.4
-        run, more = collision_run.check_run(result.motion, cell, watch, cell_path=options.cell,
-                                            cell_found=options.cell_found if options.cell else "none",
+        how = options.cell_found if options.cell or options.cell_found == "disabled" else "none"
+        run, more = collision_run.check_run(result.motion, cell, watch, cell_path=options.cell, cell_found=how,
                                             app_unit_mm=unit_mm, io_log=result.io_log,
                                             link_names=result.link_names, app_path=app.path)
         result.collision = run
