@@ -28,8 +28,8 @@ def _cell_line(run: Any, c: Any) -> str:
         return f"collision: the cell file {shown}{how} cannot be used (R030): the arm is checked against itself only"
     cell = c.cell
     parts = len({p.name for p in cell.parts})
-    return (f"collision: cell {shown}{how}: {_n(len(cell.obstacles), 'obstacle')}, {_n(len(cell.tools), 'tool solid')}, "
-            f"{_n(parts, 'part')}; margin {c.margin_mm:g} mm")
+    return (f"collision: cell {shown}{how}: {_n(len(cell.obstacles), 'obstacle')}, "
+            f"{_n(len(cell.tools), 'tool solid')}, {_n(parts, 'part')}; margin {c.margin_mm:g} mm")
 
 
 def _n(n: int, what: str) -> str:
