@@ -577,3 +577,19 @@ def test_cell_none_skips_the_cell_found_beside_the_application(capsys):
     assert code == 0
     assert "collision: no cell (--cell none): the arm is checked against itself only" in out
     assert "closest approach" not in out
+
+
+def test_a_cell_file_found_beside_the_application_may_not_link_out_of_it(tmp_path, capsys):
+    app = tmp_path / "repo" / "PickPlace"
+    shutil.copytree(PICKPLACE, app)
+    secret = tmp_path / "secret.toml"
+    secret.write_text('version = 1\ndescription = "outside"\n', encoding="utf-8")
+    (app / "val3check-cell.toml").unlink()
+    (app / "val3check-cell.toml").symlink_to(secret)
+    code, out, _ = _cli(["sim", str(app), "--robot", "tx2-60", "--scenario", str(SCENARIO), "--duration", "4"], capsys)
+    assert code == 1
+    assert "R030 error: cell file: cannot read the cell file: outside the application" in out
+    # named on the command line, the same file is read
+    code, out, _ = _cli(["sim", str(app), "--robot", "tx2-60", "--scenario", str(SCENARIO), "--duration", "4",
+                         "--cell", str(secret)], capsys)
+    assert code == 0 and "R030" not in out

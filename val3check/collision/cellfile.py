@@ -52,15 +52,18 @@ def find_cell(app_dir: str | os.PathLike) -> Path | None:
 
 
 def read_cell(path: str | os.PathLike, app_dir: str | os.PathLike | None = None, app_unit: str = "mm",
-              roots: list[str | os.PathLike] | None = None) -> Cell:
+              roots: list[str | os.PathLike] | None = None, found: bool = False) -> Cell:
     """Read and check a cell file. Mesh files may lie in the cell file's folder, the application's
     folder (`app_dir`) or one of `roots`. Lengths are in the cell's `unit` (default: the
-    application's, `app_unit`); the Cell holds millimetres."""
+    application's, `app_unit`); the Cell holds millimetres. `found`: the file was found beside the
+    application, not named by the user: a link may not lead out of that folder."""
     from .. import confine
 
     shown = str(path)
-    try:  # a path the user gave (or found beside the application): read wherever it is, if a plain file
-        raw = confine.read_bytes(os.fspath(path), confine.Roots.user_given(), MAX_CELL_BYTES)
+    # a path the user gave: read wherever it is, if a plain file; found beside the application: there only
+    where = confine.Roots([os.path.dirname(os.path.abspath(path))]) if found else confine.Roots.user_given()
+    try:
+        raw = confine.read_bytes(os.fspath(path), where, MAX_CELL_BYTES)
     except confine.Refused as exc:
         raise CellError([(shown, 0, 0, f"cannot read the cell file: {exc.reason}")]) from None
     try:

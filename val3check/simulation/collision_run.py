@@ -87,12 +87,13 @@ def choose_cell(option: str | None, app_path: str) -> tuple[str | None, str]:
     return (str(found), "found") if found is not None else (None, "none")
 
 
-def load_cell(path: str, app) -> tuple[Cell | None, list[Diagnostic]]:
+def load_cell(path: str, app, found: bool = False) -> tuple[Cell | None, list[Diagnostic]]:
     """Read a cell file for the application `app` (loading.model.Application): (cell, []) or
-    (None, R030 diagnostics at every problem's line and column)."""
+    (None, R030 diagnostics at every problem's line and column). `found`: beside the application
+    (confined to its folder), not named by the user."""
     unit = "mm" if getattr(app, "millimeter_unit", True) else "inch"
     try:
-        return read_cell(path, app_dir=str(Path(app.path).parent), app_unit=unit), []
+        return read_cell(path, app_dir=str(Path(app.path).parent), app_unit=unit, found=found), []
     except CellError as exc:
         return None, [Diagnostic("R030", f"cell file: {msg}", p, line, col, time_us=0, task="", program="")
                       for p, line, col, msg in exc.problems]

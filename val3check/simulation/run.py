@@ -107,7 +107,8 @@ def _collision_setup(app: Application, options: SimOptions, machine: Machine):
         return None
     from . import collision_run
 
-    cell, diags = collision_run.load_cell(options.cell, app) if options.cell else (None, [])
+    cell, diags = (collision_run.load_cell(options.cell, app, found=options.cell_found == "found") if options.cell
+                   else (None, []))
     watch = collision_run.ValueWatch(cell, machine)
     arm.observer = watch
     return cell, diags, watch
