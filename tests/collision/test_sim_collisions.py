@@ -593,3 +593,12 @@ def test_a_cell_file_found_beside_the_application_may_not_link_out_of_it(tmp_pat
     code, out, _ = _cli(["sim", str(app), "--robot", "tx2-60", "--scenario", str(SCENARIO), "--duration", "4",
                          "--cell", str(secret)], capsys)
     assert code == 0 and "R030" not in out
+
+
+def test_collision_checks_keep_to_the_wall_clock_budget(tmp_path):
+    from val3check.simulation.collision_run import ValueWatch, check_run
+
+    r = _run(tmp_path, LINE, LINE_GLOBALS, TIP)
+    run, diags = check_run(r.motion, None, ValueWatch(None), max_wall=-1.0, app_path=r.app_path)
+    assert not run.by_motion
+    assert [d.code for d in diags] == ["R037"] and "0 of 2 motions checked" in diags[0].message

@@ -15,7 +15,9 @@ last values read at or before its start (docs/cell.md).
 
 from __future__ import annotations
 
+import math
 import re
+import time
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -197,12 +199,13 @@ def _same(a: dict, b: dict) -> bool:
 
 def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, *, cell_path: str | None = None,
               cell_found: str = "none", app_unit_mm: float = 1.0, io_log=(),
-              link_names: dict | None = None, app_path: str = "") -> tuple[CollisionRun | None, list[Diagnostic]]:
+              link_names: dict | None = None, app_path: str = "",
+              max_wall: float = math.inf) -> tuple[CollisionRun | None, list[Diagnostic]]:
     """Check every motion of `motion` (a simulation.result.MotionRun) in `cell` (None: the arm
     against itself only), with the grippers' events and the parts taken away (`cleared_by`, from
     the run's `io_log`; `link_names`: (kind, link) -> the globals linked to it); (CollisionRun,
     diagnostics R031-R036), or (None, [R037]) when there is nothing to check the motions with or
-    the arm's solids cannot be read."""
+    the arm's solids cannot be read. The checks stop (R037) after `max_wall` seconds of wall clock."""
     from ..robot import RobotError
 
     name = getattr(motion.model, "name", "the arm")
@@ -231,7 +234,14 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, *, cell_path: s
             return []
         return _gripper(checker, e, names, traj, run)
 
-    for index, start, end in spans:
+    deadline = time.monotonic() + max_wall
+    for done, (index, start, end) in enumerate(spans):
+        if time.monotonic() > deadline:
+            diags.append(_not_checked(f"collision checks cut short by the wall-clock budget (--max-wall "
+                                      f"{max_wall:g} s): {done} of {len(spans)} motions checked, up to {start:.3f} s",
+                                      start, app_path))
+            events = events[:ev]
+            break
         while ev < len(events) and events[ev][0] / US <= start + 1e-9:
             diags.extend(event(events[ev][2]))
             ev += 1

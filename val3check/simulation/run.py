@@ -133,7 +133,8 @@ def _collisions(result: SimResult, app: Application, options: SimOptions, checks
         how = options.cell_found if options.cell or options.cell_found == "disabled" else "none"
         run, more = collision_run.check_run(result.motion, cell, watch, cell_path=options.cell, cell_found=how,
                                             app_unit_mm=unit_mm, io_log=result.io_log,
-                                            link_names=result.link_names, app_path=app.path)
+                                            link_names=result.link_names, app_path=app.path,
+                                            max_wall=options.max_wall)
         result.collision = run
         found.extend(more)
     if found:
