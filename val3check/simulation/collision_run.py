@@ -1,6 +1,6 @@
 """The collision checks of a run (issue 14; docs/cell.md): the cell, the values the program gives
 its frames and tools, every motion of `SimResult.motion` through `collision.CollisionChecker`,
-the grippers' open/close, and the findings R030-R036 at the lines that commanded them.
+the grippers' open/close, and the findings R030-R037 at the lines that commanded them.
 
     cell, diags = load_cell(path, app)                        # R030 for a cell file that cannot be used
     watch = ValueWatch(cell, machine)                         # arm.observer: frames/tools as the run goes
