@@ -491,7 +491,8 @@ class CollisionChecker:
     def check_motion(self, motion: MotionSpan, times, joints, q_at: Callable[[float], Any] | None = None) -> MotionReport:
         """Check one motion given by its samples: times (N,) in s, joints (N, axes) in VAL 3 units.
         Between samples the arm is on the straight joint-space segment, or at q_at(t) when given
-        (then each step's bound also covers how far q_at bends away from the segment)."""
+        (then each step's bound also covers how far q_at bends away from the segment; `q_at.many(ts)`,
+        when q_at has it, gives the positions at many times at once)."""
         T = np.asarray(times, dtype=float).reshape(-1)
         if len(T) == 0:
             raise ValueError("a motion needs at least one sample")
@@ -552,7 +553,10 @@ class CollisionChecker:
             return np.zeros((0, self._J))
         dq = np.abs(np.diff(Q, axis=0))
         if q_at is not None:
-            mids = np.array([np.asarray(q_at(0.5 * (T[k] + T[k + 1])), dtype=float) for k in range(len(T) - 1)])
+            many = getattr(q_at, "many", None)  # positions at many times in one call, when the caller has it
+            tm = 0.5 * (T[:-1] + T[1:])
+            mids = (np.asarray(many(tm), dtype=float) if many is not None
+                    else np.array([np.asarray(q_at(t), dtype=float) for t in tm]))
             dq = dq + 4.0 * np.abs(mids - 0.5 * (Q[:-1] + Q[1:]))
         return dq * self._rad
 

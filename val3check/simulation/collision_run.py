@@ -222,6 +222,7 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, *, cell_path: s
     run = CollisionRun(cell, cell_path, cell_found, margin_mm=checker.margin)
     diags: list[Diagnostic] = []
     traj = motion.trajectory
+    q_at = _path_between_samples(traj)
     spans = _spans(motion)
     events = _events(motion.tool_events, cell, io_log, link_names or {})
     names = _tool_names(cell)
@@ -247,7 +248,7 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, *, cell_path: s
             ev += 1
         rec = motion.records[index]
         times, joints = _samples(traj, start, end)
-        report = checker.check_motion(MotionSpan(index, rec.source, _label(rec)), times, joints)
+        report = checker.check_motion(MotionSpan(index, rec.source, _label(rec)), times, joints, q_at=q_at)
         run.by_motion[index] = report
         diags.extend(_motion_findings(report, rec, previous, checker.margin))
         run.contacts.extend((index, c) for c in report.contacts)
@@ -262,6 +263,21 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, *, cell_path: s
                                 program=""))
     run.checks = checker.measurements
     return run, diags
+
+
+def _path_between_samples(traj: Any):
+    """The arm's position at any time (between the 4 ms samples too), for the checker's motion
+    bound: the trajectory itself, with `many(times)` for all the steps of a motion at once."""
+
+    def q_at(t: float):
+        return traj.position(t)
+
+    def many(times):
+        s, _ = traj.profile.states(np.asarray(times, dtype=float))
+        return traj.path.q(s)
+
+    q_at.many = many
+    return q_at
 
 
 def _not_checked(message: str, end_s: float, path: str) -> Diagnostic:
