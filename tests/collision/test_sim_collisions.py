@@ -602,3 +602,46 @@ def test_collision_checks_keep_to_the_wall_clock_budget(tmp_path):
     run, diags = check_run(r.motion, None, ValueWatch(None), max_wall=-1.0, app_path=r.app_path)
     assert not run.by_motion
     assert [d.code for d in diags] == ["R037"] and "0 of 2 motions checked" in diags[0].message
+
+
+def test_a_fast_movej_touching_a_thin_plate_only_between_two_samples(tmp_path):
+    # the stretched arm turns on axis 1 (a tool ball of radius 2, 100 mm out of the flange): a plate
+    # 4 mm thick across the ball's path, where it is halfway between two 4 ms samples
+    code = """
+begin
+  tTool.trsf = {0, 0, 100, 0, 0, 0}
+  movej({-40, 90, 0, 0, 0, 0}, tTool, mD)
+  movej({40, 90, 0, 0, 0, 0}, tTool, mD)
+  waitEndMove()
+end
+"""
+    (tmp_path / "a").mkdir()
+    ball = TIP.replace("radius = 10", "radius = 2")
+    free = _run(tmp_path / "a", code, ["tool tTool", "mdesc mD"], ball)
+    rec = free.motion.records[1]
+    times, Q, _ = free.motion.sample(rec.start, rec.end)
+    speeds = np.abs(np.diff(Q[:, 0]))
+    k = int(np.argmax(speeds))  # the fastest step
+    mid = free.motion.trajectory.position(0.5 * (times[k] + times[k + 1]))
+    T = ROBOT.fk_matrix(list(mid), tool=(0, 0, 100, 0, 0, 0))
+    x, y, z = (float(T[i][3]) for i in range(3))
+    step_mm = math.radians(speeds[k]) * math.hypot(x, y)
+    assert step_mm > 12.0  # the ball moves more than the plate's thickness + its diameter per sample
+    rz = math.degrees(math.atan2(y, x))
+    (tmp_path / "b").mkdir()
+    r = _run(tmp_path / "b", code, ["tool tTool", "mdesc mD"], ball + f"""
+[[obstacle]]
+name = "plate"
+shape = "box"
+size = [30, 4, 20]
+at = {{ x = {x!r}, y = {y!r}, z = {z!r}, rz = {rz!r} }}
+""")
+    hits = [d for d in r.diagnostics if d.code == "R031"]
+    assert [(d.line, d.col) for d in hits] == [code_pos(r, 5, 3)], r.diagnostics
+    rep = r.collision.by_motion[1]
+    c = rep.first_contact
+    assert "obstacle 'plate'" in (c.body_a, c.body_b)
+    # the samples around it are clear; the contact is between them
+    i = int(np.searchsorted(rep.times, times[k] - 1e-9))
+    assert rep.times[i] == pytest.approx(times[k]) and rep.clearance[i] > 0 and rep.clearance[i + 1] > 0
+    assert times[k] < c.time < times[k + 1]
