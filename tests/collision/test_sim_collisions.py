@@ -645,3 +645,19 @@ at = {{ x = {x!r}, y = {y!r}, z = {z!r}, rz = {rz!r} }}
     i = int(np.searchsorted(rep.times, times[k] - 1e-9))
     assert rep.times[i] == pytest.approx(times[k]) and rep.clearance[i] > 0 and rep.clearance[i + 1] > 0
     assert times[k] < c.time < times[k + 1]
+
+
+@pytest.mark.parametrize("element,hit", [("fBlocks[2]", True), ("fBlocks[1]", False)])
+def test_an_obstacle_in_an_element_of_a_frame_array(tmp_path, element, hit):
+    code = LINE.replace("  movej(pA, tTool, mD)", "  fBlocks[2].trsf.x = 400\n  fBlocks[1].trsf.x = -2000\n"
+                        "  fBlocks[0].trsf.x = -2000\n  movej(pA, tTool, mD)")
+    r = _run(tmp_path, code, LINE_GLOBALS + ["frame fBlocks[3]"], TIP + f"""
+[[obstacle]]
+name = "block"
+shape = "box"
+frame = "{element}"
+size = [40, 40, 40]
+at = {{ y = 50, z = 100 }}
+""")
+    assert bool([d for d in r.diagnostics if d.code == "R031"]) is hit, r.diagnostics
+    assert not [d for d in r.diagnostics if d.code in ("R032", "R036")]
