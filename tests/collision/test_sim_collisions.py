@@ -661,3 +661,24 @@ at = {{ y = 50, z = 100 }}
 """)
     assert bool([d for d in r.diagnostics if d.code == "R031"]) is hit, r.diagnostics
     assert not [d for d in r.diagnostics if d.code in ("R032", "R036")]
+
+
+def test_an_obstacle_in_a_frame_of_a_library(tmp_path):
+    from interpretation.simsupport import add_libraries, build, make_library
+
+    make_library(tmp_path, "LibF", globals_=["frame fBase"])
+    code = LINE.replace("  movej(pA, tTool, mD)", "  lf:fBase.trsf.x = 400\n  movej(pA, tTool, mD)")
+    app = build(tmp_path, code, globals_=LINE_GLOBALS, name="App")
+    add_libraries(app, {"lf": "Disk://LibF/LibF.pjx"}, name="App", autoload="true")
+    cell = _cell(tmp_path, TIP + """
+[[obstacle]]
+name = "block"
+shape = "box"
+frame = "lf:fBase"
+size = [40, 40, 40]
+at = { y = 50, z = 100 }
+""")
+    r = run_folder(app, robot=ROBOT, collisions=True, cell=cell)
+    hits = [d for d in r.diagnostics if d.code == "R031"]
+    assert len(hits) == 1 and "obstacle 'block'" in hits[0].message, r.diagnostics
+    assert not [d for d in r.diagnostics if d.code in ("R032", "R036")]
