@@ -67,6 +67,9 @@ def text(run: Any) -> list[str]:
             n = f", {len(idx)} motions" if len(idx) > 1 else ""
             if best is None:
                 out.append(f"    {_where(run, path, line)} {kind}: nothing of the cell in reach{n}")
+            elif best.mm <= 0.0:
+                out.append(f"    {_where(run, path, line)} {kind}: contact, {best.body_a} with {best.body_b} "
+                           f"({-best.mm:.1f} mm deep at {best.time:.3f} s){n}")
             else:
                 out.append(f"    {_where(run, path, line)} {kind}: {best.mm:.1f} mm, {best.body_a} to {best.body_b} "
                            f"at {best.time:.3f} s{n}")

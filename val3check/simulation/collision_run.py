@@ -227,7 +227,7 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, *, cell_path: s
     events = _events(motion.tool_events, cell, io_log, link_names or {})
     names = _tool_names(cell)
     ev = 0
-    previous: MotionReport | None = None
+    ongoing: set[tuple[str, str]] = set()  # pairs in contact since the last motion free of contact
 
     def event(e) -> list[Diagnostic]:
         if isinstance(e, str):
@@ -250,9 +250,12 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, *, cell_path: s
         times, joints = _samples(traj, start, end)
         report = checker.check_motion(MotionSpan(index, rec.source, _label(rec)), times, joints, q_at=q_at)
         run.by_motion[index] = report
-        diags.extend(_motion_findings(report, rec, previous, checker.margin))
+        diags.extend(_motion_findings(report, rec, ongoing, checker.margin))
         run.contacts.extend((index, c) for c in report.contacts)
-        previous = report
+        now = {(c.body_a, c.body_b) for c in report.contacts}
+        if report.starts_in_collision is not None:
+            now.add((report.starts_in_collision.body_a, report.starts_in_collision.body_b))
+        ongoing = ongoing | now if now else set()
     while ev < len(events):
         diags.extend(event(events[ev][2]))
         ev += 1
@@ -374,15 +377,21 @@ def _pt(p) -> str:
 
 
 def _contact_text(c: Contact) -> str:
+    """The first contact of a pair: where it starts (its depth there is the touch tolerance found
+    by the search, not the deepest overlap: left out); a motion's first sample: how deep."""
     if c.kind == "inside":
         how = f"is inside {c.body_b}"
     else:
         how = f"hits {c.body_b}"
-    depth = f", {c.depth_mm:.1f} mm deep" if c.depth_mm is not None and c.kind != "inside" else ""
+    depth = ""
+    if c.depth_mm is not None and c.kind != "inside" and c.depth_mm >= 0.5:
+        depth = f", {c.depth_mm:.1f} mm deep"
     return f"{c.body_a} {how} at {c.time:.3f} s{depth}, at {_pt(c.point)}"
 
 
-def _motion_findings(r: MotionReport, rec: Any, previous: MotionReport | None, margin: float) -> list[Diagnostic]:
+def _motion_findings(r: MotionReport, rec: Any, ongoing: set[tuple[str, str]], margin: float) -> list[Diagnostic]:
+    """R031-R034 of one motion; `ongoing`: pairs in contact in the motions before it, since the last
+    one free of contact (a motion starting in such a contact goes on with it: said there)."""
     src = rec.source
     out = []
 
@@ -391,15 +400,9 @@ def _motion_findings(r: MotionReport, rec: Any, previous: MotionReport | None, m
                               task=src.task, program=src.program))
 
     s = r.starts_in_collision
-    if s is not None:
-        before = set()
-        if previous is not None:
-            before = {(c.body_a, c.body_b) for c in previous.contacts}
-            if previous.starts_in_collision is not None:
-                before.add((previous.starts_in_collision.body_a, previous.starts_in_collision.body_b))
-        if (s.body_a, s.body_b) not in before:  # else the contact of the motion before goes on: said there
-            code = "R034" if s.kind == "self" else "R032"
-            diag(code, f"{rec.kind} starts in collision: {_contact_text(s)}", s.time)
+    if s is not None and (s.body_a, s.body_b) not in ongoing:
+        code = "R034" if s.kind == "self" else "R032"
+        diag(code, f"{rec.kind} starts in collision: {_contact_text(s)}", s.time)
     for c in r.contacts:
         if s is not None and (c.body_a, c.body_b) == (s.body_a, s.body_b):
             continue
