@@ -247,7 +247,7 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, *, cell_path: s
             diags.extend(event(events[ev][2]))
             ev += 1
         rec = motion.records[index]
-        times, joints = _samples(traj, start, end)
+        times, joints = _samples(q_at, start, end)
         report = checker.check_motion(MotionSpan(index, rec.source, _label(rec)), times, joints, q_at=q_at)
         run.by_motion[index] = report
         diags.extend(_motion_findings(report, rec, ongoing, checker.margin))
@@ -323,18 +323,19 @@ def _spans(motion: Any) -> list[tuple[int, float, float]]:
     return out
 
 
-def _samples(traj: Any, start: float, end: float) -> tuple[np.ndarray, np.ndarray]:
-    """The motion on the controller's 4 ms clock, with its exact start and end."""
-    times, q, _ = traj.sample(start, end)
-    ts = list(times)
-    qs = list(q)
-    if not ts or ts[0] > start + 1e-9:
-        ts.insert(0, start)
-        qs.insert(0, traj.position(start))
-    if ts[-1] < end - 1e-9:
-        ts.append(end)
-        qs.append(traj.position(end))
-    return np.array(ts), np.array(qs, dtype=float)
+def _samples(q_at: Any, start: float, end: float) -> tuple[np.ndarray, np.ndarray]:
+    """The motion on the controller's 4 ms clock (interpretation/clock.py), with its exact start and
+    end, positions computed in one call."""
+    tick = TICK_US / US
+    k0 = math.ceil(start / tick - 1e-9)
+    k1 = math.floor(end / tick + 1e-9)
+    grid = np.arange(k0, k1 + 1) * tick
+    times = grid
+    if not len(grid) or grid[0] > start + 1e-9:
+        times = np.concatenate(([start], times))
+    if times[-1] < end - 1e-9:
+        times = np.concatenate((times, [end]))
+    return times, np.asarray(q_at.many(times), dtype=float)
 
 
 def _label(rec: Any) -> str:
