@@ -12,6 +12,11 @@
    distance queries per second of the arm (links, tool, part) against the whole cell, each query
    measuring every pair the checker watches exactly.
 
+4. the real run: `val3check sim fixtures/valid/PickPlace --robot tx2-60 --scenario
+   fixtures/scenarios/pickplace.toml` (60 simulated s) with the cell found beside it, collision
+   checks on and off: simulated seconds per wall second of the whole run (interpreter, motion and
+   checks), and the checks' own share.
+
 The cycle is collision-free by construction (the table, conveyor and pallet top are touched only
 by the part at pick and place); the run fails if a contact is reported.
 
@@ -303,8 +308,47 @@ def main(argv: list[str] | None = None) -> int:
     print(f"distance queries (arm, tool and part against the cell, {len(watches)} watched pairs of groups): "
           f"{qps:.0f} per second ({pairs:.0f} fcl distance calls per second)")
     ok = rate >= 100.0 and not contacts and not drops and min(tris) >= 5000 and len(cell.obstacles) == 10
+    ok = real_run() and ok
     print("OK" if ok else "MISSED")
     return 0 if ok else 1
+
+
+def real_run() -> bool:
+    """PickPlace for 60 simulated s, with and without the collision checks (best of 3 each)."""
+    from val3check.config import Settings
+    from val3check.lint import run
+    from val3check.simulation import SimOptions, simulate
+    from val3check.simulation.collision_run import choose_cell
+    from val3check.simulation.scenario import load_scenario
+
+    app_dir = ROOT / "fixtures" / "valid" / "PickPlace"
+    lr = run([str(app_dir)], Settings())
+    ws = lr.workspace
+    app = ws.apps[ws.targets[0]]
+    scenario = load_scenario(str(ROOT / "fixtures" / "scenarios" / "pickplace.toml"))
+    robot = load_robot("TX2-60")
+    cell, found = choose_cell(None, app.path)
+    walls = {}
+    for on in (False, True, False, True, False, True):
+        opts = SimOptions(duration=60.0, robot=robot, collisions=on, cell=cell if on else None, cell_found=found)
+        t0 = time.perf_counter()
+        result = simulate(ws, app, opts, scenario)
+        w = time.perf_counter() - t0
+        walls[on] = min(walls.get(on, math.inf), w)
+        if on:
+            c = result.collision
+    sim_s = result.sim_time_us / 1e6
+    moving = result.motion.busy_s
+    bad = [d for d in result.diagnostics if d.code.startswith("R03")]
+    mins = [r.min_clearance.mm for r in c.by_motion.values() if r.min_clearance is not None]
+    print(f"real run (PickPlace, {sim_s:.0f} simulated s, {moving:.1f} s of motion, {len(c.by_motion)} motions, "
+          f"cell {Path(cell).name} ({found}): {len(c.cell.obstacles)} obstacles, {len(c.cell.tools)} tool solids):")
+    print(f"  collision checks off: {sim_s / walls[False]:.0f} simulated s per wall s ({walls[False]:.2f} s wall)")
+    print(f"  collision checks on:  {sim_s / walls[True]:.0f} simulated s per wall s ({walls[True]:.2f} s wall; the "
+          f"checks {walls[True] - walls[False]:.2f} s, {c.checks} queries, {moving / max(walls[True] - walls[False], 1e-9):.0f} "
+          f"s of motion per wall s of checking)")
+    print(f"  findings R030-R039: {len(bad)}; closest approach {min(mins):.1f} mm")
+    return not bad and sim_s / walls[True] >= 10.0
 
 
 if __name__ == "__main__":

@@ -50,12 +50,21 @@ def _simulate(tmp_path, ex):
     if ex.robot:
         from val3check.robot import load_robot
 
-        robot = load_robot(ex.robot)
+        from pathlib import Path
+
+        # a catalogue name, or a URDF of the repository (tests/data/robots/...)
+        root = Path(__file__).resolve().parent.parent
+        robot = load_robot(str(root / ex.robot) if ex.robot.endswith(".urdf") else ex.robot)
+    opts = {}
+    if ex.cell is not None:  # collision rules: the cell of the run
+        (tmp_path / "cell.toml").write_text(ex.cell, encoding="utf-8")
+        opts = {"cell": str(tmp_path / "cell.toml"), "collisions": True}
     if ex.code is None:
         write_files(tmp_path, ex.files)
-        return run_folder(tmp_path / ex.target, tmp_path=tmp_path, duration=ex.duration, robot=robot).diagnostics
+        return run_folder(tmp_path / ex.target, tmp_path=tmp_path, duration=ex.duration, robot=robot,
+                          **opts).diagnostics
     result = sim(tmp_path, ex.code, globals_=ex.globals, locals_=ex.locals, programs=ex.programs,
-                 scenario=ex.scenario, duration=ex.duration, links=ex.links or None, robot=robot)
+                 scenario=ex.scenario, duration=ex.duration, links=ex.links or None, robot=robot, **opts)
     return result.diagnostics
 
 
@@ -73,7 +82,9 @@ def test_example(tmp_path, rule, kind, ex):
     got = [(d.path.replace("\\", "/"), d.line, d.col) for d in hits]
     for spec in ex.expect:
         parts = spec.split(":")
-        if ex.code is not None:
+        if ex.code is not None and len(parts) == 3:  # a position in another file (the cell file: R030...)
+            where = (parts[0], int(parts[1]), int(parts[2]))
+        elif ex.code is not None:
             pgx = (tmp_path / "Example" / "start.pgx").read_text(encoding="utf-8")
             line, col = code_position(int(parts[0]), int(parts[1]), pgx)
             where = ("Example/start.pgx", line, col)

@@ -114,6 +114,7 @@ def build_parser() -> argparse.ArgumentParser:
                      help="memory budget in MB, loading included (default: 512)")
     sim.add_argument("--fail-on", choices=("error", "warning", "info", "never"), help="lowest runtime diagnostic severity that makes the exit code 1 (default: error)")
     _add_disk_root(sim)
+    sim.add_argument("--cell", metavar="FILE", help="the cell around the arm, checked for collisions (TOML, docs/cell.md; default: val3check-cell.toml beside the application; none: the arm against itself only)")
     sim.add_argument("--robot", action="append", metavar="NAME|URDF", help="the arm model: a catalogue name (case-insensitive, `val3check robots`), a URDF, an arm.cfx, or none (default: the usr/configs/arm.cfx of the controller tree holding APP, else none); repeat it to run a batch on each arm")
     _add_config(sim)
     _add_batch(sim)
@@ -320,11 +321,14 @@ def _sim(args: argparse.Namespace) -> int:
         if args.scenario:
             scenario = load_scenario(args.scenario)
         from .reporting.progress import Progress
+        from .simulation.collision_run import choose_cell
 
+        cell, cell_found = choose_cell(args.cell, app.path)
         progress = Progress.for_stream(sys.stderr, args.duration)  # only on a terminal
         options = SimOptions(duration=args.duration, max_wall=args.max_wall, max_lines=args.max_lines,
                              max_memory_mb=args.max_memory, disk_roots=list(settings.disk_roots), robot=robot,
-                             cycles=args.cycles, progress=progress)
+                             cycles=args.cycles, progress=progress, collisions=True, cell=cell,
+                             cell_found=cell_found)
         try:
             result = simulate(outcome.workspace, app, options, scenario)
         finally:

@@ -210,6 +210,17 @@ def test_between_samples_the_given_path_is_followed():
     a = checker(_cell(ball)).check_motion(MotionSpan(1), times, Q)
     b = checker(_cell(ball)).check_motion(MotionSpan(1), times, Q, q_at=q_at)
     assert abs(a.min_clearance.mm - b.min_clearance.mm) < 0.05
+    # q_at.many: the same positions in one call, the same result
+    calls = []
+
+    def many(ts):
+        calls.append(len(ts))
+        return np.array([q_at(t) for t in ts])
+
+    q_at.many = many
+    c = checker(_cell(ball)).check_motion(MotionSpan(1), times, Q, q_at=q_at)
+    assert calls == [len(times) - 1]
+    assert c.min_clearance == b.min_clearance and np.array_equal(c.clearance, b.clearance)
 
 
 def test_same_input_same_output():

@@ -218,3 +218,29 @@ def test_a_solid_inside_a_non_convex_closed_mesh_is_found():
     chk.gripper("tTool", "close", float(times[-1]))
     drops = chk.gripper("tTool", "open", float(times[-1]) + 0.1)
     assert drops and drops[0].obstacle == "obstacle 'ring'"
+
+
+def test_part_let_go_while_the_arm_moves_is_no_near_miss_as_the_tool_leaves_it():
+    # open() after resetMotion() (stop()) may release a part while the arm still decelerates: the
+    # tool and the part move apart during the next motion without being a near miss, and a contact
+    # with the part once apart is still reported
+    from val3check.collision import Cell, Part, Shape, ToolSolid
+    from val3check.collision.cellfile import trsf_matrix
+
+    from .helpers import DT, MotionSpan, checker, line_motion
+
+    cell = Cell(path="test", margin_mm=10.0)
+    cell.tools.append(ToolSolid("tip", "tTool", Shape("sphere", (10.0,)), np.eye(4)))
+    cell.parts.append(Part("cube", "tTool", "close", Shape("box", (40.0, 40.0, 40.0)), trsf_matrix((0, 0, 30, 0, 0, 0))))
+    chk = checker(cell)
+    t, Q = line_motion((400.0, 0.0, 100.0), (400.0, 0.0, 160.0), 100.0)
+    chk.gripper("tTool", "close", 0.0, joints=Q[0])
+    # released 20 mm up the line (the part is left there, touching the tip), the arm goes on up
+    k = int(round(0.2 / DT))
+    chk.gripper("tTool", "open", float(t[k]), joints=Q[k])
+    rep = chk.check_motion(MotionSpan(1), t[k + 1:], Q[k + 1:])
+    assert rep.first_contact is None and not rep.too_close
+    # and back down into the cube: a contact
+    t2, Q2 = line_motion((400.0, 0.0, 160.0), (400.0, 0.0, 100.0), 100.0, t0=float(t[-1]))
+    rep = chk.check_motion(MotionSpan(2), t2, Q2)
+    assert rep.first_contact is not None and "part 'cube'" in (rep.first_contact.body_a, rep.first_contact.body_b)

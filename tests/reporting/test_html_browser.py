@@ -287,6 +287,8 @@ def test_sim_report_html_of_the_pick_and_place_cell(chromium, tmp_path, monkeypa
         ganttRects: document.querySelectorAll('#gantt svg rect').length,
         ioRects: document.querySelectorAll('#io-lanes svg rect').length,
         bars: document.querySelectorAll('.cyclebars svg rect[role=button]').length,
+        clearances: Array.from(document.querySelectorAll('table.motions tbody tr'))
+                         .filter((r) => /^[0-9.]+ /.test(r.lastElementChild.textContent)).length,
         status: document.querySelector('.verdict .badge').textContent,
         verdict: document.querySelector('.verdict').textContent,
     })""")
@@ -295,6 +297,9 @@ def test_sim_report_html_of_the_pick_and_place_cell(chromium, tmp_path, monkeypa
     assert counts["ganttRects"] > 100 and counts["ioRects"] > 50 and counts["bars"] >= 18
     assert counts["status"] == "PASSED" and "median of 18 complete cycles" in counts["verdict"]
     assert any("robot" in t for t in counts["ganttLanes"])
+    # the cell found beside the application (val3check-cell.toml): every motion has its clearance,
+    # and the arm shows through the fence around it
+    assert counts["clearances"] == counts["motions"]
     assert _painted(page, [120, 80, 0], [255, 200, 60]) > 2000  # the arm
     p = page.page
     p.screenshot(path=str(tmp_path / "pickplace.png"), full_page=True)

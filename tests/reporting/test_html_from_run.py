@@ -122,7 +122,7 @@ def test_cell_obstacles_tool_solids_and_clearance(run):
     clear = MotionReport(MotionSpan(rec.id), np.zeros(0), np.zeros(0), np.zeros(0, bool),
                          min_clearance=Clearance(42.5, rec.start, "tool tGripper 'jaws'", "obstacle 'table'",
                                                          (0, 0, 0), (0, 0, 1)))
-    result.collision = SimpleNamespace(cell=cell, by_motion={rec.id: clear})
+    result.collision = SimpleNamespace(cell=cell, by_motion={result.motion.records.index(rec): clear})
     try:
         model = model_from_run(report)
     finally:

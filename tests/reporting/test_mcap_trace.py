@@ -33,7 +33,7 @@ def trace(run, tmp_path_factory):
     rec = next(r for r in result.motion.records if r.id is not None and r.start is not None)
     checked = MotionReport(MotionSpan(rec.id), np.array([rec.start, rec.start + 0.004, rec.start + 0.008]),
                            np.array([80.0, 75.5, np.inf]), np.array([False, True, False]), margin_mm=10.0)
-    result.collision = SimpleNamespace(cell=read_cell(CELL), by_motion={rec.id: checked})
+    result.collision = SimpleNamespace(cell=read_cell(CELL), by_motion={result.motion.records.index(rec): checked})
     try:
         write_trace(report, str(path))
     finally:
@@ -77,7 +77,8 @@ def test_schemas_channels_and_counts(trace, run):
     # the per-sample clearance of the collision checks (a sample without a measure is left out)
     clear = [m[4] for m in _by(trace, "/clearance")]
     assert [(c["clearance_mm"], c["exact"], c["margin_mm"]) for c in clear] == [(80.0, False, 10.0), (75.5, True, 10.0)]
-    assert {c["motion"] for c in clear} == {next(r.id for r in result.motion.records if r.id is not None)}
+    first = next(k for k, r in enumerate(result.motion.records) if r.id is not None and r.start is not None)
+    assert {(c["motion"], c["motion_id"]) for c in clear} == {(first, result.motion.records[first].id)}
     # the cell once, the TCP marker at each change of tool (tGripper from the first motion on), and
     # the part: taken at each close(tGripper), left at the next open(tGripper)
     moves = [e.action for e in result.motion.tool_events if e.tool == "tGripper"]

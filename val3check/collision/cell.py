@@ -98,6 +98,9 @@ class Part:
     shape: Shape
     pose: np.ndarray = field(repr=False)
     where: Where | None = None
+    # a digital input/output of the application (its name or link): when it becomes true, the parts
+    # of this name left in the cell are taken away (an operator changes the full pallet)
+    cleared_by: str | None = None
 
     @property
     def release(self) -> str:

@@ -35,7 +35,7 @@ _ALL_SHAPE_KEYS = {"shape", "size", "radius", "length", "file", "scale", "solid"
 _ENTRY = {
     "obstacle": {"name", "frame", "at"} | _ALL_SHAPE_KEYS,
     "tool": {"name", "tool", "at", "touch_links"} | _ALL_SHAPE_KEYS,
-    "part": {"name", "tool", "grasp", "at"} | _ALL_SHAPE_KEYS,
+    "part": {"name", "tool", "grasp", "at", "cleared_by"} | _ALL_SHAPE_KEYS,
 }
 _TRSF = ("x", "y", "z", "rx", "ry", "rz")
 # a VAL 3 variable, optionally one array element: fPallet, fPallet[3], lib:fBase (a library's frame)
@@ -52,15 +52,18 @@ def find_cell(app_dir: str | os.PathLike) -> Path | None:
 
 
 def read_cell(path: str | os.PathLike, app_dir: str | os.PathLike | None = None, app_unit: str = "mm",
-              roots: list[str | os.PathLike] | None = None) -> Cell:
+              roots: list[str | os.PathLike] | None = None, found: bool = False) -> Cell:
     """Read and check a cell file. Mesh files may lie in the cell file's folder, the application's
     folder (`app_dir`) or one of `roots`. Lengths are in the cell's `unit` (default: the
-    application's, `app_unit`); the Cell holds millimetres."""
+    application's, `app_unit`); the Cell holds millimetres. `found`: the file was found beside the
+    application, not named by the user: a link may not lead out of that folder."""
     from .. import confine
 
     shown = str(path)
-    try:  # a path the user gave (or found beside the application): read wherever it is, if a plain file
-        raw = confine.read_bytes(os.fspath(path), confine.Roots.user_given(), MAX_CELL_BYTES)
+    # a path the user gave: read wherever it is, if a plain file; found beside the application: there only
+    where = confine.Roots([os.path.dirname(os.path.abspath(path))]) if found else confine.Roots.user_given()
+    try:
+        raw = confine.read_bytes(os.fspath(path), where, MAX_CELL_BYTES)
     except confine.Refused as exc:
         raise CellError([(shown, 0, 0, f"cannot read the cell file: {exc.reason}")]) from None
     try:
@@ -217,7 +220,13 @@ class _Reader:
             self.fail(path + ("grasp",), f"{label}: grasp must be \"close\" or \"open\" (the instruction that takes "
                       f"the part), not {_show(grasp)}")
             return None
-        return Part(name, tool, grasp, shape, pose, where)
+        cleared = e.get("cleared_by")
+        if cleared is not None and (not isinstance(cleared, str) or not cleared.strip()
+                                    or not all(c.isprintable() for c in cleared)):
+            self.fail(path + ("cleared_by",), f"{label}: cleared_by must be the name or the link of a digital "
+                      f"input or output of the application (doPalletFull), not {_show(cleared)}")
+            return None
+        return Part(name, tool, grasp, shape, pose, where, cleared.strip() if cleared else None)
 
     def shape(self, e: dict, path: tuple, label: str) -> Shape | None:
         kind = e.get("shape")
@@ -329,7 +338,10 @@ class _Reader:
 
     def check_parts(self, cell: Cell) -> None:
         grasp: dict[str, tuple[str, str]] = {}
+        cleared: dict[str, str | None] = {}
         for i, p in enumerate(cell.parts):
+            if cleared.setdefault(p.name, p.cleared_by) != p.cleared_by:
+                self.fail(("part", i, "cleared_by"), f"part {p.name!r}: its solids must have the same cleared_by")
             seen = grasp.setdefault(p.name, (p.tool, p.grasp))
             if seen != (p.tool, p.grasp):
                 self.fail(("part", i, "tool"), f"part {p.name!r}: its solids must hang on one tool with one grasp "

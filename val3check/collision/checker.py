@@ -491,7 +491,8 @@ class CollisionChecker:
     def check_motion(self, motion: MotionSpan, times, joints, q_at: Callable[[float], Any] | None = None) -> MotionReport:
         """Check one motion given by its samples: times (N,) in s, joints (N, axes) in VAL 3 units.
         Between samples the arm is on the straight joint-space segment, or at q_at(t) when given
-        (then each step's bound also covers how far q_at bends away from the segment)."""
+        (then each step's bound also covers how far q_at bends away from the segment; `q_at.many(ts)`,
+        when q_at has it, gives the positions at many times at once)."""
         T = np.asarray(times, dtype=float).reshape(-1)
         if len(T) == 0:
             raise ValueError("a motion needs at least one sample")
@@ -519,14 +520,15 @@ class CollisionChecker:
             w.contact = False
             w.first_contact = None
             w.landing = set()
-            w.landing = self._landing(w)
+            w.landing = self._landing(w) | self._still_allowed(w)
         report = MotionReport(motion, T, np.zeros(n), np.zeros(n, dtype=bool), margin_mm=self.margin,
                               tolerance_mm=self.tol)
         self._best = None
         for w in watches:
             self._advance(w, report)
         report.contacts.sort(key=lambda c: c.time)
-        self._samples([w for w in watches if w.b is None], report)
+        # clearance of what the motion moves: a link no joint moves (the base) is checked for contact only
+        self._samples([w for w in watches if w.b is None and w.a.movers], report)
         if self._best is not None:
             d, u, (a, b, pa, pb) = self._best
             report.min_clearance = Clearance(float(d), self._t(u), a.label, b.label, pa, pb)
@@ -551,7 +553,10 @@ class CollisionChecker:
             return np.zeros((0, self._J))
         dq = np.abs(np.diff(Q, axis=0))
         if q_at is not None:
-            mids = np.array([np.asarray(q_at(0.5 * (T[k] + T[k + 1])), dtype=float) for k in range(len(T) - 1)])
+            many = getattr(q_at, "many", None)  # positions at many times in one call, when the caller has it
+            tm = 0.5 * (T[:-1] + T[1:])
+            mids = (np.asarray(many(tm), dtype=float) if many is not None
+                    else np.array([np.asarray(q_at(t), dtype=float) for t in tm]))
             dq = dq + 4.0 * np.abs(mids - 0.5 * (Q[:-1] + Q[1:]))
         return dq * self._rad
 
@@ -714,7 +719,7 @@ class CollisionChecker:
         if k == u:
             w.L[k] = max(w.L[k], d) if not exact else d
             w.E[k] = w.E[k] or exact
-        if w.b is None and exact and info is not None and (self._best is None or d < self._best[0]):
+        if w.b is None and w.a.movers and exact and info is not None and (self._best is None or d < self._best[0]):
             self._best = (d, u, info[:4])  # the clearance is to the cell: the static set
 
     def _apart_from(self) -> dict[frozenset[int], float]:
@@ -789,6 +794,23 @@ class CollisionChecker:
                 if any(np.all(lo >= olo) and np.all(hi <= ohi) for olo, ohi in boxes):
                     return True
         return False
+
+    def _still_allowed(self, w: _Watch) -> set[tuple[int, int]]:
+        """Body pairs of the watch allowed to touch since a grasp or a release (a part let go while
+        the arm still moved: resetMotion() in stop()): like landing pairs, out of the clearance of
+        the motion in which they move apart, checked for contact once apart."""
+        if not self._allowed:
+            return set()
+        a = {id(b) for b in w.a.bodies}
+        other = {id(b) for b in (self._static if w.b is None else w.b.bodies)}
+        out = set()
+        for key in self._allowed:
+            x, y = tuple(key)
+            if x in a and y in other:
+                out.add((x, y))
+            elif y in a and x in other:
+                out.add((y, x))
+        return out
 
     def _landing(self, w: _Watch) -> set[tuple[int, int]]:
         """Body pairs touching (within the touch tolerance, not deeper) at the motion's first or last
@@ -973,6 +995,16 @@ class CollisionChecker:
                 self._dropped.extend(g.bodies)
                 self._set_static([*self._placed_obstacles, *self._dropped])
         return drops
+
+    def clear_parts(self, name: str) -> int:
+        """The parts named `name` left in the cell are taken away (the cell's `cleared_by`): how many
+        solids left the cell."""
+        gone = {id(d) for d in self._dropped if d.owner == name}
+        if gone:
+            self._allowed = {k: v for k, v in self._allowed.items() if not (k & gone)}
+            self._dropped = [d for d in self._dropped if id(d) not in gone]
+            self._set_static([*self._placed_obstacles, *self._dropped])
+        return len(gone)
 
     def _arm_groups(self) -> list[_Group]:
         out = list(self.link_groups.values())

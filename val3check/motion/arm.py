@@ -56,6 +56,11 @@ class MovingArm(ModelArm):
         self._end_cmd = None  # that command, once recorded
         self.prismatic = tuple(k == "prismatic" for k in (getattr(model, "joint_kinds", None) or ())) \
             if model is not None else ()
+        # called (time_us) after each motion instruction records a command, and (time_us, cycle=True)
+        # at the start of each scheduler cycle that advances the arm (a command ends, the next
+        # starts): the collision checks read the frames and tools of the cell there
+        # (simulation/collision_run.py)
+        self.observer = None
 
     def bind(self, controller: Any) -> None:
         """The controller whose power and monitor speed the arm follows (chapter 8)."""
@@ -160,6 +165,8 @@ class MovingArm(ModelArm):
         q = self.sync(to_us)
         if q is None:
             return
+        if self.observer is not None:
+            self.observer(to_us, cycle=True)
         q.advance_us(to_us)
         end = self._cycles_end()
         if end is not None and end * US <= to_us + 1e-6:

@@ -110,6 +110,9 @@ def _record(task, unit, kind: str, target: Target, via: Target | None, tool: Too
             rule = exc.finding.code if exc.finding is not None else None
             raise E(exc.code, exc.message, rule=rule) from None
         if not isinstance(r, QueueFull):
+            observer = getattr(arm, "observer", None)
+            if observer is not None:
+                observer(clock.time_of(task))
             return float(r)
         room = lambda: arm.has_room(clock.now)  # noqa: E731
         room.motion = True

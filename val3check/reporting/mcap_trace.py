@@ -78,7 +78,7 @@ SCHEMAS: dict[str, dict] = {
         "timestamp": _TIME, "kind": {"type": "string"}, "link": {"type": "string"},
         "names": {"type": "array", "items": {"type": "string"}}, "value": {}, "source": {"type": "string"}}},
     "val3check.Clearance": {"type": "object", "properties": {
-        "timestamp": _TIME, "motion": {"type": "integer"}, "clearance_mm": {"type": "number"},
+        "timestamp": _TIME, "motion": {"type": "integer"}, "motion_id": {"type": ["integer", "null"]}, "clearance_mm": {"type": "number"},
         "exact": {"type": "boolean"}, "margin_mm": {"type": "number"}}},
     "val3check.TaskState": {"type": "object", "properties": {
         "timestamp": _TIME, "task": {"type": "string"}, "state": {"type": "string"}, "detail": {"type": "string"}}},
@@ -404,8 +404,10 @@ def trace_messages(report: Any, cell: Any = None):
                             "names": list(report.link_names.get((e.kind, e.link), [])), "value": value,
                             "source": e.source})
     # per-sample clearance to the cell, when the run checked collisions (result.collision.by_motion:
-    # motion id -> collision.records.MotionReport): a lower bound, exact where `exact`
-    for mid, mr in sorted((getattr(collision, "by_motion", None) or {}).items(), key=lambda kv: str(kv[0])):
+    # position in result.motion.records -> collision.records.MotionReport): a lower bound, exact
+    # where `exact`
+    records = result.motion.records if result.motion is not None else []
+    for mid, mr in sorted((getattr(collision, "by_motion", None) or {}).items()):
         times = getattr(mr, "times", None)
         if times is None:
             continue
@@ -414,7 +416,8 @@ def trace_messages(report: Any, cell: Any = None):
             if c != c or c in (float("inf"), float("-inf")):
                 continue  # nothing measured at that sample
             ns = _ns(round(t, 6))
-            out.add("/clearance", ns, {"timestamp": _stamp(ns), "motion": int(mid), "clearance_mm": round(c, 6),
+            out.add("/clearance", ns, {"timestamp": _stamp(ns), "motion": int(mid),
+                                       "motion_id": records[mid].id if mid < len(records) else None, "clearance_mm": round(c, 6),
                                        "exact": ex, "margin_mm": float(getattr(mr, "margin_mm", 0.0))})
     for c in result.task_states:
         ns = _ns(c.time_us / 1e6)

@@ -15,6 +15,7 @@ import statistics
 from typing import Any
 
 from ..diagnostics import Severity
+from . import sim_collision
 from ._common import TOOL_NAME
 
 VERSION = 2
@@ -181,6 +182,7 @@ def report(run: Any) -> dict[str, Any]:
         "destroyed": list(r.destroyed),
         "diagnostics": [_diagnostic(run, d) for d in run.diagnostics],
         "motion": _motion(run),
+        "collision": sim_collision.section(run),
         "transcript": [
             {"time": _t(e.time_us), "task": e.task, "kind": e.kind, "text": e.text, "screen": e.screen}
             for e in r.transcript

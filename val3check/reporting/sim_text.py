@@ -12,6 +12,8 @@ from __future__ import annotations
 import statistics
 from typing import Any
 
+from . import sim_collision
+
 MAX_TRANSCRIPT_LINES = 40
 MAX_IO_LINES = 20
 MOTION_CODES = {f"R0{n}" for n in range(10, 30)}
@@ -48,6 +50,7 @@ def render(run: Any) -> str:
     m = r.motion
     if m is not None:
         out += _motion_summary(run, m)
+    out += sim_collision.text(run)
     motion_diags = [d for d in run.diagnostics if d.code in MOTION_CODES]
     other = [d for d in run.diagnostics if d.code not in MOTION_CODES]
     if motion_diags:

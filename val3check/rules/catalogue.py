@@ -41,7 +41,8 @@ class Example:
     duration: float = 10.0  # runtime (R) examples: simulated seconds
     scenario: str | None = None  # runtime (R) examples: the text of an I/O scenario file
     links: dict[str, str] = field(default_factory=dict)  # runtime (R) examples: dio/aio/sio global -> physical link
-    robot: str | None = None  # runtime (R) examples: the arm model of the run (`--robot`), e.g. "TX2-60"
+    robot: str | None = None  # runtime (R) examples: the arm model of the run (`--robot`), e.g. "TX2-60", or a URDF of the repository
+    cell: str | None = None  # runtime (R) examples: the text of a cell file (`--cell`, docs/cell.md)
     config: str | None = None  # a val3check.toml written at the example root and used
     byte_escapes: bool = False  # `\xHH` in `files` stands for the byte HH (for encoding rules)
 
@@ -90,6 +91,7 @@ def _example(raw: dict, where: str) -> Example:
         scenario=raw.get("scenario"),
         links=dict(raw.get("links", {})),
         robot=raw.get("robot"),
+        cell=raw.get("cell"),
         config=raw.get("config"),
         byte_escapes=bool(raw.get("byte-escapes", False)),
     )

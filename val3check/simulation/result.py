@@ -6,6 +6,7 @@ the collision checks read (docs/sim-report.md, "For developers")."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 from ..diagnostics import Diagnostic
 from ..interpretation.machine import Machine
@@ -98,6 +99,9 @@ class SimResult:
     # interpretation/values.py): for tests and tools; not part of the reports.
     globals: dict = field(default_factory=dict, repr=False)
     motion: MotionRun | None = None  # what the arm did (None without an arm model)
+    # the collision checks (simulation.collision_run.CollisionRun): None when the run did not check
+    # collisions (no arm model, an arm without collision solids, or not asked: SimOptions.collisions)
+    collision: Any = None
     tool_events: list[ToolEvent] = field(default_factory=list)
     # every task's state over time (running, waiting, blocked, stopped, ended), sampled per 4 ms
     # cycle (interpretation/recorder.py): the task timelines of the HTML report and the traces

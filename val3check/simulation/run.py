@@ -53,6 +53,12 @@ class SimOptions:
     # progress(simulated seconds, motions_done()), called now and then while the run goes (the
     # progress display of `sim` on a terminal: reporting/progress.py)
     progress: Any = None
+    # collision checks (docs/cell.md): `collisions` checks every motion of the arm (against itself
+    # without a cell); `cell` the cell file (implies collisions), `cell_found` how it was chosen
+    # ("option", "found", "disabled": collision_run.choose_cell)
+    collisions: bool = False
+    cell: str | None = None
+    cell_found: str = "option"
 
 
 def build_registry() -> Registry:
@@ -92,6 +98,7 @@ def simulate(ws: Workspace, app: Application, options: SimOptions | None = None,
              scenario: Scenario | None = None) -> SimResult:
     options = options or SimOptions()
     machine = build_machine(ws, app, options)
+    checks = _collision_setup(app, options, machine)
     try:
         machine.load_main()
         if scenario is not None:
@@ -100,6 +107,51 @@ def simulate(ws: Workspace, app: Application, options: SimOptions | None = None,
         machine.end_reason = (stop.reason if isinstance(stop, EndRun) else f"budget:{stop}"
                               if isinstance(stop, MemoryError)
                               else "budget:the application's values are nested too deeply for the simulator")
-        return collect(machine)
+        return _collisions(collect(machine), app, options, checks)
     machine.run()
-    return collect(machine)
+    return _collisions(collect(machine), app, options, checks)
+
+
+def _collision_setup(app: Application, options: SimOptions, machine: Machine):
+    """(cell, R030 diagnostics, value watch) when the run checks collisions, else None; the watch
+    reads the cell's frames and tools as the run goes (at each motion instruction, each time the
+    arm advances)."""
+    arm = machine.arm
+    if not (options.collisions or options.cell) or not getattr(arm, "has_model", False):
+        return None
+    from . import collision_run
+
+    cell, diags = (collision_run.load_cell(options.cell, app, found=options.cell_found == "found") if options.cell
+                   else (None, []))
+    watch = collision_run.ValueWatch(cell, machine)
+    arm.observer = watch
+    return cell, diags, watch
+
+
+def _collisions(result: SimResult, app: Application, options: SimOptions, checks) -> SimResult:
+    """Check the motions of the run (SimResult.collision) and add the findings."""
+    if checks is None:
+        if options.cell and result.motion is None:  # said, not silently ignored
+            from ..diagnostics import Diagnostic
+
+            result.diagnostics.append(Diagnostic(
+                "R037", f"the cell {options.cell} is not checked: the run has no arm model (--robot NAME)",
+                app.path, 0, 0, time_us=result.sim_time_us, task="", program=""))
+        return result
+    from . import collision_run
+
+    cell, diags, watch = checks
+    found = list(diags)
+    if result.motion is not None:
+        unit_mm = 1.0 if getattr(app, "millimeter_unit", True) else 25.4
+        how = options.cell_found if options.cell or options.cell_found == "disabled" else "none"
+        run, more = collision_run.check_run(result.motion, cell, watch, cell_path=options.cell, cell_found=how,
+                                            app_unit_mm=unit_mm, io_log=result.io_log,
+                                            link_names=result.link_names, app_path=app.path,
+                                            max_wall=options.max_wall)
+        result.collision = run
+        found.extend(more)
+    if found:
+        result.diagnostics = sorted([*result.diagnostics, *found],
+                                    key=lambda d: d.time_us if d.time_us is not None else 0)
+    return result

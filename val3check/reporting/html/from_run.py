@@ -10,8 +10,8 @@ controller's 4 ms clock with the TCP speed of the tool in use, the tasks' states
 arm's chain and collision solids, the tool, the cell's obstacles).
 
 The cell and the per-motion clearance come from the collision checks when the run has them
-(`result.collision`: `.cell`, a `collision.cell.Cell`, and `.by_motion`, motion id ->
-`collision.records.MotionReport`), or are given (`cell=`, `clearances=`).
+(`result.collision`: `.cell`, a `collision.cell.Cell`, and `.by_motion`, position in
+`result.motion.records` -> `collision.records.MotionReport`), or are given (`cell=`, `clearances=`).
 """
 
 from __future__ import annotations
@@ -80,7 +80,7 @@ def _diagnostics(report: Any, roots: list[str]) -> list[dict]:
 
 def _motions(report: Any, m: Any, end: float, clearances: dict) -> list[dict]:
     out = []
-    for rec, cmd in zip(m.records, m.commands):
+    for k, (rec, cmd) in enumerate(zip(m.records, m.commands)):
         if rec.start is None or rec.end is None or rec.start > end:
             continue  # failed before it moved (its diagnostic says why), or not started within the run
         src = rec.source
@@ -96,7 +96,7 @@ def _motions(report: Any, m: Any, end: float, clearances: dict) -> list[dict]:
             "min_clearance": None, "clearance_to": None,
             "state": rec.state, "motion_id": rec.id,
         }
-        mr = clearances.get(rec.id) if rec.id is not None else None
+        mr = clearances.get(k)  # keyed by the position in m.records (identifiers repeat, 10.6)
         c = getattr(mr, "min_clearance", None)
         if c is not None:
             entry["min_clearance"] = _r(c.mm, 3)

@@ -138,7 +138,7 @@
           name: "tool " + scene.tool.name + (s.name ? ": " + s.name : "") }));
       }
       (scene.obstacles || []).forEach((s) => this.parts.push({
-        frame: null, pose: M(s.pose), g: geometry(s), color: s.color ? rgb(s.color) : COLORS.obstacle, alpha: 0.88,
+        frame: null, pose: M(s.pose), g: geometry(s), color: s.color ? rgb(s.color) : COLORS.obstacle, alpha: 0.88, walls: 0.3,
         name: "cell: " + (s.name || s.shape) }));
       this.tcpOffset = scene.tool ? M(scene.tool.tcp) : I;
       this.t = 0;
@@ -291,8 +291,11 @@
           if (!part.g.closed && facing < 0) lam = -lam;
           const k = 0.45 + 0.55 * Math.max(0, lam);
           const c = part.color;
+          // the cell's upright faces are see-through, so a fence or a wall never hides the arm;
+          // tops (tables, pallets) stay solid
+          const alpha = part.walls !== undefined && Math.abs(nz) < 0.5 ? part.walls : part.alpha;
           prims.push({ depth: depth / face.length, pts: face.map((i) => sv[i]), part: part,
-            fill: "rgba(" + Math.round(c[0] * k) + "," + Math.round(c[1] * k) + "," + Math.round(c[2] * k) + "," + part.alpha + ")" });
+            fill: "rgba(" + Math.round(c[0] * k) + "," + Math.round(c[1] * k) + "," + Math.round(c[2] * k) + "," + alpha + ")" });
         });
       });
       if (this.trail) {

@@ -1,0 +1,160 @@
+"""The collision section of the sim reports (docs/sim-report.md, docs/cell.md): `text(run)` for
+sim_text.py, `section(run)` for sim_json.py. `run` is a SimReport; its result's `collision` is a
+simulation.collision_run.CollisionRun or None."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+CODES = {f"R0{n}" for n in range(30, 40)}
+MAX_LINES = 30  # instructions listed in the text summary
+
+
+def _where(run: Any, path: str, line: int) -> str:
+    shown = run.display((path, line, 0, ""))
+    return f"{shown[0]}:{line}" if shown else f"line {line}"
+
+
+def _cell_line(run: Any, c: Any) -> str:
+    if c.cell_path is None and c.cell_found == "disabled":
+        return "collision: no cell (--cell none): the arm is checked against itself only"
+    if c.cell_path is None:
+        return ("collision: no cell file (--cell FILE, or val3check-cell.toml beside the application): "
+                "the arm is checked against itself only")
+    shown = run.display((c.cell_path, 0, 0, ""))[0]
+    how = " (found beside the application)" if c.cell_found == "found" else ""
+    if c.cell is None:
+        return f"collision: the cell file {shown}{how} cannot be used (R030): the arm is checked against itself only"
+    cell = c.cell
+    parts = len({p.name for p in cell.parts})
+    return (f"collision: cell {shown}{how}: {_n(len(cell.obstacles), 'obstacle')}, "
+            f"{_n(len(cell.tools), 'tool solid')}, {_n(parts, 'part')}; margin {c.margin_mm:g} mm")
+
+
+def _n(n: int, what: str) -> str:
+    return f"{n} {what}{'s' if n != 1 else ''}"
+
+
+def _by_instruction(run: Any) -> list[tuple[tuple, list[int]]]:
+    """Motions grouped by the instruction that commanded them, in order of first start."""
+    c = run.result.collision
+    recs = run.result.motion.records
+    groups: dict[tuple, list[int]] = {}
+    for i in sorted(c.by_motion, key=lambda i: c.by_motion[i].start):
+        s = recs[i].source
+        groups.setdefault((s.path, s.line, s.col, recs[i].kind), []).append(i)
+    return list(groups.items())
+
+
+def text(run: Any) -> list[str]:
+    """Lines of the text summary: the cell, the closest approach per motion instruction, the
+    contacts (their diagnostics are listed with the others)."""
+    c = run.result.collision
+    if c is None:
+        return []
+    out = [_cell_line(run, c)]
+    groups = _by_instruction(run)
+    with_cell = c.cell is not None and (c.cell.obstacles or c.cell.parts)
+    if with_cell and groups:
+        out.append("  closest approach to the cell per motion instruction:")
+        for (path, line, _, kind), idx in groups[:MAX_LINES]:
+            best = None
+            for i in idx:
+                m = c.by_motion[i].min_clearance
+                if m is not None and (best is None or m.mm < best.mm):
+                    best = m
+            n = f", {len(idx)} motions" if len(idx) > 1 else ""
+            if best is None:
+                out.append(f"    {_where(run, path, line)} {kind}: nothing of the cell in reach{n}")
+            elif best.mm <= 0.0:
+                out.append(f"    {_where(run, path, line)} {kind}: contact, {best.body_a} with {best.body_b} "
+                           f"({-best.mm:.1f} mm deep at {best.time:.3f} s){n}")
+            else:
+                out.append(f"    {_where(run, path, line)} {kind}: {best.mm:.1f} mm, {best.body_a} to {best.body_b} "
+                           f"at {best.time:.3f} s{n}")
+        if len(groups) > MAX_LINES:
+            out.append(f"    ... {len(groups) - MAX_LINES} more (--report json lists every motion)")
+    contacts = [x for x in c.contacts if x[1].kind != "self"]
+    selfs = [x for x in c.contacts if x[1].kind == "self"]
+    starts = sum(1 for r in c.by_motion.values() if r.starts_in_collision is not None)
+    near = sum(1 for r in c.by_motion.values() if r.too_close)
+    if not (contacts or selfs or starts or near or c.drops):
+        out.append(f"  no contact over {len(c.by_motion)} motion{'s' if len(c.by_motion) != 1 else ''}")
+    else:
+        out.append(f"  {len(contacts)} contact(s) with the cell, {len(selfs)} self-collision(s), {starts} motion(s) "
+                   f"starting in collision, {near} near miss(es), {len(c.drops)} part(s) left in collision "
+                   "(diagnostics R031-R035)")
+    out.append("")
+    return out
+
+
+def _num(x: float | None, digits: int = 3) -> float | None:
+    return None if x is None or not math.isfinite(x) else round(float(x), digits) + 0.0
+
+
+def _point(p) -> list[float]:
+    return [_num(v) for v in p]
+
+
+def _contact(c) -> dict | None:
+    if c is None:
+        return None
+    return {"time": _num(c.time, 6), "body_a": c.body_a, "body_b": c.body_b, "point": _point(c.point),
+            "depth_mm": _num(c.depth_mm), "kind": c.kind}
+
+
+def section(run: Any) -> dict | None:
+    """The JSON `collision` section (docs/sim-report.md)."""
+    c = run.result.collision
+    if c is None:
+        return None
+    cell = None
+    if c.cell_path is not None:
+        shown = run.display((c.cell_path, 0, 0, ""))[0]
+        cl = c.cell
+        cell = {"path": shown, "found": c.cell_found, "usable": cl is not None,
+                "obstacles": [o.name for o in cl.obstacles] if cl else [],
+                "tools": [t.name for t in cl.tools] if cl else [],
+                "parts": sorted({p.name for p in cl.parts}) if cl else [],
+                "margin_mm": _num(cl.margin_mm) if cl else None, "touch_mm": _num(cl.touch_mm) if cl else None}
+    with_cell = c.cell is not None and bool(c.cell.obstacles or c.cell.parts)
+    recs = run.result.motion.records
+    motions = []
+    for i in sorted(c.by_motion):
+        r = c.by_motion[i]
+        s = recs[i].source
+        where = run.display((s.path, s.line, s.col, ""))
+        m = r.min_clearance
+        entry = {
+            "motion": i, "path": where[0] if where else None, "line": s.line or None, "column": s.col or None,
+            "task": s.task or None, "start": _num(r.start, 6), "end": _num(r.end, 6),
+            "min_clearance": None if m is None else {
+                "mm": _num(m.mm), "time": _num(m.time, 6), "body_a": m.body_a, "body_b": m.body_b,
+                "point_a": _point(m.point_a), "point_b": _point(m.point_b)},
+            "too_close": bool(r.too_close),
+            "starts_in_collision": _contact(r.starts_in_collision),
+            "contacts": [_contact(x) for x in r.contacts],
+            "checks": r.checks,
+        }
+        if with_cell:
+            entry["clearance"] = {"times": [_num(x, 6) for x in r.times.tolist()],
+                                  "mm": [_num(x) for x in r.clearance.tolist()]}
+        motions.append(entry)
+    mins = [r.min_clearance.mm for r in c.by_motion.values() if r.min_clearance is not None]
+    return {
+        "cell": cell,
+        "summary": {
+            "motions": len(c.by_motion),
+            "contacts": sum(1 for _, x in c.contacts if x.kind != "self"),
+            "self_collisions": sum(1 for _, x in c.contacts if x.kind == "self"),
+            "starts_in_collision": sum(1 for r in c.by_motion.values() if r.starts_in_collision is not None),
+            "near_misses": sum(1 for r in c.by_motion.values() if r.too_close),
+            "parts_left_in_collision": len(c.drops),
+            "min_clearance_mm": _num(min(mins)) if mins else None,
+            "checks": c.checks,
+        },
+        "motions": motions,
+        "drops": [{"time": _num(d.time, 6), "part": d.part, "obstacle": d.obstacle, "point": _point(d.point),
+                   "depth_mm": _num(d.depth_mm)} for d in c.drops],
+    }

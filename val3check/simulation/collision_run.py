@@ -1,0 +1,419 @@
+"""The collision checks of a run (issue 14; docs/cell.md): the cell, the values the program gives
+its frames and tools, every motion of `SimResult.motion` through `collision.CollisionChecker`,
+the grippers' open/close, and the findings R030-R037 at the lines that commanded them.
+
+    cell, diags = load_cell(path, app)                        # R030 for a cell file that cannot be used
+    watch = ValueWatch(cell, machine)                         # arm.observer: frames/tools as the run goes
+    run, diags = check_run(motion_run, cell, watch, ...)      # -> CollisionRun, runtime diagnostics
+
+Frames and tools: the interpreter keeps only the current value of a variable. The watch reads the
+frames and tools the cell names each time a motion instruction records a command (ch10_motion)
+and each time the scheduler advances the arm (a command ends and the next one starts:
+motion/arm.py), and keeps the values that changed, with their time; a motion is checked with the
+last values read at or before its start (docs/cell.md).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..collision import CellError, CollisionChecker, MotionSpan, arm_model, find_cell, read_cell
+from ..collision.cell import Cell
+from ..collision.records import Contact, MotionReport, PartDrop
+from ..diagnostics import Diagnostic
+from ..geometry import frames as geo_frames
+from ..interpretation.clock import TICK_US
+
+US = 1_000_000
+_NAME = re.compile(r"^(?:([A-Za-z_][A-Za-z0-9_]*):)?([A-Za-z_][A-Za-z0-9_]*)(?:\[\s*(\d+)\s*\])?$")
+
+
+@dataclass
+class CollisionRun:
+    """The collision checks of a run (`SimResult.collision`; docs/sim-report.md).
+
+    cell        the `collision.cell.Cell` checked against, or None (no cell: self-collision only)
+    cell_path   the cell file (as given or found), or None
+    cell_found  how it was chosen: "option" (--cell), "found" (val3check-cell.toml beside the
+                application), "none" (no file there) or "disabled" (--cell none)
+    by_motion   {index in result.motion.records: collision.records.MotionReport} for every motion
+                the arm ran (min_clearance, first_contact, starts_in_collision, too_close,
+                per-sample clearance)
+    contacts    [(record index, Contact)] every contact, by time (kind "contact", "inside" or "self")
+    drops       [PartDrop] parts left inside an obstacle or another part
+    margin_mm   the cell's safety margin
+    checks      distance and collision queries made
+    """
+
+    cell: Cell | None
+    cell_path: str | None
+    cell_found: str
+    by_motion: dict[int, MotionReport] = field(default_factory=dict)
+    contacts: list[tuple[int, Contact]] = field(default_factory=list)
+    drops: list[PartDrop] = field(default_factory=list)
+    margin_mm: float = 0.0
+    checks: int = 0
+
+    def clearance_trace(self) -> tuple[np.ndarray, np.ndarray]:
+        """(times (N,), clearance to the cell (N,) in mm) over the motions checked, in time order:
+        a lower bound of the true clearance, exact below the margin and at each motion's minimum
+        (docs/cell.md). Empty without obstacles (nothing to be clear of)."""
+        if self.cell is None or not (self.cell.obstacles or self.cell.parts):
+            return np.zeros(0), np.zeros(0)
+        ts, cs = [], []
+        for i in sorted(self.by_motion):
+            r = self.by_motion[i]
+            ts.append(r.times)
+            cs.append(r.clearance)
+        if not ts:
+            return np.zeros(0), np.zeros(0)
+        return np.concatenate(ts), np.concatenate(cs)
+
+
+def choose_cell(option: str | None, app_path: str) -> tuple[str | None, str]:
+    """The cell file of a run: (path, how) with how "option" (--cell), "found" (beside the
+    application, collision.cellfile.CELL_FILE_NAME), "none" (none there) or "disabled" (`--cell
+    none`): without a cell the arm is checked against itself only."""
+    if option == "none":
+        return None, "disabled"
+    if option:
+        return option, "option"
+    found = find_cell(Path(app_path).parent)
+    return (str(found), "found") if found is not None else (None, "none")
+
+
+def load_cell(path: str, app, found: bool = False) -> tuple[Cell | None, list[Diagnostic]]:
+    """Read a cell file for the application `app` (loading.model.Application): (cell, []) or
+    (None, R030 diagnostics at every problem's line and column). `found`: beside the application
+    (confined to its folder), not named by the user."""
+    unit = "mm" if getattr(app, "millimeter_unit", True) else "inch"
+    try:
+        return read_cell(path, app_dir=str(Path(app.path).parent), app_unit=unit, found=found), []
+    except CellError as exc:
+        return None, [Diagnostic("R030", f"cell file: {msg}", p, line, col, time_us=0, task="", program="")
+                      for p, line, col, msg in exc.problems]
+
+
+# ---- the program's frames and tools ---------------------------------------------------------------------
+
+
+class ValueWatch:
+    """Reads the frames and tools a cell names (world poses of frames, tools in the flange, 4x4 in
+    the application's unit) in `machine` (interpretation.machine.Machine) when called with the
+    simulated time; `frame(name, t)` and `tool(name, t)` give the values of the last reading at or
+    before t. Set as `MovingArm.observer`."""
+
+    def __init__(self, cell: Cell | None, machine: Any = None) -> None:
+        self.machine = machine
+        self.frames = sorted({o.frame for o in cell.obstacles if o.frame != "world"}) if cell else []
+        self.tools = sorted({t.tool for t in (*cell.tools, *cell.parts) if t.tool != "flange"}) if cell else []
+        self.times: list[float] = []
+        self.values: list[dict[str, np.ndarray | None]] = []
+
+    def __call__(self, time_us: int, cycle: bool = False) -> None:
+        """Read at `time_us`; `cycle`: at the start of a scheduler cycle, before any line of it ran:
+        the values hold since the lines of the cycle before (no line runs between two cycles)."""
+        machine = self.machine
+        if machine is None or (not self.frames and not self.tools):
+            return
+        now: dict[str, np.ndarray | None] = {}
+        for name in self.frames:
+            now["f:" + name] = _read(machine, name, geo_frames.Frame)
+        for name in self.tools:
+            now["t:" + name] = _read(machine, name, geo_frames.Tool)
+        if self.values and _same(now, self.values[-1]):
+            return
+        if cycle:
+            last = int(round(self.times[-1] * US)) if self.times else 0
+            time_us = max(time_us - TICK_US + 1, last + 1)
+        t = time_us / US
+        if self.times and self.times[-1] == t:
+            self.values[-1] = now
+        else:
+            self.times.append(t)
+            self.values.append(now)
+
+    def _at(self, key: str, t: float):
+        import bisect
+
+        k = bisect.bisect_right(self.times, t + 1e-9) - 1
+        if k < 0:
+            k = 0 if self.values else -1
+        return None if k < 0 else self.values[k].get(key)
+
+    def frame(self, name: str, t: float):
+        return self._at("f:" + name, t)
+
+    def tool(self, name: str, t: float):
+        return self._at("t:" + name, t)
+
+
+def _read(machine: Any, name: str, kind: type) -> np.ndarray | None:
+    """The pose of the global frame/tool `name` ("fPallet", "fPallet[2]", "lib:fBase") in its
+    root (world, flange) as a 4x4 matrix, or None when the program has no such value."""
+    m = _NAME.match(name)
+    unit = machine.main
+    if m is None or unit is None:
+        return None
+    alias, var, index = m.group(1), m.group(2), int(m.group(3) or 0)
+    if alias is not None:
+        unit = unit.aliases.get(alias)
+        if unit is None or not hasattr(unit, "globals"):
+            return None
+    c = unit.globals.get(var)
+    data = getattr(c, "data", None)
+    if data is None or not 0 <= index < len(data) - c.off:
+        return None
+    node = data[c.off + index]
+    if not isinstance(node, kind):
+        return None
+    try:
+        r, p, _ = geo_frames.root_pose(node)
+    except Exception:  # undefined reference, modified root (160/161/163/164): no position
+        return None
+    out = np.eye(4)
+    out[:3, :3] = np.array(r, dtype=float).reshape(3, 3)
+    out[:3, 3] = p
+    return out
+
+
+def _same(a: dict, b: dict) -> bool:
+    if a.keys() != b.keys():
+        return False
+    for k, v in a.items():
+        w = b[k]
+        if (v is None) != (w is None) or (v is not None and not np.array_equal(v, w)):
+            return False
+    return True
+
+
+# ---- checking the run -------------------------------------------------------------------------------------
+
+
+def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, *, cell_path: str | None = None,
+              cell_found: str = "none", app_unit_mm: float = 1.0, io_log=(),
+              link_names: dict | None = None, app_path: str = "",
+              max_wall: float = math.inf) -> tuple[CollisionRun | None, list[Diagnostic]]:
+    """Check every motion of `motion` (a simulation.result.MotionRun) in `cell` (None: the arm
+    against itself only), with the grippers' events and the parts taken away (`cleared_by`, from
+    the run's `io_log`; `link_names`: (kind, link) -> the globals linked to it); (CollisionRun,
+    diagnostics R031-R036), or (None, [R037]) when there is nothing to check the motions with or
+    the arm's solids cannot be read. The checks stop (R037) after `max_wall` seconds of wall clock."""
+    from ..robot import RobotError
+
+    name = getattr(motion.model, "name", "the arm")
+    try:
+        arm = arm_model(motion.model)
+    except RobotError as exc:
+        return None, [_not_checked(f"collisions not checked: the collision solids of {name} cannot be read: {exc}",
+                                   motion.end_s, app_path)]
+    if not arm.bodies and (cell is None or not (cell.tools or cell.parts)):
+        return None, [_not_checked(f"collisions not checked: the arm model {name} has no collision solids, and no "
+                                   "cell gives tool solids or parts", motion.end_s, app_path)]
+    checker = CollisionChecker(arm, cell if cell is not None else Cell(path=""), frames=watch.frame,
+                               tools=watch.tool, app_unit_mm=app_unit_mm)
+    run = CollisionRun(cell, cell_path, cell_found, margin_mm=checker.margin)
+    diags: list[Diagnostic] = []
+    traj = motion.trajectory
+    q_at = _path_between_samples(traj)
+    spans = _spans(motion)
+    events = _events(motion.tool_events, cell, io_log, link_names or {})
+    names = _tool_names(cell)
+    ev = 0
+    ongoing: set[tuple[str, str]] = set()  # pairs in contact since the last motion free of contact
+
+    def event(e) -> list[Diagnostic]:
+        if isinstance(e, str):
+            checker.clear_parts(e)
+            return []
+        return _gripper(checker, e, names, traj, run)
+
+    deadline = time.monotonic() + max_wall
+    for done, (index, start, end) in enumerate(spans):
+        if time.monotonic() > deadline:
+            diags.append(_not_checked(f"collision checks cut short by the wall-clock budget (--max-wall "
+                                      f"{max_wall:g} s): {done} of {len(spans)} motions checked, up to {start:.3f} s",
+                                      start, app_path))
+            events = events[:ev]
+            break
+        while ev < len(events) and events[ev][0] / US <= start + 1e-9:
+            diags.extend(event(events[ev][2]))
+            ev += 1
+        rec = motion.records[index]
+        times, joints = _samples(q_at, start, end)
+        report = checker.check_motion(MotionSpan(index, rec.source, _label(rec)), times, joints, q_at=q_at)
+        run.by_motion[index] = report
+        diags.extend(_motion_findings(report, rec, ongoing, checker.margin))
+        run.contacts.extend((index, c) for c in report.contacts)
+        now = {(c.body_a, c.body_b) for c in report.contacts}
+        if report.starts_in_collision is not None:
+            now.add((report.starts_in_collision.body_a, report.starts_in_collision.body_b))
+        ongoing = ongoing | now if now else set()
+    while ev < len(events):
+        diags.extend(event(events[ev][2]))
+        ev += 1
+    for p in checker.problems:
+        w = p.where
+        path, line, col = (w.path, w.line, w.column) if w is not None else (cell_path or "", 0, 0)
+        diags.append(Diagnostic("R036", p.message, path, line, col, time_us=int(round(p.time * US)), task="",
+                                program=""))
+    run.checks = checker.measurements
+    return run, diags
+
+
+def _path_between_samples(traj: Any):
+    """The arm's position at any time (between the 4 ms samples too), for the checker's motion
+    bound: the trajectory itself, with `many(times)` for all the steps of a motion at once."""
+
+    def q_at(t: float):
+        return traj.position(t)
+
+    def many(times):
+        s, _ = traj.profile.states(np.asarray(times, dtype=float))
+        return traj.path.q(s)
+
+    q_at.many = many
+    return q_at
+
+
+def _not_checked(message: str, end_s: float, path: str) -> Diagnostic:
+    return Diagnostic("R037", message, path, 0, 0, time_us=int(round(end_s * US)), task="", program="")
+
+
+def _events(tool_events, cell: Cell | None, io_log, link_names: dict) -> list[tuple[int, int, Any]]:
+    """(time_us, order, event) in time order: the grippers' ToolEvents, and the part names whose
+    `cleared_by` signal became true (a dio named or linked so)."""
+    out: list[tuple[int, int, Any]] = [(e.time_us, k, e) for k, e in enumerate(tool_events)]
+    clear: dict[str, list[str]] = {}
+    for p in cell.parts if cell is not None else ():
+        if p.cleared_by and p.name not in clear.setdefault(p.cleared_by, []):
+            clear[p.cleared_by].append(p.name)
+    if clear:
+        n = len(out)
+        for e in io_log:
+            if e.kind != "dio" or e.value is not True:
+                continue
+            for key in (e.link, *link_names.get(("dio", e.link), ())):
+                for name in clear.get(key, ()):
+                    out.append((e.time_us, n, name))
+                    n += 1
+    out.sort(key=lambda x: (x[0], x[1]))
+    return out
+
+
+def _spans(motion: Any) -> list[tuple[int, float, float]]:
+    """(record index, start, end) of every command the arm ran, in time order (stop() may move the
+    arm after the run's end); a command not ended ends where the next one starts, or at the end of
+    the run."""
+    started = [(r.start, i) for i, r in enumerate(motion.records) if r.start is not None]
+    started.sort()
+    out = []
+    for k, (start, i) in enumerate(started):
+        end = motion.records[i].end
+        if end is None:
+            end = started[k + 1][0] if k + 1 < len(started) else max(motion.end_s, start)
+        out.append((i, start, max(end, start)))
+    return out
+
+
+def _samples(q_at: Any, start: float, end: float) -> tuple[np.ndarray, np.ndarray]:
+    """The motion on the controller's 4 ms clock (interpretation/clock.py), with its exact start and
+    end, positions computed in one call."""
+    tick = TICK_US / US
+    k0 = math.ceil(start / tick - 1e-9)
+    k1 = math.floor(end / tick + 1e-9)
+    grid = np.arange(k0, k1 + 1) * tick
+    times = grid
+    if not len(grid) or grid[0] > start + 1e-9:
+        times = np.concatenate(([start], times))
+    if times[-1] < end - 1e-9:
+        times = np.concatenate((times, [end]))
+    return times, np.asarray(q_at.many(times), dtype=float)
+
+
+def _label(rec: Any) -> str:
+    where = f"{Path(rec.source.path).name}:{rec.source.line}"
+    return f"{rec.kind} {rec.target} ({where})" if rec.target else f"{rec.kind} ({where})"
+
+
+def _tool_names(cell: Cell | None) -> dict[str, str]:
+    """Tool names of the program's events ("tGripper") -> as the cell writes them ("tGripper[0]")."""
+    out: dict[str, str] = {}
+    if cell is None:
+        return out
+    for p in cell.parts:
+        m = _NAME.match(p.tool)
+        if m and not m.group(1) and int(m.group(3) or 0) == 0:
+            out.setdefault(m.group(2), p.tool)
+        out.setdefault(p.tool, p.tool)
+    return out
+
+
+def _gripper(checker: CollisionChecker, e: Any, names: dict[str, str], traj: Any,
+             run: CollisionRun) -> list[Diagnostic]:
+    tool = names.get(e.tool)
+    if tool is None:
+        return []
+    t = e.time_us / US
+    drops = checker.gripper(tool, e.action, t, joints=traj.position(t), source=e.position)
+    run.drops.extend(drops)
+    out = []
+    path, line, col, program = e.position
+    for d in drops:
+        depth = f", {d.depth_mm:.1f} mm deep" if d.depth_mm is not None else ", inside it"
+        out.append(Diagnostic("R035", f"{e.action}({e.tool}) leaves {d.part} in {d.obstacle}{depth}, at "
+                              f"{_pt(d.point)}", path, line, col, time_us=e.time_us, task=e.task, program=program))
+    return out
+
+
+def _pt(p) -> str:
+    return "({:.1f}, {:.1f}, {:.1f}) mm".format(*p)
+
+
+def _contact_text(c: Contact) -> str:
+    """The first contact of a pair: where it starts (its depth there is the touch tolerance found
+    by the search, not the deepest overlap: left out); a motion's first sample: how deep."""
+    if c.kind == "inside":
+        how = f"is inside {c.body_b}"
+    else:
+        how = f"hits {c.body_b}"
+    depth = ""
+    if c.depth_mm is not None and c.kind != "inside" and c.depth_mm >= 0.5:
+        depth = f", {c.depth_mm:.1f} mm deep"
+    return f"{c.body_a} {how} at {c.time:.3f} s{depth}, at {_pt(c.point)}"
+
+
+def _motion_findings(r: MotionReport, rec: Any, ongoing: set[tuple[str, str]], margin: float) -> list[Diagnostic]:
+    """R031-R034 of one motion; `ongoing`: pairs in contact in the motions before it, since the last
+    one free of contact (a motion starting in such a contact goes on with it: said there)."""
+    src = rec.source
+    out = []
+
+    def diag(code: str, message: str, time: float) -> None:
+        out.append(Diagnostic(code, message, src.path, src.line, src.col, time_us=int(round(time * US)),
+                              task=src.task, program=src.program))
+
+    s = r.starts_in_collision
+    if s is not None and (s.body_a, s.body_b) not in ongoing:
+        code = "R034" if s.kind == "self" else "R032"
+        diag(code, f"{rec.kind} starts in collision: {_contact_text(s)}", s.time)
+    for c in r.contacts:
+        if s is not None and (c.body_a, c.body_b) == (s.body_a, s.body_b):
+            continue
+        if c.kind == "self":
+            diag("R034", f"{rec.kind}: self-collision: {_contact_text(c)} (the arm's solids are envelopes: "
+                 "check on the arm's own geometry)", c.time)
+        else:
+            diag("R031", f"{rec.kind}: {_contact_text(c)}", c.time)
+    if r.too_close and r.min_clearance is not None:
+        m = r.min_clearance
+        diag("R033", f"{rec.kind} comes {m.mm:.1f} mm from a collision (margin {margin:g} mm): {m.body_a} "
+             f"and {m.body_b} at {m.time:.3f} s", m.time)
+    return out
