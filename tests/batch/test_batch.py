@@ -31,9 +31,11 @@ FAST = ["--duration", "4.5"]
 
 @pytest.fixture
 def cell(tmp_path, monkeypatch):
-    """Two copies of PickPlace under apps/, the scenario, in the current folder."""
+    """Two copies of PickPlace under apps/ (without the cell file beside it: the tests of cells
+    bring it back), the scenario, in the current folder."""
     for name in ("A", "B"):
         shutil.copytree(PICKPLACE, tmp_path / "apps" / name)
+        (tmp_path / "apps" / name / "val3check-cell.toml").unlink()
     shutil.copy(SCENARIO, tmp_path / "pickplace.toml")
     monkeypatch.chdir(tmp_path)
     return tmp_path
@@ -135,7 +137,7 @@ def test_sweep_product_of_every_axis(cell):
     from val3check.batch.command import _axes
 
     class Args:
-        app, robot, scenario, sweep = [], None, None, "sweep.toml"
+        app, robot, scenario, cell, sweep = [], None, None, None, "sweep.toml"
 
     axes, sweep = _axes(Args)
     cases = product_cases(axes, Settings(), RunOptions())
@@ -186,13 +188,10 @@ def test_an_axis_given_twice_and_cells_are_usage_errors(cell, capsys):
     (cell / "sweep.toml").write_text('arms = ["tx2-60"]\n')
     code, _, err = sim(capsys, "apps/A", "--robot", "tx2-90", "--sweep", "sweep.toml", *FAST)
     assert code == 2 and "arms are given both" in err
-    (cell / "c.toml").write_text("")
-    (cell / "sweep.toml").write_text('arms = ["tx2-60"]\ncells = ["c.toml"]\n')
-    from val3check.batch.command import cells_supported
-
-    code, _, err = sim(capsys, "apps/A", "--sweep", "sweep.toml", *FAST)
-    if not cells_supported():
-        assert code == 2 and "cells are not supported by `val3check sim` yet" in err
+    (cell / "sweep.toml").write_text('arms = ["tx2-60"]\n')
+    code, _, err = sim(capsys, "apps/A", "--sweep", "sweep.toml", "--scenario", "pickplace.toml",
+                       "--robot", "tx2-90", *FAST)
+    assert code == 2 and "arms are given both" in err
 
 
 # -- executors: -j and Dask give the same results ------------------------------------------
@@ -478,12 +477,14 @@ def test_the_bundled_sweep(capsys, monkeypatch):
     monkeypatch.chdir(ROOT)
     code, out, err = sim(capsys, "--sweep", "fixtures/sweeps/pickplace.toml", "--duration", "9", "-j", "1",
                          "--format", "json")
-    assert code == 0, err
     cases = cases_of(out)
     assert [(c["arm"], c["overrides"]["monitor_speed"]) for c in cases] == [
         (arm, speed) for arm in ("tx2-60", "tx2-60l", "tx2-90") for speed in (50.0, 100.0)]
     for full, half in zip(cases[1::2], cases[0::2], strict=True):  # the arm moves at half speed: longer cycles
         assert half["cycle_time"] > full["cycle_time"] * 1.2
+    # the cell beside PickPlace travels with each case: the TX2-90's shoulder hits its table
+    assert code == 1 and [c["verdict"] for c in cases] == ["pass"] * 4 + ["fail"] * 2
+    assert all("R032" in c["reason"] and "'table'" in c["reason"] for c in cases[4:])
 
 
 @pytest.mark.parametrize("text, line, col", [
@@ -521,3 +522,23 @@ def test_case_reports_html_and_trace_are_the_single_runs(cell, capsys):
     assert code == 2 and "--case-reports: pdf" in err
     code, _, err = sim(capsys, "apps/*", "--trace", "x.mcap")
     assert code == 2 and "--case-reports json,trace" in err
+
+
+def test_cells_travel_with_the_cases_as_sim_cell_chooses_them(cell, capsys):
+    """The cell beside the application (found as `sim` finds it), a cell named by the sweep, and
+    none: each case carries its cell file and the verdicts follow the collisions."""
+    shutil.copy(PICKPLACE / "val3check-cell.toml", cell / "apps" / "A" / "val3check-cell.toml")
+    shutil.copy(PICKPLACE / "val3check-cell.toml", cell / "named-cell.toml")
+    (cell / "sweep.toml").write_text('applications = ["apps/A"]\narms = ["tx2-90"]\nscenarios = ["pickplace.toml"]\n'
+                                     'cells = ["none", "named-cell.toml"]\n')
+    code, out, _ = sim(capsys, "--sweep", "sweep.toml", *FAST, "--format", "json", "-j", "2", "--out-dir", "o")
+    by_cell = {c["cell"]: c for c in cases_of(out)}
+    assert code == 1 and set(by_cell) == {"none", "named-cell.toml"}
+    assert by_cell["none"]["verdict"] == "pass"
+    assert by_cell["named-cell.toml"]["verdict"] == "fail" and "R032" in by_cell["named-cell.toml"]["reason"]
+    # the default: the cell beside the application, as a single run finds it; same report
+    code, _, _ = sim(capsys, "apps/A", "--robot", "tx2-90", "--scenario", "pickplace.toml", *FAST, "--out-dir", "d")
+    (report,) = (cell / "d" / "cases").iterdir()
+    single = ["apps/A", "--robot", "tx2-90", "--scenario", "pickplace.toml", *FAST, "--format", "json"]
+    code_single, text, _ = sim(capsys, *single)
+    assert code == code_single == 1 and report.read_text() == text

@@ -13,6 +13,7 @@ import hashlib
 import itertools
 import os
 import re
+import tomllib
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -46,7 +47,7 @@ class Case:
     app_name: str
     arm: str  # --robot as given; "" for the default (the controller tree's arm.cfx, else none)
     scenario: str  # display path, "" for none
-    cell: str  # display path, "" for none
+    cell: str  # display path; "none" (--cell none); "" for the default (the cell beside the application, if any)
     overrides: Overrides
     # what the worker needs
     app_path: str  # absolute
@@ -145,6 +146,7 @@ def find_apps(paths: list[str], settings) -> list[_App]:  # noqa: ANN001
 def _bundle(ws, app, max_size: int) -> tuple[tuple[str, bytes], ...]:  # noqa: ANN001
     """The files of `app`, of its libraries and user types (transitively), and the arm.cfx of
     its controller tree: what a worker writes before it loads the application."""
+    from ..collision.cellfile import find_cell
     from ..robot.catalog import find_arm_cfx
 
     paths: set[str] = set()
@@ -161,7 +163,41 @@ def _bundle(ws, app, max_size: int) -> tuple[tuple[str, bytes], ...]:  # noqa: A
     cfx = find_arm_cfx(app.path)
     if cfx is not None:
         paths.add(str(cfx))
+    found = find_cell(app.folder)  # the cell the single run finds beside the application
+    if found is not None:
+        paths.add(str(found))
+        paths.update(cell_meshes(str(found), app.folder))
     return tuple((p, data) for p in sorted(paths) if (data := _read(p, max_size)) is not None)
+
+
+def cell_meshes(cell_path: str, app_folder: str) -> list[str]:
+    """The mesh files a cell file names (its `file` keys) that the cell reader would open: they
+    travel with the case. A file it would refuse stays behind, and the case's run says why."""
+    from pathlib import Path
+
+    from ..collision.meshes import MeshProblem, resolve_mesh_path
+
+    try:
+        with open(cell_path, "rb") as fh:
+            data = tomllib.load(fh)
+    except (OSError, tomllib.TOMLDecodeError, UnicodeDecodeError, RecursionError):
+        return []
+    names, todo = [], [data]
+    while todo:  # iterative: a hostile file must not exhaust the stack
+        v = todo.pop()
+        if isinstance(v, dict):
+            if isinstance(v.get("file"), str):
+                names.append(v["file"])
+            todo.extend(v.values())
+        elif isinstance(v, list):
+            todo.extend(v)
+    out = []
+    for name in names:
+        try:
+            out.append(str(resolve_mesh_path(name, Path(cell_path).resolve().parent, [app_folder])))
+        except (MeshProblem, OSError, ValueError):
+            continue
+    return out
 
 
 def _read(path: str, max_size: int) -> bytes | None:
@@ -228,6 +264,8 @@ def list_cases(sweep: Sweep, defaults: Axes, settings, options: RunOptions) -> l
             arm = sweep.resolve(entry["arm"])
         scenario = path(entry, "scenario", defaults.scenarios[0] if defaults.scenarios else None)
         cell = path(entry, "cell", defaults.cells[0] if defaults.cells else None)
+        if "cell" in entry and entry["cell"] is None:
+            cell = "none"
         cases += [_case(app, arm, scenario, cell, entry["overrides"], settings, options) for app in apps]
     return _unique(cases)
 
@@ -246,15 +284,18 @@ def _case(app: _App, arm: str, scenario: str | None, cell: str | None, ov: Overr
     if scenario:
         sc_path, data = _input_file(scenario, "scenario")
         files.append((sc_path, data))
-    if cell:
+    if cell and cell.strip().lower() != "none":
         cell_path, data = _input_file(cell, "cell")
         files.append((cell_path, data))
+        files += [(m, d) for m in cell_meshes(cell_path, os.path.dirname(app.path) if os.path.isfile(app.path)
+                                              else app.path) if (d := _read(m, 64 * 1024 * 1024)) is not None]
     robot_path = None
     if arm and arm.strip().lower() != "none" and _is_robot_file(arm):
         robot_path, data = _input_file(arm, "robot")
         files.append((robot_path, data))
         arm = display_path(robot_path)
-    shown = {"scenario": display_path(sc_path) if sc_path else "", "cell": display_path(cell_path) if cell_path else ""}
+    shown = {"scenario": display_path(sc_path) if sc_path else "",
+             "cell": display_path(cell_path) if cell_path else ("none" if cell else "")}
     return Case(app=display_path(app.path), app_name=app.name, arm=arm, **shown, overrides=ov, app_path=app.path,
                 scenario_path=sc_path, cell_path=cell_path, robot_path=robot_path, cwd=os.getcwd(), settings=settings,
                 options=options, files=tuple(sorted(dict(files).items())))

@@ -7,7 +7,6 @@ application, executor unavailable)."""
 
 from __future__ import annotations
 
-import dataclasses
 import os
 import sys
 import time
@@ -29,13 +28,6 @@ def wanted(args: Any) -> bool:
     """Whether the command line asks for a batch; otherwise `sim` runs one application as before."""
     return bool(len(args.app) > 1 or args.sweep or len(args.robot or []) > 1 or args.out_dir or args.jobs is not None
                 or args.executor != "local" or any(_GLOB_CHARS & set(a) for a in args.app))
-
-
-def cells_supported() -> bool:
-    """Whether the single run takes a cell (SimOptions.cell, added with `sim --cell`)."""
-    from ..simulation import SimOptions
-
-    return "cell" in {f.name for f in dataclasses.fields(SimOptions)}
 
 
 def _err(message: str) -> int:
@@ -75,10 +67,6 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
         return _err(f"bad sweep file: {printable_path(str(exc))}")
     except CaseError as exc:
         return _err(str(exc))
-    listed_cells = sweep is not None and any(c.get("cell") for c in sweep.cases)
-    if (any(axes.cells) or listed_cells) and not cells_supported():
-        return _err("cells are not supported by `val3check sim` yet (collision checks with a cell come with"
-                    " `sim --cell`); remove the cells from the sweep")
     options = RunOptions(duration=args.duration, max_wall=args.max_wall, max_lines=args.max_lines,
                          max_memory_mb=args.max_memory, cycles=args.cycles, fail_on=settings.fail_on,
                          reports=bool(args.out_dir), case_reports=kinds)
@@ -161,7 +149,7 @@ def _axes(args: Any) -> tuple[Axes, Any]:
     sweep = load_sweep(args.sweep) if args.sweep else None
     if sweep is not None:
         check_files(sweep)
-    cli_cell = getattr(args, "cell", None)  # `sim --cell`, when the single run has it
+    cli_cell = args.cell  # `sim --cell FILE|none`
     axes = Axes(apps=list(args.app), arms=list(args.robot or []), scenarios=[args.scenario] if args.scenario else [],
                 cells=[cli_cell] if cli_cell else [], overrides=[])
     if sweep is None:
@@ -177,7 +165,7 @@ def _axes(args: Any) -> tuple[Axes, Any]:
         axes.arms = axes.arms or [sweep.resolve(e) if e.value.lower().endswith(_ROBOT_FILES) else e.value
                                   for e in sweep.arms]
         axes.scenarios = axes.scenarios or [None if e is None else sweep.resolve(e) for e in sweep.scenarios]
-        axes.cells = axes.cells or [None if e is None else sweep.resolve(e) for e in sweep.cells]
+        axes.cells = axes.cells or ["none" if e is None else sweep.resolve(e) for e in sweep.cells]
         axes.overrides = sweep.overrides
         if sweep.applications and not args.app:
             _check_globs(sweep)

@@ -129,6 +129,7 @@ def _run(case: Case, mirror: str) -> CaseOutcome:
     from ..robot import RobotError
     from ..rules.catalogue import catalogue
     from ..simulation import SimOptions, choose_sim_robot, simulate
+    from ..simulation.collision_run import choose_cell
     from ..simulation.scenario import Scenario, ScenarioError, load_scenario
 
     settings = copy.deepcopy(case.settings)
@@ -165,11 +166,12 @@ def _run(case: Case, mirror: str) -> CaseOutcome:
             scenario = scenario or Scenario("", "", {})
             scenario.data = {**scenario.data, "controller": {**scenario.data.get("controller", {}),
                                                              "monitor_speed": ov.monitor_speed}}
+        # the cell as `sim --cell` chooses it: the case's file, none, or the one beside the application
+        given = display_path(_mirrored(mirror, case.cell_path)) if case.cell_path else (case.cell or None)
+        cell, cell_found = choose_cell(given, app.path)
         options = SimOptions(duration=ov.duration or opts.duration, max_wall=opts.max_wall, max_lines=opts.max_lines,
                              max_memory_mb=opts.max_memory_mb, disk_roots=list(settings.disk_roots), robot=robot,
-                             cycles=ov.cycles or opts.cycles)
-        if case.cell_path:  # only when the single run has cells (checked before the batch starts)
-            options.cell = _mirrored(mirror, case.cell_path)
+                             cycles=ov.cycles or opts.cycles, collisions=True, cell=cell, cell_found=cell_found)
         result = simulate(outcome.workspace, app, options, scenario)
     except ScenarioError as exc:
         return CaseOutcome(summary_of(case, "not-run", f"bad scenario: {exc}", model=model))
