@@ -202,7 +202,7 @@ class CollisionChecker:
         poses: dict[str, np.ndarray | None] = {}
         for t, _, _ in self._tool_bodies:
             self._tool_pose(t.tool, time, poses, t.where)
-        if _same(frames, self._frames_read) and _same(poses, self._tool_in_flange):
+        if same_poses(frames, self._frames_read) and same_poses(poses, self._tool_in_flange):
             return
         self._frames_read = frames
         static: list[Body] = []
@@ -1083,7 +1083,7 @@ def _boxes(bodies: list[Body]) -> tuple[np.ndarray, np.ndarray]:
     return c - h, c + h
 
 
-def _same(a: dict, b: dict | None) -> bool:
+def same_poses(a: dict, b: dict | None) -> bool:
     """Two {name: pose or None} readings are the same."""
     if b is None or a.keys() != b.keys():
         return False

@@ -26,6 +26,7 @@ import numpy as np
 
 from ..collision import CellError, CollisionChecker, MotionSpan, arm_model, find_cell, read_cell
 from ..collision.cell import Cell
+from ..collision.checker import same_poses
 from ..collision.records import Contact, MotionReport, PartDrop
 from ..diagnostics import Diagnostic
 from ..geometry import frames as geo_frames
@@ -128,7 +129,7 @@ class ValueWatch:
             now["f:" + name] = _read(machine, name, geo_frames.Frame)
         for name in self.tools:
             now["t:" + name] = _read(machine, name, geo_frames.Tool)
-        if self.values and _same(now, self.values[-1]):
+        if self.values and same_poses(now, self.values[-1]):
             return
         if cycle:
             last = int(round(self.times[-1] * US)) if self.times else 0
@@ -182,16 +183,6 @@ def _read(machine: Any, name: str, kind: type) -> np.ndarray | None:
     out[:3, :3] = np.array(r, dtype=float).reshape(3, 3)
     out[:3, 3] = p
     return out
-
-
-def _same(a: dict, b: dict) -> bool:
-    if a.keys() != b.keys():
-        return False
-    for k, v in a.items():
-        w = b[k]
-        if (v is None) != (w is None) or (v is not None and not np.array_equal(v, w)):
-            return False
-    return True
 
 
 # ---- checking the run -------------------------------------------------------------------------------------
