@@ -147,6 +147,25 @@ end
     assert r.sim_time_us < 100_000
 
 
+def test_a_wait_for_an_input_nothing_sets_is_r009_not_a_deadlock_error(tmp_path):
+    r = sim(tmp_path, "begin\n  wait(diPart == true)\nend\n", globals_=["dio diPart"],
+            links={"diPart": "BasicIO-1\\%I0"})
+    assert r.end_reason == "deadlock" and [d.code for d in r.diagnostics] == ["R009"]
+    d = r.diagnostics[0]
+    assert "wait(diPart == true)" in open(d.path, encoding="utf-8").read().split("\n")[d.line - 1]
+    assert "diPart" in d.message and d.severity is None  # the rule's severity (warning) is set by the report
+    assert r.end_message.startswith("every task waits, for inputs that nothing in the run sets")
+    # a task that also waits for a variable nobody sets: a deadlock of the program (R003)
+    r = sim(tmp_path / "both", """begin
+  taskCreate "t1", 10, waiter()
+  wait(diPart == true)
+end
+""", globals_=["dio diPart", "bool bGo"], links={"diPart": "BasicIO-1\\%I0"},
+            programs={"waiter": {"code": "begin\n  wait(bGo)\nend\n"}})
+    assert sorted(d.code for d in r.diagnostics) == ["R003", "R009"]
+    assert r.end_message.startswith("deadlock:")
+
+
 def test_unknown_task_and_duplicate(tmp_path):
     r = sim(tmp_path, "begin\n  taskSuspend(\"nobody\")\nend\n")
     assert errors(r) == [30]
