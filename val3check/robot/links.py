@@ -317,18 +317,9 @@ def _motions_one(axes: np.ndarray, prismatic: np.ndarray, values: np.ndarray) ->
     n = len(values)
     a = np.where(prismatic, 0.0, np.radians(values))
     c, s = np.cos(a), np.sin(a)
-    C = 1.0 - c
     x, y, z = axes[:, 0], axes[:, 1], axes[:, 2]
     T = np.zeros((n, 4, 4))
-    T[:, 0, 0] = c + x * x * C
-    T[:, 0, 1] = x * y * C - z * s
-    T[:, 0, 2] = x * z * C + y * s
-    T[:, 1, 0] = y * x * C + z * s
-    T[:, 1, 1] = c + y * y * C
-    T[:, 1, 2] = y * z * C - x * s
-    T[:, 2, 0] = z * x * C - y * s
-    T[:, 2, 1] = z * y * C + x * s
-    T[:, 2, 2] = c + z * z * C
+    _rodrigues(T, c, s, x, y, z)
     T[:, :3, 3] = np.where(prismatic, values, 0.0)[:, None] * axes
     T[:, 3, 3] = 1.0
     return T
@@ -343,8 +334,15 @@ def _motions(kind: str, axis: np.ndarray, values: np.ndarray) -> np.ndarray:
         return T
     a = np.radians(values)
     c, s = np.cos(a), np.sin(a)
-    C = 1.0 - c
     x, y, z = axis
+    _rodrigues(T, c, s, x, y, z)
+    return T
+
+
+def _rodrigues(T: np.ndarray, c, s, x, y, z) -> None:  # noqa: ANN001
+    """Fill the rotation blocks of T (N, 4, 4): turns of cosines c, sines s about the unit axis
+    (x, y, z) (arrays or scalars), Rodrigues' formula."""
+    C = 1.0 - c
     T[:, 0, 0] = c + x * x * C
     T[:, 0, 1] = x * y * C - z * s
     T[:, 0, 2] = x * z * C + y * s
@@ -354,4 +352,3 @@ def _motions(kind: str, axis: np.ndarray, values: np.ndarray) -> np.ndarray:
     T[:, 2, 0] = z * x * C - y * s
     T[:, 2, 1] = z * y * C + x * s
     T[:, 2, 2] = c + z * z * C
-    return T
