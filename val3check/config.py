@@ -34,7 +34,9 @@ from .language.target import TargetError, TargetSpec, parse_target
 CONFIG_NAMES = ("val3check.toml", "pyproject.toml")
 # `[tool.val3check]`, `[tool.val3check.severity]`, `tool.val3check.x = `, or a `[tool]` table
 # (which may hold `val3check = {...}`): a pyproject.toml without any of them has no section of ours.
-_TOOL_SECTION = re.compile(rb"tool\s*\.\s*\"?val3check|^\s*\[\s*tool\s*\]", re.MULTILINE)
+# Linear: blanks before the header are spaces and tabs of its own line (`^\s*` would run over all
+# the blank lines below each line start: quadratic on a file of newlines).
+_TOOL_SECTION = re.compile(rb"tool\s*\.\s*\"?val3check|^[ \t]*\[[ \t]*tool[ \t]*\]", re.MULTILINE)
 FAIL_ON_CHOICES = ("error", "warning", "info", "never")
 
 
@@ -124,22 +126,18 @@ MAX_FILE_SIZE_LIMIT = 1 << 30  # max-file-size cannot exceed 1 GiB
 
 def _read_toml(path: str) -> dict:
     """The TOML document at `path`, read through val3check.confine (a regular file, its size
-    checked before reading); ConfigError for anything else."""
-    import tomllib  # only when there is a configuration to read (start-up time)
-
+    checked before reading) and val3check.tomlfile; ConfigError for anything else."""
+    from . import tomlfile
     from .confine import Refused, Roots, read_bytes
 
     try:
         data = read_bytes(path, Roots.user_given(), MAX_CONFIG_SIZE)
-        return tomllib.loads(data.decode("utf-8"))
+        return tomlfile.load_bytes(data)[0]
     except Refused as exc:
         raise ConfigError(f"{path}: cannot read configuration: {exc.reason}") from None
-    except UnicodeDecodeError:
-        raise ConfigError(f"{path}: cannot read configuration: not UTF-8") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise ConfigError(f"{path}: cannot read configuration: {exc}") from None
-    except RecursionError:
-        raise ConfigError(f"{path}: cannot read configuration: tables or arrays nested too deeply") from None
+    except tomlfile.TomlError as exc:
+        where = f"{path}:{exc.line}:{exc.col}" if exc.line else path
+        raise ConfigError(f"{where}: cannot read configuration: {exc.message}") from None
 
 
 def _read_bytes_capped(path: str) -> bytes:

@@ -12,7 +12,7 @@ from .helpers import write_cell
 
 from val3check.collision import CELL_FILE_NAME, CellError, find_cell, read_cell  # noqa: E402
 from val3check.collision import meshes  # noqa: E402
-from val3check.collision.tomlpos import positions  # noqa: E402
+from val3check.tomlpos import positions  # noqa: E402
 
 trimesh = pytest.importorskip("trimesh")
 

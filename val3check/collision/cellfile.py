@@ -3,7 +3,8 @@
     read_cell(path, app_dir=None, app_unit="mm") -> Cell      raises CellError (all problems found)
     find_cell(app_dir) -> Path | None                          the cell file beside an application
 
-tomllib parses; `tomlpos.positions` finds where each key and value is written, so that a message
+tomllib parses (through val3check.tomlfile: a hostile text is a positioned error);
+`tomlpos.positions` finds where each key and value is written, so that a message
 points at the value at fault (`cell.toml:12:8: obstacle 'table': size must be three positive
 numbers`). Bad input is a CellError, never a traceback.
 """
@@ -13,16 +14,16 @@ from __future__ import annotations
 import math
 import os
 import re
-import tomllib
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from .. import tomlfile
+from ..tomlpos import positions
 from . import meshes
 from .cell import INCH_MM, SHAPES, Cell, MeshData, Obstacle, Part, Shape, ToolSolid, Where
 from .errors import CellError
-from .tomlpos import positions
 
 CELL_FILE_NAME = "val3check-cell.toml"  # found beside the application (find_cell)
 CELL_VERSION = 1
@@ -67,17 +68,9 @@ def read_cell(path: str | os.PathLike, app_dir: str | os.PathLike | None = None,
     except confine.Refused as exc:
         raise CellError([(shown, 0, 0, f"cannot read the cell file: {exc.reason}")]) from None
     try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise CellError([(shown, 0, 0, f"the cell file is not UTF-8 (byte {exc.start})")]) from None
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        m = re.search(r"\(at line (\d+), column (\d+)\)", str(exc))
-        msg = re.sub(r"\s*\(at line \d+, column \d+\)", "", str(exc)) or "invalid TOML"
-        msg = "".join(c if c.isprintable() else repr(c)[1:-1] for c in msg)  # one line: '\n', not a newline
-        line, col = (int(m.group(1)), int(m.group(2))) if m else (0, 0)
-        raise CellError([(shown, line, col, f"invalid TOML: {msg}")]) from None
+        data, text = tomlfile.load_bytes(raw)
+    except tomlfile.TomlError as exc:
+        raise CellError([(shown, exc.line, exc.col, exc.message)]) from None
     r = _Reader(shown, text, Path(path).resolve().parent, app_dir, roots or [], app_unit)
     cell = r.cell(data)
     if r.problems:

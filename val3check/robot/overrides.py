@@ -159,21 +159,18 @@ def _world_z(model, w: float):
 
 def load_robot_file(path: str | os.PathLike, app_path=None):
     """A robot file (module docstring): its arm with the user's values."""
-    import tomllib
-
-    from .models import load_robot
-
+    from .. import tomlfile
     from ..confine import Refused, Roots, read_bytes
+    from .models import load_robot
 
     p = Path(path)
     try:  # val3check.confine: a regular file (not a FIFO or /dev/zero), 1 MB at most
-        data = tomllib.loads(read_bytes(str(p), Roots.user_given(), 1 << 20).decode("utf-8"))
+        data = tomlfile.load_bytes(read_bytes(str(p), Roots.user_given(), 1 << 20))[0]
     except Refused as exc:
         raise RobotError(f"{p}: cannot read the robot file: {exc.reason}") from None
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
-        raise RobotError(f"{p}: not a valid TOML robot file: {exc}") from None
-    except RecursionError:
-        raise RobotError(f"{p}: not a valid TOML robot file: nested too deeply") from None
+    except tomlfile.TomlError as exc:
+        where = f"{p}:{exc.line}:{exc.col}" if exc.line else str(p)
+        raise RobotError(f"{where}: not a valid TOML robot file: {exc.message}") from None
     extra = [k for k in data if k not in ("arm", "name", "assume")]
     if extra:
         raise RobotError(f"{p}: unknown key {', '.join(map(repr, extra))}: a robot file has arm, name and [assume]")
