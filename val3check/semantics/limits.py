@@ -15,18 +15,17 @@ rather than types.
 from __future__ import annotations
 
 import math
-import re
 
 from ..diagnostics import Diagnostic
 from ..loading.model import Application, Container, Data, Value, Workspace
-from ..loading.reader import HUGE
+from ..loading.reader import HUGE, parse_father
 from ..loading.types import base_type
 from ..parsing import ast as A
 
 # 2.5.4 (insert, append, resize): "La taille d'une variable est limitée à 9999 valeurs."
 MAX_VALUES = 9999
-# What a fatherId may look like: `name` or `name[index]` (2-D: "i j" or "i,j"; a collection: "key").
-_FATHER = re.compile(r"^\s*([A-Za-z_]\w*)\s*(?:\[\s*([^\]]*?)\s*\])?\s*$")
+# What a fatherId may look like: `name` or `name[index]` (2-D: "i j" or "i,j"; a collection: "key"):
+# loading.reader.parse_father.
 
 
 def check_application(workspace: Workspace, app: Application) -> list[Diagnostic]:
@@ -111,10 +110,10 @@ def _father_diag(d: Data, v: Value, problem: str) -> Diagnostic:
 
 
 def _father_problem(father: str, want: str, data: dict[str, Data], lower: dict[str, Data]) -> str | None:
-    m = _FATHER.match(father)
+    m = parse_father(father)
     if m is None:
         return "is not a reference (expected name or name[index])"
-    name, idx = m.group(1), m.group(2)
+    name, idx = m
     low = name.lower()
     if low in ("world", "flange") and name not in data:  # as the simulator resolves it
         if (low == "world") == (want == "frame"):
