@@ -20,6 +20,7 @@ with a byte-order mark) are not edited.
 
 from __future__ import annotations
 
+import bisect
 import difflib
 import os
 import re
@@ -79,19 +80,20 @@ class FixPlan:
             os.replace(tmp, path)
 
 
+_LINE_END = re.compile(rb"\n|\r(?!\n)")  # as expat counts lines: LF, CRLF or a lone CR
+
+
 class _File:
     """A file's bytes with the positions of its lines (as expat counts them)."""
 
     def __init__(self, data: bytes) -> None:
         self.data = data
         self.bom = 3 if data.startswith(b"\xef\xbb\xbf") else 0
-        self.starts = [0]
-        i, n = 0, len(data)
-        while i < n:
-            c = data[i]
-            if c == 0x0A or (c == 0x0D and (i + 1 >= n or data[i + 1] != 0x0A)):
-                self.starts.append(i + 1)
-            i += 1
+        self.starts = [0] + [m.end() for m in _LINE_END.finditer(data)]
+
+    def line_of(self, offset: int) -> int:
+        """The 1-based line holding byte `offset`."""
+        return bisect.bisect_right(self.starts, offset)
 
     def line_span(self, line: int) -> tuple[int, int, int]:
         """(start, end of its text, start of the next line) of 1-based `line`, in bytes."""
@@ -168,22 +170,71 @@ def _remove_element(d: Diagnostic, f: _File) -> Edit | str:
         return "the element does not declare that name"
     end = close + 1
     if not element.endswith(b"/>"):
-        closing = re.compile(rb"</" + re.escape(tag) + rb"\s*>").search(f.data, end)
-        inner = f.data[end:closing.start()] if closing else b"<"
-        if closing is None or b"<" in inner:
+        # its closing tag must be the next tag: anything else means it holds other elements (and
+        # looking no further than the next '<' keeps a file of unclosed elements linear)
+        nxt_tag = f.data.find(b"<", end)
+        closing = re.compile(rb"</" + re.escape(tag) + rb"\s*>").match(f.data, nxt_tag) if nxt_tag >= 0 else None
+        if closing is None:
             return "the element holds other elements"
         end = closing.end()
     start_line, _, _ = f.line_span(d.line)
-    # the line holding the end of the element
-    end_line = max(i for i, s in enumerate(f.starts, 1) if s <= end)
+    end_line = f.line_of(end)  # the line holding the end of the element
     _, text_end, nxt = f.line_span(end_line)
     if not f.data[start_line:at].strip() and not f.data[end:text_end].strip():
         return Edit(start_line, nxt, b"", d.code)  # alone on its lines: they go with it
     return Edit(at, end, b"", d.code)
 
 
-_PROGRAM = re.compile(rb"<Program\b[^>]*?\bfile\s*=\s*([\"'])(.*?)\1[^>]*?/>", re.IGNORECASE | re.DOTALL)
-_SECTION = re.compile(rb"<(Programs|programSection)\b[^>]*(?<!/)>(.*?)</\1\s*>", re.IGNORECASE | re.DOTALL)
+# The project's `<Programs>` section and its `<Program file="..."/>` entries, read in linear time: a
+# tag never runs over a '<' (a value holding one is not XML), and each attribute is matched once
+# (a pattern such as `<Program\b[^>]*?\bfile=(["']).*?\1[^>]*?/>` is quadratic on a file of
+# unclosed tags).
+_SECTION_OPEN = re.compile(rb"<(Programs|programSection)\b[^<>]*(?<!/)>", re.IGNORECASE)
+_PROGRAM_TAG = re.compile(rb"<Program\b", re.IGNORECASE)
+_ATTRIBUTE = re.compile(rb"""\s+([A-Za-z_][\w.:-]*)\s*=\s*(?:"([^"<]*)"|'([^'<]*)')""")
+_TAG_END = re.compile(rb"\s*/>")
+
+
+@dataclass(slots=True)
+class _Entry:
+    """A `<Program file="..."/>` entry: its span, the quote of its file attribute and where the
+    value is."""
+
+    start: int
+    end: int
+    quote: bytes
+    value_start: int
+    value_end: int
+    value: bytes
+
+
+def _section(data: bytes) -> tuple[int, int] | None:
+    """(start, end) of the text inside the first `<Programs>` (or `<programSection>`) that is closed."""
+    dead: set[bytes] = set()  # tags seen without a closing tag after them: none comes later either
+    for m in _SECTION_OPEN.finditer(data):
+        tag = m.group(1).lower()
+        if tag in dead:
+            continue
+        close = re.compile(rb"</" + re.escape(tag) + rb"\s*>", re.IGNORECASE).search(data, m.end())
+        if close is not None:
+            return m.end(), close.start()
+        dead.add(tag)
+    return None
+
+
+def _entries(data: bytes, start: int, end: int) -> list[_Entry]:
+    out = []
+    for m in _PROGRAM_TAG.finditer(data, start, end):
+        i, found = m.end(), None
+        while (a := _ATTRIBUTE.match(data, i, end)) is not None:
+            if found is None and a.group(1).lower() == b"file":
+                g = 2 if a.group(2) is not None else 3
+                found = (b'"' if g == 2 else b"'", a.start(g), a.end(g), a.group(g))
+            i = a.end()
+        close = _TAG_END.match(data, i, end)
+        if found is not None and close is not None:
+            out.append(_Entry(m.start(), close.end(), *found))
+    return out
 
 
 def _escape(text: str, quote: bytes) -> bytes:
@@ -218,21 +269,21 @@ def _listable(pgx: str, owner, workspace) -> str | None:  # noqa: ANN001
 def _list_programs(pjx: str, findings: list[Diagnostic], data: bytes, workspace) -> tuple[Edit | None, list]:  # noqa: ANN001
     """One insertion after the project's last `<Program>` entry for every file to list."""
     refused = []
-    section = _SECTION.search(data)
-    entries = list(_PROGRAM.finditer(data, section.start(2), section.end(2))) if section else []
+    section = _section(data)
+    entries = _entries(data, *section) if section else []
     if not entries:
         return None, [(d, "the project lists no program to write the new entry like") for d in findings]
     last = entries[-1]
     f = _File(data)
-    line = max(i for i, s in enumerate(f.starts, 1) if s <= last.start())
+    line = f.line_of(last.start)
     line_start, text_end, nxt = f.line_span(line)
-    if data[last.end():text_end].strip():
+    if data[last.end:text_end].strip():
         return None, [(d, "the last program entry shares its line with other elements") for d in findings]
     newline = data[text_end:nxt] or (b"\r\n" if b"\r\n" in data else b"\n")
-    indent = data[line_start:last.start()]
-    backslash = any(b"\\" in e.group(2) for e in entries)
-    listed = {e.group(2).decode("utf-8", "replace").replace("\\", "/").lower() for e in entries}
-    quote = last.group(1)
+    indent = data[line_start:last.start]
+    backslash = any(b"\\" in e.value for e in entries)
+    listed = {e.value.decode("utf-8", "replace").replace("\\", "/").lower() for e in entries}
+    quote = last.quote
     added = []
     for d in sorted(findings, key=lambda d: d.path):
         why = _listable(d.path, pjx, workspace)
@@ -243,7 +294,7 @@ def _list_programs(pjx: str, findings: list[Diagnostic], data: bytes, workspace)
             refused.append((d, why))
             continue
         value = rel.replace("/", "\\") if backslash else rel
-        entry = data[last.start():last.start(2)] + _escape(value, quote) + data[last.end(2):last.end()]
+        entry = data[last.start:last.value_start] + _escape(value, quote) + data[last.value_end:last.end]
         added.append(indent + entry)
         listed.add(rel.lower())
     if not added:
