@@ -121,7 +121,10 @@ def _collision_setup(app: Application, options: SimOptions, machine: Machine):
         return None
     from . import collision_run
 
-    cell, diags = (collision_run.load_cell(options.cell, app, found=options.cell_found == "found") if options.cell
+    # the cell's meshes are read within the run's budgets (memory priced before trimesh builds them)
+    deadline = machine.wall_start + machine.budgets.wall_s
+    cell, diags = (collision_run.load_cell(options.cell, app, found=options.cell_found == "found",
+                                           budget=machine.cell.budget, deadline=deadline) if options.cell
                    else (None, []))
     watch = collision_run.ValueWatch(cell, machine)
     arm.observer = watch
