@@ -36,9 +36,10 @@ def obj(faces=CUBE_FACES, vertices=CUBE_VERTICES) -> bytes:
             + "".join("f " + " ".join(str(i + 1) for i in f) + "\n" for f in faces)).encode()
 
 
-def glb(document: dict, binary: bytes = b"") -> bytes:
-    """A GLB container (glTF 2.0 binary): the JSON chunk, then the BIN chunk when there is one."""
-    j = json.dumps(document, separators=(",", ":")).encode()
+def glb(document: dict | str, binary: bytes = b"") -> bytes:
+    """A GLB container (glTF 2.0 binary): the JSON chunk (a document or its text), then the BIN
+    chunk when there is one."""
+    j = (document if isinstance(document, str) else json.dumps(document, separators=(",", ":"))).encode()
     j += b" " * (-len(j) % 4)
     b = binary + b"\0" * (-len(binary) % 4)
     chunks = struct.pack("<II", len(j), 0x4E4F534A) + j
@@ -47,10 +48,11 @@ def glb(document: dict, binary: bytes = b"") -> bytes:
     return struct.pack("<4sII", b"glTF", 2, 12 + len(chunks)) + chunks
 
 
-def cube_glb(primitives: int = 1, nodes: int = 1, uri: str | None = None, count: int | None = None) -> bytes:
-    """A cube as a GLB: one mesh of `primitives` copies of the same primitive, placed by `nodes`
-    nodes; `uri`: the buffer is an external file instead of the BIN chunk; `count`: what the index
-    accessor claims."""
+def cube_document(primitives: int = 1, nodes: int = 1, uri: str | None = None,
+                  count: int | None = None) -> tuple[dict, bytes]:
+    """A cube as a glTF document and its binary data: one mesh of `primitives` copies of the same
+    primitive, placed by `nodes` nodes; `uri`: the buffer is an external file instead of the BIN
+    chunk; `count`: what the index accessor claims."""
     pos = b"".join(struct.pack("<3f", *v) for v in CUBE_VERTICES)
     idx = b"".join(struct.pack("<3H", *f) for f in CUBE_FACES)
     buffer = {"byteLength": len(pos) + len(idx)}
@@ -70,4 +72,12 @@ def cube_glb(primitives: int = 1, nodes: int = 1, uri: str | None = None, count:
         "scenes": [{"nodes": list(range(nodes))}],
         "scene": 0,
     }
-    return glb(doc, b"" if uri is not None else pos + idx)
+    return doc, b"" if uri is not None else pos + idx
+
+
+def cube_glb(primitives: int = 1, nodes: int = 1, uri: str | None = None, count: int | None = None) -> bytes:
+    """`cube_document` as a GLB file (the JSON text of many primitives written by repetition)."""
+    doc, binary = cube_document(1, nodes, uri, count)
+    text = json.dumps(doc, separators=(",", ":"))
+    one = json.dumps(doc["meshes"][0]["primitives"][0], separators=(",", ":"))
+    return glb(text.replace(f"[{one}]", "[" + ",".join([one] * primitives) + "]", 1), binary)

@@ -9,7 +9,7 @@ file is read here first, in linear time and without building anything:
   (84 + 50 bytes per triangle); otherwise the file must be an ASCII STL (UTF-8 text starting
   with `solid`), whose `facet` lines are counted;
 * OBJ: UTF-8 text; `v` lines and the triangles of `f` lines (a polygon of k corners makes k - 2);
-* GLB: the container header and its JSON chunk; every buffer must be the file's own binary chunk
+* GLB: the container header and its JSON chunk (at most `MAX_JSON_BYTES`); every buffer must be the file's own binary chunk
   (no `uri`), every accessor must fit in its buffer view and the view in the buffer; triangles
   and vertices are the accessors' counts summed over each primitive of each mesh, times the
   number of times the scene places that mesh (nodes may not form a cycle).
@@ -30,6 +30,7 @@ from .errors import MeshProblem
 MAX_TRIANGLES = 2_000_000
 MAX_VERTICES = 6_000_000  # three per triangle: a mesh that shares no corner
 MAX_PIECES = 5_000  # GLB primitives times the nodes placing them: trimesh takes ~0.3 ms each
+MAX_JSON_BYTES = 4 * 1024 * 1024  # a GLB's JSON chunk: its scene (data is in the binary chunk)
 
 _FACE = re.compile(rb"^[ \t]*f[ \t]+([^\r\n]*)", re.MULTILINE)
 _COMPONENT_BYTES = {5120: 1, 5121: 1, 5122: 2, 5123: 2, 5125: 4, 5126: 4}
@@ -125,6 +126,8 @@ def _glb(data: bytes, shown: str) -> Declared:
     size, kind = struct.unpack_from("<II", data, 12)
     if kind != _JSON_CHUNK or 20 + size > len(data):
         raise bad("its first chunk is not a JSON chunk that fits in the file")
+    if size > MAX_JSON_BYTES:  # parsing it would take seconds and ten times its size in memory
+        raise bad(f"its JSON chunk (the scene) is {size} bytes, more than the {MAX_JSON_BYTES} read")
     try:
         doc = json.loads(data[20:20 + size].decode("utf-8"))
     except RecursionError:
