@@ -171,3 +171,9 @@ def test_a_scaled_mesh_beyond_a_kilometre(tmp_path):
                                         'file = "cube.stl"\nscale = 78741\n')  # 78741 inches: 2e6 mm
     with pytest.raises(CellError, match=r"once scaled, a vertex lies 2e\+06 mm from the origin; a cell holds at most"):
         read_cell(tmp_path / "cell.toml")
+
+
+def test_an_obj_whose_vertices_have_two_numbers(tmp_path):
+    # found by the fuzz suite: trimesh keeps "v 0 0" as a two-number vertex (a numpy error after)
+    data = meshfiles.obj().replace(b"v 0 0 0\n", b"v 0 0\n", 1)
+    assert "its vertices are not all three numbers x, y, z" in _problem(tmp_path, "two.obj", data)

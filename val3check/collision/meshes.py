@@ -109,6 +109,11 @@ def load_mesh(path: Path, shown: str, scale: tuple[float, float, float], solid: 
     if len(mesh.faces) > MAX_TRIANGLES:  # cannot happen after `declared`; kept as the last word
         raise MeshProblem(f"mesh file {shown!r} has {len(mesh.faces)} triangles, more than the {MAX_TRIANGLES} read")
     v = np.asarray(mesh.vertices, dtype=float)
+    f = np.asarray(mesh.faces)
+    if v.ndim != 2 or v.shape[1] != 3 or f.ndim != 2 or f.shape[1] != 3 or f.min() < 0 or f.max() >= len(v):
+        # trimesh keeps what the file says: "v 0 0" makes two-number vertices
+        raise MeshProblem(f"mesh file {shown!r} does not load as {kind.upper()}: its vertices are not all three "
+                          "numbers x, y, z, or its faces name vertices it does not have")
     if not np.isfinite(v).all():
         raise MeshProblem(f"mesh file {shown!r} has vertices that are not finite numbers")
     v = v * np.asarray(scale, dtype=float)
