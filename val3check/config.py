@@ -29,6 +29,7 @@ from .records import dataclass, field
 from .exclusion import DEFAULT_EXCLUDE, Exclusion
 
 from .diagnostics import Severity
+from .excerpt import excerpt
 from .language.target import TargetError, TargetSpec, parse_target
 
 CONFIG_NAMES = ("val3check.toml", "pyproject.toml")
@@ -210,7 +211,8 @@ def load_settings(path: str) -> Settings:
             data = section
     unknown = sorted(set(data) - KNOWN_KEYS)
     if unknown:
-        raise ConfigError(f"{path}: unknown option(s): {', '.join(unknown)} (known: {', '.join(sorted(KNOWN_KEYS))})")
+        shown = ", ".join(excerpt(k) for k in unknown[:10]) + (f" and {len(unknown) - 10} more" if len(unknown) > 10 else "")
+        raise ConfigError(f"{path}: unknown option(s): {shown} (known: {', '.join(sorted(KNOWN_KEYS))})")
     root = os.path.dirname(os.path.abspath(path))
     s = Settings(root=root, source=path)
     if "select" in data:
@@ -227,7 +229,7 @@ def load_settings(path: str) -> Settings:
     try:
         s.severity = {k.upper(): Severity.parse(str(v)) for k, v in sev.items()}
     except ValueError as exc:
-        raise ConfigError(f"{path}: severity: {exc}") from None
+        raise ConfigError(f"{path}: severity: {excerpt(str(exc), 200)}") from None
     fail_on = data.get("fail-on", "error")
     fail_on = fail_on.lower() if isinstance(fail_on, str) else ""
     if fail_on not in FAIL_ON_CHOICES:
@@ -253,5 +255,5 @@ def load_settings(path: str) -> Settings:
         try:
             s.target = parse_target(data["target"])
         except TargetError as exc:
-            raise ConfigError(f"{path}: {exc}") from None
+            raise ConfigError(f"{path}: {excerpt(str(exc), 300)}") from None
     return s
