@@ -79,6 +79,8 @@ def test_example(tmp_path, rule, kind, ex):
         assert not hits, f"{rule.code} fired on its good example: {hits}"
         return
     assert hits, f"{rule.code} did not fire on its bad example; got {found}"
+    if ex.severity is not None:  # shown with another severity than the rule's (a finding from a guess...)
+        assert {d.severity.label for d in hits} == {ex.severity}, f"{rule.code}: expected {ex.severity}: {hits}"
     got = [(d.path.replace("\\", "/"), d.line, d.col) for d in hits]
     for spec in ex.expect:
         parts = spec.split(":")

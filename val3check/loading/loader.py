@@ -8,7 +8,7 @@ from collections.abc import Callable
 from ..records import dataclass, field
 
 from ..confine import Refused, Roots, check, repository_root
-from ..diagnostics import Diagnostic
+from ..diagnostics import Diagnostic, Severity
 from . import reader as rd
 from . import resolve as rs
 from .bindings import bound_names
@@ -568,12 +568,14 @@ class Loader:
             candidates = self._in_repository(app, ref)
             if len(candidates) == 1:
                 resolved = candidates[0]
+                ref.guessed = self._shown(resolved)
                 o = ref.origin
                 what = f"library {ref.alias}" if isinstance(ref, LibraryRef) else f"user type {ref.name}"
                 self.diags.append(Diagnostic(
                     "F016",
                     f"{what}: '{ref.path}' is not at its Disk:// place; using the application found by name in"
-                    f" the repository: {self._shown(resolved)}",
+                    f" the repository: {ref.guessed} (a guess: the findings that depend on it are at most"
+                    " warnings)",
                     o.path, o.line, o.col,
                 ))
         if resolved is None:
@@ -722,16 +724,29 @@ class Loader:
                 path = self._cycle_path(key, target, comp_of, kind, order)
                 names = " -> ".join(apps[k].name for k in path)
                 o = ref.origin
+                guesses = self._guesses_on(path, kind)
                 if kind == "library":
                     msg = (
                         f"circular library reference: {names} (manual 6.6: if library A uses"
                         " library B, library B cannot use library A)"
                     )
-                    self.diags.append(Diagnostic("L004", msg, o.path, o.line, o.col))
                 else:
                     label = ref.name  # type: ignore[union-attr]
                     msg = f"circular user type: type {label} ends up containing itself ({names})"
-                    self.diags.append(Diagnostic("L005", msg, o.path, o.line, o.col))
+                if guesses:  # a cycle through a library found by name may not exist on the controller
+                    msg += (f" [found by guessing (F016): {', '.join(guesses)}; if that is not the right"
+                            " application, there is no cycle, so this is at most a warning]")
+                self.diags.append(Diagnostic("L004" if kind == "library" else "L005", msg, o.path, o.line, o.col,
+                                             at_most=Severity.WARNING if guesses else None))
+
+    def _guesses_on(self, path: list[str], kind: str) -> list[str]:
+        """Where the references of a cycle found by guessing (F016) lead, in order."""
+        out = []
+        for a, b in zip(path, path[1:]):
+            for ref, target in self._edges(self.ws.apps[a], kind):
+                if target == b and ref.guessed and ref.guessed not in out:
+                    out.append(ref.guessed)
+        return out
 
     def _cycle_path(
         self, start: str, first: str, comp_of: dict[str, int], kind: str, order: dict[str, int]

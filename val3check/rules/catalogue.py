@@ -45,6 +45,7 @@ class Example:
     cell: str | None = None  # runtime (R) examples: the text of a cell file (`--cell`, docs/cell.md)
     config: str | None = None  # a val3check.toml written at the example root and used
     byte_escapes: bool = False  # `\xHH` in `files` stands for the byte HH (for encoding rules)
+    severity: str | None = None  # bad examples: the severity every finding of the rule is shown with
 
 
 @dataclass(frozen=True, slots=True)
@@ -94,6 +95,7 @@ def _example(raw: dict, where: str) -> Example:
         cell=raw.get("cell"),
         config=raw.get("config"),
         byte_escapes=bool(raw.get("byte-escapes", False)),
+        severity=raw.get("severity"),
     )
 
 

@@ -318,3 +318,10 @@ def s8_only(what: str, target: str) -> str:
 
 def s8_on_s7_target(what: str, target: str) -> str:
     return f"{what} is s8 only (CS9 controllers): the target {target} does not have it"
+
+
+def guessed(kind: str, name: str, path: str, where: str) -> str:
+    """The note a finding carries when it depends on a library or user type found by guessing."""
+    return (f"{kind} {name} was found by guessing: '{path}' leads nowhere and the application of that name in"
+            f" the repository, {where}, is used (F016); if it is not the right one, this finding is wrong,"
+            " so it is at most a warning")

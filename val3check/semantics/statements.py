@@ -40,10 +40,14 @@ class StatementChecker(ExprTyper):
 
     def block(self, statements: list) -> None:
         get = self._stmt.get
+        ctx = self.ctx
+        outer = ctx.guess  # a statement's findings depend on the guesses it consults, not its neighbours'
         for st in statements:
             f = get(type(st))
             if f is not None:
+                ctx.guess = ""
                 f(st)
+        ctx.guess = outer
 
     # -- simple statements -----------------------------------------------------------------
 
