@@ -4,10 +4,11 @@ and where; no certain fix is offered from it."""
 
 from __future__ import annotations
 
-from .loadhelp import make_app, pgx, write
-
 from support import lint
+
 from val3check.diagnostics import Severity
+
+from .loadhelp import make_app, pgx, write
 
 
 def _repo(tmp_path):

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import errno
+import itertools
 import os
 from collections.abc import Callable
 from ..records import dataclass, field
@@ -742,7 +743,7 @@ class Loader:
     def _guesses_on(self, path: list[str], kind: str) -> list[str]:
         """Where the references of a cycle found by guessing (F016) lead, in order."""
         out = []
-        for a, b in zip(path, path[1:]):
+        for a, b in itertools.pairwise(path):
             for ref, target in self._edges(self.ws.apps[a], kind):
                 if target == b and ref.guessed and ref.guessed not in out:
                     out.append(ref.guessed)
