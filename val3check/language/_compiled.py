@@ -2,7 +2,7 @@
 `python -m val3check.language.compiled` after changing a TOML file."""
 # fmt: off
 SHA256 = {'instructions.toml': '8d574026cbe9f5bbcc3f0d4dd1d120da76435d89ca3c03053afa56f4b934e2a4',
- 's8.toml': '38a7a77098df74f2a17954fd10872eacfc3cebdaf9d857b654033e68cb981dca',
+ 's8.toml': 'f003d575fc7039146a95d4b332494dfc3d0eb82c59c7db51def002bf7a7e0e31',
  'types.toml': 'c296ce3ec5cd35b59a3af46a34ec41bcc39a58d372cbbbaba250a16aa1348c73'}
 DATA = {'instructions.toml': {'schema': 1,
                        'manual': 'VAL 3 reference manual, version 7 (s7), French edition',
@@ -1854,6 +1854,22 @@ DATA = {'instructions.toml': {'schema': 1,
                                        'since': 's7',
                                        'replacement': 'diOut = (diIn == true)'}]},
  's8.toml': {'schema': 1,
+             'limits': {'values': {'what': 'values of a variable (one dimension of an array, or all its values)',
+                                   's7': 9999,
+                                   's7_source': 'manual 2.5.4 (insert) and 2.5.5 (append, resize): "La taille d\'une '
+                                                "variable est limitée à 9999 valeurs. Une erreur de temps d'exécution "
+                                                'est générée quand la taille de la variable dépasse cette limite."',
+                                   's8_seen': 10000,
+                                   's8_source': 'issue25: an s8.15 application saved by SRS 2022.7 declares arrays of '
+                                                '10,000 values'},
+                        'task_name': {'what': 'characters of a task name',
+                                      's7': 15,
+                                      's7_source': 'manual 5.10 taskCreate, sNom: "Il doit contenir de 1 à 15 '
+                                                   'caractères choisis dans la plage suivante _a..zA..Z0..9" (runtime '
+                                                   'error 29 otherwise)',
+                                      's8_seen': 16,
+                                      's8_source': 'issue25: taskCreate "socketServerTask" (16 characters) in '
+                                                   'production code of a CS9 cell'}},
              'statements': {'print': {'syntax': '? expr',
                                       'summary': 'Print the value of an expression (emulator console; val3check sim: '
                                                  'the user page transcript).',

@@ -23,5 +23,5 @@ def analyse(workspace: Workspace, app: Application, target: Target | None = None
 
     found = checker.check_application(workspace, app, target)
     found.extend(patterns.check_application(workspace, app))
-    found.extend(limits.check_application(workspace, app))
+    found.extend(limits.check_application(workspace, app, target))
     return found

@@ -262,7 +262,10 @@ def task_local_reference(name: str, param: str) -> str:
             " local variable by reference, it may be deleted before the task ends (5.10)")
 
 
-def task_name(keyword: str, name: str, why: str) -> str:
+def task_name(keyword: str, name: str, why: str, certain: bool = True) -> str:
+    if not certain:
+        return (f"task name \"{name}\": {why}; on an s7 controller {keyword} would stop with runtime error 29"
+                " (5.10: 1 to 15 characters of a..z A..Z 0..9 _)")
     return (f"task name \"{name}\" is invalid: {why}; {keyword} stops with runtime error 29 (5.10: 1 to 15"
             " characters of a..z A..Z 0..9 _)")
 
