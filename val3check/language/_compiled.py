@@ -2,7 +2,7 @@
 `python -m val3check.language.compiled` after changing a TOML file."""
 # fmt: off
 SHA256 = {'instructions.toml': '8d574026cbe9f5bbcc3f0d4dd1d120da76435d89ca3c03053afa56f4b934e2a4',
- 's8.toml': 'f003d575fc7039146a95d4b332494dfc3d0eb82c59c7db51def002bf7a7e0e31',
+ 's8.toml': '72a8f3b2c8aefd01d1b9a7e2cda95f8f0fee8f99a92f4aa4b7b5b5e051785e8d',
  'types.toml': 'c296ce3ec5cd35b59a3af46a34ec41bcc39a58d372cbbbaba250a16aa1348c73'}
 DATA = {'instructions.toml': {'schema': 1,
                        'manual': 'VAL 3 reference manual, version 7 (s7), French edition',
@@ -1875,11 +1875,22 @@ DATA = {'instructions.toml': {'schema': 1,
                                                  'the user page transcript).',
                                       'since': 's8',
                                       'source': 'issue11'}},
-             'forms': {'userPage': [{'since': 's8',
-                                     'source': 'issue11, cms (userPage("firstpage")), manual8 2.1.4.3 (web user pages)',
-                                     'note': "shows the application's user page of this name",
-                                     'returns': 'void',
+             'forms': {'userPage': [{'since': 's8.3',
+                                     'source': 'templates (VAL3help_example, s8.3: nRet=userPage("main"); '
+                                               'safeCalibration: as a statement), issue11, cms '
+                                               '(userPage("firstpage")), manual8 2.1.4.3 (web user pages), issue25',
+                                     'from': 'calls',
+                                     'note': "shows the application's web user page of this name; its value is a num "
+                                             "(assigned to a num global in Stäubli's template)",
+                                     'returns': 'num',
                                      'params': [{'name': 'sPage', 'type': 'string'}]}],
+                       'sioSet': [{'since': 's8',
+                                   'source': 'issue25 (a CS9 application calls sioSet with three arguments)',
+                                   'note': 'a third argument (a length?) that the s7 form lacks: its parameters are '
+                                           'not public',
+                                   'params_known': False,
+                                   'arity': 3,
+                                   'returns': 'num'}],
                        'ioStatus': [{'since': 's8',
                                      'source': 'issue11 (a socket program calls ioStatus(sio))',
                                      'returns': 'num',
@@ -1905,9 +1916,90 @@ DATA = {'instructions.toml': {'schema': 1,
                                                          'arguments are not checked.',
                                               'params_known': False},
                               'setSafetyRestart': {'section': 's8',
-                                                   'kind': 'procedure',
-                                                   'since': 's8',
-                                                   'source': 'cms (called as setSafetyRestart() after esStatus() == 1)',
-                                                   'summary': 'Safety restart (s8): its parameters are not public; '
-                                                              'arguments are not checked.',
-                                                   'params_known': False}}}}
+                                                   'kind': 'function',
+                                                   'since': 's8.5',
+                                                   'source': 'templates (safeCalibration, s8.5.3: '
+                                                             'l_bResult=setSafetyRestart() after esStatus()==1), cms',
+                                                   'from': 'calls',
+                                                   'summary': 'Restarts the safety after a safety fault (s8); true '
+                                                              'when done.',
+                                                   'overloads': [{'returns': 'bool', 'params': []}]},
+                              'userPageAlert': {'section': 's8',
+                                                'kind': 'procedure',
+                                                'since': 's8',
+                                                'source': 'templates (j213_external24V: userPageAlert("power supply '
+                                                          'failure, wait power supply ok")), robodk, issue25 (17 calls '
+                                                          'in one CS9 application)',
+                                                'from': 'calls',
+                                                'summary': 'Shows a message to the operator on the web user page (s8).',
+                                                'overloads': [{'returns': 'void',
+                                                               'params': [{'name': 'sMessage', 'type': 'string'}]}]},
+                              'userPageConfirm': {'section': 's8',
+                                                  'kind': 'function',
+                                                  'since': 's8',
+                                                  'source': 'templates (j213_external24V: l_bOk = '
+                                                            'userPageConfirm("Press update button ...")), robodk (if '
+                                                            'userPageConfirm("..."))',
+                                                  'from': 'calls',
+                                                  'summary': 'Asks the operator to confirm on the web user page (s8); '
+                                                             'true when confirmed.',
+                                                  'overloads': [{'returns': 'bool',
+                                                                 'params': [{'name': 'sMessage', 'type': 'string'}]}]},
+                              'userPagePrompt': {'section': 's8',
+                                                 'kind': 'function',
+                                                 'since': 's8.3',
+                                                 'source': 'templates (VAL3help_example, s8.3: if '
+                                                           '(userPagePrompt(sPrompt, sInput) == true), string globals)',
+                                                 'from': 'calls',
+                                                 'summary': 'Asks the operator for a text on the web user page (s8); '
+                                                            'false when cancelled.',
+                                                 'overloads': [{'returns': 'bool',
+                                                                'params': [{'name': 'sPrompt', 'type': 'string'},
+                                                                           {'name': 'sInput',
+                                                                            'type': 'string',
+                                                                            'ref': True}]}]},
+                              'hasCpuExtPowerSupply': {'section': 's8',
+                                                       'kind': 'function',
+                                                       'since': 's8',
+                                                       'source': 'templates (j213_external24V: if '
+                                                                 'hasCpuExtPowerSupply()==false)',
+                                                       'from': 'calls',
+                                                       'summary': "Whether the controller's CPU has an external 24 V "
+                                                                  'supply (s8).',
+                                                       'overloads': [{'returns': 'bool', 'params': []}]},
+                              'wakeUpRobot': {'section': 's8',
+                                              'kind': 'function',
+                                              'since': 's8',
+                                              'source': 'templates (j213_external24V: while wakeUpRobot() != 0, after '
+                                                        'a power supply failure)',
+                                              'from': 'calls',
+                                              'summary': 'Restores the robot after a power supply failure (s8); 0 when '
+                                                         'done.',
+                                              'overloads': [{'returns': 'num', 'params': []}]},
+                              'getJntRef': {'section': 's8',
+                                            'kind': 'function',
+                                            'since': 's8.5',
+                                            'source': 'templates (safeCalibration, s8.5.3: '
+                                                      'jSafeReference1=getJntRef("safeReference1"), jointRx globals; '
+                                                      'arm.cfx lists <JntReferences id=...>)',
+                                            'from': 'calls',
+                                            'summary': "The joint position of a named joint reference of the arm's "
+                                                       'configuration (s8).',
+                                            'overloads': [{'returns': 'joint',
+                                                           'params': [{'name': 'sName', 'type': 'string'}]}]},
+                              'getSafeRefStatus': {'section': 's8',
+                                                   'kind': 'function',
+                                                   'since': 's8.5',
+                                                   'source': 'templates (safeCalibration, s8.5.3: '
+                                                             'nSafeRefStatus=abs(getSafeRefStatus()))',
+                                                   'from': 'calls',
+                                                   'summary': 'The status of the safe referencing of the arm (s8).',
+                                                   'overloads': [{'returns': 'num', 'params': []}]},
+                              'opcuaExport': {'section': 's8',
+                                              'kind': 'procedure',
+                                              'since': 's8',
+                                              'source': 'issue25 (40 calls in a CS9 application whose globals are read '
+                                                        'over OPC UA)',
+                                              'summary': "Exports data to the controller's OPC UA server (s8): its "
+                                                         'parameters are not public; arguments are not checked.',
+                                              'params_known': False}}}}

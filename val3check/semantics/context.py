@@ -59,7 +59,7 @@ class Context:
         # The code uses s8 forms although the project file says s7 (T030), or the application
         # has s8 web user pages (*.bindings.json): it is CS9 code, and the findings that only
         # hold on s7 (`_s7_only`) are turned into their s8 warning.
-        self.s8_evidence = bool(app.ui_names)
+        self.s8_evidence = bool(app.ui_names) or self.target.cs9
         self._s7_only: list[tuple[int, str, str]] = []
         # Libraries and user types found by name in the repository (F016): a guess. A finding of
         # a statement that consulted one depends on the guess: at most a warning, and it says so
@@ -102,7 +102,7 @@ class Context:
         T031 (error) on an s7 target the configuration names, T030 (warning) when the project
         file says s7 (or no version): real CS9 code is often saved that way."""
         t = self.target
-        if t.s8:
+        if t.s8 or t.cs9:
             return
         if t.explicit:
             self.report_at("T031", M.s8_on_s7_target(what, t.label), node)

@@ -125,6 +125,11 @@ def s8_signature(message: str) -> str:
     return f"{message}; this is the s7 manual's signature, and s8 may add other forms: check it on the controller"
 
 
+def s8_reading(message: str) -> str:
+    return (f"{message}; this signature is read from real s8 code (val3check/language/s8.toml), not from a"
+            " manual: check it on the controller")
+
+
 def arity(what: str, expected: str, got: int, signatures: Iterable[str] = ()) -> str:
     sigs = list(signatures)
     tail = ""
