@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from .checkhelp import codes, collect, findings, messages, write_app, write_files
+from .checkhelp import codes, collect, findings, lint, messages, write_app, write_files
 
 
 def test_undefined_variable_at_its_position_with_a_suggestion(tmp_path):
@@ -139,7 +139,7 @@ def _in_controller(tmp_path, arm: str, globals_):
     return folder
 
 
-def test_with_the_arm_of_the_controller_tree_only_the_other_family_is_an_error(tmp_path):
+def test_with_the_arm_of_the_controller_tree_only_the_other_family_is_reported(tmp_path):
     # a SCARA cell: the Rx declarations are wrong, whichever side has more
     folder = _in_controller(tmp_path, "ts2_60-S1", ["pointRx pA", "jointRx jB", "configRs cC"])
     found = collect(folder, "N0", with_path=True)
@@ -150,6 +150,15 @@ def test_with_the_arm_of_the_controller_tree_only_the_other_family_is_an_error(t
     assert [f[0] for f in collect(six, "N0")] == ["N011"] and "pB" in messages(six)[0]
     clean = _in_controller(tmp_path / "c", "tx2-60-S1", ["pointRx pA", "jointRx jB"])
     assert collect(clean, "N0") == []
+
+
+def test_the_other_family_is_a_warning_that_says_why(tmp_path):
+    # issue 25: a user-interface library with SCARA forms in a TX200 cell; the manual (9.7.2)
+    # does not say that the controller refuses it
+    folder = _in_controller(tmp_path, "tx200-S3", ["jointRs jScara", "jointRx jHome"])
+    found = [d for d in lint([folder], cwd=tmp_path).result.diagnostics if d.code == "N011"]
+    assert [d.severity.label for d in found] == ["warning"]
+    assert "does not say that the controller refuses" in found[0].message and "jScara" in found[0].message
 
 
 def test_an_arm_of_no_known_family_leaves_the_warning(tmp_path):

@@ -78,7 +78,9 @@ def undefined_type(kind: str, name: str, type_name: str) -> str:
 def wrong_arm_family(kind: str, name: str, type_name: str, family: str, arm_family: str, arm_kind: str,
                      where: str) -> str:
     return (f"{kind} {name} is {a(type_name)} ({family} type), but the arm of this controller is a {arm_kind} arm"
-            f" ({where}): its positions are {arm_family} types (9.7.2)")
+            f" ({where}): its positions are {arm_family} types (9.7.2). The manual does not say that the controller"
+            " refuses the other family (a library may offer forms for both kinds of arm), so this is a warning:"
+            " check that the declaration is meant for another arm")
 
 
 def mixed_families_unknown_arm(kind: str, name: str, type_name: str, counts: dict[str, int]) -> str:
