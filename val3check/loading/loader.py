@@ -75,7 +75,13 @@ def _stem(rel: str) -> str:
 
 
 def _ext(path: str) -> str:
-    return os.path.splitext(path)[1].lower()
+    """'.pjx' for 'App/App.pjx', and for 'App/.pjx' too: a project file without a name is still a
+    project file (os.path.splitext sees no extension in a dot-file)."""
+    base = os.path.basename(path)
+    ext = os.path.splitext(base)[1]
+    if not ext and base.startswith(".") and base.count(".") == 1:
+        ext = base
+    return ext.lower()
 
 
 @dataclass
@@ -155,8 +161,9 @@ class Loader:
             return None
         sink = rd.Sink(pjx, self.diags)
         pf = rd.read_project(root, sink)
+        stem = os.path.basename(pjx)[: -len(_ext(pjx)) or None]
         app = Application(
-            name=os.path.splitext(os.path.basename(pjx))[0],
+            name=stem or os.path.basename(os.path.dirname(pjx)),  # `.pjx`: a project without a name
             path=pjx,
             layout=layout,
             version=pf.version,
