@@ -525,11 +525,14 @@ class Loader:
                 for k in keys or ():
                     self._add_target(k)
                 for p in free:
+                    rel = os.path.relpath(p, os.path.dirname(owner)).replace(os.sep, "/")
                     self.diags.append(Diagnostic(
                         "F012",
                         f"program file not listed in {os.path.basename(owner)}: it is not part of the"
-                        " application and is not checked",
-                        p, fix=("list-program", owner),
+                        " application and is not checked; if it belongs to the application, add"
+                        f" <Program file=\"{rel}\" /> to <Programs> in {os.path.basename(owner)} (never done by"
+                        " --fix: it would change what the controller loads), else delete it",
+                        p,
                     ))
                 continue
             # No project here or above, or none could be read: the programs alone.
