@@ -20,7 +20,7 @@ def test_the_manual_limits_are_certain_up_to_s7_and_unknown_beyond_what_s8_code_
     assert p is not None and not p.certain and "not known" in p.why
     assert task_name_problem("socketServerTask", 7).certain
     assert task_name_problem("socketServerTask", 8) is None
-    assert not task_name_problem("a" * 20, 8).certain
+    assert task_name_problem("a" * 20, 8) is None and not task_name_problem("a" * 21, 8).certain
     assert task_name_problem("bad name", 8).certain  # the characters hold for every version
 
 

@@ -64,12 +64,12 @@ def test_undefined_program_and_program_suggestion(tmp_path):
 
 
 def test_unknown_instructions_typo_error_far_name_warning_s8_warning_system_never(tmp_path):
-    code = "begin\n  waitEndMov()\n  setPayload(flange, 2)\n  $anything(1, 2)\n  println(\"x\")\nend"
+    code = "begin\n  waitEndMov()\n  setGripForce(flange, 2)\n  $anything(1, 2)\n  println(\"x\")\nend"
     assert codes(tmp_path, code) == ["N003", "N004", "N003"]
 
 
 def test_unknown_instruction_in_s8_is_a_warning_even_when_close(tmp_path):
-    assert codes(tmp_path, "begin\n  waitEndMov()\n  setPayload(1)\nend", version="s8.3") == ["N004", "N004"]
+    assert codes(tmp_path, "begin\n  waitEndMov()\n  setGripForce(1)\nend", version="s8.3") == ["N004", "N004"]
 
 
 def test_variable_called_like_a_function(tmp_path):
@@ -195,14 +195,14 @@ def test_missing_program_file_exempts_its_program_called_any_way(tmp_path):
 
 
 def test_task_name_length_is_not_held_against_s8(tmp_path):
-    code = 'begin\n  taskCreate "socketServerTask", 10, helper()\n  taskCreate "aTaskNameOfTwentyOne", 10, helper()\nend'
+    code = 'begin\n  taskCreate "socketServerTask", 10, helper()\n  taskCreate "aTaskNameOfTwentyOne1", 10, helper()\nend'
     progs = {"helper": {"code": "begin\nend"}}
     s7 = write_app(tmp_path / "s7", code, programs=progs)
     s8 = write_app(tmp_path / "s8", code, programs=progs, version="s8.3")
     assert [f[0] for f in collect(s7, "T023")] == ["T023", "T023"]
     # s8 code uses 16 characters; beyond, the s8 limit is not known (language/version_facts.py)
     assert len(collect(s8, "T023")) == 1
-    assert [m for m in messages(s8) if "aTaskNameOfTwentyOne" in m and "on an s7 controller" in m]
+    assert [m for m in messages(s8) if "aTaskNameOfTwentyOne1" in m and "on an s7 controller" in m]
 
 
 def test_program_names_may_start_with_an_underscore(tmp_path):

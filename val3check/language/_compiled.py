@@ -2,7 +2,7 @@
 `python -m val3check.language.compiled` after changing a TOML file."""
 # fmt: off
 SHA256 = {'instructions.toml': '8d574026cbe9f5bbcc3f0d4dd1d120da76435d89ca3c03053afa56f4b934e2a4',
- 's8.toml': '72a8f3b2c8aefd01d1b9a7e2cda95f8f0fee8f99a92f4aa4b7b5b5e051785e8d',
+ 's8.toml': '2a829e35c703aa2051407dcb35a278576d16ad67a58a43301b8c1d55f9151cb4',
  'types.toml': 'c296ce3ec5cd35b59a3af46a34ec41bcc39a58d372cbbbaba250a16aa1348c73'}
 DATA = {'instructions.toml': {'schema': 1,
                        'manual': 'VAL 3 reference manual, version 7 (s7), French edition',
@@ -1867,9 +1867,12 @@ DATA = {'instructions.toml': {'schema': 1,
                                       's7_source': 'manual 5.10 taskCreate, sNom: "Il doit contenir de 1 à 15 '
                                                    'caractères choisis dans la plage suivante _a..zA..Z0..9" (runtime '
                                                    'error 29 otherwise)',
-                                      's8_seen': 16,
+                                      's8_seen': 20,
                                       's8_source': 'issue25: taskCreate "socketServerTask" (16 characters) in '
-                                                   'production code of a CS9 cell'}},
+                                                   'production code of a CS9 cell; '
+                                                   'github:txellgalletto/TFG-Robot-Program (s8.8.3, CS9): taskCreate '
+                                                   '"N15_AproAgafarPuntes" (20 characters), whose completion the '
+                                                   "application's own log (sLog in Robot_pippeting.dtx) records"}},
              'statements': {'print': {'syntax': '? expr',
                                       'summary': 'Print the value of an expression (emulator console; val3check sim: '
                                                  'the user page transcript).',
@@ -1995,6 +1998,24 @@ DATA = {'instructions.toml': {'schema': 1,
                                                    'from': 'calls',
                                                    'summary': 'The status of the safe referencing of the arm (s8).',
                                                    'overloads': [{'returns': 'num', 'params': []}]},
+                              'setPayload': {'section': 's8',
+                                             'kind': 'procedure',
+                                             'since': 's8.8',
+                                             'source': 'github:txellgalletto/TFG-Robot-Program (s8.8.3, CS9), '
+                                                       'Init.pgx: setPayload(flange,nPesEina,trEina,nInerciaEina) with '
+                                                       'a num, a trsf and a 3 x 3 num array',
+                                             'from': 'calls',
+                                             'summary': 'Declares the payload of a tool: mass, centre of gravity, '
+                                                        'inertia matrix (s8).',
+                                             'overloads': [{'returns': 'void',
+                                                            'params': [{'name': 'tTool', 'type': 'tool'},
+                                                                       {'name': 'nMass', 'type': 'num'},
+                                                                       {'name': 'trCenter', 'type': 'trsf'},
+                                                                       {'name': 'nInertia',
+                                                                        'type': '*',
+                                                                        'accepts': ['num'],
+                                                                        'container': 'array',
+                                                                        'index': 'none'}]}]},
                               'opcuaExport': {'section': 's8',
                                               'kind': 'procedure',
                                               'since': 's8',
