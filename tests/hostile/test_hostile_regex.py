@@ -3,7 +3,7 @@
 Each input below is one the replaced pattern took minutes on (quadratic backtracking, in C code
 that `--max-wall` cannot stop): a scenario line of 300 KB (75 s), a fatherId of 150 KB (17 s
 per 150 KB), an arm.cfx arm id of 180 KB (97 s), a data file's number of 150 KB, a pyproject.toml
-of newlines, a project file of unclosed tags. The tests assert the outcome on those sizes; the
+of newlines. The tests assert the outcome on those sizes; the
 short inputs check the new code against the pattern it replaced (same answers)."""
 
 from __future__ import annotations
@@ -117,7 +117,7 @@ def test_stroke_lengths():
         assert ArmConfig("p", "a", None, text).stroke_mm == mm, text
 
 
-# ---- D: configuration and project files --------------------------------------------------------------
+# ---- D: configuration files --------------------------------------------------------------
 
 def test_a_pyproject_of_blank_lines_is_probed_in_linear_time(tmp_path):
     from val3check.config import _TOOL_SECTION, find_config
@@ -126,16 +126,3 @@ def test_a_pyproject_of_blank_lines_is_probed_in_linear_time(tmp_path):
     assert _TOOL_SECTION.search(b"x = 1\n  [ tool ]  \n") and _TOOL_SECTION.search(b"[tool.val3check]\n")
     (tmp_path / "pyproject.toml").write_text("\n" * 300_000)
     assert find_config(str(tmp_path)) is None
-
-
-def test_the_project_file_is_read_for_fixes_in_linear_time():
-    from val3check import fixes
-
-    doc = (b'<Project><Programs>\n  <Program file="a.pgx" />\n  <Program  file = \'b c.pgx\'/>\n'
-           b'<Program name="x" file="d.pgx"/>\n</Programs></Project>')
-    section = fixes._section(doc)
-    assert [e.value for e in fixes._entries(doc, *section)] == [b"a.pgx", b"b c.pgx", b"d.pgx"]
-    assert fixes._section(b"<Programs " * 100_000) is None
-    assert fixes._section(b"<Programs>" * 30_000) is None
-    data = b"<Programs>" + b'<Program file="a" file="a"' * 20_000 + b"</Programs>"
-    assert fixes._entries(data, *fixes._section(data)) == []
