@@ -28,8 +28,8 @@ INT_DIGITS = 4300  # Python's int-to-string limit (sys.get_int_max_str_digits())
 # What the scan stops at: the start of a string or a comment. Between two of them, brackets and
 # dots are counted with str methods.
 _STOP = re.compile(r"\"\"\"|'''|[\"'#]")
-_BASIC_END = re.compile(r'\\.|["\n]', re.S)
-_ML_BASIC_END = re.compile(r'\\.|"""', re.S)
+_BASIC_END = re.compile(r'\\.|["\n]', re.DOTALL)
+_ML_BASIC_END = re.compile(r'\\.|"""', re.DOTALL)
 _LITERAL_END = re.compile(r"['\n]")
 _KEY_BREAK = re.compile(r"[=\[\]{},\n]")  # what ends a dotted key
 _BRACKET = re.compile(r"[\[\]{}]")

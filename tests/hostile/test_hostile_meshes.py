@@ -14,8 +14,7 @@ import pytest
 pytest.importorskip("trimesh")
 
 from tests.hostile import meshfiles  # noqa: E402
-from val3check.collision import CellError, read_cell  # noqa: E402
-from val3check.collision import meshes, meshsize  # noqa: E402
+from val3check.collision import CellError, meshes, meshsize, read_cell  # noqa: E402
 
 
 def _cell(folder: Path, file: str, extra: str = "") -> Path:

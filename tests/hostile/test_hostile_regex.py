@@ -12,10 +12,9 @@ import random
 import re
 
 import pytest
-
 from interpretation.simsupport import sim
-from val3check.testing import write_app
 
+from val3check.testing import write_app
 
 # ---- C: the scenario's positions --------------------------------------------------------------------
 

@@ -10,8 +10,8 @@ import json
 import xml.etree.ElementTree as ET
 
 import pytest
-
 from interpretation.simsupport import sim
+
 from val3check.config import Settings
 from val3check.reporting._common import printable, visible
 from val3check.reporting.sim_render import render_sim

@@ -5,8 +5,8 @@ accepted, and with 1e300 numpy overflowed and the first movej was computed with 
 from __future__ import annotations
 
 import pytest
-
 from interpretation.simsupport import sim
+
 from val3check.robot import load_robot
 from val3check.simulation.scenario import ScenarioError
 
@@ -19,8 +19,8 @@ GLOBALS = ["joint jJ", "mdesc mNomSpeed"]
     ("[400, 0, 90, 0, 0, 0]", "joint 1 = 400 is outside the limits of the arm TX2-60: [-180, 180] degrees"),
     ("[1e300, 0, 0, 0, 0, 0]", "joint 1 = 1e+300 is outside the limits of the arm TX2-60: [-180, 180] degrees"),
     ("[0, 0, 0, 0, 133, 0]", "joint 5 = 133 is outside the limits of the arm TX2-60: [-121, 132.5] degrees"),
-    ("[0, 0, 0, 0, 0, -9223372036854775808]", "joint 6 = -9223372036854775808 is outside the limits of the arm TX2-60: "
-                                              "[-270, 270] degrees"),
+    ("[0, 0, 0, 0, 0, -9223372036854775808]",
+     ("joint 6 = -9223372036854775808 is outside the limits of the arm TX2-60: [-270, 270] degrees")),
 ])
 def test_joints_outside_the_limits_are_refused_at_their_line(tmp_path, joints, message):
     with pytest.raises(ScenarioError) as e:
