@@ -202,7 +202,7 @@ def test_a_full_queue_blocks_until_a_command_is_done():
         assert q.record(movej(HOME + [5 * (k + 1), 0, 0, 0, 0, 0]), 0.0) == k
     r = q.record(movej(HOME), 0.0)
     assert isinstance(r, QueueFull)
-    assert r.until == pytest.approx(q.history[0].t_done or q.profile.time_at(q.history[0].S_end))
+    assert r.until == pytest.approx(q.history[0].t_done or q.profile.time_at(q.history[0].placement.s_end))
     assert q.record(movej(HOME), r.until) == 4
 
 
@@ -230,7 +230,7 @@ def test_getspeed_is_the_tcp_speed():
 def test_next_event_and_advance():
     q = queue()
     q.record(movej(HOME + [30, 0, 0, 0, 0, 0]), 0.0)
-    t_done = q.trajectory.profile.time_at(q.history[0].S_end)
+    t_done = q.trajectory.profile.time_at(q.history[0].placement.s_end)
     assert q.next_event(0.0) == pytest.approx(t_done)
     assert q.next_time(0) == int(np.ceil(t_done * 1e6 - 1e-6))
     q.advance(t_done)
@@ -263,6 +263,6 @@ def test_a_scara_arm_moves_too():
     P = kin.fk(q.position(t)[None])[0][:3, 3]
     assert np.allclose(P - T0[:3, 3], [-150, -100, -50], atol=1e-6)
     assert q.position(t)[2] == pytest.approx(50.0)  # the prismatic axis moved 50 mm
-    _, Q, _ = q.trajectory.sample(q.history[1].S_begin and 0.0, t)
+    _, Q, _ = q.trajectory.sample(q.history[1].placement.s_begin and 0.0, t)
     path = kin.fk(Q)[:, :3, 3]
     assert path[:, 2].min() >= T0[2, 3] - 50 - 1e-6

@@ -110,7 +110,7 @@ def test_a_very_short_movej():
 
 def test_when_toppra_fails_a_safe_slower_profile_is_used_and_reported(monkeypatch):
     from val3check.motion import findings as F
-    from val3check.motion import timing
+    from val3check.motion.timing import optimal
 
     from .motionhelp import KIN, movel, point
 
@@ -121,7 +121,7 @@ def test_when_toppra_fails_a_safe_slower_profile_is_used_and_reported(monkeypatc
     q0.record(movel(point(dz=150.0), MDesc(leave=40, reach=40)), 0.0)
     q0.record(movel(point(dy=200.0, dz=150.0), MDesc(blend="off")), 0.0)
     t_opt = run(q0)
-    monkeypatch.setattr(timing, "_load_toppra", broken)
+    monkeypatch.setattr(optimal, "_load_toppra", broken)
     q = queue()
     q.record(movel(point(dz=150.0), MDesc(leave=40, reach=40)), 0.0)
     q.record(movel(point(dy=200.0, dz=150.0), MDesc(blend="off")), 0.0)

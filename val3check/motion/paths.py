@@ -288,21 +288,6 @@ def tcp_rates(kin, q: np.ndarray, q1: np.ndarray, tool) -> tuple[np.ndarray, np.
     return pt, rt
 
 
-def tcp_state(kin, span: Span, sigma: float):
-    """(position, rotation, dp/dσ, angular velocity dω/dσ in world, rad) of the TCP of `span`'s
-    tool at σ (the boundary states of a Cartesian blend)."""
-    q = span.q([sigma], 0)
-    q1 = span.q([sigma], 1)
-    h = H_FD
-    T = kin.tcp(np.vstack([q, q + h * q1, q - h * q1]), span.tool)
-    p = T[0, :3, 3]
-    v = (T[1, :3, 3] - T[2, :3, 3]) / (2 * h)
-    from .cartesian import rotvec
-
-    w = rotvec(T[1, :3, :3] @ T[2, :3, :3].T) / (2 * h)
-    return p, T[0, :3, :3], v, w
-
-
 class Path:
     """Spans joined end to end; s is the global path parameter (never reset: the arm's whole
     run is one path)."""

@@ -3,7 +3,7 @@
 
 `MotionlessArm` stands at its initial joint position (all zeros, or the scenario's `[robot]
 joints`) for the whole run, and its motion queue is always empty: the arm of tests and tools
-that need no motion. `sim` runs use `arm.MovingArm`.
+that need no motion. `sim` runs use `moving_arm.MovingArm`.
 
 Units are converted here and nowhere else: the arm model (val3check.robot) works in
 millimetres, an application in its own length unit (2.1.4.1, `millimeterUnit`): 25.4 mm per

@@ -1,8 +1,10 @@
 """The arm of a run: the `Arm` port (interpretation/arm_port.py) and a `Subsystem` of the
-scheduler (interpretation/subsystem.py) over the motion queue of chapter 10 (queue.py).
+scheduler (interpretation/subsystem.py) over the motion queue of chapter 10 (motion/queue.py):
+where the interpreter meets motion.
 
     arm = MovingArm(model, cycles=None)     # model: val3check.robot.RobotModel, or None
-    build_machine(..., arm=arm)             # simulation/run.py; arm.bind(machine.controller)
+    build_machine(..., arm=arm)             # run.py; arm.bind(machine.controller)
+    arm.watch(reader)                       # reader(time_us, cycle): after each record, each cycle
 
 What the interpreter reads (herej, here, open/close, the chapter 10 handlers of ch10_motion.py)
 is the commanded position of the queue at the simulated time asked; the scheduler asks
@@ -18,6 +20,11 @@ Units are converted here and nowhere else (2.1.4.1): poses, tvel, leave and reac
 application's length unit, and the prismatic axis of a SCARA (joint 3) in it too; the queue
 works in millimetres and degrees, seconds.
 
+`watch(reader)` registers a reader of the program's values (collision_run.ValueWatch reads the
+frames and tools of the cell): called (time_us, cycle=False) after each motion instruction
+records a command, and (time_us, cycle=True) at the start of each scheduler cycle that advances
+the arm (a command ends, the next starts).
+
 Without an arm model (`model` None) the arm is idle: what acts on an idle arm works
 (`isEmpty()`, `resetMotion()`, `autoConnectMove()`, `waitEndMove()`...), motion commands stop
 the task with R002 saying how to name the arm (ch10_motion.py).
@@ -25,7 +32,7 @@ the task with R002 saying how to name the arm (ch10_motion.py).
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
@@ -33,12 +40,13 @@ import numpy as np
 from ..interpretation.arm_port import Joints
 from ..interpretation.scheduler import EndRun
 from ..language.runtime_errors import Val3RuntimeError
-from .arm_state import INCH_MM, ModelArm
-from .commands import MoveCommand, Target
-from .cycle import CycleCounter
-from .findings import MotionError, Source
-from .mdesc import MDesc
-from .queue import MotionQueue, QueueFull
+from ..motion.commands import MoveCommand, Target
+from ..motion.cycle import CycleCounter
+from ..motion.findings import MotionError, Source
+from ..motion.mdesc import MDesc
+from ..motion.queue import MotionQueue, QueueFull
+from ..motion.records import time_leaving
+from .model_arm import INCH_MM, ModelArm
 
 US = 1_000_000
 
@@ -56,15 +64,16 @@ class MovingArm(ModelArm):
         self._end_cmd = None  # that command, once recorded
         self.prismatic = tuple(k == "prismatic" for k in (getattr(model, "joint_kinds", None) or ())) \
             if model is not None else ()
-        # called (time_us) after each motion instruction records a command, and (time_us, cycle=True)
-        # at the start of each scheduler cycle that advances the arm (a command ends, the next
-        # starts): the collision checks read the frames and tools of the cell there
-        # (simulation/collision_run.py)
-        self.observer = None
+        self._readers: list[Callable[[int, bool], None]] = []  # `watch`
 
     def bind(self, controller: Any) -> None:
         """The controller whose power and monitor speed the arm follows (chapter 8)."""
         self.controller = controller
+
+    def watch(self, reader: Callable[[int, bool], None]) -> None:
+        """Call `reader(time_us, cycle)` after each command recorded (cycle False) and at the start
+        of each scheduler cycle that advances the arm (cycle True): see the module docstring."""
+        self._readers.append(reader)
 
     # ---- the queue -----------------------------------------------------------------------------
 
@@ -77,6 +86,12 @@ class MovingArm(ModelArm):
             self._queue = MotionQueue(self.model, np.array(self._initial, dtype=float),
                                       powered=True if ctl is None else bool(ctl.powered),
                                       monitor=100.0 if ctl is None else float(ctl.monitor_speed))
+        return self._queue
+
+    @property
+    def queue_in_use(self) -> MotionQueue | None:
+        """The motion queue if the run used it (a motion instruction, or the arm's state read),
+        else None: what the run's record of the arm is made from (collect.py)."""
         return self._queue
 
     def sync(self, time_us: int) -> MotionQueue | None:
@@ -133,6 +148,9 @@ class MovingArm(ModelArm):
         q = self._queue
         if q is None or (not q.pending and q.open is None):
             return None
+        if q.monitor <= 0.0 and q.powered and not q.held:
+            return "R003", ("the monitor speed is 0 %: the arm holds until setMonitorSpeed() or the scenario "
+                            "([controller] changes = [{ at = ..., monitor_speed = ... }]) raises it")
         if not q.powered:
             ctl = self.controller
             if ctl is not None and (ctl.working_mode != 4 or ctl.es_status != 0):
@@ -165,8 +183,8 @@ class MovingArm(ModelArm):
         q = self.sync(to_us)
         if q is None:
             return
-        if self.observer is not None:
-            self.observer(to_us, cycle=True)
+        for reader in self._readers:
+            reader(to_us, True)
         q.advance_us(to_us)
         end = self._cycles_end()
         if end is not None and end * US <= to_us + 1e-6:
@@ -176,12 +194,10 @@ class MovingArm(ModelArm):
 
     def _cycles_end(self) -> float | None:
         """When the arm starts the command that begins cycle N + 1 (--cycles N)."""
-        c = self._end_cmd
-        if c is None or c.S_begin is None or c.state == "cancelled":
+        command = self._end_cmd
+        if command is None or command.placement.s_begin is None or command.state == "cancelled":
             return None
-        from .records import time_leaving
-
-        return time_leaving(self._queue.trajectory.profile, c.S_begin)
+        return time_leaving(self._queue.trajectory.profile, command.placement.s_begin)
 
     # ---- for the chapter 10 handlers -------------------------------------------------------------------
 
@@ -198,15 +214,17 @@ class MovingArm(ModelArm):
         if tool_in_flange is not None:
             tool = np.array(tool_in_flange, dtype=float)
             tool[:3, 3] *= s
-        cmd = MoveCommand(kind, target, MDesc.from_fields(md, s), tool=tool, via=via, source=source,
-                          tool_name=tool_name)
-        r = q.record(cmd, time_us / US)
+        move = MoveCommand(kind, target, MDesc.from_fields(md, s), tool=tool, via=via, source=source,
+                           tool_name=tool_name)
+        r = q.record(move, time_us / US)
         if not isinstance(r, QueueFull):
             task = source.task
             self.counter.note(task, source)
             if self.cycles_goal is not None and self._end_cmd is None and \
                     self.counter.completed(task) >= self.cycles_goal:
                 self._end_cmd = q.history[-1]
+            for reader in self._readers:
+                reader(time_us, False)
         return r
 
     def _target_in_mm(self, tg: Target, s: float) -> Target:

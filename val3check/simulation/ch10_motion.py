@@ -1,4 +1,5 @@
-"""Chapter 10: the motion instructions, on the arm of the run (arm.MovingArm).
+"""Chapter 10: the motion instructions, on the arm of the run (moving_arm.MovingArm): where the
+interpreter's values meet the motion queue (motion/queue.py).
 
 Each handler converts the VAL 3 values (points and tools with their references, joints,
 mdesc) at the instruction, as the controller does when it records a command, and hands them to
@@ -31,9 +32,10 @@ from ..interpretation.chapters.ch09_geometry import ct, jd, jt, millimeter_unit,
 from ..interpretation.not_simulated import ARM_LIMIT, NO_ARM, SimLimit
 from ..interpretation.waiting import WAIT
 from ..language.runtime_errors import Val3RuntimeError
-from .commands import Target
-from .findings import MotionError, Source
-from .queue import QueueFull
+from ..motion.commands import Target
+from ..motion.findings import MotionError, Source
+from ..motion.queue import QueueFull
+from .model_arm import INCH_MM
 
 E = Val3RuntimeError
 US = 1_000_000
@@ -110,9 +112,6 @@ def _record(task, unit, kind: str, target: Target, via: Target | None, tool: Too
             rule = exc.finding.code if exc.finding is not None else None
             raise E(exc.code, exc.message, rule=rule) from None
         if not isinstance(r, QueueFull):
-            observer = getattr(arm, "observer", None)
-            if observer is not None:
-                observer(clock.time_of(task))
             return float(r)
         room = lambda: arm.has_room(clock.now)  # noqa: E731
         room.motion = True
@@ -231,7 +230,7 @@ def I_getspeed(task, unit, tool: Tool) -> float:
         return 0.0
     m = _tool(tool)
     mm = millimeter_unit(unit)
-    s = 1.0 if mm else 25.4
+    s = 1.0 if mm else INCH_MM
     if m is not None:
         m = m.copy()
         m[:3, 3] *= s
