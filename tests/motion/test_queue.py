@@ -266,3 +266,33 @@ def test_a_scara_arm_moves_too():
     _, Q, _ = q.trajectory.sample(q.history[1].placement.s_begin and 0.0, t)
     path = kin.fk(Q)[:, :3, 3]
     assert path[:, 2].min() >= T0[2, 3] - 50 - 1e-6
+
+
+def test_monitor_speed_0_holds_the_arm_on_its_path_and_nothing_fails():
+    """8.1: setMonitorSpeed accepts 0 to 100. At 0 every limit would be 0: the arm stops on its
+    path (with the decelerations it had) and holds until the monitor speed rises (issue 21 J)."""
+    target = HOME + [150, 0, 0, 0, 0, 0]  # 0.6 s: at 0.2 s the arm still accelerates
+    q = queue()
+    q.record(movej(target), 0.0)
+    t_free = q.wait_end_move(0.0)
+    q = queue()
+    q.record(movej(target), 0.0)
+    q.set_monitor_speed(0.0, 0.2)
+    assert q.wait_end_move(0.25) is None and q.blocked_reason().startswith("the monitor speed is 0 %")
+    t_stop = q.profile.t_end  # braked on the path
+    held = q.position(t_stop)
+    assert 0.2 < t_stop < 0.5 and np.allclose(q.position(3.0), held) and not q.is_empty(3.0)
+    assert q.get_speed(None, 1.0) == 0.0 and q.next_event(3.0) is None
+    # a command recorded while at 0 waits too; the queue is not full
+    assert q.record(movej(HOME), 1.0) == 1 and np.allclose(q.position(3.0), held)
+    q.set_monitor_speed(100.0, 3.0)
+    t = run(q, 3.0)
+    assert np.allclose(q.position(t), HOME) and q.findings == []
+    assert t > 3.0 + t_free * 0.5  # it went on from where it held: the rest of the way, then back
+    # started at 0 %: nothing moves until it rises
+    q = queue(monitor=0.0)
+    q.record(movej(target), 0.0)
+    assert q.wait_end_move(0.0) is None and np.allclose(q.position(5.0), HOME)
+    q.set_monitor_speed(50.0, 5.0)
+    t = run(q, 5.0)
+    assert np.allclose(q.position(t), target) and t > 5.0 + t_free

@@ -147,6 +147,7 @@ def _cartesian_blend_shape(kin, tool, qL, vL, qR, vR, ell_l, ell_r, shape):
     T = kin.tcp(np.vstack([qL, qL + h * vL, qL - h * vL, qR, qR + h * vR, qR - h * vR]), tool)
 
     def state(i):
+        """TCP position, rotation, velocity and angular velocity at row i of T (central differences)."""
         p = T[i, :3, 3]
         v = (T[i + 1, :3, 3] - T[i + 2, :3, 3]) / (2 * h)
         w = rotvec(T[i + 1, :3, :3] @ T[i + 2, :3, :3].T) / (2 * h)

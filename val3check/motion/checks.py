@@ -46,6 +46,7 @@ class SingularPass:
 
     @property
     def ratio(self) -> float:
+        """The TCP speed there over the speed elsewhere (1 when nothing is allowed elsewhere)."""
         return self.cap / self.reference if self.reference > 0 else 1.0
 
 

@@ -67,6 +67,7 @@ class ArmKin:
     """Vectorised kinematics of one `RobotModel` (ortho-parallel base, spherical wrist)."""
 
     def __init__(self, model) -> None:
+        """The kinematics of `model` (robot.RobotModel): its closed form, joint limits, speeds, accelerations."""
         self.model = model
         self.opw = model.opw
         self.lo = np.array([lo for lo, _ in model.joint_limits], dtype=float)
@@ -153,6 +154,7 @@ class ArmKin:
         return self.opw is None
 
     def need_ik(self) -> None:
+        """Raise IKUnsupported when the arm has no inverse kinematics the motion can use."""
         if self.opw is None and not self.scara:
             self.model._need_opw()  # raises IKUnsupported with the model's reason
             raise IKUnsupported(f"{self.model.name}: no closed-form inverse kinematics")
@@ -184,6 +186,7 @@ class ArmKin:
         return self._configs[code]
 
     def code_of(self, names) -> int:
+        """The configuration code of names such as (righty, epositive, wnegative)."""
         names = tuple(names)
         if self.opw is not None:
             return config_code(names)

@@ -20,6 +20,7 @@ from .paths import tcp_rates
 
 @dataclass(frozen=True)
 class MotionRecord:
+    """What the arm did with one command (module docstring)."""
     id: int | float | None  # the identifier the instruction returned (None: a connection move)
     kind: str  # movej | movel | movec | connection
     source: Source
@@ -36,22 +37,8 @@ class MotionRecord:
 
     @property
     def duration(self) -> float | None:
+        """end - start, None when it never ran."""
         return None if self.start is None or self.end is None else self.end - self.start
-
-    def as_dict(self) -> dict:
-        return {
-            "id": self.id, "kind": self.kind, "path": self.source.path, "line": self.source.line,
-            "col": self.source.col, "task": self.source.task, "state": self.state,
-            "recorded": _round(self.recorded), "start": _round(self.start), "end": _round(self.end),
-            "duration": _round(self.duration), "length_mm": round(self.length_mm, 3),
-            "peak_tcp_mm_s": round(self.peak_tcp_mm_s, 3), "dominant_limit": self.dominant,
-            "limit_seconds": {k: round(v, 6) for k, v in sorted(self.limit_share.items())},
-            "target": self.target, "tool": self.tool,
-        }
-
-
-def _round(v):
-    return None if v is None else round(v, 6)
 
 
 def time_leaving(profile, s0: float) -> float | None:

@@ -101,10 +101,12 @@ COLORS = {"obstacle": {"r": 0.45, "g": 0.55, "b": 0.65, "a": 0.8}, "tool": {"r":
 
 
 def _ns(t: float) -> int:
+    """Simulated seconds as nanoseconds (the trace's stamps)."""
     return int(round(t * 1e9))
 
 
 def _stamp(ns: int) -> dict:
+    """A foxglove Time of nanoseconds."""
     return {"sec": ns // 1_000_000_000, "nsec": ns % 1_000_000_000}
 
 
@@ -157,6 +159,7 @@ def _transforms(ns: int, parent: str, names: list[str], mats) -> list[dict]:
 
 
 def _tf(st: dict, parent: str, child: str, p, q) -> dict:
+    """A foxglove.FrameTransform of `child` in `parent` (position p in m, quaternion q)."""
     return {"timestamp": st, "parent_frame_id": parent, "child_frame_id": child,
             "translation": {"x": p[0], "y": p[1], "z": p[2]}, "rotation": {"x": q[0], "y": q[1], "z": q[2], "w": q[3]}}
 
@@ -206,6 +209,7 @@ def _tcp_marker(ns: int, flange: str, name: str, tool) -> dict:
 
 
 def _entity(ns: int, frame: str, ident: str, what: str, solids: list[tuple[str, Any, Any, Any]]) -> dict:
+    """A foxglove.SceneEntity of the cell's or the tool's solids (mm in, m out)."""
     import numpy as np
 
     e: dict[str, Any] = {"timestamp": _stamp(ns), "frame_id": frame, "id": ident, "lifetime": {"sec": 0, "nsec": 0},
@@ -229,17 +233,21 @@ class _Messages:
     """The messages other than the arm's ticks (few): collected, then sorted by time."""
 
     def __init__(self) -> None:
+        """No message yet."""
         self.items: list[tuple[int, int, int, bytes]] = []  # (time ns, topic order, seq, JSON)
 
     @staticmethod
     def encode(message: dict) -> bytes:
+        """A message as compact JSON bytes."""
         return json.dumps(message, separators=(",", ":"), ensure_ascii=False, allow_nan=False).encode("utf-8")
 
     def add(self, topic: str, ns: int, message: dict) -> None:
+        """A message on `topic` at `ns`."""
         self.items.append((ns, list(TOPICS).index(topic), len(self.items), self.encode(message)))
 
 
 def _rigid_inverse(P):
+    """The inverses of rigid transforms P (N, 4, 4)."""
     import numpy as np
 
     out = np.zeros_like(P)
@@ -298,6 +306,7 @@ def _m(P):
 
 
 def _q(R):
+    """Quaternions of rotations R, to 1e-12."""
     import numpy as np
 
     return (np.round(quaternions(R), 12) + 0.0).tolist()

@@ -23,14 +23,17 @@ TICK_S = 0.004
 
 
 def _t(us: int | None) -> float | None:
+    """Simulated microseconds as seconds (to the microsecond), None stays None."""
     return None if us is None else round(us / 1_000_000, 6)
 
 
 def _s(x: float | None, digits: int = 6) -> float | None:
+    """A number rounded to `digits` decimals, None stays None."""
     return None if x is None else round(float(x), digits)
 
 
 def _pos(pos) -> dict | None:
+    """(path, line, col, program) as the report's position object."""
     if not pos:
         return None
     path, line, col, program = pos
@@ -38,12 +41,14 @@ def _pos(pos) -> dict | None:
 
 
 def _diagnostic(run: Any, d) -> dict[str, Any]:
+    """A kept diagnostic in the report."""
     return {"code": d.code, "name": run.rule_name(d.code), "severity": d.severity.label, "message": d.message,
             "path": d.path, "line": d.line or None, "column": d.col or None, "time": _t(d.time_us),
             "task": d.task or None, "program": d.program or None, "error": d.error}
 
 
 def _pose(v) -> list[float] | None:
+    """Joint values or a trsf to 1e-4, None stays None."""
     return None if v is None else [round(float(x), 4) for x in v]
 
 
@@ -61,6 +66,7 @@ def _rows(a, digits: int) -> list[Raw]:
 
 
 def _motion(run: Any) -> dict | None:
+    """The `motion` section: what the arm did (the run's record, simulation/arm_record.py)."""
     m = run.result.motion
     if m is None:
         return None
@@ -201,6 +207,7 @@ def number(x: float) -> str:
 
 
 def _scalar(v: Any) -> str:
+    """A JSON scalar as text."""
     if type(v) is Raw:
         return v
     if v is None:
@@ -217,6 +224,7 @@ def _scalar(v: Any) -> str:
 
 
 def _flat(v: Any) -> bool:
+    """A list written on one line (numbers only)."""
     return isinstance(v, list) and all(not isinstance(x, (list, dict)) for x in v) and all(
         not isinstance(x, str) or type(x) is Raw for x in v) and not (v and type(v[0]) is Raw)
 
@@ -240,4 +248,5 @@ def dumps(obj: Any, indent: int = 0) -> str:
 
 
 def render(run: Any) -> str:
+    """The report as text (sorted keys, 2-space indent, ASCII, a final newline)."""
     return dumps(report(run)) + "\n"

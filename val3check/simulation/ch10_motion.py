@@ -54,6 +54,7 @@ def _matrix(pose) -> np.ndarray:
 
 
 def _source(task) -> Source:
+    """Where the task's running instruction is written (the motion diagnostics point at it)."""
     w = task.machine.line_running()
     if w is None:
         return Source(task.machine.app.path, 0, 0, task.program, task.name)
@@ -85,6 +86,7 @@ def _check_family(arm, value, what: str) -> None:
 
 
 def _point(task, p: Point, what: str) -> Target:
+    """A point as the queue's target: its TCP pose in world through its frames, configuration and names."""
     geo_points.check_defined(p)
     ref = p.ref
     frame = getattr(ref, "name", "") or ("world" if ref is not None and ref.is_root else "")
@@ -92,6 +94,7 @@ def _point(task, p: Point, what: str) -> Target:
 
 
 def _tool(tool: Tool) -> np.ndarray | None:
+    """A tool as its TCP in the flange through its base tools (4x4), None for the flange."""
     pose = geo_frames.root_pose(tool)
     return None if tool.is_root else _matrix(pose)
 
@@ -158,6 +161,7 @@ def I_waitendmove(task, unit):
 
 
 def _now(task) -> int:
+    """The task's simulated time (microseconds)."""
     return task.machine.clock.time_of(task)
 
 
@@ -276,6 +280,7 @@ def I_setmoveid(task, unit, n: float) -> float:
 
 
 def register(registry) -> None:
+    """The instructions of chapter 10 (nothing registers on import)."""
     for name, func in (("movej", I_movej), ("movel", I_movel), ("movec", I_movec), ("waitEndMove", I_waitendmove)):
         registry.instruction(name, func, blocking=True)
     for name, func in (("isEmpty", I_isempty), ("isSettled", I_issettled), ("stopMove", I_stopmove),

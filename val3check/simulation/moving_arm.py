@@ -55,6 +55,7 @@ class MovingArm(ModelArm):
     """See the module docstring."""
 
     def __init__(self, model: Any = None, *, cycles: int | None = None) -> None:
+        """The arm of `model` (None: an idle arm); `cycles`: --cycles N."""
         super().__init__(model)
         self._queue: MotionQueue | None = None
         self.controller: Any = None
@@ -109,10 +110,12 @@ class MovingArm(ModelArm):
     # ---- the Arm port ----------------------------------------------------------------------------
 
     def start_at(self, joints: Sequence[float]) -> None:
+        """The scenario's [robot] joints: the arm starts there (the queue is made again at first use)."""
         super().start_at(joints)
         self._queue = None
 
     def joints_at(self, time_us: int, millimeter_unit: bool = True) -> Joints:
+        """herej(): the commanded joints at `time_us`, in the caller's unit."""
         q = self.sync(time_us)
         if q is None:
             return self._initial
@@ -120,6 +123,7 @@ class MovingArm(ModelArm):
         return self.joints_out(j, millimeter_unit)
 
     def motion_done(self, time_us: int) -> bool:
+        """The motion queue is empty (9.5.4, 10.6): no command left to execute."""
         q = self.sync(time_us)
         return q is None or q.is_empty(time_us / US)
 
@@ -168,6 +172,7 @@ class MovingArm(ModelArm):
     # ---- the Subsystem -----------------------------------------------------------------------------
 
     def next_time(self, now_us: int) -> int | None:
+        """The Subsystem's next change: a command completes, the arm rests or has rested 50 ms, or --cycles ends the run."""
         q = self.sync(now_us)
         if q is None:
             return None
@@ -180,6 +185,7 @@ class MovingArm(ModelArm):
         return t
 
     def advance(self, to_us: int) -> None:
+        """The Subsystem's advance: the watchers read the program's values, the commands done by `to_us` complete; EndRun when the arm starts the cycle after the last one asked for."""
         q = self.sync(to_us)
         if q is None:
             return
@@ -228,6 +234,7 @@ class MovingArm(ModelArm):
         return r
 
     def _target_in_mm(self, tg: Target, s: float) -> Target:
+        """`tg` with its lengths (and a SCARA's axis 3) in mm: `s` millimetres per unit."""
         if tg.is_joint:
             return Target.joint(self.joints_in(tg.joints, s == 1.0), tg.name)
         pose = np.array(tg.pose, dtype=float)
@@ -242,9 +249,11 @@ class MovingArm(ModelArm):
                      for k, v in enumerate(joints))
 
     def joints_out(self, joints: Sequence[float], millimeter_unit: bool) -> Joints:
+        """Joint values of the model in the caller's unit (a prismatic axis in inches for an inch application)."""
         return tuple(self._out(float(v), k, millimeter_unit) + 0.0 for k, v in enumerate(joints))
 
     def _out(self, v: float, k: int, millimeter_unit: bool) -> float:
+        """One joint value (axis k) in the caller's unit."""
         if millimeter_unit or not (k < len(self.prismatic) and self.prismatic[k]):
             return v
         return v / INCH_MM

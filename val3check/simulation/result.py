@@ -50,6 +50,7 @@ class TaskSummary:
 
 @dataclass
 class SimResult:
+    """What a run hands to the reports (module docstring, docs/sim-report.md)."""
     application: str
     app_path: str
     end_reason: str

@@ -43,6 +43,7 @@ MOTION_MODULES = (ch10_motion,)
 
 @dataclass
 class SimOptions:
+    """How to run a simulation: budgets, the arm model, --cycles, progress, the collision checks."""
     duration: float = 60.0  # simulated seconds
     max_wall: float = 60.0  # wall-clock seconds
     max_lines: int = 50_000_000
@@ -64,6 +65,7 @@ class SimOptions:
 
 
 def build_registry() -> Registry:
+    """The registry of every instruction the virtual controller runs: the interpreter's chapters, then chapter 10."""
     registry = Registry()
     for module in INTERPRETER_MODULES + MOTION_MODULES:
         module.register(registry)
@@ -86,10 +88,12 @@ def build_machine(ws: Workspace, app: Application, options: SimOptions, *, regis
         report = options.progress
 
         def motions_done() -> int:
+            """Commands of the program the arm completed so far."""
             queue = arm.queue_in_use if isinstance(arm, MovingArm) else None
             return sum(1 for c in queue.history if c.state == "done" and c.id is not None) if queue is not None else 0
 
         def progress(now_us: int) -> None:
+            """The progress line at simulated time now_us."""
             report(now_us / 1e6, motions_done)
 
         machine.progress = progress
@@ -98,6 +102,7 @@ def build_machine(ws: Workspace, app: Application, options: SimOptions, *, regis
 
 def simulate(ws: Workspace, app: Application, options: SimOptions | None = None,
              scenario: Scenario | None = None) -> SimResult:
+    """Run the application `app` of `ws` (loaded and parsed) with `options` and `scenario`: its SimResult."""
     options = options or SimOptions()
     machine = build_machine(ws, app, options)
     checks = _collision_setup(app, options, machine)

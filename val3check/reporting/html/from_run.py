@@ -32,6 +32,7 @@ MAX_MESH_TRIANGLES = 50_000  # per mesh drawn: beyond, its bounding box (said in
 
 
 def _r(x: float | None, digits: int = 6) -> float | None:
+    """A number rounded to `digits` decimals without a negative zero; None stays None."""
     return None if x is None else round(float(x), digits) + 0.0
 
 
