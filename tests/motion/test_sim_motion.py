@@ -103,13 +103,13 @@ end
 """, ["point pA", "point pB", "point pEnd", "mdesc mD"])
     assert codes(r) == []
     line = motions(r)[1]
-    assert line.kind == "movel" and line.dominant == "tvel"
+    assert line.kind == "movel" and line.dominant_limit == "tvel"
     assert line.length_mm == pytest.approx(300.0, abs=1e-3)
     assert line.peak_tcp_mm_s == pytest.approx(250.0, rel=1e-4)
     # at 250 mm/s with joint accelerations of ~1500 deg/s²: the ramps take a few hundredths of a second
     # a trapezoid of TCP speed: ramps under joint accelerations, the rest at tvel; its area is
     # the length of the line
-    share = line.limit_share
+    share = line.limit_seconds
     cruise = share["tvel"]
     ramps = sum(v for k, v in share.items() if k != "tvel")
     assert line.duration == pytest.approx(cruise + ramps, abs=1e-9)

@@ -62,7 +62,7 @@ class MovingArm(ModelArm):
         self.auto_connect = False  # autoConnectMove (kept; the connection move is always automatic)
         self.counter = CycleCounter()
         self.cycles_goal = cycles  # --cycles N: the run ends when the arm starts cycle N + 1
-        self._end_cmd = None  # that command, once recorded
+        self._end_command = None  # that command, once recorded
         self.prismatic = tuple(k == "prismatic" for k in (getattr(model, "joint_kinds", None) or ())) \
             if model is not None else ()
         self._readers: list[Callable[[int, bool], None]] = []  # `watch`
@@ -194,13 +194,13 @@ class MovingArm(ModelArm):
         q.advance_us(to_us)
         end = self._cycles_end()
         if end is not None and end * US <= to_us + 1e-6:
-            self._end_cmd = None  # once: stop() then runs as after any end of a run
+            self._end_command = None  # once: stop() then runs as after any end of a run
             self.cycles_goal = None
             raise EndRun("cycles")
 
     def _cycles_end(self) -> float | None:
         """When the arm starts the command that begins cycle N + 1 (--cycles N)."""
-        command = self._end_cmd
+        command = self._end_command
         if command is None or command.placement.s_begin is None or command.state == "cancelled":
             return None
         return time_leaving(self._queue.trajectory.profile, command.placement.s_begin)
@@ -226,9 +226,9 @@ class MovingArm(ModelArm):
         if not isinstance(r, QueueFull):
             task = source.task
             self.counter.note(task, source)
-            if self.cycles_goal is not None and self._end_cmd is None and \
+            if self.cycles_goal is not None and self._end_command is None and \
                     self.counter.completed(task) >= self.cycles_goal:
-                self._end_cmd = q.history[-1]
+                self._end_command = q.history[-1]
             for reader in self._readers:
                 reader(time_us, False)
         return r
