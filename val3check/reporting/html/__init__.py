@@ -21,7 +21,7 @@ from typing import Any
 _EXPORTS = {"VERSION": "model", "ModelError": "model", "check_model": "model", "render": "page",
             "model_from_sim_report": "from_sim", "synthetic_model": "synthetic"}
 
-__all__ = sorted(_EXPORTS)
+__all__ = ["ModelError", "VERSION", "check_model", "model_from_sim_report", "render", "synthetic_model"]
 
 
 def __getattr__(name: str) -> Any:
