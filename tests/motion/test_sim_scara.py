@@ -34,7 +34,7 @@ def run(tmp_path, code, globals_=(), **kw):
 
 
 def motions(r):
-    return [m for m in r.motion.records if m.id is not None]
+    return [m for m in r.motion.motions if m.id is not None]
 
 
 def test_joint_values_have_four_axes_and_the_motion_is_timed_with_joint_3_in_mm(tmp_path):
@@ -168,7 +168,7 @@ end
     assert codes(r) == []
     assert gv(r, "jA")["j3"] == pytest.approx(5.0, abs=1e-9)
     (m,) = motions(r)
-    assert r.motion.commands[0].q_end[2] == pytest.approx(127.0, abs=1e-9)  # 5 inches, in mm for the model
+    assert r.motion.motions[0].joints_end[2] == pytest.approx(127.0, abs=1e-9)  # 5 inches, in mm for the model
     # stroke 200.1 mm = 7.878 inches
     assert gv(r, "bIn") is True and gv(r, "bOut") is False
 
