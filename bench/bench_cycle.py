@@ -32,7 +32,9 @@ import numpy as np
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "tests"))
+sys.path.insert(0, str(ROOT / "robots"))
 
+import dynamics  # noqa: E402
 from motion import reference as ref  # noqa: E402
 
 from val3check.motion.commands import MoveCommand, Target  # noqa: E402
@@ -40,8 +42,7 @@ from val3check.motion.mdesc import MDesc  # noqa: E402
 from val3check.motion.queue import MotionQueue  # noqa: E402
 from val3check.robot import load_robot  # noqa: E402
 
-# Stäubli TS2 range: standard cycle, cycles per minute (docs/motion.md, "Accelerations").
-PUBLISHED_CPM = {"TS2-40": 240, "TS2-60": 220, "TS2-80": 200, "TS2-100": 170}
+PUBLISHED_CPM = dynamics.PUBLISHED_CYCLES  # cycles per minute (robots/dynamics.py: the source)
 GOAL = 0.15
 UP, ACROSS = 25.0, 300.0
 BLENDS = ((25.0, 25.0), (25.0, 75.0), (25.0, 150.0), (25.0, 300.0))  # (leave on the legs, reach on the transfer)
@@ -53,15 +54,18 @@ def pose(model, q) -> np.ndarray:
     return T
 
 
-def cycle_points(model, at: float):
-    """Joint positions of pick, above pick, above place, place (righty)."""
+def cycle_points(model, at: float, turn: float = 0.0):
+    """Joint positions of pick, above pick, above place, place (righty): the transfer centred on
+    X at `at` × the reach, turned by `turn` degrees from the perpendicular to X."""
     stroke = model.joint_limits[2]
     q_ref = np.array([0.0, 90.0, (stroke[0] + stroke[1]) / 2, 0.0])
     T = pose(model, q_ref)
     out = []
-    for y, dz in ((-ACROSS / 2, 0.0), (-ACROSS / 2, UP), (ACROSS / 2, UP), (ACROSS / 2, 0.0)):
+    u = np.array([np.sin(np.radians(turn)), np.cos(np.radians(turn))])
+    for side, dz in ((-1, 0.0), (-1, UP), (1, UP), (1, 0.0)):
         Ti = T.copy()
-        Ti[:3, 3] = [at * model.reach_mm, y, T[2, 3] + dz]
+        x, y = np.array([at * model.reach_mm, 0.0]) + side * ACROSS / 2 * u
+        Ti[:3, 3] = [x, y, T[2, 3] + dz]
         out.append(np.array(model.ik(Ti, near=list(q_ref), config=("righty",))[0], dtype=float))
     return out
 
@@ -102,18 +106,61 @@ def best_cycle(model, pts):
     return best
 
 
+def rule_model(name: str, ramp_ref: float):
+    """The catalogue arm with the SCARA rule's speeds and ramp for this reference ramp."""
+    model = load_robot(name)
+    speeds, ramp = dynamics.scara(model.reach_mm, ramp_ref)
+    return model.with_assumptions({"nominal_speeds": list(speeds), "ramp_s": ramp})
+
+
+def fit(arms, at: float) -> int:
+    """Fit the SCARA rule's reference ramp to the published cycles (robots/dynamics.py): the
+    optimum of each arm's cycle (on the path of its best blend) over a grid of ramps, interpolated
+    in log-log; the ramp where the mean of log(optimum / published) is 0; the same on three arms
+    to predict the fourth."""
+    grid = np.geomspace(0.02, 0.09, 9)
+    table = {}
+    for name in arms:
+        pts = cycle_points(rule_model(name, dynamics.SCARA_RAMP_REF_S), at)
+        _, _, _, traj = best_cycle(rule_model(name, dynamics.SCARA_RAMP_REF_S), pts)
+        row = []
+        for g in grid:
+            m = rule_model(name, float(g))
+            row.append(optimum_on(m, traj, ref.Limits.of(m)))
+        table[name] = np.log(np.array(row) / (60.0 / PUBLISHED_CPM[name]))
+        print(f"{name}: optimum / published over ramps {grid[0]:.3f}..{grid[-1]:.3f} s: "
+              + " ".join(f"{np.exp(x):.3f}" for x in table[name]))
+
+    def solve(names):
+        mean = np.mean([table[n] for n in names], axis=0)
+        return float(np.exp(np.interp(0.0, mean, np.log(grid))))
+
+    best = solve(arms)
+    print(f"\nreference ramp (at {dynamics.SCARA_REACH_REF:g} mm) fitted on {', '.join(arms)}: {best:.4f} s")
+    for name in arms:
+        r = np.exp(np.interp(np.log(best), np.log(grid), table[name]))
+        others = [n for n in arms if n != name]
+        loo = solve(others)
+        r_loo = np.exp(np.interp(np.log(loo), np.log(grid), table[name]))
+        print(f"  {name}: optimum / published {r:.3f}; fitted on the other three ({loo:.4f} s): {r_loo:.3f}")
+    return 0
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--arms", default=",".join(PUBLISHED_CPM))
     ap.add_argument("--at", type=float, default=0.62, help="centre of the transfer, fraction of the reach")
+    ap.add_argument("--fit", action="store_true", help="fit the SCARA rule's ramp (robots/dynamics.py) to the figures")
     ap.add_argument("--ramp", type=float, default=None,
                     help="every joint at nominal speed in this many seconds (the accelerations issue 23 had: 0.25)")
     args = ap.parse_args(argv)
     t0 = time.perf_counter()
+    if args.fit:
+        return fit([a.strip() for a in args.arms.split(",")], args.at)
     print(f"TS2 standard cycle (up {UP:g}, across {ACROSS:g}, down {UP:g} mm, and back), transfer centred at "
           f"{100 * args.at:g} % of the reach; seconds")
     print(f"{'arm':8s} {'published':>9s} {'simulated':>9s} {'optimum':>8s} {'sim/pub':>8s} {'opt/pub':>8s} "
-          f"{'optimum ×½ / ×2 accel':>22s}  best blend; accelerations")
+          f"{'optimum, accel ×2 … ×½':>22s}  best blend; accelerations")
     missed = 0
     for name in args.arms.split(","):
         model = load_robot(name.strip())
@@ -123,8 +170,8 @@ def main(argv=None) -> int:
         pts = cycle_points(model, args.at)
         sim, leave, reach, traj = best_cycle(model, pts)
         opt = optimum_on(model, traj, ref.Limits.of(model))
-        lo = optimum_on(model, traj, ref.Limits.of(model, accel=200, decel=200))
-        hi = optimum_on(model, traj, ref.Limits.of(model, accel=50, decel=50))
+        lo = optimum_on(model, traj, ref.Limits.of(model, accel=200, decel=200))  # twice the accelerations
+        hi = optimum_on(model, traj, ref.Limits.of(model, accel=50, decel=50))  # half
         missed += abs(sim / pub - 1) > GOAL
         acc = ", ".join(f"{a:g}" for a in model.accelerations)
         print(f"{model.name:8s} {pub:9.3f} {sim:9.3f} {opt:8.3f} {sim / pub:8.2f} {opt / pub:8.2f} "
