@@ -109,32 +109,7 @@ SCARA_AXIS4 = (
     "Positive j4 turns the flange about its own Z axis (pointing down), clockwise seen from above: S1's convention "
     "(its row 4 has alpha = 180 deg); no Stäubli document checked. axis4_sign = 1 turns it the other way"
 )
-ACCEL_TEXT = (
-    "Stäubli publishes no joint accelerations, and no cycle time of a six-axis arm was found to derive them from: "
-    f"each joint is assumed to reach its nominal speed from rest in {RAMP_S:g} s (acceleration = nominal speed / "
-    f"{RAMP_S:g} s); decelerations equal. Set ramp_s or accelerations (measured values remove the uncertainty range)"
-)
-
-
-def scara_accel_text(name: str, reach: float, ramp: float) -> str:
-    pub = dynamics.PUBLISHED_CYCLES.get(name)
-    grounded = (f"its published standard cycle ({60 / pub:.3f} s) among them" if pub else
-                "no cycle is published for this arm: extrapolated from the TS2 figures")
-    return (f"Stäubli publishes no joint accelerations. SCARA rule (robots/dynamics.py): every axis reaches its nominal "
-            f"speed from rest in {dynamics.SCARA_RAMP_REF_S:g} s × √(reach / {dynamics.SCARA_REACH_REF:g} mm) = "
-            f"{ramp:g} s at this arm's {reach:g} mm; the reference ramp is fitted so that the optimum of the TS2 "
-            f"standard cycle matches Stäubli's figures for the TS2-40/-60/-80/-100 within ±5 % ({grounded}); "
-            "decelerations equal. Set ramp_s or accelerations (measured values remove the uncertainty range)")
-
-
-def scara_speed_text(reach: float) -> str:
-    ref = " ".join(_f(v) for v in dynamics.SCARA_SPEEDS_REF)
-    return (f"No public source gives a Stäubli SCARA's joint speeds. SCARA rule (robots/dynamics.py): {ref} (deg/s; "
-            f"mm/s for axis 3) at {dynamics.SCARA_REACH_REF:g} mm of reach, times {dynamics.SCARA_REACH_REF:g} / "
-            f"{reach:g} here (the flange's top speed the same for every size); not a Stäubli figure: the published "
-            "cycles fix only a combination of speed and acceleration. Set the arm's own")
-
-
+ACCEL_TEXT = dynamics.six_axis_text()
 MOUNT_NOTE = ("the VAL 3 world frame is attached to the arm's base; the mount (arm.cfx, or an override) only places "
               "it in the cell")
 
@@ -503,8 +478,8 @@ def scara_urdf(name: str, arm: dict) -> str:
     speeds, ramp = dynamics.scara(reach)
     native = "ceiling" if series_of(name) == "TP" else "floor"
     assumptions = [
-        ("ramp_s", _f(ramp), scara_accel_text(name, reach, ramp)),
-        ("nominal_speeds", " ".join(_f(v) for v in speeds), scara_speed_text(reach)),
+        ("ramp_s", _f(ramp), dynamics.scara_accel_text(name, reach, ramp)),
+        ("nominal_speeds", " ".join(_f(v) for v in speeds), dynamics.scara_speed_text(reach)),
         ("world_z_mm", "0", SCARA_WORLD),
         ("axis4_sign", "-1", SCARA_AXIS4),
     ]
