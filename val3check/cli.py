@@ -617,8 +617,7 @@ def _server() -> int:
         return EXIT_USAGE
     from .lsp.server import main as serve
 
-    serve()
-    return EXIT_OK
+    return serve()  # 0 after shutdown and exit, 1 otherwise (LSP's `exit`)
 
 
 def _rules(args: argparse.Namespace) -> int:
