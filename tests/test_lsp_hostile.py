@@ -90,7 +90,7 @@ def test_texts_of_unopened_files_are_kept_within_a_byte_budget(workspace):
     session = server.session
     assert session.texts == {}
     assert 0 < session.read.used <= 150_000 and 0 < len(session.read) < 8
-    assert len(session.unopened) <= features.UNOPENED_RUNS
+    assert 0 < session.unopened.used <= features.UNOPENED_BUDGET
 
 
 # ---- N: every URI scheme -------------------------------------------------------------------------

@@ -21,8 +21,9 @@ from ..lint import LintRun, run
 from ..loading.model import Application, Container, Data, Local, Parameter, Program, Workspace
 from .documents import VAL3_EXTENSIONS, Buffers, Recent, locate
 
-# the checks kept for files the editor has not opened, and the bytes of their texts kept
-UNOPENED_RUNS = 4
+# what is kept for files the editor has not opened: their checks, weighed by the bytes of the
+# files each read, and their texts
+UNOPENED_BUDGET = 16 * 1024 * 1024
 READ_BUDGET = 32 * 1024 * 1024
 MAX_READ = 16 * 1024 * 1024  # as `max-file-size` by default
 # findings about the files an untitled buffer names (it has no folder to find them in)
@@ -100,7 +101,7 @@ class Session:
         self.configured: dict[str, list[str]] = {}  # open document path -> the disk roots of its configuration
         self.folders: list[str] = []  # the workspace folders
         self.folder_uris: list[str] = []
-        self.unopened = Recent(UNOPENED_RUNS)  # checks made for files not opened (weight 1 each)
+        self.unopened = Recent(UNOPENED_BUDGET)  # checks made for files not opened
         self.read = Recent(READ_BUDGET)  # texts of files not opened, by (real path, mtime, size)
         self.buffers = Buffers()
         self.notes: list[str] = []  # configuration problems, for the editor's log
@@ -141,7 +142,7 @@ class Session:
         path = where.path if where.kind == "file" else self.buffers.path(uri, text)
         self.texts[path] = text
         self.uris[path] = uri
-        self.unopened = Recent(UNOPENED_RUNS)  # a check of a file not opened may have read this one
+        self.unopened = Recent(UNOPENED_BUDGET)  # a check of a file not opened may have read this one
         return self.check(path)
 
     def change(self, uri: str, text: str) -> dict[str, list[EditorDiagnostic]]:
@@ -160,7 +161,7 @@ class Session:
             table.pop(path, None)
         if locate(uri).kind == "buffer":
             self.buffers.close(uri)
-        self.unopened = Recent(UNOPENED_RUNS)
+        self.unopened = Recent(UNOPENED_BUDGET)
         if outcome is not None:
             files = _files(outcome)
             for other in [p for p in self.texts if p in files]:
@@ -296,7 +297,7 @@ class Session:
         if outcome is None:
             outcome = self._run(path)
             if outcome is not None:
-                self.unopened.put(path, outcome, 1)
+                self.unopened.put(path, outcome, max(1, sum(_size(f) for f in _files(outcome))))
         return outcome
 
     @staticmethod
@@ -470,6 +471,13 @@ class Session:
 
 def _files(outcome: LintRun) -> set[str]:
     return {os.path.abspath(f) for app in outcome.workspace.apps.values() for f in app.files}
+
+
+def _size(path: str) -> int:
+    try:
+        return os.stat(path).st_size
+    except (OSError, ValueError):
+        return 0
 
 
 def _at(path: str, line: int) -> str:

@@ -231,6 +231,9 @@ def _deliver(protocol: LanguageServerProtocol, gate: wire.Gate, value: dict, sen
         else:
             note(why)
         return
+    if request and getattr(message, "id", None) is None:
+        send(wire.error(value.get("id"), wire.INVALID_REQUEST, f"{method} is a notification: it takes no id"))
+        return
     if method == T.INITIALIZE:
         gate.initialized = True
     elif method == T.SHUTDOWN:

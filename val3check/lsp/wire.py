@@ -261,9 +261,10 @@ class Gate:
             why = "a JSON-RPC message is an object" + (" (LSP has no batches)" if isinstance(value, list) else "")
             return Checked(answer=error(None, INVALID_REQUEST, why), note=why)
         method, has_id = value.get("method"), "id" in value
-        if "method" not in value:
-            return Checked(message=value) if has_id and _valid_id(value["id"]) else Checked(note="a message"
-                                                                                           " without a method: ignored")
+        if "method" not in value:  # a response to the server (which sends no requests)
+            if has_id and _valid_id(value["id"]) and value.get("jsonrpc") == "2.0":
+                return Checked(message=value)
+            return Checked(note="a message without a method: ignored")
         request = has_id
         if request and not _valid_id(value["id"]):
             why = "the id of a request is a number or a string"
