@@ -11,6 +11,7 @@ used: the session keeps the texts the editor sent, and reads nothing on a client
 
 from __future__ import annotations
 
+import functools
 import logging
 import sys
 from typing import Any, BinaryIO
@@ -18,7 +19,7 @@ from typing import Any, BinaryIO
 from lsprotocol import types as T
 from pygls.io_ import StdoutWriter
 from pygls.lsp.server import LanguageServer
-from pygls.protocol import LanguageServerProtocol, lsp_method
+from pygls.protocol import LanguageServerProtocol, default_converter, lsp_method
 from pygls.workspace import TextDocument
 
 from .. import __version__
@@ -64,9 +65,16 @@ def apply_changes(text: str, changes: list) -> str:
     return text
 
 
+@functools.lru_cache(maxsize=1)
+def _converter():  # noqa: ANN202
+    """pygls's converter, made once: cattrs writes its (un)structuring code on first use, a
+    tenth of a second that every server built in this process (the tests') would pay again."""
+    return default_converter()
+
+
 def build() -> LanguageServer:
     server = LanguageServer("val3check", __version__, text_document_sync_kind=T.TextDocumentSyncKind.Full,
-                            protocol_cls=_Protocol)
+                            protocol_cls=_Protocol, converter_factory=_converter)
     session = Session()
     server.session = session  # type: ignore[attr-defined]
 
