@@ -165,7 +165,7 @@ class Session:
         if outcome is not None:
             files = _files(outcome)
             for other in [p for p in self.texts if p in files]:
-                if other not in out:
+                if self.uri_of(other) not in out:  # not covered by the check of another one
                     out.update(self.check(other))
         return out
 
