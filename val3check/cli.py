@@ -493,7 +493,7 @@ def _lint(args: argparse.Namespace) -> int:
         from .fixes import plan
         from .lint import display_path
 
-        fixes = plan(outcome.findings, outcome.workspace)
+        fixes = plan(outcome.findings)
         if args.diff:
             if not _write(fixes.diff(display_path), args.output):
                 return EXIT_USAGE
