@@ -63,13 +63,13 @@ def find_cell(app_dir: str | os.PathLike) -> Path | None:
 
 def read_cell(path: str | os.PathLike, app_dir: str | os.PathLike | None = None, app_unit: str = "mm",
               roots: list[str | os.PathLike] | None = None, found: bool = False, budget=None,  # noqa: ANN001
-              deadline: float | None = None) -> Cell:
+              out_of_time=None) -> Cell:  # noqa: ANN001
     """Read and check a cell file. Mesh files may lie in the cell file's folder, the application's
     folder (`app_dir`) or one of `roots`. Lengths are in the cell's `unit` (default: the
     application's, `app_unit`); the Cell holds millimetres. `found`: the file was found beside the
     application, not named by the user: a link may not lead out of that folder. `budget` (the
-    run's memory budget) and `deadline` (time.monotonic() at which --max-wall runs out) apply to
-    its meshes (meshes.load_mesh)."""
+    run's memory budget) and `out_of_time()` (true once --max-wall has run out) apply to its
+    meshes (meshes.load_mesh)."""
     from .. import confine
 
     shown = str(path)
@@ -84,7 +84,7 @@ def read_cell(path: str | os.PathLike, app_dir: str | os.PathLike | None = None,
     except tomlfile.TomlError as exc:
         raise CellError([(shown, exc.line, exc.col, exc.message)]) from None
     r = _Reader(shown, text, Path(path).resolve().parent, app_dir, roots or [], app_unit)
-    r.budget, r.deadline = budget, deadline
+    r.budget, r.out_of_time = budget, out_of_time
     cell = r.cell(data)
     if r.problems:
         raise CellError(r.problems)
@@ -103,8 +103,8 @@ class _Reader:
         self._meshes: dict[tuple, MeshData] = {}
         self._mesh_files: set[str] = set()
         self._mesh_bytes = 0
-        self.budget = None  # read_cell: the run's memory budget and wall-clock deadline
-        self.deadline: float | None = None
+        self.budget = None  # read_cell: the run's memory budget and wall-clock budget
+        self.out_of_time = None
 
     # ---- reporting --------------------------------------------------------------------------------
 
@@ -341,7 +341,7 @@ class _Reader:
                                              f"{meshes.MAX_TOTAL_MESH_BYTES} bytes")
                 self._meshes[key] = meshes.load_mesh(target, name, scale, solid,  # type: ignore[arg-type]
                                                      roots=[self.folder, *self.roots], budget=self.budget,
-                                                     deadline=self.deadline)
+                                                     out_of_time=self.out_of_time)
         except OSError as exc:
             self.fail(path + ("file",), f"{label}: mesh file {shown(name)}: cannot read: {exc.strerror or exc}")
             return None

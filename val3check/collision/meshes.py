@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import io
 import os
-import time
 from pathlib import Path
 
 import numpy as np
@@ -69,12 +68,12 @@ def price(d: Declared, file_bytes: int) -> int:
 
 def load_mesh(path: Path, shown: str, scale: tuple[float, float, float], solid: bool,
               max_bytes: int | None = None, roots: list | None = None, budget=None,  # noqa: ANN001
-              deadline: float | None = None) -> MeshData:
+              out_of_time=None) -> MeshData:  # noqa: ANN001
     """Read a mesh file through the file gate (val3check/confine.py: a regular file, inside
     `roots` when given, size checked); vertices multiplied by `scale` (per axis: the cell's unit
     in mm times the entry's own scale). `shown` is the name used in messages. `budget`: the
-    run's memory budget (`reserve(bytes, what)` raises MemoryError); `deadline`: the
-    time.monotonic() after which no mesh is read (--max-wall)."""
+    run's memory budget (`reserve(bytes, what)` raises MemoryError); `out_of_time()`: true once
+    the run's wall-clock budget (--max-wall) has run out: no mesh is read then."""
     from .. import confine
 
     gate = confine.Roots([os.fspath(r) for r in roots]) if roots else confine.Roots.user_given()
@@ -87,7 +86,7 @@ def load_mesh(path: Path, shown: str, scale: tuple[float, float, float], solid: 
         raise MeshProblem(f"mesh file {shown!r}: cannot read: {exc.reason}") from None
     kind = FILE_TYPES[path.suffix.lower()]
     d = declared(data, kind, shown)
-    if deadline is not None and time.monotonic() > deadline:
+    if out_of_time is not None and out_of_time():
         raise MeshProblem(f"mesh file {shown!r} is not read: the run's wall-clock budget (--max-wall) ran out "
                           "while the cell was read")
     if budget is not None:
