@@ -4,9 +4,8 @@ The case's files are written under a private temporary folder that mirrors their
 paths, and the run happens with the current folder set to the mirror of the folder the batch
 was started from: display paths in the report are then those of a single `val3check sim`, and
 the mirror's prefix is taken out of everything that comes back (absolute paths read as on the
-machine that made the case). The steps are those of the single run (cli.py `_sim`): lint,
-refuse an application with errors or without start(), choose the arm, read the scenario,
-simulate, build the report. Any exception is the case's result ("crash"), never the batch's."""
+machine that made the case). The steps are the single run's: both run `simulation.case.run_case`.
+Any exception is the case's result ("crash"), never the batch's."""
 
 from __future__ import annotations
 
@@ -122,59 +121,39 @@ def _unmirrored(outcome: CaseOutcome, mirror: str) -> CaseOutcome:
 
 
 def _run(case: Case, mirror: str) -> CaseOutcome:
+    """The case as the single run runs it (simulation/case.py), its files read from the mirror."""
     from .. import __version__
     from ..diagnostics import Severity
-    from ..lint import display_path, run
+    from ..lint import display_path
     from ..reporting.sim_report import build_report
-    from ..robot import RobotError
     from ..rules.catalogue import catalogue
-    from ..simulation import SimOptions, choose_sim_robot, simulate
-    from ..simulation.collision_run import choose_cell
-    from ..simulation.scenario import Scenario, ScenarioError, load_scenario
+    from ..simulation import case as sim_case
 
     settings = copy.deepcopy(case.settings)
     settings.disk_roots = [_mirrored(mirror, d) for d in settings.disk_roots]
     if settings.root:
         settings.root = _mirrored(mirror, settings.root)
-    app_path = _mirrored(mirror, case.app_path)
-    outcome = run([app_path], settings)
-    apps = [a for a in (outcome.workspace.apps[k] for k in outcome.workspace.targets)
-            if os.path.normcase(a.path) == os.path.normcase(app_path)]
-    if outcome.unreadable or not apps:
-        first = next((d for d in outcome.result.diagnostics if d.severity is not None and d.severity >= Severity.ERROR),
-                     None)
-        why = f": {d.path}:{d.line}:{d.col}: {d.code} {d.message}" if (d := first) else ""
-        return CaseOutcome(summary_of(case, "not-run", f"the application could not be read{why}"))
-    app = apps[0]
-    errors = [d for d in outcome.result.diagnostics if d.severity is not None and d.severity >= Severity.ERROR]
-    if errors:
-        d = errors[0]
-        return CaseOutcome(summary_of(case, "not-run", f"{len(errors)} lint error(s), the first: "
-                                      f"{d.path}:{d.line}:{d.col}: {d.code} {d.message}"))
-    if not any(n.lower() == "start" for n in app.programs):
-        return CaseOutcome(summary_of(case, "not-run", f"{app.name} has no start() program (2.1.2)"))
-    spec = _mirrored(mirror, case.robot_path) if case.robot_path else (case.arm or None)
-    try:
-        robot, _note = choose_sim_robot(spec, app.path)
-    except RobotError as exc:
-        return CaseOutcome(summary_of(case, "not-run", f"--robot: {exc}"))
-    model = getattr(robot, "name", None) or "none"
     ov, opts = case.overrides, case.options
-    try:
-        scenario = load_scenario(display_path(_mirrored(mirror, case.scenario_path))) if case.scenario_path else None
-        if ov.monitor_speed is not None:  # as the scenario's [controller] monitor_speed would set it
-            scenario = scenario or Scenario("", "", {})
-            scenario.data = {**scenario.data, "controller": {**scenario.data.get("controller", {}),
-                                                             "monitor_speed": ov.monitor_speed}}
+    spec = sim_case.CaseSpec(
+        _mirrored(mirror, case.app_path), settings, exact=True,
+        robot=_mirrored(mirror, case.robot_path) if case.robot_path else (case.arm or None),
+        scenario=display_path(_mirrored(mirror, case.scenario_path)) if case.scenario_path else None,
         # the cell as `sim --cell` chooses it: the case's file, none, or the one beside the application
-        given = display_path(_mirrored(mirror, case.cell_path)) if case.cell_path else (case.cell or None)
-        cell, cell_found = choose_cell(given, app.path)
-        options = SimOptions(duration=ov.duration or opts.duration, max_wall=opts.max_wall, max_lines=opts.max_lines,
-                             max_memory_mb=opts.max_memory_mb, disk_roots=list(settings.disk_roots), robot=robot,
-                             cycles=ov.cycles or opts.cycles, collisions=True, cell=cell, cell_found=cell_found)
-        result = simulate(outcome.workspace, app, options, scenario)
-    except ScenarioError as exc:
-        return CaseOutcome(summary_of(case, "not-run", f"bad scenario: {exc}", model=model))
+        cell=display_path(_mirrored(mirror, case.cell_path)) if case.cell_path else (case.cell or None),
+        monitor_speed=ov.monitor_speed, duration=ov.duration or opts.duration, cycles=ov.cycles or opts.cycles,
+        max_wall=opts.max_wall, max_lines=opts.max_lines, max_memory_mb=opts.max_memory_mb)
+    done = sim_case.run_case(spec)
+    model = getattr(done.model, "name", None) or "none"
+    if done.refused is not None:
+        d = done.errors[0] if done.errors else None
+        where = f"{d.path}:{d.line}:{d.col}: {d.code} {d.message}" if d is not None else ""
+        reason = {sim_case.UNREADABLE: "the application could not be read" + (f": {where}" if where else ""),
+                  sim_case.LINT_ERRORS: f"{len(done.errors)} lint error(s), the first: {where}",
+                  sim_case.ROBOT: f"--robot: {done.message}",
+                  sim_case.SCENARIO: f"bad scenario: {done.message}"}.get(done.refused, done.message)
+        return CaseOutcome(summary_of(case, "not-run", reason, **({"model": model} if done.refused == sim_case.SCENARIO
+                                                                  else {})))
+    result = done.result
     report = build_report(result, settings, catalogue(), __version__)
     errors_n = sum(1 for d in report.diagnostics if d.severity >= Severity.ERROR)
     warnings_n = sum(1 for d in report.diagnostics if d.severity == Severity.WARNING)
