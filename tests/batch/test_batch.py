@@ -224,15 +224,6 @@ def test_jobs_1_and_2_give_byte_identical_summaries_and_reports(cell, capsys):
     assert "long.urdf" in out1 and "TX2-60L" in one["summary.json"].decode()
 
 
-def test_a_case_report_is_the_single_runs_report(cell, capsys):
-    code, _, _ = sim(capsys, "apps/A", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST, "--out-dir", "o")
-    assert code == 0
-    (report,) = (cell / "o" / "cases").iterdir()
-    code, single, _ = sim(capsys, "apps/A", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST,
-                          "--format", "json")
-    assert report.read_text() == single
-
-
 @pytest.mark.dask
 def test_dask_local_cluster_gives_the_same_summary(cell, capsys):
     distributed = pytest.importorskip("distributed")
@@ -506,7 +497,9 @@ def test_sweep_mode_must_match_its_shape(cell):
     assert (exc.value.line, exc.value.col) == (1, 8)
 
 
-def test_case_reports_html_and_trace_are_the_single_runs(cell, capsys):
+def test_case_reports_are_the_single_runs(cell, capsys):
+    """A case runs as the single run (simulation/case.py) in a mirror of its files: its reports
+    are the single run's, byte for byte, with no path of the mirror."""
     code, _, err = sim(capsys, "apps/A", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST, "--out-dir", "o",
                        "--case-reports", "json,html,trace")
     assert code == 0, err
@@ -514,6 +507,8 @@ def test_case_reports_html_and_trace_are_the_single_runs(cell, capsys):
     assert sorted(files) == [".html", ".json", ".mcap"]
     single = ["apps/A", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST]
     assert main(["sim", *single, "--report", "html", "-o", "one.html", "--trace", "one.mcap"]) == 0
+    assert main(["sim", *single, "--report", "json", "-o", "one.json"]) == 0
+    assert files[".json"].read_bytes() == (cell / "one.json").read_bytes()
     assert files[".html"].read_bytes() == (cell / "one.html").read_bytes()
     assert files[".mcap"].read_bytes() == (cell / "one.mcap").read_bytes()
     index = (cell / "o" / "index.html").read_text()

@@ -84,11 +84,7 @@ def run_case(case: Case) -> CaseOutcome:
     tmp = tempfile.mkdtemp(prefix="val3check-case-")
     mirror = os.path.join(tmp, "m")
     try:
-        for path, data in case.files:
-            target = _mirrored(mirror, path)
-            os.makedirs(os.path.dirname(target), exist_ok=True)
-            with open(target, "wb") as fh:
-                fh.write(data)
+        _write_mirror(case, mirror)
         cwd = _mirrored(mirror, case.cwd)
         os.makedirs(cwd, exist_ok=True)
         os.chdir(cwd)
@@ -104,6 +100,31 @@ def run_case(case: Case) -> CaseOutcome:
     outcome.wall_s = time.perf_counter() - start
     outcome.cpu_s = time.process_time() - cpu
     return outcome
+
+
+def _write_mirror(case: Case, mirror: str) -> None:
+    """The case's files under `mirror`, then the stand-ins of the files its run finds and refuses
+    (a size, no content), then its symbolic links, their absolute targets mirrored too (not those
+    under /proc, /sys or /dev: the gate refuses them by name, and they are the same everywhere)."""
+    from ..confine import is_special
+
+    for path, data in case.files:
+        target = _mirrored(mirror, path)
+        os.makedirs(os.path.dirname(target), exist_ok=True)
+        with open(target, "wb") as fh:
+            fh.write(data)
+    for path, size in case.stubs:
+        target = _mirrored(mirror, path)
+        if not os.path.lexists(target):
+            os.makedirs(os.path.dirname(target), exist_ok=True)
+            with open(target, "wb") as fh:
+                fh.truncate(size)  # sparse: no byte of the refused file travels
+    for path, to in case.links:
+        where = _mirrored(mirror, path)
+        if os.path.lexists(where):
+            continue  # the loader took this path as a folder: files were written below it
+        os.makedirs(os.path.dirname(where), exist_ok=True)
+        os.symlink(_mirrored(mirror, to) if os.path.isabs(to) and not is_special(to) else to, where)
 
 
 def _mirrored(mirror: str, path: str) -> str:
