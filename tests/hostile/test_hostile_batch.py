@@ -94,3 +94,103 @@ def test_a_cell_and_its_meshes_reached_through_links_inside_run_as_alone(repo, c
     sim(capsys, *args, "-j", "1", "--out-dir", "out")
     (report,) = (repo / "out" / "cases").iterdir()
     assert report.read_text() == single
+
+
+# -- A: every arm of a sweep goes through the gate, whatever its extension ---------------------
+
+@pytest.mark.parametrize("arm", ["/etc/passwd", "/etc/shadow", "../outside/secret.urdf", "../outside/cell.toml",
+                                 "/proc/self/environ", "../outside", "~/.bashrc"])
+@pytest.mark.parametrize("shape", ["product", "list"])
+def test_a_sweep_arm_leading_outside_is_refused_at_its_line_before_it_is_read(repo, capsys, monkeypatch, arm, shape):
+    from val3check import confine
+
+    read = []
+    real = confine.read_bytes
+    monkeypatch.setattr(confine, "read_bytes", lambda path, *a, **k: read.append(os.path.abspath(path)) or real(path, *a, **k))
+    text = (f'applications = ["apps/A"]\narms = ["tx2-60", "{arm}"]\n' if shape == "product"
+            else f'[[case]]\napplication = "apps/A"\narm = "{arm}"\n')
+    (repo / "sweep.toml").write_text(text)
+    code, out, err = sim(capsys, "--sweep", "sweep.toml", *FAST, "-j", "1")
+    where = "sweep.toml:2:19" if shape == "product" else "sweep.toml:3:7"
+    assert code == 2 and f"{where}: {arm}: leads outside the repository of the sweep file" in err, err
+    assert out == "" and read == [str(repo / "sweep.toml")]  # the sweep file alone was read
+
+
+def test_a_robot_file_naming_an_arm_outside_its_repository_is_refused(repo, capsys):
+    (repo / "robots").mkdir()
+    shutil.copy(ROOT / "robots" / "tx2-60l.urdf", repo / "robots" / "long.urdf")
+    (repo / "robots" / "mine.toml").write_text('arm = "long.urdf"\nname = "Mine"\n')
+    (repo / "robots" / "evil.toml").write_text(f'arm = "{repo.parent / "outside" / "secret.urdf"}"\n')
+    (repo / "robots" / "evil2.toml").write_text('arm = "/etc/passwd"\n')
+    (repo / "sweep.toml").write_text('applications = ["apps/A"]\nscenarios = ["pickplace.toml"]\n'
+                                     'arms = ["robots/mine.toml", "robots/evil.toml", "robots/evil2.toml"]\n')
+    code, out, _ = sim(capsys, "--sweep", "sweep.toml", *FAST, "-j", "1", "--format", "json")
+    cases = {c["arm"]: c for c in json.loads(out)["cases"]}
+    assert cases["robots/mine.toml"]["verdict"] == "pass" and cases["robots/mine.toml"]["model"] == "Mine"
+    for name in ("evil", "evil2"):
+        assert cases[f"robots/{name}.toml"]["verdict"] == "not-run"
+        assert "leads outside the robot file's repository" in cases[f"robots/{name}.toml"]["reason"]
+    code, _, err = sim(capsys, "apps/A", "--robot", "robots/evil2.toml", *FAST)
+    assert code == 2 and "robots/evil2.toml: arm = '/etc/passwd': leads outside the robot file's repository" in err
+
+
+# -- I: NUL bytes in paths, --out-dir ------------------------------------------------------------
+
+@pytest.mark.parametrize("text, where", [
+    ('applications = ["apps/A\\u0000x"]\n', "sweep.toml:1:17: applications[0]"),
+    ('applications = ["apps/A"]\nscenarios = [\n  "pick\\u0000.toml"]\n', "sweep.toml:3:3: scenarios[0]"),
+    ('applications = ["apps/A"]\narms = ["x\\u0000"]\n', "sweep.toml:2:9: arms[0]"),
+    ('[[case]]\napplication = "apps/A"\ncell = "c\\u0000.toml"\n', "sweep.toml:3:8: [[case]] 1: cell"),
+])
+def test_a_nul_in_a_sweep_path_is_reported_at_its_line(repo, capsys, text, where):
+    (repo / "sweep.toml").write_text(text)
+    code, _, err = sim(capsys, "--sweep", "sweep.toml", *FAST)
+    assert code == 2 and f"{where}: a path cannot hold a NUL character" in err, err
+
+
+@pytest.mark.parametrize("command", ["lint", "sim"])
+def test_a_nul_in_a_configuration_path_is_reported_at_its_line(repo, capsys, command):
+    (repo / "val3check.toml").write_text('# paths\ndisk-roots = [\n  "ok",\n  "a\\u0000b",\n]\n')
+    code = main([command, "apps/A", *(FAST if command == "sim" else [])])
+    out, err = capsys.readouterr()
+    assert code == 2 and "val3check.toml:2: 'disk-roots': a path cannot hold a NUL character" in err, err
+    (repo / "val3check.toml").write_text('baseline = "b\\u0000.json"\n')
+    assert main([command, "apps/A", *(FAST if command == "sim" else [])]) == 2
+    assert "val3check.toml:1: 'baseline': a path cannot hold a NUL character" in capsys.readouterr().err
+
+
+def test_the_gate_refuses_a_nul_in_a_path_and_allows_nothing_through_it():
+    from val3check.confine import Refused, Roots, check
+
+    roots = Roots(["/tmp", "a\x00b"])
+    assert roots.folders == [os.path.realpath("/tmp")]
+    assert not roots.allows("/tmp/x\x00y") and roots.containing("/tmp/x\x00") == []
+    with pytest.raises(Refused, match="NUL character"):
+        check("/tmp/x\x00y", Roots.user_given())
+
+
+@pytest.mark.parametrize("make", ["link", "file", "link-in-cases", "summary-link"])
+def test_an_out_dir_that_leads_elsewhere_is_refused_before_any_case_runs(repo, capsys, monkeypatch, make):
+    from val3check.batch import command
+
+    out, elsewhere = repo / "out", repo.parent / "outside" / "dump"
+    out.mkdir()
+    elsewhere.mkdir()
+    if make == "link":
+        os.symlink(elsewhere, out / "cases")
+    elif make == "file":
+        (out / "cases").write_text("x")
+    elif make == "summary-link":
+        os.symlink(repo.parent / "outside" / "cell.toml", out / "summary.json")
+    else:
+        from val3check.batch.cases import Axes, RunOptions, product_cases
+        from val3check.config import Settings
+
+        (case,) = product_cases(Axes(["apps/A"], ["tx2-60"], [], [], []), Settings(), RunOptions())
+        (out / "cases").mkdir()
+        os.symlink(elsewhere / "x.json", out / "cases" / (case.name() + ".json"))
+    ran = []
+    monkeypatch.setattr(command, "_cores", lambda: ran.append(1) or 1)  # asked only once the cases are to run
+    code, _, err = sim(capsys, "apps/A", "--robot", "tx2-60", *FAST, "--out-dir", "out")
+    assert code == 2 and err.startswith("val3check sim: error: --out-dir: out/") and ran == [], err
+    assert list(elsewhere.iterdir()) == [] and (repo.parent / "outside" / "cell.toml").read_text().startswith("unit")

@@ -267,8 +267,8 @@ def list_cases(sweep: Sweep, defaults: Axes, settings, options: RunOptions) -> l
         except CaseError as exc:
             raise SweepError(sweep.path, app_entry.line, app_entry.col, str(exc)) from None
         arm = entry["arm"].value if "arm" in entry else (defaults.arms[0] if defaults.arms else "")
-        if "arm" in entry and arm.lower().endswith((".urdf", ".cfx", ".toml")):
-            arm = sweep.resolve(entry["arm"])
+        if "arm" in entry and sweep.is_arm_file(entry["arm"]):
+            arm = sweep.path_of(entry["arm"])
         scenario = path(entry, "scenario", defaults.scenarios[0] if defaults.scenarios else None)
         cell = path(entry, "cell", defaults.cells[0] if defaults.cells else None)
         if "cell" in entry and entry["cell"] is None:
@@ -302,8 +302,28 @@ class _Inputs:
                           MAX_CELL_BYTES, app_folder)
             else:
                 bundle.files[absolute] = data
+                if what == "robot" and absolute.lower().endswith(".toml"):
+                    _add_robot_arm(bundle, absolute, data)
             self.read[key] = (absolute, bundle)
         return self.read[key]
+
+
+def _add_robot_arm(bundle: Bundle, robot_file: str, data: bytes) -> None:
+    """The URDF or arm.cfx a robot file names (robot/overrides.py), carried as its reader opens
+    it: inside the robot file's repository (a stand-in `.git` marks it in the worker's mirror)."""
+    from ..confine import git_top_level, repository_root
+    from ..robot.urdf import MAX_URDF_SIZE
+
+    try:
+        arm = tomllib.loads(data.decode("utf-8")).get("arm")
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError, RecursionError, ValueError):
+        return  # the case's run says what is wrong with the robot file
+    if not isinstance(arm, str) or not arm.lower().endswith((".urdf", ".xml", ".cfx")) or "\x00" in arm:
+        return
+    top = git_top_level(os.path.dirname(robot_file))
+    if top is not None:
+        bundle.stubs[os.path.join(top, ".git")] = 0
+    bundle.add(os.path.dirname(robot_file), arm, Roots([repository_root(robot_file)]), MAX_URDF_SIZE)
 
 
 def _case(app: _App, arm: str, scenario: str | None, cell: str | None, ov: Overrides, settings,  # noqa: ANN001

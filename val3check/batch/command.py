@@ -14,6 +14,7 @@ from typing import Any
 
 from .cases import Axes, CaseError, RunOptions, list_cases, product_cases
 from .outdir import OutDirError, prepare, write_case, write_summaries
+from .outputs import KINDS
 from .progress import Progress
 from .summary import render_json, render_text
 from .sweep import SweepError, load_sweep
@@ -21,7 +22,6 @@ from .worker import CaseOutcome, CaseSummary, summary_of
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
 _GLOB_CHARS = set("*?[")
-_ROBOT_FILES = (".urdf", ".cfx", ".toml")
 
 
 def wanted(args: Any) -> bool:
@@ -44,8 +44,6 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
     if args.format not in ("text", "json"):
         return _err(f"--report {args.format}: a batch prints its summary as text or json; --out-dir DIR writes"
                     " every format (summary.json, junit.xml, index.html) and each case's reports")
-    from .outputs import KINDS
-
     kinds = tuple(k for k in KINDS if k in {x.strip().lower() for x in args.case_reports.split(",")})
     unknown = sorted({x.strip().lower() for x in args.case_reports.split(",")} - set(KINDS) - {""})
     if unknown or not kinds:
@@ -80,20 +78,26 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
     except CaseError as exc:
         return _err(str(exc))
     if args.out_dir:
+        suffixes = [KINDS[k] for k in kinds]
         try:
-            prepare(args.out_dir)
+            prepare(args.out_dir, [c.name() + s for c in cases for s in suffixes])
         except OutDirError as exc:
-            return _err(str(exc))
+            return _err(f"--out-dir: {exc}")
 
     summaries: list[CaseSummary] = []
     reports: set[str] = set()  # the files written under --out-dir/cases
     progress = Progress(len(cases))
     failed = [False]
 
+    unwritten: list[str] = []  # --out-dir files that could not be written (the batch goes on)
+
     def on_done(outcome: CaseOutcome) -> None:  # written at once: the reports are not kept in memory
         ok = outcome.summary.verdict == "pass"
         if args.out_dir and outcome.outputs:
-            reports.update(write_case(args.out_dir, outcome))
+            try:
+                reports.update(write_case(args.out_dir, outcome))
+            except OutDirError as exc:
+                unwritten.append(str(exc))
         summaries.append(outcome.summary)
         failed[0] = failed[0] or not ok
         progress.update(ok)
@@ -128,7 +132,12 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
     if not write(text, args.output):
         return EXIT_USAGE
     if args.out_dir:
-        write_summaries(args.out_dir, summaries, reports, tool_version)
+        try:
+            write_summaries(args.out_dir, summaries, reports, tool_version)
+        except OutDirError as exc:
+            unwritten.append(str(exc))
+        if unwritten:
+            return _err(f"--out-dir: {unwritten[0]}" + (f" (and {len(unwritten) - 1} more)" if len(unwritten) > 1 else ""))
         print(f"val3check sim: wrote the summary and {len(reports)} case report(s) in "
               f"{display_path(args.out_dir)} (index.html)", file=sys.stderr)
     if sys.stderr.isatty():
@@ -162,8 +171,7 @@ def _axes(args: Any) -> tuple[Axes, Any]:
             if given and from_sweep:
                 raise CaseError(f"{name} are given both on the command line and in {args.sweep}: keep one")
         axes.apps = axes.apps or [sweep.resolve(e) for e in sweep.applications] or ["."]
-        axes.arms = axes.arms or [sweep.resolve(e) if e.value.lower().endswith(_ROBOT_FILES) else e.value
-                                  for e in sweep.arms]
+        axes.arms = axes.arms or [sweep.resolve(e) if sweep.is_arm_file(e) else e.value for e in sweep.arms]
         axes.scenarios = axes.scenarios or [None if e is None else sweep.resolve(e) for e in sweep.scenarios]
         axes.cells = axes.cells or ["none" if e is None else sweep.resolve(e) for e in sweep.cells]
         axes.overrides = sweep.overrides
@@ -188,16 +196,16 @@ def _check_globs(sweep: Any) -> None:
 
 
 def check_files(sweep: Any) -> None:
-    """A scenario, cell or robot file of the sweep that does not exist, at its line and column."""
+    """Every scenario, cell and arm file of the sweep, at its line and column: inside the sweep's
+    repository (checked before anything is opened), and an existing file."""
     entries = [("scenario", e) for e in sweep.scenarios] + [("cell", e) for e in sweep.cells]
-    entries += [("arm", e) for e in sweep.arms if e.value.lower().endswith(_ROBOT_FILES)]
+    entries += [("arm", e) for e in sweep.arms if sweep.is_arm_file(e)]
     for case in sweep.cases:
         entries += [(k, case[k]) for k in ("scenario", "cell") if case.get(k) is not None]
-        if "arm" in case and case["arm"].value.lower().endswith(_ROBOT_FILES):
+        if "arm" in case and sweep.is_arm_file(case["arm"]):
             entries.append(("arm", case["arm"]))
     for kind, e in entries:
         if e is None:
             continue
-        sweep.check_inside(e, sweep.resolve(e))
-        if not os.path.isfile(sweep.resolve(e)):
+        if not os.path.isfile(sweep.path_of(e)):
             raise SweepError(sweep.path, e.line, e.col, f"{kind} {e.value}: no such file")

@@ -90,13 +90,31 @@ class Sweep:
         return [os.path.realpath(r) for r in ([top] if top else [folder, os.getcwd()])]
 
     def check_inside(self, entry: Entry, path: str) -> None:
-        """SweepError at the entry's line when `path` (one it leads to) is outside roots()."""
-        real = os.path.realpath(path)
-        if not any(os.path.commonpath([real, r]) == r for r in self.roots()):
+        """SweepError at the entry's line when `path` (one it leads to, symbolic links resolved)
+        is outside roots(): checked before anything there is opened or listed."""
+        from ..confine import Roots
+
+        if not Roots(self.roots()).allows(path):
             where = "the repository" if len(self.roots()) == 1 else "the folder"
             raise SweepError(self.path, entry.line, entry.col,
                              f"{entry.value}: leads outside {where} of the sweep file"
                              " (paths in a sweep stay inside it)")
+
+    def path_of(self, entry: Entry) -> str:
+        """The path an entry names, resolved and checked inside roots()."""
+        path = self.resolve(entry)
+        self.check_inside(entry, path)
+        return path
+
+    def is_arm_file(self, entry: Entry) -> bool:
+        """An `arms` value that names a file (a URDF, an arm.cfx, a robot file, anything else
+        with a folder or an extension, or a file beside the sweep) rather than a catalogue arm:
+        it goes through check_inside like every path of the sweep, whatever its extension."""
+        v = entry.value.strip()
+        if v.lower() == "none":
+            return False
+        return (os.sep in v or "/" in v or "\\" in v or v.startswith("~") or bool(os.path.splitext(v)[1])
+                or os.path.lexists(self.resolve(entry)))
 
 
 def load_sweep(path: str) -> Sweep:
@@ -183,6 +201,8 @@ class _Reader:
                 self.fail((key, i), f"{key}[{i}]: expected a non-empty string"
                           + (' ("none" for none)' if allow_none else ""))
             line, col = self.pos.at((key, i))
+            if "\x00" in v:
+                self.fail((key, i), f"{key}[{i}]: a path cannot hold a NUL character")
             out.append(None if allow_none and v.strip().lower() == "none" else Entry(v, line, col))
         return out
 
@@ -200,6 +220,8 @@ class _Reader:
                 v = table[k]
                 if not isinstance(v, str) or not v.strip():
                     self.fail(where + (k,), f"[[case]] {index + 1}: {k}: expected a non-empty string")
+                if "\x00" in v:
+                    self.fail(where + (k,), f"[[case]] {index + 1}: {k}: a path cannot hold a NUL character")
                 line, col = self.pos.at(where + (k,))
                 out[k] = None if k in ("scenario", "cell") and v.strip().lower() == "none" else Entry(v, line, col)
         out["overrides"] = self.overrides(where, table, OVERRIDE_KEYS, only=OVERRIDE_KEYS)

@@ -157,7 +157,7 @@ def _run(case: Case, mirror: str) -> CaseOutcome:
     ov, opts = case.overrides, case.options
     spec = sim_case.CaseSpec(
         _mirrored(mirror, case.app_path), settings, exact=True,
-        robot=_mirrored(mirror, case.robot_path) if case.robot_path else (case.arm or None),
+        robot=display_path(_mirrored(mirror, case.robot_path)) if case.robot_path else (case.arm or None),
         scenario=display_path(_mirrored(mirror, case.scenario_path)) if case.scenario_path else None,
         # the cell as `sim --cell` chooses it: the case's file, none, or the one beside the application
         cell=display_path(_mirrored(mirror, case.cell_path)) if case.cell_path else (case.cell or None),

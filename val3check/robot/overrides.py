@@ -163,7 +163,7 @@ def load_robot_file(path: str | os.PathLike, app_path=None):
 
     from .models import load_robot
 
-    from ..confine import Refused, Roots, read_bytes
+    from ..confine import Refused, Roots, read_bytes, repository_root
 
     p = Path(path)
     try:  # val3check.confine: a regular file (not a FIFO or /dev/zero), 1 MB at most
@@ -184,6 +184,13 @@ def load_robot_file(path: str | os.PathLike, app_path=None):
         raise RobotError(f"{p}: arm = {arm!r}: a robot file cannot name another robot file")
     if arm.lower().endswith((".urdf", ".xml", ".cfx")) and not os.path.isabs(arm):
         arm = str(p.parent / arm)
+    if "\x00" in arm:
+        raise RobotError(f"{p}: arm = {data['arm']!r}: a path cannot hold a NUL character")
+    if arm.lower().endswith((".urdf", ".xml", ".cfx")) or os.path.sep in arm or os.path.isfile(arm):
+        # a path written in a file: it stays in the robot file's repository (val3check/confine.py)
+        if not Roots([repository_root(str(p))]).allows(arm):
+            raise RobotError(f"{p}: arm = {data['arm']!r}: leads outside the robot file's repository (or its"
+                             " folder, outside any repository): not read")
     model = load_robot(arm, app_path)
     assume = data.get("assume", {})
     if not isinstance(assume, dict):
