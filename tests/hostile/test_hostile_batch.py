@@ -194,3 +194,53 @@ def test_an_out_dir_that_leads_elsewhere_is_refused_before_any_case_runs(repo, c
     code, _, err = sim(capsys, "apps/A", "--robot", "tx2-60", *FAST, "--out-dir", "out")
     assert code == 2 and err.startswith("val3check sim: error: --out-dir: out/") and ran == [], err
     assert list(elsewhere.iterdir()) == [] and (repo.parent / "outside" / "cell.toml").read_text().startswith("unit")
+
+
+# -- E: globs stay inside their roots and never follow links into loops -------------------------
+
+def test_a_glob_through_links_that_loop_ends_with_the_real_applications(repo):
+    import subprocess
+    import sys
+
+    for name in ("l1", "l2", "l3"):
+        os.symlink(".", repo / "apps" / name)
+    r = subprocess.run([sys.executable, "-m", "val3check", "sim", "apps/**/*.pjx", *FAST, "-j", "1", "--format", "json"],
+                       cwd=repo, capture_output=True, text=True, timeout=120,
+                       env=dict(os.environ, PYTHONPATH=str(ROOT)))
+    assert r.returncode == 1, r.stderr  # R002: no arm model
+    assert [c["application"] for c in json.loads(r.stdout)["cases"]] == ["apps/A/PickPlace.pjx"]
+
+
+def test_a_sweep_glob_from_the_root_is_refused_before_anything_is_listed(repo, capsys, monkeypatch):
+    listed = []
+    real = os.scandir
+    monkeypatch.setattr(os, "scandir", lambda p=".": listed.append(os.path.abspath(p)) or real(p))
+    for pattern in ("/**/*.pjx", "/proc/*/environ", "../../*/*.pjx", "~/**"):
+        (repo / "sweep.toml").write_text(f'applications = [\n  "apps/A",\n  "{pattern}",\n]\n')
+        code, _, err = sim(capsys, "--sweep", "sweep.toml", *FAST)
+        assert code == 2 and f"sweep.toml:3:3: {pattern}: leads outside the repository of the sweep file" in err, err
+    assert not [p for p in listed if not p.startswith(str(repo))], listed
+
+
+@pytest.mark.parametrize("how", ["command line", "sweep"])
+def test_a_glob_match_that_is_a_link_leading_out_is_refused(repo, capsys, how):
+    shutil.copytree(PICKPLACE, repo.parent / "outside" / "Out")
+    os.symlink(repo.parent / "outside" / "Out", repo / "apps" / "Out")
+    if how == "sweep":
+        (repo / "sweep.toml").write_text('applications = ["apps/*"]\n')
+        code, out, err = sim(capsys, "--sweep", "sweep.toml", *FAST)
+        assert code == 2 and "sweep.toml:1:17: apps/*: apps/Out leads outside the repository of the sweep file" in err
+    else:
+        code, out, err = sim(capsys, "apps/*", *FAST)
+        assert code == 2 and f"apps/*: apps/Out leads outside {repo}: not followed" in err, err
+    assert out == ""
+
+
+def test_a_glob_walks_a_bounded_number_of_folders(repo, capsys, monkeypatch):
+    from val3check.batch import globs
+
+    monkeypatch.setattr(globs, "MAX_FOLDERS", 5)
+    for i in range(8):
+        (repo / "deep" / f"d{i}").mkdir(parents=True)
+    code, _, err = sim(capsys, "deep/**/*.pjx", *FAST)
+    assert code == 2 and "deep/**/*.pjx: lists more than 5 folders" in err, err

@@ -8,7 +8,6 @@ the way `val3check lint` finds them (folders, controller trees), after globs are
 
 from __future__ import annotations
 
-import glob
 import hashlib
 import itertools
 import os
@@ -20,10 +19,8 @@ from typing import Any
 from ..confine import Refused, Roots, read_bytes
 from ..lint import discover, display_path
 from .carry import Bundle
+from .globs import GlobError, expand_glob, has_magic
 from .sweep import Entry, Overrides, Sweep, SweepError
-
-_GLOB = re.compile(r"[*?\[]")
-
 
 class CaseError(Exception):
     """A batch that cannot be made (usage error, exit code 2)."""
@@ -97,15 +94,36 @@ def safe_name(text: str) -> str:
 
 
 def expand(patterns: list[str]) -> list[str]:
-    """Paths with their globs expanded (`**` included), in order, without repeats; a glob that
-    matches nothing is an error (a typo must not make an empty batch that passes)."""
+    """Paths typed on the command line with their globs expanded (`**` included) inside their
+    repository (globs.py), in order, without repeats; a glob that matches nothing is an error (a
+    typo must not make an empty batch that passes). A path that exists is taken as it is."""
     out: list[str] = []
     for p in patterns:
-        found = sorted(glob.glob(p, recursive=True)) if _GLOB.search(p) else [p]
+        try:
+            found = expand_glob(p) if has_magic(p) and not os.path.lexists(p) else [p]
+        except GlobError as exc:
+            raise CaseError(f"{display_path(p)}: {exc}") from None
         if not found:
             raise CaseError(f"{display_path(p)}: no file or folder matches this pattern")
         out += [f for f in found if f not in out]
     return out
+
+
+def sweep_apps(sweep: Sweep, entry: Entry) -> list[str]:
+    """The paths a sweep's application entry names, its globs expanded inside the sweep's roots
+    (checked before anything is listed); SweepError at the entry's line."""
+    path = sweep.resolve(entry)
+    try:
+        if has_magic(entry.value) and not os.path.lexists(path):
+            found = expand_glob(path, Roots(sweep.roots()), "the repository of the sweep file"
+                                if len(sweep.roots()) == 1 else "the folder of the sweep file")
+        else:
+            found = [sweep.path_of(entry)]  # find_apps says when it does not exist
+    except GlobError as exc:
+        raise SweepError(sweep.path, entry.line, entry.col, f"{entry.value}: {exc}") from None
+    if not found:
+        raise SweepError(sweep.path, entry.line, entry.col, f"{entry.value}: no file or folder matches this pattern")
+    return found
 
 
 @dataclass
@@ -260,10 +278,7 @@ def list_cases(sweep: Sweep, defaults: Axes, settings, options: RunOptions) -> l
     for entry in sweep.cases:
         app_entry: Entry = entry["application"]
         try:
-            paths = expand([sweep.resolve(app_entry)])
-            for p in paths:
-                sweep.check_inside(app_entry, p)
-            apps = find_apps(paths, settings)
+            apps = find_apps(sweep_apps(sweep, app_entry), settings)
         except CaseError as exc:
             raise SweepError(sweep.path, app_entry.line, app_entry.col, str(exc)) from None
         arm = entry["arm"].value if "arm" in entry else (defaults.arms[0] if defaults.arms else "")

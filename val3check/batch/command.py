@@ -170,29 +170,27 @@ def _axes(args: Any) -> tuple[Axes, Any]:
         for name, given, from_sweep in both:
             if given and from_sweep:
                 raise CaseError(f"{name} are given both on the command line and in {args.sweep}: keep one")
-        axes.apps = axes.apps or [sweep.resolve(e) for e in sweep.applications] or ["."]
+        if sweep.applications and not args.app:
+            axes.apps = _sweep_apps(sweep)
+        axes.apps = axes.apps or ["."]
         axes.arms = axes.arms or [sweep.resolve(e) if sweep.is_arm_file(e) else e.value for e in sweep.arms]
         axes.scenarios = axes.scenarios or [None if e is None else sweep.resolve(e) for e in sweep.scenarios]
         axes.cells = axes.cells or ["none" if e is None else sweep.resolve(e) for e in sweep.cells]
         axes.overrides = sweep.overrides
-        if sweep.applications and not args.app:
-            _check_globs(sweep)
     elif args.app:
         raise CaseError(f"{args.sweep} lists its cases ([[case]]): name no application on the command line")
     return axes, sweep
 
 
-def _check_globs(sweep: Any) -> None:
-    """A sweep's application that matches nothing is reported at its line."""
-    from .cases import expand
+def _sweep_apps(sweep: Any) -> list[str]:
+    """The sweep's applications, globs expanded inside its repository; a pattern that leads
+    outside or matches nothing is reported at its line."""
+    from .cases import sweep_apps
 
+    out: list[str] = []
     for e in sweep.applications:
-        try:
-            found = expand([sweep.resolve(e)])
-        except CaseError as exc:
-            raise SweepError(sweep.path, e.line, e.col, str(exc)) from None
-        for path in found:
-            sweep.check_inside(e, path)
+        out += [p for p in sweep_apps(sweep, e) if p not in out]
+    return out
 
 
 def check_files(sweep: Any) -> None:
