@@ -244,3 +244,51 @@ def test_a_glob_walks_a_bounded_number_of_folders(repo, capsys, monkeypatch):
         (repo / "deep" / f"d{i}").mkdir(parents=True)
     code, _, err = sim(capsys, "deep/**/*.pjx", *FAST)
     assert code == 2 and "deep/**/*.pjx: lists more than 5 folders" in err, err
+
+
+# -- F: a sweep's size is limited before anything is expanded -----------------------------------
+
+def _overrides(n: int) -> str:
+    return "".join(f"[[overrides]]\nmonitor_speed = {1 + i % 99}\ncycles = {i + 1}\n" for i in range(n))
+
+
+@pytest.mark.parametrize("text, where, words", [
+    ('applications = ["apps/A"]\narms = ["tx2-60", "tx2-90", "tx2-40", "tx2-60l", "tx2-90l"]\n' + _overrides(2001),
+     "sweep.toml:3:3", "5 arms × 2,001 overrides make 10,005 cases for each application"),
+    ('applications = ["apps/A"]\narms = [' + ", ".join(f'"a{i}"' for i in range(10_001)) + "]\n",
+     "sweep.toml:2:1", "arms: 10,001 values"),
+    ("".join(f'[[case]]\napplication = "apps/*"\nmonitor_speed = {1 + i % 99}\n' for i in range(10_001)),
+     "sweep.toml:30001:1", "10,001 [[case]] tables"),
+])
+def test_a_sweep_larger_than_the_limit_is_refused_before_it_is_expanded(repo, capsys, monkeypatch, text, where, words):
+    from val3check.batch import cases
+
+    monkeypatch.setattr(cases, "find_apps", lambda *a: pytest.fail("applications searched before the limit"))
+    (repo / "sweep.toml").write_text(text)
+    code, out, err = sim(capsys, "--sweep", "sweep.toml", *FAST)
+    assert code == 2 and f"bad sweep file: {where}: {words}" in err and "more than the 10,000" in err, err
+
+
+def test_a_batch_larger_than_the_limit_once_its_applications_are_found_is_refused(repo, capsys, monkeypatch):
+    from val3check.batch import cases, sweep
+
+    monkeypatch.setattr(sweep, "MAX_CASES", 20)
+    monkeypatch.setattr(cases, "MAX_CASES", 20)
+    for i in range(6):
+        shutil.copytree(repo / "apps" / "A", repo / "many" / f"A{i}")
+    monkeypatch.setattr(cases, "_case", lambda *a: pytest.fail("a case made before the limit"))
+    (repo / "sweep.toml").write_text('applications = ["many/*"]\narms = ["tx2-60", "tx2-90"]\n' + _overrides(2))
+    code, _, err = sim(capsys, "--sweep", "sweep.toml", *FAST)
+    assert code == 2 and "sweep.toml:1:17: 6 applications × 2 arms × 2 overrides make 24 cases, more than the 20" in err
+    code, _, err = sim(capsys, "many/*", "--robot", "tx2-60", "--robot", "tx2-90", "--robot", "tx2-40", "--robot",
+                       "tx2-60l", *FAST)
+    assert code == 2 and "6 applications × 4 arms make 24 cases, more than the 20" in err, err
+    (repo / "sweep.toml").write_text("".join(f'[[case]]\napplication = "many/*"\ncycles = {i + 1}\n' for i in range(4)))
+    code, _, err = sim(capsys, "--sweep", "sweep.toml", *FAST)
+    assert code == 2 and "sweep.toml:11:15: many/*: the [[case]] tables make more than the 20 cases" in err, err
+
+
+def test_the_largest_sweep_file_is_refused_unread():
+    from val3check.batch.sweep import MAX_CASES, MAX_SWEEP_SIZE
+
+    assert MAX_SWEEP_SIZE == 512 * 1024 and MAX_CASES == 10_000  # docs/batch.md says so

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import hashlib
 import itertools
+import math
 import os
 import re
 import tomllib
@@ -20,10 +21,14 @@ from ..confine import Refused, Roots, read_bytes
 from ..lint import discover, display_path
 from .carry import Bundle
 from .globs import GlobError, expand_glob, has_magic
-from .sweep import Entry, Overrides, Sweep, SweepError
+from .sweep import MAX_CASES, Entry, Overrides, Sweep, SweepError, case_count
 
 class CaseError(Exception):
     """A batch that cannot be made (usage error, exit code 2)."""
+
+
+class TooManyCases(CaseError):
+    """More than MAX_CASES cases: found before any case is made."""
 
 
 @dataclass(frozen=True)
@@ -259,6 +264,10 @@ class Axes:
 
 def product_cases(axes: Axes, settings, options: RunOptions) -> list[Case]:  # noqa: ANN001
     apps = find_apps(expand(axes.apps), settings)
+    sizes = {k: len(v) for k, v in (("applications", apps), ("arms", axes.arms), ("scenarios", axes.scenarios),
+                                    ("cells", axes.cells), ("overrides", axes.overrides)) if v}
+    if math.prod(sizes.values()) > MAX_CASES:
+        raise TooManyCases(f"{case_count(sizes)}, more than the {MAX_CASES:,} a batch runs (docs/batch.md): split it")
     inputs = _Inputs()
     cases = [_case(app, arm, sc, cell, ov, settings, options, inputs)
              for app, arm, sc, cell, ov in itertools.product(apps, axes.arms or [""], axes.scenarios or [None],
@@ -267,20 +276,30 @@ def product_cases(axes: Axes, settings, options: RunOptions) -> list[Case]:  # n
 
 
 def list_cases(sweep: Sweep, defaults: Axes, settings, options: RunOptions) -> list[Case]:  # noqa: ANN001
-    """The [[case]] tables of a sweep; what a table leaves out comes from the command line."""
-    cases = []
-    inputs = _Inputs()
+    """The [[case]] tables of a sweep; what a table leaves out comes from the command line. The
+    applications of every table are found (once per entry) and counted before any case is made."""
+    found: dict[str, list[_App]] = {}
+    count = 0
+    for entry in sweep.cases:
+        app_entry: Entry = entry["application"]
+        try:
+            if app_entry.value not in found:
+                found[app_entry.value] = find_apps(sweep_apps(sweep, app_entry), settings)
+        except CaseError as exc:
+            raise SweepError(sweep.path, app_entry.line, app_entry.col, str(exc)) from None
+        count += len(found[app_entry.value])
+        if count > MAX_CASES:
+            raise SweepError(sweep.path, app_entry.line, app_entry.col, f"{app_entry.value}: the [[case]] tables"
+                             f" make more than the {MAX_CASES:,} cases a batch runs (docs/batch.md): split the sweep")
+
     def path(entry: dict, k: str, default: Any) -> Any:
         if k not in entry:
             return default
         return None if entry[k] is None else sweep.resolve(entry[k])
 
+    cases: list[Case] = []
+    inputs = _Inputs()
     for entry in sweep.cases:
-        app_entry: Entry = entry["application"]
-        try:
-            apps = find_apps(sweep_apps(sweep, app_entry), settings)
-        except CaseError as exc:
-            raise SweepError(sweep.path, app_entry.line, app_entry.col, str(exc)) from None
         arm = entry["arm"].value if "arm" in entry else (defaults.arms[0] if defaults.arms else "")
         if "arm" in entry and sweep.is_arm_file(entry["arm"]):
             arm = sweep.path_of(entry["arm"])
@@ -288,7 +307,8 @@ def list_cases(sweep: Sweep, defaults: Axes, settings, options: RunOptions) -> l
         cell = path(entry, "cell", defaults.cells[0] if defaults.cells else None)
         if "cell" in entry and entry["cell"] is None:
             cell = "none"
-        cases += [_case(app, arm, scenario, cell, entry["overrides"], settings, options, inputs) for app in apps]
+        cases += [_case(app, arm, scenario, cell, entry["overrides"], settings, options, inputs)
+                  for app in found[entry["application"].value]]
     return _unique(cases)
 
 

@@ -12,7 +12,7 @@ import sys
 import time
 from typing import Any
 
-from .cases import Axes, CaseError, RunOptions, list_cases, product_cases
+from .cases import Axes, CaseError, RunOptions, TooManyCases, list_cases, product_cases
 from .outdir import OutDirError, prepare, write_case, write_summaries
 from .outputs import KINDS
 from .progress import Progress
@@ -75,6 +75,11 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
             cases = product_cases(axes, settings, options)
     except SweepError as exc:
         return _err(f"bad sweep file: {printable_path(str(exc))}")
+    except TooManyCases as exc:
+        if sweep is not None and sweep.applications:  # at the sweep's applications
+            e = sweep.applications[0]
+            return _err(f"bad sweep file: {printable_path(str(SweepError(sweep.path, e.line, e.col, str(exc))))}")
+        return _err(f"{exc}" if sweep is None else f"bad sweep file: {printable_path(sweep.path)}: {exc}")
     except CaseError as exc:
         return _err(str(exc))
     if args.out_dir:

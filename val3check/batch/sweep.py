@@ -17,11 +17,18 @@ from dataclasses import dataclass, field
 from ..collision.tomlpos import positions
 
 SWEEP_VERSION = 1
-MAX_SWEEP_SIZE = 1024 * 1024  # bytes: a sweep is a page of TOML
+MAX_SWEEP_SIZE = 512 * 1024  # bytes: a sweep is a page of TOML (10,000 [[case]] tables fit)
+MAX_CASES = 10_000  # cases in one batch, counted before any is made (docs/batch.md): split larger sweeps
 MAX_DURATION = 1e7  # seconds, as `sim --duration`
 AXES = ("applications", "arms", "scenarios", "cells")
 OVERRIDE_KEYS = ("monitor_speed", "cycles", "duration")
 CASE_KEYS = ("application", "arm", "scenario", "cell") + OVERRIDE_KEYS
+
+
+def case_count(sizes: dict[str, int]) -> str:
+    """`2 applications × 3 arms × 2 overrides make 12 cases`: how a batch's size comes about."""
+    total = math.prod(sizes.values())
+    return " × ".join(f"{n:,} {k}" for k, n in sizes.items()) + f" make {total:,} case{'s' if total != 1 else ''}"
 
 
 class SweepError(Exception):
@@ -176,6 +183,9 @@ class _Reader:
             cases = data["case"]
             if not isinstance(cases, list) or not cases or not all(isinstance(c, dict) for c in cases):
                 self.fail(("case",), "[[case]]: expected one or more tables")
+            if len(cases) > MAX_CASES:
+                self.fail(("case", MAX_CASES), f"{len(cases):,} [[case]] tables, more than the {MAX_CASES:,} cases a batch"
+                          " runs (docs/batch.md): split the sweep", key=True)
             sweep.cases = [self.case(i, c) for i, c in enumerate(cases)]
             return sweep
         sweep.applications = self.strings("applications", data)
@@ -186,7 +196,15 @@ class _Reader:
             table = data["overrides"]
             if not isinstance(table, list) or not table or not all(isinstance(t, dict) for t in table):
                 self.fail(("overrides",), "[[overrides]]: expected one or more tables")
+            if len(table) > MAX_CASES:
+                self.fail(("overrides", MAX_CASES), f"{len(table):,} [[overrides]] tables, more than the {MAX_CASES:,}"
+                          " cases a batch runs (docs/batch.md): split the sweep", key=True)
             sweep.overrides = [self.overrides(("overrides", i), t, OVERRIDE_KEYS) for i, t in enumerate(table)]
+        sizes = {k: len(v) for k in ("arms", "scenarios", "cells", "overrides") if (v := getattr(sweep, k))}
+        if math.prod(sizes.values()) > MAX_CASES:
+            biggest = max(sizes, key=lambda k: sizes[k])
+            self.fail((biggest,), f"{case_count(sizes)} for each application, more than the {MAX_CASES:,} cases a"
+                      " batch runs (docs/batch.md): split the sweep", key=True)
         return sweep
 
     def strings(self, key: str, data: dict, allow_none: bool = False) -> list:
@@ -195,6 +213,9 @@ class _Reader:
         values = data[key]
         if not isinstance(values, list) or not values:
             self.fail((key,), f"{key}: expected a non-empty array of strings")
+        if len(values) > MAX_CASES:
+            self.fail((key,), f"{key}: {len(values):,} values, more than the {MAX_CASES:,} cases a batch runs"
+                      " (docs/batch.md): split the sweep", key=True)
         out: list = []
         for i, v in enumerate(values):
             if not isinstance(v, str) or not v.strip():
