@@ -292,3 +292,97 @@ def test_the_largest_sweep_file_is_refused_unread():
     from val3check.batch.sweep import MAX_CASES, MAX_SWEEP_SIZE
 
     assert MAX_SWEEP_SIZE == 512 * 1024 and MAX_CASES == 10_000  # docs/batch.md says so
+
+
+# -- K: a case stuck outside VAL 3 code does not hold the batch --------------------------------
+
+class _Call:
+    """Unpickles as f(*args): runs in the case's own process, before the case (the test's hook)."""
+
+    def __init__(self, f, *args):
+        self.f, self.args = f, args
+
+    def __reduce__(self):
+        return (self.f, self.args)
+
+
+def _cases(repo):
+    from val3check.batch.cases import Axes, RunOptions, product_cases
+    from val3check.config import Settings
+
+    return product_cases(Axes(["apps/A"], ["tx2-60", "tx2-90"], ["pickplace.toml"], [], []), Settings(),
+                         RunOptions(duration=2.0))
+
+
+def _stuck(case, **budgets):
+    """`case` with budgets, whose process spends forever in C (catastrophic backtracking in `re`,
+    which holds the interpreter: no signal, no thread of that process can stop it)."""
+    import re
+    from dataclasses import replace
+
+    hook = budgets.pop("hook", _Call(re.fullmatch, "(a+)+$", "a" * 64 + "!"))
+    return replace(case, settings=hook, options=replace(case.options, **budgets))
+
+
+@pytest.mark.parametrize("jobs", [1, 2])
+def test_a_case_stuck_in_native_code_is_stopped_by_the_watchdog_and_the_batch_goes_on(repo, jobs):
+    import time
+
+    from val3check.batch.executors import run_pool
+
+    good, other = _cases(repo)
+    stuck = _stuck(other, max_wall=1.0)
+    got = []
+    start = time.monotonic()
+    run_pool([stuck, good], jobs, got.append, lambda: False)
+    assert time.monotonic() - start < 100  # the stuck case alone would never end
+    verdicts = {o.summary.arm: o.summary for o in got}
+    assert verdicts["tx2-60"].verdict == "pass"
+    assert verdicts["tx2-90"].verdict == "over-budget"
+    assert verdicts["tx2-90"].reason == ("stopped by the watchdog: still starting after 3.1 s (--max-wall 1 s and its"
+                                         " grace), outside VAL 3 code")
+
+
+def test_a_case_growing_in_native_code_is_stopped_by_the_memory_watchdog(repo):
+    import operator
+    import re
+
+    from val3check.batch.executors import run_pool
+
+    good, other = _cases(repo)
+    big = _Call(operator.add, _Call(operator.mul, b"a", 300 * 1024 * 1024), b"!")  # 300 MB, then stuck on it
+    hungry = _stuck(other, max_memory_mb=16.0, hook=_Call(re.fullmatch, b"(a+)+$", big))
+    got = []
+    run_pool([good, hungry], 1, got.append, lambda: False)
+    assert [o.summary.verdict for o in got] == ["pass", "over-budget"]
+    assert got[1].summary.reason == ("stopped by the watchdog: its process grew by more than 81.6 MB (--max-memory 16 MB"
+                                     " and its margin), outside VAL 3 code")
+
+
+def test_an_over_budget_case_fails_the_batch_in_every_summary():
+    import xml.etree.ElementTree as ET
+
+    from val3check.batch.summary import render_html, render_json, render_junit, render_text
+    from val3check.batch.worker import CaseSummary
+
+    s = CaseSummary(key=("a",), name="n", app="a.pjx", app_name="a", arm="tx2-60", model="TX2-60", scenario="",
+                    cell="", overrides=(), verdict="over-budget", reason="stopped by the watchdog: ...")
+    assert json.loads(render_json([s], "0"))["counts"] == {"over-budget": 1}
+    suite = ET.fromstring(render_junit([s]))
+    assert suite.get("errors") == "1" and suite.find(".//error").get("type") == "over-budget"
+    assert "over-budget: a.pjx" in render_text([s]) and 'class="over-budget"' in render_html([s], set(), "0")
+
+
+@pytest.mark.dask
+def test_under_dask_a_stuck_case_is_stopped_and_no_worker_is_lost(repo):
+    distributed = pytest.importorskip("distributed")
+
+    from val3check.batch.executors import run_dask
+
+    good, other = _cases(repo)
+    got = []
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None) as lc:
+        workers = set(lc.scheduler_info["workers"])
+        run_dask([_stuck(other, max_wall=1.0), good], lc.scheduler_address, got.append, lambda: False, chunk=2)
+        assert set(lc.scheduler_info["workers"]) == workers
+    assert sorted((o.summary.arm, o.summary.verdict) for o in got) == [("tx2-60", "pass"), ("tx2-90", "over-budget")]

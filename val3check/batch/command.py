@@ -2,7 +2,7 @@
 --out-dir: the batch (docs/batch.md). cli.py parses the options and hands them here.
 
 Exit codes: 0 every case passed; 1 a case failed at --fail-on, was not run (lint errors, no
-start(), bad scenario) or crashed; 2 the batch could not be made (usage, bad sweep file, no
+start(), bad scenario), crashed or went over its budget; 2 the batch could not be made (usage, bad sweep file, no
 application, executor unavailable)."""
 
 from __future__ import annotations
@@ -147,7 +147,7 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
               f"{display_path(args.out_dir)} (index.html)", file=sys.stderr)
     if sys.stderr.isatty():
         print(f"val3check sim: {len(cases)} cases in {time.monotonic() - start:.1f} s", file=sys.stderr)
-    return EXIT_FAILED if any(s.verdict in ("fail", "not-run", "crash") for s in summaries) else EXIT_OK
+    return EXIT_FAILED if any(s.verdict in ("fail", "not-run", "crash", "over-budget") for s in summaries) else EXIT_OK
 
 
 def _cores() -> int:

@@ -73,21 +73,22 @@ def render_json(summaries: list[CaseSummary], tool_version: str) -> str:
 
 def render_junit(summaries: list[CaseSummary]) -> str:
     """One <testcase> per case: classname the application, name the arm, scenario, cell and
-    overrides; a failing run is a <failure>, a case not run or crashed an <error>, a case left
-    by --fail-fast <skipped>."""
+    overrides; a failing run is a <failure>, a case not run, crashed or stopped by the watchdog
+    an <error>, a case left by --fail-fast <skipped>."""
     c = counts(summaries)
+    errors = c.get("not-run", 0) + c.get("crash", 0) + c.get("over-budget", 0)
     out = ['<?xml version="1.0" encoding="UTF-8"?>',
            f'<testsuites name="val3check sim" tests="{len(summaries)}" failures="{c.get("fail", 0)}"'
-           f' errors="{c.get("not-run", 0) + c.get("crash", 0)}" skipped="{c.get("skipped", 0)}">',
+           f' errors="{errors}" skipped="{c.get("skipped", 0)}">',
            f'  <testsuite name="val3check sim" tests="{len(summaries)}" failures="{c.get("fail", 0)}"'
-           f' errors="{c.get("not-run", 0) + c.get("crash", 0)}" skipped="{c.get("skipped", 0)}">']
+           f' errors="{errors}" skipped="{c.get("skipped", 0)}">']
     for s in ordered(summaries):
         name = " | ".join(x for x in (s.arm or f"({s.model})", s.scenario or "no scenario", s.cell, _overrides(s)) if x)
         out.append(f"    <testcase classname={quoteattr(s.app)} name={quoteattr(name)}>")
         reason = s.reason or s.verdict
         if s.verdict == "fail":
             out.append(f"      <failure type=\"fail\" message={quoteattr(reason)}>{escape(reason)}</failure>")
-        elif s.verdict in ("not-run", "crash"):
+        elif s.verdict in ("not-run", "crash", "over-budget"):
             out.append(f"      <error type={quoteattr(s.verdict)} message={quoteattr(reason)}>{escape(reason)}</error>")
         elif s.verdict == "skipped":
             out.append(f"      <skipped message={quoteattr(reason)} />")
@@ -102,7 +103,7 @@ def render_junit(summaries: list[CaseSummary]) -> str:
 
 _STYLE = """body{font:14px system-ui,sans-serif;margin:1.5em;color:#222}
 table{border-collapse:collapse}th,td{border:1px solid #ccc;padding:.25em .5em;text-align:left;vertical-align:top}
-th{background:#f3f3f3}td.n{text-align:right}.pass{color:#176117}.fail,.crash,.not-run{color:#a11;font-weight:600}
+th{background:#f3f3f3}td.n{text-align:right}.pass{color:#176117}.fail,.crash,.not-run,.over-budget{color:#a11;font-weight:600}
 .skipped{color:#777}.why{color:#555;font-size:12px}"""
 
 

@@ -22,7 +22,8 @@ from dataclasses import dataclass, field
 from .cases import Case
 from .outputs import case_outputs
 
-VERDICTS = ("pass", "fail", "not-run", "crash", "skipped")
+VERDICTS = ("pass", "fail", "not-run", "crash", "over-budget", "skipped")
+STEP = None  # step(name) as a case goes on ("lint", "run", "report"): set by runner.py for its watchdog
 
 
 @dataclass(frozen=True)
@@ -71,11 +72,6 @@ def summary_of(case: Case, verdict: str, reason: str = "", **kw) -> CaseSummary:
     return CaseSummary(key=case.key(), name=case.name(), app=case.app, app_name=case.app_name, arm=case.arm,
                        model=kw.pop("model", "none"), scenario=case.scenario, cell=case.cell,
                        overrides=tuple(sorted(case.overrides.as_dict().items())), verdict=verdict, reason=reason, **kw)
-
-
-def run_chunk(cases: list[Case]) -> list[CaseOutcome]:
-    """Several cases in one task (the Dask executor's unit of work)."""
-    return [run_case(c) for c in cases]
 
 
 def run_case(case: Case) -> CaseOutcome:
@@ -162,7 +158,7 @@ def _run(case: Case, mirror: str) -> CaseOutcome:
         # the cell as `sim --cell` chooses it: the case's file, none, or the one beside the application
         cell=display_path(_mirrored(mirror, case.cell_path)) if case.cell_path else (case.cell or None),
         monitor_speed=ov.monitor_speed, duration=ov.duration or opts.duration, cycles=ov.cycles or opts.cycles,
-        max_wall=opts.max_wall, max_lines=opts.max_lines, max_memory_mb=opts.max_memory_mb)
+        max_wall=opts.max_wall, max_lines=opts.max_lines, max_memory_mb=opts.max_memory_mb, step=STEP)
     done = sim_case.run_case(spec)
     model = getattr(done.model, "name", None) or "none"
     if done.refused is not None:
@@ -175,6 +171,8 @@ def _run(case: Case, mirror: str) -> CaseOutcome:
         return CaseOutcome(summary_of(case, "not-run", reason, **({"model": model} if done.refused == sim_case.SCENARIO
                                                                   else {})))
     result = done.result
+    if STEP is not None:
+        STEP("report")
     report = build_report(result, settings, catalogue(), __version__)
     errors_n = sum(1 for d in report.diagnostics if d.severity >= Severity.ERROR)
     warnings_n = sum(1 for d in report.diagnostics if d.severity == Severity.WARNING)

@@ -39,6 +39,7 @@ class CaseSpec:
     max_memory_mb: float = 512.0
     progress: Callable[[], Any] | None = None  # makes the progress display (None off a terminal), closed at the end
     exact: bool = False  # `app` is the exact path of one application found (a batch's case)
+    step: Say | None = None  # told each step as it starts ("lint", "run"): a batch's watchdog times them
 
 
 # Why a case is not run: the step that refused it.
@@ -62,6 +63,8 @@ def lint_case(spec: CaseSpec, say: Say | None = None) -> CaseOutcome:
     the application may run (`--init-scenario` stops here)."""
     from ..lint import run
 
+    if spec.step is not None:
+        spec.step("lint")
     outcome = run([spec.app], spec.settings)
     apps = [outcome.workspace.apps[k] for k in outcome.workspace.targets]
     if spec.exact:
@@ -94,6 +97,8 @@ def run_case(spec: CaseSpec, say: Say | None = None) -> CaseOutcome:
     app = case.app
     if not any(n.lower() == "start" for n in app.programs):
         return _refused(case, NO_START, f"{app.name} has no start() program (2.1.2)")
+    if spec.step is not None:
+        spec.step("run")
     try:
         robot, note = choose_sim_robot(spec.robot, app.path)
     except RobotError as exc:
