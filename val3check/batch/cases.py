@@ -123,12 +123,22 @@ def sweep_apps(sweep: Sweep, entry: Entry) -> list[str]:
             found = expand_glob(path, Roots(sweep.roots()), "the repository of the sweep file"
                                 if len(sweep.roots()) == 1 else "the folder of the sweep file")
         else:
-            found = [sweep.path_of(entry)]  # find_apps says when it does not exist
+            found = [sweep.path_of(entry)] if os.path.lexists(path) else []
     except GlobError as exc:
         raise SweepError(sweep.path, entry.line, entry.col, f"{entry.value}: {exc}") from None
     if not found:
-        raise SweepError(sweep.path, entry.line, entry.col, f"{entry.value}: no file or folder matches this pattern")
+        raise SweepError(sweep.path, entry.line, entry.col, f"{entry.value}: no file or folder matches this pattern"
+                         if has_magic(entry.value) else f"{entry.value}: no such file or folder")
     return found
+
+
+def check_sweep_app(sweep: Sweep, entry: Entry) -> None:
+    """An application entry that leads outside the sweep's roots (for a glob: the folder it
+    starts from), at its line, before any entry is expanded."""
+    from .globs import start_of
+
+    path = sweep.resolve(entry)
+    sweep.check_inside(entry, start_of(path) if has_magic(entry.value) and not os.path.lexists(path) else path)
 
 
 @dataclass
@@ -280,6 +290,8 @@ def list_cases(sweep: Sweep, defaults: Axes, settings, options: RunOptions) -> l
     applications of every table are found (once per entry) and counted before any case is made."""
     found: dict[str, list[_App]] = {}
     count = 0
+    for entry in sweep.cases:  # every entry inside the repository before any is expanded
+        check_sweep_app(sweep, entry["application"])
     for entry in sweep.cases:
         app_entry: Entry = entry["application"]
         try:

@@ -190,8 +190,10 @@ def _axes(args: Any) -> tuple[Axes, Any]:
 def _sweep_apps(sweep: Any) -> list[str]:
     """The sweep's applications, globs expanded inside its repository; a pattern that leads
     outside or matches nothing is reported at its line."""
-    from .cases import sweep_apps
+    from .cases import check_sweep_app, sweep_apps
 
+    for e in sweep.applications:  # every entry inside the repository before any is expanded
+        check_sweep_app(sweep, e)
     out: list[str] = []
     for e in sweep.applications:
         out += [p for p in sweep_apps(sweep, e) if p not in out]

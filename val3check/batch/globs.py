@@ -43,6 +43,11 @@ def _parts(pattern: str) -> tuple[str, list[str]]:
     return base, parts[i:]
 
 
+def start_of(pattern: str) -> str:
+    """The folder a pattern starts from (its part before the first `*`, `?` or `[`)."""
+    return _parts(pattern)[0] or "."
+
+
 def default_roots(pattern: str) -> Roots:
     """The roots of a pattern typed on the command line: the repository holding the folder it
     starts from (its git top level, else that folder)."""

@@ -142,6 +142,9 @@ def load_sweep(path: str) -> Sweep:
         raise SweepError(path, line, col, f"invalid TOML: {re.sub(r' [(]at line .*', '', str(exc))}") from None
     except (RecursionError, MemoryError):
         raise SweepError(path, 0, 0, "tables or arrays nested too deeply") from None
+    except ValueError:  # Python's limit on the digits of an integer (4,300), which tomllib does not catch
+        line = next((i for i, t in enumerate(text.splitlines(), 1) if re.search(r"\d{4000}", t)), 0)
+        raise SweepError(path, line, 0, "a number with thousands of digits") from None
     return _Reader(path, text).sweep(data)
 
 
