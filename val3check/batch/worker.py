@@ -1,4 +1,4 @@
-"""One case, run where it lands (this process, a pool process, a Dask worker).
+"""One case, run where it lands: a child process under the watchdog (runner.py), here or on a Dask worker.
 
 The case's files are written under a private temporary folder that mirrors their absolute
 paths, and the run happens with the current folder set to the mirror of the folder the batch
