@@ -347,16 +347,19 @@ def test_a_case_growing_in_native_code_is_stopped_by_the_memory_watchdog(repo):
     import operator
     import re
 
+    from dataclasses import replace
+
     from val3check.batch.executors import run_pool
 
     good, other = _cases(repo)
     big = _Call(operator.add, _Call(operator.mul, b"a", 300 * 1024 * 1024), b"!")  # 300 MB, then stuck on it
     hungry = _stuck(other, max_memory_mb=16.0, hook=_Call(re.fullmatch, b"(a+)+$", big))
+    small = replace(good, options=replace(good.options, max_memory_mb=16.0))  # a real case fits in a small budget
     got = []
-    run_pool([good, hungry], 1, got.append, lambda: False)
+    run_pool([small, hungry], 1, got.append, lambda: False)
     assert [o.summary.verdict for o in got] == ["pass", "over-budget"]
-    assert got[1].summary.reason == ("stopped by the watchdog: its process grew by more than 81.6 MB (--max-memory 16 MB"
-                                     " and its margin), outside VAL 3 code")
+    assert got[1].summary.reason == ("stopped by the watchdog: its process grew by more than 145.6 MB (--max-memory 16"
+                                     " MB and its margin), outside VAL 3 code")
 
 
 def test_an_over_budget_case_fails_the_batch_in_every_summary():
@@ -370,7 +373,7 @@ def test_an_over_budget_case_fails_the_batch_in_every_summary():
     assert json.loads(render_json([s], "0"))["counts"] == {"over-budget": 1}
     suite = ET.fromstring(render_junit([s]))
     assert suite.get("errors") == "1" and suite.find(".//error").get("type") == "over-budget"
-    assert "over-budget: a.pjx" in render_text([s]) and 'class="over-budget"' in render_html([s], set(), "0")
+    assert "over-budget: a.pjx" in render_text([s]) and 'class="over-budget crash"' in render_html([s], set(), "0")
 
 
 @pytest.mark.dask

@@ -33,7 +33,7 @@ from .worker import CaseOutcome, CaseSummary, summary_of
 
 WALL_GRACE_S = 2.0  # past --max-wall: the run ends at its budget, then reports (a 60 s run: 0.1 to 1 s)
 WALL_GRACE_PART = 0.1  # and a tenth of --max-wall
-MEMORY_MARGIN_MB = 64.0  # past --max-memory: what a report and the collision checks may add
+MEMORY_MARGIN_MB = 128.0  # past --max-memory: what a report, a first URDF (pinocchio) or mesh (trimesh) load add
 MEMORY_MARGIN_PART = 0.1
 POLL_S = 0.05  # how often the watchdog looks
 START_S = 120.0  # a child that does not start (imports) in this time is a crash
@@ -264,6 +264,11 @@ def main() -> int:
     from . import worker
     from ..reporting import sim_json, sim_report  # noqa: F401 - loaded before the first case's clock starts
     from ..simulation import case, run  # noqa: F401
+
+    try:  # what every run loads (toppra: 70 MB), before the watchdog measures the first case's size
+        import toppra  # noqa: F401
+    except ImportError:
+        pass
 
     _send(out, _READY)
     worker.STEP = lambda name: _send(out, pickle.dumps(("step", name)))

@@ -103,7 +103,7 @@ def render_junit(summaries: list[CaseSummary]) -> str:
 
 _STYLE = """body{font:14px system-ui,sans-serif;margin:1.5em;color:#222}
 table{border-collapse:collapse}th,td{border:1px solid #ccc;padding:.25em .5em;text-align:left;vertical-align:top}
-th{background:#f3f3f3}td.n{text-align:right}.pass{color:#176117}.fail,.crash,.not-run,.over-budget{color:#a11;font-weight:600}
+th{background:#f3f3f3}td.n{text-align:right}.pass{color:#176117}.fail,.crash,.not-run{color:#a11;font-weight:600}
 .skipped{color:#777}.why{color:#555;font-size:12px}"""
 
 
@@ -115,7 +115,8 @@ def render_html(summaries: list[CaseSummary], reports: set[str], tool_version: s
     rows = []
     for s in ordered(summaries):
         cells = _row(s)
-        verdict = f'<td class="{e(s.verdict)}">{e(s.verdict)}</td>'
+        css = "over-budget crash" if s.verdict == "over-budget" else s.verdict  # shown as a crash is
+        verdict = f'<td class="{e(css)}">{e(s.verdict)}</td>'
         links = [f'<a href="{e(CASES_DIR + "/" + quote(s.name + suffix))}">{label}</a>'
                  for suffix, label in ((".html", "page"), (".json", "JSON"), (".mcap", "trace"))
                  if s.name + suffix in reports]
