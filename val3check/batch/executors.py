@@ -42,6 +42,8 @@ def run_pool(cases: list[Case], jobs: int, on_done: OnDone, stop: Stop) -> None:
     halt = threading.Event()
     done: queue.Queue = queue.Queue()
     runners = [take() for _ in range(max(1, min(jobs, len(cases))))]
+    for r in runners:
+        r.spawn()  # from this thread, which outlives the batch (the children end with the thread that starts them)
 
     def work(runner: Runner) -> None:
         try:

@@ -82,6 +82,7 @@ class Runner:
         self.proc: subprocess.Popen | None = None
         self.replies: queue.Queue = queue.Queue()
         self.aborted = False  # abort(): no child is started any more
+        self.ready = False  # the child has said it is ready
 
     def run(self, t: Ticket) -> CaseOutcome:
         """The case's outcome, or the watchdog's verdict on it; never raises for the case."""
@@ -129,17 +130,26 @@ class Runner:
                                 f" {memory_budget_mb(t):g} MB (--max-memory {t.max_memory_mb:g} MB and its margin),"
                                 " outside VAL 3 code")
 
-    def _started(self) -> bool:
-        if self.proc is not None and self.proc.poll() is None:
-            return True
+    def spawn(self) -> None:
+        """Start the child if none runs (it ends with the thread that starts it: start runners
+        from a thread that outlives them). Its start-up is awaited when its first case comes."""
+        if self.aborted or (self.proc is not None and self.proc.poll() is None):
+            return
         self.close()
-        if self.aborted:
-            return False
-        env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in sys.path if p and os.path.isdir(p)))
+        env = dict(os.environ, PYTHONPATH=os.pathsep.join(p for p in sys.path if p and os.path.isdir(p)),
+                   VAL3CHECK_RUNNER_PARENT=str(os.getpid()))
         self.proc = subprocess.Popen([sys.executable, "-m", "val3check.batch.runner"], stdin=subprocess.PIPE,
                                      stdout=subprocess.PIPE, env=env)
+        self.ready = False
         self.replies = queue.Queue()
         threading.Thread(target=_read_replies, args=(self.proc.stdout, self.replies), daemon=True).start()
+
+    def _started(self) -> bool:
+        self.spawn()
+        if self.proc is None:
+            return False
+        if self.ready:
+            return True
         try:
             ready = self.replies.get(timeout=START_S)
         except queue.Empty:
@@ -147,6 +157,7 @@ class Runner:
         if ready != _READY:
             self.close()
             return False
+        self.ready = True
         return True
 
     def abort(self) -> None:
@@ -259,6 +270,14 @@ def main() -> int:
     import signal
 
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the batch's to handle: it ends this process
+    try:  # Linux: killed with the thread that started it, even when this one is stuck in C code
+        import ctypes
+
+        ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+    except (OSError, AttributeError, ValueError):
+        pass
+    if str(os.getppid()) != os.environ.get("VAL3CHECK_RUNNER_PARENT", str(os.getppid())):  # gone already
+        return 0
     out = os.fdopen(os.dup(sys.stdout.fileno()), "wb")
     os.dup2(sys.stderr.fileno(), sys.stdout.fileno())  # what a case prints goes to standard error
     from . import worker
