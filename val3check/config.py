@@ -29,6 +29,7 @@ from .records import dataclass, field
 from .exclusion import DEFAULT_EXCLUDE, Exclusion
 
 from .diagnostics import Severity
+from .rules.catalogue import OPT_IN
 from .language.target import TargetError, TargetSpec, parse_target
 
 CONFIG_NAMES = ("val3check.toml", "pyproject.toml")
@@ -61,7 +62,10 @@ class Settings:
     source: str = ""  # path of the configuration file that was read
 
     def enabled(self, code: str, path: str | None = None) -> bool:
-        """Ruff's rule: the longest matching prefix among select and ignore wins."""
+        """Ruff's rule: the longest matching prefix among select and ignore wins. An opt-in rule
+        (rules.catalogue.OPT_IN) runs only when select or extend-select names its full code."""
+        if code in OPT_IN and code not in self.select and code not in self.extend_select:
+            return False
         best_sel = max((len(p) for p in self.select + self.extend_select if code.startswith(p)), default=-1)
         best_ign = max((len(p) for p in self.ignore if code.startswith(p)), default=-1)
         if best_sel < 0 or best_ign >= best_sel:

@@ -24,8 +24,6 @@ def test_movel_record_at_a_tvel_limit():
     assert r.peak_tcp_mm_s == pytest.approx(250.0, rel=1e-4)
     assert r.dominant == "tvel"
     assert r.target == "pA"
-    d = r.as_dict()
-    assert d["line"] == 11 and d["dominant_limit"] == "tvel"
 
 
 def test_movej_records_name_the_axis_and_the_phase():
@@ -70,8 +68,6 @@ def test_cycle_times_start_at_the_first_motion_of_the_loop():
     one = recs[4].end - recs[3].start  # a (from b) then b, then the program's 0.3 s
     assert times[1] == pytest.approx(one + 0.3, abs=1e-9)
     assert times[0] == pytest.approx(recs[2].end - recs[1].start + 0.3, abs=1e-9)
-    s = st.summary()
-    assert s["cycles"] == 3 and s["median"] == pytest.approx(times[1])
     busy, idle = busy_time(q.profile, now)
     assert busy + idle == pytest.approx(now) and idle >= 4 * 0.3 - 1e-9
 

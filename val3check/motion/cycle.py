@@ -9,18 +9,19 @@ successive starts of the arm on that instruction's command.
 
 from __future__ import annotations
 
-import statistics
 from dataclasses import dataclass, field
 
 
 @dataclass
 class CycleStats:
+    """The cycle of one task (module docstring): where its loop starts and when the arm started it, each pass."""
     task: str
     marker: tuple[str, int, int] | None  # (path, line, col) of the first motion of the loop
     starts: list[float] = field(default_factory=list)  # when the arm started that command, each pass
 
     @property
     def times(self) -> list[float]:
+        """The cycle times: between successive starts."""
         return [b - a for a, b in zip(self.starts, self.starts[1:])]
 
     @property
@@ -28,18 +29,9 @@ class CycleStats:
         """Complete cycles."""
         return max(len(self.starts) - 1, 0)
 
-    def summary(self) -> dict:
-        t = self.times
-        out = {"task": self.task, "cycles": self.count,
-               "marker": None if self.marker is None else {"path": self.marker[0], "line": self.marker[1],
-                                                           "col": self.marker[2]}}
-        if t:
-            out.update(min=round(min(t), 6), median=round(statistics.median(t), 6), max=round(max(t), 6),
-                       times=[round(x, 6) for x in t])
-        return out
-
 
 def _key(src) -> tuple[str, int, int]:
+    """Where a motion instruction is written: (path, line, col)."""
     return (src.path, src.line, src.col)
 
 
@@ -72,11 +64,13 @@ class CycleCounter:
     program records them; `completed(task)` counts passes at the loop's first motion minus one."""
 
     def __init__(self) -> None:
+        """No command noted yet."""
         self._seen: dict[str, set] = {}
         self._marker: dict[str, tuple] = {}
         self._passes: dict[str, int] = {}
 
     def note(self, task: str, source) -> None:
+        """A command recorded by `task` at `source` (its path, line, col)."""
         k = _key(source)
         m = self._marker.get(task)
         if m is None:

@@ -119,12 +119,12 @@ def _motion_summary(run: Any, m) -> list[str]:
         if st.marker is None or not st.times:
             continue
         t = st.times
-        rec = next((x for x in m.records if (x.source.path, x.source.line, x.source.col) == st.marker), None)
+        rec = next((x for x in m.motions if (x.source.path, x.source.line, x.source.col) == st.marker), None)
         what = f" {rec.kind}" if rec is not None else ""
         out.append(f"cycle time of task {task} (loop from{what} at {_where(run, *st.marker)}): {st.count} cycle"
                    f"{'s' if st.count != 1 else ''}, min {seconds(min(t))} s, median {seconds(statistics.median(t))} s,"
                    f" max {seconds(max(t))} s")
-    cmds = [x for x in m.records if x.id is not None]
+    cmds = [x for x in m.motions if x.id is not None]
     done = sum(1 for x in cmds if x.state == "done")
     failed = sum(1 for x in cmds if x.state == "failed")
     states = f"{done} done" + (f", {failed} not executable" if failed else "")

@@ -1,4 +1,5 @@
-"""Chapter 10: the motion instructions, on the arm of the run (arm.MovingArm).
+"""Chapter 10: the motion instructions, on the arm of the run (moving_arm.MovingArm): where the
+interpreter's values meet the motion queue (motion/queue.py).
 
 Each handler converts the VAL 3 values (points and tools with their references, joints,
 mdesc) at the instruction, as the controller does when it records a command, and hands them to
@@ -31,9 +32,10 @@ from ..interpretation.chapters.ch09_geometry import ct, jd, jt, millimeter_unit,
 from ..interpretation.not_simulated import ARM_LIMIT, NO_ARM, SimLimit
 from ..interpretation.waiting import WAIT
 from ..language.runtime_errors import Val3RuntimeError
-from .commands import Target
-from .findings import MotionError, Source
-from .queue import QueueFull
+from ..motion.commands import Target
+from ..motion.findings import MotionError, Source
+from ..motion.queue import QueueFull
+from .model_arm import INCH_MM
 
 E = Val3RuntimeError
 US = 1_000_000
@@ -52,6 +54,7 @@ def _matrix(pose) -> np.ndarray:
 
 
 def _source(task) -> Source:
+    """Where the task's running instruction is written (the motion diagnostics point at it)."""
     w = task.machine.line_running()
     if w is None:
         return Source(task.machine.app.path, 0, 0, task.program, task.name)
@@ -83,6 +86,7 @@ def _check_family(arm, value, what: str) -> None:
 
 
 def _point(task, p: Point, what: str) -> Target:
+    """A point as the queue's target: its TCP pose in world through its frames, configuration and names."""
     geo_points.check_defined(p)
     ref = p.ref
     frame = getattr(ref, "name", "") or ("world" if ref is not None and ref.is_root else "")
@@ -90,6 +94,7 @@ def _point(task, p: Point, what: str) -> Target:
 
 
 def _tool(tool: Tool) -> np.ndarray | None:
+    """A tool as its TCP in the flange through its base tools (4x4), None for the flange."""
     pose = geo_frames.root_pose(tool)
     return None if tool.is_root else _matrix(pose)
 
@@ -110,9 +115,6 @@ def _record(task, unit, kind: str, target: Target, via: Target | None, tool: Too
             rule = exc.finding.code if exc.finding is not None else None
             raise E(exc.code, exc.message, rule=rule) from None
         if not isinstance(r, QueueFull):
-            observer = getattr(arm, "observer", None)
-            if observer is not None:
-                observer(clock.time_of(task))
             return float(r)
         room = lambda: arm.has_room(clock.now)  # noqa: E731
         room.motion = True
@@ -159,6 +161,7 @@ def I_waitendmove(task, unit):
 
 
 def _now(task) -> int:
+    """The task's simulated time (microseconds)."""
     return task.machine.clock.time_of(task)
 
 
@@ -231,7 +234,7 @@ def I_getspeed(task, unit, tool: Tool) -> float:
         return 0.0
     m = _tool(tool)
     mm = millimeter_unit(unit)
-    s = 1.0 if mm else 25.4
+    s = 1.0 if mm else INCH_MM
     if m is not None:
         m = m.copy()
         m[:3, 3] *= s
@@ -277,6 +280,7 @@ def I_setmoveid(task, unit, n: float) -> float:
 
 
 def register(registry) -> None:
+    """The instructions of chapter 10 (nothing registers on import)."""
     for name, func in (("movej", I_movej), ("movel", I_movel), ("movec", I_movec), ("waitEndMove", I_waitendmove)):
         registry.instruction(name, func, blocking=True)
     for name, func in (("isEmpty", I_isempty), ("isSettled", I_issettled), ("stopMove", I_stopmove),
