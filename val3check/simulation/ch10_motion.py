@@ -110,9 +110,10 @@ def _record(task, unit, kind: str, target: Target, via: Target | None, tool: Too
     tool_m = _tool(tool)
     mm = millimeter_unit(unit)
     name = tool.name or ("flange" if tool.is_root else "")
+    loops = task.machine.loop_passes()  # which pass of which loops records it (the cycle)
     while True:
         try:
-            r = arm.record(kind, target, tool_m, mdesc, via, source, name, mm, clock.time_of(task))
+            r = arm.record(kind, target, tool_m, mdesc, via, source, name, mm, clock.time_of(task), loops)
         except MotionError as exc:
             rule = exc.finding.code if exc.finding is not None else None
             raise E(exc.code, exc.message, rule=rule) from None
