@@ -250,3 +250,28 @@ def test_of_two_repeating_loops_the_one_with_the_most_passes_ties_to_the_later()
     t.note((Pass(MAIN, 1, 3),), i)
     group, _ = t.choose(())
     assert group.loop == MAIN  # three passes each: the later
+
+
+def test_the_verdict_junit_and_the_batch_summary_quote_the_main_loop(tmp_path, capsys):
+    """The issue's symptom: an inner loop's 2 x bang(10) headlined as the cycle time. The HTML
+    verdict, the JUnit property and the batch summary all quote the main loop's 8 x bang(10)."""
+    import xml.etree.ElementTree as ET
+
+    from val3check.batch.worker import _cycle
+    from val3check.config import Settings
+    from val3check.reporting.html.from_run import model_from_run
+    from val3check.reporting.sim_report import build_report
+    from val3check.rules.catalogue import catalogue
+
+    code = POCKET.replace("INNER", INNER["for"]).format(home=j1(0), a=j1(10), b=j1(20))
+    r = run(tmp_path / "run", code, ["mdesc mD", "num nI"])
+    expected = 8 * bang(10)
+    model = model_from_run(build_report(r, Settings(), catalogue(), "test"))
+    ct = model["verdict"]["cycle_time"]
+    assert ct["seconds"] == pytest.approx(expected, abs=1e-6) and "while loop at line" in ct["basis"]
+    seconds, count = _cycle(r.motion)
+    assert seconds == pytest.approx(expected, abs=1e-6) and count == cycle(r).count
+    folder = build(tmp_path / "junit", code, globals_=["mdesc mD", "num nI"])
+    main(["sim", str(folder), "--robot", "TX2-60", "--duration", "6", "--report", "junit"])
+    props = {p.get("name"): p.get("value") for p in ET.fromstring(capsys.readouterr().out).iter("property")}
+    assert float(props["cycle_time_s"]) == pytest.approx(expected, abs=1e-6)
