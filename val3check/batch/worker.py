@@ -42,7 +42,7 @@ class CaseSummary:
     verdict: str  # one of VERDICTS
     errors: int = 0  # runtime diagnostics of severity error
     warnings: int = 0
-    cycle_time: float | None = None  # s: median cycle of the first task (by name) that cycles the arm
+    cycle_time: float | None = None  # s: median of the verdict's cycle (arm_record.main_cycle)
     cycles: int = 0
     end: str = ""  # how the run ended (SimResult end reason)
     reason: str = ""  # why the verdict is not "pass": the first failing diagnostic, the error, the crash
@@ -192,8 +192,7 @@ def _run(case: Case, mirror: str) -> CaseOutcome:
 def _cycle(motion) -> tuple[float | None, int]:  # noqa: ANN001
     if motion is None:
         return None, 0
-    for task in sorted(motion.cycles):
-        st = motion.cycles[task]
-        if st.times:
-            return round(statistics.median(st.times), 6), st.count
-    return None, 0
+    from ..simulation.arm_record import main_cycle
+
+    st = main_cycle(motion.cycles)  # the verdict's (reporting/html/from_run.py, sim_junit.py)
+    return (None, 0) if st is None else (round(statistics.median(st.times), 6), st.count)
