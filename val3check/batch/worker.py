@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 from .cases import Case
 from .outputs import case_outputs
 
+MAX_CAUSES = 8
 VERDICTS = ("pass", "fail", "not-run", "crash", "over-budget", "skipped")
 STEP = None  # step(name) as a case goes on ("lint", "run", "report"): set by runner.py for its watchdog
 
@@ -46,6 +47,10 @@ class CaseSummary:
     cycles: int = 0
     end: str = ""  # how the run ended (SimResult end reason)
     reason: str = ""  # why the verdict is not "pass": the first failing diagnostic, the error, the crash
+    # each failing diagnostic: (code, severity, path, line, col, time_us, task, message), at most
+    # MAX_CAUSES (sim --explore groups failures by them; not in the summary's JSON)
+    causes: tuple = ()
+    cycle_max: float | None = None  # s: the longest of the verdict's cycles
 
     def as_dict(self) -> dict:
         return {"application": self.app, "name": self.app_name, "arm": self.arm or None, "model": self.model,
@@ -132,6 +137,7 @@ def _unmirrored(outcome: CaseOutcome, mirror: str) -> CaseOutcome:
     """Absolute paths as on the machine that made the case."""
     s = outcome.summary
     fix = {f: getattr(s, f).replace(mirror, "") for f in ("reason", "model", "end")}
+    fix["causes"] = tuple(c[:2] + (c[2].replace(mirror, ""),) + c[3:] for c in s.causes)
     summary = CaseSummary(**{**s.__dict__, **fix})
     prefix = mirror.encode("utf-8")
     return CaseOutcome(summary, {k: zlib.compress(v.replace(prefix, b""), 1) for k, v in outcome.outputs.items()})
@@ -183,16 +189,22 @@ def _run(case: Case, mirror: str) -> CaseOutcome:
         d = failing[0]
         loc = f"{d.path}:{d.line}:{d.col}" if d.line else d.path
         reason = f"{loc}: {d.code} {d.severity.label}: {d.message}"
-    cycle_time, cycles = _cycle(result.motion)
+    cycle_time, cycles, cycle_max = _cycle(result.motion)
+    causes = tuple((d.code, d.severity.label, d.path, d.line, d.col, d.time_us, d.task or "", d.message)
+                   for d in failing[:MAX_CAUSES])
     summary = summary_of(case, "fail" if failing else "pass", reason, model=model, errors=errors_n,
-                         warnings=warnings_n, cycle_time=cycle_time, cycles=cycles, end=result.end_reason)
+                         warnings=warnings_n, cycle_time=cycle_time, cycles=cycles, end=result.end_reason,
+                         causes=causes, cycle_max=cycle_max)
     return CaseOutcome(summary, case_outputs(report, opts.case_reports, opts.fail_on) if opts.reports else {})
 
 
-def _cycle(motion) -> tuple[float | None, int]:  # noqa: ANN001
+def _cycle(motion) -> tuple[float | None, int, float | None]:  # noqa: ANN001
+    """The verdict's cycle (reporting/html/from_run.py, sim_junit.py): median, count, longest."""
     if motion is None:
-        return None, 0
+        return None, 0, None
     from ..simulation.arm_record import main_cycle
 
-    st = main_cycle(motion.cycles)  # the verdict's (reporting/html/from_run.py, sim_junit.py)
-    return (None, 0) if st is None else (round(statistics.median(st.times), 6), st.count)
+    st = main_cycle(motion.cycles)
+    if st is None:
+        return None, 0, None
+    return round(statistics.median(st.times), 6), st.count, round(max(st.times), 6)
