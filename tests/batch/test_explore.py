@@ -62,7 +62,7 @@ def test_explore_finds_the_timing_assumption_and_writes_a_reproducer(cell, capsy
     text = (cell / "out" / failure["reproducer"]).read_text()
     assert text.startswith("# val3check sim --explore") and "fails: R003" in text
     assert "where: explore/Clamp/start.pgx:18:7" in text and "at 0.2" in text
-    assert re.search(r"^after = 0\.25\d*$", text, re.M) and "min =" not in text
+    assert re.search(r"^after = 0\.25\d*$", text, re.MULTILINE) and "min =" not in text
     assert "R003" in out and failure["reproducer"] in out
     # a plain sim of the reproducer fails the same way; the nominal scenario does not
     code, out, _ = sim(capsys, "explore/Clamp", "--scenario", cell / "out" / failure["reproducer"], "--format", "json")
@@ -71,7 +71,7 @@ def test_explore_finds_the_timing_assumption_and_writes_a_reproducer(cell, capsy
     code, _, _ = sim(capsys, "explore/Clamp", "--scenario", "explore/clamp.toml")
     assert code == 0
     # one millisecond closer to the nominal passes: the reproducer is the smallest deviation
-    closer = re.sub(r"^after = (0\.25\d*)$", lambda m: f"after = {float(m.group(1)) - 0.001:.3f}", text, flags=re.M)
+    closer = re.sub(r"^after = (0\.25\d*)$", lambda m: f"after = {float(m.group(1)) - 0.001:.3f}", text, flags=re.MULTILINE)
     (cell / "closer.toml").write_text(closer)
     assert sim(capsys, "explore/Clamp", "--scenario", "closer.toml")[0] == 0
 
@@ -186,7 +186,7 @@ def test_a_plain_run_uses_a_range_s_nominal_and_rejects_a_bad_range(cell, capsys
 
 # -- the search and the shrinking -----------------------------------------------------------------
 
-def _t(i: int, nominal: float, lo: float, hi: float, path=None) -> Timing:  # noqa: ANN001
+def _t(i: int, nominal: float, lo: float, hi: float, path=None) -> Timing:
     return Timing(path or ("events", i, "at"), f"t{i}", i + 1, nominal, lo, hi)
 
 

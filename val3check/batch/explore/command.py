@@ -240,7 +240,7 @@ class _Runs:
             self._execute(todo)
         return [self.memo[v] for v in vs]
 
-    def still_fails(self, key: tuple, max_cycle: float | None):  # noqa: ANN201
+    def still_fails(self, key: tuple, max_cycle: float | None):
         def check(vs: list[tuple]) -> list[bool]:
             return [any(c.key == key for c in causes(s, max_cycle)) for s in self.run(vs)]
         return check

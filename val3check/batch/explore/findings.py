@@ -42,7 +42,7 @@ class Cause:
         return ", ".join(parts)
 
 
-def causes(summary, max_cycle: float | None) -> list[Cause]:  # noqa: ANN001 - worker.CaseSummary
+def causes(summary, max_cycle: float | None) -> list[Cause]:
     """The causes of failure of one run, without repeats (in the run's order)."""
     if summary.verdict in NOT_RUN:
         return [Cause(summary.verdict, "", 0, message=summary.reason or summary.verdict)]

@@ -98,8 +98,8 @@ def render_junit(ex: Exploration) -> str:
     n = max(1, len(ex.groups))
     out = ['<?xml version="1.0" encoding="UTF-8"?>',
            f'<testsuites name="val3check sim --explore" tests="{n}" failures="{len(ex.groups)}" errors="0">',
-           f'  <testsuite name={quoteattr(ex.application + " | " + ex.scenario)} tests="{n}"'
-           f' failures="{len(ex.groups)}" errors="0">']
+           (f'  <testsuite name={quoteattr(ex.application + " | " + ex.scenario)} tests="{n}"'
+           f' failures="{len(ex.groups)}" errors="0">')]
     for g in ex.groups:
         c = g.shrunk_cause or g.cause
         out.append(f"    <testcase classname={quoteattr(ex.application)} name={quoteattr(c.code + ' ' + c.where())}>")
@@ -158,8 +158,8 @@ def reproducer(ex: Exploration, g: Group, text: str) -> str:
     """The scenario text of a shrunk failing variant, under a comment saying what fails, where,
     when, and how far from the nominal."""
     c = g.shrunk_cause or g.cause
-    lines = [f"val3check sim --explore: a variant of {ex.scenario} (seed {ex.seed}) that fails, shrunk toward"
-             " its nominal times",
+    lines = [(f"val3check sim --explore: a variant of {ex.scenario} (seed {ex.seed}) that fails, shrunk toward"
+             " its nominal times"),
              f"fails: {c.code} {c.severity}: {c.message}",
              f"where: {c.where()}" + (f", {c.when()}" if c.when() else ""),
              f"occurred in {_occurred(ex, g)}"]

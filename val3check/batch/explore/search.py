@@ -36,7 +36,7 @@ class Observed:
     changes: dict[str, list[tuple[float, object]]] = field(default_factory=dict)  # signal name -> (s, value)
 
 
-def observe(result) -> Observed:  # noqa: ANN001 - simulation.result.SimResult
+def observe(result) -> Observed:
     """The boundaries of the nominal run: a task going from waiting (or blocked) to running,
     and every change of an input or output, under each name the scenario may give it."""
     ends, last = set(), {}

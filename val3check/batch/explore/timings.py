@@ -75,7 +75,7 @@ def timings(data: dict, text: str, jitter: float) -> list[Timing]:
     return [t for t in found if t is not None]
 
 
-def _timing(path: tuple, label: str, value: object, pos, jitter: float, **extra) -> Timing | None:  # noqa: ANN001, ANN003
+def _timing(path: tuple, label: str, value: object, pos, jitter: float, **extra) -> Timing | None:
     r = time_range(value)
     if r is None:  # the scenario's reader reports it
         return None
