@@ -216,8 +216,8 @@ def test_directed_variants_straddle_the_ends_of_waits_and_the_other_events():
     assert set(re_) == {0.1, 0.6, 0.199, 0.201, 0.499, 0.501}
     assert (0.7, 0.6) in vs and (1.3, 0.1) in vs  # pairs at opposite ends
     assert len(vs) == len(set(vs)) and (1.0, 0.25) not in vs
-    # closest to the nominal first, each timing in turn: the ends, then the boundaries
-    assert vs[:6] == [(0.7, 0.25), (1.0, 0.1), (1.3, 0.25), (1.0, 0.6), (0.751, 0.25), (1.0, 0.201)]
+    # the ends, widest range first; then the boundaries closest to the nominal, each timing in turn
+    assert vs[:6] == [(0.7, 0.25), (1.3, 0.25), (1.0, 0.1), (1.0, 0.6), (0.751, 0.25), (1.0, 0.201)]
 
 
 def test_shrinking_finds_the_smallest_failing_deviation_of_the_timing_that_matters():
@@ -230,3 +230,18 @@ def test_shrinking_finds_the_smallest_failing_deviation_of_the_timing_that_matte
 
     shrunk, n = shrink(ts, (1.07, 0.389, 0.0), check)
     assert shrunk == (1.0, 0.301, 0.05) and n == len(runs) < 40
+
+
+def test_the_directed_search_finds_what_as_many_uniform_draws_miss(cell, capsys):
+    """The clamp's range cut to 0.1-0.26 s: it fails only from 0.252 s on (5 % of the range);
+    the five uniform draws of seed 0 all miss it, the directed variants reach it (the range's end)."""
+    text = (cell / "explore" / "clamp.toml").read_text().replace("max = 0.4,", "max = 0.26,")
+    (cell / "narrow.toml").write_text(text)
+    data, _ = load_bytes(text.encode())
+    ts = timings(data, text, 0.02)
+    assert all(uniform(ts, 0, k)[1] < 0.252 for k in range(5))
+    code, _, err = sim(capsys, "explore/Clamp", "--scenario", "narrow.toml", "--explore", "5", "--out-dir", "o",
+                       "-j", "1")
+    assert code == 1, err
+    [failure] = json.loads((cell / "o" / "summary.json").read_text())["failures"]
+    assert failure["code"] == "R003" and failure["deviation"][0]["value"] == 0.252

@@ -3,15 +3,15 @@ likely to hide behind, then uniform draws, all fixed by the seed.
 
 The directed variants move one timing at a time (the others nominal), in this order:
 
-1. each timing at the ends of its range (a slow clamp, an early sensor);
+1. each timing at the ends of its range (a slow clamp, an early sensor), the widest ranges first;
 2. each timing moved so that the moment it acts falls just before and just after a *boundary*
    of the nominal run: the end of a wait of a task (a `delay`, `wait`, `watch` that returned)
    or the moment another timing acts (two events swap their order). The moment a reaction acts
    is its trigger in the nominal run (the output it answers) plus its delay;
 3. pairs of timings at opposite ends (one early, the other late).
 
-Each list is cut to what the budget allows, taking the smallest deviations first and the
-timings in turn. What is left of the budget is uniform draws: variant `k` of seed `s` is drawn
+Each list is cut to what the budget allows: in 2, the smallest deviations first, the timings in
+turn. What is left of the budget is uniform draws: variant `k` of seed `s` is drawn
 from its own generator seeded with `(s, k)`, so a variant does not depend on how many there
 are, the executor, -j, or the machine (Python's Mersenne Twister and IEEE doubles)."""
 
@@ -73,14 +73,16 @@ def directed(ts: list[Timing], seen: Observed) -> list[tuple[float, ...]]:
     """The directed variants, in the order they are worth running, without repeats."""
     nominal = tuple(t.nominal for t in ts)
     acts = [moments(t, seen) for t in ts]
+    order = sorted(range(len(ts)), key=lambda i: (-(ts[i].hi - ts[i].lo), i))  # the widest ranges first
+    out = [_with(nominal, i, v) for i in order for v in (ts[i].lo, ts[i].hi)]
     per: list[list[tuple[float, ...]]] = []
-    for i, t in enumerate(ts):
-        own = [t.lo, t.hi]
+    for i in order:
+        t = ts[i]
         bounds = set(seen.wait_ends) | {m for j, ms in enumerate(acts) if j != i for m in ms}
         aims = sorted({t.clamp(t.nominal + b + s - m) for b in bounds for m in acts[i] for s in (-EDGE, EDGE)
                        if t.lo <= t.nominal + b + s - m <= t.hi}, key=lambda v: (abs(v - t.nominal), v))
-        per.append([_with(nominal, i, v) for v in own + aims[:PER_TIMING]])
-    out = [v for group in itertools.zip_longest(*per) for v in group if v is not None]
+        per.append([_with(nominal, i, v) for v in aims[:PER_TIMING]])
+    out += [v for group in itertools.zip_longest(*per) for v in group if v is not None]
     for i, j in itertools.combinations(range(len(ts)), 2):
         out += [_with(_with(nominal, i, ts[i].lo), j, ts[j].hi), _with(_with(nominal, i, ts[i].hi), j, ts[j].lo)]
     return _unique([v for v in out if v != nominal])
