@@ -141,11 +141,13 @@ def render_html(ex: Exploration) -> str:
                else '<p class="pass">every variant passed</p>')
     failures = ("<h2>Failures, by cause</h2>\n<table><thead><tr><th>#</th><th>rule</th><th>where, when</th>"
                 "<th>what</th><th>occurred in</th><th>smallest deviation that fails</th><th>reproducer</th></tr>"
-                "</thead><tbody>\n" + "\n".join(rows) + "\n</tbody></table>\n") if rows else ""
+                "</thead><tbody>\n" + "\n".join(rows) + "\n</tbody></table>\n"
+                "<p class=\"why\">Each reproducer is a plain scenario file (its path relative to this page): run the"
+                " command shown from the folder the exploration ran in, with the reproducer's path.</p>\n") if rows else ""
     return visible("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
                    "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; style-src 'unsafe-inline'\">"
                    f"<title>val3check sim --explore</title><style>{_STYLE}</style></head><body>\n"
-                   f"<h1>{e(ex.headline())}</h1>\n{verdict}\n"
+                   f"<h1>val3check sim --explore</h1>\n<p>{e(ex.headline().split(': ', 1)[1])}</p>\n{verdict}\n"
                    f"<p>val3check {e(ex.tool_version)}; {ex.runs} runs (nominal, variants, shrinking); jitter "
                    f"± {e(fmt(ex.jitter))} s" + (f"; cycle time bound {e(fmt(ex.max_cycle))} s" if ex.max_cycle else "")
                    + "</p>\n" + failures
