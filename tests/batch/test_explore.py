@@ -245,3 +245,21 @@ def test_the_directed_search_finds_what_as_many_uniform_draws_miss(cell, capsys)
     assert code == 1, err
     [failure] = json.loads((cell / "o" / "summary.json").read_text())["failures"]
     assert failure["code"] == "R003" and failure["deviation"][0]["value"] == 0.252
+
+
+def test_the_causes_of_a_run():
+    from val3check.batch.explore.findings import causes
+    from val3check.batch.worker import CaseSummary
+
+    base = CaseSummary(key=(), name="n", app="A", app_name="A", arm="", model="none", scenario="s.toml#000003",
+                       cell="", overrides=(), verdict="fail", cycle_time=2.8, cycles=3, cycle_max=2.95,
+                       causes=(("R003", "error", "A/start.pgx", 18, 7, 256000, "A~", "waits"),
+                               ("R003", "error", "A/start.pgx", 18, 7, 900000, "A~", "waits again"),
+                               ("R001", "error", "A/start.pgx", 20, 3, 300000, "A~", "error 8")))
+    got = causes(base, 2.9)
+    assert [c.key for c in got] == [("R003", "A/start.pgx", 18), ("R001", "A/start.pgx", 20), ("cycle-time", "s.toml", 0)]
+    assert got[0].when() == "at 0.256 s of simulated time, in task A~" and "2.950 s" in got[2].message
+    assert [c.code for c in causes(base, 3.0)] == ["R003", "R001"]  # within the bound
+    assert [c.code for c in causes(base, None)] == ["R003", "R001"]  # no bound
+    crashed = causes(CaseSummary(**{**base.__dict__, "verdict": "over-budget", "reason": "stopped"}), None)
+    assert [(c.code, c.message) for c in crashed] == [("over-budget", "stopped")]

@@ -151,7 +151,10 @@ def _check(args: Any) -> None:
 
 def _prepare(out_dir: str) -> None:
     """The out folder, and its failures/ folder: folders, not links or files."""
-    os.makedirs(out_dir, exist_ok=True) if not os.path.lexists(out_dir) else None
+    try:
+        os.makedirs(out_dir, exist_ok=True)
+    except (OSError, ValueError) as exc:
+        raise OutDirError(f"cannot create {out_dir}: {getattr(exc, 'strerror', None) or exc}") from None
     if not os.path.isdir(out_dir):
         raise OutDirError(f"{out_dir} is not a folder")
     failures = os.path.join(out_dir, FAILURES_DIR)

@@ -31,6 +31,8 @@ class Cause:
         return (self.code, self.path, self.line)
 
     def where(self) -> str:
+        if self.code == "cycle-time":
+            return f"the arm's cycle ([explore] max_cycle_time of {self.path})"
         return f"{self.path}:{self.line}:{self.col}" if self.line else (self.path or "the run")
 
     def when(self) -> str:

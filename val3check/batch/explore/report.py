@@ -165,6 +165,8 @@ def reproducer(ex: Exploration, g: Group, text: str) -> str:
              f"fails: {c.code} {c.severity}: {c.message}",
              f"where: {c.where()}" + (f", {c.when()}" if c.when() else ""),
              f"occurred in {_occurred(ex, g)}"]
+    if c.code == "cycle-time":
+        lines.append("a plain sim reports this cycle time; the bound is --explore's ([explore] max_cycle_time)")
     lines += ["moved from the nominal: " + d for d in _deviation(ex, g.shrunk).split("; ")]
     lines.append(f"reproduce: {shlex.join(ex.command)} THIS_FILE (from the folder explored from)")
     head = "".join("# " + printable(line) + "\n" for line in lines)

@@ -72,7 +72,9 @@ def timings(data: dict, text: str, jitter: float) -> list[Timing]:
         if isinstance(ch, dict) and "at" in ch:
             found.append(_timing(("controller", "changes", i, "at"), f"[controller] changes #{i + 1} at", ch["at"],
                                  pos, jitter))
-    return [t for t in found if t is not None]
+    # a value the positions reader did not follow (it stops on what it does not know) cannot be
+    # rewritten: it stays nominal
+    return [t for t in found if t is not None and t.path in pos.values]
 
 
 def _timing(path: tuple, label: str, value: object, pos, jitter: float, **extra) -> Timing | None:
