@@ -134,6 +134,10 @@ def test_usage_errors(cell, capsys):
     assert code == 2 and "--jitter goes with --explore" in err
     code, _, err = sim(capsys, "explore/Clamp", "--scenario", "fixed.toml", "--explore", "3", "--jitter", "-1")
     assert code == 2 and "--jitter" in err
+    many = "".join(f"[[events]]\nat = {i}\nset = {{ diAck = true }}\n" for i in range(101))
+    (cell / "many.toml").write_text(many)
+    code, _, err = sim(capsys, "explore/Clamp", "--scenario", "many.toml", "--explore", "100000", "--jitter", "0.1")
+    assert code == 2 and "more than 10,000,000 values" in err
 
 
 # -- the scenario's ranges ------------------------------------------------------------------------
@@ -206,7 +210,7 @@ def test_directed_variants_straddle_the_ends_of_waits_and_the_other_events():
     ts = [_t(0, 1.0, 0.7, 1.3),
           Timing(("reactions", 0, "after"), "r", 2, 0.25, 0.1, 0.6, when="doClamp", becomes=True)]
     seen = Observed(wait_ends=[0.7], changes={"doClamp": [(0.5, True), (0.9, False)]})
-    vs = directed(ts, seen)
+    vs = list(directed(ts, seen))
     ev = [v[0] for v in vs if v[1] == 0.25]
     re_ = [v[1] for v in vs if v[0] == 1.0]
     assert {0.7, 1.3} <= set(ev) and {0.1, 0.6} <= set(re_)  # the ends of the ranges
@@ -263,3 +267,12 @@ def test_the_causes_of_a_run():
     assert [c.code for c in causes(base, None)] == ["R003", "R001"]  # no bound
     crashed = causes(CaseSummary(**{**base.__dict__, "verdict": "over-budget", "reason": "stopped"}), None)
     assert [(c.code, c.message) for c in crashed] == [("over-budget", "stopped")]
+
+
+def test_a_scenario_of_thousands_of_times_stays_small():
+    """3,000 events and 3,000 ends of waits: the variants are made as they are taken; too many
+    values for memory is a usage error."""
+    ts = [_t(i, 1.0 + i, 0.5 + i, 1.5 + i) for i in range(3000)]
+    seen = Observed(wait_ends=[0.25 + i for i in range(3000)])
+    vs = variants(ts, seen, 40, 1)
+    assert len(vs) == len(set(vs)) == 40 and all(len(v) == 3000 for v in vs)

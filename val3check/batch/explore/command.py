@@ -25,6 +25,8 @@ EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
 DEFAULT_OUT_DIR = "val3check-explore"
 FAILURES_DIR = "failures"
 MAX_VARIANTS = 100_000
+MAX_VALUES = 10_000_000  # variants × times: what the variants hold in memory
+MAX_SHRUNK = 20  # causes shrunk; the others keep their smallest variant seen (at most 400 runs each)
 
 
 class ExploreError(Exception):
@@ -57,6 +59,9 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
         return _err(f"--explore: nothing to vary in {display_path(args.scenario)}: no time or delay with a range"
                     " (give --jitter SECONDS, [explore] jitter, or a range such as after = { min = 0.1, max = 0.4 };"
                     " docs/explore.md)")
+    if args.explore * len(ts) > MAX_VALUES:
+        return _err(f"--explore {args.explore} variants of {len(ts)} times: more than {MAX_VALUES:,} values; explore"
+                    " fewer variants or a smaller scenario")
     options = RunOptions(duration=args.duration, max_wall=args.max_wall, max_lines=args.max_lines,
                          max_memory_mb=args.max_memory, cycles=args.cycles, fail_on=settings.fail_on, reports=False)
     try:
@@ -78,14 +83,16 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
         return _err(f"--explore: the nominal scenario cannot run: {nominal_run}")
     seen = observe(nominal_run)
 
-    runs = _Runs(base, scenario.text, ts, args, Progress(0))
+    runs = _Runs(base, scenario.text, ts, args, Progress(0, unit="runs"))
     chosen = variants(ts, seen, args.explore, args.seed)
     nominal = tuple(t.nominal for t in ts)
     try:
         results = runs.run([nominal] + chosen)
         groups = _groups(ts, [nominal] + chosen, results, max_cycle)
-        for g in groups:
-            if not g.nominal:
+        for n, g in enumerate(groups):
+            if not g.nominal and n >= MAX_SHRUNK:
+                g.shrunk = g.smallest
+            elif not g.nominal:
                 g.shrunk, g.runs = shrink(ts, g.smallest, runs.still_fails(g.cause.key, max_cycle))
             else:
                 g.shrunk = nominal

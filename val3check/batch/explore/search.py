@@ -19,6 +19,8 @@ from __future__ import annotations
 
 import itertools
 import random
+from collections import Counter
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 
 from .timings import RESOLUTION, Timing
@@ -26,6 +28,8 @@ from .timings import RESOLUTION, Timing
 EDGE = RESOLUTION  # s: how far before and after a boundary a timing is put
 PER_TIMING = 16  # boundary variants kept per timing (the closest to the nominal)
 MAX_MOMENTS = 8  # moments a reaction acts at in the nominal run that are aimed at boundaries
+MAX_AIMED = 64  # timings aimed at boundaries and paired (the widest ranges): a scenario of
+MAX_BOUNDS = 4096  # thousands of events stays linear; boundaries kept (the earliest)
 
 
 @dataclass
@@ -69,23 +73,42 @@ def moments(t: Timing, seen: Observed) -> list[float]:
     return []  # a serial answer: its trigger is not in the I/O log
 
 
-def directed(ts: list[Timing], seen: Observed) -> list[tuple[float, ...]]:
-    """The directed variants, in the order they are worth running, without repeats."""
+def directed(ts: list[Timing], seen: Observed) -> Iterator[tuple[float, ...]]:
+    """The directed variants, in the order they are worth running, without repeats; made as
+    they are taken (a scenario of thousands of times asks for a few of them)."""
     nominal = tuple(t.nominal for t in ts)
-    acts = [moments(t, seen) for t in ts]
+    done = {nominal}
+
+    def new(v: tuple[float, ...]) -> bool:
+        if v in done:
+            return False
+        done.add(v)
+        return True
+
     order = sorted(range(len(ts)), key=lambda i: (-(ts[i].hi - ts[i].lo), i))  # the widest ranges first
-    out = [_with(nominal, i, v) for i in order for v in (ts[i].lo, ts[i].hi)]
-    per: list[list[tuple[float, ...]]] = []
     for i in order:
+        for v in (ts[i].lo, ts[i].hi):
+            if new(w := _with(nominal, i, v)):
+                yield w
+    acts = [moments(t, seen) for t in ts]
+    ends = sorted(set(seen.wait_ends) | {m for ms in acts for m in ms})[:MAX_BOUNDS]
+    waits, shared = set(seen.wait_ends), Counter(m for ms in acts for m in set(ms))
+    per: list[list[tuple[int, float]]] = []
+    for i in order[:MAX_AIMED]:
         t = ts[i]
-        bounds = set(seen.wait_ends) | {m for j, ms in enumerate(acts) if j != i for m in ms}
+        own = set(acts[i])  # its own moments, unless a wait ends or another timing acts then too
+        bounds = {b for b in ends if b not in own or b in waits or shared[b] > 1}
         aims = sorted({t.clamp(t.nominal + b + s - m) for b in bounds for m in acts[i] for s in (-EDGE, EDGE)
                        if t.lo <= t.nominal + b + s - m <= t.hi}, key=lambda v: (abs(v - t.nominal), v))
-        per.append([_with(nominal, i, v) for v in aims[:PER_TIMING]])
-    out += [v for group in itertools.zip_longest(*per) for v in group if v is not None]
-    for i, j in itertools.combinations(range(len(ts)), 2):
-        out += [_with(_with(nominal, i, ts[i].lo), j, ts[j].hi), _with(_with(nominal, i, ts[i].hi), j, ts[j].lo)]
-    return _unique([v for v in out if v != nominal])
+        per.append([(i, v) for v in aims[:PER_TIMING]])
+    for group in itertools.zip_longest(*per):
+        for iv in group:
+            if iv is not None and new(w := _with(nominal, *iv)):
+                yield w
+    for i, j in itertools.combinations(sorted(order[:MAX_AIMED]), 2):
+        for a, b in ((ts[i].lo, ts[j].hi), (ts[i].hi, ts[j].lo)):
+            if new(w := _with(_with(nominal, i, a), j, b)):
+                yield w
 
 
 def uniform(ts: list[Timing], seed: int, k: int) -> tuple[float, ...]:
@@ -98,7 +121,7 @@ def variants(ts: list[Timing], seen: Observed, n: int, seed: int) -> list[tuple[
     """`n` variants (fewer when the ranges hold fewer distinct ones): at most three quarters
     directed, the rest uniform draws; never the nominal, never twice the same."""
     nominal = tuple(t.nominal for t in ts)
-    chosen = directed(ts, seen)[:n - n // 4]
+    chosen = list(itertools.islice(directed(ts, seen), n - n // 4))
     known = set(chosen) | {nominal}
     k = 0
     while len(chosen) < n and k < 20 * n:
@@ -112,7 +135,3 @@ def variants(ts: list[Timing], seen: Observed, n: int, seed: int) -> list[tuple[
 
 def _with(values: tuple[float, ...], i: int, v: float) -> tuple[float, ...]:
     return values[:i] + (v,) + values[i + 1:]
-
-
-def _unique(vs: list[tuple[float, ...]]) -> list[tuple[float, ...]]:
-    return list(dict.fromkeys(vs))
