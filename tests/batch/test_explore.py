@@ -134,6 +134,10 @@ def test_usage_errors(cell, capsys):
     assert code == 2 and "--jitter goes with --explore" in err
     code, _, err = sim(capsys, "explore/Clamp", "--scenario", "fixed.toml", "--explore", "3", "--jitter", "-1")
     assert code == 2 and "--jitter" in err
+    bad = (cell / "explore" / "clamp.toml").read_text().replace("jitter = 0.02", "jitter = -0.02")
+    (cell / "bad.toml").write_text(bad)
+    code, _, err = sim(capsys, "explore/Clamp", "--scenario", "bad.toml", "--explore", "3")
+    assert code == 2 and "bad scenario: bad.toml:" in err and "[explore] jitter = seconds" in err
     many = "".join(f"[[events]]\nat = {i}\nset = {{ diAck = true }}\n" for i in range(101))
     (cell / "many.toml").write_text(many)
     code, _, err = sim(capsys, "explore/Clamp", "--scenario", "many.toml", "--explore", "100000", "--jitter", "0.1")

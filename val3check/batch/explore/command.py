@@ -51,17 +51,6 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
         scenario = load_scenario(args.scenario)
     except ScenarioError as exc:
         return _err(f"bad scenario: {exc}")
-    explore = scenario.data.get("explore", {}) if isinstance(scenario.data.get("explore"), dict) else {}
-    jitter = args.jitter if args.jitter is not None else explore.get("jitter", 0.0)
-    max_cycle = explore.get("max_cycle_time")
-    ts = timings(scenario.data, scenario.text, float(jitter) if _seconds(jitter) else 0.0)
-    if not any(t.lo < t.hi for t in ts):
-        return _err(f"--explore: nothing to vary in {display_path(args.scenario)}: no time or delay with a range"
-                    " (give --jitter SECONDS, [explore] jitter, or a range such as after = { min = 0.1, max = 0.4 };"
-                    " docs/explore.md)")
-    if args.explore * len(ts) > MAX_VALUES:
-        return _err(f"--explore {args.explore} variants of {len(ts)} times: more than {MAX_VALUES:,} values; explore"
-                    " fewer variants or a smaller scenario")
     options = RunOptions(duration=args.duration, max_wall=args.max_wall, max_lines=args.max_lines,
                          max_memory_mb=args.max_memory, cycles=args.cycles, fail_on=settings.fail_on, reports=False)
     try:
@@ -73,14 +62,25 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
     if len(cases) != 1:
         return _err(f"--explore explores one application; {len(cases)} found: name one")
     base = cases[0]
+    nominal_run = _nominal(base, args, settings)
+    if isinstance(nominal_run, str):
+        return _err(nominal_run)
+    explore = scenario.data.get("explore", {}) if isinstance(scenario.data.get("explore"), dict) else {}
+    jitter = args.jitter if args.jitter is not None else explore.get("jitter", 0.0)
+    max_cycle = explore.get("max_cycle_time")
+    ts = timings(scenario.data, scenario.text, float(jitter) if _seconds(jitter) else 0.0)
+    if not any(t.lo < t.hi for t in ts):
+        return _err(f"--explore: nothing to vary in {display_path(args.scenario)}: no time or delay with a range"
+                    " (give --jitter SECONDS, [explore] jitter, or a range such as after = { min = 0.1, max = 0.4 };"
+                    " docs/explore.md)")
+    if args.explore * len(ts) > MAX_VALUES:
+        return _err(f"--explore {args.explore} variants of {len(ts)} times: more than {MAX_VALUES:,} values; explore"
+                    " fewer variants or a smaller scenario")
     out_dir = args.out_dir or DEFAULT_OUT_DIR
     try:
         _prepare(out_dir)
     except OutDirError as exc:
         return _err(f"--out-dir: {exc}")
-    nominal_run = _nominal(base, args, settings)
-    if isinstance(nominal_run, str):
-        return _err(f"--explore: the nominal scenario cannot run: {nominal_run}")
     seen = observe(nominal_run)
 
     runs = _Runs(base, scenario.text, ts, args, Progress(0, unit="runs"))
@@ -173,6 +173,7 @@ def _prepare(out_dir: str) -> None:
 def _nominal(base: Any, args: Any, settings: Any) -> Any:
     """The nominal run, here (its I/O log and task states give the boundaries); a reason when it
     cannot run."""
+    from ...lint import printable_path
     from ...simulation import case as sim_case
 
     spec = sim_case.CaseSpec(base.app_path, settings, robot=args.robot[0] if args.robot else None,
@@ -182,10 +183,13 @@ def _nominal(base: Any, args: Any, settings: Any) -> Any:
     done = sim_case.run_case(spec)
     if done.refused is None:
         return done.result
+    if done.refused == sim_case.SCENARIO:  # the whole scenario checked, at its lines, before anything varies
+        return f"bad scenario: {printable_path(done.message)}"
     if done.errors:
         d = done.errors[0]
-        return f"{len(done.errors)} lint error(s), the first: {d.path}:{d.line}:{d.col}: {d.code} {d.message}"
-    return done.message or done.refused
+        return (f"--explore: the application cannot run: {len(done.errors)} lint error(s), the first: "
+                f"{printable_path(d.path)}:{d.line}:{d.col}: {d.code} {d.message}")
+    return f"--explore: the application cannot run: {printable_path(done.message or done.refused)}"
 
 
 def _command(args: Any, base: Any) -> list[str]:
