@@ -24,8 +24,6 @@ from .simsupport import build, gv
 # Every catalogue instruction the simulator does not simulate, with the diagnostic it stops on
 # and why. An instruction that gets a handler leaves this table.
 NOT_SIMULATED = {
-    "setLatch": ("R002", "position capture of the arm's hardware (9.2.3)"),
-    "getLatch": ("R002", "position capture of the arm's hardware (9.2.3)"),
     "movejf": ("R002", "the compliance option (11.1)"),
     "movelf": ("R002", "the compliance option (11.1)"),
     "isCompliant": ("R002", "the compliance option (11.1)"),

@@ -122,6 +122,14 @@ class MovingArm(ModelArm):
         j = q.position(time_us / US)
         return self.joints_out(j, millimeter_unit)
 
+    def actual_position(self, t: float) -> np.ndarray:
+        """The arm's commanded joints at `t` seconds (model units), what it does: the latch (9.2.3)
+        reads it; no power or monitor speed is applied (`sync`), so a past time can be read."""
+        q = self.queue
+        if q is None:
+            return np.array(self._initial, dtype=float)
+        return q.trajectory.position(t)
+
     def motion_done(self, time_us: int) -> bool:
         """The motion queue is empty (9.5.4, 10.6): no command left to execute."""
         q = self.sync(time_us)
