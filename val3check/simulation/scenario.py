@@ -20,6 +20,8 @@ from ..interpretation.cell import Reaction, SerialReply
 from ..interpretation.events import ControllerChange, InputsChange, KeyPress, SerialData
 from ..interpretation.user_page import Key
 from ..interpretation.values import Arr, FaultyIOPoint, IOPoint
+from .scenario_options import TABLES as OPTION_TABLES
+from .scenario_options import apply_options
 
 SCENARIO_VERSION = 1
 
@@ -183,7 +185,8 @@ class Applier:
     def apply(self) -> None:
         d = self.sc.data
         self.machine.cell_subsystem.scenario_path = self.sc.path
-        known = {"version", "description", "inputs", "events", "reactions", "keys", "serial", "controller", "io", "robot"}
+        known = {"version", "description", "inputs", "events", "reactions", "keys", "serial", "controller", "io", "robot",
+                 *OPTION_TABLES}
         for k in d:
             if k not in known:
                 self.fail(self.lines.key(k) or self.lines.section(k), f"unknown table or key {k!r}")
@@ -263,6 +266,7 @@ class Applier:
             self._io(d["io"])
         if "robot" in d:
             self._robot(d["robot"])
+        apply_options(self, d)  # chapter 11: scenario_options.py
 
     def _robot(self, table: Any) -> None:
         """[robot] joints = [j1, ..., j6]: the arm's joint position at the start (degrees), the
