@@ -34,9 +34,6 @@ NOT_SIMULATED = {
     "alterEnd": ("R002", "the alter option (11.2)"),
     "alter": ("R002", "the alter option (11.2)"),
     "alterStopTime": ("R002", "the alter option (11.2)"),
-    "getDH": ("R002", "the absolute robot option's calibration (11.4)"),
-    "getDefaultDH": ("R002", "the absolute robot option's calibration (11.4)"),
-    "setDH": ("R002", "the absolute robot option's calibration (11.4)"),
     "resetTurn": ("R002", "the continuous axis option (11.5)"),
 }
 

@@ -66,6 +66,8 @@ class MovingArm(ModelArm):
         self.prismatic = tuple(k == "prismatic" for k in (getattr(model, "joint_kinds", None) or ())) \
             if model is not None else ()
         self._readers: list[Callable[[int, bool], None]] = []  # `watch`
+        self.base_model = model  # the standard geometry (setDH, 11.4, changes `model`)
+        self.geometries: list[tuple[float, Any]] = []  # (from time s, model) after each setDH
 
     def bind(self, controller: Any) -> None:
         """The controller whose power and monitor speed the arm follows (chapter 8)."""
@@ -106,6 +108,17 @@ class MovingArm(ModelArm):
             if float(ctl.monitor_speed) != q.monitor:
                 q.set_monitor_speed(float(ctl.monitor_speed), t)
         return q
+
+    def set_geometry(self, model: Any, t: float) -> None:
+        """setDH (11.4): the arm's kinematics are those of `model` from `t` on (the motion queue is
+        empty: setDH waits for it)."""
+        self.model = model
+        self._kin = {}
+        q = self._queue
+        if q is not None:
+            q.model = model
+            q.kin.use_geometry(model)
+        self.geometries.append((t, model))
 
     # ---- the Arm port ----------------------------------------------------------------------------
 
