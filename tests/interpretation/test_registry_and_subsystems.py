@@ -34,7 +34,6 @@ NOT_SIMULATED = {
     "alterEnd": ("R002", "the alter option (11.2)"),
     "alter": ("R002", "the alter option (11.2)"),
     "alterStopTime": ("R002", "the alter option (11.2)"),
-    "resetTurn": ("R002", "the continuous axis option (11.5)"),
 }
 
 

@@ -46,6 +46,7 @@ from ..motion.findings import MotionError, Source
 from ..motion.mdesc import MDesc
 from ..motion.queue import MotionQueue, QueueFull
 from ..motion.records import time_leaving
+from .arm_layers import Layers, QueueView
 from .model_arm import INCH_MM, ModelArm
 
 US = 1_000_000
@@ -67,6 +68,8 @@ class MovingArm(ModelArm):
             if model is not None else ()
         self._readers: list[Callable[[int, bool], None]] = []  # `watch`
         self.base_model = model  # the standard geometry (setDH, 11.4, changes `model`)
+        # what chapter 11 adds on top of the queue's trajectory (arm_layers.py)
+        self.layers = Layers(len(model.joint_limits)) if model is not None else None
         self.geometries: list[tuple[float, Any]] = []  # (from time s, model) after each setDH
 
     def bind(self, controller: Any) -> None:
@@ -98,11 +101,31 @@ class MovingArm(ModelArm):
         return self._queue
 
     def sync(self, time_us: int) -> MotionQueue | None:
-        """The queue, with the controller's power and monitor speed applied at `time_us`."""
+        """The queue, with the controller's power and monitor speed applied at `time_us`, as the
+        chapter 10 handlers use it: told the queue time of the real times they give when a layer
+        of chapter 11 holds the arm (arm_layers.QueueView)."""
+        q = self._sync(time_us)
+        if q is None or self.layers.trivial:
+            return q
+        return QueueView(q, self.layers)  # type: ignore[return-value]
+
+    def queue_time(self, time_us: int) -> float:
+        """The queue time (s) of real time `time_us` (arm_layers.Warp)."""
+        t = time_us / US
+        return t if self.layers is None else self.layers.queue_time(t)
+
+    def real_time(self, tau: float | None) -> float | None:
+        """The first real time (s) the arm reaches queue time `tau`."""
+        if tau is None or self.layers is None or self.layers.warp.identity:
+            return tau
+        return self.layers.warp.real_time(tau)
+
+    def _sync(self, time_us: int) -> MotionQueue | None:
+        """The queue itself, with the controller's power and monitor speed applied at `time_us`."""
         q = self.queue
         ctl = self.controller
         if q is not None and ctl is not None:
-            t = time_us / US
+            t = self.queue_time(time_us)
             if bool(ctl.powered) != q.powered:
                 q.set_power(bool(ctl.powered), t)
             if float(ctl.monitor_speed) != q.monitor:
@@ -129,10 +152,10 @@ class MovingArm(ModelArm):
 
     def joints_at(self, time_us: int, millimeter_unit: bool = True) -> Joints:
         """herej(): the commanded joints at `time_us`, in the caller's unit."""
-        q = self.sync(time_us)
+        q = self._sync(time_us)
         if q is None:
             return self._initial
-        j = q.position(time_us / US)
+        j = self.layers.actual(q.trajectory, time_us / US)
         return self.joints_out(j, millimeter_unit)
 
     def actual_position(self, t: float) -> np.ndarray:
@@ -140,31 +163,31 @@ class MovingArm(ModelArm):
         reads it; no power or monitor speed is applied (`sync`), so a past time can be read."""
         q = self.queue
         if q is None:
-            return np.array(self._initial, dtype=float)
-        return q.trajectory.position(t)
+            return np.array(self._initial, dtype=float) + self.layers.turns.at(t)
+        return self.layers.actual(q.trajectory, t)
 
     def motion_done(self, time_us: int) -> bool:
         """The motion queue is empty (9.5.4, 10.6): no command left to execute."""
-        q = self.sync(time_us)
-        return q is None or q.is_empty(time_us / US)
+        q = self._sync(time_us)
+        return q is None or q.is_empty(self.queue_time(time_us))
 
     def end_motion(self, time_us: int) -> None:
         """What waitEndMove() does before it waits (and open()/close(), 9.5.4): cancel the blend
         of the last command; error 150 when a recorded command cannot be executed."""
-        q = self.sync(time_us)
+        q = self._sync(time_us)
         if q is None:
             return
         try:
-            q.wait_end_move(time_us / US)
+            q.wait_end_move(self.queue_time(time_us))
         except MotionError as exc:
             raise Val3RuntimeError(exc.code, exc.message) from None
 
     def has_room(self, time_us: int) -> bool:
         """A place in the motion queue (a motion instruction that found it full waits for this)."""
-        q = self.sync(time_us)
+        q = self._sync(time_us)
         if q is None:
             return True
-        q.advance(time_us / US)
+        q.advance(self.queue_time(time_us))
         return len(q.pending) < q.capacity
 
     def waiting_reason(self) -> tuple[str, str] | None:
@@ -194,10 +217,10 @@ class MovingArm(ModelArm):
 
     def next_time(self, now_us: int) -> int | None:
         """The Subsystem's next change: a command completes, the arm rests or has rested 50 ms, or --cycles ends the run."""
-        q = self.sync(now_us)
+        q = self._sync(now_us)
         if q is None:
             return None
-        t = q.next_time(now_us)
+        t = self._next_queue_event(q, now_us)
         end = self._cycles_end()
         if end is not None:
             e = int(np.ceil(end * US - 1e-6))
@@ -207,12 +230,12 @@ class MovingArm(ModelArm):
 
     def advance(self, to_us: int) -> None:
         """The Subsystem's advance: the watchers read the program's values, the commands done by `to_us` complete; EndRun when the arm starts the cycle after the last one asked for."""
-        q = self.sync(to_us)
+        q = self._sync(to_us)
         if q is None:
             return
         for reader in self._readers:
             reader(to_us, True)
-        q.advance_us(to_us)
+        q.advance(self.queue_time(to_us))
         end = self._cycles_end()
         if end is not None and end * US <= to_us + 1e-6:
             self._end_command = None  # once: stop() then runs as after any end of a run
@@ -224,7 +247,18 @@ class MovingArm(ModelArm):
         command = self._end_command
         if command is None or command.placement.s_begin is None or command.state == "cancelled":
             return None
-        return time_leaving(self._queue.trajectory.profile, command.placement.s_begin)
+        return self.real_time(time_leaving(self._queue.trajectory.profile, command.placement.s_begin))
+
+    def _next_queue_event(self, q: MotionQueue, now_us: int) -> int | None:
+        """The queue's next event (next_time) in real time: when the arm reaches it."""
+        if self.layers.warp.identity:
+            return q.next_time(now_us)
+        tau = q.next_event(self.queue_time(now_us))
+        t = self.real_time(tau)
+        if t is None:
+            return None
+        e = int(np.ceil(t * US - 1e-6))
+        return e if e > now_us else now_us + 1
 
     # ---- for the chapter 10 handlers -------------------------------------------------------------------
 
@@ -233,7 +267,7 @@ class MovingArm(ModelArm):
         """movej/movel/movec: the command's identifier, or QueueFull. Poses of `target`/`via`
         and `tool_in_flange` are 4x4 matrices in the caller's length unit; joints too (a
         SCARA's axis 3). Raises MotionError (mdesc 100-106, 154, 150, 81)."""
-        q = self.sync(time_us)
+        q = self._sync(time_us)
         s = 1.0 if millimeter_unit else INCH_MM
         target = self._target_in_mm(target, s)
         via = None if via is None else self._target_in_mm(via, s)
@@ -243,7 +277,7 @@ class MovingArm(ModelArm):
             tool[:3, 3] *= s
         move = MoveCommand(kind, target, MDesc.from_fields(md, s), tool=tool, via=via, source=source,
                            tool_name=tool_name)
-        r = q.record(move, time_us / US)
+        r = q.record(move, self.queue_time(time_us))
         if not isinstance(r, QueueFull):
             task = source.task
             self.counter.note(task, source)
@@ -263,11 +297,16 @@ class MovingArm(ModelArm):
         return Target(pose=pose, config=tg.config, name=tg.name, frame=tg.frame)
 
     def joints_in(self, joints: Sequence[float], millimeter_unit: bool) -> tuple[float, ...]:
-        """Joint values of the application (a prismatic axis in its length unit) in the model's."""
+        """Joint values of the application (a prismatic axis in its length unit) as the motion
+        queue's: the model's units, less the turns resetTurn took off the continuous axis (11.5)."""
         if millimeter_unit or not any(self.prismatic):
-            return tuple(float(v) for v in joints)
-        return tuple(float(v) * INCH_MM if k < len(self.prismatic) and self.prismatic[k] else float(v)
-                     for k, v in enumerate(joints))
+            out = tuple(float(v) for v in joints)
+        else:
+            out = tuple(float(v) * INCH_MM if k < len(self.prismatic) and self.prismatic[k] else float(v)
+                        for k, v in enumerate(joints))
+        if self.layers is None or not self.layers.turns.times:
+            return out
+        return tuple(float(v) for v in np.asarray(out) - self.layers.turns.latest[:len(out)])
 
     def joints_out(self, joints: Sequence[float], millimeter_unit: bool) -> Joints:
         """Joint values of the model in the caller's unit (a prismatic axis in inches for an inch application)."""

@@ -28,7 +28,7 @@ from ..interpretation.machine import Budgets, Machine
 from ..interpretation.registry import Registry
 from ..interpretation.scheduler import EndRun
 from ..loading.model import Application, Workspace
-from . import ch09_latch, ch10_motion, ch11_absolute, ch11_licences
+from . import ch09_latch, ch10_motion, ch11_absolute, ch11_continuous, ch11_licences
 from .collect import collect
 from .model_arm import INCH_MM
 from .moving_arm import MovingArm
@@ -38,7 +38,7 @@ from .scenario import Scenario, apply_scenario
 # What the generated code calls, then the chapters of the manual, in order.
 INTERPRETER_MODULES = (code_support, waiting, not_simulated, ch02_variables, ch03_simple_types, ch04_user_page,
                        ch05_tasks, ch06_libraries, ch08_controller, ch09_geometry)
-MOTION_MODULES = (ch10_motion, ch09_latch, ch11_licences, ch11_absolute)
+MOTION_MODULES = (ch10_motion, ch09_latch, ch11_licences, ch11_absolute, ch11_continuous)
 
 
 @dataclass
@@ -80,6 +80,8 @@ def build_machine(ws: Workspace, app: Application, options: SimOptions, *, regis
                       max_lines=options.max_lines, max_transcript=options.max_transcript,
                       max_memory_mb=options.max_memory_mb)
     arm = arm if arm is not None else MovingArm(options.robot, cycles=options.cycles)
+    if isinstance(arm, MovingArm) and arm.has_model and ch11_continuous.uses_reset_turn(ws, app):
+        ch11_continuous.set_continuous(arm, True)  # the continuous axis option is in use (11.5)
     machine = Machine(ws, app, registry or build_registry(), arm, budgets=budgets, disk_roots=options.disk_roots)
     if hasattr(arm, "bind"):
         arm.bind(machine.controller)  # its power and monitor speed (chapter 8)

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from .ch11_continuous import set_continuous
 from .ch11_licences import OEM_STATES, OPTIONS, licences_of
 
 TABLES = ("options",)
@@ -34,6 +35,8 @@ def _options(ap: Any, table: Any) -> None:
             if not isinstance(value, bool):
                 ap.fail(ln, f"[options] {key}: true (installed) or false, not {value!r}")
             lic.options[key] = value
+            if key == "continuousAxis" and getattr(ap.machine.arm, "has_model", False):
+                set_continuous(ap.machine.arm, value)  # the axis's range with the option, or without (11.5)
         else:
             ap.fail(ln, f"[options]: unknown key {key!r} (allowed: {', '.join(sorted([*OPTIONS, 'oem']))})")
 

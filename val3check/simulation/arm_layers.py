@@ -1,0 +1,248 @@
+"""What the arm does on top of its motion queue's trajectory (chapter 11): the layers between the
+queue's nominal trajectory and the arm's actual commanded position.
+
+    layers = Layers(axes)
+    layers.warp        # queue time as a function of real time: compliant moves hold or go back (11.1)
+    layers.turns       # whole turns taken off the continuous axis from a given time (resetTurn, 11.5)
+    layers.altered     # joint offsets on the 4 ms setpoints (ALTER, 11.2), a source set by alteration.py
+    layers.actual(trajectory, t)              # the arm's joints at real time t
+    ActualTrajectory(trajectory, layers)      # the same as a trajectory, for the run's record
+
+The motion queue (motion/queue.py) plans and times the nominal path and knows nothing of these:
+it is told queue times (`queue_time`), and what it plans is read through them. Without any of
+them (`trivial`) the arm is the queue's trajectory, exactly.
+"""
+
+from __future__ import annotations
+
+import bisect
+import math
+from typing import Any
+
+import numpy as np
+
+from ..motion.trajectory import Trajectory
+
+US = 1_000_000
+
+
+class Warp:
+    """Queue time τ over real time t: pieces from T[i] with τ = TAU[i] + R[i]·(t - T[i]), R in
+    {1, 0, -1} (the arm follows its path, holds, or goes back along it). Identity at first."""
+
+    def __init__(self) -> None:
+        self.T = [0.0]
+        self.TAU = [0.0]
+        self.R = [1]
+        self.max_tau = [0.0]  # the largest τ reached at each T[i] (queue calls never go back)
+
+    @property
+    def identity(self) -> bool:
+        return len(self.T) == 1
+
+    def _piece(self, t: float) -> int:
+        return max(bisect.bisect_right(self.T, t) - 1, 0)
+
+    def tau(self, t: float) -> float:
+        """The queue time of the arm's position at real time t."""
+        k = self._piece(t)
+        return self.TAU[k] + self.R[k] * (t - self.T[k])
+
+    def tau_many(self, times) -> np.ndarray:
+        times = np.asarray(times, dtype=float)
+        if self.identity:
+            return times.copy()
+        T = np.asarray(self.T)
+        k = np.clip(np.searchsorted(T, times, side="right") - 1, 0, len(T) - 1)
+        return np.asarray(self.TAU)[k] + np.asarray(self.R)[k] * (times - T[k])
+
+    def rate(self, t: float) -> int:
+        return self.R[self._piece(t)]
+
+    def queue_time(self, t: float) -> float:
+        """The time the motion queue is told at real time t: τ, never less than before."""
+        k = self._piece(t)
+        return max(self.max_tau[k], self.TAU[k] + self.R[k] * (t - self.T[k]))
+
+    def set_rate(self, t: float, rate: int) -> None:
+        """From real time t on, τ moves at `rate`."""
+        if rate == self.rate(t) and t >= self.T[-1]:
+            return
+        tau = self.tau(t)
+        k = self._piece(t)
+        reached = max(self.max_tau[k], tau)
+        del self.T[k + 1:], self.TAU[k + 1:], self.R[k + 1:], self.max_tau[k + 1:]
+        if t <= self.T[k]:
+            self.TAU[k], self.R[k], self.max_tau[k] = tau, rate, reached
+            return
+        self.T.append(t)
+        self.TAU.append(tau)
+        self.R.append(rate)
+        self.max_tau.append(reached)
+
+    def real_time(self, tau: float) -> float | None:
+        """The first real time at which τ reaches `tau` (None when it has not, as planned so far:
+        the last piece goes on at its rate)."""
+        for i in range(len(self.T)):
+            t0, a, r = self.T[i], self.TAU[i], self.R[i]
+            t1 = self.T[i + 1] if i + 1 < len(self.T) else math.inf
+            if a >= tau - 1e-12:
+                return t0
+            if r > 0:
+                t = t0 + (tau - a)
+                if t <= t1:
+                    return t
+        return None
+
+
+class Offsets:
+    """Joint offsets by whole turns (resetTurn): `values[i]` from `times[i]` on."""
+
+    def __init__(self, axes: int) -> None:
+        self.times: list[float] = []
+        self.values: list[np.ndarray] = []
+        self.zero = np.zeros(axes)
+
+    def at(self, t: float) -> np.ndarray:
+        k = bisect.bisect_right(self.times, t) - 1
+        return self.zero if k < 0 else self.values[k]
+
+    def at_many(self, times) -> np.ndarray:
+        times = np.asarray(times, dtype=float)
+        out = np.tile(self.zero, (len(times), 1))
+        for t0, v in zip(self.times, self.values):
+            out[times >= t0] = v
+        return out
+
+    @property
+    def latest(self) -> np.ndarray:
+        return self.values[-1] if self.values else self.zero
+
+    def add(self, t: float, delta: np.ndarray) -> None:
+        self.times.append(t)
+        self.values.append(self.latest + delta)
+
+
+class Layers:
+    """The layers of one arm (see the module docstring). `altered`: None, or an object with
+    `offset(t)`, `offset_many(times)`, `rate(t)` (joint offsets and their speed, model units) and
+    `moving()` (intervals where the offset changes)."""
+
+    def __init__(self, axes: int) -> None:
+        self.warp = Warp()
+        self.turns = Offsets(axes)
+        self.altered: Any = None
+
+    @property
+    def trivial(self) -> bool:
+        return self.warp.identity and not self.turns.times and self.altered is None
+
+    def queue_time(self, t: float) -> float:
+        return self.warp.queue_time(t)
+
+    def offset(self, t: float) -> np.ndarray:
+        out = self.turns.at(t)
+        if self.altered is not None:
+            out = out + self.altered.offset(t)
+        return out
+
+    def offset_many(self, times) -> np.ndarray:
+        out = self.turns.at_many(times)
+        if self.altered is not None:
+            out = out + self.altered.offset_many(times)
+        return out
+
+    def actual(self, trajectory: Trajectory, t: float) -> np.ndarray:
+        """The arm's joints at real time t (model units)."""
+        if self.trivial:
+            return trajectory.position(t)
+        return trajectory.position(self.warp.tau(t)) + self.offset(t)
+
+
+class ActualTrajectory(Trajectory):
+    """The arm's trajectory as it moves (the layers applied), with the nominal trajectory's
+    interface (arm_record.JointTrajectory): what the run's record, its reports and the collision
+    checks read."""
+
+    def __init__(self, nominal: Trajectory, layers: Layers) -> None:
+        super().__init__(nominal.path, nominal.profile)
+        self.nominal = nominal
+        self.layers = layers
+
+    def position(self, t: float) -> np.ndarray:
+        return self.layers.actual(self.nominal, t)
+
+    def positions(self, times) -> np.ndarray:
+        times = np.asarray(times, dtype=float)
+        lay = self.layers
+        return self.nominal.positions(lay.warp.tau_many(times)) + lay.offset_many(times)
+
+    def velocity(self, t: float) -> np.ndarray:
+        lay = self.layers
+        v = self.nominal.velocity(lay.warp.tau(t)) * lay.warp.rate(t)
+        if lay.altered is not None:
+            v = v + lay.altered.rate(t)
+        return v
+
+    def sample(self, t0: float, t1: float, dt: float = 0.004):
+        k0 = math.ceil(t0 / dt - 1e-9)
+        k1 = math.floor(t1 / dt + 1e-9)
+        times = np.arange(k0, k1 + 1) * dt
+        if len(times) == 0:
+            n = len(self.path.q_rest)
+            return times, np.zeros((0, n)), np.zeros((0, n))
+        return times, self.positions(times), np.array([self.velocity(t) for t in times])
+
+    def moving(self, t_end: float) -> list[tuple[float, float]]:
+        """Where the nominal motion runs (in real time) or the alteration changes."""
+        warp = self.layers.warp
+        spans = []
+        for a, b in self.nominal.moving(math.inf):
+            ra, rb = warp.real_time(a), warp.real_time(b)
+            if ra is None:
+                continue
+            spans.append((ra, t_end if rb is None else rb))
+        if not warp.identity:  # going back along the path: a motion too
+            for i, r in enumerate(warp.R):
+                if r < 0:
+                    spans.append((warp.T[i], warp.T[i + 1] if i + 1 < len(warp.T) else t_end))
+        if self.layers.altered is not None:
+            spans.extend(self.layers.altered.moving())
+        out: list[tuple[float, float]] = []
+        for a, b in sorted((a, min(b, t_end)) for a, b in spans if a < t_end):
+            if out and a <= out[-1][1] + 1e-12:
+                out[-1] = (out[-1][0], max(out[-1][1], b))
+            else:
+                out.append((a, b))
+        return out
+
+
+class QueueView:
+    """The motion queue as the chapter 10 handlers use it (`MovingArm.sync`), told queue times
+    for real ones when a layer holds the arm (the handlers pass seconds of real time)."""
+
+    _TIMED = frozenset({"is_settled", "stop_move", "restart_move", "get_speed", "get_move_id", "position",
+                        "velocity", "acceleration", "joint_force", "is_empty", "end_time", "wait_end_move", "advance",
+                        "reset_motion"})
+
+    def __init__(self, queue: Any, layers: Layers) -> None:
+        object.__setattr__(self, "_queue", queue)
+        object.__setattr__(self, "_layers", layers)
+
+    def __getattr__(self, name: str) -> Any:
+        attr = getattr(self._queue, name)
+        if name not in self._TIMED:
+            return attr
+        layers = self._layers
+
+        def timed(*args, **kw):
+            args = list(args)
+            i = 1 if name == "get_speed" else 0
+            if len(args) > i:
+                args[i] = layers.queue_time(args[i])
+            return attr(*args, **kw)
+
+        return timed
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        setattr(self._queue, name, value)
