@@ -24,9 +24,6 @@ from .simsupport import build, gv
 # Every catalogue instruction the simulator does not simulate, with the diagnostic it stops on
 # and why. An instruction that gets a handler leaves this table.
 NOT_SIMULATED = {
-    "movejf": ("R002", "the compliance option (11.1)"),
-    "movelf": ("R002", "the compliance option (11.1)"),
-    "isCompliant": ("R002", "the compliance option (11.1)"),
     "alterMovej": ("R002", "the alter option (11.2)"),
     "alterMovel": ("R002", "the alter option (11.2)"),
     "alterMovec": ("R002", "the alter option (11.2)"),

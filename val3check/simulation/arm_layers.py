@@ -95,6 +95,25 @@ class Warp:
         return None
 
 
+    def leaving_time(self, tau: float) -> float | None:
+        """The real time at which the arm leaves queue time `tau` for good (the end of a hold
+        there): the last time τ ≤ tau. None when it holds at or before it still."""
+        last = None
+        n = len(self.T)
+        for i in range(n):
+            t0, a, r = self.T[i], self.TAU[i], self.R[i]
+            t1 = self.T[i + 1] if i + 1 < n else math.inf
+            end = a + r * (t1 - t0) if t1 < math.inf else None
+            if r > 0:
+                if a <= tau + 1e-12:
+                    last = min(t0 + (tau - a), t1)
+            elif a <= tau + 1e-12 or (end is not None and end <= tau + 1e-12) or (end is None and r < 0):
+                if t1 == math.inf:
+                    return None
+                last = t1
+        return last
+
+
 class Offsets:
     """Joint offsets by whole turns (resetTurn): `values[i]` from `times[i]` on."""
 

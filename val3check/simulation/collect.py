@@ -114,7 +114,8 @@ def actual_record(rec, arm):
     """A motion record (queue times) in real time: when the arm got there (arm_layers.Warp)."""
     from dataclasses import replace
 
-    start = arm.real_time(rec.start)
+    layers = arm.layers
+    start = rec.start if rec.start is None else layers.warp.leaving_time(rec.start)
     end = arm.real_time(rec.end)
     return replace(rec, start=start, end=end if end is not None or rec.end is None else None)
 

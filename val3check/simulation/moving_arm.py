@@ -47,6 +47,7 @@ from ..motion.mdesc import MDesc
 from ..motion.queue import MotionQueue, QueueFull
 from ..motion.records import time_leaving
 from .arm_layers import Layers, QueueView
+from .compliance import Compliance
 from .model_arm import INCH_MM, ModelArm
 
 US = 1_000_000
@@ -70,6 +71,7 @@ class MovingArm(ModelArm):
         self.base_model = model  # the standard geometry (setDH, 11.4, changes `model`)
         # what chapter 11 adds on top of the queue's trajectory (arm_layers.py)
         self.layers = Layers(len(model.joint_limits)) if model is not None else None
+        self.compliance = Compliance()  # compliant moves and the cell's forces on them (11.1)
         self.geometries: list[tuple[float, Any]] = []  # (from time s, model) after each setDH
 
     def bind(self, controller: Any) -> None:
@@ -196,6 +198,9 @@ class MovingArm(ModelArm):
         q = self._queue
         if q is None or (not q.pending and q.open is None):
             return None
+        held = self.compliance.waiting_reason(q, self.layers, self.compliance.t_eval)
+        if held is not None:
+            return "R003", held
         if q.monitor <= 0.0 and q.powered and not q.held:
             return "R003", ("the monitor speed is 0 %: the arm holds until setMonitorSpeed() or the scenario "
                             "([controller] changes = [{ at = ..., monitor_speed = ... }]) raises it")
@@ -221,6 +226,10 @@ class MovingArm(ModelArm):
         if q is None:
             return None
         t = self._next_queue_event(q, now_us)
+        tc = self.compliance.next_time(q, self.layers, now_us / US)
+        if tc is not None:
+            e = max(int(np.ceil(tc * US - 1e-6)), now_us + 1)
+            t = e if t is None else min(t, e)
         end = self._cycles_end()
         if end is not None:
             e = int(np.ceil(end * US - 1e-6))
@@ -235,6 +244,7 @@ class MovingArm(ModelArm):
             return
         for reader in self._readers:
             reader(to_us, True)
+        self.compliance.update(q, self.layers, to_us / US)
         q.advance(self.queue_time(to_us))
         end = self._cycles_end()
         if end is not None and end * US <= to_us + 1e-6:

@@ -1,5 +1,6 @@
 """The scenario's tables for chapter 11 and the cell the options act in (docs/scenario.md):
-`[options]` (the runtime licences, 11.3), read by `scenario.Applier` after its own tables.
+`[options]` (the runtime licences, 11.3), `[[surfaces]]` and `[[pushes]]` (the cell's forces on
+compliant moves, 11.1), read by `scenario.Applier` after its own tables.
 
     apply_options(applier, data)      # applier: scenario.Applier (its lines, fail(), signal())
 """
@@ -8,16 +9,108 @@ from __future__ import annotations
 
 from typing import Any
 
+import numpy as np
+
 from .ch11_continuous import set_continuous
 from .ch11_licences import OEM_STATES, OPTIONS, licences_of
+from .compliance import Push, Surface
 
-TABLES = ("options",)
+TABLES = ("options", "surfaces", "pushes")
 
 
 def apply_options(ap: Any, data: dict) -> None:
     """Read the chapter 11 tables of the scenario `data` into the run (`ap.machine`)."""
     if "options" in data:
         _options(ap, data["options"])
+    for i, table in enumerate(_array(ap, data, "surfaces")):
+        _surface(ap, table, ap.lines.section("surfaces", i), i)
+    for i, table in enumerate(_array(ap, data, "pushes")):
+        _push(ap, table, ap.lines.section("pushes", i))
+
+
+def _array(ap: Any, data: dict, key: str) -> list:
+    v = data.get(key, [])
+    if not isinstance(v, list) or not all(isinstance(x, dict) for x in v):
+        ap.fail(ap.lines.section(key) or ap.lines.key(key), f"{key} must be an array of tables ([[{key}]])")
+    return v
+
+
+def _finite(v: Any) -> bool:
+    from .scenario import _finite as finite
+
+    return finite(v)
+
+
+def _seconds(v: Any) -> int | None:
+    from .scenario import _seconds as seconds
+
+    return seconds(v)
+
+
+def _compliance(ap: Any):
+    """The arm's compliance (compliance.py), None without an arm model."""
+    arm = ap.machine.arm
+    return getattr(arm, "compliance", None) if getattr(arm, "has_model", False) else None
+
+
+def _vector(ap: Any, v: Any, line: int, what: str, nonzero: bool = False) -> np.ndarray:
+    if not isinstance(v, list) or len(v) != 3 or not all(_finite(x) for x in v):
+        ap.fail(line, f"{what} = [x, y, z]: three finite numbers (mm, world frame)")
+    out = np.array(v, dtype=float)
+    if nonzero and not np.linalg.norm(out) > 0:
+        ap.fail(line, f"{what}: not a direction (all zeros)")
+    return out
+
+
+def _surface(ap: Any, table: dict, line: int, index: int) -> None:
+    """[[surfaces]]: a plane the tool centre point of a compliant move meets (11.1)."""
+    ap._keys(table, {"name", "point", "normal"}, line, "[[surfaces]]")
+    name = table.get("name", f"surface {index + 1}")
+    if not isinstance(name, str):
+        ap.fail(ap.lines.key("name", line) or line, "[[surfaces]] name = \"text\"")
+    for key in ("point", "normal"):
+        if key not in table:
+            ap.fail(line, f"[[surfaces]] needs {key} = [x, y, z]")
+    point = _vector(ap, table["point"], ap.lines.key("point", line) or line, "[[surfaces]] point")
+    normal = _vector(ap, table["normal"], ap.lines.key("normal", line) or line, "[[surfaces]] normal", True)
+    comp = _compliance(ap)
+    if comp is not None:
+        comp.surfaces.append(Surface(name, point, normal / np.linalg.norm(normal), line))
+
+
+def _push(ap: Any, table: dict, line: int) -> None:
+    """[[pushes]]: a force of the cell along a compliant move's path, at times or with a signal."""
+    ap._keys(table, {"force", "at", "until", "when", "becomes", "after"}, line, "[[pushes]]")
+    force = table.get("force")
+    if not _finite(force):
+        ap.fail(ap.lines.key("force", line) or line, "[[pushes]] needs force = % of the arm's nominal load (a number)")
+    push = Push(float(force))
+    if "when" in table:
+        if "at" in table or "until" in table:
+            ap.fail(line, "[[pushes]]: either at/until (times) or when (a signal), not both")
+        name = table["when"]
+        if not isinstance(name, str):
+            ap.fail(ap.lines.key("when", line) or line, "[[pushes]] when = \"signal\"")
+        io = ap.signal(name, ap.lines.key("when", line) or line)
+        push.io = io
+        push.becomes = ap.value(io, table.get("becomes", True), ap.lines.key("becomes", line) or line, name)
+        after = _seconds(table.get("after", 0))
+        if after is None:
+            ap.fail(ap.lines.key("after", line) or line, "[[pushes]] after = seconds (a finite number from 0 to 1e7)")
+        push.after = after / 1e6
+        if io.value == push.becomes:
+            push.windows.append([push.after, None])
+    else:
+        at = _seconds(table.get("at", 0))
+        until = _seconds(table["until"]) if "until" in table else None
+        if at is None or ("until" in table and (until is None or until <= at)):
+            ap.fail(line, "[[pushes]] at = seconds, until = later seconds (finite numbers from 0 to 1e7)")
+        push.windows.append([at / 1e6, None if until is None else until / 1e6])
+    comp = _compliance(ap)
+    if comp is not None:
+        comp.pushes.append(push)
+        if push.io is not None:
+            comp.watch_signals(ap.machine.cell_subsystem)
 
 
 def _options(ap: Any, table: Any) -> None:
