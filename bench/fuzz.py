@@ -2,7 +2,7 @@
 random inputs, round after round, for a time budget; then how many inputs each property ran and
 what failed. CI runs the same properties on 25 fixed inputs each (docs/fuzzing.md).
 
-Run: python bench/fuzz.py --minutes 10 [--examples 200] [-k sim]
+Run: python bench/fuzz.py --minutes 10 [--examples 200] [-k sim]   (-k language_server: the LSP server)
      (writes only into temporary folders; exit code 1 when an input failed)
 """
 

@@ -93,7 +93,8 @@ def build_parser() -> argparse.ArgumentParser:
     lint.add_argument("--show-settings", action="store_true", help="show the configuration, the applications and the rules of this run, and exit")
     lint.add_argument("--show-files", action="store_true", help="list the files that would be checked, and exit")
     lint.add_argument("--stdin-filename", metavar="PATH", help="check the text read from standard input as if it were the file PATH, "
-                      "in the context of its application (for editors); only its findings are reported")
+                      "in the context of its application (for editors); only its findings are reported; "
+                      "`-` among the paths stands for standard input, as in ruff")
     lint.add_argument("--color", choices=("auto", "always", "never"), default="auto",
                       help="colour the text output (auto: on a terminal; NO_COLOR and FORCE_COLOR are honoured)")
 
@@ -437,6 +438,12 @@ def _app_of_folder(folder: str, apps: list) -> list | None:  # noqa: ANN001
 
 
 def _lint(args: argparse.Namespace) -> int:
+    if "-" in (args.paths or []):  # ruff's spelling of standard input
+        if not args.stdin_filename:
+            print("val3check: error: `-` (standard input) needs --stdin-filename PATH, the file whose text is read"
+                  " (its application is read from the disk)", file=sys.stderr)
+            return EXIT_USAGE
+        args.paths = [p for p in args.paths if p != "-"]
     if args.stdin_filename and not args.paths:
         args.paths = [args.stdin_filename]
     paths = _targets(args.paths)
@@ -617,8 +624,7 @@ def _server() -> int:
         return EXIT_USAGE
     from .lsp.server import main as serve
 
-    serve()
-    return EXIT_OK
+    return serve()  # 0 after shutdown and exit, 1 otherwise (LSP's `exit`)
 
 
 def _rules(args: argparse.Namespace) -> int:

@@ -9,11 +9,13 @@ longer with fresh random inputs (docs/fuzzing.md).
 
 from __future__ import annotations
 
+import json
 import os
 import shutil
 import tempfile
 from pathlib import Path
 
+import pytest
 from hypothesis import HealthCheck, event, given, settings
 from hypothesis import strategies as st
 
@@ -21,12 +23,17 @@ from .fuzzing import (
     CONFIG,
     GLOBALS,
     LOCALS,
+    MESSAGE,
     PROGRAM,
     SCENARIO,
     SUB,
     check_lint_result,
+    check_lsp_output,
     check_sim,
+    frame_piece,
     lint_files,
+    lsp_operations,
+    lsp_requests,
     mutated_app,
     toml_text,
 )
@@ -158,3 +165,96 @@ def test_scenario_is_applied_or_refused_and_the_run_ends(text):
             event("refused (ScenarioError)")
     finally:
         shutil.rmtree(tmp)
+
+
+# ---- the language server (issue 21 M, N) -------------------------------------------------------------
+
+_SENTINEL = b'{"jsonrpc": "2.0", "id": "sentinel", "method": "shutdown"}'
+
+
+def _lsp(*chunks: bytes, server=None):  # noqa: ANN001, ANN202
+    pytest.importorskip("pygls", reason="the lsp extra is not installed")
+    from lsp_session import run
+
+    return run(*chunks, server=server)
+
+
+@given(st.lists(frame_piece(), max_size=8))
+def test_language_server_recovers_from_any_framing(pieces):
+    from lsp_session import initialize
+
+    # the sentinel follows an empty line: a header left open by the pieces ends there
+    code, messages, _server = _lsp(initialize(), *pieces, b"\r\n\r\n", b"Content-Length: %d\r\n\r\n" % len(_SENTINEL),
+                                   _SENTINEL)
+    answered = check_lsp_output(messages)
+    assert "sentinel" in answered, messages[-3:]
+    event(f"{len(messages)} messages out")
+
+
+@given(st.lists(MESSAGE, max_size=8))
+def test_language_server_answers_every_request(messages_in):
+    from lsp_session import initialize
+
+    data, asked = lsp_requests(messages_in)
+    asked = {k: v for k, v in asked.items()}
+    # `exit` ends the session: what follows it is not read
+    cut = next((n for n, m in enumerate(messages_in, 1) if m["method"] == "exit"), None)
+    code, messages, _server = _lsp(initialize(msg_id="init"), data)
+    answered = check_lsp_output(messages)
+    for n, method in asked.items():
+        if cut is not None and n > cut:
+            continue
+        bad_version = messages_in[n - 1].get("jsonrpc", "2.0") != "2.0"
+        assert n in answered or bad_version, (n, method, messages_in[n - 1])
+        event("answered with an error" if "error" in answered.get(n, {"error": 1}) else "answered with a result")
+
+
+@pytest.fixture(scope="module")
+def lsp_workspace(tmp_path_factory):
+    root = tmp_path_factory.mktemp("lspfuzz")
+    (root / "ws" / ".git").mkdir(parents=True)
+    app = write_app(root / "ws", "begin\n  nX = nX + 1\n  call sub(nX)\nend\n", globals_=["num nX"],
+                    programs={"sub": {"params": ["num& x_n"], "code": "begin\n  x_n = 2\nend\n"}})
+    outside = write_app(root / "outside", "begin\n  nSecretMarker = 1\nend\n", globals_=["num nSecretMarker"])
+    os.symlink(outside / "start.pgx", root / "ws" / "link.pgx")
+    return root / "ws", app, outside
+
+
+def _uri(template: str, ws: Path, app: Path, outside: Path) -> str:
+    if not template.startswith("{"):
+        return template
+    folder = {"{app}": app, "{outside}": outside, "{root}": ws}[template.split("/")[0]]
+    return (folder / template.split("/", 1)[1]).as_uri()
+
+
+@given(lsp_operations())
+def test_language_server_takes_any_documents_and_positions(lsp_workspace, ops):
+    from lsp_session import initialize, notification, request
+
+    ws, app, outside = lsp_workspace
+    chunks, asked = [initialize(ws.as_uri())], []
+    for n, (kind, template, arg) in enumerate(ops, 1):
+        uri = _uri(template, ws, app, outside)
+        doc = {"uri": uri}
+        if kind == "open":
+            chunks.append(notification("textDocument/didOpen", {"textDocument": {**doc, "languageId": "val3",
+                                                                                 "version": n, "text": arg}}))
+        elif kind == "change":
+            chunks.append(notification("textDocument/didChange", {"textDocument": {**doc, "version": n},
+                                                                  "contentChanges": [{"text": arg}]}))
+        elif kind in ("close", "save"):
+            chunks.append(notification(f"textDocument/did{kind.title()}", {"textDocument": doc}))
+        else:
+            method = {"hover": "textDocument/hover", "definition": "textDocument/definition",
+                      "symbols": "textDocument/documentSymbol"}[kind]
+            params = {"textDocument": doc} if kind == "symbols" else {"textDocument": doc, "position": arg}
+            chunks.append(request(n, method, params))
+            asked.append(n)
+        event(kind)
+    code, messages, server = _lsp(*chunks)
+    answered = check_lsp_output(messages)
+    assert all(n in answered for n in asked)
+    out = json.dumps(messages)
+    assert "nSecretMarker" not in out and "root:" not in out  # nothing of the files outside the workspace
+    assert not [m for m in messages if m.get("method") == "window/logMessage" and "could not" in m["params"]["message"]]
+    assert server.session.buffers._folder is None  # the buffers' stand-ins removed at the end

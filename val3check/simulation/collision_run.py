@@ -26,7 +26,7 @@ import numpy as np
 
 from ..collision import CellError, CollisionChecker, MotionSpan, arm_model, find_cell, read_cell
 from ..collision.cell import Cell
-from ..collision.checker import same_poses
+from ..collision.poses import same_poses
 from ..collision.records import Contact, MotionReport, PartDrop
 from ..diagnostics import Diagnostic
 from ..geometry import frames as geo_frames

@@ -11,6 +11,7 @@ scenario's settings. Nothing here writes files: reports are `val3check.reporting
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -49,6 +50,7 @@ class SimOptions:
     max_lines: int = 50_000_000
     max_transcript: int = 10_000
     max_memory_mb: float = 512.0  # growth of the process, loading included (interpretation/memory_budget.py)
+    wall_clock: Any = time.monotonic  # what max_wall is measured with (tests: a clock of their own)
     disk_roots: list[str] = field(default_factory=list)
     # the arm model (val3check.robot.RobotModel) or None: see robot_choice.choose_sim_robot
     robot: Any = None
@@ -78,7 +80,7 @@ def build_machine(ws: Workspace, app: Application, options: SimOptions, *, regis
     a `Subsystem`) replace the standard ones (tests, tools)."""
     budgets = Budgets(duration_us=int(round(options.duration * 1_000_000)), wall_s=options.max_wall,
                       max_lines=options.max_lines, max_transcript=options.max_transcript,
-                      max_memory_mb=options.max_memory_mb)
+                      max_memory_mb=options.max_memory_mb, wall_clock=options.wall_clock)
     arm = arm if arm is not None else MovingArm(options.robot, cycles=options.cycles)
     if isinstance(arm, MovingArm) and arm.has_model and ch11_continuous.uses_reset_turn(ws, app):
         ch11_continuous.set_continuous(arm, True)  # the continuous axis option is in use (11.5)
