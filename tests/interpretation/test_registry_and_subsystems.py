@@ -23,14 +23,7 @@ from .simsupport import build, gv
 
 # Every catalogue instruction the simulator does not simulate, with the diagnostic it stops on
 # and why. An instruction that gets a handler leaves this table.
-NOT_SIMULATED = {
-    "alterMovej": ("R002", "the alter option (11.2)"),
-    "alterMovel": ("R002", "the alter option (11.2)"),
-    "alterMovec": ("R002", "the alter option (11.2)"),
-    "alterBegin": ("R002", "the alter option (11.2)"),
-    "alterEnd": ("R002", "the alter option (11.2)"),
-    "alter": ("R002", "the alter option (11.2)"),
-    "alterStopTime": ("R002", "the alter option (11.2)"),
+NOT_SIMULATED: dict[str, tuple[str, str]] = {
 }
 
 

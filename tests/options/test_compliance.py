@@ -20,7 +20,7 @@ SETUP = """  mD.blend = off
   pB = appro(pA, {0, 0, 100, 0, 0, 0})
 """
 G = ["mdesc mD", "point pA", "point pB", "point pEnd", "bool bDuring", "bool bAfter", "num nId", "bool bEmpty",
-     "joint jEnd", "joint jStart", "dio doEjection"]
+     "joint jEnd", "joint jStart", "dio doEjection", "point pMid"]
 
 
 def run(tmp_path, body, scenario=LICENCE, **kw):
@@ -201,3 +201,28 @@ def test_bad_surfaces_and_pushes_are_scenario_errors_with_their_line(tmp_path, t
     with pytest.raises(ScenarioError) as exc:
         run(tmp_path, "", scenario="version = 1\n" + text)
     assert exc.value.line == line
+
+
+def test_reset_motion_while_a_compliant_move_holds_mid_path_leaves_the_arm_there(tmp_path):
+    """A passive move pushed for 0.1 s stops mid-path (the push ends); resetMotion() cancels it:
+    the arm stays where it stopped (no braking along the path: it was at rest), and the next move
+    goes from there to its target."""
+    r = run(tmp_path, """  nId = movelf(pB, flange, mD, 0)
+  delay(1)
+  pMid = here(flange, world)
+  resetMotion()
+  delay(0.5)
+  pEnd = here(flange, world)
+  movej({0, 20, 100, 0, 60, 0}, flange, mD)
+  waitEndMove()
+  jEnd = herej()
+""", scenario=LICENCE + "[[pushes]]\nat = 0.6\nuntil = 0.7\nforce = 50\n")
+    mid = gv(r, "pMid")["trsf"]
+    a = gv(r, "pA")["trsf"]
+    assert mid["z"] < a["z"] - 1.0  # it moved down part of the way
+    assert gv(r, "pEnd")["trsf"] == pytest.approx(mid, abs=1e-9)
+    assert list(gv(r, "jEnd").values()) == pytest.approx([0, 20, 100, 0, 60, 0], abs=1e-9)
+    # the record: the arm at pMid until the next move starts, then on its way to the target
+    nxt = motions(r)[-1]
+    z = [TX.fk(r.motion.trajectory.position(t))[2] for t in (1.05, 1.4, nxt.start)]
+    assert z == pytest.approx([mid["z"]] * 3, abs=1e-9)

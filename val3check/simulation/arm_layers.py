@@ -80,6 +80,20 @@ class Warp:
         self.R.append(rate)
         self.max_tau.append(reached)
 
+    def jump(self, t: float, tau: float, rate: int = 1) -> None:
+        """From real time t on, τ goes on from `tau` (a reset skips the braking of a held arm: the
+        position is kept by a residual offset)."""
+        self.set_rate(t, rate)
+        k = self._piece(t)
+        if self.T[k] < t:
+            self.T.append(t)
+            self.TAU.append(tau)
+            self.R.append(rate)
+            self.max_tau.append(max(self.max_tau[k], tau))
+        else:
+            self.TAU[k] = tau
+            self.max_tau[k] = max(self.max_tau[k], tau)
+
     def real_time(self, tau: float) -> float | None:
         """The first real time at which τ reaches `tau` (None when it has not, as planned so far:
         the last piece goes on at its rate)."""
@@ -142,33 +156,101 @@ class Offsets:
         self.values.append(self.latest + delta)
 
 
+class Residuals:
+    """Joint offsets left when a layer lets go of the arm (a reset of a held arm, the end of an
+    alteration): `delta` from `t` on, decreasing to 0 along the next command recorded after it (by
+    its path fraction): the arm goes from where it is to that command's target."""
+
+    def __init__(self) -> None:
+        self.items: list[tuple[float, np.ndarray, int]] = []  # (from t, delta, index in the queue's history)
+
+    def add(self, t: float, delta: np.ndarray, index: int) -> None:
+        while self.items and self.items[-1][0] >= t:
+            self.items.pop()
+        self.items.append((t, np.asarray(delta, dtype=float), index))
+
+    def _decay(self, queue: Any, index: int) -> tuple[float, float] | None:
+        """(s where it starts decaying, s where it is gone): the next command's part of the path."""
+        for command in queue.history[index:]:
+            place = command.placement
+            if command.state in ("failed", "cancelled") or place.s_begin is None:
+                continue
+            end = place.s_end if place.s_end is not None else place.s_provisional
+            return place.s_begin, end if end is not None else place.s_begin
+        return None
+
+    def at_many(self, queue: Any, times: np.ndarray, taus: np.ndarray, axes: int) -> np.ndarray:
+        out = np.zeros((len(times), axes))
+        if not self.items or queue is None:
+            return out
+        s = None
+        starts = [it[0] for it in self.items]
+        k = np.searchsorted(np.asarray(starts), times, side="right") - 1
+        for i, (t0, delta, index) in enumerate(self.items):
+            sel = k == i
+            if not np.any(sel):
+                continue
+            window = self._decay(queue, index)
+            if window is None:
+                out[sel] = delta
+                continue
+            if s is None:
+                s = queue.profile.states(taus)[0]
+            a, b = window
+            f = np.clip((s[sel] - a) / (b - a), 0.0, 1.0) if b > a else (s[sel] >= a).astype(float)
+            out[sel] = (1.0 - f)[:, None] * delta
+        return out
+
+
 class Layers:
     """The layers of one arm (see the module docstring). `altered`: None, or an object with
-    `offset(t)`, `offset_many(times)`, `rate(t)` (joint offsets and their speed, model units) and
-    `moving()` (intervals where the offset changes)."""
+    `offset_many(times)`, `rate(t)` (joint offsets and their speed, model units) and `moving()`
+    (intervals where the offset changes). `residuals`: what a layer left when it let go.
+    `hooks`: objects with `before(t)` (bring their state up to real time t before the program
+    acts on the queue) and `after_reset(t, actual)` (the queue was reset at t; `actual` the arm's
+    joints just before)."""
 
     def __init__(self, axes: int) -> None:
+        self.axes = axes
         self.warp = Warp()
         self.turns = Offsets(axes)
+        self.residuals = Residuals()
         self.altered: Any = None
+        self.queue: Any = None
+        self.hooks: list[Any] = []
 
     @property
     def trivial(self) -> bool:
-        return self.warp.identity and not self.turns.times and self.altered is None
+        return self.warp.identity and not self.turns.times and self.altered is None and not self.residuals.items
+
+    def before(self, t: float) -> None:
+        for h in self.hooks:
+            h.before(t)
+
+    def after_reset(self, t: float, actual: np.ndarray) -> None:
+        """The queue was reset at real time t: a held arm stays where it is (its braking is skipped),
+        the layers let go, what is left of their offsets decays along the next command."""
+        q = self.queue
+        if self.warp.rate(t) == 0:  # held: it stopped at once, the queue's braking is not the arm's
+            self.warp.jump(t, q.profile.t_end)
+        for h in self.hooks:
+            h.after_reset(t)
+        nominal = q.trajectory.position(self.warp.tau(t))
+        self.residuals.add(t, actual - self.turns.at(t) - nominal, len(q.history))
 
     def queue_time(self, t: float) -> float:
         return self.warp.queue_time(t)
 
     def offset(self, t: float) -> np.ndarray:
-        out = self.turns.at(t)
-        if self.altered is not None:
-            out = out + self.altered.offset(t)
-        return out
+        return self.offset_many(np.array([t]))[0]
 
     def offset_many(self, times) -> np.ndarray:
+        times = np.asarray(times, dtype=float)
         out = self.turns.at_many(times)
         if self.altered is not None:
             out = out + self.altered.offset_many(times)
+        if self.residuals.items:
+            out = out + self.residuals.at_many(self.queue, times, self.warp.tau_many(times), self.axes)
         return out
 
     def actual(self, trajectory: Trajectory, t: float) -> np.ndarray:
@@ -257,9 +339,16 @@ class QueueView:
         def timed(*args, **kw):
             args = list(args)
             i = 1 if name == "get_speed" else 0
-            if len(args) > i:
-                args[i] = layers.queue_time(args[i])
-            return attr(*args, **kw)
+            t = args[i] if len(args) > i else None
+            if t is not None:
+                layers.before(t)
+                args[i] = layers.queue_time(t)
+            if name != "reset_motion" or t is None:
+                return attr(*args, **kw)
+            actual = layers.actual(self._queue.trajectory, t)
+            out = attr(*args, **kw)
+            layers.after_reset(t, actual)
+            return out
 
         return timed
 

@@ -42,15 +42,18 @@ from ..interpretation.scheduler import EndRun
 from ..language.runtime_errors import Val3RuntimeError
 from ..motion.commands import MoveCommand, Target
 from ..motion.cycle import CycleCounter
+from ..motion.failures import failure_text
 from ..motion.findings import MotionError, Source
 from ..motion.mdesc import MDesc
 from ..motion.queue import MotionQueue, QueueFull
 from ..motion.records import time_leaving
 from .arm_layers import Layers, QueueView
+from .alteration import Alteration
 from .compliance import Compliance
 from .model_arm import INCH_MM, ModelArm
 
 US = 1_000_000
+TICK_US = 4000  # the controller's setpoints (ALTER's samples, 11.2.3)
 
 
 class MovingArm(ModelArm):
@@ -72,6 +75,9 @@ class MovingArm(ModelArm):
         # what chapter 11 adds on top of the queue's trajectory (arm_layers.py)
         self.layers = Layers(len(model.joint_limits)) if model is not None else None
         self.compliance = Compliance()  # compliant moves and the cell's forces on them (11.1)
+        self.alteration = Alteration(self)  # ALTER (11.2)
+        if self.layers is not None:
+            self.layers.hooks.append(_Hook(self))
         self.geometries: list[tuple[float, Any]] = []  # (from time s, model) after each setDH
 
     def bind(self, controller: Any) -> None:
@@ -94,6 +100,7 @@ class MovingArm(ModelArm):
             self._queue = MotionQueue(self.model, np.array(self._initial, dtype=float),
                                       powered=True if ctl is None else bool(ctl.powered),
                                       monitor=100.0 if ctl is None else float(ctl.monitor_speed))
+            self.layers.queue = self._queue
         return self._queue
 
     @property
@@ -169,15 +176,21 @@ class MovingArm(ModelArm):
         return self.layers.actual(q.trajectory, t)
 
     def motion_done(self, time_us: int) -> bool:
-        """The motion queue is empty (9.5.4, 10.6): no command left to execute."""
+        """The motion queue is empty (9.5.4, 10.6): no command left to execute (a move waiting for
+        alterEnd is one, 11.2.3)."""
         q = self._sync(time_us)
-        return q is None or q.is_empty(self.queue_time(time_us))
+        return q is None or q.is_empty(self.queue_time(time_us)) and not self.alteration.deferred
 
     def end_motion(self, time_us: int) -> None:
         """What waitEndMove() does before it waits (and open()/close(), 9.5.4): cancel the blend
         of the last command; error 150 when a recorded command cannot be executed."""
         q = self._sync(time_us)
         if q is None:
+            return
+        if self.alteration.deferred:  # the blend of the last move, when alterEnd records it
+            if q.failure is not None:
+                raise Val3RuntimeError(150, failure_text(q.failure))
+            self.alteration.close_after_flush = True
             return
         try:
             q.wait_end_move(self.queue_time(time_us))
@@ -196,8 +209,15 @@ class MovingArm(ModelArm):
         """Why recorded motion cannot go on, for a task that waits for it: (rule, words naming
         the condition and what changes it), or None when the arm can move."""
         q = self._queue
+        if q is not None and self.alteration.deferred:
+            move = self.alteration.deferred[0][0]
+            return "R003", (f"the {move.kind} of line {move.source.line}, after an alterable trajectory, waits for "
+                            "alterEnd() (11.2.3: it can be computed only after alterEnd), and no task calls it")
         if q is None or (not q.pending and q.open is None):
             return None
+        if self.alteration.state == "error":
+            return "R003", (f"the arm stopped on an invalid alteration ({q.failure.source.label()}, R055): the motion "
+                            "goes on only after resetMotion() (11.2.4)")
         held = self.compliance.waiting_reason(q, self.layers, self.compliance.t_eval)
         if held is not None:
             return "R003", held
@@ -230,6 +250,9 @@ class MovingArm(ModelArm):
         if tc is not None:
             e = max(int(np.ceil(tc * US - 1e-6)), now_us + 1)
             t = e if t is None else min(t, e)
+        if self.alteration.needs_ticks(q, now_us / US):  # the 4 ms setpoints of ALTER
+            e = (now_us // TICK_US + 1) * TICK_US
+            t = e if t is None else min(t, e)
         end = self._cycles_end()
         if end is not None:
             e = int(np.ceil(end * US - 1e-6))
@@ -245,6 +268,7 @@ class MovingArm(ModelArm):
         for reader in self._readers:
             reader(to_us, True)
         self.compliance.update(q, self.layers, to_us / US)
+        self.alteration.advance(q, to_us / US)
         q.advance(self.queue_time(to_us))
         end = self._cycles_end()
         if end is not None and end * US <= to_us + 1e-6:
@@ -287,7 +311,14 @@ class MovingArm(ModelArm):
             tool[:3, 3] *= s
         move = MoveCommand(kind, target, MDesc.from_fields(md, s), tool=tool, via=via, source=source,
                            tool_name=tool_name)
-        r = q.record(move, self.queue_time(time_us))
+        self.layers.before(time_us / US)
+        alterable, self.alteration.next_alterable = self.alteration.next_alterable, False
+        if self.alteration.defers(q, alterable):
+            r = self._defer(q, move, alterable)  # 11.2.3: after the alterable trajectory, waits for alterEnd
+        else:
+            r = q.record(move, self.queue_time(time_us))
+            if alterable and not isinstance(r, QueueFull):
+                self.alteration.alterable.add(q.history[-1].key)
         if not isinstance(r, QueueFull):
             task = source.task
             self.counter.note(task, source)
@@ -297,6 +328,16 @@ class MovingArm(ModelArm):
             for reader in self._readers:
                 reader(time_us, False)
         return r
+
+    def _defer(self, q: MotionQueue, move: MoveCommand, alterable: bool) -> int:
+        """A move recorded after an alterable trajectory while alter mode is on: its identifier now,
+        recorded in the queue by alterEnd (11.2.3)."""
+        ident = q.next_id
+        q.set_move_id(ident + 1)
+        self.alteration.deferred.append((move, ident))
+        if alterable:
+            self.alteration.deferred_alterable.add(ident)
+        return ident
 
     def _target_in_mm(self, tg: Target, s: float) -> Target:
         """`tg` with its lengths (and a SCARA's axis 3) in mm: `s` millimetres per unit."""
@@ -327,3 +368,20 @@ class MovingArm(ModelArm):
         if millimeter_unit or not (k < len(self.prismatic) and self.prismatic[k]):
             return v
         return v / INCH_MM
+
+
+class _Hook:
+    """The arm's own layer hooks (arm_layers.Layers.hooks): the compliance brought up to date
+    before the program acts on the queue."""
+
+    def __init__(self, arm: MovingArm) -> None:
+        self.arm = arm
+
+    def before(self, t: float) -> None:
+        q = self.arm.queue_in_use
+        if q is not None:
+            self.arm.compliance.update(q, self.arm.layers, t)
+            self.arm.alteration.advance(q, t)
+
+    def after_reset(self, t: float) -> None:
+        self.arm.alteration.after_reset(t)

@@ -29,7 +29,7 @@ from ..interpretation.machine import Budgets, Machine
 from ..interpretation.registry import Registry
 from ..interpretation.scheduler import EndRun
 from ..loading.model import Application, Workspace
-from . import ch09_latch, ch10_motion, ch11_absolute, ch11_compliance, ch11_continuous, ch11_licences
+from . import ch09_latch, ch10_motion, ch11_absolute, ch11_alter, ch11_compliance, ch11_continuous, ch11_licences
 from .collect import collect
 from .model_arm import INCH_MM
 from .moving_arm import MovingArm
@@ -39,7 +39,8 @@ from .scenario import Scenario, apply_scenario
 # What the generated code calls, then the chapters of the manual, in order.
 INTERPRETER_MODULES = (code_support, waiting, not_simulated, ch02_variables, ch03_simple_types, ch04_user_page,
                        ch05_tasks, ch06_libraries, ch08_controller, ch09_geometry)
-MOTION_MODULES = (ch10_motion, ch09_latch, ch11_licences, ch11_absolute, ch11_continuous, ch11_compliance)
+MOTION_MODULES = (ch10_motion, ch09_latch, ch11_licences, ch11_absolute, ch11_continuous, ch11_compliance,
+                  ch11_alter)
 
 
 @dataclass

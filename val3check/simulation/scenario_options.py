@@ -1,6 +1,7 @@
 """The scenario's tables for chapter 11 and the cell the options act in (docs/scenario.md):
 `[options]` (the runtime licences, 11.3), `[[surfaces]]` and `[[pushes]]` (the cell's forces on
-compliant moves, 11.1), read by `scenario.Applier` after its own tables.
+compliant moves, 11.1), `[[alterations]]` (what the cell alters, 11.2), read by `scenario.Applier`
+after its own tables.
 
     apply_options(applier, data)      # applier: scenario.Applier (its lines, fail(), signal())
 """
@@ -13,9 +14,10 @@ import numpy as np
 
 from .ch11_continuous import set_continuous
 from .ch11_licences import OEM_STATES, OPTIONS, licences_of
+from .alteration import ScenarioAlteration
 from .compliance import Push, Surface
 
-TABLES = ("options", "surfaces", "pushes")
+TABLES = ("options", "surfaces", "pushes", "alterations")
 
 
 def apply_options(ap: Any, data: dict) -> None:
@@ -26,6 +28,36 @@ def apply_options(ap: Any, data: dict) -> None:
         _surface(ap, table, ap.lines.section("surfaces", i), i)
     for i, table in enumerate(_array(ap, data, "pushes")):
         _push(ap, table, ap.lines.section("pushes", i))
+    for i, table in enumerate(_array(ap, data, "alterations")):
+        _alteration(ap, table, ap.lines.section("alterations", i))
+
+
+def _alteration(ap: Any, table: dict, line: int) -> None:
+    """[[alterations]]: what the cell alters while alter mode is on (11.2): a conveyor (mm/s) or an
+    offset (a trsf, reached over `ramp` s), in the axes of alterBegin's reference."""
+    ap._keys(table, {"conveyor", "trsf", "at", "until", "ramp"}, line, "[[alterations]]")
+    if ("conveyor" in table) == ("trsf" in table):
+        ap.fail(line, "[[alterations]] needs conveyor = [vx, vy, vz] (mm/s) or trsf = [x, y, z, rx, ry, rz]")
+    entry = ScenarioAlteration(line=line)
+    if "conveyor" in table:
+        entry.velocity = _vector(ap, table["conveyor"], ap.lines.key("conveyor", line) or line,
+                                 "[[alterations]] conveyor")
+    else:
+        v = table["trsf"]
+        if not isinstance(v, list) or len(v) != 6 or not all(_finite(x) for x in v):
+            ap.fail(ap.lines.key("trsf", line) or line, "[[alterations]] trsf = [x, y, z, rx, ry, rz] (mm, degrees)")
+        entry.offset = np.array(v, dtype=float)
+    for key in ("at", "until", "ramp"):
+        if key in table:
+            us = _seconds(table[key])
+            if us is None:
+                ap.fail(ap.lines.key(key, line) or line, f"[[alterations]] {key} = seconds (a finite number from 0 to 1e7)")
+            setattr(entry, key, us / 1e6)
+    if entry.until is not None and entry.at is not None and entry.until <= entry.at:
+        ap.fail(ap.lines.key("until", line) or line, "[[alterations]] until must come after at")
+    arm = ap.machine.arm
+    if getattr(arm, "has_model", False) and getattr(arm, "alteration", None) is not None:
+        arm.alteration.scenario.append(entry)
 
 
 def _array(ap: Any, data: dict, key: str) -> list:
