@@ -190,7 +190,7 @@ def test_without_the_licence_error_250(tmp_path):
     ("[[surfaces]]\npoint = [0, 0, 0]\nnormal = [0, 0, 0]\n", 4),
     ("[[surfaces]]\nnormal = [0, 0, 1]\n", 2),
     ("[[pushes]]\nforce = \"hard\"\n", 3),
-    ("[[pushes]]\nforce = 10\nat = 2\nuntil = 1\n", 2),
+    ("[[pushes]]\nforce = 10\nat = 2\nuntil = 1\n", 5),  # the key at fault
     ("[[pushes]]\nforce = 10\nwhen = \"diNope\"\n", 4),
     ("[[pushes]]\nforce = 10\nwhen = \"doEjection\"\nat = 1\n", 2),
     ("[[pushes]]\nforce = 10\nspeed = 3\n", 4),

@@ -81,7 +81,8 @@ end
   waitEndMove()
 end
 """, globals_=["mdesc mD"], robot=TX, scenario="version = 1\n[options]\ncontinuousAxis = false\n")
-    assert "R011" in codes(r) and errors(r) == [150]
+    # 10.6: a joint target outside the software limits stops movej with 154 (R011)
+    assert [(d.code, d.error) for d in r.diagnostics] == [("R011", 154)]
 
 
 def test_reset_turn_cancels_the_motion_like_reset_motion(tmp_path):

@@ -35,7 +35,7 @@ from typing import Any, Callable
 import numpy as np
 
 from ..diagnostics import Diagnostic
-from ..motion.findings import Finding, Source
+from ..motion.findings import Finding, MotionError, Source
 from ..motion.kin import wrap_near
 from ..motion.records import time_leaving
 from ..robot.kinematics import trsf_matrix
@@ -119,7 +119,7 @@ class Alteration:
         self.stop_since: float | None = None  # a stop condition, since when
         self.lock_at: float | None = None
         self.locked: np.ndarray | None = None
-        self.deferred: list[tuple[Any, int]] = []  # non-alterable moves waiting for alterEnd (11.2.3)
+        self.deferred: list[tuple[Any, int, Any]] = []  # (move, id, loops) waiting for alterEnd (11.2.3)
         self.deferred_alterable: set[int] = set()  # identifiers of alterable moves among them
         self.close_after_flush = False
         self.report: Callable[[Diagnostic], None] | None = None
@@ -239,11 +239,19 @@ class Alteration:
         """Record the moves that waited for alterEnd, with the identifiers they returned."""
         waiting, self.deferred = self.deferred, []
         keep = q.next_id
-        for move, ident in waiting:
+        for move, ident, context in waiting:
             q.set_move_id(ident)
-            q.record(move, now)
+            try:
+                q.record(move, now)
+            except MotionError as exc:  # computed only now (11.2.3): the motion is in error, as a move
+                # the arm cannot execute (the next motion instruction: 150 until resetMotion)
+                f = exc.finding or Finding("R010", f"{move.kind}: {exc.message}", move.source, now, error=exc.code)
+                q.findings.append(f)
+                q.failure = f
+                break
             if ident in self.deferred_alterable:
                 self.alterable.add(q.history[-1].key)
+            self.arm.recorded(q.history[-1], context)
         self.deferred_alterable = set()
         if waiting:
             q.set_move_id(max(keep, q.next_id))

@@ -87,19 +87,21 @@ def arm_run(machine: Machine, diags: list[Diagnostic]) -> ArmRun | None:
     if q is None:
         return None
     end_s = machine.end_time / 1_000_000
-    q.advance(end_s)
+    q.advance(arm.queue_time(machine.end_time))
     for f in q.findings:
         src = f.source
         diags.append(Diagnostic(f.code, f.message, src.path, src.line, src.col, time_us=int(round(f.time * 1e6)),
                                 task=src.task, program=src.program, error=f.error))
-    records = motion_records(q)
-    trajectory = q.trajectory
     layers = getattr(arm, "layers", None)
+    records = motion_records(q, arm.queue_time(machine.end_time))
+    trajectory = q.trajectory
     if layers is not None and not layers.trivial:  # chapter 11 moved the arm off the queue's trajectory
         trajectory = ActualTrajectory(trajectory, layers)
         records = [actual_record(rec, arm) for rec in records]
     motions = [_entry(rec, command, layers) for rec, command in zip(records, q.history)]
-    cycles = {task: CycleEntry(st.task, st.marker, tuple(st.starts)) for task, st in cycle_stats(records).items()}
+    cycles = {task: CycleEntry(st.task, st.marker, tuple(st.starts), st.loop and st.loop.program,
+                               st.loop and st.loop.kind, st.why, st.passes)
+              for task, st in _cycles(machine, arm, records, q.history).items()}
     if trajectory is q.trajectory:
         busy, idle = busy_time(q.trajectory.profile, end_s)
     else:
@@ -118,6 +120,15 @@ def actual_record(rec, arm):
     start = rec.start if rec.start is None else layers.warp.leaving_time(rec.start)
     end = arm.real_time(rec.end)
     return replace(rec, start=start, end=end if end is not None or rec.end is None else None)
+
+
+def _cycles(machine: Machine, arm: MovingArm, records, commands) -> dict:
+    """Each task's cycle (motion/cycle.py): from the loops each command was recorded in and the
+    loops each task was in when the run ended."""
+    contexts = [arm.contexts.get(command.key, ()) for command in commands]
+    inside = {t.name: arm.context(t.final.loops) for t in machine.scheduler.history
+              if t.final is not None and t.final.loops}
+    return cycle_stats(records, contexts, inside)
 
 
 def _entry(rec, command, layers=None) -> MotionEntry:

@@ -41,9 +41,9 @@ from ..interpretation.arm_port import Joints
 from ..interpretation.scheduler import EndRun
 from ..language.runtime_errors import Val3RuntimeError
 from ..motion.commands import MoveCommand, Target
-from ..motion.cycle import CycleCounter
+from ..motion.cycle import Context, CycleCounter, Loop, Pass
 from ..motion.failures import failure_text
-from ..motion.findings import MotionError, Source
+from ..motion.findings import MDESC, Finding, MotionError, Source
 from ..motion.mdesc import MDesc
 from ..motion.queue import MotionQueue, QueueFull
 from ..motion.records import time_leaving
@@ -68,6 +68,9 @@ class MovingArm(ModelArm):
         self.counter = CycleCounter()
         self.cycles_goal = cycles  # --cycles N: the run ends when the arm starts cycle N + 1
         self._end_command = None  # that command, once recorded
+        self.contexts: dict[int, Context] = {}  # command key -> the loops it was recorded in
+        self._entries: dict[int, tuple[Any, int]] = {}  # id(pass counter) -> (it, entry number)
+        self._entry_count: dict[Loop, int] = {}
         self.prismatic = tuple(k == "prismatic" for k in (getattr(model, "joint_kinds", None) or ())) \
             if model is not None else ()
         self._readers: list[Callable[[int, bool], None]] = []  # `watch`
@@ -203,7 +206,7 @@ class MovingArm(ModelArm):
         if q is None:
             return True
         q.advance(self.queue_time(time_us))
-        return len(q.pending) < q.capacity
+        return len(q.pending) + len(self.alteration.deferred) < q.capacity
 
     def waiting_reason(self) -> tuple[str, str] | None:
         """Why recorded motion cannot go on, for a task that waits for it: (rule, words naming
@@ -297,10 +300,11 @@ class MovingArm(ModelArm):
     # ---- for the chapter 10 handlers -------------------------------------------------------------------
 
     def record(self, kind: str, target: Target, tool_in_flange, md: dict, via: Target | None, source: Source,
-               tool_name: str, millimeter_unit: bool, time_us: int):
+               tool_name: str, millimeter_unit: bool, time_us: int, loops: tuple = ()):
         """movej/movel/movec: the command's identifier, or QueueFull. Poses of `target`/`via`
         and `tool_in_flange` are 4x4 matrices in the caller's length unit; joints too (a
-        SCARA's axis 3). Raises MotionError (mdesc 100-106, 154, 150, 81)."""
+        SCARA's axis 3); `loops`: the loops the instruction runs in (Machine.loop_passes).
+        Raises MotionError (mdesc 100-106, 154, 150, 81)."""
         q = self._sync(time_us)
         s = 1.0 if millimeter_unit else INCH_MM
         target = self._target_in_mm(target, s)
@@ -312,32 +316,66 @@ class MovingArm(ModelArm):
         move = MoveCommand(kind, target, MDesc.from_fields(md, s), tool=tool, via=via, source=source,
                            tool_name=tool_name)
         self.layers.before(time_us / US)
+        context = self.context(loops)
         alterable, self.alteration.next_alterable = self.alteration.next_alterable, False
         if self.alteration.defers(q, alterable):
-            r = self._defer(q, move, alterable)  # 11.2.3: after the alterable trajectory, waits for alterEnd
-        else:
-            r = q.record(move, self.queue_time(time_us))
-            if alterable and not isinstance(r, QueueFull):
-                self.alteration.alterable.add(q.history[-1].key)
+            # 11.2.3: after the alterable trajectory, waits for alterEnd (recorded then, by recorded())
+            return self._defer(q, move, alterable, context, time_us)
+        r = q.record(move, self.queue_time(time_us))
         if not isinstance(r, QueueFull):
-            task = source.task
-            self.counter.note(task, source)
-            if self.cycles_goal is not None and self._end_command is None and \
-                    self.counter.completed(task) >= self.cycles_goal:
-                self._end_command = q.history[-1]
+            if alterable:
+                self.alteration.alterable.add(q.history[-1].key)
+            self.counter.note(source.task, context)
+            self.recorded(q.history[-1], context)
             for reader in self._readers:
                 reader(time_us, False)
         return r
 
-    def _defer(self, q: MotionQueue, move: MoveCommand, alterable: bool) -> int:
+    def recorded(self, command: Any, context: Context) -> None:
+        """A command entered the queue: its loops, and whether it completes the cycles asked for."""
+        self.contexts[command.key] = context
+        task = command.request.source.task
+        if self.cycles_goal is not None and self._end_command is None and \
+                self.counter.completed(task) >= self.cycles_goal:
+            self._end_command = command
+
+    def _defer(self, q: MotionQueue, move: MoveCommand, alterable: bool, context: Context,
+               time_us: int) -> int | QueueFull:
         """A move recorded after an alterable trajectory while alter mode is on: its identifier now,
-        recorded in the queue by alterEnd (11.2.3)."""
+        recorded in the queue by alterEnd (11.2.3). What the queue checks at recording first (150, the
+        mdesc); a full queue counts the waiting moves."""
+        if q.failure is not None:
+            raise MotionError(150, failure_text(q.failure))
+        bad = move.mdesc.check()
+        if bad is not None:
+            code, msg = bad
+            f = Finding(MDESC, f"{move.kind}: {msg}", move.source, self.queue_time(time_us), error=code,
+                        data={"field": msg.split(" ")[0].replace("mdesc.", ""), "code": code})
+            raise MotionError(code, msg, f)
+        if len(q.pending) + len(self.alteration.deferred) >= q.capacity:
+            return QueueFull(None)  # a place frees when alterEnd records them and the arm goes on
         ident = q.next_id
         q.set_move_id(ident + 1)
-        self.alteration.deferred.append((move, ident))
+        self.alteration.deferred.append((move, ident, context))
         if alterable:
             self.alteration.deferred_alterable.add(ident)
+        self.counter.note(move.source.task, context)
+        for reader in self._readers:
+            reader(time_us, False)
         return ident
+
+    def context(self, loops: tuple) -> Context:
+        """The loops of Machine.loop_passes as motion.cycle passes: each loop statement with the
+        number of its entry (the n-th pass counter seen for it) and the pass."""
+        out = []
+        for compiled, site, counter in loops:
+            loop = Loop(compiled.path, site.line, site.col, compiled.name, site.kind)
+            seen = self._entries.get(id(counter))
+            if seen is None or seen[0] is not counter:
+                n = self._entry_count[loop] = self._entry_count.get(loop, 0) + 1
+                seen = self._entries[id(counter)] = (counter, n)  # kept: its id is not reused
+            out.append(Pass(loop, seen[1], int(counter[0])))
+        return tuple(out)
 
     def _target_in_mm(self, tg: Target, s: float) -> Target:
         """`tg` with its lengths (and a SCARA's axis 3) in mm: `s` millimetres per unit."""
