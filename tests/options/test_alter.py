@@ -9,8 +9,8 @@ import math
 
 import numpy as np
 import pytest
-
 from interpretation.simsupport import codes, gv, sim
+
 from val3check.robot import load_robot
 
 TX = load_robot("TX2-60")
@@ -313,3 +313,52 @@ def test_bad_alterations_are_scenario_errors_with_their_line(tmp_path, text, lin
     with pytest.raises(ScenarioError) as exc:
         run(tmp_path, "", scenario="version = 1\n" + text)
     assert exc.value.line == line
+
+
+def test_a_second_alterable_trajectory_is_altered_from_its_own_start(tmp_path):
+    """Two alterable trajectories, each with its alter mode (alterBegin ... alterEnd), a movej
+    between them: the first ends 2 mm up (its offset then decreases to nothing along the movej);
+    the second starts on its nominal path and ends 3 mm along x, nothing of the first left."""
+    r = run(tmp_path, """  pB = appro(pA, {0, 50, 0, 0, 0, 0})
+  nId = alterMovel(pB, flange, mD)
+  nBegin = alterBegin(world, mAlter)
+  delay(0.05)
+  nAlt = alter({0, 0, 2, 0, 0, 0})
+  waitEndMove()
+  nEnd = alterEnd()
+  nId2 = movej(""" + HOME + """, flange, mD)
+  waitEndMove()
+  jA = herej()
+  delay(0.2)
+  nId = alterMovel(pB, flange, mD)
+  nT = alterBegin(world, mAlter)
+  delay(0.05)
+  nAlt2 = alter({3, 0, 0, 0, 0, 0})
+  waitEndMove()
+  delay(0.05)
+  pEnd = here(flange, world)
+  nOk = alterEnd()
+""", scenario=LICENCE)
+    assert codes(r) == []
+    assert gv(r, "nBegin") == 1 and gv(r, "nT") == 1 and gv(r, "nAlt") == 1 and gv(r, "nAlt2") == 1
+    assert gv(r, "nEnd") == 1 and gv(r, "nOk") == 1
+    assert list(gv(r, "jA").values()) == pytest.approx([0, 20, 100, 0, 60, 0], abs=1e-9)
+    b = xyz(gv(r, "pA")) + [0, 50, 0]
+    assert xyz(gv(r, "pEnd")) == pytest.approx(b + [3, 0, 0], abs=1e-6)
+    # the run's record: the movej ends at HOME, the second alterable move leaves from the nominal
+    # start (nothing of the first session)
+    (m1, m2) = [m for m in r.motion.motions if m.kind == "movel"]
+    (mj,) = [m for m in r.motion.motions if m.id == 2]
+    assert r.motion.trajectory.position(mj.end) == pytest.approx([0, 20, 100, 0, 60, 0], abs=1e-9)
+    assert r.motion.trajectory.position((mj.end + m2.start) / 2) == pytest.approx([0, 20, 100, 0, 60, 0], abs=1e-9)
+    # from the end of the first alterable move the offset left (2 mm up) only decreases
+    tr = r.motion.trajectory
+    for t in np.linspace(m1.end, mj.end, 200):
+        dz = xyz_of(tr.position(t))[2] - xyz_of(tr.nominal.position(t))[2]
+        assert -1e-4 <= dz <= 2 + 1e-4  # (linear in the joints between setpoints: 1e-5 mm off)
+    t = math.ceil(m2.start / TICK) * TICK + 0.002
+    assert xyz_of(r.motion.trajectory.position(t))[2] == pytest.approx(xyz(gv(r, "pA"))[2], abs=1e-6)
+
+
+def xyz_of(q) -> np.ndarray:
+    return flange(q)[:3, 3]

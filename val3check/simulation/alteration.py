@@ -114,7 +114,7 @@ class Alteration:
         self.ticks: list[int] = []  # sample k at k·4 ms
         self.deltas: list[np.ndarray] = []  # joint offsets at those samples
         self.actual: list[np.ndarray] = []  # joints at those samples
-        self.end_time: float | None = None  # after it, the offset is the layers' residual
+        self.spans: list[int] = []  # index in ticks of each session's first setpoint
         self.frozen: np.ndarray | None = None  # alterEnd: the alteration kept to the trajectory's end
         self.stop_since: float | None = None  # a stop condition, since when
         self.lock_at: float | None = None
@@ -124,32 +124,45 @@ class Alteration:
         self.close_after_flush = False
         self.report: Callable[[Diagnostic], None] | None = None
         self.begin_time = 0.0
-        self.sessions: list[tuple[float, float | None]] = []  # [start, end) of each alteration
+        self.sessions: list[tuple[float, float | None]] = []  # [start, end) of each alteration (from its
+        # end on, what is left of the offset is the layers' residual)
 
     # ---- the layers' interface (arm_layers.Layers.altered) --------------------------------------------------
 
+    def _span_list(self):
+        """Each session's setpoints: (first index, end index in ticks, end time or inf)."""
+        ends = self.spans[1:] + [len(self.ticks)]
+        for n, (i0, i1) in enumerate(zip(self.spans, ends)):
+            if i1 > i0:
+                end = self.sessions[n][1]
+                yield i0, i1, math.inf if end is None else end
+
     def offset_many(self, times) -> np.ndarray:
+        """The joint offsets at real times: linear between the setpoints of a session, nothing
+        before its first setpoint or from its end on."""
         times = np.asarray(times, dtype=float)
         out = np.zeros((len(times), self.arm.axes))
-        if not self.ticks:
-            return out
-        k = np.asarray(self.ticks) * TICK
-        D = np.asarray(self.deltas)
-        for j in range(out.shape[1]):
-            out[:, j] = np.interp(times, k, D[:, j], left=0.0, right=D[-1, j])
-        before = times < k[0]
-        out[before] = 0.0
-        if self.end_time is not None:  # from then on the layers' residual
-            out[times >= self.end_time - 1e-12] = 0.0
+        for i0, i1, end in self._span_list():
+            k = np.asarray(self.ticks[i0:i1]) * TICK
+            D = np.asarray(self.deltas[i0:i1])
+            sel = (times >= k[0]) & (times < end - 1e-12)
+            if sel.any():
+                for j in range(out.shape[1]):
+                    out[sel, j] = np.interp(times[sel], k, D[:, j])
         return out
 
     def rate(self, t: float) -> np.ndarray:
-        if len(self.ticks) < 2:
-            return np.zeros(self.arm.axes)
-        i = int(np.searchsorted(np.asarray(self.ticks) * TICK, t, side="right")) - 1
-        if i < 0 or i + 1 >= len(self.ticks) or (self.end_time is not None and t > self.end_time):
-            return np.zeros(self.arm.axes)
-        return (self.deltas[i + 1] - self.deltas[i]) / (TICK * (self.ticks[i + 1] - self.ticks[i]))
+        for i0, i1, end in self._span_list():
+            k = np.asarray(self.ticks[i0:i1]) * TICK
+            i = int(np.searchsorted(k, t, side="right")) - 1
+            if 0 <= i < i1 - i0 - 1 and t < end:
+                a = i0 + i
+                return (self.deltas[a + 1] - self.deltas[a]) / (TICK * (self.ticks[a + 1] - self.ticks[a]))
+        return np.zeros(self.arm.axes)
+
+    def _sampled(self) -> bool:
+        """The current session has setpoints."""
+        return bool(self.spans) and len(self.ticks) > self.spans[-1]
 
     def moving(self) -> list[tuple[float, float]]:
         return [(a, b if b is not None else math.inf) for a, b in self.sessions]
@@ -187,7 +200,6 @@ class Alteration:
         self.state = "pending"
         self.program = []
         self.begin_time = now
-        self.end_time = None
         self._activate(q, now)
         return 1 if self.state == "active" else 0
 
@@ -272,7 +284,7 @@ class Alteration:
         """From setpoint time t on nothing moves the arm unless a task or the cell acts: the nominal
         at rest, the scenario's alterations constant, no alter() waiting for its setpoint, no lock
         coming."""
-        if not self.ticks or self.ticks[-1] * TICK < t - TICK - 1e-9:
+        if not self._sampled() or self.ticks[-1] * TICK < t - TICK - 1e-9:
             return False
         if self.program and self.program[-1][0] >= self.ticks[-1] * TICK - 1e-9:
             return False
@@ -295,7 +307,7 @@ class Alteration:
         if self.state == "pending":
             self._activate(q, to)
         while self.state in ("active", "ending"):
-            k = self.ticks[-1] + 1 if self.ticks else math.ceil(self.mode.start / TICK - 1e-9)
+            k = self.ticks[-1] + 1 if self._sampled() else math.ceil(self.mode.start / TICK - 1e-9)
             if k > k_to:
                 break
             if k < k_to and self.state == "active" and self._idle(q, k * TICK):
@@ -334,6 +346,7 @@ class Alteration:
         self.state = "active"
         self.frozen = None
         self.sessions.append((start, None))
+        self.spans.append(len(self.ticks))
 
     def _run_keys(self, q: Any, first: Any) -> list[int]:
         """The alterable trajectory from `first`: the alterable commands up to the next one that is not."""
@@ -371,15 +384,15 @@ class Alteration:
         F = kin.fk(qn[None])[0]
         A = self.value(t)
         target = self.altered_flange(F, A)
-        near = self.actual[-1] if self.actual else qn
+        near = self.actual[-1] if self._sampled() else qn
         qa = solve_near(kin, target, qn, near)
         why = None if qa is not None else "the altered position is out of reach (or outside the joint limits) in the " \
                                            "arm's configuration"
         if why is None:
-            if self.actual and self.ticks[-1] == k - 1:
+            if self._sampled() and self.ticks[-1] == k - 1:
                 before = self.actual[-1]
-            else:  # the first setpoint of the session: from the nominal one before it
-                before = q.trajectory.position(layers.warp.tau(t - TICK)) + (self.deltas[-1] if self.deltas else 0.0)
+            else:  # after setpoints skipped (the offset constant), or the first of the session (nominal)
+                before = q.trajectory.position(layers.warp.tau(t - TICK)) + (self.deltas[-1] if self._sampled() else 0.0)
             why = self._too_fast(q, kin, before, qa)
         if why is not None:
             self._fail(q, k, why)
@@ -414,7 +427,7 @@ class Alteration:
     def _fail(self, q: Any, k: int, why: str) -> None:
         """11.2.4: the arm stops at once on the last valid position; alter mode locked in error."""
         layers = self.arm.layers
-        t_last = self.ticks[-1] * TICK if self.ticks else k * TICK
+        t_last = self.ticks[-1] * TICK if self._sampled() else k * TICK
         layers.warp.set_rate(t_last, 0)
         self.state = "error"
         src = self.program[-1][2] if self.program else self.mode.source
@@ -446,9 +459,9 @@ class Alteration:
 
     def _stop_duration(self, q: Any) -> float:
         """The time to stop the alteration's joint speeds with alterBegin's deceleration."""
-        if len(self.deltas) < 2:
+        if len(self.ticks) - self.spans[-1] < 2:
             return 0.0
-        speed = np.abs(self.deltas[-1] - self.deltas[-2]) / TICK
+        speed = np.abs(self.deltas[-1] - self.deltas[-2]) / (TICK * (self.ticks[-1] - self.ticks[-2]))
         decel = q.kin.accels * self.mode.decel / 100.0
         return float(np.max(speed / decel))
 
@@ -456,9 +469,8 @@ class Alteration:
         """The end of the alterable trajectory after alterEnd: what is left of the offset decays
         along the next move (the layers' residual)."""
         layers = self.arm.layers
-        delta = self.deltas[-1] if self.deltas else np.zeros(self.arm.axes)
+        delta = self.deltas[-1] if self._sampled() else np.zeros(self.arm.axes)
         last = max(i for i, c in enumerate(q.history) if c.key in self.mode.keys)
-        self.end_time = t
         layers.residuals.add(t, delta, last + 1)
         self._close(t)
 
@@ -478,7 +490,6 @@ class Alteration:
         if self.state == "off":
             return
         if self.state != "pending":
-            self.end_time = t
             self._close(t)
         self.state = "off"
 

@@ -90,6 +90,8 @@ def I_alter(task, unit, trsf) -> float:
     arm, q, now = _state(task, "alter")
     if not licensed(task, "alter", "alter"):
         return -2.0
+    if q.failure is not None and arm.alteration.state in ("active", "ending"):
+        return -3.0  # "alter a été refusé parce que le mouvement est en erreur"
     s = 1.0 if millimeter_unit(unit) else INCH_MM
     A = trsf4(trsf.as_tuple(), s)
     return float(arm.alteration.alter(A, now, _source(task)))
@@ -98,6 +100,8 @@ def I_alter(task, unit, trsf) -> float:
 def I_alterend(task, unit) -> float:
     """11.2.6 alterEnd(): 1, -1 or -3; the moves that waited for it are recorded."""
     arm, q, now = _state(task, "alterEnd")
+    if q.failure is not None and arm.alteration.state == "active":
+        return -3.0  # "alterEnd a été refusé parce que le mouvement est en erreur"
     return float(arm.alteration.end(q, now, arm.queue_time(int(round(now * US)))))
 
 

@@ -47,8 +47,8 @@ from ..motion.findings import MDESC, Finding, MotionError, Source
 from ..motion.mdesc import MDesc
 from ..motion.queue import MotionQueue, QueueFull
 from ..motion.records import time_leaving
-from .arm_layers import Layers, QueueView
 from .alteration import Alteration
+from .arm_layers import Layers, QueueView
 from .compliance import Compliance
 from .model_arm import INCH_MM, ModelArm
 

@@ -12,10 +12,12 @@ from typing import Any
 
 import numpy as np
 
+from .alteration import ScenarioAlteration
 from .ch11_continuous import set_continuous
 from .ch11_licences import OEM_STATES, OPTIONS, licences_of
-from .alteration import ScenarioAlteration
 from .compliance import Push, Surface
+from .scenario_numbers import finite as _finite
+from .scenario_numbers import seconds as _seconds
 
 TABLES = ("options", "surfaces", "pushes", "alterations")
 
@@ -65,18 +67,6 @@ def _array(ap: Any, data: dict, key: str) -> list:
     if not isinstance(v, list) or not all(isinstance(x, dict) for x in v):
         ap.fail((key,), f"{key} must be an array of tables ([[{key}]])")
     return v
-
-
-def _finite(v: Any) -> bool:
-    from .scenario import _finite as finite
-
-    return finite(v)
-
-
-def _seconds(v: Any) -> int | None:
-    from .scenario import _seconds as seconds
-
-    return seconds(v)
 
 
 def _compliance(ap: Any):
