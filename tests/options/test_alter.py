@@ -84,12 +84,18 @@ def test_alter_from_a_synchronous_task_draws_a_straight_line_at_25_mm_s(tmp_path
     assert gv(r, "nAlt") == -1
 
 
-def test_an_altered_straight_line_follows_a_conveyor_of_the_scenario(tmp_path):
-    """alterMovel from A to B (200 mm along y), the scenario's conveyor at 50 mm/s along world x
-    from the start of alter mode: at each setpoint the flange is the nominal one plus 50 mm/s × the
-    time since alter mode began."""
+@pytest.mark.parametrize("move,kind", [
+    ("alterMovel(pB, flange, mD)", "movel"),
+    ("alterMovej(pB, flange, mD)", "movej"),
+    ("alterMovec(pMid, pB, flange, mD)", "movec"),
+])
+def test_an_altered_path_follows_a_conveyor_of_the_scenario(tmp_path, move, kind):
+    """alterMovel (alterMovej, alterMovec: the same rule) from A to B (200 mm along y), the
+    scenario's conveyor at 50 mm/s along world x from the start of alter mode: at each setpoint the
+    flange is the nominal one plus 50 mm/s × the time since alter mode began."""
     body = """  pB = appro(pA, {0, 200, 0, 0, 0, 0})
-  nId = alterMovel(pB, flange, mD)
+  pMid = appro(pA, {0, 100, 40, 0, 0, 0})
+  nId = """ + move + """
   nBegin = alterBegin(world, mAlter)
   waitEndMove()
   nEnd = alterEnd()
@@ -98,8 +104,9 @@ def test_an_altered_straight_line_follows_a_conveyor_of_the_scenario(tmp_path):
     nominal = run(tmp_path / "n", body.replace("  nBegin = alterBegin(world, mAlter)\n", ""))
     r = run(tmp_path / "a", body, scenario=LICENCE + "[[alterations]]\nconveyor = [50, 0, 0]\n")
     assert codes(r) == [] and gv(r, "nBegin") == 1
-    (m,) = [m for m in r.motion.motions if m.kind == "movel"]
-    (mn,) = [m for m in nominal.motion.motions if m.kind == "movel"]
+    (m,) = [m for m in r.motion.motions if m.id == 1]
+    (mn,) = [m for m in nominal.motion.motions if m.id == 1]
+    assert m.kind == mn.kind == kind
     assert m.start == mn.start and m.end == pytest.approx(mn.end)  # waitEndMove: the nominal end (11.2.2)
     times = np.arange(math.ceil(m.start / TICK), math.floor(m.end / TICK) + 1) * TICK
     alt = np.array([flange(r.motion.trajectory.position(t))[:3, 3] for t in times])
@@ -362,3 +369,40 @@ def test_a_second_alterable_trajectory_is_altered_from_its_own_start(tmp_path):
 
 def xyz_of(q) -> np.ndarray:
     return flange(q)[:3, 3]
+
+
+def test_the_trace_shows_the_altered_path(tmp_path):
+    """The MCAP trace (read back): its joint states are the altered path's at every sampled time,
+    the nominal line moved along x by the scenario's conveyor (50 mm/s) while alter mode is on."""
+    import json
+
+    from mcap.reader import make_reader
+
+    from val3check.config import Settings
+    from val3check.reporting.mcap_trace import write_trace
+    from val3check.reporting.sim_report import build_report
+    from val3check.rules.catalogue import catalogue
+
+    body = """  pB = appro(pA, {0, 200, 0, 0, 0, 0})
+  nId = alterMovel(pB, flange, mD)
+  nBegin = alterBegin(world, mAlter)
+  waitEndMove()
+  nEnd = alterEnd()
+"""
+    nominal = run(tmp_path / "n", body.replace("  nBegin = alterBegin(world, mAlter)\n", ""))
+    r = run(tmp_path / "a", body, scenario=LICENCE + "[[alterations]]\nconveyor = [50, 0, 0]\n")
+    assert codes(r) == [] and gv(r, "nBegin") == 1
+    path = tmp_path / "run.mcap"
+    write_trace(build_report(r, Settings(), catalogue(), "test"), str(path))
+    with open(path, "rb") as f:
+        states = [(msg.log_time / 1e9, json.loads(msg.data)["position"])
+                  for _, ch, msg in make_reader(f).iter_messages() if ch.topic == "/joint_states"]
+    (m,) = [m for m in r.motion.motions if m.id == 1]
+    inside = [(t, q) for t, q in states if m.start + TICK < t < m.end]
+    assert len(inside) > 20
+    d = np.array([flange(q)[:3, 3] - flange(nominal.motion.trajectory.position(t))[:3, 3] for t, q in inside])
+    times = np.array([t for t, _ in inside])
+    assert np.abs(d[:, 1:]).max() < 1e-6
+    t_m = times[0] - d[0, 0] / 50.0  # when alter mode began
+    assert m.start - 1e-9 <= t_m <= m.start + TICK
+    assert np.abs(d[:, 0] - 50.0 * (times - t_m)).max() < 1e-3  # (linear in the joints between setpoints)
