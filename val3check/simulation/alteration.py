@@ -28,6 +28,7 @@ leaves the alteration alterStopTime() to stop, then locks it until the condition
 
 from __future__ import annotations
 
+import bisect
 import math
 from dataclasses import dataclass, field
 from typing import Any, Callable
@@ -110,11 +111,13 @@ class Alteration:
         self.state = "off"
         self.mode: AlterMode | None = None
         self.program: list[tuple[float, np.ndarray, Source]] = []  # alter() calls: (time, A, where)
+        self.program_times: list[float] = []
         self.scenario: list[ScenarioAlteration] = []
         self.ticks: list[int] = []  # sample k at k·4 ms
         self.deltas: list[np.ndarray] = []  # joint offsets at those samples
         self.actual: list[np.ndarray] = []  # joints at those samples
         self.spans: list[int] = []  # index in ticks of each session's first setpoint
+        self._cache: tuple = (None, None, None)  # _arrays()
         self.frozen: np.ndarray | None = None  # alterEnd: the alteration kept to the trajectory's end
         self.stop_since: float | None = None  # a stop condition, since when
         self.lock_at: float | None = None
@@ -143,17 +146,32 @@ class Alteration:
         times = np.asarray(times, dtype=float)
         out = np.zeros((len(times), self.arm.axes))
         for i0, i1, end in self._span_list():
-            k = np.asarray(self.ticks[i0:i1]) * TICK
-            D = np.asarray(self.deltas[i0:i1])
+            k, D = self._arrays(i0, i1)
             sel = (times >= k[0]) & (times < end - 1e-12)
             if sel.any():
+                if sel.sum() == 1:  # one time (the arm's position now): the two setpoints around it
+                    (i,) = np.nonzero(sel)[0]
+                    j = min(max(int(np.searchsorted(k, times[i], side="right")) - 1, 0), len(k) - 1)
+                    if j + 1 < len(k):
+                        f = (times[i] - k[j]) / (k[j + 1] - k[j])
+                        out[i] = D[j] + f * (D[j + 1] - D[j])
+                    else:
+                        out[i] = D[j]
+                    continue
                 for j in range(out.shape[1]):
                     out[sel, j] = np.interp(times[sel], k, D[:, j])
         return out
 
+    def _arrays(self, i0: int, i1: int) -> tuple[np.ndarray, np.ndarray]:
+        """The setpoint times and joint offsets of ticks[i0:i1], as arrays (kept until more come)."""
+        key = (i0, i1)
+        if self._cache[0] != key:
+            self._cache = (key, np.asarray(self.ticks[i0:i1]) * TICK, np.asarray(self.deltas[i0:i1]))
+        return self._cache[1], self._cache[2]
+
     def rate(self, t: float) -> np.ndarray:
         for i0, i1, end in self._span_list():
-            k = np.asarray(self.ticks[i0:i1]) * TICK
+            k, _ = self._arrays(i0, i1)
             i = int(np.searchsorted(k, t, side="right")) - 1
             if 0 <= i < i1 - i0 - 1 and t < end:
                 a = i0 + i
@@ -178,8 +196,8 @@ class Alteration:
         A = np.eye(4)
         for entry in self.scenario:
             A = A @ entry.at_time(t, self.mode.start)
-        prog = [a for tc, a, _ in self.program if tc < t - 1e-9]
-        return A @ prog[-1] if prog else A
+        n = bisect.bisect_left(self.program_times, t - 1e-9)  # the calls before the setpoint
+        return A @ self.program[n - 1][1] if n else A
 
     def altered_flange(self, F: np.ndarray, A: np.ndarray) -> np.ndarray:
         """The flange of the nominal trajectory under the alteration (module docstring)."""
@@ -199,6 +217,7 @@ class Alteration:
         self.mode = mode
         self.state = "pending"
         self.program = []
+        self.program_times = []
         self.begin_time = now
         self._activate(q, now)
         return 1 if self.state == "active" else 0
@@ -212,6 +231,7 @@ class Alteration:
         if self.lock_at is not None and now >= self.lock_at - 1e-9:
             return 0
         self.program.append((now, A, source))
+        self.program_times.append(now)
         return 1
 
     def end(self, q: Any, now: float, queue_now: float) -> int:
