@@ -406,3 +406,24 @@ def test_the_trace_shows_the_altered_path(tmp_path):
     t_m = times[0] - d[0, 0] / 50.0  # when alter mode began
     assert m.start - 1e-9 <= t_m <= m.start + TICK
     assert np.abs(d[:, 0] - 50.0 * (times - t_m)).max() < 1e-3  # (linear in the joints between setpoints)
+
+
+def test_a_null_move_after_the_alteration_is_said_not_hidden(tmp_path):
+    """After alterEnd the arm is off the nominal end by the alteration; a movej to that nominal end
+    moves the arm on the controller (computed from where it is, 11.2.3) but is null in the nominal
+    plan: the run says so (R052, once) rather than showing it as a move."""
+    body = """  pB = appro(pA, {0, 50, 0, 0, 0, 0})
+  nId = alterMovel(pB, flange, mD)
+  nBegin = alterBegin(world, mAlter)
+  nAlt = alter({0, 0, 2, 0, 0, 0})
+  waitEndMove()
+  nEnd = alterEnd()
+  nId2 = movej(pB, flange, mD)
+  waitEndMove()
+"""
+    r = run(tmp_path, body)
+    (d,) = [d for d in r.diagnostics if d.code == "R052"]
+    assert "computed from the altered position" in d.message and d.line > 0
+    # a move that goes somewhere carries the offset away along its path: nothing said
+    r = run(tmp_path / "b", body.replace("movej(pB, flange, mD)", "movej(" + HOME + ", flange, mD)"))
+    assert "R052" not in codes(r)

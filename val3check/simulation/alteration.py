@@ -36,7 +36,7 @@ from typing import Any, Callable
 import numpy as np
 
 from ..diagnostics import Diagnostic
-from ..motion.findings import Finding, MotionError, Source
+from ..motion.findings import NO_OP, Finding, MotionError, Source
 from ..motion.kin import wrap_near
 from ..motion.records import time_leaving
 from ..robot.kinematics import trsf_matrix
@@ -118,6 +118,7 @@ class Alteration:
         self.actual: list[np.ndarray] = []  # joints at those samples
         self.spans: list[int] = []  # index in ticks of each session's first setpoint
         self._cache: tuple = (None, None, None)  # _arrays()
+        self.carrier_said = False  # check_carrier
         self.frozen: np.ndarray | None = None  # alterEnd: the alteration kept to the trajectory's end
         self.stop_since: float | None = None  # a stop condition, since when
         self.lock_at: float | None = None
@@ -273,6 +274,7 @@ class Alteration:
         keep = q.next_id
         for move, ident, context in waiting:
             q.set_move_id(ident)
+            n = len(q.findings)
             try:
                 q.record(move, now)
             except MotionError as exc:  # computed only now (11.2.3): the motion is in error, as a move
@@ -284,12 +286,39 @@ class Alteration:
             if ident in self.deferred_alterable:
                 self.alterable.add(q.history[-1].key)
             self.arm.recorded(q.history[-1], context)
+            self.check_carrier(q, q.history[-1], q.findings[n:])
         self.deferred_alterable = set()
         if waiting:
             q.set_move_id(max(keep, q.next_id))
             if self.close_after_flush:
                 q.wait_end_move(now)
         self.close_after_flush = False
+
+    def check_carrier(self, q: Any, command: Any, notes: list) -> None:
+        """A null move (R016 among its `notes`) recorded where the offset the alteration leaves
+        would decrease along it (docs/motion.md, "ALTER"): on the controller it is computed from the
+        altered position and moves the arm; here the offset would vanish at once. Said (R052),
+        not hidden: the positions after it keep the offset."""
+        if self.report is None or self.carrier_said or not any(f.code == NO_OP for f in notes):
+            return
+        index = len(q.history) - 1
+        if self.state == "ending" and self._sampled():
+            delta = self.deltas[-1]
+        else:
+            items = self.arm.layers.residuals.items
+            if not items or items[-1][2] != index:
+                return
+            delta = items[-1][1]
+        if float(np.max(np.abs(delta))) <= 1e-6:
+            return
+        src = command.request.source
+        self.carrier_said = True
+        self.report(Diagnostic(
+            "R052", f"{command.kind}: its target is the nominal end of the alterable trajectory, where the arm is not: on "
+            f"the controller it is computed from the altered position (11.2.3) and moves the arm back by the alteration "
+            f"(up to {float(np.max(np.abs(delta))):.3g}° or mm on an axis); the simulation plans the nominal path, which "
+            "does not move here: the offset vanishes in one step, a jump the controller does not make (said once)", src.path, src.line, src.col,
+            time_us=int(round(command.request.recorded * US)), task=src.task, program=src.program))
 
     # ---- time passes ---------------------------------------------------------------------------------------
 

@@ -321,10 +321,13 @@ class MovingArm(ModelArm):
         if self.alteration.defers(q, alterable):
             # 11.2.3: after the alterable trajectory, waits for alterEnd (recorded then, by recorded())
             return self._defer(q, move, alterable, context, time_us)
+        n = len(q.findings)
         r = q.record(move, self.queue_time(time_us))
         if not isinstance(r, QueueFull):
             if alterable:
                 self.alteration.alterable.add(q.history[-1].key)
+            else:
+                self.alteration.check_carrier(q, q.history[-1], q.findings[n:])
             self.counter.note(source.task, context)
             self.recorded(q.history[-1], context)
             for reader in self._readers:
