@@ -9,8 +9,8 @@ import math
 
 import numpy as np
 import pytest
-
 from interpretation.simsupport import codes, errors, gv, out, sim
+
 from val3check.robot import load_robot
 
 TX = load_robot("TX2-60")
@@ -94,8 +94,8 @@ end
 """
 SET_GLOBALS = ARRAYS + ["num nTheta2[6]", "num nD2[7]", "num nA2[6]", "num nAlpha2[6]", "num nBeta2[6]", "bool bOk",
                         "point pJ", "point pHere", "point pB", "point pEnd", "joint jBack", "bool bRev", "mdesc mD"]
-NEW = dict(theta=[0, -89.7, 90, 0, 0, 0], d=[2.5, 0, 20, 310, 0, 70, 1.5], a=[0, 290.8, 0, 0, 0, 0],
-           b=[0, 0, -0.4, 0, 0, 0], alpha=[-90, 0, 90, -89.8, 90, 0], beta=[0, 0.1, 0, 0, 0, 0])
+NEW = {"theta": [0, -89.7, 90, 0, 0, 0], "d": [2.5, 0, 20, 310, 0, 70, 1.5], "a": [0, 290.8, 0, 0, 0, 0],
+       "b": [0, 0, -0.4, 0, 0, 0], "alpha": [-90, 0, 90, -89.8, 90, 0], "beta": [0, 0.1, 0, 0, 0, 0]}
 
 
 def test_after_set_dh_the_kinematics_are_the_new_geometry(tmp_path):
@@ -116,7 +116,7 @@ def test_after_set_dh_the_kinematics_are_the_new_geometry(tmp_path):
     end = as_matrix(gv(r, "pEnd")["trsf"])
     target = as_matrix(gv(r, "pB")["trsf"])
     assert np.abs(end - target).max() < 1e-6
-    m = [m for m in r.motion.motions if m.kind == "movel"][0]
+    m = next(m for m in r.motion.motions if m.kind == "movel")
     times = np.linspace(m.start, m.end, 60)
     p0, p1 = expected[:3, 3], target[:3, 3]
     u = (p1 - p0) / np.linalg.norm(p1 - p0)

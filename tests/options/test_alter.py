@@ -215,7 +215,7 @@ def test_a_move_after_the_alterable_trajectory_waits_for_alter_end(tmp_path):
     b = xyz(gv(r, "pA")) + [0, 100, 0]
     assert xyz(gv(r, "pMid")) == pytest.approx(b + [0, 0, 6], abs=1e-6)  # the program's 3 mm and the scenario's
     assert xyz(gv(r, "pEnd")) == pytest.approx(xyz(gv(r, "pA")), abs=1e-9)
-    last = [m for m in r.motion.motions if m.id == 2][0]
+    last = next(m for m in r.motion.motions if m.id == 2)
     assert last.state == "done" and last.start >= 1.5
     # without alterEnd the program waits for ever, and the report says why
     r = run(tmp_path / "b", body.replace("  nEnd = alterEnd()\n", ""), duration=5,

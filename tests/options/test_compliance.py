@@ -7,8 +7,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
 from interpretation.simsupport import codes, errors, gv, sim
+
 from val3check.robot import load_robot
 
 TX = load_robot("TX2-60")

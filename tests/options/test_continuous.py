@@ -4,8 +4,8 @@ axis 6, the next one starts again at 0° without turning back), the range the op
 from __future__ import annotations
 
 import pytest
-
 from interpretation.simsupport import codes, errors, gv, sim
+
 from val3check.robot import load_robot
 
 TX = load_robot("TX2-60")

@@ -60,7 +60,7 @@ class DH:
     def values(self, name: str) -> tuple[float, ...]:
         return getattr(self, name)
 
-    def differences(self, other: "DH") -> tuple[float, float]:
+    def differences(self, other: DH) -> tuple[float, float]:
         """(largest length difference in mm, largest angle difference in degrees) from `other`."""
         dl = max(abs(x - y) for n in ("d", "a", "b") for x, y in zip(self.values(n), other.values(n)))
         da = max(abs(math.remainder(x - y, 360.0)) for n in ("theta", "alpha", "beta")

@@ -30,8 +30,9 @@ from __future__ import annotations
 
 import bisect
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any, Callable
+from typing import Any
 
 import numpy as np
 
@@ -318,7 +319,7 @@ class Alteration:
             f"the controller it is computed from the altered position (11.2.3) and moves the arm back by the alteration "
             f"(up to {float(np.max(np.abs(delta))):.3g}° or mm on an axis); the simulation plans the nominal path, which "
             "does not move here: the offset vanishes in one step, a jump the controller does not make (said once)", src.path, src.line, src.col,
-            time_us=int(round(command.request.recorded * US)), task=src.task, program=src.program))
+            time_us=round(command.request.recorded * US), task=src.task, program=src.program))
 
     # ---- time passes ---------------------------------------------------------------------------------------
 
@@ -382,7 +383,7 @@ class Alteration:
         first = self._first_alterable(q)
         if first is None:
             return
-        q.trajectory  # noqa: B018 - the plan up to date
+        _ = q.trajectory  # the plan up to date
         ts = time_leaving(q.profile, first.placement.s_begin)
         layers = self.arm.layers
         tau = layers.warp.tau(t)

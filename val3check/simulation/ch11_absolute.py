@@ -81,7 +81,7 @@ def I_setdh(task, unit, theta, d, a, b, alpha, beta):
     require(task, "absoluteRobot", "setDH")
     machine = task.machine
     clock = machine.clock
-    done = lambda: arm.motion_done(clock.now)  # noqa: E731
+    done = lambda: arm.motion_done(clock.now)
     done.motion = True
     yield from WAIT(task, done, False, "setDH (the motion to be empty)")
     arrays = dict(zip(SET_ORDER, (theta, d, a, b, alpha, beta)))

@@ -102,7 +102,7 @@ def I_alterend(task, unit) -> float:
     arm, q, now = _state(task, "alterEnd")
     if q.failure is not None and arm.alteration.state == "active":
         return -3.0  # "alterEnd a été refusé parce que le mouvement est en erreur"
-    return float(arm.alteration.end(q, now, arm.queue_time(int(round(now * US)))))
+    return float(arm.alteration.end(q, now, arm.queue_time(round(now * US))))
 
 
 def I_alterstoptime(task, unit) -> float:
@@ -110,7 +110,7 @@ def I_alterstoptime(task, unit) -> float:
     arm = task.machine.arm
     if not arm.has_model or arm.queue_in_use is None:
         return 0.0
-    arm, q, now = _state(task, "alterStopTime")
+    arm, _, now = _state(task, "alterStopTime")
     return float(arm.alteration.stop_time(now))
 
 

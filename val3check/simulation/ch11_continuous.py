@@ -89,7 +89,7 @@ def I_resetturn(task, unit, reference: dict):
     mm = millimeter_unit(unit)
     q = arm.sync(clock.time_of(task))
     q.reset_motion(clock.time_of(task) / US)
-    stopped = lambda: arm.queue_time(clock.now) >= arm.queue.profile.t_end - 1e-9  # noqa: E731
+    stopped = lambda: arm.queue_time(clock.now) >= arm.queue.profile.t_end - 1e-9
     stopped.motion = True
     yield from WAIT(task, stopped, False, "resetTurn (the arm to stop)")
     yield from DELAY(task, ADJUST_S)

@@ -32,8 +32,9 @@ internes" (11.1.4) is not modelled.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any, Callable
+from typing import Any
 
 import numpy as np
 
@@ -172,7 +173,7 @@ class Compliance:
         if not self.moves:
             self.t_eval = max(self.t_eval, to)
             return
-        q.trajectory  # noqa: B018 - the plan up to date
+        _ = q.trajectory  # the plan up to date
         warp = layers.warp
         t = min(self.t_eval, to)
         for _ in range(10_000):
@@ -230,7 +231,7 @@ class Compliance:
             "R054", f"{move.command.request.kind}f: the tool meets the surface '{move.contact[1]}' at "
             f"({x:.1f}, {y:.1f}, {z:.1f}) mm and presses on it with {net:g} % of the arm's nominal load; the move "
             "stays there, short of its target, until the force changes or resetMotion()", src.path, src.line,
-            src.col, time_us=int(math.ceil(t * US - 1e-6)), task=src.task, program=src.program))
+            src.col, time_us=math.ceil(t * US - 1e-6), task=src.task, program=src.program))
 
     def waiting_reason(self, q: Any, layers: Any, t: float) -> str | None:
         """Why the motion does not go on, when a compliant move holds it."""

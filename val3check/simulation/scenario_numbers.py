@@ -19,4 +19,4 @@ def seconds(v: Any) -> int | None:
     (nan, inf, negative, not a number)."""
     if not finite(v) or not 0 <= v <= MAX_SECONDS:
         return None
-    return int(round(v * 1_000_000))
+    return round(v * 1_000_000)

@@ -12,6 +12,7 @@ from typing import Any
 
 import numpy as np
 
+from ..excerpt import shown
 from .alteration import ScenarioAlteration
 from .ch11_continuous import set_continuous
 from .ch11_licences import OEM_STATES, OPTIONS, licences_of
@@ -148,12 +149,12 @@ def _options(ap: Any, table: Any) -> None:
             lic.oem = _oem(ap, value, ln)
         elif key in OPTIONS:
             if not isinstance(value, bool):
-                ap.fail(ln, f"[options] {key}: true (installed) or false, not {value!r}")
+                ap.fail(ln, f"[options] {key}: true (installed) or false, not {shown(value)}")
             lic.options[key] = value
             if key == "continuousAxis" and getattr(ap.machine.arm, "has_model", False):
                 set_continuous(ap.machine.arm, value)  # the axis's range with the option, or without (11.5)
         else:
-            ap.fail(ln, f"[options]: unknown key {key!r} (allowed: {', '.join(sorted([*OPTIONS, 'oem']))})")
+            ap.fail(ln, f"[options]: unknown key {shown(key)} (allowed: {', '.join(sorted([*OPTIONS, 'oem']))})")
 
 
 def _oem(ap: Any, table: Any, here: tuple) -> dict[str, tuple[str, str | None]]:
@@ -167,12 +168,12 @@ def _oem(ap: Any, table: Any, here: tuple) -> dict[str, tuple[str, str | None]]:
         if isinstance(spec, dict):
             unknown = set(spec) - {"state", "password"}
             if unknown:
-                ap.fail(here + (name,), f"[options] oem {name}: unknown key {sorted(unknown)[0]!r} (allowed: password, state)")
+                ap.fail(here + (name,), f"[options] oem {shown(name)}: unknown key {shown(min(unknown))} (allowed: password, state)")
             password = spec.get("password")
             if password is not None and not isinstance(password, str):
-                ap.fail(here + (name,), f"[options] oem {name}: password = \"text\"")
+                ap.fail(here + (name,), f"[options] oem {shown(name)}: password = \"text\"")
             spec = spec.get("state", "enabled")
         if spec not in OEM_STATES:
-            ap.fail(here + (name,), f"[options] oem {name}: {states}, not {spec!r}")
+            ap.fail(here + (name,), f"[options] oem {shown(name)}: {states}, not {shown(spec)}")
         out[str(name)] = (spec, password)
     return out
