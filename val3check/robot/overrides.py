@@ -105,11 +105,12 @@ def apply(model, values: dict, by: str = "user"):
         if not t > 0:
             raise RobotError("ramp_s: a positive time in seconds is needed")
         m = replace(m, accelerations=tuple(v / t for v in m.nominal_speeds),
-                    acceleration_note=f"{said}: nominal speed reached in {t:g} s from rest")
+                    acceleration_note=f"{said}: nominal speed reached in {t:g} s from rest",
+                    accelerations_assumed=by != "user")
         m = _said(m, "ramp_s", f"{t:g}", said)
     if "accelerations" in values:
         acc = [_num(v, "accelerations") for v in _per_axis(m, values["accelerations"], "accelerations", m.accelerations)]
-        m = m.with_accelerations(acc, note=said)
+        m = m.with_accelerations(acc, note=said, assumed=by != "user")
         m = _said(m, "accelerations", _fmt(acc), said)
     if "max_torques" in values:
         tq = [_num(v, "max_torques") for v in _per_axis(m, values["max_torques"], "max_torques", m.max_torques)]
