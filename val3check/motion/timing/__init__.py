@@ -28,10 +28,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from .analytic import duration, trapezoid
-from .grid import Grid, sample_path
+from .grid import Grid, gridpoint_before, sample_path
 from .optimal import TimedProfile, topp
 from .safe import brake_stop
 
+MATCH = 1e-9  # relative ṡ² within which a re-timing from further back passes where the arm is
 TOPP_CACHE = 512  # time parameterisations remembered (`Timing._topp`)
 
 
@@ -50,6 +51,18 @@ class TimedPiece:
     def duration(self) -> float:
         """The piece's time (s)."""
         return duration(self.s, self.sd)
+
+    def after(self, a: float, v0: float) -> "TimedPiece | None":
+        """The piece from position a on, when it passes there at speed v0 (ṡ² linear in s between
+        breakpoints); None when it does not."""
+        s, sd = self.s, self.sd
+        i = int(np.clip(np.searchsorted(s, a, side="right") - 1, 0, len(s) - 2))
+        ds = s[i + 1] - s[i]
+        x = sd[i] ** 2 + (sd[i + 1] ** 2 - sd[i] ** 2) * (a - s[i]) / ds if ds > 0 else sd[i] ** 2
+        if abs(x - v0 * v0) > MATCH * max(x, v0 * v0):
+            return None
+        keep = s > a + 1e-12 * max(1.0, abs(a))
+        return TimedPiece(np.concatenate([[a], s[keep]]), np.concatenate([[v0], sd[keep]]), self.fallback, self.owner)
 
 
 class Timing:
@@ -78,6 +91,22 @@ class Timing:
         res = self._topp(grid, v0)
         return TimedPiece(res.s, res.sd, res.fallback, int(owners[0]))
 
+    def time_from(self, path, a: float, b: float, v0: float, limits, speed_at) -> TimedPiece:
+        """`time` from position a at speed v0, the same whenever the re-timing happens: timed from
+        the path's last gridpoint before a, g, at the speed `speed_at(g)` the arm had there (None:
+        it did not pass there without stopping), and taken from a on when the arm is where that
+        profile passes (it was not braking yet). A re-timing from a itself would put a gridpoint
+        at a, and the discretisation would differ by a few parts in 10⁴ with the moment of the
+        re-timing (docs/motion.md, "When the program is ahead of the arm")."""
+        if v0 > 0.0:
+            g = gridpoint_before(path, a, self.kin)
+            v_g = speed_at(g) if g < a - 1e-12 * max(1.0, abs(a)) else None
+            if v_g is not None:
+                cut = self.time(path, g, b, v_g, limits).after(a, v0)
+                if cut is not None:
+                    return cut
+        return self.time(path, a, b, v0, limits)
+
     def brake(self, path, a: float, b: float, sd0: float, limits) -> tuple[np.ndarray, np.ndarray]:
         """Stop on `path` from position a at speed sd0 as soon as the decelerations allow (at the
         latest at b, the next stop): (s, ṡ) breakpoints ending at rest."""
@@ -94,8 +123,6 @@ class Timing:
         if hit is not None:
             s_rel, sd, fallback = hit
             s = s_rel + s0
-            if len(s) == len(grid.s):  # toppra's answer is on the grid: exactly its positions
-                s = grid.s.copy()
             s[0], s[-1] = grid.s[0], grid.s[-1]  # the ends exactly (a command ends there)
             return TimedProfile(s, sd.copy(), fallback)
         res = topp(grid, v0)
