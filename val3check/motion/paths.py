@@ -148,7 +148,7 @@ def blend_controls(pL, vL, pR, vR, ell_l: float, ell_r: float):
 # corner. ("bezier": the Bézier curve through the corner of the two tangents, tighter when leave
 # and reach differ a lot; measured slower on random U cycles, bench/bench_motion.py.) When several
 # shapes are listed the queue takes the one its estimate says the arm follows fastest.
-BLEND_SHAPES = (1.0,)
+BLEND_SHAPES = ("bezier",)
 
 
 class BlendShape:

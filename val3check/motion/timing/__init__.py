@@ -52,7 +52,7 @@ class TimedPiece:
         """The piece's time (s)."""
         return duration(self.s, self.sd)
 
-    def after(self, a: float, v0: float) -> "TimedPiece | None":
+    def after(self, a: float, v0: float) -> TimedPiece | None:
         """The piece from position a on, when it passes there at speed v0 (ṡ² linear in s between
         breakpoints); None when it does not."""
         s, sd = self.s, self.sd
