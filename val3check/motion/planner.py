@@ -231,7 +231,7 @@ class Planner:
                 a = b
                 continue
             piece = self.timing.time_from(trial, a, b, v0, self.limits_of,
-                                          lambda g: self.profile.speed_at(g + shift))
+                                          lambda g, a_: self.profile.speed_at(g + shift, a_ + shift))
             total += piece.duration
             if piece.fallback:  # not reused: the plan reports it (R019)
                 pieces = None

@@ -111,15 +111,18 @@ class Profile:
             self.S.append(float(s[i + 1]))
             self.SD.append(float(sd[i + 1]))
 
-    def speed_at(self, s: float) -> float | None:
-        """ṡ where the profile last passed position s, None when it stood still since (a speed of
-        0 between s and its end) or never got there."""
+    def speed_at(self, s: float, until: float) -> float | None:
+        """ṡ where the profile passed position s on its way to position `until` (the last time),
+        None when it stood still in between or never got there."""
         S, SD = self.S, self.SD
         k = bisect.bisect_right(S, s) - 1
         if k < 0 or k >= len(S) - 1:
             return None
-        if any(v <= 0.0 for v in SD[k + 1:]):
-            return None
+        j = k + 1
+        while j < len(S) and S[j] < until:
+            if SD[j] <= 0.0:
+                return None
+            j += 1
         ds = S[k + 1] - S[k]
         x = SD[k] ** 2 + (SD[k + 1] ** 2 - SD[k] ** 2) * (s - S[k]) / ds if ds > 0 else SD[k] ** 2
         return math.sqrt(max(x, 0.0))

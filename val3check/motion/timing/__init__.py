@@ -93,14 +93,14 @@ class Timing:
 
     def time_from(self, path, a: float, b: float, v0: float, limits, speed_at) -> TimedPiece:
         """`time` from position a at speed v0, the same whenever the re-timing happens: timed from
-        the path's last gridpoint before a, g, at the speed `speed_at(g)` the arm had there (None:
-        it did not pass there without stopping), and taken from a on when the arm is where that
+        the path's last gridpoint before a, g, at the speed `speed_at(g, a)` the arm had there on
+        its way to a (None: it stood still in between), and taken from a on when the arm is where that
         profile passes (it was not braking yet). A re-timing from a itself would put a gridpoint
         at a, and the discretisation would differ by a few parts in 10⁴ with the moment of the
         re-timing (docs/motion.md, "When the program is ahead of the arm")."""
         if v0 > 0.0:
             g = gridpoint_before(path, a, self.kin)
-            v_g = speed_at(g) if g < a - 1e-12 * max(1.0, abs(a)) else None
+            v_g = speed_at(g, a) if g < a - 1e-12 * max(1.0, abs(a)) else None
             if v_g is not None:
                 cut = self.time(path, g, b, v_g, limits).after(a, v0)
                 if cut is not None:

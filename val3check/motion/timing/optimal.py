@@ -30,7 +30,6 @@ reports it (R019).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -72,9 +71,9 @@ def bounds(grid: Grid) -> tuple[np.ndarray, ...]:
     return uc, us, lc, us
 
 
-def _steps(grid: Grid):
-    """The affine maps of both passes, per interval k (between gridpoints k and k+1), as lists of
-    (slope, offset) pairs: backward, K[k] ≤ slope·K[k+1] + offset; forward, x[k+1] ≤ slope·x[k] +
+def steps(grid: Grid) -> tuple[np.ndarray, np.ndarray]:
+    """The affine maps of both passes, per interval k (between gridpoints k and k+1), as arrays
+    (intervals, pairs, 2) of (slope, offset) pairs: backward, K[k] ≤ slope·K[k+1] + offset; forward, x[k+1] ≤ slope·x[k] +
     offset. Each pair is one axis's bound at one end of the interval (module docstring)."""
     uc, us, lc, ls = bounds(grid)
     h = np.diff(grid.s)[:, None]
@@ -98,7 +97,7 @@ def _steps(grid: Grid):
         f_of1 = np.where(ok2, 2.0 * h * uc[1:] * f_sl1, _OFF)
     back = np.concatenate([np.stack([b_sl0, b_of0], -1), np.stack([b_sl1, b_of1], -1)], axis=1)
     fwd = np.concatenate([np.stack([f_sl0, f_of0], -1), np.stack([f_sl1, f_of1], -1)], axis=1)
-    return back.tolist(), fwd.tolist()
+    return back, fwd
 
 
 def reachable(grid: Grid, cap: list, back: list, x_end: float = 0.0) -> list:
@@ -132,8 +131,8 @@ def topp(grid: Grid, sd0: float = 0.0) -> TimedProfile:
     if n < 2 or grid.s[-1] - grid.s[0] <= 0.0:
         return TimedProfile(grid.s[:1].copy(), np.array([0.0]))
     cap = np.minimum(grid.xmax(), accel_xmax(grid)).tolist()
-    back, fwd = _steps(grid)
-    K = reachable(grid, cap, back)
+    back, fwd = steps(grid)
+    K = reachable(grid, cap, back.tolist())
     x0 = sd0 * sd0
     if x0 > K[0]:
         if x0 <= K[0] * 1.02 + 1e-9:  # a hair outside (numerical noise of a new grid): clamp
@@ -146,22 +145,14 @@ def topp(grid: Grid, sd0: float = 0.0) -> TimedProfile:
                                     rest.fallback)
             s_i, sd_i = integrate(grid, sd0)
             return TimedProfile(s_i, sd_i, fallback=True)
-    x = np.array(forward(x0, cap, K, fwd))
+    x = np.array(forward(x0, cap, K, fwd.tolist()))
     x[-1] = 0.0
     sd = np.sqrt(x)
     # the arm must not stand still inside the path (two zero speeds in a row: a cusp, or a path
     # the limits cannot move along): then the safe profile
     still = (sd[:-1] + sd[1:] <= 1e-9 * max(float(sd.max()), 1.0)) & (np.diff(grid.s) > 0.0)
     if np.all(np.isfinite(sd)) and not np.any(still):
-        s_r, sd_r = refine(grid, sd)
+        s_r, sd_r = refine(grid, sd, back, fwd)
         return TimedProfile(s_r, sd_r)
     s_i, sd_i = integrate(grid, sd0)
     return TimedProfile(s_i, sd_i, fallback=True)
-
-
-def speed_at(s: np.ndarray, sd: np.ndarray, at: float) -> float:
-    """ṡ at position `at` of a profile of breakpoints (ṡ² linear in s in between)."""
-    i = int(np.clip(np.searchsorted(s, at, side="right") - 1, 0, len(s) - 2))
-    ds = s[i + 1] - s[i]
-    x = sd[i] ** 2 if ds <= 0 else sd[i] ** 2 + (sd[i + 1] ** 2 - sd[i] ** 2) * (at - s[i]) / ds
-    return math.sqrt(max(x, 0.0))

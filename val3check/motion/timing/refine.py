@@ -13,9 +13,8 @@ few milliseconds of real ramp). Inside an interval [s0, s1] of length h, with �
 
 and the fastest motion from x0 to x1 is the lowest of the three lines at every τ (10.3.1: "à
 chaque instant, le robot se déplace et accélère au maximum de ses capacités"): a bang-bang
-inside the interval. `a` and `d` are the greatest path acceleration and deceleration allowed at
-both ends of the interval along each line (each axis's bound is linear in x, so the line's lowest
-and highest x cover it); `c` is the velocity limit curve (joint speeds,
+inside the interval. `a` and `d` are the path acceleration and deceleration of the solver's own
+steps from x0 and to x1 (optimal.py: the bounds at both ends of the interval); `c` is the velocity limit curve (joint speeds,
 tvel, rvel) and the acceleration limit curve (the speed above which no path acceleration obeys
 every axis). The lowest line is piecewise linear in x: its corners become breakpoints of the
 profile, with a constant path acceleration between them — the form trajectory.Profile holds.
@@ -28,7 +27,6 @@ from __future__ import annotations
 import numpy as np
 
 from .grid import XMAX, Grid
-from .safe import u_bounds
 
 UMAX = 1e15  # "no bound" on s̈ (path units of degrees: far above any arm's)
 REL_TOL = 1e-9  # a corner higher than the interval's straight line by less than this is dropped
@@ -56,9 +54,12 @@ def accel_xmax(grid: Grid) -> np.ndarray:
     return np.minimum(np.minimum(pair, still), XMAX)
 
 
-def refine(grid: Grid, sd: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def refine(grid: Grid, sd: np.ndarray, back: np.ndarray, fwd: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The breakpoints (s, ṡ) of the fastest motion through the gridpoints' speeds `sd` (module
-    docstring): the gridpoints, and the corners of the bang-bang inside each interval."""
+    docstring): the gridpoints, and the corners of the bang-bang inside each interval. `back`,
+    `fwd`: the solver's braking and accelerating steps (optimal.steps): the lines inside an
+    interval are the solver's own, so that a re-timing from a point of a line finds the same line
+    (planner.py)."""
     s = grid.s
     x = sd * sd
     n = len(s)
@@ -67,10 +68,11 @@ def refine(grid: Grid, sd: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     h = np.diff(s)
     cap = np.maximum(np.minimum(grid.xmax(), accel_xmax(grid)), x)
     u_lin = (x[1:] - x[:-1]) / (2.0 * h)
-    g0, g1 = grid.slice(0, n - 1), grid.slice(1)
-    top = np.minimum(cap[:-1], cap[1:])
-    a = _finite(np.maximum(_rate(g0, g1, x[:-1], top, h, up=True), u_lin))
-    d = _finite(np.maximum(_rate(g0, g1, x[1:], top, h, up=False), -u_lin))
+    with np.errstate(over="ignore", invalid="ignore"):
+        up = np.min(fwd[:, :, 0] * x[:-1, None] + fwd[:, :, 1], axis=1)  # ṡ² at the end accelerating
+        down = np.min(back[:, :, 0] * x[1:, None] + back[:, :, 1], axis=1)  # ṡ² at the start braking
+    a = _finite(np.maximum((up - x[:-1]) / (2.0 * h), u_lin))
+    d = _finite(np.maximum((down - x[1:]) / (2.0 * h), -u_lin))
     tau, env = _corners(x, cap, h, a, d)
     lin = x[:-1, None] + 2.0 * u_lin[:, None] * tau
     above = np.isfinite(env) & (env > lin + REL_TOL * np.maximum(1.0, np.maximum(x[:-1], x[1:]))[:, None])
@@ -89,22 +91,6 @@ def refine(grid: Grid, sd: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     s_out = np.concatenate(out_s)
     x_out = np.maximum(np.concatenate(out_x), 0.0)
     return s_out, np.sqrt(x_out)
-
-
-def _rate(g0: Grid, g1: Grid, x: np.ndarray, top: np.ndarray, h: np.ndarray, up: bool) -> np.ndarray:
-    """The greatest path acceleration (up) or deceleration of each interval's accelerating (from
-    x at its start) or braking (to x at its end) line: the bounds at both ends of the interval, at
-    x and at the highest ṡ² the line reaches (each axis's bound is linear in ṡ², so the two cover
-    the line). It depends on that end's speed only, so that a re-timing from a point of the line
-    finds the same line (planner.py)."""
-    def at(xs):
-        lo0, hi0 = u_bounds(g0, xs)
-        lo1, hi1 = u_bounds(g1, xs)
-        return np.minimum(hi0, hi1) if up else -np.maximum(lo0, lo1)
-
-    r = at(x)
-    reach = np.minimum(x + 2.0 * h * np.maximum(_finite(r), 0.0), top)
-    return np.minimum(r, at(reach))
 
 
 def _finite(u: np.ndarray) -> np.ndarray:
