@@ -18,7 +18,9 @@ from ..geometry.rotation import angles_of, matrix
 from ..interpretation.machine import Machine
 from ..motion.cycle import cycle_stats
 from ..motion.records import busy_time, motion_records
-from .arm_record import ArmRun, ArmScene, CycleEntry, FramePose, MotionEntry, MotionLimits, ToolUse
+from ..motion.retime import retimed
+from ..robot.models import ASSUMED_ACCELERATION_RANGE
+from .arm_record import AccelerationRange, ArmRun, ArmScene, CycleEntry, FramePose, MotionEntry, MotionLimits, ToolUse
 from .moving_arm import MovingArm
 from .result import END_REASONS, SimResult, TaskSummary
 
@@ -93,11 +95,21 @@ def arm_run(machine: Machine, diags: list[Diagnostic]) -> ArmRun | None:
                                 task=src.task, program=src.program, error=f.error))
     records = motion_records(q)
     motions = [_entry(rec, command) for rec, command in zip(records, q.history)]
-    cycles = {task: CycleEntry(st.task, st.marker, tuple(st.starts)) for task, st in cycle_stats(records).items()}
+    cycles = _cycles(records)
     busy, idle = busy_time(q.trajectory.profile, end_s)
     scene = arm_scene(arm.model, arm.initial_joints, machine.main.globals if machine.main is not None else {})
     tools = [ToolUse(*e, tcp_matrix=_matrix(e.tcp_in_flange)) for e in machine.recorder.tool_events]
-    return ArmRun(scene, motions, cycles, q.trajectory, tools, busy, idle, end_s)
+    spread = None
+    if getattr(arm.model, "accelerations_assumed", False):  # issue 23: the range if they are off
+        spread = AccelerationRange(ASSUMED_ACCELERATION_RANGE,
+                                   tuple(_cycles(retimed(q, records, f)) for f in ASSUMED_ACCELERATION_RANGE))
+    return ArmRun(scene, motions, cycles, q.trajectory, tools, busy, idle, end_s, spread)
+
+
+def _cycles(records) -> dict[str, CycleEntry]:
+    """The cycles of the tasks that loop, from the motion records (motion/cycle.py): the run's,
+    and the re-timed runs' of the acceleration range."""
+    return {task: CycleEntry(st.task, st.marker, tuple(st.starts)) for task, st in cycle_stats(records).items()}
 
 
 def _entry(rec, command) -> MotionEntry:
