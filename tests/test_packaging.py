@@ -13,7 +13,7 @@ from val3check.testing import write_app
 
 ROOT = Path(__file__).resolve().parent.parent
 PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
-SIM_STACK = {"pin", "pinocchio", "numpy", "scipy", "toppra", "python-fcl", "fcl", "trimesh", "mcap"}
+SIM_STACK = {"pin", "pinocchio", "numpy", "scipy", "python-fcl", "fcl", "trimesh", "mcap"}
 # the packages of the lint layers (tests/test_architecture.py LINT_PATH)
 LINT_PACKAGES = ("language", "loading", "parsing", "semantics", "rules")
 LINT_MODULES = ("__init__.py", "__main__.py", "cli.py", "diagnostics.py", "positions.py", "resources.py", "lint.py",
@@ -30,7 +30,7 @@ def test_the_base_install_has_no_robotics_stack():
     base = {_name(r) for r in PYPROJECT["project"]["dependencies"]}
     assert base == {"lark", "defusedxml", "pathspec"}
     extras = PYPROJECT["project"]["optional-dependencies"]
-    assert {"pin", "numpy", "toppra", "python-fcl", "trimesh"} <= {_name(r) for r in extras["sim"]}
+    assert {"pin", "numpy", "python-fcl", "trimesh"} <= {_name(r) for r in extras["sim"]}
     assert "val3check[sim]" in extras["test"]  # the README's test command installs everything
 
 

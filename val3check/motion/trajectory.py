@@ -1,7 +1,8 @@
 """The arm's trajectory: a path plus a time parameterisation behind one interface.
 
 `Profile` is the path parameter over simulated time, s(t): breakpoints (t, s, ṡ) with a constant
-path acceleration between them (the exact form of both the bang-bang profiles and toppra's
+path acceleration between them (the exact form of both the bang-bang profiles and the
+time-optimal solver's
 output); at rest between motions ṡ = 0. It only grows at its end, except that a replan cuts it at
 the replanning time and continues from the exact state there (position and speed continuous).
 

@@ -1,7 +1,7 @@
 """Time parameterisation: a path plus its limits → how fast the arm goes along it (10.3).
 
 The one interface the rest of motion/ uses (planner.py), in the spirit of toppra's path /
-constraint / algorithm:
+constraint / algorithm (written here: its grid set the ramps, issue 23):
 
     timing = Timing(kin)
     piece = timing.time(path, a, b, v0, limits)   # TimedPiece: ṡ along [a, b] from speed v0 to rest
@@ -14,8 +14,9 @@ them (trajectory.Profile appends it). Inside:
 
 * `grid.py`      the path sampled with the limits at each gridpoint (`Grid`);
 * `analytic.py`  the exact profile of a straight joint line under one set of limits (trapezoid);
-* `optimal.py`   toppra on everything else;
-* `safe.py`      braking, and the safe profile when toppra fails (R019).
+* `optimal.py`   the time-optimal profile of everything else at the gridpoints (reachability);
+* `refine.py`    the bang-bang inside each grid interval (ramps not set by the grid);
+* `safe.py`      braking, and the safe profile when no optimal one is found (R019).
 
 Every limit of 10.3.1 is obeyed: joint speeds, accelerations and decelerations, tvel, rvel, all
 times the monitor speed (docs/motion.md, "Timing").
@@ -39,7 +40,7 @@ TOPP_CACHE = 512  # time parameterisations remembered (`Timing._topp`)
 @dataclass
 class TimedPiece:
     """The path speed ṡ at path positions s (constant path acceleration in between), from the
-    piece's start speed to rest. `fallback`: toppra failed and the safe, slower profile was used
+    piece's start speed to rest. `fallback`: no optimal profile was found and the safe, slower one was used
     (R019); `owner`: the key of the command that owns the start of the piece."""
 
     s: np.ndarray
@@ -76,7 +77,7 @@ class Timing:
 
     def time(self, path, a: float, b: float, v0: float, limits) -> TimedPiece:
         """The profile of the piece [a, b] of `path` (no stop inside) from path speed v0 to rest:
-        exact on a straight joint line with one set of limits, toppra otherwise."""
+        exact on a straight joint line with one set of limits, optimal.topp otherwise."""
         grid, owners = sample_path(path, a, b, self.kin, limits)
         s = grid.s
         if _straight(grid, owners):

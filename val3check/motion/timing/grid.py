@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 XMAX = 1e12  # "no bound" on ṡ² (path units are degrees of joint motion: ṡ stays far below 1e6)
-MIN_GRID = 9  # gridpoints of the shortest piece of path given to toppra
+MIN_GRID = 9  # gridpoints of the shortest piece of path given to the solver
 
 
 @dataclass
@@ -95,7 +95,7 @@ class Grid:
 def sample_path(path, a: float, b: float, kin, limits) -> tuple[Grid, np.ndarray]:
     """The path (paths.Path) between global positions a and b sampled for the time
     parameterisation, and the key of the command that owns each gridpoint; `limits(key)` gives
-    that command's mdesc.Limits. At least MIN_GRID gridpoints (toppra cannot start and stop
+    that command's mdesc.Limits. At least MIN_GRID gridpoints (the solver cannot start and stop
     within fewer)."""
     grid, own = _sample_spans(path, a, b, kin, limits)
     if len(grid) >= MIN_GRID:

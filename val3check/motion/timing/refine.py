@@ -1,6 +1,6 @@
 """The exact profile inside each interval of the grid (issue 23: ramps not set by the grid).
 
-toppra (optimal.py) gives the optimal path speed at the gridpoints, with a constant path
+optimal.py gives the optimal path speed at the gridpoints, with a constant path
 acceleration between neighbours. Where the optimum changes regime between two gridpoints — a
 ramp that reaches the speed limit, a peak where acceleration turns into braking, the end of a
 cruise — a constant acceleration over the whole interval is slower than the arm: the first and
