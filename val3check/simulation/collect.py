@@ -93,23 +93,35 @@ def arm_run(machine: Machine, diags: list[Diagnostic]) -> ArmRun | None:
         src = f.source
         diags.append(Diagnostic(f.code, f.message, src.path, src.line, src.col, time_us=int(round(f.time * 1e6)),
                                 task=src.task, program=src.program, error=f.error))
-    records = motion_records(q)
+    records = motion_records(q, end_s)
     motions = [_entry(rec, command) for rec, command in zip(records, q.history)]
-    cycles = _cycles(records)
+    cycles = _cycle_entries(machine, records)
     busy, idle = busy_time(q.trajectory.profile, end_s)
     scene = arm_scene(arm.model, arm.initial_joints, machine.main.globals if machine.main is not None else {})
     tools = [ToolUse(*e, tcp_matrix=_matrix(e.tcp_in_flange)) for e in machine.recorder.tool_events]
     spread = None
     if getattr(arm.model, "accelerations_assumed", False):  # issue 23: the range if they are off
         spread = AccelerationRange(ASSUMED_ACCELERATION_RANGE,
-                                   tuple(_cycles(retimed(q, records, f)) for f in ASSUMED_ACCELERATION_RANGE))
+                                   tuple(_cycle_entries(machine, retimed(q, records, f)) for f in ASSUMED_ACCELERATION_RANGE))
     return ArmRun(scene, motions, cycles, q.trajectory, tools, busy, idle, end_s, spread)
 
 
-def _cycles(records) -> dict[str, CycleEntry]:
-    """The cycles of the tasks that loop, from the motion records (motion/cycle.py): the run's,
-    and the re-timed runs' of the acceleration range."""
-    return {task: CycleEntry(st.task, st.marker, tuple(st.starts)) for task, st in cycle_stats(records).items()}
+def _cycle_entries(machine: Machine, records) -> dict[str, CycleEntry]:
+    """The cycles of the tasks that record motions, as the reports give them: the run's, and the
+    re-timed runs' of the acceleration range (the same commands, the same loops)."""
+    return {task: CycleEntry(st.task, st.marker, tuple(st.starts), st.loop and st.loop.program,
+                             st.loop and st.loop.kind, st.why, st.passes)
+            for task, st in task_cycles(machine, records).items()}
+
+
+def task_cycles(machine: Machine, records) -> dict:
+    """Each task's cycle (motion/cycle.py) from the run's motion records (or the same re-timed):
+    the loops each command was recorded in and the loops each task was in when the run ended."""
+    arm = machine.arm
+    contexts = [arm.contexts.get(command.key, ()) for command in arm.queue_in_use.history]
+    inside = {t.name: arm.context(t.final.loops) for t in machine.scheduler.history
+              if t.final is not None and t.final.loops}
+    return cycle_stats(records, contexts, inside)
 
 
 def _entry(rec, command) -> MotionEntry:

@@ -23,9 +23,9 @@ import statistics
 import sys
 from dataclasses import dataclass
 
-from ..motion.cycle import cycle_stats
 from ..motion.records import motion_records
 from ..motion.retime import retimed
+from .collect import task_cycles
 from .moving_arm import MovingArm
 from .run import SimOptions, run_machine
 
@@ -54,7 +54,7 @@ class Fit:
 
 
 def _run(ws, app, model, scenario, options: SimOptions):
-    """Run the application with `model`: (its motion queue, its motion records) or a FitError."""
+    """Run the application with `model`: (its machine, motion queue and motion records) or a FitError."""
     opts = SimOptions(duration=options.duration, max_wall=options.max_wall, max_lines=options.max_lines,
                       max_memory_mb=options.max_memory_mb, disk_roots=options.disk_roots, robot=model,
                       cycles=options.cycles)
@@ -63,13 +63,14 @@ def _run(ws, app, model, scenario, options: SimOptions):
     queue = arm.queue_in_use if isinstance(arm, MovingArm) else None
     if queue is None:
         raise FitError("the application moves no arm: there is no cycle to fit")
-    return queue, motion_records(queue)
+    return machine, queue, motion_records(queue, machine.end_time / 1_000_000)
 
 
-def _cycle(records, task: str | None = None):
-    """(task, loop marker, median cycle time) of `task`, or of the task with the most complete
-    cycles (the verdict's); None when it has none."""
-    stats = cycle_stats(records)
+def _cycle(machine, records, task: str | None = None):
+    """(task, loop marker, median cycle time) of `task` in the run of `machine` (its records, or
+    the same re-timed), or of the task with the most complete cycles (the verdict's); None when
+    it has none."""
+    stats = task_cycles(machine, records)
     if task is None:
         looping = [st for st in stats.values() if st.count]
         if not looping:
@@ -86,8 +87,8 @@ def fit_accelerations(ws, app, model, scenario, measured: float, options: SimOpt
     """The model whose accelerations (all × one factor) give the measured cycle (module docstring)."""
     if not (measured > 0 and math.isfinite(measured)):
         raise FitError("the measured cycle must be a positive number of seconds")
-    queue, records = _run(ws, app, model, scenario, options)
-    found = _cycle(records)
+    machine, queue, records = _run(ws, app, model, scenario, options)
+    found = _cycle(machine, records)
     if found is None:
         raise FitError(f"no complete cycle in the run ({options.duration:g} s simulated): a longer --duration, or "
                        "an application whose task loops on its motions (docs/motion.md, \"Cycle time\")")
@@ -96,7 +97,7 @@ def fit_accelerations(ws, app, model, scenario, measured: float, options: SimOpt
 
     def g(log_f: float) -> float:
         """log(cycle time at accelerations × e^log_f) - log(measured), by re-timing the run."""
-        c = _cycle(retimed(queue, records, math.exp(log_f)), task)
+        c = _cycle(machine, retimed(queue, records, math.exp(log_f)), task)
         if c is None:
             raise FitError("the re-timed run has no complete cycle")
         return math.log(c[2]) - log_m
@@ -114,9 +115,9 @@ def fit_accelerations(ws, app, model, scenario, measured: float, options: SimOpt
     runs, factor, simulated = 1, math.exp(log_f), math.nan
     while runs < MAX_RUNS:  # the fitted model's own run (the program may wait differently)
         fitted = _fitted(model, factor, measured)
-        _, recs = _run(ws, app, fitted, scenario, options)
+        run, _, recs = _run(ws, app, fitted, scenario, options)
         runs += 1
-        c = _cycle(recs, task)
+        c = _cycle(run, recs, task)
         if c is None:
             raise FitError("the fitted model's run has no complete cycle of the task")
         simulated = c[2]

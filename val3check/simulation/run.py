@@ -11,6 +11,7 @@ scenario's settings. Nothing here writes files: reports are `val3check.reporting
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -49,6 +50,7 @@ class SimOptions:
     max_lines: int = 50_000_000
     max_transcript: int = 10_000
     max_memory_mb: float = 512.0  # growth of the process, loading included (interpretation/memory_budget.py)
+    wall_clock: Any = time.monotonic  # what max_wall is measured with (tests: a clock of their own)
     disk_roots: list[str] = field(default_factory=list)
     # the arm model (val3check.robot.RobotModel) or None: see robot_choice.choose_sim_robot
     robot: Any = None
@@ -78,7 +80,7 @@ def build_machine(ws: Workspace, app: Application, options: SimOptions, *, regis
     a `Subsystem`) replace the standard ones (tests, tools)."""
     budgets = Budgets(duration_us=int(round(options.duration * 1_000_000)), wall_s=options.max_wall,
                       max_lines=options.max_lines, max_transcript=options.max_transcript,
-                      max_memory_mb=options.max_memory_mb)
+                      max_memory_mb=options.max_memory_mb, wall_clock=options.wall_clock)
     arm = arm if arm is not None else MovingArm(options.robot, cycles=options.cycles)
     machine = Machine(ws, app, registry or build_registry(), arm, budgets=budgets, disk_roots=options.disk_roots)
     if hasattr(arm, "bind"):
@@ -135,7 +137,14 @@ def _collision_setup(app: Application, options: SimOptions, machine: Machine):
         return None
     from . import collision_run
 
-    cell, diags = (collision_run.load_cell(options.cell, app, found=options.cell_found == "found") if options.cell
+    # the cell's meshes are read within the run's budgets (memory priced before trimesh builds them)
+    budgets = machine.budgets
+
+    def out_of_time() -> bool:  # --max-wall, on the run's own clock
+        return budgets.wall_clock() > machine.wall_start + budgets.wall_s
+
+    cell, diags = (collision_run.load_cell(options.cell, app, found=options.cell_found == "found",
+                                           budget=machine.cell.budget, out_of_time=out_of_time) if options.cell
                    else (None, []))
     watch = collision_run.ValueWatch(cell, machine)
     if isinstance(arm, MovingArm):

@@ -59,16 +59,17 @@ def _motions(report: Any, m: Any, end: float, clearances: dict) -> list[dict]:
     cell (`clearances`: position in m.motions -> MotionReport)."""
     out = []
     for k, motion in enumerate(m.motions):
-        if motion.start is None or motion.end is None or motion.start > end:
+        if motion.start is None or motion.start > end:
             continue  # failed before it moved (its diagnostic says why), or not started within the run
+        stop = end if motion.end is None else min(motion.end, end)  # None: under way when the run ended
         src = motion.source
         where = report.display((src.path, src.line, src.col, ""))
         limits = motion.limits  # None: a connection move
         entry = {
             "id": len(out) + 1, "kind": motion.kind, "path": where[0] if where else None, "line": src.line or None,
             "column": src.col or None, "task": src.task or None, "target": motion.target or None,
-            "start": _r(motion.start), "end": _r(min(motion.end, end)),
-            "duration": _r(min(motion.end, end) - motion.start), "dominant_limit": motion.dominant_limit or None,
+            "start": _r(motion.start), "end": _r(stop),
+            "duration": _r(stop - motion.start), "dominant_limit": motion.dominant_limit or None,
             "vel": _r(limits.vel, 3) if limits is not None else None,
             "tvel": _r(limits.tvel, 3) if limits is not None and limits.tvel is not None else None,
             "min_clearance": None, "clearance_to": None,
@@ -96,7 +97,7 @@ def _obstacle_of(a: str, b: str) -> str:
 def _cycles(report: Any, m: Any, end: float) -> tuple[list[dict], dict | None]:
     """Each looping task's iterations, and the cycle time of the verdict (the task with the most
     complete cycles)."""
-    cycles, best = [], None
+    cycles = []
     for task in sorted(m.cycles):
         st = m.cycles[task]
         if st.marker is None or not st.starts:
@@ -106,14 +107,15 @@ def _cycles(report: Any, m: Any, end: float) -> tuple[list[dict], dict | None]:
         if st.starts[-1] < end:
             its.append({"start": _r(st.starts[-1]), "duration": _r(end - st.starts[-1]), "complete": False})
         cycles.append({"task": task, "path": where[0], "line": st.marker[1],
-                       "label": f"from the motion at line {st.marker[1]} of {Path(where[0]).name}", "iterations": its})
-        if st.count and (best is None or st.count > best[1].count):
-            best = (where, st)
+                       "label": f"{st.kind} loop at line {st.marker[1]} of {Path(where[0]).name}", "iterations": its})
+    from ...simulation.arm_record import main_cycle
+
     cycle_time = None
-    if best is not None:
-        where, st = best
+    st = main_cycle(m.cycles)
+    if st is not None:
+        where = report.display((st.marker[0], st.marker[1], st.marker[2], ""))
         cycle_time = {"seconds": _r(statistics.median(st.times)), "task": st.task,
-                      "basis": f"median of {st.count} complete cycles of task {st.task} (from the motion at line "
+                      "basis": f"median of {st.count} complete cycles of task {st.task} (the {st.kind} loop at line "
                                f"{st.marker[1]} of {Path(where[0]).name})"}
         spread = m.acceleration_range.cycle_time(st.task) if m.acceleration_range is not None else None
         if spread is not None:  # issue 23: the model assumes the accelerations
