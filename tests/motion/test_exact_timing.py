@@ -6,6 +6,7 @@ its commands were recorded (issue 23: 1.041552, 1.043206, 1.044861 s for 1.04400
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -198,3 +199,49 @@ end
     times = [st.times for st in r.motion.cycles.values() if st.times][0]
     assert len(times) >= 4
     assert max(times) - min(times) < 1e-6
+
+
+def test_a_blended_cycle_run_is_the_same_byte_for_byte_in_fresh_processes(tmp_path):
+    # the brief: same input, same output, byte for byte, traces included; here the timing core's
+    # whole chain (Cartesian blends, re-timings under way, the acceleration range's re-timed runs)
+    # in two processes with different hash seeds
+    import os
+    import subprocess
+    import sys
+
+    from interpretation.simsupport import build
+
+    folder = build(tmp_path / "app", """begin
+  movej({0, 20, 100, 0, 60, 0}, flange, mStop)
+  waitEndMove()
+  pA = here(flange, world)
+  pB = compose(pA, world, {0, 0, 40, 0, 0, 0})
+  pC = compose(pA, world, {0, 250, 40, 0, 0, 0})
+  pD = compose(pA, world, {0, 250, 0, 0, 0, 0})
+  mB.blend = Cartesian
+  mB.leave = 20
+  mB.reach = 60
+  mStop.blend = off
+  while true
+    movel(pB, flange, mB)
+    movel(pC, flange, mB)
+    movel(pD, flange, mStop)
+    movel(pC, flange, mB)
+    movel(pB, flange, mB)
+    movel(pA, flange, mStop)
+    delay(0.05)
+  endWhile
+end
+""", globals_=["point pA", "point pB", "point pC", "point pD", "mdesc mB", "mdesc mStop"])
+    outs = []
+    for seed in ("1", "2"):
+        trace = tmp_path / f"run{seed}.mcap"
+        r = subprocess.run([sys.executable, "-m", "val3check", "sim", str(folder), "--robot", "TX2-60", "--cycles", "3",
+                            "--report", "json", "--trace", str(trace)], capture_output=True, text=True, timeout=300,
+                           env={**os.environ, "PYTHONHASHSEED": seed}, check=False)
+        assert r.returncode == 0, r.stderr
+        outs.append((r.stdout, trace.read_bytes()))
+    assert outs[0] == outs[1]
+    data = json.loads(outs[0][0])
+    cycle = data["motion"]["cycles"][0]
+    assert cycle["cycles"] == 3 and cycle["median_range"][0] < cycle["median"] < cycle["median_range"][1]
