@@ -11,8 +11,8 @@ import math
 
 import numpy as np
 import pytest
-
 from interpretation.simsupport import sim
+
 from val3check.motion.commands import MoveCommand, Target
 from val3check.motion.mdesc import MDesc
 from val3check.motion.queue import MotionQueue
@@ -196,7 +196,7 @@ def test_successive_cycles_of_a_program_are_timed_the_same(tmp_path):
 end
 """, globals_=["point pA", "point pB", "point pC", "point pD", "mdesc mB", "mdesc mStop"], locals_=["num l_i"],
         robot=TX)
-    times = [st.times for st in r.motion.cycles.values() if st.times][0]
+    times = next(st.times for st in r.motion.cycles.values() if st.times)
     assert len(times) >= 4
     assert max(times) - min(times) < 1e-6
 
