@@ -104,7 +104,7 @@ def _verdict(m: dict) -> str:
               f'{ct.get("off_by", 2):g}×)') if ct and ct.get("range") else ""
     cycle = (f'<div><dt>Cycle time</dt><dd><b>{_s(ct["seconds"])}</b>{_e(spread)} <span class="muted">'
              f'{_e(ct.get("basis", ""))}'
-             f'{" (task " + _e(ct["task"]) + ")" if ct.get("task") else ""}</span></dd></div>') if ct else (
+             f'{_task_suffix(ct)}</span></dd></div>') if ct else (
         '<div><dt>Cycle time</dt><dd class="muted">no complete loop iteration</dd></div>')
     return (
         '<section id="verdict" aria-labelledby="verdict-h"><h2 id="verdict-h">Verdict</h2>'
@@ -115,6 +115,12 @@ def _verdict(m: dict) -> str:
         f'<div><dt>Simulated time</dt><dd>{_s(v["simulated_duration"])}</dd></div>'
         f'{cycle}</dl></div></section>'
     )
+
+
+def _task_suffix(ct: dict) -> str:
+    """" (task robot)" after the cycle time's basis, unless the basis names the task already."""
+    task = ct.get("task")
+    return f" (task {_e(task)})" if task and f"task {task}" not in ct.get("basis", "") else ""
 
 
 def _excerpt(d: dict) -> str:
