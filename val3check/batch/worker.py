@@ -45,6 +45,7 @@ class CaseSummary:
     warnings: int = 0
     cycle_time: float | None = None  # s: median of the verdict's cycle (arm_record.main_cycle)
     cycles: int = 0
+    cycle_range: tuple | None = None  # s: (lowest, highest) cycle_time if the assumed accelerations are off by 2×
     end: str = ""  # how the run ended (SimResult end reason)
     reason: str = ""  # why the verdict is not "pass": the first failing diagnostic, the error, the crash
     # each failing diagnostic: (code, severity, path, line, col, time_us, task, message), at most
@@ -56,7 +57,8 @@ class CaseSummary:
         return {"application": self.app, "name": self.app_name, "arm": self.arm or None, "model": self.model,
                 "scenario": self.scenario or None, "cell": self.cell or None, "overrides": dict(self.overrides),
                 "verdict": self.verdict, "errors": self.errors, "warnings": self.warnings,
-                "cycle_time": self.cycle_time, "cycles": self.cycles, "end": self.end or None,
+                "cycle_time": self.cycle_time, "cycles": self.cycles,
+                "cycle_time_range": None if self.cycle_range is None else list(self.cycle_range), "end": self.end or None,
                 "reason": self.reason or None, "report": self.name}
 
 
@@ -189,22 +191,35 @@ def _run(case: Case, mirror: str) -> CaseOutcome:
         d = failing[0]
         loc = f"{d.path}:{d.line}:{d.col}" if d.line else d.path
         reason = f"{loc}: {d.code} {d.severity.label}: {d.message}"
-    cycle_time, cycles, cycle_max = _cycle(result.motion)
+    cycle_time, cycles, spread = _cycle(result.motion)
     causes = tuple((d.code, d.severity.label, d.path, d.line, d.col, d.time_us, d.task or "", d.message)
                    for d in failing[:MAX_CAUSES])
     summary = summary_of(case, "fail" if failing else "pass", reason, model=model, errors=errors_n,
-                         warnings=warnings_n, cycle_time=cycle_time, cycles=cycles, end=result.end_reason,
-                         causes=causes, cycle_max=cycle_max)
+                         warnings=warnings_n, cycle_time=cycle_time, cycles=cycles, cycle_range=spread,
+                         end=result.end_reason, causes=causes, cycle_max=_longest(result.motion))
     return CaseOutcome(summary, case_outputs(report, opts.case_reports, opts.fail_on) if opts.reports else {})
 
 
-def _cycle(motion) -> tuple[float | None, int, float | None]:  # noqa: ANN001
-    """The verdict's cycle (reporting/html/from_run.py, sim_junit.py): median, count, longest."""
+def _longest(motion) -> float | None:  # noqa: ANN001
+    """The longest of the verdict's cycles (sim --explore's bound, [explore] max_cycle_time)."""
+    if motion is None:
+        return None
+    from ..simulation.arm_record import main_cycle
+
+    st = main_cycle(motion.cycles)
+    return None if st is None or not st.times else round(max(st.times), 6)
+
+
+def _cycle(motion) -> tuple[float | None, int, tuple | None]:  # noqa: ANN001
+    """The median of the verdict's cycle (arm_record.main_cycle), its count, and its range if the
+    assumed accelerations are off (ArmRun.acceleration_range; None when measured)."""
     if motion is None:
         return None, 0, None
     from ..simulation.arm_record import main_cycle
 
-    st = main_cycle(motion.cycles)
+    st = main_cycle(motion.cycles)  # the verdict's (reporting/html/from_run.py, sim_junit.py)
     if st is None:
         return None, 0, None
-    return round(statistics.median(st.times), 6), st.count, round(max(st.times), 6)
+    spread = motion.acceleration_range.cycle_time(st.task) if motion.acceleration_range is not None else None
+    return (round(statistics.median(st.times), 6), st.count,
+            None if spread is None else (round(spread[0], 6), round(spread[1], 6)))
