@@ -8,11 +8,16 @@ import random
 import numpy as np
 import pytest
 
-from .helpers import write_cell
-
-from val3check.collision import CELL_FILE_NAME, CellError, find_cell, read_cell  # noqa: E402
-from val3check.collision import meshes  # noqa: E402
+from val3check.collision import (  # noqa: E402
+    CELL_FILE_NAME,
+    CellError,
+    find_cell,
+    meshes,  # noqa: E402
+    read_cell,
+)
 from val3check.collision.tomlpos import positions  # noqa: E402
+
+from .helpers import write_cell
 
 trimesh = pytest.importorskip("trimesh")
 
