@@ -52,13 +52,20 @@ class Diagnostic:
     program: str | None = None
     error: int | None = None
     # what `lint --fix` may do about it, for the rules whose fix is certain (val3check/fixes.py):
-    # ("rename", written, declared), ("remove-element", tag), ("list-program", project path)
+    # ("rename", written, declared), ("remove-element", tag)
     fix: tuple | None = None
+    # the most severe it may be shown, whatever its rule's severity: a finding that depends on a
+    # guess (a library found by name, F016) is at most a warning
+    at_most: Severity | None = None
 
     @property
     def runtime(self) -> bool:
         """A finding of `val3check sim` (it has a simulated time)."""
         return self.time_us is not None
+
+    def shown_severity(self, severity: Severity) -> Severity:
+        """`severity` (the rule's, or the configuration's), lowered to `at_most` when it is set."""
+        return severity if self.at_most is None or severity <= self.at_most else self.at_most
 
     def sort_key(self) -> tuple:
         return (self.path, self.line, self.col, self.code, self.message)

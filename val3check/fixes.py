@@ -1,15 +1,17 @@
 """`val3check lint --fix` / `--diff`: the fixes that are certain, written byte for byte.
 
-Three rules have one (their rule files say so under `fix`):
+Two rules have one (their rule files say so under `fix`):
 
 - N006 (name-case-mismatch): the name is written as it is declared. val3check found no
   declaration with the written case, only one with another case, so the rewritten name means
   what the controller means whether it compares names with or without case.
 - S001 (unused-local): the `<Local>` element is removed (its whole line when it is alone on it):
   the program never mentions the local.
-- F012 (program-file-not-listed): the file is listed in the project, after the last
-  `<Program>` entry and written like it, when it is a readable program file none of whose
-  programs clashes with a program of the application.
+
+A fix never changes what the controller loads: adding a program file that sits unlisted beside an
+application (F012) to its project would load a backup or a dead program into the controller, so
+F012 only suggests it in its message (as ruff keeps unsafe fixes apart from safe ones). Nor is a
+fix made from a guess (a library found by name, F016): such findings carry none.
 
 Everything else in the file stays as it was, byte for byte: the encoding mark, line endings,
 CDATA sections, escapes, blanks. An edit is made only where the bytes are what the finding
@@ -20,6 +22,7 @@ with a byte-order mark) are not edited.
 
 from __future__ import annotations
 
+import bisect
 import difflib
 import os
 import re
@@ -79,19 +82,20 @@ class FixPlan:
             os.replace(tmp, path)
 
 
+_LINE_END = re.compile(rb"\n|\r(?!\n)")  # as expat counts lines: LF, CRLF or a lone CR
+
+
 class _File:
     """A file's bytes with the positions of its lines (as expat counts them)."""
 
     def __init__(self, data: bytes) -> None:
         self.data = data
         self.bom = 3 if data.startswith(b"\xef\xbb\xbf") else 0
-        self.starts = [0]
-        i, n = 0, len(data)
-        while i < n:
-            c = data[i]
-            if c == 0x0A or (c == 0x0D and (i + 1 >= n or data[i + 1] != 0x0A)):
-                self.starts.append(i + 1)
-            i += 1
+        self.starts = [0] + [m.end() for m in _LINE_END.finditer(data)]
+
+    def line_of(self, offset: int) -> int:
+        """The 1-based line holding byte `offset`."""
+        return bisect.bisect_right(self.starts, offset)
 
     def line_span(self, line: int) -> tuple[int, int, int]:
         """(start, end of its text, start of the next line) of 1-based `line`, in bytes."""
@@ -168,91 +172,22 @@ def _remove_element(d: Diagnostic, f: _File) -> Edit | str:
         return "the element does not declare that name"
     end = close + 1
     if not element.endswith(b"/>"):
-        closing = re.compile(rb"</" + re.escape(tag) + rb"\s*>").search(f.data, end)
-        inner = f.data[end:closing.start()] if closing else b"<"
-        if closing is None or b"<" in inner:
+        # its closing tag must be the next tag: anything else means it holds other elements (and
+        # looking no further than the next '<' keeps a file of unclosed elements linear)
+        nxt_tag = f.data.find(b"<", end)
+        closing = re.compile(rb"</" + re.escape(tag) + rb"\s*>").match(f.data, nxt_tag) if nxt_tag >= 0 else None
+        if closing is None:
             return "the element holds other elements"
         end = closing.end()
     start_line, _, _ = f.line_span(d.line)
-    # the line holding the end of the element
-    end_line = max(i for i, s in enumerate(f.starts, 1) if s <= end)
+    end_line = f.line_of(end)  # the line holding the end of the element
     _, text_end, nxt = f.line_span(end_line)
     if not f.data[start_line:at].strip() and not f.data[end:text_end].strip():
         return Edit(start_line, nxt, b"", d.code)  # alone on its lines: they go with it
     return Edit(at, end, b"", d.code)
 
 
-_PROGRAM = re.compile(rb"<Program\b[^>]*?\bfile\s*=\s*([\"'])(.*?)\1[^>]*?/>", re.IGNORECASE | re.DOTALL)
-_SECTION = re.compile(rb"<(Programs|programSection)\b[^>]*(?<!/)>(.*?)</\1\s*>", re.IGNORECASE | re.DOTALL)
-
-
-def _escape(text: str, quote: bytes) -> bytes:
-    out = text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
-    out = out.replace('"', "&quot;") if quote == b'"' else out.replace("'", "&apos;")
-    return out.encode("utf-8")
-
-
-def _listable(pgx: str, owner, workspace) -> str | None:  # noqa: ANN001
-    """Why the program file cannot be listed for sure, or None."""
-    from .confine import Roots
-    from .loading import reader as rd
-    from .loading.xmlread import read_xml
-
-    res = read_xml(pgx, MAX_SIZE, Roots.user_given())
-    kind = rd.classify(res.root) if res.root is not None else None
-    if kind is None or kind[0] != "programs":
-        return "the file is not a readable VAL 3 program file"
-    names = [p.get("name") or "" for p in res.root.findall("program")]
-    if not names or not all(names):
-        return "the file declares no program"
-    app = workspace.apps.get(owner) if workspace is not None else None
-    if app is None:
-        return "its application was not loaded"
-    existing = {n.lower() for n in app.programs}
-    clash = [n for n in names if n.lower() in existing]
-    if clash:
-        return f"its program {clash[0]} has the name of a program of the application"
-    return None
-
-
-def _list_programs(pjx: str, findings: list[Diagnostic], data: bytes, workspace) -> tuple[Edit | None, list]:  # noqa: ANN001
-    """One insertion after the project's last `<Program>` entry for every file to list."""
-    refused = []
-    section = _SECTION.search(data)
-    entries = list(_PROGRAM.finditer(data, section.start(2), section.end(2))) if section else []
-    if not entries:
-        return None, [(d, "the project lists no program to write the new entry like") for d in findings]
-    last = entries[-1]
-    f = _File(data)
-    line = max(i for i, s in enumerate(f.starts, 1) if s <= last.start())
-    line_start, text_end, nxt = f.line_span(line)
-    if data[last.end():text_end].strip():
-        return None, [(d, "the last program entry shares its line with other elements") for d in findings]
-    newline = data[text_end:nxt] or (b"\r\n" if b"\r\n" in data else b"\n")
-    indent = data[line_start:last.start()]
-    backslash = any(b"\\" in e.group(2) for e in entries)
-    listed = {e.group(2).decode("utf-8", "replace").replace("\\", "/").lower() for e in entries}
-    quote = last.group(1)
-    added = []
-    for d in sorted(findings, key=lambda d: d.path):
-        why = _listable(d.path, pjx, workspace)
-        rel = os.path.relpath(os.path.abspath(d.path), os.path.dirname(pjx)).replace(os.sep, "/")
-        if why is None and rel.lower() in listed:
-            why = "the project already lists it"
-        if why is not None:
-            refused.append((d, why))
-            continue
-        value = rel.replace("/", "\\") if backslash else rel
-        entry = data[last.start():last.start(2)] + _escape(value, quote) + data[last.end(2):last.end()]
-        added.append(indent + entry)
-        listed.add(rel.lower())
-    if not added:
-        return None, refused
-    text = b"".join(newline + a for a in added)
-    return Edit(text_end, text_end, text, "F012"), refused
-
-
-def plan(findings: list[Diagnostic], workspace=None) -> FixPlan:  # noqa: ANN001
+def plan(findings: list[Diagnostic]) -> FixPlan:
     """The edits that fix `findings` (paths as on disk) whose fix is certain."""
     from .loading.xmlread import parse
 
@@ -266,14 +201,10 @@ def plan(findings: list[Diagnostic], workspace=None) -> FixPlan:  # noqa: ANN001
         return files[path]
 
     per_file: dict[str, list[Edit]] = {}
-    listing: dict[str, list[Diagnostic]] = {}
     for d in findings:
         if not d.fix:
             continue
         kind = d.fix[0]
-        if kind == "list-program":
-            listing.setdefault(d.fix[1], []).append(d)
-            continue
         f = file_of(d.path)
         if f is None:
             fp.not_fixed.append((d, "the file is not UTF-8 or cannot be read"))
@@ -283,15 +214,6 @@ def plan(findings: list[Diagnostic], workspace=None) -> FixPlan:  # noqa: ANN001
             fp.not_fixed.append((d, made))
         else:
             per_file.setdefault(d.path, []).append(made)
-    for pjx, found in sorted(listing.items()):
-        f = file_of(pjx)
-        if f is None:
-            fp.not_fixed += [(d, "the project file is not UTF-8 or cannot be read") for d in found]
-            continue
-        edit, refused = _list_programs(pjx, found, f.data, workspace)
-        fp.not_fixed += refused
-        if edit is not None:
-            per_file.setdefault(pjx, []).append(edit)
     for path, edits in sorted(per_file.items()):
         edits.sort(key=lambda e: (e.start, e.end))
         kept: list[Edit] = []
@@ -305,8 +227,7 @@ def plan(findings: list[Diagnostic], workspace=None) -> FixPlan:  # noqa: ANN001
         fp.edits[path] = kept
         root, _problems = parse(_strip_bom(fp.result(path)), path)
         if root is None:  # never leave a file that does not read (should not happen)
-            fp.not_fixed += [(d, "the fixed file would not be well-formed XML") for d in findings
-                             if d.path == path or (d.fix and d.fix[0] == "list-program" and d.fix[1] == path)]
+            fp.not_fixed += [(d, "the fixed file would not be well-formed XML") for d in findings if d.path == path]
             del fp.edits[path]
     return fp
 

@@ -159,7 +159,7 @@ def _run(paths: list[str], settings: Settings, baseline, overlay, only) -> LintR
         if only is not None and os.path.abspath(d.path) != only:
             continue
         rule = rules.get(d.code)
-        severity = settings.severity.get(d.code) or (rule.severity if rule else Severity.ERROR)
+        severity = d.shown_severity(settings.severity.get(d.code) or (rule.severity if rule else Severity.ERROR))
         shown = Diagnostic(
             code=d.code,
             message=_capped(d.message),

@@ -7,7 +7,12 @@ from pathlib import Path
 
 from support import lint
 
+from val3check.config import Settings
+from val3check.rules.catalogue import OPT_IN
 from val3check.testing import code_position, write_app, write_files
+
+# what the checker finds, opt-in rules included (T025: off by default in `val3check lint`)
+ALL = Settings(extend_select=sorted(OPT_IN))
 
 MINE = ("N", "T", "L0", "L1")
 
@@ -21,7 +26,7 @@ def findings(tmp_path: Path, code: str, *, globals_=(), locals_=(), programs=Non
 
 
 def collect(folder: Path, select: str | None = None, with_path: bool = False) -> list:
-    run = lint([folder], cwd=folder.parent)
+    run = lint([folder], ALL, cwd=folder.parent)
     out = []
     for d in run.result.diagnostics:
         if not d.code.startswith(MINE) or d.code in ("L001", "L002", "L003", "L004", "L005"):
@@ -36,7 +41,7 @@ def collect(folder: Path, select: str | None = None, with_path: bool = False) ->
 
 
 def messages(folder: Path) -> list[str]:
-    run = lint([folder], cwd=folder.parent)
+    run = lint([folder], ALL, cwd=folder.parent)
     return [d.message for d in run.result.diagnostics if d.code.startswith(MINE)]
 
 

@@ -47,7 +47,7 @@ def test_configured_target_accepts_or_refuses_them(tmp_path):
 def test_s8_messages_say_why(tmp_path):
     folder = write_app(tmp_path, 'begin\n  userPage("menu")\nend')
     msg = lint([folder], cwd=tmp_path).result.diagnostics[0].message
-    assert "void userPage(string sPage)" in msg and "s8 only" in msg and "s7.11 (project file)" in msg
+    assert "num userPage(string sPage)" in msg and "s8 only" in msg and "s7.11 (project file)" in msg
     assert 'target = "CS9"' in msg
 
 
@@ -88,3 +88,43 @@ def test_web_user_pages_are_s8_evidence(tmp_path):
     (folder / "main.bindings.json").write_text('{"callbacks": [{"id": "b", "event": "click", "data": "start"}]}')
     run = lint([folder], cwd=tmp_path)
     assert [d.code for d in run.result.diagnostics if d.code[0] == "T"] == ["T024"]
+
+
+# Issue 25 class 3: what Stäubli's own s8 templates and a CS9 application with OPC UA and a web
+# user page call (language/s8.toml, sources there).
+TEMPLATE_CODE = """begin
+  nRet = userPage("main")
+  userPage("main")
+  if (userPagePrompt(sPrompt, sInput) == true)
+    userPageAlert("done")
+  endIf
+  bOk = userPageConfirm("Press update")
+  bOk = setSafetyRestart() and hasCpuExtPowerSupply()
+  while wakeUpRobot() != 0
+    delay(1)
+  endWhile
+  jRef = getJntRef("safeReference1")
+  nRet = abs(getSafeRefStatus())
+  opcuaExport(nRet, "nRet")
+  nRet = sioSet(siSocket, nData, 3)
+end"""
+TG = ["num nRet", "string sPrompt", "string sInput", "bool bOk", "joint jRef", "sio siSocket", "num nData[8]"]
+
+
+def test_the_s8_instructions_of_real_code_are_known(tmp_path):
+    assert _codes(tmp_path, TEMPLATE_CODE, version="s8.3", globals_=TG) == []
+
+
+def test_in_a_project_saved_as_s7_they_are_s8_only_warnings(tmp_path):
+    found = _codes(tmp_path, TEMPLATE_CODE, globals_=TG)
+    assert found and set(found) == {("T030", "warning")}
+
+
+def test_a_project_saved_for_a_cs9_is_cs9_code(tmp_path):
+    # Stäubli's j213_external24V template is saved as "s7.0.1Cs9" and calls userPageAlert
+    assert _codes(tmp_path, TEMPLATE_CODE, version="s7.0.1Cs9", globals_=TG) == []
+
+
+def test_a_call_against_a_signature_read_from_code_is_a_warning(tmp_path):
+    code = 'begin\n  userPageAlert(3)\n  nRet = userPageAlert("x")\n  userPagePrompt("x", "literal")\nend'
+    assert _codes(tmp_path, code, version="s8.3", globals_=TG) == [("T024", "warning")] * 3

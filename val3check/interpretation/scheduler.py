@@ -17,19 +17,17 @@ yields, either because its quantum `task.q` is spent (preempted) or because it b
 
 from __future__ import annotations
 
-import re
-import time as _time
 from enum import StrEnum
 from typing import Any
 
 from ..language.runtime_errors import RUNTIME_CODES, Val3RuntimeError
+from ..language.version_facts import task_name_problem
 from .clock import LINE_US, LINES_PER_CYCLE, TICK_US, Clock
 from .recorder import task_state_of
 
 SYNC_LINES = 3000  # 5.5: up to 3000 lines per sequencing of a synchronous task
 START_PRIORITY = 10  # 5.2
 MAX_TASKS = 200
-TASK_NAME = re.compile(r"^[A-Za-z0-9_]{1,15}$")
 
 
 class TaskState(StrEnum):
@@ -178,8 +176,11 @@ class Scheduler:
 
     def create(self, creator: Task | None, unit, name: Any, func, args: tuple, prio: int, period: int,
                pname: str) -> Task:
-        if type(name) is not str or not TASK_NAME.match(name):
-            raise Val3RuntimeError(29, f"invalid task name {name!r}")
+        # 5.10 (error 29); the rule of the application's version, shared with lint (T023): a limit
+        # the manual does not state for this version does not stop the task
+        problem = task_name_problem(name, self.machine.app.version_major) if type(name) is str else None
+        if type(name) is not str or (problem is not None and problem.certain):
+            raise Val3RuntimeError(29, f"invalid task name {name!r}" + (f": {problem.why}" if problem else ""))
         if self.find(unit, name) is not None:
             raise Val3RuntimeError(31, f'a task "{name}" already exists')
         if len(self.tasks) >= MAX_TASKS:
@@ -244,6 +245,7 @@ class Scheduler:
         clock = self.clock
         budgets = machine.budgets
         wall_deadline = machine.wall_start + budgets.wall_s
+        wall_clock = budgets.wall_clock
         memory = machine.cell.budget
         cycles = 0
         while True:
@@ -259,7 +261,7 @@ class Scheduler:
             if clock.now >= limit_us:
                 raise EndRun("stop-timeout" if stopping else "duration")
             cycles += 1
-            if _time.monotonic() > wall_deadline:
+            if wall_clock() > wall_deadline:
                 raise EndRun("wall-clock")
             if cycles & 255 == 0:
                 why = memory.over()

@@ -2,7 +2,7 @@
 `python -m val3check.language.compiled` after changing a TOML file."""
 # fmt: off
 SHA256 = {'instructions.toml': '8d574026cbe9f5bbcc3f0d4dd1d120da76435d89ca3c03053afa56f4b934e2a4',
- 's8.toml': '38a7a77098df74f2a17954fd10872eacfc3cebdaf9d857b654033e68cb981dca',
+ 's8.toml': '2a829e35c703aa2051407dcb35a278576d16ad67a58a43301b8c1d55f9151cb4',
  'types.toml': 'c296ce3ec5cd35b59a3af46a34ec41bcc39a58d372cbbbaba250a16aa1348c73'}
 DATA = {'instructions.toml': {'schema': 1,
                        'manual': 'VAL 3 reference manual, version 7 (s7), French edition',
@@ -1854,16 +1854,46 @@ DATA = {'instructions.toml': {'schema': 1,
                                        'since': 's7',
                                        'replacement': 'diOut = (diIn == true)'}]},
  's8.toml': {'schema': 1,
+             'limits': {'values': {'what': 'values of a variable (one dimension of an array, or all its values)',
+                                   's7': 9999,
+                                   's7_source': 'manual 2.5.4 (insert) and 2.5.5 (append, resize): "La taille d\'une '
+                                                "variable est limitée à 9999 valeurs. Une erreur de temps d'exécution "
+                                                'est générée quand la taille de la variable dépasse cette limite."',
+                                   's8_seen': 10000,
+                                   's8_source': 'issue25: an s8.15 application saved by SRS 2022.7 declares arrays of '
+                                                '10,000 values'},
+                        'task_name': {'what': 'characters of a task name',
+                                      's7': 15,
+                                      's7_source': 'manual 5.10 taskCreate, sNom: "Il doit contenir de 1 à 15 '
+                                                   'caractères choisis dans la plage suivante _a..zA..Z0..9" (runtime '
+                                                   'error 29 otherwise)',
+                                      's8_seen': 20,
+                                      's8_source': 'issue25: taskCreate "socketServerTask" (16 characters) in '
+                                                   'production code of a CS9 cell; '
+                                                   'github:txellgalletto/TFG-Robot-Program (s8.8.3, CS9): taskCreate '
+                                                   '"N15_AproAgafarPuntes" (20 characters), whose completion the '
+                                                   "application's own log (sLog in Robot_pippeting.dtx) records"}},
              'statements': {'print': {'syntax': '? expr',
                                       'summary': 'Print the value of an expression (emulator console; val3check sim: '
                                                  'the user page transcript).',
                                       'since': 's8',
                                       'source': 'issue11'}},
-             'forms': {'userPage': [{'since': 's8',
-                                     'source': 'issue11, cms (userPage("firstpage")), manual8 2.1.4.3 (web user pages)',
-                                     'note': "shows the application's user page of this name",
-                                     'returns': 'void',
+             'forms': {'userPage': [{'since': 's8.3',
+                                     'source': 'templates (VAL3help_example, s8.3: nRet=userPage("main"); '
+                                               'safeCalibration: as a statement), issue11, cms '
+                                               '(userPage("firstpage")), manual8 2.1.4.3 (web user pages), issue25',
+                                     'from': 'calls',
+                                     'note': "shows the application's web user page of this name; its value is a num "
+                                             "(assigned to a num global in Stäubli's template)",
+                                     'returns': 'num',
                                      'params': [{'name': 'sPage', 'type': 'string'}]}],
+                       'sioSet': [{'since': 's8',
+                                   'source': 'issue25 (a CS9 application calls sioSet with three arguments)',
+                                   'note': 'a third argument (a length?) that the s7 form lacks: its parameters are '
+                                           'not public',
+                                   'params_known': False,
+                                   'arity': 3,
+                                   'returns': 'num'}],
                        'ioStatus': [{'since': 's8',
                                      'source': 'issue11 (a socket program calls ioStatus(sio))',
                                      'returns': 'num',
@@ -1889,9 +1919,108 @@ DATA = {'instructions.toml': {'schema': 1,
                                                          'arguments are not checked.',
                                               'params_known': False},
                               'setSafetyRestart': {'section': 's8',
-                                                   'kind': 'procedure',
-                                                   'since': 's8',
-                                                   'source': 'cms (called as setSafetyRestart() after esStatus() == 1)',
-                                                   'summary': 'Safety restart (s8): its parameters are not public; '
-                                                              'arguments are not checked.',
-                                                   'params_known': False}}}}
+                                                   'kind': 'function',
+                                                   'since': 's8.5',
+                                                   'source': 'templates (safeCalibration, s8.5.3: '
+                                                             'l_bResult=setSafetyRestart() after esStatus()==1), cms',
+                                                   'from': 'calls',
+                                                   'summary': 'Restarts the safety after a safety fault (s8); true '
+                                                              'when done.',
+                                                   'overloads': [{'returns': 'bool', 'params': []}]},
+                              'userPageAlert': {'section': 's8',
+                                                'kind': 'procedure',
+                                                'since': 's8',
+                                                'source': 'templates (j213_external24V: userPageAlert("power supply '
+                                                          'failure, wait power supply ok")), robodk, issue25 (17 calls '
+                                                          'in one CS9 application)',
+                                                'from': 'calls',
+                                                'summary': 'Shows a message to the operator on the web user page (s8).',
+                                                'overloads': [{'returns': 'void',
+                                                               'params': [{'name': 'sMessage', 'type': 'string'}]}]},
+                              'userPageConfirm': {'section': 's8',
+                                                  'kind': 'function',
+                                                  'since': 's8',
+                                                  'source': 'templates (j213_external24V: l_bOk = '
+                                                            'userPageConfirm("Press update button ...")), robodk (if '
+                                                            'userPageConfirm("..."))',
+                                                  'from': 'calls',
+                                                  'summary': 'Asks the operator to confirm on the web user page (s8); '
+                                                             'true when confirmed.',
+                                                  'overloads': [{'returns': 'bool',
+                                                                 'params': [{'name': 'sMessage', 'type': 'string'}]}]},
+                              'userPagePrompt': {'section': 's8',
+                                                 'kind': 'function',
+                                                 'since': 's8.3',
+                                                 'source': 'templates (VAL3help_example, s8.3: if '
+                                                           '(userPagePrompt(sPrompt, sInput) == true), string globals)',
+                                                 'from': 'calls',
+                                                 'summary': 'Asks the operator for a text on the web user page (s8); '
+                                                            'false when cancelled.',
+                                                 'overloads': [{'returns': 'bool',
+                                                                'params': [{'name': 'sPrompt', 'type': 'string'},
+                                                                           {'name': 'sInput',
+                                                                            'type': 'string',
+                                                                            'ref': True}]}]},
+                              'hasCpuExtPowerSupply': {'section': 's8',
+                                                       'kind': 'function',
+                                                       'since': 's8',
+                                                       'source': 'templates (j213_external24V: if '
+                                                                 'hasCpuExtPowerSupply()==false)',
+                                                       'from': 'calls',
+                                                       'summary': "Whether the controller's CPU has an external 24 V "
+                                                                  'supply (s8).',
+                                                       'overloads': [{'returns': 'bool', 'params': []}]},
+                              'wakeUpRobot': {'section': 's8',
+                                              'kind': 'function',
+                                              'since': 's8',
+                                              'source': 'templates (j213_external24V: while wakeUpRobot() != 0, after '
+                                                        'a power supply failure)',
+                                              'from': 'calls',
+                                              'summary': 'Restores the robot after a power supply failure (s8); 0 when '
+                                                         'done.',
+                                              'overloads': [{'returns': 'num', 'params': []}]},
+                              'getJntRef': {'section': 's8',
+                                            'kind': 'function',
+                                            'since': 's8.5',
+                                            'source': 'templates (safeCalibration, s8.5.3: '
+                                                      'jSafeReference1=getJntRef("safeReference1"), jointRx globals; '
+                                                      'arm.cfx lists <JntReferences id=...>)',
+                                            'from': 'calls',
+                                            'summary': "The joint position of a named joint reference of the arm's "
+                                                       'configuration (s8).',
+                                            'overloads': [{'returns': 'joint',
+                                                           'params': [{'name': 'sName', 'type': 'string'}]}]},
+                              'getSafeRefStatus': {'section': 's8',
+                                                   'kind': 'function',
+                                                   'since': 's8.5',
+                                                   'source': 'templates (safeCalibration, s8.5.3: '
+                                                             'nSafeRefStatus=abs(getSafeRefStatus()))',
+                                                   'from': 'calls',
+                                                   'summary': 'The status of the safe referencing of the arm (s8).',
+                                                   'overloads': [{'returns': 'num', 'params': []}]},
+                              'setPayload': {'section': 's8',
+                                             'kind': 'procedure',
+                                             'since': 's8.8',
+                                             'source': 'github:txellgalletto/TFG-Robot-Program (s8.8.3, CS9), '
+                                                       'Init.pgx: setPayload(flange,nPesEina,trEina,nInerciaEina) with '
+                                                       'a num, a trsf and a 3 x 3 num array',
+                                             'from': 'calls',
+                                             'summary': 'Declares the payload of a tool: mass, centre of gravity, '
+                                                        'inertia matrix (s8).',
+                                             'overloads': [{'returns': 'void',
+                                                            'params': [{'name': 'tTool', 'type': 'tool'},
+                                                                       {'name': 'nMass', 'type': 'num'},
+                                                                       {'name': 'trCenter', 'type': 'trsf'},
+                                                                       {'name': 'nInertia',
+                                                                        'type': '*',
+                                                                        'accepts': ['num'],
+                                                                        'container': 'array',
+                                                                        'index': 'none'}]}]},
+                              'opcuaExport': {'section': 's8',
+                                              'kind': 'procedure',
+                                              'since': 's8',
+                                              'source': 'issue25 (40 calls in a CS9 application whose globals are read '
+                                                        'over OPC UA)',
+                                              'summary': "Exports data to the controller's OPC UA server (s8): its "
+                                                         'parameters are not public; arguments are not checked.',
+                                              'params_known': False}}}}

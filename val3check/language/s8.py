@@ -15,19 +15,21 @@ from functools import lru_cache
 import os
 from typing import Any
 
-from .instructions import CatalogueError, Instruction, Overload, _instruction, _param
+from .instructions import CatalogueError, Instruction, Overload, Param, _instruction, _param
 
 CATALOGUE_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "s8.toml")
 
 
 @dataclass(frozen=True, slots=True)
 class S8Form:
-    """An overload s8 adds to the s7 instruction `name`."""
+    """An overload s8 adds to the s7 instruction `name`. `params_known` False: only the number
+    of arguments is known (its parameters are placeholders; the arguments are not checked)."""
 
     name: str
     overload: Overload
     since: str
     source: str
+    params_known: bool = True
 
 
 @dataclass(frozen=True, slots=True)
@@ -63,12 +65,16 @@ def _forms(raw: dict[str, Any]) -> dict[str, tuple[S8Form, ...]]:
         forms = []
         for i, ov in enumerate(entries):
             where = f"s8.forms.{name}[{i}]"
-            for key in ("returns", "params", "since", "source"):
+            known = ov.get("params_known", True)
+            for key in ("returns", "params" if known else "arity", "since", "source"):
                 if key not in ov:
                     raise CatalogueError(f"{where}: missing '{key}'")
-            params = tuple(_param(p, f"{where}.params[{j}]") for j, p in enumerate(ov["params"]))
+            if known:
+                params = tuple(_param(p, f"{where}.params[{j}]") for j, p in enumerate(ov["params"]))
+            else:  # placeholders: any value, not checked
+                params = tuple(Param(f"arg{j + 1}", "*") for j in range(int(ov["arity"])))
             forms.append(S8Form(name, Overload(ov["returns"], params, "s8", ov.get("note", "")), ov["since"],
-                                ov["source"]))
+                                ov["source"], bool(known)))
         out[name.lower()] = tuple(forms)
     return out
 

@@ -119,6 +119,13 @@ class Target:
     def s8(self) -> bool:
         return self.major is not None and self.major >= 8
 
+    @property
+    def cs9(self) -> bool:
+        """The application is written for a CS9 controller: the configuration says so, or its
+        project file's version does (SRS writes "s7.0.1Cs9", "s8.3Cs9_BS845" for CS9 code: Stäubli's
+        own CS9 templates saved as s7.0.1Cs9 call CS9 instructions such as userPageAlert)."""
+        return "cs9" in self.label.lower()
+
 
 def target_for(project_version: str, spec: TargetSpec | None, arm: str | None = None, family: str | None = None,
                arm_source: str = "") -> Target:

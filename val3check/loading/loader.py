@@ -12,6 +12,7 @@ from ..diagnostics import Diagnostic
 from . import reader as rd
 from . import resolve as rs
 from .bindings import bound_names
+from .libraries import LibraryResolution
 from .model import Application, LibraryRef, Origin, Program, TypeRef, Workspace
 from .xmlread import Node, read_xml
 
@@ -39,8 +40,7 @@ class LoadOptions:
     overlay: dict[str, bytes] | None = None
 
 
-def _key(path: str) -> str:
-    return os.path.normcase(os.path.abspath(path))
+_key = rs.path_key
 
 
 def _keep_first(app: Application, table: dict, item, kind: str, sink: rd.Sink) -> None:
@@ -57,15 +57,7 @@ def _keep_first(app: Application, table: dict, item, kind: str, sink: rd.Sink) -
     ))
 
 
-def _inside(path: str, folder: str, top: str | None = None) -> bool:
-    """`path` is in `folder` or below it, symbolic links resolved (`top`: the folder's real path)."""
-    real, top = os.path.realpath(path), top or os.path.realpath(folder)
-    return os.path.commonpath([real, top]) == top
-
-
-def _is_io(ref) -> bool:  # noqa: ANN001
-    """The controller's own I/O library (L003): never looked for by name."""
-    return isinstance(ref, LibraryRef) and (ref.alias.lower() == "io" or rs.library_name(ref.path).lower() == "io")
+_inside = rs.inside
 
 
 def _stem(rel: str) -> str:
@@ -74,7 +66,13 @@ def _stem(rel: str) -> str:
 
 
 def _ext(path: str) -> str:
-    return os.path.splitext(path)[1].lower()
+    """'.pjx' for 'App/App.pjx', and for 'App/.pjx' too: a project file without a name is still a
+    project file (os.path.splitext sees no extension in a dot-file)."""
+    base = os.path.basename(path)
+    ext = os.path.splitext(base)[1]
+    if not ext and base.startswith(".") and base.count(".") == 1:
+        ext = base
+    return ext.lower()
 
 
 @dataclass
@@ -84,7 +82,7 @@ class _Folder:
     programs: list[str]
 
 
-class Loader:
+class Loader(LibraryResolution):
     def __init__(self, options: LoadOptions) -> None:
         self.options = options
         self.ws = Workspace()
@@ -154,8 +152,9 @@ class Loader:
             return None
         sink = rd.Sink(pjx, self.diags)
         pf = rd.read_project(root, sink)
+        stem = os.path.basename(pjx)[: -len(_ext(pjx)) or None]
         app = Application(
-            name=os.path.splitext(os.path.basename(pjx))[0],
+            name=stem or os.path.basename(os.path.dirname(pjx)),  # `.pjx`: a project without a name
             path=pjx,
             layout=layout,
             version=pf.version,
@@ -517,11 +516,14 @@ class Loader:
                 for k in keys or ():
                     self._add_target(k)
                 for p in free:
+                    rel = os.path.relpath(p, os.path.dirname(owner)).replace(os.sep, "/")
                     self.diags.append(Diagnostic(
                         "F012",
                         f"program file not listed in {os.path.basename(owner)}: it is not part of the"
-                        " application and is not checked",
-                        p, fix=("list-program", owner),
+                        " application and is not checked; if it belongs to the application, add"
+                        f" <Program file=\"{rel}\" /> to <Programs> in {os.path.basename(owner)} (never done by"
+                        " --fix: it would change what the controller loads), else delete it",
+                        p,
                     ))
                 continue
             # No project here or above, or none could be read: the programs alone.
@@ -540,227 +542,6 @@ class Loader:
         return loaded[best][0] if best is not None else None
 
     # -- libraries and user types -------------------------------------------------------------
-
-    def resolve_all(self) -> None:
-        queue = list(self.ws.apps.values())
-        i = 0
-        while i < len(queue):
-            app = queue[i]
-            i += 1
-            if app.layout == "pgx-only":
-                continue
-            for ref in app.libraries.values():
-                lib = self._resolve(app, ref, "library")
-                if lib is not None and lib not in queue:
-                    queue.append(lib)
-            for tref in app.types.values():
-                lib = self._resolve(app, tref, "type")
-                if lib is not None and lib not in queue:
-                    queue.append(lib)
-        self._cycles("library")
-        self._cycles("type")
-
-    def _resolve(self, app: Application, ref: LibraryRef | TypeRef, kind: str) -> Application | None:
-        found = rs.locate_library(ref.path, app.path, self.options.disk_roots, self.roots)
-        resolved = found.path
-        candidates: list[str] = []
-        if resolved is None and not _is_io(ref):
-            candidates = self._in_repository(app, ref)
-            if len(candidates) == 1:
-                resolved = candidates[0]
-                o = ref.origin
-                what = f"library {ref.alias}" if isinstance(ref, LibraryRef) else f"user type {ref.name}"
-                self.diags.append(Diagnostic(
-                    "F016",
-                    f"{what}: '{ref.path}' is not at its Disk:// place; using the application found by name in"
-                    f" the repository: {self._shown(resolved)}",
-                    o.path, o.line, o.col,
-                ))
-        if resolved is None:
-            if found.outside and len(candidates) < 2:
-                self.diags.append(self._outside_ref(ref))
-            else:
-                self.diags.append(self._not_found(ref, kind, candidates))
-            return None
-        ref.resolved = resolved
-        if resolved in self.ws.apps:
-            return None
-        return self.load_project(resolved)
-
-    def _in_repository(self, app: Application, ref: LibraryRef | TypeRef) -> list[str]:
-        """Applications named like the library in the repositories that hold the declaring
-        project (issue 11 item 5), other than that project."""
-        name = rs.library_name(ref.path)
-        out: list[str] = []
-        for repo in self.repos:
-            if not self.roots.holds(os.path.realpath(app.path)) or not _inside(app.path, repo):
-                continue
-            for cand in self.index.find(repo, name):
-                if _key(cand) != _key(app.path) and self.roots.allows(cand) and cand not in out:
-                    out.append(cand)
-        return out
-
-    @staticmethod
-    def _shown(path: str) -> str:
-        """As reports show paths: relative to the current folder when inside it."""
-        rel = os.path.relpath(path)
-        return (path if rel == ".." or rel.startswith(".." + os.sep) else rel).replace(os.sep, "/")
-
-    def _outside_ref(self, ref: LibraryRef | TypeRef) -> Diagnostic:
-        o = ref.origin
-        if isinstance(ref, LibraryRef):
-            what, tail = f"library {ref.alias}", f"uses of {ref.alias}: symbols are not checked"
-        else:
-            what, tail = f"user type {ref.name}", "its fields are not checked"
-        return Diagnostic(
-            "F014",
-            f"{what}: the path '{ref.path}' leads outside the application and the configured roots (its"
-            f" repository, --disk-root, disk-roots): not read; {tail}",
-            o.path, o.line, o.col,
-        )
-
-    def _not_found(self, ref: LibraryRef | TypeRef, kind: str, candidates: list[str] = ()) -> Diagnostic:
-        o = ref.origin
-        stem = rs.library_name(ref.path)
-        where = (
-            "relative to the project folder"
-            if ref.path.startswith(("./", "../", ".\\", "..\\"))
-            else "in the folder that contains the application folder, in each --disk-root and in the controller's usr/usrapp"
-        )
-        if candidates:
-            where += (f"; {len(candidates)} applications named {stem} in the repository: "
-                      + ", ".join(self._shown(c) for c in candidates[:10])
-                      + (", ..." if len(candidates) > 10 else "") + " (name the right folder with --disk-root)")
-        if isinstance(ref, LibraryRef):
-            if ref.alias.lower() == "io" or stem.lower() == "io":
-                return Diagnostic(
-                    "L003",
-                    f"library {ref.alias} ('{ref.path}') is the controller's own I/O library: its"
-                    f" contents come from the controller's configuration, so {ref.alias}: symbols are not checked",
-                    o.path,
-                    o.line,
-                    o.col,
-                )
-            return Diagnostic(
-                "L001",
-                f"library {ref.alias} not found: '{ref.path}' (searched {where}); uses of"
-                f" {ref.alias}: symbols are not checked",
-                o.path,
-                o.line,
-                o.col,
-            )
-        return Diagnostic(
-            "L002",
-            f"user type {ref.name} not found: '{ref.path}' (searched {where}); its fields are not checked",
-            o.path,
-            o.line,
-            o.col,
-        )
-
-    def _edges(self, app: Application, kind: str) -> list[tuple[LibraryRef | TypeRef, str]]:
-        refs = app.libraries.values() if kind == "library" else app.types.values()
-        return [(r, r.resolved) for r in refs if r.resolved is not None and r.resolved in self.ws.apps]
-
-    def _cycles(self, kind: str) -> None:
-        """Manual 6.6: "Il ne peut pas y avoir de références circulaires entre les librairies."
-        Each reference that belongs to a cycle is reported at its declaration, once."""
-        apps = self.ws.apps
-        order = {k: n for n, k in enumerate(apps)}
-        # Tarjan's strongly connected components, iterative, deterministic (insertion order).
-        index: dict[str, int] = {}
-        low: dict[str, int] = {}
-        on_stack: set[str] = set()
-        stack: list[str] = []
-        comp_of: dict[str, int] = {}
-        comps: list[list[str]] = []
-        counter = 0
-        for start in apps:
-            if start in index:
-                continue
-            work = [(start, 0)]
-            while work:
-                v, pi = work.pop()
-                if pi == 0:
-                    index[v] = low[v] = counter
-                    counter += 1
-                    stack.append(v)
-                    on_stack.add(v)
-                succ = [w for _, w in self._edges(apps[v], kind)]
-                recurse = False
-                for j in range(pi, len(succ)):
-                    w = succ[j]
-                    if w not in index:
-                        work.append((v, j + 1))
-                        work.append((w, 0))
-                        recurse = True
-                        break
-                    if w in on_stack:
-                        low[v] = min(low[v], index[w])
-                if recurse:
-                    continue
-                if low[v] == index[v]:
-                    comp = []
-                    while True:
-                        w = stack.pop()
-                        on_stack.discard(w)
-                        comp_of[w] = len(comps)
-                        comp.append(w)
-                        if w == v:
-                            break
-                    comps.append(comp)
-                if work:
-                    parent = work[-1][0]
-                    low[parent] = min(low[parent], low[v])
-        for key in apps:
-            app = apps[key]
-            for ref, target in self._edges(app, kind):
-                if comp_of.get(target) != comp_of.get(key):
-                    continue
-                comp = comps[comp_of[key]]
-                if len(comp) == 1 and target != key:
-                    continue
-                path = self._cycle_path(key, target, comp_of, kind, order)
-                names = " -> ".join(apps[k].name for k in path)
-                o = ref.origin
-                if kind == "library":
-                    msg = (
-                        f"circular library reference: {names} (manual 6.6: if library A uses"
-                        " library B, library B cannot use library A)"
-                    )
-                    self.diags.append(Diagnostic("L004", msg, o.path, o.line, o.col))
-                else:
-                    label = ref.name  # type: ignore[union-attr]
-                    msg = f"circular user type: type {label} ends up containing itself ({names})"
-                    self.diags.append(Diagnostic("L005", msg, o.path, o.line, o.col))
-
-    def _cycle_path(
-        self, start: str, first: str, comp_of: dict[str, int], kind: str, order: dict[str, int]
-    ) -> list[str]:
-        """Shortest path start -> first -> ... -> start inside the component (BFS)."""
-        if first == start:
-            return [start, start]
-        prev: dict[str, str] = {first: start}
-        frontier = [first]
-        while frontier:
-            nxt = []
-            for v in frontier:
-                for _, w in self._edges(self.ws.apps[v], kind):
-                    if comp_of.get(w) != comp_of.get(start):
-                        continue
-                    if w == start:
-                        path = [start]
-                        cur = v
-                        chain = []
-                        while cur != start:
-                            chain.append(cur)
-                            cur = prev[cur]
-                        return path + chain[::-1] + [start]
-                    if w not in prev:
-                        prev[w] = v
-                        nxt.append(w)
-            frontier = nxt
-        return [start, first, start]  # pragma: no cover
-
 
 def load_paths(paths: list[str], options: LoadOptions) -> tuple[Workspace, list[Diagnostic], Loader]:
     loader = Loader(options)

@@ -113,6 +113,9 @@ class LibraryRef:
     autoload: bool
     origin: Origin
     resolved: str | None = None  # absolute path of the library's .pjx once found
+    # where the library was found by name when its path led nowhere (F016, shown as reports
+    # show paths): a guess; "" when found at its place
+    guessed: str = ""
 
 
 @dataclass(slots=True)
@@ -123,6 +126,7 @@ class TypeRef:
     path: str
     origin: Origin
     resolved: str | None = None
+    guessed: str = ""  # as LibraryRef.guessed
 
 
 @dataclass(slots=True)

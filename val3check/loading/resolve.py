@@ -29,6 +29,17 @@ from ..confine import Roots
 _ROOT = re.compile(r"^([A-Za-z][A-Za-z0-9_\-]*):/+(.*)$")
 
 
+def path_key(path: str) -> str:
+    """The same file's key whatever the spelling of its path (case on case-insensitive systems)."""
+    return os.path.normcase(os.path.abspath(path))
+
+
+def inside(path: str, folder: str, top: str | None = None) -> bool:
+    """`path` is in `folder` or below it, symbolic links resolved (`top`: the folder's real path)."""
+    real, top = os.path.realpath(path), top or os.path.realpath(folder)
+    return os.path.commonpath([real, top]) == top
+
+
 def listdir(folder: str) -> list[str]:
     """Sorted names in a folder; [] when it cannot be listed."""
     try:

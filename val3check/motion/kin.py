@@ -16,6 +16,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..robot.dh import fk_many as dh_fk_many
+from ..robot.dh import refine as dh_refine
 from ..robot.errors import IKUnsupported
 from ..robot.ik import opw_ik
 
@@ -67,6 +69,7 @@ class ArmKin:
     """Vectorised kinematics of one `RobotModel` (ortho-parallel base, spherical wrist)."""
 
     def __init__(self, model) -> None:
+        """The kinematics of `model` (robot.RobotModel): its closed form, joint limits, speeds, accelerations."""
         self.model = model
         self.opw = model.opw
         self.lo = np.array([lo for lo, _ in model.joint_limits], dtype=float)
@@ -79,6 +82,7 @@ class ArmKin:
         self.revolute = np.array([k != "prismatic" for k in kinds])
         self.multi_turn &= self.revolute
         self.scara = getattr(model, "scara", None) is not None
+        self.dh = getattr(model, "dh", None)  # a geometry setDH changed (robot/absolute.py, 11.4)
         self.branch_is_config = False
         self._configs: list[tuple[str, ...]] = []  # arms without the OPW form: codes by first use
         if self.opw is not None:
@@ -89,11 +93,19 @@ class ArmKin:
             self.branch_is_config = bool(np.all(self.signs > 0) and o.a2 == 0.0)
             self._deg_signs = DEG * self.signs
 
+    def use_geometry(self, model) -> None:
+        """setDH (11.4): the same arm with the geometry of `model` (robot/absolute.py) from now on,
+        for everyone holding this object (the queue's collaborators)."""
+        self.model = model
+        self.dh = getattr(model, "dh", None)
+
     # ---- forward kinematics ------------------------------------------------------------------
 
     def fk(self, Q) -> np.ndarray:
         """Flange in world (N, 4, 4), mm, for joint positions Q (N, 6) in degrees."""
         Q = np.atleast_2d(np.asarray(Q, dtype=float))
+        if self.dh is not None:
+            return dh_fk_many(self.dh, Q)
         if self.opw is None:  # any URDF chain: one position at a time
             return np.array([as4(self.model.fk_matrix(q)) for q in Q])
         if len(Q) <= SMALL_N:  # numpy's per-call cost outweighs a few closed-form evaluations
@@ -153,9 +165,30 @@ class ArmKin:
         return self.opw is None
 
     def need_ik(self) -> None:
+        """Raise IKUnsupported when the arm has no inverse kinematics the motion can use."""
         if self.opw is None and not self.scara:
             self.model._need_opw()  # raises IKUnsupported with the model's reason
             raise IKUnsupported(f"{self.model.name}: no closed-form inverse kinematics")
+
+    def turns(self, sols: np.ndarray, q_start: np.ndarray) -> np.ndarray:
+        """Each axis of the joint positions `sols` (N, axes) on the turn within its limits nearest
+        the start (9.6.3: an axis of more than one turn takes the turn nearest jInitial); when no
+        turn fits, the turn least outside them (so that a violation is measured from there)."""
+        out = sols.copy()
+        shifts = 360.0 * np.arange(-2, 3)
+        for r in range(len(out)):
+            for k in range(out.shape[1]):
+                if not self.revolute[k]:  # a prismatic axis (SCARA axis 3) has no turns
+                    continue
+                cand = sols[r, k] + shifts
+                excess = np.maximum(self.lo[k] - cand, cand - self.hi[k])
+                inside = excess <= 1e-7
+                if inside.any():
+                    c = cand[inside]
+                    out[r, k] = c[np.argmin(np.abs(c - q_start[k]))]
+                else:
+                    out[r, k] = cand[np.argmin(excess)]
+        return out
 
     def config_name(self, code: int) -> tuple[str, ...]:
         """The configuration (VAL 3 names) of a code of `config_codes`."""
@@ -164,6 +197,7 @@ class ArmKin:
         return self._configs[code]
 
     def code_of(self, names) -> int:
+        """The configuration code of names such as (righty, epositive, wnegative)."""
         names = tuple(names)
         if self.opw is not None:
             return config_code(names)
@@ -201,7 +235,23 @@ class ArmKin:
         exist; branch index = 4·shoulder + 2·elbow + wrist (`branches`: compute only these).
         Where the wrist is exactly singular j4 is NaN (the caller takes it from its neighbour).
         On the Stäubli arms (no axis sign change, no forearm offset) the branch index is the
-        configuration code of 9.7.4 (`branch_is_config`)."""
+        configuration code of 9.7.4 (`branch_is_config`). A geometry setDH changed: each nominal
+        branch refined by Newton's method (robot/dh.py), NaN where it does not converge."""
+        out = self._ik_nominal(T, branches)
+        if self.dh is None:
+            return out
+        T = np.asarray(T, dtype=float)
+        T = T[None] if T.ndim == 2 else T
+        flat = out.reshape(-1, 6)
+        have = ~np.isnan(flat[:, [0, 1, 2, 4, 5]]).any(axis=1)
+        if np.any(have):
+            Q0 = np.where(np.isnan(flat[have]), 0.0, flat[have])
+            poses = np.repeat(T, out.shape[1], axis=0)[have]
+            flat[have] = dh_refine(self.dh, poses, Q0)
+        return flat.reshape(out.shape)
+
+    def _ik_nominal(self, T, branches=None) -> np.ndarray:
+        """ik_all of the model's closed form (the standard geometry)."""
         self.need_ik()
         o = self.opw
         T = np.asarray(T, dtype=float)
@@ -288,12 +338,6 @@ class ArmKin:
                     out[:, k, 5] = q6
         out *= RAD * self.signs
         return out
-
-    def wrist_sum(self, T) -> np.ndarray:
-        """j4 + j6 (degrees, up to turns) at poses where the wrist is exactly singular."""
-        # At j5 = 0 the wrist is Rz(j4 + j6): with j4 = 0 the branch formula gives j6 = the sum.
-        sols = self.ik_all(T)
-        return sols[:, 0, 5]
 
     # ---- configurations and singularities ----------------------------------------------------
 

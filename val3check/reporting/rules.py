@@ -31,13 +31,14 @@ def rule_record(rule: Rule) -> dict[str, Any]:
         "summary": rule.summary,
         "explanation": rule.explanation,
         "fix": rule.fix or None,
+        "opt_in": rule.opt_in,
         "examples": {"bad": [_example(e) for e in rule.bad], "good": [_example(e) for e in rule.good]},
     }
 
 
 def listing_json(rules) -> str:  # noqa: ANN001
     items = [{"code": r.code, "name": r.name, "family": r.family_name, "severity": r.severity.label, "manual": r.manual,
-              "summary": r.summary, "fixable": bool(r.fix)} for r in rules.values()]
+              "summary": r.summary, "fixable": bool(r.fix), "opt_in": r.opt_in} for r in rules.values()]
     return json.dumps({"rules": items, "version": VERSION}, indent=2, sort_keys=True, ensure_ascii=False) + "\n"
 
 
@@ -50,7 +51,7 @@ def listing_text(rules) -> str:  # noqa: ANN001
         out.append(f"{letter}  {family}")
         for r in members:
             manual = f"  (manual {r.manual})" if r.manual else ""
-            fix = " [fix]" if r.fix else ""
+            fix = (" [fix]" if r.fix else "") + (" [opt-in]" if r.opt_in else "")
             out.append(f"  {r.code}  {r.severity.label:<7}  {r.name}{fix}: {r.summary}{manual}")
     return "\n".join(out) + "\n"
 
@@ -64,6 +65,8 @@ def explain_text(rule: Rule) -> str:
     out = [f"{rule.code} {rule.name}", "", f"Family: {rule.family_name}", f"Default severity: {rule.severity.label}"]
     if rule.manual:
         out.append(f"Manual: section {rule.manual} (VAL 3 s7 reference manual)")
+    if rule.opt_in:
+        out.append(f"Opt-in: not in the default rule set; select it by its code (extend-select = [\"{rule.code}\"])")
     out += ["", rule.summary, ""]
     if rule.explanation:
         out += [rule.explanation, ""]

@@ -16,6 +16,12 @@ from functools import cache
 from ..diagnostics import Severity
 from ..resources import resource_path
 
+# Rules outside the default rule set (`opt-in = true` in their file), as ruff keeps some rules out
+# of its defaults: they run only when `select` or `extend-select` names their full code. Listed
+# here so that deciding needs no rule file read (a test checks it against the files): style rules
+# that fire on code the vendor itself writes.
+OPT_IN = frozenset({"T025"})
+
 # Code scheme: a family letter, then three digits (rules/README.md).
 FAMILIES: dict[str, str] = {
     "F": "syntax and files",
@@ -45,6 +51,7 @@ class Example:
     cell: str | None = None  # runtime (R) examples: the text of a cell file (`--cell`, docs/cell.md)
     config: str | None = None  # a val3check.toml written at the example root and used
     byte_escapes: bool = False  # `\xHH` in `files` stands for the byte HH (for encoding rules)
+    severity: str | None = None  # bad examples: the severity every finding of the rule is shown with
 
 
 @dataclass(frozen=True, slots=True)
@@ -58,6 +65,7 @@ class Rule:
     bad: tuple[Example, ...] = field(default=())
     good: tuple[Example, ...] = field(default=())
     fix: str = ""  # what `val3check lint --fix` does for a finding of this rule ("": no automatic fix)
+    opt_in: bool = False  # not in the default rule set: runs only when selected by its full code
 
     @property
     def family(self) -> str:
@@ -94,6 +102,7 @@ def _example(raw: dict, where: str) -> Example:
         cell=raw.get("cell"),
         config=raw.get("config"),
         byte_escapes=bool(raw.get("byte-escapes", False)),
+        severity=raw.get("severity"),
     )
 
 
@@ -119,6 +128,7 @@ def load_rule(path: str | os.PathLike) -> Rule:
             bad=tuple(_example(e, f"{path} [[bad]]") for e in raw.get("bad", ())),
             good=tuple(_example(e, f"{path} [[good]]") for e in raw.get("good", ())),
             fix=raw.get("fix", "").strip(),
+            opt_in=bool(raw.get("opt-in", False)),
         )
     except (KeyError, ValueError) as exc:
         raise CatalogueError(f"{path}: missing or invalid field {exc}") from None

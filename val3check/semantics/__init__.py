@@ -22,6 +22,6 @@ def analyse(workspace: Workspace, app: Application, target: Target | None = None
     from . import checker, limits, patterns
 
     found = checker.check_application(workspace, app, target)
-    found.extend(patterns.check_application(workspace, app))
-    found.extend(limits.check_application(workspace, app))
+    found.extend(patterns.check_application(workspace, app, target))
+    found.extend(limits.check_application(workspace, app, target))
     return found

@@ -228,11 +228,16 @@ def _instruction(typer: ExprTyper, node: A.CallExpr, ins: Instruction, statement
     label = f"{ins.name}()"
     cands = ins.overloads_with_arity(n)
     full = [o for o in cands if all(_type_ok(p, v) for p, v in zip(o.params, vals))]
+    form = None
     if not full:
         form = _s8_form(ins, vals)
         if form is not None:  # an s8 form of an s7 instruction (s8.toml)
-            ctx.s8_only(f"the form {form.overload.signature(ins.name)}", func)
+            shown = form.overload.signature(ins.name) if form.params_known else f"{ins.name}() with {n} arguments"
+            ctx.s8_only(f"the form {shown}", func)
             cands = full = [form.overload]
+    # A signature of the manual is certain; one read from s8 code (s8.toml) is not: a call that
+    # disagrees with it is T024, a warning, never an error.
+    certain = s7 and form is None
     if not cands:
         sigs = [o.signature(ins.name) for o in ins.overloads]
         counts = sorted({c for o in ins.overloads for c in range(o.min_arity, o.max_arity + 1)})
@@ -253,9 +258,9 @@ def _instruction(typer: ExprTyper, node: A.CallExpr, ins: Instruction, statement
             msg = M.argument_type_overloads(i + 1, label, got, [o.signature(ins.name) for o in cands])
         _signature_finding(ctx, "T006", msg, s7, args[i])
         return _common_return(cands, statement)
-    chosen = None
+    chosen = full[0] if form is not None and not form.params_known else None  # its arguments are not known
     first_errors: list[_Pending] = []
-    for o in full:
+    for o in full if chosen is None else ():
         errors = _instruction_arg_errors(typer, ins, o, vals, args)
         if not errors:
             chosen = o
@@ -264,7 +269,10 @@ def _instruction(typer: ExprTyper, node: A.CallExpr, ins: Instruction, statement
             first_errors = errors
     if chosen is None:
         for e in first_errors:
-            ctx.report_at(e.code, e.message, e.node)
+            if certain:
+                ctx.report_at(e.code, e.message, e.node)
+            else:
+                ctx.report_at("T024", M.s8_reading(e.message), e.node)
         chosen = full[0]
     for p, a in zip(chosen.params, args):
         if type(a) is A.Struct:
@@ -273,7 +281,10 @@ def _instruction(typer: ExprTyper, node: A.CallExpr, ins: Instruction, statement
                 typer.check_literal(a, pt)
     returns = {o.returns for o in full}
     if not statement and returns == {"void"}:
-        ctx.report_at("T019", M.no_value(ins.name), func)
+        if certain:
+            ctx.report_at("T019", M.no_value(ins.name), func)
+        else:
+            ctx.report_at("T024", M.s8_reading(M.no_value(ins.name)), func)
         return UNKNOWN_VAL
     if len(returns) == 1:
         ret = next(iter(returns))

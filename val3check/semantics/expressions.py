@@ -149,6 +149,8 @@ class ExprTyper:
         name = node.name
         sym = ctx.scope.lookup(name)  # type: ignore[union-attr]
         if sym is not None:
+            if sym.type.kind == vt.USER and ctx.guessed_types:
+                ctx.consulted_type(sym.type.key)
             return sym.val
         c = S.constant(name)
         if c is not None:
@@ -184,10 +186,14 @@ class ExprTyper:
                 ctx.report_at("N006", M.case_mismatch("library identifier", alias, other), node,
                     fix=("rename", alias, other, "", ":"))
                 lib = ctx.table.library(other)
-                return None if lib is S.MISSING else lib
+                if lib is S.MISSING:
+                    return None
+                ctx.consulted_library(other)
+                return lib
             if ctx.globals_known and alias.lower() != "io":
                 ctx.report_at("N005", M.undefined_alias(alias, suggest(alias, ctx.app.libraries)), node)
             return None
+        ctx.consulted_library(alias)
         return lib
 
     def _library_name(self, node: A.LibraryName) -> vt.Val:
@@ -279,6 +285,7 @@ class ExprTyper:
             return vt.Val(UNKNOWN, var=base.var, root=base.root, field=True) if base.var else UNKNOWN_VAL
         name = node.name
         if t.kind == vt.USER:
+            ctx.consulted_type(t.key)
             fields = S.user_fields(ctx.table.registry, t)
             sym = fields.get(name)
             if sym is None:

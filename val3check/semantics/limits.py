@@ -4,7 +4,7 @@ rather than types.
 
 | code | rule |
 |---|---|
-| T026 | an array dimension beyond 9999 values (2.5.4) |
+| T026 | an array dimension beyond 9999 values (2.5.4; on s8 beyond what s8 code uses, a warning) |
 | T027 | an array of more than 9999 values in all, each dimension within the limit (2.5.4) |
 | F017 | a numeric constant beyond the range of a num (3.2.1) |
 | N014 | a fatherId that names no frame or tool of the application, or is malformed (9.4.1) |
@@ -15,29 +15,31 @@ rather than types.
 from __future__ import annotations
 
 import math
-import re
 
-from ..diagnostics import Diagnostic
+from ..diagnostics import Diagnostic, Severity
+from ..language.target import Target, target_for
+from ..language.version_facts import over
 from ..loading.model import Application, Container, Data, Value, Workspace
-from ..loading.reader import HUGE
+from ..loading.reader import HUGE, parse_father
 from ..loading.types import base_type
 from ..parsing import ast as A
 
-# 2.5.4 (insert, append, resize): "La taille d'une variable est limitée à 9999 valeurs."
-MAX_VALUES = 9999
-# What a fatherId may look like: `name` or `name[index]` (2-D: "i j" or "i,j"; a collection: "key").
-_FATHER = re.compile(r"^\s*([A-Za-z_]\w*)\s*(?:\[\s*([^\]]*?)\s*\])?\s*$")
+# What a fatherId may look like: `name` or `name[index]` (2-D: "i j" or "i,j"; a collection: "key"):
+# loading.reader.parse_father.
 
 
-def check_application(workspace: Workspace, app: Application) -> list[Diagnostic]:
+def check_application(workspace: Workspace, app: Application, target: Target | None = None) -> list[Diagnostic]:
+    """`target`: what `app` is checked for (its project file's version by default): the limit on
+    sizes is the s7 manual's, certain up to s7 (language/version_facts.py)."""
+    major = (target if target is not None else target_for(app.version, None)).major
     out: list[Diagnostic] = []
     for d in app.data.values():
         if d.container is Container.ARRAY:
-            _sizes(out, f"global {d.name}", d.sizes, d.origin)
+            _sizes(out, f"global {d.name}", d.sizes, d.origin, major)
     for prog in app.programs.values():
         for loc in prog.locals:
             if loc.container is not Container.COLLECTION:
-                _sizes(out, f"local {loc.name} of {prog.name}()", loc.sizes, loc.origin)
+                _sizes(out, f"local {loc.name} of {prog.name}()", loc.sizes, loc.origin, major)
         if prog.body is not None:
             _numbers(out, prog.body, prog.origin.path)
     if app.globals_known:
@@ -49,25 +51,26 @@ def _shown(n: int) -> str:
     return "more than 10^12" if n >= HUGE else str(n)
 
 
-def _sizes(out: list[Diagnostic], what: str, sizes: tuple[int, ...], origin) -> None:  # noqa: ANN001
+def _sizes(out: list[Diagnostic], what: str, sizes: tuple[int, ...], origin, major: int | None) -> None:  # noqa: ANN001
+    """T026 for a dimension beyond the limit of the version; T027 for the values in all."""
     if not sizes:
         return
-    big = [n for n in sizes if n > MAX_VALUES]
+    big = [n for n in sizes if over("values", n, major)]
     if big:
+        p = over("values", big[0], major, f"{_shown(big[0])} values")
+        sure = "a variable holds at most 9999 values (manual 2.5.4)" if p.certain else "the s8 limit is not known"
         out.append(Diagnostic(
-            "T026",
-            f"{what}: a dimension of {_shown(big[0])} values; a variable holds at most {MAX_VALUES} values"
-            " (manual 2.5.4)",
-            origin.path, origin.line, origin.col,
+            "T026", f"{what}: a dimension of {p.why}; {sure}",
+            origin.path, origin.line, origin.col, at_most=None if p.certain else Severity.WARNING,
         ))
         return
     total = math.prod(sizes)
-    if total > MAX_VALUES:
+    p = over("values", total, major, f"{' x '.join(map(str, sizes))} = {total} values")
+    if p is not None:
         out.append(Diagnostic(
             "T027",
-            f"{what}: {' x '.join(map(str, sizes))} = {total} values; the manual limits the size of a variable to"
-            f" {MAX_VALUES} values (2.5.4) and does not say whether an array of 2 or 3 dimensions counts them"
-            " in all",
+            f"{what}: {p.why}; the manual limits the size of a variable (2.5.4) and does not say whether an"
+            " array of 2 or 3 dimensions counts its values in all",
             origin.path, origin.line, origin.col,
         ))
 
@@ -111,10 +114,10 @@ def _father_diag(d: Data, v: Value, problem: str) -> Diagnostic:
 
 
 def _father_problem(father: str, want: str, data: dict[str, Data], lower: dict[str, Data]) -> str | None:
-    m = _FATHER.match(father)
+    m = parse_father(father)
     if m is None:
         return "is not a reference (expected name or name[index])"
-    name, idx = m.group(1), m.group(2)
+    name, idx = m
     low = name.lower()
     if low in ("world", "flange") and name not in data:  # as the simulator resolves it
         if (low == "world") == (want == "frame"):

@@ -78,7 +78,9 @@ def undefined_type(kind: str, name: str, type_name: str) -> str:
 def wrong_arm_family(kind: str, name: str, type_name: str, family: str, arm_family: str, arm_kind: str,
                      where: str) -> str:
     return (f"{kind} {name} is {a(type_name)} ({family} type), but the arm of this controller is a {arm_kind} arm"
-            f" ({where}): its positions are {arm_family} types (9.7.2)")
+            f" ({where}): its positions are {arm_family} types (9.7.2). The manual does not say that the controller"
+            " refuses the other family (a library may offer forms for both kinds of arm), so this is a warning:"
+            " check that the declaration is meant for another arm")
 
 
 def mixed_families_unknown_arm(kind: str, name: str, type_name: str, counts: dict[str, int]) -> str:
@@ -123,6 +125,11 @@ def assign_in_expression() -> str:
 
 def s8_signature(message: str) -> str:
     return f"{message}; this is the s7 manual's signature, and s8 may add other forms: check it on the controller"
+
+
+def s8_reading(message: str) -> str:
+    return (f"{message}; this signature is read from real s8 code (val3check/language/s8.toml), not from a"
+            " manual: check it on the controller")
 
 
 def arity(what: str, expected: str, got: int, signatures: Iterable[str] = ()) -> str:
@@ -262,7 +269,10 @@ def task_local_reference(name: str, param: str) -> str:
             " local variable by reference, it may be deleted before the task ends (5.10)")
 
 
-def task_name(keyword: str, name: str, why: str) -> str:
+def task_name(keyword: str, name: str, why: str, certain: bool = True) -> str:
+    if not certain:
+        return (f"task name \"{name}\": {why}; on an s7 controller {keyword} would stop with runtime error 29"
+                " (5.10: 1 to 15 characters of a..z A..Z 0..9 _)")
     return (f"task name \"{name}\" is invalid: {why}; {keyword} stops with runtime error 29 (5.10: 1 to 15"
             " characters of a..z A..Z 0..9 _)")
 
@@ -318,3 +328,10 @@ def s8_only(what: str, target: str) -> str:
 
 def s8_on_s7_target(what: str, target: str) -> str:
     return f"{what} is s8 only (CS9 controllers): the target {target} does not have it"
+
+
+def guessed(kind: str, name: str, path: str, where: str) -> str:
+    """The note a finding carries when it depends on a library or user type found by guessing."""
+    return (f"{kind} {name} was found by guessing: '{path}' leads nowhere and the application of that name in"
+            f" the repository, {where}, is used (F016); if it is not the right one, this finding is wrong,"
+            " so it is at most a warning")

@@ -30,6 +30,7 @@ check is linear in the size of the tree (loops: in the size of each loop).
 from __future__ import annotations
 
 from ..diagnostics import Diagnostic
+from ..language.target import Target, target_for
 from ..loading.model import Application, Workspace
 from . import patterns_style as style
 from . import patterns_usage as usage
@@ -47,7 +48,9 @@ def _run(out: list[Diagnostic], check, *args) -> None:
             raise
 
 
-def check_application(workspace: Workspace, app: Application) -> list[Diagnostic]:
+def check_application(workspace: Workspace, app: Application, target: Target | None = None) -> list[Diagnostic]:
+    """`target`: what `app` is checked for (its project file's version by default)."""
+    target = target if target is not None else target_for(app.version, None)
     out: list[Diagnostic] = []
     try:
         resolver = usage.Resolver(workspace, app)
@@ -90,6 +93,8 @@ def check_application(workspace: Workspace, app: Application) -> list[Diagnostic
         _run(out, style.check_self_assignments, program, scope, f)
 
     if len(facts) == len(app.programs):  # every program parsed
-        _run(out, usage.unused_globals, app, facts, library)
+        # s8 (CS9): the OPC UA server and the web user pages read the public globals of an
+        # application; no program needs to mention them
+        _run(out, usage.unused_globals, app, facts, library, target.s8 or target.cs9 or bool(app.ui_names))
         _run(out, usage.unused_programs, app, facts, library)
     return out

@@ -278,8 +278,10 @@ def _father_names(app: Application) -> set[str]:
     return found
 
 
-def unused_globals(app: Application, facts: dict[str, ProgramFacts], library: bool) -> list[Diagnostic]:
-    """S003: globals no program of the application mentions, where that is certain."""
+def unused_globals(app: Application, facts: dict[str, ProgramFacts], library: bool,
+                   public_is_read: bool = False) -> list[Diagnostic]:
+    """S003: globals no program of the application mentions, where that is certain.
+    `public_is_read`: its public globals are read from outside (s8: OPC UA, web user pages)."""
     if not app.globals_known or not app.data:
         return []
     if "program" in app.unread or any(p.body is None for p in app.programs.values()):
@@ -304,8 +306,8 @@ def unused_globals(app: Application, facts: dict[str, ProgramFacts], library: bo
         key = data.name.lower()
         if key in used or key in tokens or key in SYSTEM_DATA:
             continue
-        if library and data.access != "private":
-            continue  # the interface of a library or the fields of a user type (6.2, 7.2)
+        if (library or public_is_read) and data.access != "private":
+            continue  # the interface of a library or the fields of a user type (6.2, 7.2), or read over OPC UA
         base = builtin_type(data.type)
         if base in IO_TYPES:
             continue  # linked to hardware: declared for the I/O map, often on purpose

@@ -7,6 +7,7 @@ expression through ExprTyper and checking what each statement requires of them.
 from __future__ import annotations
 
 from ..language.instructions import lookup as lookup_instruction
+from ..language.version_facts import task_name_problem
 from ..parsing import ast as A
 from . import messages as M
 from . import symbols as S
@@ -40,10 +41,14 @@ class StatementChecker(ExprTyper):
 
     def block(self, statements: list) -> None:
         get = self._stmt.get
+        ctx = self.ctx
+        outer = ctx.guess  # a statement's findings depend on the guesses it consults, not its neighbours'
         for st in statements:
             f = get(type(st))
             if f is not None:
+                ctx.guess = ""
                 f(st)
+        ctx.guess = outer
 
     # -- simple statements -----------------------------------------------------------------
 
@@ -175,10 +180,11 @@ class StatementChecker(ExprTyper):
         if vt.assignable(vt.STRING, v.t) is False:
             self.ctx.report_at("T006", M.argument_type(1, keyword, "sNom", "string", vt.describe(v)), name)
         elif type(name) is A.String:
-            # 5.10: "sNom doit avoir 1 à 15 caractères parmi a..zA..Z0..9_" (runtime error 29)
-            why = _task_name_problem(name.value, check_length=self.ctx.strict_version)
-            if why:
-                self.ctx.report_at("T023", M.task_name(keyword, name.value, why), name)
+            # 5.10: "sNom doit avoir 1 à 15 caractères parmi a..zA..Z0..9_" (runtime error 29); s8
+            # code uses longer names: the rule of the version, shared with the simulator
+            problem = task_name_problem(name.value, self.ctx.major)
+            if problem is not None:
+                self.ctx.report_at("T023", M.task_name(keyword, name.value, problem.why, problem.certain), name)
         sig, label, vals = self._program_target(target, args)
         if sig is not None:
             check_program_args(self, target, label, sig, args, vals, task=True)
@@ -210,13 +216,3 @@ class StatementChecker(ExprTyper):
                 ctx.report_at("T022", M.task_overrun_local(node_text(st.overrun)), st.overrun)
         self._task_common("taskCreateSync", st.task, st.target, st.args)
 
-
-def _task_name_problem(name: str, check_length: bool = True) -> str | None:
-    """Why a constant task name fails at run time (error 29). s8 controllers are not held to the
-    s7 length, as for declared names (N012)."""
-    if not name:
-        return "it is empty"
-    if check_length and len(name) > 15:
-        return f"{len(name)} characters, more than 15"
-    bad = next((c for c in name if not (c.isascii() and (c.isalnum() or c == "_"))), None)
-    return f"the character {bad!r} is not allowed" if bad is not None else None
