@@ -10,7 +10,8 @@ few more, each measured through the whole checker (a TX2-60 holding still, the s
 3. a rod (cylinder r 8, length 36) whose end is 15 mm into a box 40 x 200 x 60, and into a mesh of
    the same box: expected -15 for both;
 4. a ball wholly inside a closed non-convex mesh (the channel's bottom bar), and a ball 5 mm into
-   a surface (solid = false) sheet.
+   a surface (solid = false) sheet;
+5. (printed, not checked: a known limit) a box edge turned 45 degrees, 0.5 mm into the channel.
 
 Prints each figure with what is expected, and the time per check. Exit code 1 when a figure is
 off by more than 1e-3 mm or a contact is missed.
@@ -99,7 +100,7 @@ def main() -> int:
         if points is not None and m is not None:
             ok = ok and all(math.dist(p, q) <= 1e-3 for p, q in zip((m.point_a, m.point_b), points))
         bad += not ok
-        print(f"{'ok ' if ok else 'BAD'} {name:<44} contact {str(c is not None):5} (want {str(contact):5}) "
+        print(f"{'ok ' if ok else 'BAD'} {name:<44} contact {c is not None!s:5} (want {contact!s:5}) "
               f"depth {c.depth_mm if c is not None else 0.0:8.3f}  clearance {got:9.3f} (want {clearance:8.3f})  "
               f"{1000 * dt:7.1f} ms")
         if m is not None:
@@ -131,6 +132,15 @@ def main() -> int:
     sheet = trimesh.Trimesh([[-50, -50, 0], [50, -50, 0], [50, 50, 0], [-50, 50, 0]], [[0, 1, 2], [0, 2, 3]])
     rep, dt = run(BALL, pose(np.eye(3), C), mesh(sheet, solid=False), pose(np.eye(3), C + [0.0, 0.0, 7.0]))
     row("ball 5 mm through a surface (solid = false)", rep, dt, -5.0, True)
+    # 5. a known limit (docs/cell.md): a box edge turned 45 degrees, 0.5 mm into the channel's flat side
+    c45 = math.sqrt(0.5)
+    Rz = np.array([[c45, -c45, 0.0], [c45, c45, 0.0], [0.0, 0.0, 1.0]])
+    edge_x = C[0] + 100.0 * c45
+    rep, dt = run(Shape("box", (100.0, 100.0, 200.0)), pose(Rz, C), walls["channel"],
+                  pose(np.eye(3), [edge_x - 0.5 + 50.0, C[1], C[2] + 50.0]))
+    m = rep.min_clearance
+    print(f"    box edge 0.5 mm into the channel (a lower bound is documented): contact "
+          f"{rep.starts_in_collision is not None}, clearance {m.mm if m is not None else math.nan:.3f} (true -0.500)")
     print(f"{bad} figure(s) off")
     return 1 if bad else 0
 
