@@ -60,10 +60,18 @@ def construct(kin, move, q_start: np.ndarray, tool: np.ndarray | None, now: floa
             built.geometry.q_end = q_start.copy()
             built.blend = "off"
         else:
-            built.geometry.joint_curve = JointLine(q_start, q_end)
+            built.geometry.joint_curve = joint_line(kin, q_start, q_end)
         return built
     _cartesian(kin, built, move, q_start, tool, now)
     return built
+
+
+def joint_line(kin, q_start: np.ndarray, q_end: np.ndarray) -> JointLine:
+    """The JointLine from q_start to q_end, the same object for the same joints (kin.reuse): its
+    samples are then computed once."""
+    key = ("line", q_start.tobytes(), np.asarray(q_end, float).tobytes())
+    hit = kin.reuse.get(key)
+    return hit if hit is not None else kin.reuse.keep(key, JointLine(q_start.copy(), np.array(q_end, dtype=float)))
 
 
 def _movej_target(kin, move, q_start, tool, now) -> np.ndarray:
@@ -124,13 +132,25 @@ def _cartesian(kin, built: Construction, move, q_start, tool, now) -> None:
     if curve.length_mm < 1e-6 and curve.angle_deg < 1e-6:
         built.blend = "off"
         return
-    tr = track(kin, curve, tool, q_start, code0)
+    # the joint curve is a function of the start joints, the tool, the curve's poses and the
+    # configuration, on this geometry (kin.reuse): a motion that repeats exactly reuses it
+    via = move.via.pose if kind == "movec" else None
+    key = ("track", kind, q_start.tobytes(), None if tool is None else np.asarray(tool, float).tobytes(),
+           np.asarray(T_end, float).tobytes(), None if via is None else np.asarray(via, float).tobytes(), code0)
+    hit = kin.reuse.get(key)
+    if hit is None:
+        tr = track(kin, curve, tool, q_start, code0)
+        spline = None
+        if tr.failure is None:
+            spline = JointSpline(tr.lam, tr.Q, tr.D)
+            spline.sing = tr.sing
+            spline.curve = curve
+        hit = kin.reuse.keep(key, (curve, tr, spline))
+    curve, tr, spline = hit
+    built.geometry.tcp_curve = curve
     if tr.failure is not None:
         built.failure = path_failure(kin, kind, tr.failure, curve, source, now)
         return
-    spline = JointSpline(tr.lam, tr.Q, tr.D)
-    spline.sing = tr.sing
-    spline.curve = curve
     built.geometry.joint_curve = spline
     built.geometry.q_end = tr.Q[-1].copy()
 

@@ -65,6 +65,21 @@ class Singularity:
     shoulder: np.ndarray
 
 
+class Reuse(dict):
+    """Results of pure computations on one arm geometry (joint curves, their samples), keyed by
+    everything they depend on: a cyclic program builds the same motions again and again. Bounded:
+    the oldest entry goes first."""
+
+    LIMIT = 4096
+
+    def keep(self, key, value):
+        """Remember `value` under `key`; returns it."""
+        if len(self) >= self.LIMIT:
+            self.pop(next(iter(self)))
+        self[key] = value
+        return value
+
+
 class ArmKin:
     """Vectorised kinematics of one `RobotModel` (ortho-parallel base, spherical wrist)."""
 
@@ -85,6 +100,7 @@ class ArmKin:
         self.dh = getattr(model, "dh", None)  # a geometry setDH changed (robot/absolute.py, 11.4)
         self.branch_is_config = False
         self._configs: list[tuple[str, ...]] = []  # arms without the OPW form: codes by first use
+        self.reuse = Reuse()  # results that depend on this geometry only (issue 29), cleared by setDH
         if self.opw is not None:
             o = self.opw
             self.signs = np.array(o.signs, dtype=float)
@@ -98,6 +114,7 @@ class ArmKin:
         for everyone holding this object (the queue's collaborators)."""
         self.model = model
         self.dh = getattr(model, "dh", None)
+        self.reuse.clear()  # a new geometry: nothing computed with the old one is reused
 
     # ---- forward kinematics ------------------------------------------------------------------
 

@@ -272,15 +272,31 @@ class Span:
         last row is the point JUNCTION_EPS after the start, where the span's own curvature
         applies (the time parameterisation constrains both sides of a junction)."""
         if self._cache is None:
-            lam = self.geom.grid(self.a, self.b)
-            eps = min(JUNCTION_EPS, 0.5 * self.length) / self.geom.ell
-            lam = np.append(lam, self.a + eps)
-            sig = (lam - self.a) * self.geom.ell
-            q1 = self.geom.q(lam, 1) / self.geom.ell
-            q2 = self.geom.q(lam, 2) / self.geom.ell ** 2
-            pt, rt = self._rates(kin, lam, q1)
-            self._cache = {"sigma": sig, "q1": q1, "q2": q2, "pt": pt, "rt": rt}
+            # the same part of the same geometry with the same tool on the same arm geometry has the
+            # same samples (construction.py reuses the geometries of motions that repeat)
+            memo = self.geom.__dict__.setdefault("_samples", {})
+            key = (self.a, self.b, None if self.tool is None else np.asarray(self.tool, float).tobytes(), id(kin))
+            model = getattr(kin, "model", None)
+            hit = memo.get(key)
+            if hit is not None and hit[0] is model:
+                self._cache = hit[1]
+                return self._cache
+            self._cache = self._sample(kin)
+            if len(memo) > 64:
+                memo.clear()
+            memo[key] = (model, self._cache)
         return self._cache
+
+    def _sample(self, kin) -> dict:
+        """`sample`, computed."""
+        lam = self.geom.grid(self.a, self.b)
+        eps = min(JUNCTION_EPS, 0.5 * self.length) / self.geom.ell
+        lam = np.append(lam, self.a + eps)
+        sig = (lam - self.a) * self.geom.ell
+        q1 = self.geom.q(lam, 1) / self.geom.ell
+        q2 = self.geom.q(lam, 2) / self.geom.ell ** 2
+        pt, rt = self._rates(kin, lam, q1)
+        return {"sigma": sig, "q1": q1, "q2": q2, "pt": pt, "rt": rt}
 
     def sample_at(self, kin, sigma: float) -> dict:
         """The same at one σ."""

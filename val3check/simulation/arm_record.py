@@ -17,7 +17,6 @@ first asked): a report reads this record and imports nothing of robot/, geometry
 
 from __future__ import annotations
 
-import bisect
 import statistics
 from dataclasses import dataclass, field
 from typing import Any, Protocol
@@ -246,14 +245,18 @@ class ArmRun:
             if motion.start is not None and motion.kind != "connection":
                 starts.append(motion.start)
                 tools.append(motion.tool_in_flange)
-        idx = np.array([max(bisect.bisect_right(starts, t) - 1, 0) for t in times]) if starts \
+        times = np.asarray(times, dtype=float)
+        idx = np.maximum(np.searchsorted(np.asarray(starts, dtype=float), times, side="right") - 1, 0) if starts \
             else np.zeros(len(times), int)
         out = np.zeros(len(times))
-        for k in sorted(set(idx.tolist())):
-            sel = idx == k
-            tool = tools[k] if tools else None
+        # the samples in time order: each motion's are one run of rows (one product per run)
+        cuts = np.flatnonzero(np.diff(idx)) + 1
+        for lo, hi in zip(np.concatenate([[0], cuts]).tolist(), np.concatenate([cuts, [len(idx)]]).tolist()):
+            if hi <= lo:
+                continue
+            tool = tools[int(idx[lo])] if tools else None
             p = np.array([0.0, 0.0, 0.0, 1.0]) if tool is None else np.asarray(tool, dtype=float)[:, 3]
-            a = P0[sel] @ p
-            b = P1[sel] @ p
-            out[sel] = np.linalg.norm((b - a)[:, :3], axis=1) / h
+            a = P0[lo:hi] @ p
+            b = P1[lo:hi] @ p
+            out[lo:hi] = np.linalg.norm((b - a)[:, :3], axis=1) / h
         return out

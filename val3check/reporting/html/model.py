@@ -35,6 +35,19 @@ def _num(v: Any, where: str, *, null: bool = False) -> None:
         _fail(where, f"a finite number is expected, not {v!r}")
 
 
+def _nums(values: list, where: str) -> None:
+    """`_num` of every value of a list (`where[k]`): at once when all are finite floats or ints (the
+    trajectory's long rows), else one by one for the message."""
+    if set(map(type, values)) <= {float, int}:
+        try:
+            if all(map(math.isfinite, values)):
+                return
+        except OverflowError:  # an int beyond a float: the message comes from `_num`
+            pass
+    for k, x in enumerate(values):
+        _num(x, f"{where}[{k}]")
+
+
 def _list(v: Any, where: str) -> list:
     if not isinstance(v, list):
         _fail(where, f"a list is expected, not {type(v).__name__}")
@@ -191,14 +204,12 @@ def check_model(model: Any) -> None:
             for i, row in enumerate(rows):
                 if len(_list(row, f"trajectory.{key}[{i}]")) != n:
                     _fail(f"trajectory.{key}[{i}]", f"{n} values (one per time) are expected, not {len(row)}")
-                for k, x in enumerate(row):
-                    _num(x, f"trajectory.{key}[{i}][{k}]")
+                _nums(row, f"trajectory.{key}[{i}]")
         if tr.get("tcp_speed") is not None:
             speed = _list(tr["tcp_speed"], "trajectory.tcp_speed")
             if len(speed) != n:
                 _fail("trajectory.tcp_speed", f"{n} values (one per time) are expected, not {len(speed)}")
-            for k, x in enumerate(speed):
-                _num(x, f"trajectory.tcp_speed[{k}]")
+            _nums(speed, "trajectory.tcp_speed")
     for i, t in enumerate(_list(m.get("tasks", []), "tasks")):
         _dict(t, f"tasks[{i}]", ("name", "segments"))
         _segments(t["segments"], f"tasks[{i}].segments", TASK_STATES)
