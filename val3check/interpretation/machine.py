@@ -26,6 +26,7 @@ from ..language.runtime_errors import RUNTIME_CODES, Val3RuntimeError
 from .cell import Cell, CellSubsystem
 from .clock import TICK_US, Clock
 from .compiler import Compiled
+from .compiler.legacy import array_parameters
 from .controller import Controller
 from .libraries import autoload_libraries
 from .memory import TypeSpace
@@ -96,6 +97,7 @@ class Machine:
         self.stop_task: Task | None = None
         self.destroyed: list[str] = []
         self._libraries_reported: set[str] = set()
+        self._legacy_arrays: dict[str, dict[str, dict[str, int]]] = {}  # app path -> compiler/legacy.py
         self.base_namespace = self._base_namespace()
 
     def add_subsystem(self, subsystem: Any) -> None:
@@ -129,6 +131,14 @@ class Machine:
 
     def library_model(self, app: Application, alias: str) -> Application | None:
         return self.ws.library(app, alias)
+
+    def legacy_arrays(self, app: Application) -> dict[str, dict[str, int]]:
+        """The s6 by-reference parameters an application's programs use as arrays
+        (compiler/legacy.py), computed once per application."""
+        found = self._legacy_arrays.get(app.path)
+        if found is None:
+            found = self._legacy_arrays[app.path] = array_parameters(app)
+        return found
 
     def load_main(self) -> Unit:
         unit = Unit(self, self.app, "Disk://" + self.app.name)

@@ -18,6 +18,7 @@ from ...loading.model import Application, Container, Program
 from ...loading.types import base_type
 from ..memory import TypeSpace
 from .calls import CallCompiler
+from .legacy import effective_parameters
 from .expressions import ExpressionCompiler
 from .statements import StatementCompiler
 from .structures import Compiled, CompileError, VarInfo
@@ -197,7 +198,7 @@ def compile_program(unit, program: Program, namespace: dict) -> Compiled:
 
 def _failing(unit, program: Program, exc: CompileError, namespace: dict) -> Compiled:
     params = []
-    for p in program.parameters:
+    for p in effective_parameters(unit.model, program, unit.machine.legacy_arrays(unit.model)):
         if p.container is Container.ELEMENT and p.by_reference:
             params += [f"c_{p.name}", f"k_{p.name}"]
         else:

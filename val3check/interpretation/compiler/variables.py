@@ -18,6 +18,7 @@ from ...loading.types import base_type
 from ...parsing import ast
 from ..memory import TypeSpace
 from ..values import FIELD_NAMES, STRUCT_FIELDS
+from .legacy import effective_parameters
 from .structures import FieldInfo, VarInfo
 
 # Estimated execution memory (2.1.4.2: 5000 bytes per task by default). The manual gives no
@@ -85,16 +86,21 @@ class VariableCompiler:
         return boxed
 
     def _callee_params(self, target) -> list | None:
+        """The parameters of a called program as the simulator binds them (an s6 reference
+        parameter used as an array is an array reference: legacy.py)."""
         if isinstance(target, ast.Name):
             prog = self._program(target.name)
-            return prog.parameters if prog else None
+            return self._params_of(self.app, prog) if prog else None
         if isinstance(target, ast.LibraryName):
             lib = self._lib_model(target.alias)
             if lib is None:
                 return None
             prog = lib.programs.get(target.name)
-            return prog.parameters if prog else None
+            return self._params_of(lib, prog) if prog else None
         return None
+
+    def _params_of(self, app: Application, prog: Program) -> list:
+        return effective_parameters(app, prog, self.unit.machine.legacy_arrays(app))
 
     def _program(self, name: str) -> Program | None:
         p = self.app.programs.get(name)
@@ -112,7 +118,7 @@ class VariableCompiler:
         indexed = {n.base.name for n in ast.walk(prog.body) if isinstance(n, ast.Index) and isinstance(n.base, ast.Name)} if prog.body else set()
         indexed |= self.arrayed
         slot = 0
-        for p in prog.parameters:
+        for p in self._params_of(self.app, prog):
             t = base_type(p.type)
             if p.container is Container.ELEMENT:
                 if p.by_reference:
