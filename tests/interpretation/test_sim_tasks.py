@@ -154,7 +154,7 @@ def test_a_wait_for_an_input_nothing_sets_is_r009_not_a_deadlock_error(tmp_path)
     d = r.diagnostics[0]
     assert "wait(diPart == true)" in open(d.path, encoding="utf-8").read().split("\n")[d.line - 1]
     assert "diPart" in d.message and d.severity is None  # the rule's severity (warning) is set by the report
-    assert r.end_message.startswith("every task waits, for inputs that nothing in the run sets")
+    assert r.end_message.startswith("every task waits for the cell (inputs, serial or socket peers")
     # a task that also waits for a variable nobody sets: a deadlock of the program (R003)
     r = sim(tmp_path / "both", """begin
   taskCreate "t1", 10, waiter()

@@ -28,13 +28,14 @@ from .clock import TICK_US, Clock
 from .compiler import Compiled
 from .compiler.legacy import array_parameters
 from .controller import Controller
+from .deadlock import report_blocked
 from .libraries import autoload_libraries
 from .memory import TypeSpace
 from .memory_budget import MemoryBudget
 from .not_simulated import ARM_LIMIT, SimLimit, arm_message
 from .recorder import IOEvent, Recorder, TranscriptEntry
 from .registry import Registry
-from .scheduler import ERROR, HELD, START_PRIORITY, SUSPENDED, WAIT, EndRun, Scheduler, Task
+from .scheduler import ERROR, HELD, START_PRIORITY, WAIT, EndRun, Scheduler, Task
 from .system_io import SystemIO
 from .units import Unit
 from .user_page import UserPage
@@ -98,6 +99,7 @@ class Machine:
         self.destroyed: list[str] = []
         self._libraries_reported: set[str] = set()
         self._legacy_arrays: dict[str, dict[str, dict[str, int]]] = {}  # app path -> compiler/legacy.py
+        self.analysis_cache: dict[str, dict] = {}  # what the deadlock report computes from the code
         self.base_namespace = self._base_namespace()
 
     def add_subsystem(self, subsystem: Any) -> None:
@@ -372,7 +374,7 @@ class Machine:
             self.end_reason = reason = "duration"
             self._stop_did_not_end(f"still running at --duration {self.budgets.duration_us / 1e6:g} s")
         if reason == "deadlock":
-            self._report_blocked()
+            report_blocked(self)
         else:
             self._report_motion_waits()
         if reason not in ("ended", "wall-clock"):
@@ -389,36 +391,7 @@ class Machine:
             task.final = FinalState(task.state.report_name, where,
                                     self.blocked_on(task) if task.state is WAIT else None)
 
-    def _report_blocked(self) -> None:
-        """Deadlock: every task waits for something no scheduled event can change."""
-        for task in self.scheduler.tasks:
-            if task.state is ERROR or task.state is HELD:
-                continue
-            w = self.where(task)
-            path, line, col, prog = w if w else (self.app.path, 0, 0, task.program)
-            code = "R003"
-            if task.state is SUSPENDED:
-                msg = f"task {task.name} is suspended and no task can resume it"
-            else:
-                why = self._motion_reason(task)
-                if why is not None:
-                    code, text = why
-                    msg = f"task {task.name} waits in {self.blocked_on(task)} for a motion that cannot happen: {text}"
-                else:
-                    hint = getattr(task.cond, "hint", "")
-                    if hint:
-                        # the condition reads I/O: in the cell, the outside world can release it;
-                        # only the simulation has nobody to set it (R009, a warning)
-                        code = "R009"
-                        msg = (f"task {task.name} waits in {self.blocked_on(task)}, which only an input the "
-                               f"run does not drive can release ({hint})")
-                    else:
-                        msg = f"task {task.name} waits in {self.blocked_on(task)}, which nothing scheduled can change"
-            task.errpos = (path, line, col, prog)
-            self.diags.append(Diagnostic(code, msg, path, line, col, time_us=self.clock.now, task=task.name,
-                                         program=prog))
-
-    def _motion_reason(self, task: Task) -> tuple[str, str] | None:
+    def motion_reason(self, task: Task) -> tuple[str, str] | None:
         """(rule, why) when the task waits for the arm's motion and the arm cannot move."""
         if task.state is not WAIT or not getattr(task.cond, "motion", False):
             return None
@@ -428,7 +401,7 @@ class Machine:
         """At the end of a run that did not end in a deadlock: the tasks still waiting for a
         motion that power never allows (R018)."""
         for task in self.scheduler.tasks:
-            why = self._motion_reason(task)
+            why = self.motion_reason(task)
             if why is None or why[0] != "R018":
                 continue
             w = self.where(task)

@@ -84,13 +84,21 @@ def _sio(io: Any) -> IOPoint:
     return io
 
 
+def peer_hint(machine, io: IOPoint) -> str:
+    """What ends a wait for data on a sio: its peer (a serial device, a socket client or
+    server), played by the scenario's [[serial]] entries (the deadlock report's R009)."""
+    names = machine.link_names.get(("sio", io.link)) or [io.link]
+    return (f"data from the peer of {', '.join(names)} ({io.link}): the scenario's [[serial]] entry with "
+            f'sio = "{names[0]}" (docs/scenario.md)')
+
+
 def _sio_wait(task, io: IOPoint, ready, what: str):
     """Wait for received data; returns False on the sio timeout (sioCtrl "timeout")."""
     if ready():
         return True
     if io.timeout > 0:
         return (yield from WATCH(task, ready, io.timeout, False, what))
-    yield from WAIT(task, ready, False, what)
+    yield from WAIT(task, ready, False, what, peer_hint(task.machine, io))
     return True
 
 

@@ -55,7 +55,11 @@ def GET(task, *args: Any):
     page = machine.user_page
     clock = machine.clock
     # 4.2.3: only the screen displayed on the pendant is told of the keys pressed
-    yield from WAIT(task, (lambda: page.displayed is scr and page.key_available(clock.now)), False, "get")
+    # 4.2: the operator may also show another screen (User-Up/User-Down); the scenario's keys
+    # reach the screen displayed
+    shown = "" if page.displayed is scr else f" (once {scr.name or 'the default page'} is displayed: userPage)"
+    yield from WAIT(task, (lambda: page.displayed is scr and page.key_available(clock.now)), False, "get",
+                    f"an operator's key press{shown}: the scenario's [[keys]] (docs/scenario.md)")
     key = page.take_key()
     code = float(key.code)
     if pair is not None and key.code != 255 and key.text is not None:  # Esc leaves it unchanged

@@ -22,6 +22,14 @@ from .structures import UNKNOWN, Code, CompileError, VariableArg
 # `getMoveId() >= 15.8` is evaluated every cycle, as on the controller.
 TIME_DEPENDENT = frozenset({"clock", "getdate", "watch", "getmoveid", "herej", "here", "getspeed", "issettled"})
 
+# What a wait condition may read of the cell besides inputs (the deadlock report's R009, which
+# names the scenario entry): the operator's keys (4.3), the controller's state (chapter 8, 4.3)
+# by the [controller] key that sets it.
+KEY_READS = frozenset({"getkey", "iskeypressed"})
+STATE_READS = {"esstatus": "es_status", "ispowered": "powered", "workingmode": "working_mode",
+               "getmonitorspeed": "monitor_speed", "iscalibrated": "calibrated", "safetyfault": "safety_fault",
+               "getprofile": "profile", "getlanguage": "language"}
+
 # Instructions the compiler writes itself (registered as inline by their chapter module).
 INLINE_FORMS = {
     # 2.5.4 - 2.5.6: any variable
@@ -291,12 +299,14 @@ class CallCompiler:
 
     def i_wait(self, node):
         fn, tdep = self._cond_lambda(node.args[0])
-        what, hint = self._wait_words(node)
-        return Code(f"(yield from WAIT(T, {fn}, {tdep}, {what!r}, {hint!r}))", "void")
+        what, hint, reads = self._wait_words(node)
+        return Code(f"(yield from WAIT(T, {fn}, {tdep}, {what!r}, {hint!r}, frozenset({sorted(reads)!r})))", "void")
 
-    def _wait_words(self, node) -> tuple[str, str]:
-        """What a wait waits for, in the program's words (its line, for the deadlock report,
-        R003), and which inputs of the condition a scenario could set."""
+    def _wait_words(self, node) -> tuple[str, str, set[str]]:
+        """What a wait waits for, in the program's words (its line, for the deadlock report),
+        which part of the cell could make its condition true, with the scenario entry that plays
+        it (inputs, keys, the controller's state: docs/scenario.md), and the globals it reads
+        (interpretation/deadlock.py)."""
         code = self.program.code or ""
         text = "wait"
         cmap = self.program.code_map
@@ -306,19 +316,44 @@ class CallCompiler:
                 break
         if len(text) > 80:
             text = text[:77] + "..."
-        names = []
+        inputs: list[str] = []
+        reads: set[str] = set()
+        keys: list[str] = []
+        state: dict[str, str] = {}
         for n in ast.walk(node.args[0]):
-            if type(n) in (ast.Name, ast.LibraryName):
-                try:
-                    v = self.var_of(n)
-                except CompileError:
-                    v = None
-                if v is not None and v.t in ("dio", "aio") and v.store in ("g", "lib") and n.name not in names:
-                    names.append(n.name if type(n) is ast.Name else f"{n.alias}:{n.name}")
-        hint = ""
-        if names:
-            hint = f"the scenario can set {', '.join(names)}: [inputs] or [[events]] (docs/scenario.md)"
-        return text, hint
+            tn = type(n)
+            if tn is ast.CallExpr and type(n.func) is ast.Name:
+                low = n.func.name.lower()
+                if low in KEY_READS and n.func.name not in keys:
+                    keys.append(n.func.name)
+                elif low in STATE_READS:
+                    state.setdefault(STATE_READS[low], n.func.name)
+            if tn not in (ast.Name, ast.LibraryName):
+                continue
+            try:
+                v = self.var_of(n)
+            except CompileError:
+                v = None
+            if v is None or v.store in ("py", "box"):
+                continue  # a local: only this task changes it
+            if v.store not in ("g", "lib"):
+                reads.add("?")  # a parameter by reference: whose global is not known here
+                continue
+            label = n.name if tn is ast.Name else f"{n.alias}:{n.name}"
+            reads.add(label)
+            if v.t in ("dio", "aio") and label not in inputs:
+                inputs.append(label)
+        hints = []
+        if inputs:
+            hints.append(f"the scenario can set {', '.join(inputs)}: [inputs] or [[events]] (docs/scenario.md)")
+        if keys:
+            hints.append(f"{', '.join(k + '()' for k in keys)} reads the operator's keys: the scenario's [[keys]] "
+                         "(docs/scenario.md)")
+        if state:
+            fields = ", ".join(f"{k} ({f}())" for k, f in state.items())
+            hints.append(f"the controller's state, {fields}: the scenario's [controller] table or its changes = "
+                         f"[{{ at = ..., {next(iter(state))} = ... }}] (docs/scenario.md)")
+        return text, "; ".join(hints), reads
 
     def i_watch(self, node):
         fn, tdep = self._cond_lambda(node.args[0])
@@ -326,7 +361,17 @@ class CallCompiler:
         return Code(f"(yield from WATCH(T, {fn}, {secs}, {tdep}))", "bool")
 
     def i_setmutex(self, node):
-        return Code(f"(yield from SETMUTEX(T, {self.ref_arg(node.args[0])}))", "void")
+        a = node.args[0]
+        base = a.base if type(a) is ast.Index else a
+        name = ""
+        if type(base) in (ast.Name, ast.LibraryName):
+            try:
+                v = self.var_of(base)
+            except CompileError:
+                v = None
+            if v is not None and v.store in ("g", "lib"):
+                name = base.name if type(base) is ast.Name else f"{base.alias}:{base.name}"
+        return Code(f"(yield from SETMUTEX(T, {self.ref_arg(a)}, {name!r}))", "void")
 
     def i_put(self, node):
         return self._page(node, "put")
