@@ -27,7 +27,7 @@ from .cell import Cell, CellSubsystem
 from .clock import TICK_US, Clock
 from .compiler import Compiled
 from .compiler.legacy import array_parameters
-from .controller import Controller
+from .controller import Controller, default_versions
 from .deadlock import report_blocked
 from .libraries import autoload_libraries
 from .memory import TypeSpace
@@ -78,6 +78,7 @@ class Machine:
         # joint and config values have the fields of the arm's family (9.7.2; RX/TX without a model)
         self.cell.arm_family = getattr(arm, "type_family", "Rx") or "Rx"
         self.controller = Controller()
+        self.controller.versions = default_versions(app.version, getattr(arm, "name", None))
         self.user_page = UserPage()
         self.recorder = Recorder(self.budgets.max_transcript, self.budgets.max_io_log, self._record_full)
         self.cell_subsystem = CellSubsystem(self.controller, self.log_io, self._cell_finding)

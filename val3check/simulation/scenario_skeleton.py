@@ -18,7 +18,7 @@ import datetime
 import json
 from dataclasses import dataclass, field
 
-from ..interpretation.controller import Controller
+from ..interpretation.controller import Controller, default_versions
 from ..loading.model import Application, Workspace
 from ..parsing import ast as A
 
@@ -61,6 +61,8 @@ class _Use:
     to_library: dict[str, str] = field(default_factory=dict)  # name -> the library call it is handed to
     keys: list[tuple[str, str, int | None]] = field(default_factory=list)  # instruction, where, key code
     controller: dict[str, list[str]] = field(default_factory=dict)  # key -> where
+    versions: list[str] = field(default_factory=list)  # the getVersion() components asked for by name
+    state_waits: list[tuple[str, str]] = field(default_factory=list)  # ([controller] key, where) of wait()s
 
 
 def _base(expr) -> tuple[str | None, int | None]:  # noqa: ANN001
@@ -150,6 +152,13 @@ class _Reader:
             self.use.keys.append((kind, self.where(node), code))
         for key in CONTROLLER_READS.get(low, ()):
             self.use.controller.setdefault(key, []).append(self.where(node))
+        if low == "getversion" and args and isinstance(args[0], A.String) and args[0].value not in self.use.versions:
+            self.use.versions.append(args[0].value)
+        if low in ("wait", "watch") and args:  # a wait only the controller's state can end (R009)
+            for n in A.walk(args[0]):
+                if isinstance(n, A.CallExpr) and isinstance(n.func, A.Name):
+                    for key in CONTROLLER_READS.get(n.func.name.lower(), ())[:1]:
+                        self.use.state_waits.append((key, self.where(node)))
         for k, a in enumerate(args):
             if k == 0 and low in WRITES_FIRST:
                 self.write(a)
@@ -378,11 +387,16 @@ def skeleton(workspace: Workspace, app: Application, app_label: str) -> str:
         out += [f"# [[serial]]                       # {what}", f"# sio = {_toml(what.split(' ')[0])}",
                 "# at = 1.0", '# send = ""', ""]
     reads_ctl: dict[str, list[str]] = {}
+    asked: list[str] = []
+    waits: list[tuple[str, str]] = []
     for use, _p, _l in uses.values():
         for k, where in use.controller.items():
             reads_ctl.setdefault(k, []).extend(where)
+        asked += [v for v in use.versions if v not in asked]
+        waits += use.state_waits
     if reads_ctl:
         defaults = Controller()
+        known = default_versions(app.version, None)
         values = {
             "working_mode": defaults.working_mode, "working_state": defaults.working_state,
             "es_status": defaults.es_status, "powered": defaults.powered,
@@ -390,11 +404,15 @@ def skeleton(workspace: Workspace, app: Application, app_label: str) -> str:
             "monitor_speed": defaults.monitor_speed, "operator_speed": defaults.operator_speed,
             "safety_fault": defaults.safety_fault, "profile": defaults.profile, "profiles": defaults.profiles,
             "language": defaults.language, "languages": list(defaults.languages), "date": defaults.date,
-            "versions": defaults.versions,
+            # the components the application asks for by name, as getVersion answers them (8.1)
+            "versions": {v: known.get(v, "") for v in asked} if asked else known,
         }
         out.append("[controller]                       # chapter 8 state the application reads (defaults)")
         for key in CONTROLLER_ORDER:
             if key in reads_ctl:
                 out.append(f"{key + ' = ' + _toml(values[key]):<34} # {_places(reads_ctl[key])}")
+        for key, where in sorted(set(waits), key=lambda kw: (kw[1].rsplit(":", 1)[0], int(kw[1].rsplit(":", 1)[1]))):
+            out.append(f"# changes = [ {{ at = 1.0, {key} = {_toml(values[key])} }} ]   # {where}: a wait() only a "
+                       f"change of {key} ends")
         out.append("")
     return "\n".join(out).rstrip("\n") + "\n"

@@ -263,7 +263,12 @@ _SIO_VALUES = {"parity": ("none", "even", "odd"), "bits": (5, 6, 7, 8), "stopBit
 
 
 def I_sioctrl(task, unit, io, name: str, value: Any) -> float:
-    """3.7.3 sioCtrl: 0 changed, -1 unknown parameter, -2 wrong type, -3 value not supported."""
+    """3.7.3 sioCtrl: 0 changed, -1 unknown parameter, -2 wrong type, -3 value not supported.
+
+    "timeout": "0 signifie : pas de limite de délai"; a negative timeout is what the pendant's
+    socket configuration and public code that runs on controllers write for no time limit (the
+    ROS-Industrial driver's sioCtrl(siSocket, "timeout", -1), "Timeout: -1" in its README): no
+    limit too. "port" is a TCP port (0 to 65535)."""
     io = _sio(io)
     want = _SIO_PARAMS.get(name)
     if want is None:
@@ -275,11 +280,10 @@ def I_sioctrl(task, unit, io, name: str, value: Any) -> float:
             return -3.0
         io.eos = _int(value)
     elif name == "timeout":
-        if value < 0:
-            return -3.0
-        io.timeout = float(value)
+        io.timeout = float(value) if value > 0 else 0.0
     elif (name in _SIO_VALUES and (_int(value) if want is float else value) not in _SIO_VALUES[name]
-          or name in ("port", "clients", "baudRate") and (value < 0 or value != _int(value))):
+          or name in ("port", "clients", "baudRate") and (value < 0 or value != _int(value))
+          or name == "port" and value > 65535):
         return -3.0
     io.params[name] = value
     return 0.0

@@ -93,6 +93,9 @@ def I_setmonitorspeed(task, unit, speed: float) -> float:
 
 
 def I_getversion(task, unit, component: str) -> str:
+    """8.1 getVersion: the version of a component of the controller (controller.default_versions,
+    the scenario's [controller] versions); "" for a component it does not know, as for a licence
+    that is not installed."""
     return task.machine.controller.versions.get(component, "")
 
 
