@@ -40,6 +40,7 @@ from .system_io import SystemIO
 from .units import Unit
 from .user_page import UserPage
 from .values import Arr, IOPoint, Screen
+from .virtual_disk import VirtualDisk
 
 
 @dataclass
@@ -101,6 +102,8 @@ class Machine:
         self._libraries_reported: set[str] = set()
         self._legacy_arrays: dict[str, dict[str, dict[str, int]]] = {}  # app path -> compiler/legacy.py
         self.analysis_cache: dict[str, dict] = {}  # what the deadlock report computes from the code
+        self._outside_seen: set[tuple] = set()  # the lines already reported R020
+        self.files = VirtualDisk()  # the controller's disk of the system library's file instructions
         self.base_namespace = self._base_namespace()
 
     def add_subsystem(self, subsystem: Any) -> None:
@@ -278,6 +281,18 @@ class Machine:
                     f"programs of {alias}: are error 80 where they are used", first.path, first.line, first.col,
             time_us=self.clock.time_of(task) if task is not None else self.clock.now,
             task=task.name if task is not None else "", program=""))
+
+    def note_outside(self, task: Task, message: str) -> None:
+        """R020 (info): the line running acts on something outside the simulation; said once per
+        line of code."""
+        where = self.line_running()
+        path, line, col, program = where or (self.app.path, 0, 0, task.program)
+        key = (path, line, col)
+        if key in self._outside_seen:
+            return
+        self._outside_seen.add(key)
+        self.diags.append(Diagnostic("R020", message, path, line, col, time_us=self.clock.time_of(task),
+                                     task=task.name, program=program))
 
     def report_overrun(self, task: Task) -> None:
         """R005: a synchronous task used more than its period (5.6)."""

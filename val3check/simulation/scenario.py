@@ -20,6 +20,7 @@ from ..interpretation.cell import Reaction, SerialReply
 from ..interpretation.events import ControllerChange, InputsChange, KeyPress, SerialData
 from ..interpretation.user_page import Key
 from ..interpretation.values import Arr, FaultyIOPoint, IOPoint
+from ..interpretation.virtual_disk import disk_key
 
 SCENARIO_VERSION = 1
 
@@ -183,7 +184,8 @@ class Applier:
     def apply(self) -> None:
         d = self.sc.data
         self.machine.cell_subsystem.scenario_path = self.sc.path
-        known = {"version", "description", "inputs", "events", "reactions", "keys", "serial", "controller", "io", "robot"}
+        known = {"version", "description", "inputs", "events", "reactions", "keys", "serial", "controller", "io", "robot",
+                 "files"}
         for k in d:
             if k not in known:
                 self.fail(self.lines.key(k) or self.lines.section(k), f"unknown table or key {k!r}")
@@ -257,6 +259,8 @@ class Applier:
                 if at is None:
                     self.fail(self.lines.key("at", line) or line, "[[serial]] at = seconds (a finite number from 0 to 1e7)")
                 cell.schedule(at, SerialData(io, data))
+        for i, f in enumerate(_list(d, "files", self)):
+            self._file(f, self.lines.section("files", i))
         if "controller" in d:
             self._controller(d["controller"])
         if "io" in d:
@@ -324,6 +328,27 @@ class Applier:
             return bytes(b)
         self.fail(line, "[[serial]] needs send = \"text\" or bytes = [...]")
         return b""
+
+    def _file(self, f: Any, line: int) -> None:
+        """[[files]]: a file of the controller's disk for the system library's $file... instructions
+        (interpretation/virtual_disk.py); never the user's disk."""
+        self._keys(f, {"path", "text", "bytes"}, line, "[[files]]")
+        path = f.get("path")
+        if not isinstance(path, str) or disk_key(path) is None:
+            self.fail(self.lines.key("path", line) or line, '[[files]] needs path = "Disk://folder/name.txt"')
+        if ("text" in f) == ("bytes" in f):
+            self.fail(line, '[[files]] needs text = "..." or bytes = [...]')
+        if "text" in f:
+            if not isinstance(f["text"], str):
+                self.fail(self.lines.key("text", line) or line, '[[files]] text = "the content"')
+            data = f["text"].encode("utf-8")
+        else:
+            b = f["bytes"]
+            if not isinstance(b, list) or not all(isinstance(x, int) and not isinstance(x, bool) and 0 <= x <= 255 for x in b):
+                self.fail(self.lines.key("bytes", line) or line, "bytes = [numbers from 0 to 255]")
+            data = bytes(b)
+        if not self.machine.files.put(path, data):
+            self.fail(line, "[[files]]: the controller's disk is full")
 
     def _keys(self, table: Any, allowed: set[str], line: int, what: str) -> None:
         if not isinstance(table, dict):

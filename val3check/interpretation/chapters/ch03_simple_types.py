@@ -244,10 +244,15 @@ def I_sioget(task, unit, io, arr: Arr):
     return float(n)
 
 
-def I_sioset(task, unit, io, arr: Arr):
-    """3.7.3 sioSet: write the array's values (nearest integer modulo 256)."""
+def I_sioset(task, unit, io, arr: Arr, count: float | None = None):
+    """3.7.3 sioSet: write the array's values (nearest integer modulo 256). s8 calls it with a
+    third argument whose meaning is not public (language/s8.toml); the simulator reads it as the
+    number of values to send (docs/sim.md)."""
     io = _sio(io)
-    data = bytes(int(math.floor(v + 0.5)) % 256 for v in arr.data[arr.off:])
+    values = arr.data[arr.off:]
+    if count is not None:
+        values = values[:max(0, _int(count)) if math.isfinite(count) else 0]
+    data = bytes(int(math.floor(v + 0.5)) % 256 for v in values)
     task.machine.sio_sent(task, io, data)
     yield from YIELD(task)
     return float(len(data))

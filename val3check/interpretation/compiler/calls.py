@@ -13,6 +13,8 @@ from __future__ import annotations
 from ...language import lookup
 from ...parsing import ast
 from ..not_simulated import ARM_LIMIT
+from ..registry import system_symbol
+from .overloads import overloads_with_arity
 from ..values import ENUM_CONSTANTS
 from .structures import UNKNOWN, Code, CompileError, VariableArg
 
@@ -46,15 +48,17 @@ INLINE_FORMS = {
 class CallCompiler:
     """The calls part of `ProgramCompiler` (program.py)."""
 
-    def call_expr(self, node: ast.CallExpr) -> Code:
+    def call_expr(self, node: ast.CallExpr, want: str | None = None) -> Code:
         """A call of an instruction, as the registry says it is simulated: an inline form the
         compiler writes itself, a handler, a pure built-in, or (a catalogue instruction nothing
         simulates) the not-simulated stop, whose arguments are not evaluated (they could
-        block)."""
+        block). `want`: the type the value is used as (a `$` call's value)."""
         func = node.func
         if type(func) is ast.SystemName:
-            return Code(f"NOTSIM({func.name!r})", UNKNOWN)
+            return self.system_call(node, func.name, want)
         if type(func) is ast.LibraryName:
+            if func.name.startswith("$"):  # `lib:$name()`: a system instruction reached through a library
+                return self.system_call(node, f"{func.alias}:{func.name}", want)
             return self.lib_instruction(node)
         name = func.name
         low = name.lower()
@@ -85,8 +89,7 @@ class CallCompiler:
         return rets.pop() if len(rets) == 1 else UNKNOWN
 
     def _overload(self, name: str, node):
-        ins = lookup(name)
-        ovs = ins.overloads_with_arity(len(node.args)) if ins else []
+        ovs = overloads_with_arity(name, len(node.args))
         if not ovs:
             raise self.err(f"{name}: no form takes {len(node.args)} argument(s)", node)
         if len(ovs) == 1:
@@ -152,7 +155,13 @@ class CallCompiler:
         return c
 
     def handler_call(self, node, handler) -> Code:
-        """`I_name(T, A, args...)`, with `yield from` for a blocking handler."""
+        """`I_name(T, A, args...)`, with `yield from` for a blocking handler. A `raw` handler (an
+        s8 instruction whose parameters are not public) gets the call's text instead, its
+        arguments not evaluated, and the type its value is used as."""
+        if handler.raw:
+            used = "" if node is self.statement_call else (self.semantic_type(node) or "num")
+            call = f"I_{handler.name}(T, A, {self.source_line(node)!r}, {used!r})"
+            return Code(f"(yield from {call})" if handler.blocking else call, used or "void")
         ov = self._overload(handler.name, node)
         args = self.args_for(node, ov.params)
         call = f"I_{handler.name}(T, A{''.join(', ' + x for x in args)})"
@@ -176,6 +185,42 @@ class CallCompiler:
         if not b.outputs and not any(p.endswith("[]") for p in b.params):
             return Code(f"B_{low}({', '.join(args)})", b.returns)
         return Code(f"BREF(B_{low}{''.join(', ' + x for x in args)})", b.returns)
+
+    def system_call(self, node: ast.CallExpr, name: str, want: str | None) -> Code:
+        """A `$name()` instruction of the system library: its handler with the arguments compiled
+        as it says (registry.SystemHandler); one nothing runs goes on with an info (R020) and,
+        when its value is used, the default value of the type it is used as."""
+        h = self.registry.system_handler(name)
+        value_unknown = h is not None and h.returns == "void" and node is not self.statement_call
+        if h is not None and len(node.args) == len(h.params) and not value_unknown:
+            args = []
+            for a, how in zip(node.args, h.params):
+                if how == "array":
+                    args.append(self.container_arg(a))
+                elif how == "ref":
+                    args.append(self.ref_arg(a))
+                else:
+                    args.append(self.expr(a).text)
+            call = f"{system_symbol(h.name)}(T, A{''.join(', ' + x for x in args)})"
+            return Code(f"(yield from {call})" if h.blocking else call, h.returns)
+        used = "" if node is self.statement_call else (want if want and want != UNKNOWN else "num")
+        if used not in ("", "num", "bool", "string"):
+            raise self.err(f"system instruction {name}: its value cannot be a {used} here (not simulated)", node)
+        why = "" if h is None else ("its value, here used, is not known" if value_unknown
+                                    else f"the simulator runs its form of {len(h.params)} argument(s)")
+        return Code(f"SYSTEM(T, {name!r}, {self.source_line(node)!r}, {used!r}, {why!r})", used or "void")
+
+    def source_line(self, node) -> str:
+        """The program line of `node`, as written (at most 80 characters): what the reports say
+        a task waits in, or an instruction the transcript records."""
+        code = self.program.code or ""
+        cmap = self.program.code_map
+        text = ""
+        for k, line in enumerate(code.split("\n"), 1):
+            if cmap.to_file(k, 1).line == node.line:
+                text = line.strip()
+                break
+        return text if len(text) <= 80 else text[:77] + "..."
 
     def lib_instruction(self, node: ast.CallExpr) -> tuple[str, str]:
         alias, name = node.func.alias, node.func.name
@@ -307,15 +352,7 @@ class CallCompiler:
         which part of the cell could make its condition true, with the scenario entry that plays
         it (inputs, keys, the controller's state: docs/scenario.md), and the globals it reads
         (interpretation/deadlock.py)."""
-        code = self.program.code or ""
-        text = "wait"
-        cmap = self.program.code_map
-        for k, line in enumerate(code.split("\n"), 1):
-            if cmap.to_file(k, 1).line == node.line:
-                text = line.strip()
-                break
-        if len(text) > 80:
-            text = text[:77] + "..."
+        text = self.source_line(node) or "wait"
         inputs: list[str] = []
         reads: set[str] = set()
         keys: list[str] = []

@@ -54,6 +54,7 @@ class ProgramCompiler(StatementCompiler, CallCompiler, ExpressionCompiler, Varia
         self.ctx: tuple[int, int, int] | None = None
         self.bpos: dict[int, tuple[int, int, int] | None] = {}
         self.sw_flags: list[str] = []
+        self.statement_call = None  # the call of the statement being compiled, when it is one
 
     # ---- output -------------------------------------------------------------------------------
 

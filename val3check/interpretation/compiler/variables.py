@@ -12,13 +12,13 @@ or addresses it.
 
 from __future__ import annotations
 
-from ...language import lookup
 from ...loading.model import Application, Container, Program
 from ...loading.types import base_type
 from ...parsing import ast
 from ..memory import TypeSpace
 from ..values import FIELD_NAMES, STRUCT_FIELDS
 from .legacy import effective_parameters
+from .overloads import overloads_with_arity
 from .structures import FieldInfo, VarInfo
 
 # Estimated execution memory (2.1.4.2: 5000 bytes per task by default). The manual gives no
@@ -70,13 +70,18 @@ class VariableCompiler:
                     boxed.add(node.overrun.name)
             elif isinstance(node, ast.CallExpr) and isinstance(node.func, ast.Name):
                 args = node.args
-                ins = lookup(node.func.name)
-                if ins is not None:
-                    ov = [o for o in ins.overloads if o.accepts_arity(len(args))]
+                ov = overloads_with_arity(node.func.name, len(args))
+                if ov:
                     ref_flags = [any(i < len(o.params) and (o.params[i].ref or o.params[i].variable) for o in ov)
                                  for i in range(len(args))]
                     arrayed.update(a.name for i, a in enumerate(args) if isinstance(a, ast.Name) and any(
                         i < len(o.params) and o.params[i].container == "array" for o in ov))
+            elif isinstance(node, ast.CallExpr) and isinstance(node.func, ast.SystemName):
+                args = node.args
+                h = self.registry.system_handler(node.func.name)
+                if h is not None and len(h.params) == len(args):
+                    ref_flags = [how == "ref" for how in h.params]
+                    arrayed.update(a.name for a, how in zip(args, h.params) if isinstance(a, ast.Name) and how == "array")
             elif isinstance(node, (ast.For,)):
                 continue
             if args:
