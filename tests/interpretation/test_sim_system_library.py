@@ -1,6 +1,6 @@
 """Instructions of s8 and of the system library met in real code: the file instructions run on a
 virtual disk the scenario fills (never the user's disk), user-interface and export calls are
-recorded events, and what nothing can simulate goes on with an info (R020), never a stop."""
+recorded events, and what nothing can simulate goes on with an info (R041), never a stop."""
 
 from __future__ import annotations
 
@@ -36,7 +36,7 @@ def test_a_file_the_scenario_gives_is_read_line_by_line(tmp_path):
     r = sim(tmp_path, 'begin\n  call readFile("Disk://input_day1.txt", sLines)\n  putln(sLines[0] + sLines[1] + sLines[2])\nend',
             globals_=["string sLines[3]"], programs=READ, scenario=FILES, check_lint=False)
     assert r.end_reason == "ended" and out(r) == ["199200208"]
-    assert not [d for d in r.diagnostics if d.code in ("R001", "R004", "R020")]
+    assert not [d for d in r.diagnostics if d.code in ("R001", "R004", "R041")]
     said = [e.text for e in r.transcript if e.kind == "file"]
     assert said == ["$fileOpen Disk://input_day1.txt r -> 0", "$fileClose 0 -> true"]
 
@@ -99,7 +99,7 @@ end""", globals_=["num nRet", "bool bOk", "bool bIn", "string sName"], check_lin
                  "recorder", "system", "logMsg"):
         assert kind in kinds, kind
     assert (gv(r, "nRet"), gv(r, "bOk"), gv(r, "bIn")) == (0, True, True)
-    r020 = [d for d in r.diagnostics if d.code == "R020"]
+    r020 = [d for d in r.diagnostics if d.code == "R041"]
     assert len(r020) == len({d.line for d in r020}) == 7  # one per line; none for the alert, shown as is
     assert not [d for d in r.diagnostics if d.code in ("R001", "R004")]
 
@@ -113,7 +113,7 @@ def test_an_unknown_system_call_goes_on_with_an_info_once_per_line(tmp_path):
   endFor
 end""", globals_=["num i", "num nDelay", "string sText"], check_lint=False)
     assert r.end_reason == "ended"
-    assert [d.code for d in r.diagnostics] == ["R020", "R020", "R020"]
+    assert [d.code for d in r.diagnostics] == ["R041", "R041", "R041"]
     assert gv(r, "nDelay") == 0 and gv(r, "sText") == ""
 
 
@@ -127,3 +127,11 @@ def test_s8_sioset_with_a_count_sends_that_many_values(tmp_path):
     r = sim(tmp_path, "begin\n  nBuf[0] = 65\n  nBuf[1] = 66\n  nBuf[2] = 67\n  nSent = sioSet(siOut, nBuf, 2)\nend",
             globals_=["sio siOut", "num nBuf[3]", "num nSent"], links={"siOut": "Socket\\Out"}, check_lint=False)
     assert gv(r, "nSent") == 2 and [e.value for e in r.io_log if e.source != "scenario"] == ["AB"]
+
+
+def test_a_file_the_disk_does_not_hold_names_the_scenario_entry_and_reads_nothing(tmp_path):
+    r = sim(tmp_path, 'begin\n  call readFile("Disk://input_day1.txt", sLines)\n  putln("read")\nend',
+            globals_=["string sLines[3]"], programs=READ, check_lint=False)
+    assert out(r) == ["read"]  # $fileGet on a handle not open reads nothing (0): the loop ends
+    (d,) = [d for d in r.diagnostics if d.code == "R041"]
+    assert "[[files]]" in d.message and 'path = "Disk://input_day1.txt"' in d.message

@@ -102,7 +102,7 @@ class Machine:
         self._libraries_reported: set[str] = set()
         self._legacy_arrays: dict[str, dict[str, dict[str, int]]] = {}  # app path -> compiler/legacy.py
         self.analysis_cache: dict[str, dict] = {}  # what the deadlock report computes from the code
-        self._outside_seen: set[tuple] = set()  # the lines already reported R020
+        self._outside_seen: set[tuple] = set()  # the lines already reported R041
         self.files = VirtualDisk()  # the controller's disk of the system library's file instructions
         self.base_namespace = self._base_namespace()
 
@@ -283,7 +283,7 @@ class Machine:
             task=task.name if task is not None else "", program=""))
 
     def note_outside(self, task: Task, message: str) -> None:
-        """R020 (info): the line running acts on something outside the simulation; said once per
+        """R041 (info): the line running acts on something outside the simulation; said once per
         line of code."""
         where = self.line_running()
         path, line, col, program = where or (self.app.path, 0, 0, task.program)
@@ -291,7 +291,7 @@ class Machine:
         if key in self._outside_seen:
             return
         self._outside_seen.add(key)
-        self.diags.append(Diagnostic("R020", message, path, line, col, time_us=self.clock.time_of(task),
+        self.diags.append(Diagnostic("R041", message, path, line, col, time_us=self.clock.time_of(task),
                                      task=task.name, program=program))
 
     def report_overrun(self, task: Task) -> None:

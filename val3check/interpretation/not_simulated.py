@@ -60,7 +60,7 @@ SYSTEM_DEFAULTS = {"num": 0.0, "bool": False, "string": "", "": None}
 def SYSTEM(task, name: str, text: str, used: str, why: str = "") -> Any:
     """A `$name()` instruction of the system library that the simulator does not run
     (undocumented, or called with other arguments than the form it runs): the call is recorded
-    in the transcript (kind "system"), an info says so once per line (R020), and the line goes on;
+    in the transcript (kind "system"), an info says so once per line (R041), and the line goes on;
     a value used is the default of its type (0, false, "")."""
     value = SYSTEM_DEFAULTS[used]
     machine = task.machine

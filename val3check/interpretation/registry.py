@@ -89,7 +89,7 @@ class Registry:
     def system(self, name: str, func: Callable[..., Any], params: tuple[str, ...] = (), returns: str = "void", *,
                blocking: bool = False, chapter: str = "") -> None:
         """A `$name()` system instruction the simulator runs (SystemHandler). A `$` call nothing
-        registers goes on with an info (R020), not_simulated.SYSTEM."""
+        registers goes on with an info (R041), not_simulated.SYSTEM."""
         if not name.startswith("$") or name.lower() in self._system:
             raise RegistryError(f"system instruction {name} is registered twice or has no $")
         self._system[name.lower()] = SystemHandler(name, func, tuple(params), returns, blocking,

@@ -78,7 +78,7 @@ def GET(task, *args: Any):
 
 def I_userpage(task, unit, *args) -> float | None:
     """4.3 userPage(), userPage(screen), userPage(bool); s8 userPage(string sPage): shows the web
-    user page of that name (language/s8.toml), which the simulator records (R020) and answers 0."""
+    user page of that name (language/s8.toml), which the simulator records (R041) and answers 0."""
     machine = task.machine
     page = machine.user_page
     if args and type(args[0]) is str:
@@ -189,7 +189,7 @@ def I_getdate(task, unit, fmt: str) -> str:
 # ---- the web user pages of s8 (CS9 controllers, language/s8.toml) --------------------------------
 # The page itself is a web page of the controller, outside the simulation: each call goes to the
 # transcript (its kind is the instruction's name); an operator's answer the scenario cannot give
-# is the one that lets the application go on (confirmed; the text left as it is), said by R020.
+# is the one that lets the application go on (confirmed; the text left as it is), said by R041.
 
 
 def I_userpagealert(task, unit, text: str) -> None:

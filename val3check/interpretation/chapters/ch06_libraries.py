@@ -112,22 +112,28 @@ def _count(n: float, room: int) -> int:
 
 def S_fileopen(task, unit, path: str, mode: str):
     """num $fileOpen(string sPath, string sMode): a handle from 0, -1 when it cannot be opened."""
-    handle = task.machine.files.open(path, mode)
+    disk = task.machine.files
+    handle = disk.open(path, mode)
     _disk_said(task, f"$fileOpen {path} {mode} -> {handle}")
+    if handle < 0 and isinstance(mode, str) and mode.strip().lower() == "r" and not disk.exists(path):
+        # the controller's disk is the cell's: the scenario gives its files (as R009 names the entry)
+        task.machine.note_outside(task, f"$fileOpen: {path} is not on the simulated controller's disk (the scenario's "
+                                        f'[[files]] entry with path = "{path}" gives it): -1')
     yield from YIELD(task)
     return float(handle)
 
 
 def S_fileget(task, unit, handle: float, arr, count: float):
     """num $fileGet(num nHandle, string& sLine[], num nNbLines) / (num nHandle, num& nBytes[], num
-    nNbBytes): reads lines (or bytes) into the array from its start; the number read, 0 at the
-    end of the file, -1 when the handle is not open for reading."""
+    nNbBytes): reads lines (or bytes) into the array from its start; the number read: 0 at the
+    end of the file, and 0 when the handle is not open for reading (nothing read: what public
+    code that reads until 0 expects)."""
     disk = task.machine.files
     room = _count(count, arr.size())
     got = disk.read_lines(handle, room) if arr.t == "string" else disk.read_bytes(handle, room)
     yield from YIELD(task)
     if got is None:
-        return -1.0
+        return 0.0
     for i, v in enumerate(got):
         arr.data[arr.off + i] = v if arr.t == "string" else float(v)
     return float(len(got))
@@ -173,7 +179,7 @@ def S_delete(task, unit, path: str):
 
 def S_ddel(task, unit, path: str):
     """bool $ddel(string sPath): met in real code, not described: read as the deletion of a folder
-    and what it holds (R020 says so)."""
+    and what it holds (R041 says so)."""
     task.machine.note_outside(task, "$ddel: not described in public material; the simulator deletes the folder (or "
                                     "file) of the disk it names and returns whether something was deleted")
     return (yield from S_delete(task, unit, path))

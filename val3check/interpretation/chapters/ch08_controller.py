@@ -133,7 +133,7 @@ def I_wakeuprobot(task, unit) -> float:
 
 
 def I_getsaferefstatus(task, unit) -> float:
-    """num getSafeRefStatus(): the safe referencing of the arm is not simulated: 0, with R020."""
+    """num getSafeRefStatus(): the safe referencing of the arm is not simulated: 0, with R041."""
     task.machine.note_outside(task, "getSafeRefStatus: the safe referencing of the arm is not simulated: its value "
                                     "is 0")
     return 0.0
@@ -141,7 +141,7 @@ def I_getsaferefstatus(task, unit) -> float:
 
 # ---- the controller's recorder, system library ($rec..., a public description of the CS8
 # "Expansion" add-on): the recorder samples data to a file for analysis; outside the simulation,
-# each call is recorded in the transcript (kind "recorder") and said once per line (R020).
+# each call is recorded in the transcript (kind "recorder") and said once per line (R041).
 
 
 def _recorder(name: str):

@@ -335,7 +335,7 @@ def I_close(task, unit, tool: Tool):
 def I_getjntref(task, unit, name: str) -> dict:
     """joint getJntRef(sName): a joint reference of the arm's configuration (arm.cfx
     <JntReferences>), which the simulator does not read: the arm's position at the start of the
-    run (the scenario's [robot] joints), with R020."""
+    run (the scenario's [robot] joints), with R041."""
     arm = task.machine.arm
     task.machine.note_outside(task, f'getJntRef("{name}"): the arm configuration\'s joint references are not read: '
                                     "the value is the arm's position at the start of the run")
@@ -345,7 +345,7 @@ def I_getjntref(task, unit, name: str) -> dict:
 
 def I_setpayload(task, unit, tool, mass: float, center, inertia) -> None:
     """setPayload(tool, nMass, trCenter, nInertia[]): the payload carried by a tool; the
-    simulated motion does not depend on masses (docs/motion.md): recorded, with R020."""
+    simulated motion does not depend on masses (docs/motion.md): recorded, with R041."""
     task.machine.transcript_add(task, "setPayload", f"{getattr(tool, 'name', '') or 'tool'}: {mass:g} kg", None)
     task.machine.note_outside(task, "setPayload: the simulated motion does not depend on the payload: recorded in the "
                                     "transcript")

@@ -188,7 +188,7 @@ class CallCompiler:
 
     def system_call(self, node: ast.CallExpr, name: str, want: str | None) -> Code:
         """A `$name()` instruction of the system library: its handler with the arguments compiled
-        as it says (registry.SystemHandler); one nothing runs goes on with an info (R020) and,
+        as it says (registry.SystemHandler); one nothing runs goes on with an info (R041) and,
         when its value is used, the default value of the type it is used as."""
         h = self.registry.system_handler(name)
         value_unknown = h is not None and h.returns == "void" and node is not self.statement_call
