@@ -79,3 +79,21 @@ def test_tasks_waiting_on_each_other_stay_a_deadlock(tmp_path):
     r = sim(tmp_path, 'begin\n  taskCreate "a", 10, a()\n  taskCreate "b", 10, b()\nend', globals_=["bool bA", "bool bB"],
             programs=progs)
     assert _codes(r) == [("a", "R003"), ("b", "R003")]
+
+
+def test_a_wait_only_a_web_user_page_can_end_is_r009(tmp_path):
+    """A CS9 web user page calls the application's programs (its bindings' callbacks): the
+    operator's click ends the wait, which the simulation cannot play (Stäubli's safeCalibration
+    template waits so for its "finished" button)."""
+    progs = {"actDone": {"code": "begin\n  bDone = true\nend\n"}}
+    r = sim(tmp_path, "begin\n  wait(bDone)\nend", globals_=["bool bDone"], programs=progs)
+    assert _codes(r) == [("Example~", "R003")]  # no page: nothing calls actDone
+    from .simsupport import build, run_folder
+
+    folder = build(tmp_path / "web", "begin\n  wait(bDone)\nend", globals_=["bool bDone"], programs=progs)
+    (folder / "interface").mkdir()
+    (folder / "interface" / "main.bindings.json").write_text(
+        '{"version": "1.0", "bindings": [], "callbacks": [{"id": "btn", "event": "click", "data": "actDone"}]}',
+        encoding="utf-8")
+    r = run_folder(folder)
+    assert _codes(r) == [("Example~", "R009")] and "web user page" in _msg(r, "Example~")

@@ -63,7 +63,29 @@ def _finding(machine, task, on_cell: dict) -> tuple[str, str]:
     if writers:
         return "R009", (f"task {task.name} waits in {blocked}, which only a task that waits on the cell "
                         f"({', '.join(writers)}) may change once released")
+    if reads and _may_change(reads, _web_page_writes(machine, task)):
+        # a CS9 web user page binds the application's data and calls its programs (its
+        # *.bindings.json): the operator's clicks are the cell's, which the scenario cannot play
+        return "R009", (f"task {task.name} waits in {blocked}, which only the operator can end through the web user "
+                        "page (its bindings write that data or call a program that does); the simulation has no "
+                        "web page")
     return "R003", f"task {task.name} waits in {blocked}, which nothing scheduled can change"
+
+
+def _web_page_writes(machine, task) -> set[str]:
+    """The globals the application's web user pages may write: the names their bindings files
+    hold (data bound, read or written) and what the programs they call (callbacks) may write."""
+    model = task.unit.model
+    bound = getattr(model, "ui_names", None) or set()
+    if not bound:
+        return set()
+    table = _write_table(machine, model)
+    out = {name for name in model.data if name.lower() in bound}
+    for prog in model.programs:
+        if prog.lower() in bound:
+            w, _c, _r = table.get(prog.lower(), (set(), set(), False))
+            out |= w
+    return out
 
 
 def _may_change(reads: frozenset[str], writes: set[str]) -> bool:
