@@ -63,3 +63,23 @@ def test_two_applications_of_that_name_are_not_a_guess(tmp_path):
     make_library(tmp_path / "old", "ifCS8", globals_=["num nV"])
     lr, r = _sim(_app(tmp_path))
     assert gv(r, "nCode") == 39  # 6.6: not found
+
+
+def test_6_2_private_globals_are_the_librarys_own(tmp_path):
+    """6.2: "Les programmes et variables globales privés ne peuvent être utilisés que par les
+    programmes de la librairie": the library's programs use its private global; the application
+    does not see it (isDefined false, libExist false), whichever way the library was found."""
+    (tmp_path / ".git").mkdir()
+    lib = make_library(tmp_path / "vendor", "Counter", globals_=["private num nHidden", "num nShown"],
+                       programs={"bump": {"code": "begin\n  nHidden = nHidden + 1\n  nShown = nHidden * 10\nend"}})
+    pjx = lib / "Counter.pjx"
+    text = (lib / "bump.pgx").read_text(encoding="utf-8").replace('access="private"', 'access="public"')
+    (lib / "bump.pgx").write_text(text, encoding="utf-8")
+    assert pjx.exists()
+    app = build(tmp_path / "cells", 'begin\n  call ct:bump()\n  call ct:bump()\n  nGot = ct:nShown\n'
+                '  bSeen = isDefined(ct:nHidden)\n  bExist = ct:libExist("nHidden")\nend',
+                globals_=["num nGot", "bool bSeen", "bool bExist"], name="App")
+    add_libraries(app, {"ct": "Disk://Counter"}, name="App", autoload="true")
+    lr, r = _sim(app)
+    assert errors(r) == [] and gv(r, "nGot") == 20
+    assert gv(r, "bSeen") is False and gv(r, "bExist") is False
