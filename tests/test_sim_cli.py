@@ -105,3 +105,19 @@ def test_init_scenario_suggests_the_version_components_asked_and_the_state_waits
     data = tomllib.loads(text)
     assert data["controller"]["versions"] == {"System": "s7.11"}
     assert "# changes = [ { at = 1.0, es_status = 0 } ]   # start.pgx:" in text
+
+
+def test_init_scenario_suggests_the_files_the_application_opens(tmp_path):
+    write_app(tmp_path, 'begin\n  nH = $fileOpen("Disk://input.txt", "r")\n  $fileClose(nH)\n'
+              '  nH = $fileOpen("disk://INPUT.txt", "r")\n  nH = $fileOpen("Disk://out.txt", "w")\nend\n',
+              name="Files", globals_=["num nH"])
+    assert val3check("sim", "Files", "--init-scenario", "f.toml", cwd=tmp_path).returncode == 0
+    text = (tmp_path / "f.toml").read_text(encoding="utf-8")
+    # one entry per file read (however spelt), none for a file the program creates
+    assert text.count("# [[files]]") == 1 and '# path = "Disk://input.txt"' in text and "out.txt" not in text
+    edited = text.replace("# [[files]]", "[[files]]").replace('# path = "Disk', 'path = "Disk').replace(
+        '# text = ""', 'text = "1"')
+    (tmp_path / "g.toml").write_text(edited, encoding="utf-8")
+    r = val3check("sim", "Files", "--scenario", "g.toml", "--report", "json", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert not [d for d in json.loads(r.stdout)["diagnostics"] if d["code"] == "R041"]

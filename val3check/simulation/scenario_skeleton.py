@@ -19,6 +19,7 @@ import json
 from dataclasses import dataclass, field
 
 from ..interpretation.controller import Controller, default_versions
+from ..interpretation.virtual_disk import disk_key
 from ..loading.model import Application, Workspace
 from ..parsing import ast as A
 
@@ -62,6 +63,7 @@ class _Use:
     keys: list[tuple[str, str, int | None]] = field(default_factory=list)  # instruction, where, key code
     controller: dict[str, list[str]] = field(default_factory=dict)  # key -> where
     versions: list[str] = field(default_factory=list)  # the getVersion() components asked for by name
+    files: list[tuple[str, str]] = field(default_factory=list)  # ($fileOpen path, where)
     state_waits: list[tuple[str, str]] = field(default_factory=list)  # ([controller] key, where) of wait()s
 
 
@@ -140,6 +142,11 @@ class _Reader:
                 self.expr(a)
             return
         if not isinstance(func, A.Name):
+            if (isinstance(func, A.SystemName) and func.name.lower() == "$fileopen" and args
+                    and isinstance(args[0], A.String) and not (len(args) > 1 and isinstance(args[1], A.String)
+                                                               and args[1].value.strip().lower() in ("w", "a"))):
+                # a file of the controller's disk it reads ("w" and "a" create theirs)
+                self.use.files.append((args[0].value, self.where(node)))
             for a in args:
                 self.expr(a)
             return
@@ -383,6 +390,16 @@ def skeleton(workspace: Workspace, app: Application, app_label: str) -> str:
         else:
             out.append(f"# key = {code if code is not None else 271}")
         out.append("")
+    opened: dict[str, tuple[str, list[str]]] = {}  # one entry per file of the disk, however it is spelt
+    for use, _p, _l in uses.values():
+        for path, where in use.files:
+            key = disk_key(path)
+            if key is not None:
+                opened.setdefault(key, (path, []))[1].append(where)
+    for key in sorted(opened):
+        path, where = opened[key]
+        out += [f"# [[files]]                        # {', '.join(where)}: $fileOpen of the controller's disk "
+                "(docs/sim.md)", f"# path = {_toml(path)}", '# text = ""', ""]
     for what in serial:
         out += [f"# [[serial]]                       # {what}", f"# sio = {_toml(what.split(' ')[0])}",
                 "# at = 1.0", '# send = ""', ""]
