@@ -28,6 +28,9 @@ import tomllib
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+
+import dynamics  # noqa: E402  (robots/dynamics.py: the speed and acceleration rules)
 
 
 def _facts_dir() -> Path:
@@ -42,9 +45,10 @@ FACTS = _facts_dir()
 DEFAULT_TOML = FACTS / "staubli-arms.toml"
 MORE_TOML = FACTS / "staubli-arms-more.toml"
 
-# Acceleration assumption (robots/README.md): the nominal acceleration of a joint is the one that
-# takes it from rest to its nominal speed in RAMP_S seconds (a trapezoidal profile at accel = 100 %).
-RAMP_S = 0.25
+# Acceleration assumption of the six-axis arms (robots/dynamics.py, robots/README.md): the nominal
+# acceleration of a joint takes it from rest to its nominal speed in RAMP_S seconds. SCARA arms:
+# dynamics.scara(reach), fitted to Stäubli's TS2 standard cycles.
+RAMP_S = dynamics.SIX_AXIS_RAMP_S
 
 # The catalogue, grouped by series (`val3check robots` keeps this order).
 SERIES = {
@@ -94,8 +98,6 @@ SPEEDS_FROM = {
     "RX130B": ("RX160", "the RX160 (ROS-Industrial): the closest RX arm with published speeds (a larger one: cycle times "
                         "err long)"),
 }
-# No public source gives any Stäubli SCARA joint speed: round values, said to be assumptions.
-SCARA_SPEEDS = (400.0, 600.0, 1000.0, 1500.0)  # deg/s, deg/s, mm/s, deg/s
 
 SCARA_WORLD = (
     "No public source places an RS/TS arm's world frame. Assumed: on axis 1, X along the arm stretched out at "
@@ -107,10 +109,7 @@ SCARA_AXIS4 = (
     "Positive j4 turns the flange about its own Z axis (pointing down), clockwise seen from above: S1's convention "
     "(its row 4 has alpha = 180 deg); no Stäubli document checked. axis4_sign = 1 turns it the other way"
 )
-ACCEL_TEXT = (
-    "Stäubli publishes no joint accelerations: each joint is assumed to reach its nominal speed from rest in "
-    f"{RAMP_S:g} s (acceleration = nominal speed / {RAMP_S:g} s); decelerations equal. Set ramp_s or accelerations"
-)
+ACCEL_TEXT = dynamics.six_axis_text()
 MOUNT_NOTE = ("the VAL 3 world frame is attached to the arm's base; the mount (arm.cfx, or an override) only places "
               "it in the cell")
 
@@ -348,6 +347,9 @@ def _refs(texts: list[str]) -> list[str]:
 
 def provenance_lines(name: str, arm: dict, assumptions: list[tuple[str, str, str]], missing: list[tuple[str, str]]) -> list[str]:
     facts = _sources(name, arm)
+    if name in dynamics.PUBLISHED_CYCLES:  # the figure the SCARA rule is fitted to
+        cpm = dynamics.PUBLISHED_CYCLES[name]
+        facts.append(("standard_cycle", f"{cpm} cycles per minute ({60 / cpm:.3f} s): {dynamics.CYCLE_SOURCE}"))
     lines = [f'    <fact key="{k}" text="{_x(t)}"/>' for k, t in facts]
     alts = ALTERNATIVES.get(name, [])
     texts = [t for _, t in facts] + [t for *_, t in alts] + [t for *_, t in assumptions]
@@ -368,7 +370,7 @@ def six_axis_speeds(name: str, arm: dict, arms: dict[str, dict]) -> tuple[list[f
 # ---- URDF ----------------------------------------------------------------------------------------
 
 
-def _header(name: str, kind: str, arm: dict, extra_attrs: str) -> list[str]:
+def _header(name: str, kind: str, arm: dict, extra_attrs: str, rule: str) -> list[str]:
     srs, confirmed = _srs(arm)
     srs_attr = f'srs_arm_id="{srs}"' if confirmed else f'srs_arm_id_hint="{srs}"'
     source = "shared/robots/staubli-arms.toml" if arm["origin"] == "ROS-I" else "shared/robots/staubli-arms-more.toml"
@@ -381,7 +383,7 @@ def _header(name: str, kind: str, arm: dict, extra_attrs: str) -> list[str]:
         '  <material name="grey"><color rgba="0.6 0.6 0.6 1"/></material>',
         "",
         f'  <val3check arm="{name}" kind="{kind}" series="{series_of(name)}" {srs_attr}{extra_attrs} world_frame="world" flange_frame="flange"',
-        f'             acceleration_rule="nominal speed reached in {_f(RAMP_S)} s from rest (assumed: not published by Staubli)">',
+        f'             acceleration_rule="{_x(rule)}">',
     ]
 
 
@@ -407,7 +409,8 @@ def urdf(name: str, arm: dict, arms: dict[str, dict]) -> str:
         assumptions.append(("nominal_speeds", " ".join(_f(v) for v in speeds),
                             f"No public source gives the {name}'s joint speeds (deg/s): those of {borrowed[1]}"))
     missing = [] if all(t is not None for t in torques) else [("max_torques", "no public source gives this arm's joint torques")]
-    lines = _header(name, "six-axis", arm, "")
+    lines = _header(name, "six-axis", arm, "", f"nominal speed reached in {_f(RAMP_S)} s from rest (assumed: not "
+                    "published by Staubli; no public figure constrains it)")
     for i in range(1, 7):
         acc = speeds[i - 1] / RAMP_S
         torque = f' max_torque_nm="{_f(torques[i - 1])}"' if torques[i - 1] is not None else ""
@@ -471,25 +474,26 @@ def scara_urdf(name: str, arm: dict) -> str:
     if (j[0]["origin_mm"] != [0, 0, 0] or j[1]["origin_mm"] != [l1, 0, 0] or j[2]["origin_mm"] != [l2, 0, z0]
             or j[2].get("type") != "prismatic" or any(jj["axis"][:2] != [0, 0] for jj in j)):
         raise SystemExit(f"{name}: not the SCARA layout of staubli-arms-more.toml's header")
-    speeds = SCARA_SPEEDS
+    reach = l1 + l2
+    speeds, ramp = dynamics.scara(reach)
     native = "ceiling" if series_of(name) == "TP" else "floor"
     assumptions = [
-        ("ramp_s", _f(RAMP_S), ACCEL_TEXT),
-        ("nominal_speeds", " ".join(_f(v) for v in speeds),
-         "No public source gives a Stäubli SCARA's joint speeds: round values (deg/s; mm/s for axis 3), not a Stäubli "
-         "figure; set the arm's own"),
+        ("ramp_s", _f(ramp), dynamics.scara_accel_text(name, reach, ramp)),
+        ("nominal_speeds", " ".join(_f(v) for v in speeds), dynamics.scara_speed_text(reach)),
         ("world_z_mm", "0", SCARA_WORLD),
         ("axis4_sign", "-1", SCARA_AXIS4),
     ]
     missing = [("max_torques", "no public source gives this arm's joint torques or axis 3 force")]
     extra = f' stroke_mm="{_f(arm["stroke_mm"])}"' + (f' native_mount="{native}"' if native != "floor" else "")
-    lines = _header(name, "scara", arm, extra)
+    lines = _header(name, "scara", arm, extra, f"SCARA rule: nominal speed reached in {_f(ramp)} s from rest, fitted "
+                    "to Stäubli's TS2 standard cycles (assumed: no joint acceleration is published)")
     for i in range(1, 5):
         if i == 3:
-            lines.append(f'    <joint name="joint_3" nominal_speed_mm_s="{_f(speeds[2])}" acceleration_mm_s2="{_f(speeds[2] / RAMP_S)}"/>')
+            lines.append(f'    <joint name="joint_3" nominal_speed_mm_s="{_f(speeds[2])}" '
+                         f'acceleration_mm_s2="{_f(round(speeds[2] / ramp, 1))}"/>')
         else:
             lines.append(f'    <joint name="joint_{i}" nominal_speed_deg_s="{_f(speeds[i - 1])}" '
-                         f'acceleration_deg_s2="{_f(speeds[i - 1] / RAMP_S)}"/>')
+                         f'acceleration_deg_s2="{_f(round(speeds[i - 1] / ramp, 1))}"/>')
     lines += provenance_lines(name, arm, assumptions, missing)
     lines.append("  </val3check>")
     lines.append("")

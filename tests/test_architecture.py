@@ -1,16 +1,20 @@
 """The layers of docs/architecture.md: which package may import which, read from every
-module's imports (function-level and TYPE_CHECKING imports included); no import cycle inside
-interpretation/; no private name imported from another package; nothing registers itself on
-import."""
+module's imports (function-level and TYPE_CHECKING imports included), and the table of the
+document itself; the run's reports in their own, stricter layer; no import cycle inside a
+package; no private name imported from another package; nothing registers itself on import."""
 
 from __future__ import annotations
 
 import ast
+import re
 import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 PACKAGE = Path(__file__).resolve().parent.parent / "val3check"
+ARCHITECTURE = PACKAGE.parent / "docs" / "architecture.md"
 
 # Layer of each top-level package or module of val3check (docs/architecture.md).
 LAYER_OF = {
@@ -19,7 +23,7 @@ LAYER_OF = {
     "loading": "loading",
     "parsing": "parsing",
     "semantics": "semantics",
-    "records": "base", "confine": "base",
+    "records": "base", "confine": "base", "tomlfile": "base", "tomlpos": "base", "excerpt": "base",
     "lint": "lint", "config": "lint", "suppression": "lint", "result": "lint", "exclusion": "lint", "baseline": "lint", "fixes": "lint",
     "geometry": "geometry",
     "robot": "robot",
@@ -44,7 +48,8 @@ ALLOWED = {
     "geometry": {"base", "language"},
     "robot": {"base", "language", "geometry"},
     "interpretation": _BELOW_INTERPRETATION,
-    "motion": _BELOW_INTERPRETATION | {"interpretation"},
+    # pure: never the interpreter (its adapters are in simulation/); loading for the static reach check
+    "motion": {"base", "language", "loading", "geometry", "robot"},
     "collision": _BELOW_INTERPRETATION | {"interpretation"},
     "simulation": _BELOW_SIMULATION,
     "reporting": _BELOW_SIMULATION | {"simulation"},
@@ -56,6 +61,23 @@ ALLOWED = {
 }
 # The lint pipeline: what `val3check lint` may load (it installs without the sim extra).
 LINT_PATH = ALLOWED["lint"] | {"lint"}
+
+# The run's reports: a stricter layer inside reporting/. They read the run's record and nothing
+# else: the base layer, the lint pipeline (display paths), the records of simulation/ and each
+# other, never robot/, geometry/, motion/, collision/ or the interpreter.
+RUN_REPORTS = {f"val3check.reporting.{m}" for m in (
+    "sim_report", "sim_text", "sim_json", "sim_junit", "sim_collision", "sim_render", "mcap_trace", "progress",
+    "html.from_run", "html.page", "html.pack", "html.model", "html.excerpts")}
+RECORDS = {"val3check.simulation", "val3check.simulation.result", "val3check.simulation.arm_record"}
+REPORT_HELPERS = {"val3check.reporting", "val3check.reporting._common", "val3check.reporting.junit",
+                  "val3check.reporting.html"}
+# Import cycles other engineers remove (issue 22); any other cycle fails.
+KNOWN_CYCLES = {
+    "parsing": [["val3check.parsing.build_parser", "val3check.parsing.parser"]],
+    "robot": [["val3check.robot.catalog", "val3check.robot.identify", "val3check.robot.models",
+               "val3check.robot.overrides"]],
+    "semantics": [["val3check.semantics.calls", "val3check.semantics.expressions"]],
+}
 
 
 def _module_name(path: Path) -> str:
@@ -116,15 +138,81 @@ def test_imports_follow_the_layers():
     assert bad == []
 
 
-def test_no_import_cycle_inside_interpretation():
+@pytest.mark.parametrize("package", sorted(p.name for p in PACKAGE.iterdir() if (p / "__init__.py").exists()))
+def test_no_import_cycle_inside_a_package(package):
     modules = _modules()
     graph: dict[str, set[str]] = {}
     for module, path in modules.items():
-        if _top(module) == "interpretation":
+        if _top(module) == package:
             graph[module] = {t for t in (_resolve(tg, n, modules) for tg, n, _ in _imports(path))
-                             if _top(t) == "interpretation" and t != module and t in modules}
-    cycles = _cycles(graph)
-    assert cycles == []
+                             if _top(t) == package and t != module and t in modules}
+    assert graph, package
+    assert _cycles(graph) == KNOWN_CYCLES.get(package, [])
+
+
+def test_the_run_s_reports_read_only_the_run_s_record():
+    """docs/architecture.md, "run reports": what each of them imports."""
+    modules = _modules()
+    assert RUN_REPORTS <= set(modules) and RECORDS <= set(modules)
+    allowed_layers = ALLOWED["lint"] | {"lint"}
+    bad = []
+    for module in sorted(RUN_REPORTS):
+        for target, name, line in _imports(modules[module]):
+            t = _resolve(target, name, modules)
+            if t in RUN_REPORTS or t in RECORDS or t in REPORT_HELPERS or LAYER_OF.get(_top(t)) in allowed_layers:
+                continue
+            bad.append(f"{module}:{line}: {t}")
+    assert bad == []
+
+
+def test_the_run_s_reports_load_nothing_of_the_arm_s_packages():
+    """At run time too: importing every run report loads no module of robot/, geometry/,
+    motion/, collision/ or the interpreter (what they show of the arm is in the record)."""
+    code = ("import sys, importlib\n"
+            f"for m in {sorted(RUN_REPORTS)!r}:\n    importlib.import_module(m)\n"
+            "print('LOADED', sorted({m.split('.')[1] for m in sys.modules if m.startswith('val3check.')}))\n")
+    r = subprocess.run([sys.executable, "-c", code], check=False, cwd=PACKAGE.parent, capture_output=True, text=True,
+                       timeout=60)
+    line = next(x for x in r.stdout.splitlines() if x.startswith("LOADED"))
+    loaded = set(eval(line[len("LOADED "):]))  # noqa: S307 - our own output
+    assert "reporting" in loaded and not loaded & {"robot", "geometry", "motion", "collision", "interpretation"}
+
+
+def _doc_table() -> dict[str, tuple[set[str], str]]:
+    """docs/architecture.md's layer table: row name -> (names in backquotes of its packages and
+    modules, `dir/` or `file.py` without the suffix; what it may also import)."""
+    rows = {}
+    for line in ARCHITECTURE.read_text(encoding="utf-8").splitlines():
+        m = re.match(r"^\| ([a-z ]+) \| (.+) \| (.+) \|$", line)
+        if m and m.group(1) != "layer":
+            rows[m.group(1)] = (set(re.findall(r"`((?:html/)?[a-z_]+)(?:/|\.py)`", m.group(2))), m.group(3))
+    return rows
+
+
+def test_the_layer_table_of_the_document_is_the_test_s():
+    """docs/architecture.md's table puts each package in its layer, says what each layer may
+    import (with what those may import in turn: the test's ALLOWED), and names every run report."""
+    rows = _doc_table()
+    row_of = {"lint": "lint pipeline", "lsp": "editor"}
+    layer_of_row = {v: k for k, v in row_of.items()}
+    for package, layer in LAYER_OF.items():
+        if package and package != "__main__":
+            assert package in rows[row_of.get(layer, layer)][0], f"docs/architecture.md: {package} not in {layer}"
+    for row, (_, imports) in rows.items():
+        layer = layer_of_row.get(row, row)
+        if layer in ("cli", "run reports"):
+            continue
+        todo = [layer_of_row.get(n.strip(), n.strip()) for n in imports.split(",") if n.strip() != "–"]
+        closure: set[str] = set()
+        while todo:
+            n = todo.pop()
+            if n not in closure:
+                closure.add(n)
+                todo += [layer_of_row.get(x.strip(), x.strip()) for x in rows[row_of.get(n, n)][1].split(",")
+                         if x.strip() != "–"]
+        assert closure == ALLOWED[layer], (row, closure ^ ALLOWED[layer])
+    named = {n.replace("/", ".") for n in rows["run reports"][0]}
+    assert {m.removeprefix("val3check.reporting.") for m in RUN_REPORTS} <= named
 
 
 def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:

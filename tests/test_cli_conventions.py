@@ -238,3 +238,18 @@ def test_stdin_filename_checks_the_unsaved_text_in_its_application(tmp_path):
     assert r.returncode == 0 and "All checks passed (1 file checked)" in r.stdout
     r = val3check("lint", "--stdin-filename", "Example/new.pgx", cwd=tmp_path, stdin=edited)
     assert r.returncode == 2 and "no such file" in r.stderr
+
+
+def test_a_dash_stands_for_standard_input_as_in_ruff(tmp_path):
+    from val3check.testing import program_file
+
+    write_app(tmp_path, GOOD, globals_=["num nX"])
+    edited = program_file("start", "begin\n  nX = 1\n  nY = 2\nend\n")
+    r = val3check("lint", "--stdin-filename", "Example/start.pgx", "--output-format", "concise", "-", cwd=tmp_path,
+                  stdin=edited)
+    assert r.returncode == 1, r.stdout + r.stderr
+    assert "Example/start.pgx:6:3: N001 [error]" in r.stdout and "(1 file checked)" in r.stdout
+    r = val3check("lint", "-", "--stdin-filename", "Example/start.pgx", cwd=tmp_path, stdin=program_file("start", GOOD))
+    assert r.returncode == 0 and "All checks passed (1 file checked)" in r.stdout, r.stdout + r.stderr
+    r = val3check("lint", "-", cwd=tmp_path, stdin=edited)  # no file to stand for
+    assert r.returncode == 2 and "needs --stdin-filename" in r.stderr and "Traceback" not in r.stderr

@@ -8,6 +8,7 @@ from __future__ import annotations
 import json
 import os
 import queue
+import shutil
 import subprocess
 import sys
 import threading
@@ -184,3 +185,37 @@ def test_without_the_extra_the_server_says_which_to_install(tmp_path, monkeypatc
     monkeypatch.setattr(lsp, "missing_packages", lambda: ["pygls"])
     assert cli.main(["server"]) == 2
     assert "pip install 'val3check[lsp]'" in capsys.readouterr().err
+
+
+_NVIM_CHECK = """
+vim.wait(60000, function() return #vim.diagnostic.get(0) > 0 end, 100)
+local out = { vim.bo.filetype }
+for _, d in ipairs(vim.diagnostic.get(0)) do
+  table.insert(out, string.format("%d:%d %s", d.lnum + 1, d.col + 1, d.message))
+end
+io.stdout:write(table.concat(out, "\\n") .. "\\n")
+vim.cmd("qa!")
+"""
+
+
+@pytest.mark.skipif(shutil.which("nvim") is None, reason="Neovim is not installed")
+def test_the_neovim_snippet_for_older_versions(tmp_path):
+    """docs/editors.md's init.lua for Neovim 0.7 to 0.10, in the Neovim installed (Debian 12: 0.7.2)."""
+    import re
+
+    text = (ROOT / "docs" / "editors.md").read_text(encoding="utf-8")
+    block = re.search(r"Neovim 0\.7 to 0\.10;[^\n]*-->\n```lua\n(.*?)```", text, re.S).group(1)
+    (tmp_path / "init.lua").write_text(block)
+    (tmp_path / "check.lua").write_text(_NVIM_CHECK)
+    repo = tmp_path / "cell"
+    (repo / ".git").mkdir(parents=True)
+    write_app(repo, "begin\n  nY = 1\nend\n", globals_=["num nX"])
+    env = dict(os.environ, PATH=str(Path(sys.executable).parent) + os.pathsep + os.environ["PATH"],
+               PYTHONPATH=str(ROOT), XDG_CONFIG_HOME=str(tmp_path), XDG_DATA_HOME=str(tmp_path),
+               XDG_STATE_HOME=str(tmp_path))
+    r = subprocess.run(["nvim", "--headless", "-u", str(tmp_path / "init.lua"), "Example/start.pgx",
+                        "-c", f"luafile {tmp_path / 'check.lua'}"], cwd=repo, env=env, capture_output=True,
+                       text=True, timeout=120)
+    lines = r.stdout.strip().splitlines()
+    assert lines[:1] == ["val3"], r.stdout + r.stderr
+    assert any(line.startswith("5:3 undefined variable nY") for line in lines[1:]), r.stdout + r.stderr

@@ -1,10 +1,11 @@
 """The pre-commit hook through pre-commit itself, configured as the README says, in fresh
-repositories (issue 16 items 2 and 3).
+repositories (issue 16 items 2 and 3; issue 28 item 5).
 
-A mirror of this checkout (uncommitted changes included) is made into a git repository tagged
-`v<version>`, the tag the README's snippet names; the snippet is used with only its `repo:`
-pointed at the mirror. pre-commit installs val3check from it into its own environment, so this
-needs the package index to be reachable, as in CI.
+A mirror of this checkout (uncommitted changes included) is made into a git repository with no
+tag, as a clone of val3check may be; the README's snippet is used as written with only its
+`repo:` pointed at the mirror, then pinned as the README says (`pre-commit autoupdate --freeze`).
+pre-commit installs val3check from it into its own environment, so this needs the package index
+to be reachable, as in CI. The README's local hook runs the val3check of this environment.
 """
 
 from __future__ import annotations
@@ -18,7 +19,6 @@ from pathlib import Path
 
 import pytest
 
-from val3check import __version__
 from val3check.testing import write_app
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -34,18 +34,21 @@ def git(repo: Path, *args: str) -> str:
     return subprocess.run(["git", *args], cwd=repo, check=True, capture_output=True, text=True, env=env).stdout
 
 
-def readme_snippet() -> str:
-    """The README's pre-commit configuration (the first YAML block of its pre-commit section)."""
+def readme_snippets() -> list[str]:
+    """The README's pre-commit configurations (the YAML blocks of its pre-commit section)."""
     text = (ROOT / "README.md").read_text(encoding="utf-8")
     section = text[text.index("### pre-commit"):]
-    return re.search(r"```yaml\n(.*?)```", section, re.S).group(1)
+    section = section[:section.index("\n## ")]
+    return re.findall(r"```yaml\n(.*?)```", section, re.S)
 
 
-def test_the_readme_names_the_tag_of_this_version():
-    assert re.search(r"^\s*rev:\s*(\S+)", readme_snippet(), re.M).group(1) == f"v{__version__}"
-    import tomllib
+def readme_snippet() -> str:
+    return readme_snippets()[0]
 
-    assert tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["version"] == __version__
+
+def test_the_readme_names_a_revision_every_clone_has():
+    rev = re.search(r"^\s*rev:\s*(\S+)", readme_snippet(), re.M).group(1)
+    assert rev == "HEAD"  # not a tag: a clone may have none (issue 28 item 5)
 
 
 @pytest.fixture(scope="module")
@@ -56,7 +59,7 @@ def home(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def mirror(tmp_path_factory):
-    """This checkout as a repository of its own, tagged as the README says."""
+    """This checkout as a repository of its own, without any tag."""
     repo = tmp_path_factory.mktemp("mirror")
     files = subprocess.run(["git", "ls-files", "-co", "--exclude-standard"], cwd=ROOT, check=True,
                            capture_output=True, text=True).stdout.split("\n")
@@ -68,23 +71,27 @@ def mirror(tmp_path_factory):
     git(repo, "init", "-q")
     git(repo, "add", "-A")
     git(repo, "commit", "-qm", "mirror")
-    git(repo, "tag", f"v{__version__}")
+    assert git(repo, "tag") == ""
     return repo
 
 
-def _cell(tmp_path: Path, mirror: Path) -> Path:
+def _cell(tmp_path: Path, mirror: Path, snippet: str | None = None) -> Path:
     repo = tmp_path / "cell"
     repo.mkdir()
     git(repo, "init", "-q")
-    config = re.sub(r"(?m)^(\s*- repo:)\s*\S+.*$", rf"\1 {mirror}", readme_snippet())
+    config = re.sub(r"(?m)^(\s*- repo:)\s*https?://\S+", rf"\1 {mirror}", snippet or readme_snippet())
     (repo / ".pre-commit-config.yaml").write_text(config)
     return repo
 
 
+def pre_commit(repo: Path, home: Path, *args: str) -> subprocess.CompletedProcess:
+    env = dict(os.environ, PRE_COMMIT_HOME=str(home), GIT_CONFIG_NOSYSTEM="1",
+               PATH=str(Path(sys.executable).parent) + os.pathsep + os.environ.get("PATH", ""))
+    return subprocess.run([PRE_COMMIT, *args], cwd=repo, capture_output=True, text=True, env=env, timeout=900)
+
+
 def run(repo: Path, home: Path, *args: str) -> subprocess.CompletedProcess:
-    env = dict(os.environ, PRE_COMMIT_HOME=str(home), GIT_CONFIG_NOSYSTEM="1")
-    return subprocess.run([PRE_COMMIT, "run", *args, "--verbose"], cwd=repo, capture_output=True, text=True,
-                          env=env, timeout=900)
+    return pre_commit(repo, home, "run", *args, "--verbose")
 
 
 def test_the_readme_snippet_in_a_fresh_repository(tmp_path, home, mirror):
@@ -92,9 +99,17 @@ def test_the_readme_snippet_in_a_fresh_repository(tmp_path, home, mirror):
     write_app(repo, "begin\n  nX = 1\nend\n", name="Good", globals_=["num nX"])
     (repo / "notes.txt").write_text("not VAL 3\n")
     git(repo, "add", "-A")
-    ok = run(repo, home, "--all-files")
+    ok = run(repo, home, "--all-files")  # as written: rev HEAD
     assert ok.returncode == 0, ok.stdout + ok.stderr
     assert "Passed" in ok.stdout
+    # pinned as the README says: the mirror's commit, by its full SHA
+    pinned = pre_commit(repo, home, "autoupdate", "--freeze")
+    assert pinned.returncode == 0, pinned.stdout + pinned.stderr
+    sha = git(mirror, "rev-parse", "HEAD").strip()
+    assert re.search(rf"^\s*rev:\s*{sha}\b", (repo / ".pre-commit-config.yaml").read_text(), re.M)
+    git(repo, "add", "-A")
+    ok = run(repo, home, "--all-files")
+    assert ok.returncode == 0, ok.stdout + ok.stderr
 
     write_app(repo, "begin\n  while true\n  endFor\nend\n", name="Bad")
     git(repo, "add", "-A")
@@ -120,3 +135,15 @@ def test_a_commit_touching_only_excluded_files_passes(tmp_path, home, mirror):
     git(repo, "add", "-A")
     r = run(repo, home)
     assert r.returncode == 1 and "Tpl/start.pgx" in r.stdout
+
+
+def test_the_readme_local_hook(tmp_path, home):
+    """The README's hook for the val3check of the environment (`language: system`)."""
+    local = readme_snippets()[1]
+    assert "repo: local" in local
+    repo = _cell(tmp_path, Path("unused"), local)
+    write_app(repo, "begin\n  while true\n  endFor\nend\n", name="Bad")
+    git(repo, "add", "-A")
+    bad = run(repo, home, "--all-files")
+    assert bad.returncode == 1, bad.stdout + bad.stderr
+    assert "Bad/start.pgx:6:3: F101" in bad.stdout

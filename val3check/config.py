@@ -29,13 +29,16 @@ from .records import dataclass, field
 from .exclusion import DEFAULT_EXCLUDE, Exclusion
 
 from .diagnostics import Severity
+from .excerpt import excerpt
 from .rules.catalogue import OPT_IN
 from .language.target import TargetError, TargetSpec, parse_target
 
 CONFIG_NAMES = ("val3check.toml", "pyproject.toml")
 # `[tool.val3check]`, `[tool.val3check.severity]`, `tool.val3check.x = `, or a `[tool]` table
 # (which may hold `val3check = {...}`): a pyproject.toml without any of them has no section of ours.
-_TOOL_SECTION = re.compile(rb"tool\s*\.\s*\"?val3check|^\s*\[\s*tool\s*\]", re.MULTILINE)
+# Linear: blanks before the header are spaces and tabs of its own line (`^\s*` would run over all
+# the blank lines below each line start: quadratic on a file of newlines).
+_TOOL_SECTION = re.compile(rb"tool\s*\.\s*\"?val3check|^[ \t]*\[[ \t]*tool[ \t]*\]", re.MULTILINE)
 FAIL_ON_CHOICES = ("error", "warning", "info", "never")
 
 
@@ -128,22 +131,18 @@ MAX_FILE_SIZE_LIMIT = 1 << 30  # max-file-size cannot exceed 1 GiB
 
 def _read_toml(path: str) -> dict:
     """The TOML document at `path`, read through val3check.confine (a regular file, its size
-    checked before reading); ConfigError for anything else."""
-    import tomllib  # only when there is a configuration to read (start-up time)
-
+    checked before reading) and val3check.tomlfile; ConfigError for anything else."""
+    from . import tomlfile
     from .confine import Refused, Roots, read_bytes
 
     try:
         data = read_bytes(path, Roots.user_given(), MAX_CONFIG_SIZE)
-        return tomllib.loads(data.decode("utf-8"))
+        return tomlfile.load_bytes(data)[0]
     except Refused as exc:
         raise ConfigError(f"{path}: cannot read configuration: {exc.reason}") from None
-    except UnicodeDecodeError:
-        raise ConfigError(f"{path}: cannot read configuration: not UTF-8") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise ConfigError(f"{path}: cannot read configuration: {exc}") from None
-    except RecursionError:
-        raise ConfigError(f"{path}: cannot read configuration: tables or arrays nested too deeply") from None
+    except tomlfile.TomlError as exc:
+        where = f"{path}:{exc.line}:{exc.col}" if exc.line else path
+        raise ConfigError(f"{where}: cannot read configuration: {exc.message}") from None
 
 
 def _read_bytes_capped(path: str) -> bytes:
@@ -200,6 +199,26 @@ def _str_list(value, key: str, path: str) -> list[str]:
     return [v.strip().upper() if key in ("select", "extend-select", "ignore") else v for v in value]
 
 
+def _paths(value, key: str, path: str) -> list[str]:
+    """`_str_list` of paths: a NUL character (no file name holds one) is reported at its line."""
+    values = _str_list(value, key, path)
+    if any("\x00" in v for v in values):
+        raise ConfigError(f"{path}:{_line_of(path, key)}: '{key}': a path cannot hold a NUL character")
+    return values
+
+
+def _line_of(path: str, key: str) -> int:
+    """The line where `key` is set in the file at `path` (tomllib keeps no positions); 0 when not found."""
+    import re
+
+    pattern = re.compile(r"""^[ \t]*["']?""" + re.escape(key) + r"""["']?[ \t]*=""")
+    try:
+        lines = _read_bytes_capped(path).decode("utf-8", "replace").splitlines()
+    except ConfigError:
+        return 0
+    return next((i for i, line in enumerate(lines, 1) if pattern.match(line)), 0)
+
+
 KNOWN_KEYS = {
     "select", "extend-select", "ignore", "per-file-ignores", "severity", "fail-on", "disk-roots", "exclude", "max-file-size",
     "target", "extend-exclude", "force-exclude", "baseline",
@@ -216,7 +235,8 @@ def load_settings(path: str) -> Settings:
             data = section
     unknown = sorted(set(data) - KNOWN_KEYS)
     if unknown:
-        raise ConfigError(f"{path}: unknown option(s): {', '.join(unknown)} (known: {', '.join(sorted(KNOWN_KEYS))})")
+        shown = ", ".join(excerpt(k) for k in unknown[:10]) + (f" and {len(unknown) - 10} more" if len(unknown) > 10 else "")
+        raise ConfigError(f"{path}: unknown option(s): {shown} (known: {', '.join(sorted(KNOWN_KEYS))})")
     root = os.path.dirname(os.path.abspath(path))
     s = Settings(root=root, source=path)
     if "select" in data:
@@ -233,13 +253,13 @@ def load_settings(path: str) -> Settings:
     try:
         s.severity = {k.upper(): Severity.parse(str(v)) for k, v in sev.items()}
     except ValueError as exc:
-        raise ConfigError(f"{path}: severity: {exc}") from None
+        raise ConfigError(f"{path}: severity: {excerpt(str(exc), 200)}") from None
     fail_on = data.get("fail-on", "error")
     fail_on = fail_on.lower() if isinstance(fail_on, str) else ""
     if fail_on not in FAIL_ON_CHOICES:
         raise ConfigError(f"{path}: 'fail-on' must be one of {', '.join(FAIL_ON_CHOICES)}")
     s.fail_on = fail_on
-    s.disk_roots = [os.path.normpath(os.path.join(root, d)) for d in _str_list(data.get("disk-roots", []), "disk-roots", path)]
+    s.disk_roots = [os.path.normpath(os.path.join(root, d)) for d in _paths(data.get("disk-roots", []), "disk-roots", path)]
     if "exclude" in data:
         s.exclude = _str_list(data["exclude"], "exclude", path)
     s.extend_exclude = _str_list(data.get("extend-exclude", []), "extend-exclude", path)
@@ -250,6 +270,7 @@ def load_settings(path: str) -> Settings:
     baseline = data.get("baseline", "")
     if not isinstance(baseline, str):
         raise ConfigError(f"{path}: 'baseline' must be the path of a file")
+    _paths(baseline, "baseline", path)
     s.baseline = os.path.normpath(os.path.join(root, baseline)) if baseline else ""
     size = data.get("max-file-size", s.max_file_size)
     if not isinstance(size, int) or isinstance(size, bool) or not 0 < size <= MAX_FILE_SIZE_LIMIT:
@@ -259,5 +280,5 @@ def load_settings(path: str) -> Settings:
         try:
             s.target = parse_target(data["target"])
         except TargetError as exc:
-            raise ConfigError(f"{path}: {exc}") from None
+            raise ConfigError(f"{path}: {excerpt(str(exc), 300)}") from None
     return s

@@ -94,7 +94,7 @@ at = { x = 400, y = 50, z = 100 }
     d = hits[0]
     assert (d.line, d.col) == code_pos(r, 10, 3) and d.task == "Example~" and d.program == "start"
     assert "tool tTool 'tip' hits obstacle 'block'" in d.message
-    rec = r.motion.records[1]
+    rec = r.motion.motions[1]
     assert rec.kind == "movel"
     expected = _crossing(r, rec, 20.0)
     assert abs(d.time_us / 1e6 - expected) <= DT
@@ -556,7 +556,7 @@ at = {{ y = {i(50)}, z = {i(100)} }}
     assert [(d.line, d.col) for d in hits] == [code_pos(r, 13, 3)], r.diagnostics
     c = r.collision.by_motion[2].first_contact
     # the tip (10 mm) meets the block's face (y = 30 mm) when the TCP, coming back, is at y = 80 mm
-    assert abs(c.time - _crossing_back(r, r.motion.records[2], 80.0)) <= DT
+    assert abs(c.time - _crossing_back(r, r.motion.motions[2], 80.0)) <= DT
     assert r.collision.by_motion[1].min_clearance.mm > 500
 
 
@@ -599,7 +599,7 @@ def test_collision_checks_keep_to_the_wall_clock_budget(tmp_path):
     from val3check.simulation.collision_run import ValueWatch, check_run
 
     r = _run(tmp_path, LINE, LINE_GLOBALS, TIP)
-    run, diags = check_run(r.motion, None, ValueWatch(None), max_wall=-1.0, app_path=r.app_path)
+    run, diags = check_run(r.motion, None, ValueWatch(None), ROBOT, max_wall=-1.0, app_path=r.app_path)
     assert not run.by_motion
     assert [d.code for d in diags] == ["R037"] and "0 of 2 motions checked" in diags[0].message
 
@@ -618,7 +618,7 @@ end
     (tmp_path / "a").mkdir()
     ball = TIP.replace("radius = 10", "radius = 2")
     free = _run(tmp_path / "a", code, ["tool tTool", "mdesc mD"], ball)
-    rec = free.motion.records[1]
+    rec = free.motion.motions[1]
     times, Q, _ = free.motion.sample(rec.start, rec.end)
     speeds = np.abs(np.diff(Q[:, 0]))
     k = int(np.argmax(speeds))  # the fastest step

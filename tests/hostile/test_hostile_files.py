@@ -5,7 +5,6 @@ from __future__ import annotations
 import json
 import os
 import subprocess
-import time
 import sys
 from pathlib import Path
 
@@ -141,8 +140,6 @@ def test_a_megabyte_line_with_thousands_of_findings_is_shown_in_windows(tmp_path
     params = "".join(f'<Parameter name="p{i}" type="num" xsi:type="element"/>' for i in range(5000))
     pgx.write_text(pgx.read_text().replace(
         "<Code>", f'<Parameters xmlns="http://www.staubli.com/robotics/VAL3/Param/1">{params}</Parameters><Code>'))
-    t = time.monotonic()
     r = val3check("lint", "Example", cwd=tmp_path)
     out, _ = clean(r, (0, 1))
-    assert time.monotonic() - t < 20
     assert max(len(line) for line in out.splitlines()) < 1200 and "…" in out

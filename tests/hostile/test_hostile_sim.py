@@ -1,6 +1,8 @@
 """Issue 9: `val3check sim` on hostile applications and scenarios ends within its budgets with
 a diagnostic, never a traceback, an 'internal error' or unbounded memory (items 2, 3, 5, 6, 7,
-8, 9). Budgets are kept small so that each case takes at most a few seconds."""
+8, 9). Budgets are kept small so that each case takes at most a few seconds. In-process runs
+read a wall clock of the test's (simsupport.StepClock, frozen_clock), so that what they check
+never depends on the machine's speed (issue 28 item 11)."""
 
 from __future__ import annotations
 
@@ -8,12 +10,11 @@ import os
 import re
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import pytest
 
-from interpretation.simsupport import build, errors, run_folder, sim
+from interpretation.simsupport import StepClock, build, errors, frozen_clock, run_folder, sim
 from val3check.testing import write_app
 
 ROOT = Path(__file__).resolve().parent.parent.parent
@@ -41,22 +42,22 @@ def _data(folder: Path, body: str, name: str = "Example") -> None:
 def test_huge_array_sizes_are_lint_errors_and_never_allocated(tmp_path, size):
     folder = write_app(tmp_path, "begin\nend\n")
     _data(folder, f'    <Data name="nBig" access="public" xsi:type="array" type="num" size="{size}" />\n')
-    t = time.monotonic()
     r = val3check("lint", "Example", cwd=tmp_path)
     clean(r, (1,) if " " not in size else (0,))  # 9999 x 9999: T027, a warning
     assert re.search(r"Example\.dtx:4:5: T02[67]", r.stdout), r.stdout
     r = val3check("sim", "Example", "--max-wall", "10", cwd=tmp_path)
     clean(r)
-    assert time.monotonic() - t < 20
+    if " " in size:  # a warning: run, and refused by the memory budget before anything is allocated
+        assert "nBig, about 1,526 MB" in r.stdout and "memory budget" in r.stdout and "0 VAL 3 lines" in r.stdout
+    else:  # an error: not run
+        assert r.returncode == 2 and "not run: the application has 1 error(s)" in r.stderr
 
 
 def test_memory_is_budgeted_before_allocation(tmp_path):
     # T027 is a warning: sim runs, and refuses the 100 million points before allocating them
     folder = write_app(tmp_path, "begin\nend\n")
     _data(folder, '    <Data name="pBig" access="public" xsi:type="array" type="pointRx" size="9999 9999" />\n')
-    t = time.monotonic()
-    result = run_folder(folder, check_lint=False, max_memory_mb=200)
-    assert time.monotonic() - t < 5
+    result = run_folder(folder, check_lint=False, max_memory_mb=200, wall_clock=frozen_clock)
     assert result.end_reason == "budget" and "pBig" in result.end_message and "memory budget" in result.end_message
     assert [d.code for d in result.diagnostics] == ["R006"]
 
@@ -66,9 +67,7 @@ def test_locals_beyond_the_memory_budget_are_error_40_at_the_declaration(tmp_pat
         "deep": {"locals": ["pointRx l_p[9000]"], "code": "begin\n  call deep()\nend\n"}})
     pjx = folder / "Example.pjx"
     pjx.write_text(pjx.read_text().replace('stackSize="5000"', 'stackSize="999999999999"'))
-    t = time.monotonic()
-    result = run_folder(folder, max_memory_mb=100, max_wall=20)
-    assert time.monotonic() - t < 15
+    result = run_folder(folder, max_memory_mb=100, wall_clock=frozen_clock)
     assert errors(result) == [40]
     d = next(d for d in result.diagnostics if d.code == "R001")
     assert d.path.endswith("deep.pgx") and d.line == 3 and "l_p" in d.message
@@ -78,10 +77,10 @@ def test_the_wall_clock_budget_covers_loading(tmp_path):
     folder = write_app(tmp_path, "begin\nend\n")
     _data(folder, "".join(f'    <Data name="p{i}" access="public" xsi:type="array" type="pointRx" size="99 101" />\n'
                           for i in range(60)))
-    t = time.monotonic()
-    result = run_folder(folder, check_lint=False, max_wall=0.5)
-    assert time.monotonic() - t < 4
+    # the clock passes the budget at its second reading, the first after the start: while loading
+    result = run_folder(folder, check_lint=False, max_wall=0.5, wall_clock=StepClock(0.3))
     assert result.end_reason == "wall-clock"
+    assert result.tasks == [] and result.lines == 0  # start() never began
 
 
 # ---- item 3, N014: fatherId ---------------------------------------------------------------------
@@ -106,9 +105,7 @@ def test_odd_father_ids(tmp_path, father):
 def test_huge_program_and_switch_are_too_large_not_a_crash(tmp_path):
     code = "begin\n" + "".join(f"  nX = nX + {i}\n" for i in range(20000)) + "end\n"
     folder = build(tmp_path, code, globals_=["num nX"])
-    t = time.monotonic()
-    result = run_folder(folder, max_wall=30)
-    assert time.monotonic() - t < 20
+    result = run_folder(folder, wall_clock=frozen_clock)
     d = next(d for d in result.diagnostics if d.code == "R004")
     assert "too large for the simulator" in d.message and d.line == 3  # the <Program> element
 
@@ -193,10 +190,9 @@ def test_reactions_that_loop_at_one_instant(tmp_path):
     scenario = ('version = 1\n[[events]]\nat = 0.1\nset = { diA = true }\n\n[[reactions]]\nwhen = "diA"\n'
                 'becomes = true\nset = { diA = false }\n\n[[reactions]]\nwhen = "diA"\nbecomes = false\n'
                 'set = { diA = true }\n')
-    t = time.monotonic()
+    # 1 ms per reading: a loop that went on until the wall budget would end with "wall-clock"
     result = sim(tmp_path, "begin\n  delay(5)\nend\n", globals_=["dio diA"], links={"diA": "BasicIO-1\\%I0"},
-                 scenario=scenario, duration=10, max_wall=20)
-    assert time.monotonic() - t < 5
+                 scenario=scenario, duration=10, max_wall=20, wall_clock=StepClock(0.001))
     loop = [d for d in result.diagnostics if d.code == "R008"]
     assert len(loop) == 1 and loop[0].line == 6 and loop[0].time_us == 100_000
     assert result.end_reason == "budget"
@@ -222,7 +218,5 @@ def test_chains_of_user_types_are_refused_before_allocation(tmp_path, length, si
                  else body(f"T{i + 1}"))
     lr = run([str(app.parent)], Settings())
     ws = lr.workspace
-    t = time.monotonic()
-    result = simulate(ws, ws.apps[ws.targets[0]], SimOptions(duration=1, max_wall=20))
-    assert time.monotonic() - t < 5
+    result = simulate(ws, ws.apps[ws.targets[0]], SimOptions(duration=1, max_wall=20, wall_clock=StepClock(0.001)))
     assert result.end_reason == "budget" and ("nested" in result.end_message or "memory budget" in result.end_message)

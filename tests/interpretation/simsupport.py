@@ -160,3 +160,21 @@ def run_folder(folder: Path, *, scenario: str | None = None, duration: float = 1
         p.write_text(scenario, encoding="utf-8")
         sc = load_scenario(str(p))
     return simulate(ws, app, SimOptions(duration=duration, **opts), sc)
+
+
+class StepClock:
+    """A wall clock for `SimOptions(wall_clock=...)` that advances `step` seconds each time it is
+    read: a wall budget is reached after a number of readings, whatever the machine's speed."""
+
+    def __init__(self, step: float = 0.001) -> None:
+        self.step = step
+        self.reads = 0
+
+    def __call__(self) -> float:
+        self.reads += 1
+        return self.reads * self.step
+
+
+def frozen_clock() -> float:
+    """A wall clock that never moves: the wall budget is never what ends the run."""
+    return 0.0

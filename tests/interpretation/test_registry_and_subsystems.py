@@ -14,8 +14,8 @@ from val3check.config import Settings
 from val3check.interpretation.compiler.calls import INLINE_FORMS
 from val3check.language.instructions import load_instructions
 from val3check.lint import run
-from val3check.motion.arm_state import MotionlessArm
-from val3check.simulation.result import collect
+from val3check.simulation.model_arm import MotionlessArm
+from val3check.simulation.collect import collect
 from val3check.interpretation.registry import Registry
 from val3check.simulation.run import SimOptions, build_machine, build_registry
 

@@ -202,7 +202,7 @@ def test_a_full_queue_blocks_until_a_command_is_done():
         assert q.record(movej(HOME + [5 * (k + 1), 0, 0, 0, 0, 0]), 0.0) == k
     r = q.record(movej(HOME), 0.0)
     assert isinstance(r, QueueFull)
-    assert r.until == pytest.approx(q.history[0].t_done or q.profile.time_at(q.history[0].S_end))
+    assert r.until == pytest.approx(q.history[0].t_done or q.profile.time_at(q.history[0].placement.s_end))
     assert q.record(movej(HOME), r.until) == 4
 
 
@@ -230,7 +230,7 @@ def test_getspeed_is_the_tcp_speed():
 def test_next_event_and_advance():
     q = queue()
     q.record(movej(HOME + [30, 0, 0, 0, 0, 0]), 0.0)
-    t_done = q.trajectory.profile.time_at(q.history[0].S_end)
+    t_done = q.trajectory.profile.time_at(q.history[0].placement.s_end)
     assert q.next_event(0.0) == pytest.approx(t_done)
     assert q.next_time(0) == int(np.ceil(t_done * 1e6 - 1e-6))
     q.advance(t_done)
@@ -263,6 +263,36 @@ def test_a_scara_arm_moves_too():
     P = kin.fk(q.position(t)[None])[0][:3, 3]
     assert np.allclose(P - T0[:3, 3], [-150, -100, -50], atol=1e-6)
     assert q.position(t)[2] == pytest.approx(50.0)  # the prismatic axis moved 50 mm
-    _, Q, _ = q.trajectory.sample(q.history[1].S_begin and 0.0, t)
+    _, Q, _ = q.trajectory.sample(q.history[1].placement.s_begin and 0.0, t)
     path = kin.fk(Q)[:, :3, 3]
     assert path[:, 2].min() >= T0[2, 3] - 50 - 1e-6
+
+
+def test_monitor_speed_0_holds_the_arm_on_its_path_and_nothing_fails():
+    """8.1: setMonitorSpeed accepts 0 to 100. At 0 every limit would be 0: the arm stops on its
+    path (with the decelerations it had) and holds until the monitor speed rises (issue 21 J)."""
+    target = HOME + [150, 0, 0, 0, 0, 0]  # 0.6 s: at 0.2 s the arm still accelerates
+    q = queue()
+    q.record(movej(target), 0.0)
+    t_free = q.wait_end_move(0.0)
+    q = queue()
+    q.record(movej(target), 0.0)
+    q.set_monitor_speed(0.0, 0.2)
+    assert q.wait_end_move(0.25) is None and q.blocked_reason().startswith("the monitor speed is 0 %")
+    t_stop = q.profile.t_end  # braked on the path
+    held = q.position(t_stop)
+    assert 0.2 < t_stop < 0.5 and np.allclose(q.position(3.0), held) and not q.is_empty(3.0)
+    assert q.get_speed(None, 1.0) == 0.0 and q.next_event(3.0) is None
+    # a command recorded while at 0 waits too; the queue is not full
+    assert q.record(movej(HOME), 1.0) == 1 and np.allclose(q.position(3.0), held)
+    q.set_monitor_speed(100.0, 3.0)
+    t = run(q, 3.0)
+    assert np.allclose(q.position(t), HOME) and q.findings == []
+    assert t > 3.0 + t_free * 0.5  # it went on from where it held: the rest of the way, then back
+    # started at 0 %: nothing moves until it rises
+    q = queue(monitor=0.0)
+    q.record(movej(target), 0.0)
+    assert q.wait_end_move(0.0) is None and np.allclose(q.position(5.0), HOME)
+    q.set_monitor_speed(50.0, 5.0)
+    t = run(q, 5.0)
+    assert np.allclose(q.position(t), target) and t > 5.0 + t_free

@@ -36,7 +36,7 @@ def run(tmp_path, code, globals_=(), robot=TX, **kw):
 
 
 def motions(r):
-    return [m for m in r.motion.records if m.id is not None]
+    return [m for m in r.motion.motions if m.id is not None]
 
 
 # ---- timing of movej (10.3) ----------------------------------------------------------------------
@@ -103,13 +103,13 @@ end
 """, ["point pA", "point pB", "point pEnd", "mdesc mD"])
     assert codes(r) == []
     line = motions(r)[1]
-    assert line.kind == "movel" and line.dominant == "tvel"
+    assert line.kind == "movel" and line.dominant_limit == "tvel"
     assert line.length_mm == pytest.approx(300.0, abs=1e-3)
     assert line.peak_tcp_mm_s == pytest.approx(250.0, rel=1e-4)
     # at 250 mm/s with joint accelerations of ~1500 deg/s²: the ramps take a few hundredths of a second
     # a trapezoid of TCP speed: ramps under joint accelerations, the rest at tvel; its area is
     # the length of the line
-    share = line.limit_share
+    share = line.limit_seconds
     cruise = share["tvel"]
     ramps = sum(v for k, v in share.items() if k != "tvel")
     assert line.duration == pytest.approx(cruise + ramps, abs=1e-9)
@@ -320,10 +320,9 @@ def test_unreachable_target_is_reported_at_its_line(tmp_path):
   waitEndMove()
 end
 """, ["point pFar", "mdesc mD"])
-    d = _one(r, "R010")
-    assert (d.line, d.col) == code_pos(r, 4, 3) and d.task == "Example~" and d.time_us >= 500_000
-    assert d.error == 150 and errors(r) == [150]
-    assert _one(r, "R001").line == code_pos(r, 5, 3)[0]
+    (d,) = r.diagnostics  # 10.6 movel: "si pPosition ne peut pas être atteinte": at the movel
+    assert d.code == "R010" and (d.line, d.col) == code_pos(r, 4, 3) and d.task == "Example~"
+    assert d.time_us >= 500_000 and d.error == 154 and "error 154" in d.message
 
 
 def test_joint_limit_violation_names_the_axis(tmp_path):
@@ -495,3 +494,49 @@ end
     model, data = ur5.pinocchio()
     g = pin.computeGeneralizedGravity(model, data, np.radians([0, -60, 80, -90, -90, 0]))
     assert gv(r, "nForce") == pytest.approx(list(g), abs=1e-6)
+
+
+# ---- monitor speed 0 (8.1: 0 to 100; issue 21 J) -----------------------------------------------------------
+
+
+def test_a_scenario_setting_the_monitor_speed_to_0_during_a_motion_holds_the_arm(tmp_path):
+    code = "begin\n  movej({150, 0, 0, 0, 0, 0}, flange, mD)\n  waitEndMove()\n  nAt = clock()\n  jEnd = herej()\nend\n"
+    r = run(tmp_path, code, ["mdesc mD", "num nAt", "joint jEnd"],
+            scenario="[controller]\nchanges = [{ at = 0.2, monitor_speed = 0 }, { at = 2.0, monitor_speed = 100 }]\n")
+    assert codes(r) == [] and r.end_reason == "ended"
+    assert list(gv(r, "jEnd").values()) == pytest.approx([150, 0, 0, 0, 0, 0], abs=1e-9)
+    assert gv(r, "nAt") > 2.0  # it went on when the monitor speed rose
+    q1, q2 = r.motion.trajectory.position(0.6), r.motion.trajectory.position(1.9)
+    assert np.allclose(q1, q2) and 0.0 < q1[0] < 150.0  # held on its path in between
+    _, _, Qd = r.motion.sample()
+    assert np.all(np.abs(Qd) <= V * (1 + 1e-9))
+
+
+def test_set_monitor_speed_0_in_the_program_holds_the_arm_and_is_no_error(tmp_path):
+    code = """begin
+  movej({150, 0, 0, 0, 0, 0}, flange, mD)
+  delay(0.2)
+  nRet = setMonitorSpeed(0)
+  delay(1)
+  jHeld = herej()
+  nSpeed = getSpeed(flange)
+  nRet2 = setMonitorSpeed(100)
+  waitEndMove()
+  jEnd = herej()
+end
+"""
+    r = run(tmp_path, code, ["mdesc mD", "num nRet", "num nRet2", "num nSpeed", "joint jHeld", "joint jEnd"],
+            scenario="[controller]\nworking_mode = 4\n")
+    assert codes(r) == [] and errors(r) == [] and r.end_reason == "ended"
+    assert gv(r, "nRet") == 0 and gv(r, "nRet2") == 0 and gv(r, "nSpeed") == 0
+    assert 0.0 < gv(r, "jHeld")["j1"] < 150.0
+    assert gv(r, "jEnd")["j1"] == pytest.approx(150.0, abs=1e-9)
+
+
+def test_a_motion_the_monitor_speed_0_never_allows_is_a_deadlock_that_says_why(tmp_path):
+    r = run(tmp_path, "begin\n  movej({30, 0, 0, 0, 0, 0}, flange, mD)\n  waitEndMove()\nend\n", ["mdesc mD"],
+            scenario="[controller]\nmonitor_speed = 0\n")
+    assert r.end_reason == "deadlock"
+    d = _one(r, "R003")
+    assert "monitor speed is 0 %" in d.message and "monitor_speed" in d.message
+    assert np.allclose(r.motion.trajectory.position(r.sim_time_us / 1e6), 0.0)

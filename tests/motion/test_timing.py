@@ -110,7 +110,7 @@ def test_a_very_short_movej():
 
 def test_when_toppra_fails_a_safe_slower_profile_is_used_and_reported(monkeypatch):
     from val3check.motion import findings as F
-    from val3check.motion import timing
+    from val3check.motion.timing import optimal
 
     from .motionhelp import KIN, movel, point
 
@@ -121,7 +121,7 @@ def test_when_toppra_fails_a_safe_slower_profile_is_used_and_reported(monkeypatc
     q0.record(movel(point(dz=150.0), MDesc(leave=40, reach=40)), 0.0)
     q0.record(movel(point(dy=200.0, dz=150.0), MDesc(blend="off")), 0.0)
     t_opt = run(q0)
-    monkeypatch.setattr(timing, "_load_toppra", broken)
+    monkeypatch.setattr(optimal, "_load_toppra", broken)
     q = queue()
     q.record(movel(point(dz=150.0), MDesc(leave=40, reach=40)), 0.0)
     q.record(movel(point(dy=200.0, dz=150.0), MDesc(blend="off")), 0.0)
@@ -131,3 +131,25 @@ def test_when_toppra_fails_a_safe_slower_profile_is_used_and_reported(monkeypatc
     _, Q, Qd = q.trajectory.sample(0.0, t)
     assert np.all(np.abs(Qd) <= np.array(KIN.speeds) * (1 + 1e-9))
     assert np.all(np.abs(np.diff(Qd, axis=0)) / 0.004 <= np.array(KIN.accels) * 1.02)
+
+
+def test_the_timing_interface_a_path_plus_its_limits_gives_the_profile():
+    """timing.Timing, the one place where a path and its limits become a time parameterisation
+    (planner.py calls nothing else): a straight joint line gets the exact bang-bang profile of its
+    slowest axis, with the key of the command that owns it."""
+    from val3check.motion.mdesc import Limits
+    from val3check.motion.paths import JointLine, Path, Span
+    from val3check.motion.timing import Timing
+
+    from .motionhelp import KIN
+
+    delta = np.array([90.0, -40.0, 60.0, 120.0, -30.0, 200.0])
+    path = Path(HOME)
+    path.append(Span(JointLine(HOME, HOME + delta), 0.0, 1.0, [(7, 0.0)]))
+    md = MDesc(vel=50, accel=30, decel=70)
+    piece = Timing(KIN).time(path, 0.0, path.end, 0.0, lambda key: Limits.of(KIN, md, 1.0))
+    expected = max(bang_bang(abs(d), v * 0.5, a * 0.3, a * 0.7)
+                   for d, v, a in zip(delta, ROBOT.nominal_speeds, ROBOT.accelerations))
+    assert piece.owner == 7 and not piece.fallback
+    assert piece.s[0] == 0.0 and piece.s[-1] == pytest.approx(path.end) and piece.sd[-1] == 0.0
+    assert piece.duration == pytest.approx(expected, rel=1e-12)

@@ -13,7 +13,8 @@ from .runhelp import CELL, pickplace
 from val3check.collision.cellfile import read_cell
 from val3check.collision.records import Clearance, MotionReport, MotionSpan
 from val3check.reporting.html import check_model, render
-from val3check.reporting.html.from_run import app_frames, model_from_run
+from val3check.reporting.html.from_run import model_from_run
+from val3check.robot import load_robot
 
 
 @pytest.fixture(scope="module")
@@ -45,13 +46,13 @@ def test_verdict_and_cycle_time_come_from_the_run(run, model):
 
 def test_motion_table_is_the_run_s_records(run, model):
     result, _ = run
-    moved = [(r, c) for r, c in zip(result.motion.records, result.motion.commands)
+    moved = [r for r in result.motion.motions
              if r.start is not None and r.start <= 20.0]  # (the next one is planned to start after the run)
     assert len(model["motions"]) == len(moved) > 20
-    for mo, (rec, cmd) in zip(model["motions"], moved):
+    for mo, rec in zip(model["motions"], moved):
         assert (mo["kind"], mo["line"], mo["task"] or "") == (rec.kind, rec.source.line, rec.source.task)
         assert mo["start"] == pytest.approx(rec.start, abs=1e-6)
-        assert mo["dominant_limit"] == (rec.dominant or None)
+        assert mo["dominant_limit"] == (rec.dominant_limit or None)
     # mApproach (tvel 250 mm/s, vel 50 %) on the two descents to the part and to the pallet
     pick = next(mo for mo in model["motions"] if mo["target"] == "pPick")
     assert (pick["kind"], pick["vel"], pick["tvel"]) == ("movel", 50.0, 250.0)
@@ -64,9 +65,9 @@ def test_trajectory_samples_the_run_every_4_ms_and_tcp_speed_is_the_tool_s(run, 
     k = 1000  # 4 s
     q = result.motion.trajectory.position(tr["times"][k])
     assert [row[k] for row in tr["positions"]] == pytest.approx(list(q), abs=1e-5)
-    assert [j["name"] for j in tr["joints"]] == list(result.motion.model.joint_names)
+    assert [j["name"] for j in tr["joints"]] == list(result.motion.scene.joint_names)
     # the TCP speed against a finite difference of the model's FK with tGripper (TCP 120 mm out)
-    model_ = result.motion.model
+    model_ = load_robot(result.motion.scene.name)
     tool = np.eye(4)
     tool[2, 3] = 120.0
     for k in (470, 520, 1100):  # within motions, the tool in use: tGripper
@@ -118,22 +119,24 @@ def test_scene_has_the_arm_and_the_tool_but_no_cell_without_one(model):
 def test_cell_obstacles_tool_solids_and_clearance(run):
     result, report = run
     cell = read_cell(CELL)
-    rec = next(r for r in result.motion.records if r.id is not None and r.start is not None)
+    rec = next(r for r in result.motion.motions if r.id is not None and r.start is not None)
     clear = MotionReport(MotionSpan(rec.id), np.zeros(0), np.zeros(0), np.zeros(0, bool),
                          min_clearance=Clearance(42.5, rec.start, "tool tGripper 'jaws'", "obstacle 'table'",
                                                          (0, 0, 0), (0, 0, 1)))
-    result.collision = SimpleNamespace(cell=cell, by_motion={result.motion.records.index(rec): clear})
+    result.collision = SimpleNamespace(cell=cell, by_motion={result.motion.motions.index(rec): clear})
+    rec.clearance = clear  # the motion's clearances slot (simulation/arm_record.py)
     try:
         model = model_from_run(report)
     finally:
         del result.collision
+        rec.clearance = None
     check_model(model)
     obstacles = {o["name"]: o for o in model["scene"]["obstacles"]}
     assert set(obstacles) == {"table", "pallet", "post"}
     assert obstacles["table"]["shape"] == "box" and obstacles["table"]["size"] == [500.0, 1200.0, 40.0]
     assert [row[3] for row in obstacles["table"]["pose"]] == [450.0, 0.0, -130.0]
     # the pallet sits in fPallet (300, 120, -80 in the world): at (70, 70, -10) in it
-    fpallet = app_frames(result)["fPallet"]
+    fpallet = result.motion.scene.frames["fPallet"].matrix
     assert [row[3] for row in obstacles["pallet"]["pose"]] == pytest.approx(list(fpallet[:3, 3] + [70, 70, -10]))
     assert obstacles["post"]["radius"] == 40.0 and obstacles["post"]["length"] == 800.0
     solids = {s["name"]: s for s in model["scene"]["tool"]["solids"]}

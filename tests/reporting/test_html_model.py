@@ -16,7 +16,8 @@ from pathlib import Path
 import jsonschema
 import pytest
 
-from val3check.reporting.html import ModelError, arm_chain, chain_fk, check_model, render, synthetic_model
+from val3check.reporting.html import ModelError, check_model, render, synthetic_model
+from val3check.robot.chain import arm_chain, chain_fk
 from val3check.reporting.html.pack import FULL_RATE_MAX, PLOT_BUCKETS, page_data
 from val3check.reporting.html.synthetic import CART_ACCEL, MDESC, _trapezoid
 from val3check.robot import RobotError, load_robot, names

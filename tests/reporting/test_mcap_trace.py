@@ -15,6 +15,7 @@ from val3check.cli import main
 from val3check.collision.cellfile import read_cell
 from val3check.collision.records import MotionReport, MotionSpan
 from val3check.reporting.mcap_trace import SCHEMAS, TOPICS, write_trace
+from val3check.robot import load_robot
 
 from .runhelp import APP, CELL, SCENARIO, pickplace
 
@@ -30,14 +31,16 @@ def run():
 def trace(run, tmp_path_factory):
     result, report = run
     path = tmp_path_factory.mktemp("mcap") / "run.mcap"
-    rec = next(r for r in result.motion.records if r.id is not None and r.start is not None)
+    rec = next(r for r in result.motion.motions if r.id is not None and r.start is not None)
     checked = MotionReport(MotionSpan(rec.id), np.array([rec.start, rec.start + 0.004, rec.start + 0.008]),
                            np.array([80.0, 75.5, np.inf]), np.array([False, True, False]), margin_mm=10.0)
-    result.collision = SimpleNamespace(cell=read_cell(CELL), by_motion={result.motion.records.index(rec): checked})
+    result.collision = SimpleNamespace(cell=read_cell(CELL), by_motion={result.motion.motions.index(rec): checked})
+    rec.clearance = checked  # the motion's clearances slot (simulation/arm_record.py)
     try:
         write_trace(report, str(path))
     finally:
         del result.collision
+        rec.clearance = None
     with open(path, "rb") as f:
         reader = make_reader(f)
         summary = reader.get_summary()
@@ -77,8 +80,8 @@ def test_schemas_channels_and_counts(trace, run):
     # the per-sample clearance of the collision checks (a sample without a measure is left out)
     clear = [m[4] for m in _by(trace, "/clearance")]
     assert [(c["clearance_mm"], c["exact"], c["margin_mm"]) for c in clear] == [(80.0, False, 10.0), (75.5, True, 10.0)]
-    first = next(k for k, r in enumerate(result.motion.records) if r.id is not None and r.start is not None)
-    assert {(c["motion"], c["motion_id"]) for c in clear} == {(first, result.motion.records[first].id)}
+    first = next(k for k, r in enumerate(result.motion.motions) if r.id is not None and r.start is not None)
+    assert {(c["motion"], c["motion_id"]) for c in clear} == {(first, result.motion.motions[first].id)}
     # the cell once, the TCP marker at each change of tool (tGripper from the first motion on), and
     # the part: taken at each close(tGripper), left at the next open(tGripper)
     moves = [e.action for e in result.motion.tool_events if e.tool == "tGripper"]
@@ -131,7 +134,7 @@ def _in_world(tree, frame, world):
 
 def test_transforms_reproduce_here_at_the_sampled_times(trace, run):
     result, _ = run
-    model = result.motion.model
+    model = load_robot(result.motion.scene.name)
     tree = {}  # the latest transform of each frame, as a viewer keeps them
     tcps = {m[2]: m[4] for m in _by(trace, "/tcp")}
     joints = {m[2]: m[4] for m in _by(trace, "/joint_states")}
@@ -166,8 +169,8 @@ def test_frames_tools_scene_log_io_tasks_and_urdf(trace, run):
     static = next(m[4] for m in _by(trace, "/tf") if m[2] == 0 and any(
         x["child_frame_id"] == "fPallet" for x in m[4]["transforms"]))
     by = {x["child_frame_id"]: x for x in static["transforms"]}
-    assert by["fPallet"]["parent_frame_id"] == result.motion.model.world_frame and by["fPallet"]["translation"]["x"] == pytest.approx(0.3)
-    assert by["tGripper"]["parent_frame_id"] == result.motion.model.flange_frame
+    assert by["fPallet"]["parent_frame_id"] == result.motion.scene.world_frame and by["fPallet"]["translation"]["x"] == pytest.approx(0.3)
+    assert by["tGripper"]["parent_frame_id"] == result.motion.scene.flange_frame
     assert "fPallet[0]" not in by  # a one-element array is its name
     scenes = _by(trace, "/scene")
     cell = next(m for m in scenes if m[2] == 0 and len(m[4]["entities"]) > 1)
@@ -178,7 +181,7 @@ def test_frames_tools_scene_log_io_tasks_and_urdf(trace, run):
     assert ents["obstacle/post"]["cylinders"][0]["size"]["z"] == pytest.approx(0.8)
     assert ents["tool/jaws"]["frame_id"] == "flange" and ents["tool/jaws"]["frame_locked"]
     (marker,) = [m for m in scenes if m[4]["entities"][0]["id"] == "tcp"]
-    first = min(r.start for r in result.motion.records if r.start is not None and r.kind != "connection")
+    first = min(r.start for r in result.motion.motions if r.start is not None and r.kind != "connection")
     assert marker[2] == round(first * 1e9)
     (tcp,) = marker[4]["entities"]
     assert tcp["id"] == "tcp" and tcp["metadata"] == [{"key": "tool", "value": "tGripper"}]
@@ -188,7 +191,7 @@ def test_frames_tools_scene_log_io_tasks_and_urdf(trace, run):
     x_axis = _matrix({"rotation": q, "translation": {"x": 0, "y": 0, "z": 0}})[:3, 0]
     assert x_axis == pytest.approx([0, 0, 1]) and arrow["shaft_length"] + arrow["head_length"] == pytest.approx(0.12)
     # the part rides on the flange from close(), and stays in the world where open() leaves it
-    model = result.motion.model
+    model = load_robot(result.motion.scene.name)
     tool = np.eye(4)
     tool[2, 3] = 120.0
     centre = np.array([0.0, 0.0, 15.0, 1.0])

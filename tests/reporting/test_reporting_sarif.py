@@ -95,8 +95,7 @@ def test_results(make_result, d, workdir):
         assert r["message"]["text"]
         for loc in r["locations"]:
             phys = loc["physicalLocation"]
-            if "region" in phys:  # GitHub rejects startLine < 1
-                assert phys["region"]["startLine"] >= 1
+            assert phys["region"]["startLine"] >= 1  # GitHub rejects startLine < 1, shows no line without one
             art = phys["artifactLocation"]
             assert " " not in art["uri"] and "\\" not in art["uri"]
             if art["uri"].startswith("file://"):
@@ -106,7 +105,7 @@ def test_results(make_result, d, workdir):
                 assert not art["uri"].startswith("/")
     by_msg = {r["message"]["text"]: r for r in found}
     whole = by_msg["cannot read"]["locations"][0]["physicalLocation"]
-    assert "region" not in whole
+    assert whole["region"] == {"startLine": 1}  # a whole-file finding: line 1 (issue 28 item 10)
     assert whole["artifactLocation"] == {"uri": "b%20b/c%231.pgx", "uriBaseId": "%SRCROOT%"}
     region = by_msg["unexpected 'endWhile'"]["locations"][0]["physicalLocation"]["region"]
     assert region == {"startLine": 3, "startColumn": 2, "endLine": 3, "endColumn": 6}
@@ -187,3 +186,29 @@ def test_tool_links_and_invocations(schema, make_result, d, workdir):
                 *(r["helpUri"] for r in driver["rules"] if "helpUri" in r)]:
         assert re.match(r"^[a-z][a-z0-9+.-]*:", uri), uri
         checker.check(uri, "uri") if "uri" in checker.checkers else None
+
+
+def test_whole_file_findings_point_at_line_1(schema, tmp_path):
+    """F009 (no project), F012 (a program file not listed) and F004 (not XML) concern a whole file:
+    GitHub shows a result without a region with no line at all (issue 28 item 10)."""
+    from support import lint
+
+    from val3check.testing import write_app
+
+    write_app(tmp_path, "begin\nend\n")
+    (tmp_path / "Example" / "extra.pgx").write_text((tmp_path / "Example" / "stop.pgx").read_text())
+    (tmp_path / "Example" / "stop.pgx").write_text("<Programs><Program")
+    (tmp_path / "Lone").mkdir()
+    (tmp_path / "Lone" / "a.pgx").write_text((tmp_path / "Example" / "start.pgx").read_text())
+    (tmp_path / ".git").mkdir()
+    outcome = lint([tmp_path / "Example", tmp_path / "Lone"], cwd=tmp_path)
+    sarif = json.loads(render("sarif", outcome.result))
+    jsonschema.Draft4Validator(schema).validate(sarif)
+    shared = Path("/work/shared/schemas/sarif-schema-2.1.0.json")
+    if shared.exists():
+        assert json.loads(shared.read_text(encoding="utf-8")) == schema
+    by_code = {r["ruleId"]: r["locations"][0]["physicalLocation"] for r in results(sarif)}
+    assert {"F004", "F009", "F012"} <= set(by_code), by_code
+    for code in ("F009", "F012"):
+        assert by_code[code]["region"] == {"startLine": 1}, (code, by_code[code])
+    assert by_code["F004"]["region"]["startLine"] >= 1

@@ -71,7 +71,8 @@ def test_robots_list_groups_by_family_and_marks_assumptions(capsys):
     scara_part = "\n".join(s for s in sections if "pointRs" in s)
     for name in SCARAS:
         assert f"\n{name} " in scara_part
-    assert "±500° 1500°/s*" in scara_part and "-0.1..200.1 mm 1000 mm/s*" in scara_part
+    # the TS2-60 is the SCARA rule's reference reach (620 mm): its reference speeds (robots/dynamics.py)
+    assert "±500° 3000°/s*" in scara_part and "-0.1..200.1 mm 2000 mm/s*" in scara_part
     row = next(line for line in out.splitlines() if line.startswith("TX2-40 "))
     assert "555°/s*" in row and row.endswith("accel, speeds") and "tx2_40?" in row
     assert "TX2-200   tx2_200   TX200" in out
@@ -85,10 +86,10 @@ def test_robots_detail_shows_facts_assumptions_and_alternatives(capsys):
     assert "limits.j3: -152.5..152.5 (kept), -142.5..142.5 (other)" in out
     assert main(["robots", "TS2-60"]) == 0
     out = capsys.readouterr().out
-    for key in ("world_z_mm = 0", "axis4_sign = -1", "nominal_speeds = 400 600 1000 1500"):
+    for key in ("world_z_mm = 0", "axis4_sign = -1", "nominal_speeds = 800 1200 2000 3000", "ramp_s = 0.044"):
         assert key in out
     assert "not public" in out and "max_torques" in out
-    assert "j3      mm    -0.1  200.1     1000*" in out
+    assert "j3      mm    -0.1  200.1     2000*" in out
 
 
 def test_robots_json_has_the_provenance(capsys):
@@ -130,7 +131,7 @@ def test_robot_file_replaces_assumptions(tmp_path, capsys):
     assert rz1 - rz0 == pytest.approx(-30)  # axis 4 about +Z now
     by = {a.key: a.by for a in robot.provenance.assumptions}
     assert all(by[k] == "user" for k in ("nominal_speeds", "ramp_s", "limits", "mount", "world_z_mm", "axis4_sign"))
-    assert load_robot("TS2-60").nominal_speeds == (400, 600, 1000, 1500)  # the catalogue model is unchanged
+    assert load_robot("TS2-60").nominal_speeds == (800, 1200, 2000, 3000)  # the catalogue model is unchanged
     # the kinematics stays whole: closed form, chain and pinocchio agree, IK round trip
     import random
 

@@ -10,6 +10,7 @@ from collections import Counter
 from urllib.parse import quote
 from xml.sax.saxutils import escape, quoteattr
 
+from ..reporting._common import printable, visible
 from .worker import VERDICTS, CaseSummary
 
 SUMMARY_VERSION = 1
@@ -62,7 +63,7 @@ def render_text(summaries: list[CaseSummary]) -> str:
         out += [f"  {s.verdict}: {s.app} | {s.arm or s.model} | {s.scenario or '-'}"
                 + (f" | {s.cell}" if s.cell else "") + (f" | {_overrides(s)}" if s.overrides else "")
                 + f": {s.reason or 'no reason recorded'}" for s in failed]
-    return "\n".join(out) + "\n"
+    return printable("\n".join(out), keep_newlines=True) + "\n"  # control characters of names visible
 
 
 def render_json(summaries: list[CaseSummary], tool_version: str) -> str:
@@ -73,21 +74,22 @@ def render_json(summaries: list[CaseSummary], tool_version: str) -> str:
 
 def render_junit(summaries: list[CaseSummary]) -> str:
     """One <testcase> per case: classname the application, name the arm, scenario, cell and
-    overrides; a failing run is a <failure>, a case not run or crashed an <error>, a case left
-    by --fail-fast <skipped>."""
+    overrides; a failing run is a <failure>, a case not run, crashed or stopped by the watchdog
+    an <error>, a case left by --fail-fast <skipped>."""
     c = counts(summaries)
+    errors = c.get("not-run", 0) + c.get("crash", 0) + c.get("over-budget", 0)
     out = ['<?xml version="1.0" encoding="UTF-8"?>',
            f'<testsuites name="val3check sim" tests="{len(summaries)}" failures="{c.get("fail", 0)}"'
-           f' errors="{c.get("not-run", 0) + c.get("crash", 0)}" skipped="{c.get("skipped", 0)}">',
+           f' errors="{errors}" skipped="{c.get("skipped", 0)}">',
            f'  <testsuite name="val3check sim" tests="{len(summaries)}" failures="{c.get("fail", 0)}"'
-           f' errors="{c.get("not-run", 0) + c.get("crash", 0)}" skipped="{c.get("skipped", 0)}">']
+           f' errors="{errors}" skipped="{c.get("skipped", 0)}">']
     for s in ordered(summaries):
         name = " | ".join(x for x in (s.arm or f"({s.model})", s.scenario or "no scenario", s.cell, _overrides(s)) if x)
         out.append(f"    <testcase classname={quoteattr(s.app)} name={quoteattr(name)}>")
         reason = s.reason or s.verdict
         if s.verdict == "fail":
             out.append(f"      <failure type=\"fail\" message={quoteattr(reason)}>{escape(reason)}</failure>")
-        elif s.verdict in ("not-run", "crash"):
+        elif s.verdict in ("not-run", "crash", "over-budget"):
             out.append(f"      <error type={quoteattr(s.verdict)} message={quoteattr(reason)}>{escape(reason)}</error>")
         elif s.verdict == "skipped":
             out.append(f"      <skipped message={quoteattr(reason)} />")
@@ -97,7 +99,7 @@ def render_junit(summaries: list[CaseSummary]) -> str:
         out.append(f"      <system-out>{escape(props)}</system-out>")
         out.append("    </testcase>")
     out += ["  </testsuite>", "</testsuites>"]
-    return "\n".join(out) + "\n"
+    return visible("\n".join(out)) + "\n"  # XML 1.0 cannot hold control characters
 
 
 _STYLE = """body{font:14px system-ui,sans-serif;margin:1.5em;color:#222}
@@ -114,7 +116,8 @@ def render_html(summaries: list[CaseSummary], reports: set[str], tool_version: s
     rows = []
     for s in ordered(summaries):
         cells = _row(s)
-        verdict = f'<td class="{e(s.verdict)}">{e(s.verdict)}</td>'
+        css = "over-budget crash" if s.verdict == "over-budget" else s.verdict  # shown as a crash is
+        verdict = f'<td class="{e(css)}">{e(s.verdict)}</td>'
         links = [f'<a href="{e(CASES_DIR + "/" + quote(s.name + suffix))}">{label}</a>'
                  for suffix, label in ((".html", "page"), (".json", "JSON"), (".mcap", "trace"))
                  if s.name + suffix in reports]
@@ -123,9 +126,9 @@ def render_html(summaries: list[CaseSummary], reports: set[str], tool_version: s
         rows.append("<tr>" + verdict + "".join(f"<td>{e(c)}</td>" for c in cells[1:6])
                     + f'<td class="n">{e(cells[6])}</td><td class="n">{e(cells[7])}</td><td>{link}{why}</td></tr>')
     head = "".join(f"<th>{e(h)}</th>" for h in HEADERS + ["report"])
-    return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+    return visible("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
             "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; style-src 'unsafe-inline'\">"
             f"<title>val3check sim batch</title><style>{_STYLE}</style></head><body>\n"
             f"<h1>{e(_headline(summaries))}</h1>\n<p>val3check {e(tool_version)}</p>\n"
             f"<table><thead><tr>{head}</tr></thead><tbody>\n" + "\n".join(rows)
-            + "\n</tbody></table>\n</body></html>\n")
+            + "\n</tbody></table>\n</body></html>\n")  # control characters: parse errors in HTML

@@ -4,9 +4,10 @@ Where things are:
 - a task is scheduled in `scheduler.py` (tasks, their states, the 4 ms cycle, the jumps of
   the clock to the next event), on the clock of `clock.py`; a task waits with `waiting.py`;
 - an instruction is registered in `registry.py`, by the module of its chapter in `chapters/`
-  (`ch05_tasks.py`...; chapter 10 is `val3check.motion.ch10_motion`); what is not simulated
+  (`ch05_tasks.py`...; chapter 10 is `val3check.simulation.ch10_motion`); what is not simulated
   stops the task (`not_simulated.py`);
-- the arm's position comes through `arm_port.py` (implemented by `val3check.motion`);
+- the arm's position comes through `arm_port.py` (implemented by `val3check.simulation` over
+  the motion queue of `val3check.motion`);
 - what changes with time besides the tasks is a `Subsystem` (`subsystem.py`): the cell and
   its scenario (`cell.py`, `events.py`; the scenario file is read by `val3check.simulation`),
   the arm's motion;

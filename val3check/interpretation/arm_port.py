@@ -2,8 +2,9 @@
 
 Chapter 9 (`here()`, `herej()`, `jointToPoint()`, `pointToJoint()`, `config()`, `isInRange()`),
 the end of motion that `open()`/`close()` wait for (9.5.4), and the instructions of chapter 10
-read the arm only through this protocol. `val3check.motion` implements it (the arm's state
-as a function of simulated time); the interpreter never imports `motion`.
+read the arm only through this protocol. `val3check.simulation.moving_arm` implements it over
+the motion queue of `val3check.motion` (the arm's state as a function of simulated time); the
+interpreter never imports `motion`.
 
 Units are converted in one place, the port: the arm model works in millimetres, an
 application in its own length unit (`millimeterUnit`, 2.1.4.1); callers say which unit they

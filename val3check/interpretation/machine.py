@@ -18,7 +18,7 @@ from __future__ import annotations
 import os
 import time as _time
 from dataclasses import dataclass
-from typing import Any, NamedTuple
+from typing import Any, Callable, NamedTuple
 
 from ..diagnostics import Diagnostic
 from ..loading.model import Application, Workspace
@@ -52,6 +52,9 @@ class Budgets:
     max_io_log: int = 100_000
     stop_us: int = 2_000_000  # simulated time left to stop() after a run is cut short
     max_memory_mb: float = 512.0  # growth of the process (memory_budget.py), loading included
+    # the clock the wall budget reads, in seconds: tests give one of their own (a clock that
+    # advances with each reading), so that what they check does not depend on the machine's speed
+    wall_clock: Callable[[], float] = _time.monotonic
 
 
 class FinalState(NamedTuple):
@@ -60,6 +63,7 @@ class FinalState(NamedTuple):
     state: str  # TaskState.report_name
     where: tuple | None  # (path, line, col, program)
     blocked_on: str | None
+    loops: tuple = ()  # the loops it was in (Machine.loop_passes)
 
 
 class Machine:
@@ -73,7 +77,7 @@ class Machine:
         self.disk_roots = list(disk_roots or [])
         self.clock = Clock()
         self.scheduler = Scheduler(self, self.clock)
-        self.wall_start = _time.monotonic()  # --max-wall covers loading and compiling too
+        self.wall_start = self.budgets.wall_clock()  # --max-wall covers loading and compiling too
         self.cell = Cell()
         self.cell.budget = MemoryBudget(self.budgets.max_memory_mb, clock=self._wall_check)
         # joint and config values have the fields of the arm's family (9.7.2; RX/TX without a model)
@@ -315,6 +319,43 @@ class Machine:
                 yield compiled[code.co_filename], frame.f_lineno
             g = getattr(g, "gi_yieldfrom", None)
 
+    def loop_passes(self, task: Task | None = None) -> tuple:
+        """The loops the running line (or the suspended `task`) is in, outermost first, across the
+        programs of its call stack: (compiled program, compiler.structures.LoopSite, the loop's
+        pass counter: a list, new at each entry of the loop, whose [0] is the current pass)."""
+        import sys
+
+        frames = []
+        if task is None:
+            compiled = self.compiled
+            f = sys._getframe(1)
+            while f is not None:
+                c = compiled.get(f.f_code.co_filename)
+                if c is not None:
+                    frames.append((c, f))
+                f = f.f_back
+            frames.reverse()
+        else:
+            frames = list(self._task_frames(task))
+        out = []
+        for c, f in frames:
+            sites = [site for site in c.loops if site.py_first <= f.f_lineno <= site.py_last]
+            if sites:
+                local = f.f_locals
+                out.extend((c, site, local[site.var]) for site in sites if site.var in local)
+        return tuple(out)
+
+    def _task_frames(self, task: Task):
+        """(compiled program, frame) of each VAL 3 program a suspended task is in, outermost first."""
+        g = task.gen
+        compiled = self.compiled
+        while g is not None:
+            code = getattr(g, "gi_code", None)
+            frame = getattr(g, "gi_frame", None)
+            if code is not None and frame is not None and code.co_filename in compiled:
+                yield compiled[code.co_filename], frame
+            g = getattr(g, "gi_yieldfrom", None)
+
     def line_running(self) -> tuple[str, int, int, str] | None:
         """The file position of the VAL 3 line being executed now, for an instruction handler
         (the innermost program on the Python stack; `where` only sees suspended tasks)."""
@@ -363,7 +404,7 @@ class Machine:
         self.scheduler.add(task)
 
     def _wall_check(self) -> None:
-        if _time.monotonic() > self.wall_start + self.budgets.wall_s:
+        if self.budgets.wall_clock() > self.wall_start + self.budgets.wall_s:
             raise EndRun("wall-clock")
 
     def check_load_budgets(self) -> None:
@@ -405,7 +446,7 @@ class Machine:
             if stopped and task.errpos:
                 where = task.errpos
             task.final = FinalState(task.state.report_name, where,
-                                    self.blocked_on(task) if task.state is WAIT else None)
+                                    self.blocked_on(task) if task.state is WAIT else None, self.loop_passes(task))
 
     def motion_reason(self, task: Task) -> tuple[str, str] | None:
         """(rule, why) when the task waits for the arm's motion and the arm cannot move."""

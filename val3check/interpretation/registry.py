@@ -1,7 +1,7 @@
 """Where an instruction is registered: the table of what the virtual controller can run.
 
 One module per chapter of the manual registers its instructions with an explicit call,
-`register(registry)` (interpretation/chapters/, motion/ch10_motion.py); `val3check.simulation`
+`register(registry)` (interpretation/chapters/, simulation/ch10_motion.py); `val3check.simulation`
 makes the calls when it assembles a run. Nothing registers on import.
 
 A registry holds:

@@ -17,7 +17,6 @@ yields, either because its quantum `task.q` is spent (preempted) or because it b
 
 from __future__ import annotations
 
-import time as _time
 from enum import StrEnum
 from typing import Any
 
@@ -246,6 +245,7 @@ class Scheduler:
         clock = self.clock
         budgets = machine.budgets
         wall_deadline = machine.wall_start + budgets.wall_s
+        wall_clock = budgets.wall_clock
         memory = machine.cell.budget
         cycles = 0
         while True:
@@ -261,7 +261,7 @@ class Scheduler:
             if clock.now >= limit_us:
                 raise EndRun("stop-timeout" if stopping else "duration")
             cycles += 1
-            if _time.monotonic() > wall_deadline:
+            if wall_clock() > wall_deadline:
                 raise EndRun("wall-clock")
             if cycles & 255 == 0:
                 why = memory.over()

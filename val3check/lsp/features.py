@@ -13,12 +13,21 @@ from __future__ import annotations
 import os
 import re
 from dataclasses import dataclass, field
+from pathlib import Path
 
+from ..confine import Roots
 from ..diagnostics import Diagnostic, Severity
 from ..lint import LintRun, run
 from ..loading.model import Application, Container, Data, Local, Parameter, Program, Workspace
+from .documents import VAL3_EXTENSIONS, Buffers, Recent, locate
 
-VAL3_EXTENSIONS = (".pjx", ".pgx", ".dtx")
+# what is kept for files the editor has not opened: their checks, weighed by the bytes of the
+# files each read, and their texts
+UNOPENED_BUDGET = 16 * 1024 * 1024
+READ_BUDGET = 32 * 1024 * 1024
+MAX_READ = 16 * 1024 * 1024  # as `max-file-size` by default
+# findings about the files an untitled buffer names (it has no folder to find them in)
+BUFFER_CONTEXT_CODES = frozenset({"F001", "F008"})
 _WORD = re.compile(r"\$?[A-Za-z_][A-Za-z0-9_]*(?::[A-Za-z_][A-Za-z0-9_]*)?")
 SEVERITY = {Severity.ERROR: 1, Severity.WARNING: 2, Severity.INFO: 3}  # LSP DiagnosticSeverity
 
@@ -79,30 +88,92 @@ def _declared(container: Container, sizes: tuple[int, ...], dims: int = 0) -> st
 
 
 class Session:
-    """The open documents of an editor and what the last check of each application found."""
+    """The open documents of an editor and what the last check of each application found.
+
+    Documents are named by their URI (documents.py); a file the editor has not opened is only
+    read when it lies in the workspace folders or the configured roots (`roots`), through the
+    file gate of `val3check.confine`, and what is read of such files is kept within a budget."""
 
     def __init__(self) -> None:
-        self.texts: dict[str, str] = {}  # absolute path -> unsaved text
-        self.runs: dict[str, LintRun] = {}  # absolute path of an open document -> its last check
+        self.texts: dict[str, str] = {}  # open document (absolute path; a buffer's stand-in) -> unsaved text
+        self.uris: dict[str, str] = {}  # open document path -> the editor's URI for it
+        self.runs: dict[str, LintRun] = {}  # open document path -> the last check of its application
+        self.configured: dict[str, list[str]] = {}  # open document path -> the disk roots of its configuration
+        self.folders: list[str] = []  # the workspace folders
+        self.folder_uris: list[str] = []
+        self.unopened = Recent(UNOPENED_BUDGET)  # checks made for files not opened
+        self.read = Recent(READ_BUDGET)  # texts of files not opened, by (real path, mtime, size)
+        self.buffers = Buffers()
         self.notes: list[str] = []  # configuration problems, for the editor's log
 
     # -- documents --------------------------------------------------------------------------
 
-    def open(self, path: str, text: str) -> dict[str, list[EditorDiagnostic]]:
-        self.texts[os.path.abspath(path)] = text
+    def set_folders(self, uris: list[str]) -> None:
+        self.folder_uris = list(uris)
+        self.folders = [w.path for w in map(locate, uris) if w.kind == "file"]
+
+    def roots(self, *more: str) -> Roots:
+        """Where files the editor has not opened may be read: the workspace folders and the
+        configured roots (`disk-roots` of the open documents' configurations)."""
+        return Roots([*self.folders, *(r for rs in self.configured.values() for r in rs), *more])
+
+    def path_of(self, uri: str) -> str | None:
+        """The file of `uri` (a buffer's stand-in when it is open), or None (nothing to read)."""
+        where = locate(uri)
+        if where.kind == "file":
+            return where.path
+        return self.buffers.known(uri) if where.kind == "buffer" else None
+
+    def text_of(self, uri: str) -> str | None:
+        """The text of open document `uri`, None when it is not open."""
+        path = self.path_of(uri)
+        return self.texts.get(path) if path is not None else None
+
+    def uri_of(self, path: str) -> str:
+        if path in self.uris:
+            return self.uris[path]
+        return self.buffers.uri_of(path) or Path(path).as_uri()
+
+    def open(self, uri: str, text: str) -> dict[str, list[EditorDiagnostic]]:
+        """Diagnostics by URI of the open documents that the check of `uri`'s application covers."""
+        where = locate(uri)
+        if where.kind == "elsewhere":
+            return {}
+        path = where.path if where.kind == "file" else self.buffers.path(uri, text)
+        self.texts[path] = text
+        self.uris[path] = uri
+        self.unopened = Recent(UNOPENED_BUDGET)  # a check of a file not opened may have read this one
         return self.check(path)
 
-    def change(self, path: str, text: str) -> dict[str, list[EditorDiagnostic]]:
-        return self.open(path, text)
+    def change(self, uri: str, text: str) -> dict[str, list[EditorDiagnostic]]:
+        return self.open(uri, text)
 
-    def close(self, path: str) -> None:
-        path = os.path.abspath(path)
-        self.texts.pop(path, None)
-        self.runs.pop(path, None)
+    def close(self, uri: str) -> dict[str, list[EditorDiagnostic]]:
+        """An empty list for the closed document (it is no longer checked: LSP clients keep what
+        was published last), and the diagnostics of the open documents of its application,
+        checked again without its unsaved text."""
+        path = self.path_of(uri)
+        out: dict[str, list[EditorDiagnostic]] = {uri: []}
+        if path is None or path not in self.texts:
+            return out
+        outcome = self.runs.pop(path, None)
+        for table in (self.texts, self.uris, self.configured):
+            table.pop(path, None)
+        if locate(uri).kind == "buffer":
+            self.buffers.close(uri)
+        self.unopened = Recent(UNOPENED_BUDGET)
+        if outcome is not None:
+            files = _files(outcome)
+            for other in [p for p in self.texts if p in files]:
+                if self.uri_of(other) not in out:  # not covered by the check of another one
+                    out.update(self.check(other))
+        return out
 
     def _settings(self, path: str):  # noqa: ANN202
         from ..config import ConfigError, Settings, find_config, load_settings
 
+        if self.buffers.holds(path):
+            return Settings()
         try:
             found = find_config(os.path.dirname(path), warn=self.notes.append)
             return load_settings(found) if found else Settings()
@@ -110,39 +181,70 @@ class Session:
             self.notes.append(str(exc))
             return Settings()
 
-    def check(self, path: str) -> dict[str, list[EditorDiagnostic]]:
-        """Lint the application of `path` from the unsaved texts: the diagnostics of every open
-        document it holds (an empty list clears a document's old ones)."""
-        path = os.path.abspath(path)
+    def _run(self, path: str) -> LintRun | None:
+        """Lint the application of `path` from the unsaved texts (None when `path` is not a VAL 3
+        file on disk)."""
         if not path.lower().endswith(VAL3_EXTENSIONS) or not os.path.isfile(path):
-            return {path: []}
-        overlay = {p: t.encode("utf-8") for p, t in self.texts.items()}
-        outcome = run([path], self._settings(path), overlay=overlay)
-        files = {os.path.abspath(f) for app in outcome.workspace.apps.values() for f in app.files}
+            return None
+        settings = self._settings(path)
+        if path in self.texts:
+            self.configured[path] = list(settings.disk_roots)
+        # a lone surrogate (which no file can hold) becomes bytes that are not UTF-8: that
+        # document gets F003 at its place, and no other document is affected
+        overlay = {p: t.encode("utf-8", "surrogatepass") for p, t in self.texts.items()}
+        return run([path], settings, overlay=overlay)
+
+    def check(self, path: str) -> dict[str, list[EditorDiagnostic]]:
+        """Diagnostics by URI of every open document of the application of open document `path`
+        (an empty list clears a document's old ones)."""
+        outcome = self._run(path)
+        if outcome is None:
+            return {self.uri_of(path): []}
+        files = _files(outcome)
         out: dict[str, list[EditorDiagnostic]] = {p: [] for p in self.texts if p in files or p == path}
         for p in out:
             self.runs[p] = outcome
+        buffer = self.buffers.holds(path)
         for raw, shown in zip(outcome.findings, outcome.result.diagnostics):
             where = os.path.abspath(raw.path)
+            if buffer and raw.code in BUFFER_CONTEXT_CODES:
+                continue  # a buffer has no folder: the files it names cannot be looked for
+            if buffer and where == os.path.dirname(path):
+                where = path  # a lone program's application is its folder
             if where in out:
-                out[where].append(self._diagnostic(raw, shown.severity or Severity.ERROR))
-        return out
+                out[where].append(self._diagnostic(raw, shown.severity or Severity.ERROR, where))
+        return {self.uri_of(p): diags for p, diags in out.items()}
 
-    def _lines(self, path: str) -> list[str]:
+    def _lines(self, path: str, roots: Roots | None = None) -> list[str]:
         text = self.texts.get(path)
         if text is None:
-            from ..confine import Refused, Roots, read_bytes
-
-            try:
-                text = read_bytes(path, Roots.user_given(), 64 * 1024 * 1024).decode("utf-8-sig", "replace")
-            except Refused:
-                text = ""
+            text = self._read(path, roots or self.roots())
         elif text.startswith("\ufeff"):
             text = text[1:]
         return [x[:-1] if x.endswith("\r") else x for x in re.split(r"\n|\r(?!\n)", text.replace("\r\n", "\n"))]
 
-    def _diagnostic(self, d: Diagnostic, severity: Severity) -> EditorDiagnostic:
-        lines = self._lines(os.path.abspath(d.path))
+    def _read(self, path: str, roots: Roots) -> str:
+        """The text of a file the editor has not opened, through the file gate; "" if refused."""
+        from ..confine import Refused, check, read_bytes
+
+        try:
+            real = check(path, roots)
+            st = os.stat(real)
+        except (Refused, OSError, ValueError):
+            return ""
+        key = f"{real}\0{st.st_mtime_ns}\0{st.st_size}"
+        text = self.read.get(key)
+        if text is None:
+            try:
+                data = read_bytes(real, roots, MAX_READ)
+            except Refused:
+                return ""
+            text = data.decode("utf-8-sig", "replace")
+            self.read.put(key, text, len(data))
+        return text
+
+    def _diagnostic(self, d: Diagnostic, severity: Severity, path: str) -> EditorDiagnostic:
+        lines = self._lines(path)
 
         def text(n: int) -> str:
             return lines[n - 1] if 0 < n <= len(lines) else ""
@@ -162,13 +264,12 @@ class Session:
     # -- what is under the cursor -----------------------------------------------------------
 
     def _context(self, path: str) -> tuple[Workspace, Application] | None:
-        path = os.path.abspath(path)
         outcome = self.runs.get(path)
-        if outcome is None:
-            if path not in self.texts:
-                self.texts[path] = "\n".join(self._lines(path))
+        if outcome is None and path in self.texts:
             self.check(path)
             outcome = self.runs.get(path)
+        if outcome is None:
+            outcome = self._unopened_run(path)
         if outcome is None:
             return None
         ws = outcome.workspace
@@ -180,6 +281,24 @@ class Session:
             if any(os.path.abspath(f) == path for f in app.files):
                 return ws, app
         return None
+
+    def _unopened_run(self, path: str) -> LintRun | None:
+        """The check of a file the editor has not opened, if it may be read (a VAL 3 file in the
+        workspace folders or the configured roots); a few are kept."""
+        from ..confine import Refused, check
+
+        if not path.lower().endswith(VAL3_EXTENSIONS):
+            return None
+        try:
+            check(path, self.roots())
+        except Refused:
+            return None
+        outcome = self.unopened.get(path)
+        if outcome is None:
+            outcome = self._run(path)
+            if outcome is not None:
+                self.unopened.put(path, outcome, max(1, sum(_size(f) for f in _files(outcome))))
+        return outcome
 
     @staticmethod
     def _program_at(app: Application, path: str, line: int) -> Program | None:
@@ -202,12 +321,14 @@ class Session:
                 return m.group(), m.start(), at
         return None
 
-    def _resolve(self, path: str, line0: int, character: int):  # noqa: ANN202, C901
+    def _resolve(self, uri: str, line0: int, character: int):  # noqa: ANN202, C901
         """(kind, object, application) of the name under the cursor, or None."""
-        path = os.path.abspath(path)
-        found = self._context(path)
+        path = self.path_of(uri)
+        found = self._context(path) if path is not None else None
+        if found is None:
+            return None
         word = self._word(path, line0, character)
-        if found is None or word is None:
+        if word is None:
             return None
         ws, app = found
         text, start, at = word
@@ -251,10 +372,10 @@ class Session:
                 return "program", p, app
         return None
 
-    def hover(self, path: str, line0: int, character: int) -> str | None:
+    def hover(self, uri: str, line0: int, character: int) -> str | None:
         """Markdown: the declaration and type of the name under the cursor, or an instruction's
         signatures and manual section."""
-        hit = self._resolve(path, line0, character)
+        hit = self._resolve(uri, line0, character)
         if hit is None:
             return None
         kind, obj, app = hit
@@ -295,8 +416,9 @@ class Session:
                     f"({_at(p.origin.path, p.origin.line)}){desc}")
         return None
 
-    def definition(self, path: str, line0: int, character: int) -> list[Place]:
-        hit = self._resolve(path, line0, character)
+    def definition(self, uri: str, line0: int, character: int) -> list[Place]:
+        """Where the name under the cursor is declared (paths: `uri_of` gives their URIs)."""
+        hit = self._resolve(uri, line0, character)
         if hit is None:
             return []
         kind, obj, _app = hit
@@ -305,15 +427,19 @@ class Session:
         if kind == "library":
             return [Place(obj.resolved, 0, 0)] if obj.resolved else []
         origin = obj[0].origin if kind in ("parameter", "local") else obj.origin
-        lines = self._lines(os.path.abspath(origin.path))
+        # the file was read by the check: within its roots (the loader's), which the gate applies again
+        path = self.path_of(uri)
+        found = self._context(path) if path is not None else None
+        loaded = found[0].roots.folders if found is not None and found[0].roots is not None else []
+        lines = self._lines(os.path.abspath(origin.path), self.roots(*loaded))
         text = lines[origin.line - 1] if 0 < origin.line <= len(lines) else ""
         return [Place(os.path.abspath(origin.path), max(origin.line - 1, 0), utf16(text, max(origin.col - 1, 0)))]
 
-    def symbols(self, path: str) -> list[Symbol]:
+    def symbols(self, uri: str) -> list[Symbol]:
         """The programs of a .pgx (with their parameters and locals), the globals of a .dtx,
         the libraries and user types of a .pjx."""
-        path = os.path.abspath(path)
-        found = self._context(path)
+        path = self.path_of(uri)
+        found = self._context(path) if path is not None else None
         if found is None:
             return []
         _ws, app = found
@@ -341,6 +467,17 @@ class Session:
                 out.append(Symbol(ref.name, "type", ref.path, ref.origin.line - 1, ref.origin.col - 1,
                                   ref.origin.line - 1))
         return out
+
+
+def _files(outcome: LintRun) -> set[str]:
+    return {os.path.abspath(f) for app in outcome.workspace.apps.values() for f in app.files}
+
+
+def _size(path: str) -> int:
+    try:
+        return os.stat(path).st_size
+    except (OSError, ValueError):
+        return 0
 
 
 def _at(path: str, line: int) -> str:

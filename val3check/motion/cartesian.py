@@ -33,6 +33,7 @@ class ArcError(ValueError):
     position is 180° or more from the start or the end (10.1.4.1)."""
 
     def __init__(self, message: str, what: str, data: dict | None = None):
+        """`what`: undefined or ambiguous; `data`: the numbers behind the message."""
         super().__init__(message)
         self.what = what  # "undefined" | "ambiguous"
         self.data = data or {}
@@ -94,6 +95,7 @@ def smallest_rotation(R0: np.ndarray, R1: np.ndarray) -> tuple[float, np.ndarray
 
 
 def _poses(P: np.ndarray, R: np.ndarray) -> np.ndarray:
+    """4x4 poses (N, 4, 4) from positions (N, 3) and rotations (N, 3, 3)."""
     n = len(P)
     T = np.zeros((n, 4, 4))
     T[:, :3, :3] = R
@@ -109,9 +111,11 @@ class Curve:
     angle_deg: float = 0.0  # total rotation of the tool
 
     def poses(self, lam: np.ndarray) -> np.ndarray:  # pragma: no cover - interface
+        """TCP poses (N, 4, 4) at λ (array)."""
         raise NotImplementedError
 
     def positions(self, lam: np.ndarray) -> np.ndarray:
+        """TCP positions (N, 3) at λ."""
         return self.poses(lam)[:, :3, 3]
 
     def rates(self, lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -130,6 +134,7 @@ class Line(Curve):
     """movel: straight line, smallest rotation (interpolateL)."""
 
     def __init__(self, T0: np.ndarray, T1: np.ndarray):
+        """The line from pose T0 to pose T1 (4x4, mm)."""
         self.p0 = T0[:3, 3].copy()
         self.p1 = T1[:3, 3].copy()
         self.R0 = T0[:3, :3].copy()
@@ -138,10 +143,12 @@ class Line(Curve):
         self.angle_deg = float(self.ang)
 
     def rates(self, lam):
+        """|dp/dλ| (the length) and |dθ/dλ| (the rotation angle), constant along a line."""
         n = np.size(lam)
         return np.full(n, self.length_mm), np.full(n, float(self.ang))
 
     def poses(self, lam):
+        """The poses of interpolateL at the fractions λ."""
         lam = np.atleast_1d(np.asarray(lam, dtype=float))
         P = self.p0 + lam[:, None] * (self.p1 - self.p0)
         R = self.R0 @ expmap(np.outer(lam * math.radians(self.ang), self.axis))
@@ -152,6 +159,7 @@ class Arc(Curve):
     """movec: the arc start → intermediate → end (interpolateC)."""
 
     def __init__(self, T0: np.ndarray, Tm: np.ndarray, T1: np.ndarray):
+        """The arc through the positions of T0, Tm and T1; ArcError when they define none or Tm is ambiguous."""
         p1, p2, p3 = (tuple(float(v) for v in T[:3, 3]) for T in (T0, Tm, T1))
         try:
             centre, radius, e1, e2, a2, a3 = _gt.arc(p1, p2, p3)
@@ -185,12 +193,14 @@ class Arc(Curve):
         self.knots = (self.u2,)
 
     def rates(self, lam):
+        """|dp/dλ| (the arc length) and |dθ/dλ| of each part of the orientation law."""
         lam = np.atleast_1d(np.asarray(lam, dtype=float))
         r12 = math.degrees(float(np.linalg.norm(self.r12))) / self.u2
         r23 = math.degrees(float(np.linalg.norm(self.r23))) / (1.0 - self.u2)
         return np.full(len(lam), self.radius * self.a3), np.where(lam <= self.u2, r12, r23)
 
     def poses(self, lam):
+        """The poses of interpolateC at the fractions λ of the arc angle."""
         lam = np.atleast_1d(np.asarray(lam, dtype=float))
         t = lam * self.a3
         P = self.centre + self.radius * (np.cos(t)[:, None] * self.e1 + np.sin(t)[:, None] * self.e2)
@@ -218,6 +228,7 @@ class Blend(Curve):
     own rates, weighted by a smooth step. λ = σ / L, L the blend's length."""
 
     def __init__(self, left, right, ell_l: float, ell_r: float, shape="bezier"):
+        """The blend from `left` to `right`: each (position, rotation, velocity, angular velocity) per path unit."""
         from .paths import BlendShape
 
         self.pL, self.RL, self.vL, self.wL = (np.asarray(a, dtype=float) for a in left)
@@ -230,6 +241,7 @@ class Blend(Curve):
         self.angle_deg = math.degrees(float(np.linalg.norm(rotvec(self.RL.T @ self.RR))))
 
     def poses(self, lam):
+        """Position on the blend shape, orientation the smooth-step superposition of the two rotations."""
         lam = np.atleast_1d(np.asarray(lam, dtype=float))
         sig = lam * self.ell
         P = self.shape.point(sig)

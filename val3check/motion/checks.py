@@ -12,6 +12,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import findings as F
+from .findings import Finding
+from .paths import JointSpline, tcp_rates
+
 # A position is "near" a singularity below these distances (kin.Singularity).
 THRESHOLDS = {"wrist": 5.0, "elbow": 5.0, "shoulder": 30.0}  # degrees, degrees, mm
 UNITS = {"wrist": "°", "elbow": "°", "shoulder": " mm"}
@@ -42,6 +46,7 @@ class SingularPass:
 
     @property
     def ratio(self) -> float:
+        """The TCP speed there over the speed elsewhere (1 when nothing is allowed elsewhere)."""
         return self.cap / self.reference if self.reference > 0 else 1.0
 
 
@@ -77,3 +82,40 @@ def singular_pass(sing, q1: np.ndarray, pt: np.ndarray, V: np.ndarray, tvel: flo
     axis = int(np.argmin(per_axis[i])) if np.isfinite(cap[i]) else 0
     needed = float(aq[i, axis] / pt[i] * reference) if pt[i] > 1e-12 else float("inf")
     return SingularPass(which, dist, i, axis, float(cap[i]), float(reference), needed, float(V[axis]))
+
+
+def slowdown(kin, command, limits, profile) -> Finding | None:
+    """R014: a Cartesian command (a queued.QueuedCommand) that passed near a singularity and slowed
+    there below SLOWDOWN_WARN of its speed elsewhere; `limits`: its mdesc.Limits, `profile` the
+    arm's trajectory.Profile (when it passed there). None when it did not."""
+    g = command.geometry.joint_curve
+    curve = command.geometry.tcp_curve
+    if g is None or not isinstance(g, JointSpline) or curve is None:
+        return None
+    sing = getattr(g, "sing", None)
+    if sing is None or (sing.wrist.min(initial=np.inf) >= THRESHOLDS["wrist"]
+                        and sing.elbow.min(initial=np.inf) >= THRESHOLDS["elbow"]
+                        and sing.shoulder.min(initial=np.inf) >= THRESHOLDS["shoulder"]):
+        return None
+    q1 = g.q(g.lam, 1) / g.ell
+    pt, _ = tcp_rates(kin, g.Q, q1, command.tool)
+    sp = singular_pass(sing, q1, pt, limits.V, limits.tvel)
+    if sp is None or sp.ratio >= SLOWDOWN_WARN:
+        return None
+    lam = float(g.lam[sp.index])
+    at = lam * curve.length_mm
+    # where the arm passed it, and how fast
+    s_glob = None
+    for span in command.placement.spans:
+        if span.geom is g and span.a - 1e-12 <= lam <= span.b + 1e-12 and span.offset is not None:
+            s_glob = span.offset + (lam - span.a) * g.ell
+    t_pass = profile.time_at(s_glob) if s_glob is not None else None
+    unit = "°" if sp.which != "shoulder" else " mm"
+    msg = (f"{command.kind} passes near the {WHAT[sp.which]}: {sp.distance:.2f}{unit} at {at:.1f} mm along the path; "
+           f"to keep {sp.reference:.0f} mm/s axis {sp.axis + 1} would need {sp.needed:.0f}°/s (limit "
+           f"{sp.nominal:.0f}°/s): the TCP slows to {sp.cap:.0f} mm/s ({sp.ratio * 100:.0f} %)")
+    return Finding(F.SINGULAR_SLOW, msg, command.request.source,
+                   t_pass if t_pass is not None else command.request.recorded, move_id=command.id,
+                   data={"singularity": sp.which, "distance": round(sp.distance, 4), "along_mm": round(at, 3),
+                         "axis": sp.axis + 1, "needed_deg_s": round(sp.needed, 3), "limit_deg_s": round(sp.nominal, 3),
+                         "tcp_cap_mm_s": round(sp.cap, 3), "reference_mm_s": round(sp.reference, 3)})

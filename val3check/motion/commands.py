@@ -31,10 +31,12 @@ class Target:
 
     @classmethod
     def joint(cls, joints, name: str = "") -> "Target":
+        """A joint target (degrees; a SCARA's axis 3 in mm)."""
         return cls(joints=tuple(float(v) for v in joints), name=name)
 
     @classmethod
     def point(cls, pose, config=("ssame", "esame", "wsame"), name: str = "", frame: str = "") -> "Target":
+        """A point target: the TCP pose in world (4x4 or 3x4, mm), its configuration, names for the reports."""
         p = np.asarray(pose, dtype=float)
         if p.shape == (3, 4):
             p = np.vstack([p, [0.0, 0.0, 0.0, 1.0]])
@@ -42,6 +44,7 @@ class Target:
 
     @property
     def is_joint(self) -> bool:
+        """A joint target (else a point)."""
         return self.joints is not None
 
 
@@ -59,6 +62,7 @@ class MoveCommand:
     tool_name: str = ""
 
     def __post_init__(self) -> None:
+        """ValueError for a kind or targets the instruction cannot have."""
         if self.kind not in KINDS:
             raise ValueError(f"unknown motion kind {self.kind!r}")
         if self.kind == "movec" and (self.via is None or self.via.is_joint or self.target.is_joint):

@@ -19,6 +19,7 @@ DEG = math.pi / 180.0
 
 @functools.lru_cache(maxsize=None)
 def _has_inertia(path: str) -> bool:
+    """Whether the URDF at `path` gives a mass to some link (pinocchio reads it)."""
     from ..robot.models import pinocchio_model
 
     model, _ = pinocchio_model(path)

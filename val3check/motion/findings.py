@@ -51,6 +51,7 @@ class Source:
 
 @dataclass(frozen=True)
 class Finding:
+    """One motion diagnostic (module docstring): code, message, source, simulated time, the identifier, the runtime error that goes with it, the numbers (`data`)."""
     code: str
     message: str
     source: Source
@@ -61,18 +62,13 @@ class Finding:
 
     @property
     def severity(self) -> str:
+        """The rule's default severity (rules/R0xx.toml)."""
         return SEVERITY.get(self.code, "error")
 
     @property
     def task(self) -> str:
+        """The task that executed the instruction."""
         return self.source.task
-
-    def as_dict(self) -> dict[str, Any]:
-        return {
-            "code": self.code, "severity": self.severity, "message": self.message, "path": self.source.path,
-            "line": self.source.line, "col": self.source.col, "task": self.source.task,
-            "time": round(self.time, 6), "move_id": self.move_id, "error": self.error, "data": self.data,
-        }
 
 
 class MotionError(Exception):
@@ -81,6 +77,7 @@ class MotionError(Exception):
     could not be executed)."""
 
     def __init__(self, code: int, message: str, finding: Finding | None = None):
+        """`code` (12.1), the message, and the finding behind it."""
         super().__init__(message)
         self.code = code
         self.message = message

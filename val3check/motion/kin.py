@@ -67,6 +67,7 @@ class ArmKin:
     """Vectorised kinematics of one `RobotModel` (ortho-parallel base, spherical wrist)."""
 
     def __init__(self, model) -> None:
+        """The kinematics of `model` (robot.RobotModel): its closed form, joint limits, speeds, accelerations."""
         self.model = model
         self.opw = model.opw
         self.lo = np.array([lo for lo, _ in model.joint_limits], dtype=float)
@@ -153,9 +154,30 @@ class ArmKin:
         return self.opw is None
 
     def need_ik(self) -> None:
+        """Raise IKUnsupported when the arm has no inverse kinematics the motion can use."""
         if self.opw is None and not self.scara:
             self.model._need_opw()  # raises IKUnsupported with the model's reason
             raise IKUnsupported(f"{self.model.name}: no closed-form inverse kinematics")
+
+    def turns(self, sols: np.ndarray, q_start: np.ndarray) -> np.ndarray:
+        """Each axis of the joint positions `sols` (N, axes) on the turn within its limits nearest
+        the start (9.6.3: an axis of more than one turn takes the turn nearest jInitial); when no
+        turn fits, the turn least outside them (so that a violation is measured from there)."""
+        out = sols.copy()
+        shifts = 360.0 * np.arange(-2, 3)
+        for r in range(len(out)):
+            for k in range(out.shape[1]):
+                if not self.revolute[k]:  # a prismatic axis (SCARA axis 3) has no turns
+                    continue
+                cand = sols[r, k] + shifts
+                excess = np.maximum(self.lo[k] - cand, cand - self.hi[k])
+                inside = excess <= 1e-7
+                if inside.any():
+                    c = cand[inside]
+                    out[r, k] = c[np.argmin(np.abs(c - q_start[k]))]
+                else:
+                    out[r, k] = cand[np.argmin(excess)]
+        return out
 
     def config_name(self, code: int) -> tuple[str, ...]:
         """The configuration (VAL 3 names) of a code of `config_codes`."""
@@ -164,6 +186,7 @@ class ArmKin:
         return self._configs[code]
 
     def code_of(self, names) -> int:
+        """The configuration code of names such as (righty, epositive, wnegative)."""
         names = tuple(names)
         if self.opw is not None:
             return config_code(names)
@@ -288,12 +311,6 @@ class ArmKin:
                     out[:, k, 5] = q6
         out *= RAD * self.signs
         return out
-
-    def wrist_sum(self, T) -> np.ndarray:
-        """j4 + j6 (degrees, up to turns) at poses where the wrist is exactly singular."""
-        # At j5 = 0 the wrist is Rz(j4 + j6): with j4 = 0 the branch formula gives j6 = the sum.
-        sols = self.ik_all(T)
-        return sols[:, 0, 5]
 
     # ---- configurations and singularities ----------------------------------------------------
 

@@ -12,34 +12,40 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..language.types import load_types
+
 BLENDS = ("off", "joint", "Cartesian")
+# The fields' defaults: language/types.toml, the one source of the type facts (10.5.1: the
+# manual's {100, 100, 100, 9999, 9999, joint, 50, 50}).
+DEFAULTS = {f.name: f.default for f in load_types()["mdesc"].fields}
 
 
 @dataclass(frozen=True)
 class MDesc:
     """10.5.1 mdesc: accel, vel, decel in % of nominal; tvel mm/s; rvel deg/s; blend; leave and
-    reach in mm. The defaults are the manual's {100, 100, 100, 9999, 9999, joint, 50, 50}."""
+    reach in mm; each field's default from language/types.toml (DEFAULTS)."""
 
-    accel: float = 100.0
-    vel: float = 100.0
-    decel: float = 100.0
-    tvel: float = 9999.0
-    rvel: float = 9999.0
-    blend: str = "joint"
-    leave: float = 50.0
-    reach: float = 50.0
+    accel: float = float(DEFAULTS["accel"])
+    vel: float = float(DEFAULTS["vel"])
+    decel: float = float(DEFAULTS["decel"])
+    tvel: float = float(DEFAULTS["tvel"])
+    rvel: float = float(DEFAULTS["rvel"])
+    blend: str = str(DEFAULTS["blend"])
+    leave: float = float(DEFAULTS["leave"])
+    reach: float = float(DEFAULTS["reach"])
 
     @classmethod
     def from_fields(cls, fields: dict, mm_per_unit: float = 1.0) -> "MDesc":
         """From the interpreter's dict {accel, vel, decel, tvel, rvel, blend, leave, reach};
         tvel, leave and reach in the application's length unit (mm_per_unit converts)."""
-        blend = str(fields.get("blend", "joint"))
+        d = DEFAULTS
+        blend = str(fields.get("blend", d["blend"]))
         low = blend.lower()
         blend = "Cartesian" if low == "cartesian" else low
-        return cls(float(fields.get("accel", 100.0)), float(fields.get("vel", 100.0)),
-                   float(fields.get("decel", 100.0)), float(fields.get("tvel", 9999.0)) * mm_per_unit,
-                   float(fields.get("rvel", 9999.0)), blend, float(fields.get("leave", 50.0)) * mm_per_unit,
-                   float(fields.get("reach", 50.0)) * mm_per_unit)
+        return cls(float(fields.get("accel", d["accel"])), float(fields.get("vel", d["vel"])),
+                   float(fields.get("decel", d["decel"])), float(fields.get("tvel", d["tvel"])) * mm_per_unit,
+                   float(fields.get("rvel", d["rvel"])), blend, float(fields.get("leave", d["leave"])) * mm_per_unit,
+                   float(fields.get("reach", d["reach"])) * mm_per_unit)
 
     def check(self) -> tuple[int, str] | None:
         """(code, message) of the first invalid field (12.1: 100-106), or None.
@@ -62,7 +68,18 @@ class MDesc:
 
     @property
     def blended(self) -> bool:
+        """The command blends into the next one (blend joint or Cartesian)."""
         return self.blend != "off"
+
+    @property
+    def tvel_limit(self) -> float | None:
+        """tvel (mm/s), or None at or above its default: no limit on the TCP's speed (10.5.1)."""
+        return self.tvel if self.tvel < float(DEFAULTS["tvel"]) else None
+
+    @property
+    def rvel_limit(self) -> float | None:
+        """rvel (deg/s), or None at or above its default: no limit on the tool's rotation speed."""
+        return self.rvel if self.rvel < float(DEFAULTS["rvel"]) else None
 
 
 @dataclass(frozen=True)
@@ -89,4 +106,35 @@ class Limits:
     def reduced(cls, kin, monitor: float) -> "Limits":
         """The reduced speed of a connection move (10.1.3): 10 % of the nominal joint speeds and
         accelerations, 250 mm/s at the flange."""
-        return cls.of(kin, MDesc(accel=10.0, vel=10.0, decel=10.0, tvel=250.0, rvel=9999.0), monitor)
+        return cls.of(kin, MDesc(accel=10.0, vel=10.0, decel=10.0, tvel=250.0), monitor)
+
+
+class CommandLimits:
+    """The limits of every command of a motion queue at the monitor speed (docs/motion.md: every
+    limit scales with it), by command key, computed once per monitor speed."""
+
+    def __init__(self, kin, monitor: float) -> None:
+        """`kin`: the arm's kin.ArmKin (nominal speeds and accelerations); `monitor` in %."""
+        self.kin = kin
+        self.monitor = float(monitor)
+        self._asked: dict[int, tuple[MDesc, bool]] = {}
+        self._limits: dict[int, Limits] = {}
+
+    def register(self, key: int, mdesc: MDesc, reduced: bool) -> None:
+        """A command's mdesc (`reduced`: a connection move, 10.1.3)."""
+        self._asked[key] = (mdesc, reduced)
+
+    def of(self, key: int) -> Limits:
+        """The limits of the command `key` at the current monitor speed."""
+        lim = self._limits.get(key)
+        if lim is None:
+            mdesc, reduced = self._asked[key]
+            m = self.monitor / 100.0
+            lim = Limits.reduced(self.kin, m) if reduced else Limits.of(self.kin, mdesc, m)
+            self._limits[key] = lim
+        return lim
+
+    def set_monitor(self, monitor: float) -> None:
+        """Another monitor speed (above 0, in %): every limit scales with it."""
+        self.monitor = float(monitor)
+        self._limits.clear()

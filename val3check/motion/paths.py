@@ -29,15 +29,18 @@ JUNCTION_EPS = 1e-6  # path units: the second gridpoint of a span, on its side o
 
 
 class JointLine:
+    """movej (10.1.1): the straight line in joint space from q0 to q1; λ the fraction of the way."""
     kind = "joint"
 
     def __init__(self, q0, q1):
+        """The line from joints q0 to q1; its length `ell` is the Euclidean joint distance."""
         self.q0 = np.asarray(q0, dtype=float)
         self.q1 = np.asarray(q1, dtype=float)
         self.delta = self.q1 - self.q0
         self.ell = float(np.linalg.norm(self.delta))
 
     def q(self, lam, order: int = 0) -> np.ndarray:
+        """Joint positions (order 0) or derivatives in λ at λ (array)."""
         lam = np.atleast_1d(np.asarray(lam, dtype=float))
         if order == 0:
             return self.q0 + lam[:, None] * self.delta
@@ -46,6 +49,7 @@ class JointLine:
         return np.zeros((len(lam), len(self.delta)))
 
     def grid(self, a: float, b: float) -> np.ndarray:
+        """Gridpoints of λ in [a, b] for the time parameterisation: one per 8° of joint motion."""
         n = max(8, min(48, math.ceil(self.ell * (b - a) / 8.0)))  # one per 8° of joint motion
         return np.linspace(a, b, n + 1)
 
@@ -58,6 +62,7 @@ class JointSpline:
     kind = "spline"
 
     def __init__(self, lam: np.ndarray, Q: np.ndarray, D: np.ndarray):
+        """The knots λ, joint positions Q and dq/dλ D (knots on top of each other dropped)."""
         lam = np.asarray(lam, dtype=float)
         apart = np.diff(lam) > 1e-12  # no knots on top of each other
         keep = np.concatenate([[True], apart])
@@ -71,6 +76,7 @@ class JointSpline:
         self.ell = max(float(np.linalg.norm(np.diff(self.Q, axis=0), axis=1).sum()), 1e-12)
 
     def q(self, lam, order: int = 0) -> np.ndarray:
+        """Joint positions (order 0) or derivatives in λ, on the cubic Hermite pieces."""
         x = np.atleast_1d(np.asarray(lam, dtype=float))
         knots = self.lam
         i = np.clip(np.searchsorted(knots, x, side="right") - 1, 0, len(knots) - 2)
@@ -82,6 +88,7 @@ class JointSpline:
         return d if order == 0 else d / h ** order
 
     def grid(self, a: float, b: float) -> np.ndarray:
+        """The knots inside [a, b], and a and b."""
         inner = self.lam[(self.lam > a + 1e-12) & (self.lam < b - 1e-12)]
         return np.concatenate([[a], inner, [b]])
 
@@ -98,15 +105,18 @@ class BlendParam:
     that the Bézier curve below leaves and joins its neighbours with their own velocity."""
 
     def __init__(self, ell_l: float, ell_r: float):
+        """The parameter of a blend whose sides are ell_l and ell_r long."""
         self.ell_l, self.ell_r = float(ell_l), float(ell_r)
         self.L = blend_length(ell_l, ell_r)
         self.c1 = 1.0 / (2.0 * ell_l)
         self.c2 = (1.0 / (2.0 * ell_r) - self.c1) / (2.0 * self.L)
 
     def u(self, sigma):
+        """u at σ (clipped to [0, 1])."""
         return np.clip(self.c1 * sigma + self.c2 * sigma * sigma, 0.0, 1.0)
 
     def du(self, sigma):
+        """du/dσ at σ."""
         return self.c1 + 2.0 * self.c2 * sigma
 
 
@@ -141,6 +151,7 @@ class BlendShape:
     ends whatever the shape."""
 
     def __init__(self, pL, vL, pR, vR, ell_l: float, ell_r: float, shape="bezier"):
+        """The shape from (pL, vL) to (pR, vR); `shape`: bezier, or a tangent scale (BLEND_SHAPES)."""
         pL, vL, pR, vR = (np.asarray(x, dtype=float) for x in (pL, vL, pR, vR))
         self.shape = shape
         if shape == "bezier":
@@ -178,16 +189,19 @@ class JointBlend:
     kind = "joint-blend"
 
     def __init__(self, qL, vL, qR, vR, ell_l: float, ell_r: float, shape="bezier"):
+        """The blend from (qL, vL) to (qR, vR) along the shape `shape`."""
         self.curve = None
         self.shape = BlendShape(qL, vL, qR, vR, ell_l, ell_r, shape)
         self.ell = self.shape.ell
 
     def q(self, lam, order: int = 0) -> np.ndarray:
+        """Joint positions (order 0) or derivatives in λ."""
         sig = np.atleast_1d(np.asarray(lam, dtype=float)) * self.ell
         d = self.shape.point(sig, order)
         return d if order == 0 else d * self.ell ** order
 
     def grid(self, a: float, b: float) -> np.ndarray:
+        """Gridpoints of λ in [a, b]: one per 4° of joint motion."""
         n = max(12, min(60, math.ceil(self.ell * (b - a) / 4.0)))  # one per 4° of joint motion
         return np.linspace(a, b, n + 1)
 
@@ -221,20 +235,25 @@ class Span:
 
     @property
     def ell(self) -> float:
+        """The length of the whole geometry, in path units."""
         return self.geom.ell
 
     @property
     def length(self) -> float:
+        """The span's own length, in path units."""
         return (self.b - self.a) * self.geom.ell
 
     def lam(self, sigma) -> np.ndarray:
+        """The geometry's λ at the span's σ."""
         return self.a + np.asarray(sigma, dtype=float) / self.geom.ell
 
     def q(self, sigma, order: int = 0) -> np.ndarray:
+        """Joint positions (order 0) or derivatives in σ."""
         d = self.geom.q(self.lam(sigma), order)
         return d if order == 0 else d / self.geom.ell ** order
 
     def owner_at(self, sigma: float):
+        """The key of the command that owns the span at σ."""
         key = self.owners[0][0]
         for k, start in self.owners:
             if sigma >= start - 1e-12:
@@ -288,26 +307,12 @@ def tcp_rates(kin, q: np.ndarray, q1: np.ndarray, tool) -> tuple[np.ndarray, np.
     return pt, rt
 
 
-def tcp_state(kin, span: Span, sigma: float):
-    """(position, rotation, dp/dσ, angular velocity dω/dσ in world, rad) of the TCP of `span`'s
-    tool at σ (the boundary states of a Cartesian blend)."""
-    q = span.q([sigma], 0)
-    q1 = span.q([sigma], 1)
-    h = H_FD
-    T = kin.tcp(np.vstack([q, q + h * q1, q - h * q1]), span.tool)
-    p = T[0, :3, 3]
-    v = (T[1, :3, 3] - T[2, :3, 3]) / (2 * h)
-    from .cartesian import rotvec
-
-    w = rotvec(T[1, :3, :3] @ T[2, :3, :3].T) / (2 * h)
-    return p, T[0, :3, :3], v, w
-
-
 class Path:
     """Spans joined end to end; s is the global path parameter (never reset: the arm's whole
     run is one path)."""
 
     def __init__(self, q_start):
+        """An empty path: the arm at rest at q_start."""
         self.spans: list[Span] = []
         self.offsets: list[float] = []
         self.end = 0.0

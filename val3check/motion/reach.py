@@ -18,7 +18,6 @@ are listed as such. The result is a `ReachReport` (val3check/reporting/reach.py 
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -29,12 +28,12 @@ from ..geometry import rotation as R
 from ..geometry.frames import Frame, Tool
 from ..geometry.points import Point
 from ..geometry.trsf import Trsf
+from ..loading.reader import parse_father
 from ..loading.types import base_type
 from .checks import LIMIT_MARGIN, THRESHOLDS, UNITS, WHAT
 from .kin import ArmKin
 
 INCH_MM = 25.4
-_FATHER = re.compile(r"^\s*([A-Za-z_]\w*)\s*(?:\[\s*([^\]]*?)\s*\])?\s*$")
 ORDER = {"unreachable": 0, "limits": 1, "config": 2, "unresolved": 3, "near-singularity": 4, "near-limit": 5, "ok": 6}
 # A point may be used with only some of the declared tools, or not at all: a static "unreachable"
 # is not certain to be a defect, so nothing here is an error (`sim` reports what a run does).
@@ -44,6 +43,7 @@ SEVERITY = {"unreachable": "warning", "limits": "warning", "config": "warning", 
 
 @dataclass
 class ReachEntry:
+    """One point or joint of the data files checked with one tool: its status (ORDER), message and position."""
     name: str  # "pPick[0]", "lib:pHome[0]"
     kind: str  # point | joint
     tool: str  # "tGripper[0]" for points, "" for joints
@@ -56,9 +56,11 @@ class ReachEntry:
 
     @property
     def severity(self) -> str:
+        """The entry's severity (SEVERITY: never an error)."""
         return SEVERITY[self.status]
 
     def as_dict(self) -> dict:
+        """The entry in the JSON report."""
         return {"name": self.name, "kind": self.kind, "tool": self.tool, "status": self.status,
                 "severity": self.severity, "message": self.message, "path": self.path, "line": self.line,
                 "col": self.col, "data": self.data}
@@ -66,6 +68,7 @@ class ReachEntry:
 
 @dataclass
 class ReachReport:
+    """The static reach check of one application on one arm: every entry, and the counts."""
     app: str
     robot: str
     tools: list[str]
@@ -74,9 +77,11 @@ class ReachReport:
     entries: list[ReachEntry] = field(default_factory=list)
 
     def problems(self) -> list[ReachEntry]:
+        """The entries that are not ok."""
         return [e for e in self.entries if e.status != "ok"]
 
     def as_dict(self) -> dict:
+        """The JSON report (`val3check reach --format json`)."""
         return {"version": 1, "app": self.app, "robot": self.robot, "tools": self.tools,
                 "checked": {"points": self.points, "joints": self.joints},
                 "thresholds": {"singularity": dict(THRESHOLDS), "joint_limit_margin_deg": LIMIT_MARGIN},
@@ -84,7 +89,9 @@ class ReachReport:
 
 
 def _trsf(fields: dict, scale: float) -> Trsf:
+    """A trsf from a data file's fields (lengths scaled to mm)."""
     def f(k):
+        """A number field, 0 when absent or not a number."""
         v = fields.get(k, 0.0)
         return float(v) if isinstance(v, (int, float)) and not isinstance(v, bool) else 0.0
 
@@ -92,6 +99,7 @@ def _trsf(fields: dict, scale: float) -> Trsf:
 
 
 def _label(name: str, key: str, prefix: str) -> str:
+    """The name shown for an element: prefix, name and key (lib:pHome[0])."""
     return f"{prefix}{name}[{key}]"
 
 
@@ -99,6 +107,7 @@ class _Space:
     """The frames, tools, points and joints of one application's data (geometry nodes)."""
 
     def __init__(self, app, prefix: str, world: Frame, flange: Tool):
+        """The data of `app` (a loading.model.Application), names prefixed with `prefix`."""
         self.app = app
         self.prefix = prefix
         scale = 1.0 if getattr(app, "millimeter_unit", True) else INCH_MM
@@ -132,10 +141,10 @@ class _Space:
             if not father:
                 node.ref = root
                 continue
-            m = _FATHER.match(father)
+            m = parse_father(father)
             if not m:
                 continue
-            fname, idx = m.group(1).lower(), (m.group(2) or "0").strip().strip('"')
+            fname, idx = m[0].lower(), (m[1] or "0").strip().strip('"')
             if fname == "world" and b != "tool":
                 node.ref = world
             elif fname == "flange" and b == "tool":
@@ -191,10 +200,12 @@ def check_reach(ws, app, model) -> ReachReport:
 
 
 def _why(exc: Exception) -> str:
+    """The message of an error of the geometry."""
     return getattr(exc, "detail", "") or str(exc)
 
 
 def _pose4(p: R.Pose) -> np.ndarray:
+    """A geometry pose (rotation, translation) as a 4x4 matrix."""
     m, t, _ = p
     T = np.eye(4)
     T[:3, :3] = np.array(m).reshape(3, 3)
@@ -215,6 +226,7 @@ def _margins(kin: ArmKin, Q: np.ndarray):
 
 
 def _check_point(kin, label, config, T, tname, tool, origin) -> ReachEntry:
+    """The entry of one point (its TCP pose T in world) with one tool."""
     flange_T = T if tool is None else T @ np.linalg.inv(tool)
     sols, codes = kin.solutions(flange_T)
     base = dict(kind="point", tool=tname, path=origin.path, line=origin.line, col=origin.col)
@@ -244,6 +256,7 @@ def _check_point(kin, label, config, T, tname, tool, origin) -> ReachEntry:
 
 
 def _in_range_turns(kin, sols):
+    """Each axis of the solutions on a turn within its limits, when one is."""
     out = sols.copy()
     for r in range(len(out)):
         for k in range(out.shape[1]):
@@ -258,6 +271,7 @@ def _in_range_turns(kin, sols):
 
 
 def _near(kin, Q, where, label, base) -> ReachEntry:
+    """The entry of a position reachable within the limits: near a singularity or a limit, or ok."""
     lim, rel, names, dist = _margins(kin, Q)
     score = np.minimum(lim.min(axis=1) / LIMIT_MARGIN, rel.min(axis=1))
     i = int(np.argmax(score))  # the most comfortable solution
@@ -279,6 +293,7 @@ def _near(kin, Q, where, label, base) -> ReachEntry:
 
 
 def _check_joint(kin, label, j, origin) -> ReachEntry:
+    """The entry of one joint value."""
     base = dict(kind="joint", tool="", path=origin.path, line=origin.line, col=origin.col)
     Q = np.asarray(j, dtype=float)
     if len(Q) != len(kin.lo):
@@ -295,4 +310,5 @@ def _check_joint(kin, label, j, origin) -> ReachEntry:
 
 
 def _r(v) -> list[float]:
+    """Numbers of the report's data, to 1e-4."""
     return [round(float(x), 4) for x in v]

@@ -20,6 +20,7 @@ from .paths import tcp_rates
 
 @dataclass(frozen=True)
 class MotionRecord:
+    """What the arm did with one command (module docstring)."""
     id: int | float | None  # the identifier the instruction returned (None: a connection move)
     kind: str  # movej | movel | movec | connection
     source: Source
@@ -36,22 +37,8 @@ class MotionRecord:
 
     @property
     def duration(self) -> float | None:
+        """end - start, None when it never ran."""
         return None if self.start is None or self.end is None else self.end - self.start
-
-    def as_dict(self) -> dict:
-        return {
-            "id": self.id, "kind": self.kind, "path": self.source.path, "line": self.source.line,
-            "col": self.source.col, "task": self.source.task, "state": self.state,
-            "recorded": _round(self.recorded), "start": _round(self.start), "end": _round(self.end),
-            "duration": _round(self.duration), "length_mm": round(self.length_mm, 3),
-            "peak_tcp_mm_s": round(self.peak_tcp_mm_s, 3), "dominant_limit": self.dominant,
-            "limit_seconds": {k: round(v, 6) for k, v in sorted(self.limit_share.items())},
-            "target": self.target, "tool": self.tool,
-        }
-
-
-def _round(v):
-    return None if v is None else round(v, 6)
 
 
 def time_leaving(profile, s0: float) -> float | None:
@@ -75,27 +62,38 @@ def _speeds_at(profile, s: np.ndarray) -> np.ndarray:
     return np.sqrt(np.maximum(np.interp(s, S[keep], X[keep]), 0.0))
 
 
-def motion_records(queue) -> list[MotionRecord]:
-    """One record per command recorded (in recording order), connection moves included. The
-    path is evaluated once for all commands (grouped by tool)."""
+def motion_records(queue, end_s: float | None = None) -> list[MotionRecord]:
+    """One record per command recorded (in recording order), connection moves included, as the
+    arm did it by `end_s` (the end of the run; None: as planned). A command the arm had not
+    started by then has no start and no end, one it had not finished no end, and both only the
+    part of the path it ran (docs/sim-report.md: "null when it never ran"). The path is evaluated
+    once for all commands (grouped by tool)."""
     prof = queue.trajectory.profile
+    reached = prof.s_end if end_s is None else prof.state(end_s)[0]  # how far the arm got
     out: list[MotionRecord | None] = []
     todo = []  # (index in out, command, s0, s1, start, end, points, mids)
-    for c in queue.history:
-        src = c.source
-        base = dict(target=c.target_name, tool=c.tool_name)
-        if c.S_begin is None or c.state == "failed":
-            out.append(MotionRecord(c.id, c.kind, src, c.state, c.recorded, None, None, 0.0, 0.0, "", {}, **base))
+    for command in queue.history:
+        req = command.request
+        place = command.placement
+        base = dict(target=req.target_name, tool=req.tool_name)
+        start = None if place.s_begin is None or command.state == "failed" else time_leaving(prof, place.s_begin)
+        if start is None or (end_s is not None and start > end_s + 1e-9):
+            out.append(MotionRecord(command.id, req.kind, req.source, command.state, req.recorded, None, None, 0.0,
+                                    0.0, "", {}, **base))
             continue
-        s0 = c.S_begin
-        s1 = c.S_end if c.S_end is not None else min(prof.s_end, c.S_prov or prof.s_end)
-        if c.state in ("cancelled", "pending"):
+        s0 = place.s_begin
+        s1 = place.s_end if place.s_end is not None else min(prof.s_end, place.s_provisional or prof.s_end)
+        if command.state in ("cancelled", "pending"):
             s1 = min(s1, prof.s_end)
-        start = time_leaving(prof, s0)
-        end = c.t_done if c.state == "done" else prof.time_at(s1)
+        end = command.t_done if command.state == "done" else prof.time_at(s1)
+        if command.state != "done" and s1 > reached + 1e-9 * max(1.0, abs(s1)):
+            s1, end = max(reached, s0), None  # under way when the run ended
+        elif end is not None and end_s is not None and end > end_s + 1e-9:
+            end = None  # a cancelled command braking when the run ended
         if s1 - s0 <= 1e-12:
-            out.append(MotionRecord(c.id, c.kind, src, c.state, c.recorded, start, end if end is not None else start,
-                                    0.0, 0.0, "", {}, **base))
+            out.append(MotionRecord(command.id, req.kind, req.source, command.state, req.recorded, start,
+                                    end if end is not None or command.state == "pending" else start, 0.0, 0.0, "",
+                                    {}, **base))
             continue
         k0 = bisect.bisect_left(prof.S, s0)
         k1 = bisect.bisect_right(prof.S, s1)
@@ -103,7 +101,7 @@ def motion_records(queue) -> list[MotionRecord]:
         lo = max(k0 - 1, 0)
         S = np.asarray(prof.S[lo:k1 + 1])
         mids = 0.5 * (S[1:] + S[:-1])
-        todo.append((len(out), c, s0, s1, start, end, pts, mids, lo, k1))
+        todo.append((len(out), command, s0, s1, start, end, pts, mids, lo, k1))
         out.append(None)
     groups: dict = {}
     for item in todo:
@@ -115,16 +113,17 @@ def motion_records(queue) -> list[MotionRecord]:
         q2 = queue.path.q(allp, 2)
         pt, rt = tcp_rates(queue.kin, q, q1, items[0][1].tool)
         at = 0
-        for idx, c, s0, s1, start, end, pts, mids, lo, k1 in items:
+        for idx, command, s0, s1, start, end, pts, mids, lo, k1 in items:
             n, m = len(pts), len(mids)
             sl, sm = slice(at, at + n), slice(at + n, at + n + m)
             at += n + m
             length = float(np.sum(0.5 * (pt[sl][1:] + pt[sl][:-1]) * np.diff(pts)))
             peak = float(np.max(pt[sl] * _speeds_at(prof, pts)))
-            share = _limit_share(queue.limits_of(c), prof, lo, k1, s0, s1, q1[sm], q2[sm], pt[sm], rt[sm])
+            share = _limit_share(queue.limits_of(command), prof, lo, k1, s0, s1, q1[sm], q2[sm], pt[sm], rt[sm])
             dominant = max(share, key=share.get) if share else ""
-            out[idx] = MotionRecord(c.id, c.kind, c.source, c.state, c.recorded, start, end, length, peak, dominant,
-                                    share, target=c.target_name, tool=c.tool_name)
+            req = command.request
+            out[idx] = MotionRecord(command.id, req.kind, req.source, command.state, req.recorded, start, end, length,
+                                    peak, dominant, share, target=req.target_name, tool=req.tool_name)
     return out  # type: ignore[return-value]
 
 

@@ -31,6 +31,7 @@ DERIV_STEP = 1e-7  # of the path parameter, for dq/dλ
 
 @dataclass
 class Failure:
+    """Where and why a Cartesian path cannot be followed in its configuration."""
     kind: str  # "reach" | "config" | "limits" | "singular"
     lam: float  # where along the path (fraction)
     axis: int | None = None  # 0-based axis for limits / the jumping axis for singular
@@ -42,6 +43,7 @@ class Failure:
 
 @dataclass
 class Track:
+    """A Cartesian curve solved in one configuration: its grid, joints, distances to the singularities, and the first failure."""
     lam: np.ndarray
     Q: np.ndarray
     sing: Singularity
@@ -88,6 +90,7 @@ def _select(kin: ArmKin, T: np.ndarray, code: int):
 
 
 def _select_all(kin: ArmKin, T: np.ndarray, code: int):
+    """For each pose of T, the solution in configuration `code` among every branch (arms whose branch is not the configuration)."""
     sols = kin.ik_all(T)  # (N, 8, 6)
     n = len(T)
     flat = sols.reshape(-1, 6)
@@ -147,12 +150,14 @@ def track(kin: ArmKin, curve, tool: np.ndarray | None, q_start, code: int, n: in
         lam = np.unique(np.concatenate([lam, k]))
 
     def solve(ls):
+        """The joints at the path parameters ls (in the start configuration)."""
         T = curve.poses(ls)
         if tinv is not None:
             T = T @ tinv
         return _select(kin, T, code)
 
     def near(ls):  # the same branch a hair away from solved points (for dq/dλ): no checks needed
+        """The same branch a hair away from solved points (for dq/dλ)."""
         if not kin.branch_is_config:
             return solve(ls)[0]
         T = curve.poses(ls)

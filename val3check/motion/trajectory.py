@@ -24,16 +24,19 @@ class Profile:
     """s(t) as breakpoints; before the first breakpoint the arm rests at s0."""
 
     def __init__(self, s0: float = 0.0, t0: float = 0.0):
+        """At rest at s0 from time t0."""
         self.T: list[float] = [t0]
         self.S: list[float] = [s0]
         self.SD: list[float] = [0.0]
 
     @property
     def t_end(self) -> float:
+        """The time of the last breakpoint (the arm at rest from then on)."""
         return self.T[-1]
 
     @property
     def s_end(self) -> float:
+        """The path position where the profile ends."""
         return self.S[-1]
 
     def state(self, t: float) -> tuple[float, float, float]:
@@ -162,14 +165,22 @@ class Trajectory:
     """A path plus a time parameterisation: joint position and velocity at any time."""
 
     def __init__(self, path, profile: Profile):
+        """`path` (paths.Path) along `profile`."""
         self.path = path
         self.profile = profile
 
     def position(self, t: float) -> np.ndarray:
+        """Joint positions at time t."""
         s, _, _ = self.profile.state(t)
         return self.path.q([s])[0]
 
+    def positions(self, times) -> np.ndarray:
+        """Joint positions at many times (N, axes), in one evaluation of the path."""
+        s, _ = self.profile.states(np.asarray(times, dtype=float))
+        return self.path.q(s)
+
     def velocity(self, t: float) -> np.ndarray:
+        """Joint velocities at time t."""
         s, sd, _ = self.profile.state(t)
         if sd == 0.0:
             return np.zeros_like(self.path.q_rest)

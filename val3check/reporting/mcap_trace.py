@@ -8,16 +8,16 @@ Messages are JSON with Foxglove's well-known schemas where one exists (`foxglove
 (nanoseconds from the start of the run), lengths in metres as Foxglove expects. The bytes depend
 on the run only: same run, same file (no wall-clock time, fixed chunking and compression).
 
-The arm's links are placed with the model's forward kinematics (`robot.links.ArmLinks`) at every
+Everything comes from the run's record (simulation/arm_record.py): the arm's links are placed with
+the forward kinematics the record of the scene gives (`result.motion.scene.kinematics`) at every
 4 ms tick where the arm moves (and once at the start; Foxglove keeps a frame's last transform
-while the arm stands still).
+while the arm stands still); the URDF travels with the trace as the record gives it.
 """
 
 from __future__ import annotations
 
 import heapq
 import json
-from pathlib import Path
 from typing import Any
 
 TICK_S = 0.004
@@ -101,10 +101,12 @@ COLORS = {"obstacle": {"r": 0.45, "g": 0.55, "b": 0.65, "a": 0.8}, "tool": {"r":
 
 
 def _ns(t: float) -> int:
+    """Simulated seconds as nanoseconds (the trace's stamps)."""
     return int(round(t * 1e9))
 
 
 def _stamp(ns: int) -> dict:
+    """A foxglove Time of nanoseconds."""
     return {"sec": ns // 1_000_000_000, "nsec": ns % 1_000_000_000}
 
 
@@ -157,6 +159,7 @@ def _transforms(ns: int, parent: str, names: list[str], mats) -> list[dict]:
 
 
 def _tf(st: dict, parent: str, child: str, p, q) -> dict:
+    """A foxglove.FrameTransform of `child` in `parent` (position p in m, quaternion q)."""
     return {"timestamp": st, "parent_frame_id": parent, "child_frame_id": child,
             "translation": {"x": p[0], "y": p[1], "z": p[2]}, "rotation": {"x": q[0], "y": q[1], "z": q[2], "w": q[3]}}
 
@@ -206,6 +209,7 @@ def _tcp_marker(ns: int, flange: str, name: str, tool) -> dict:
 
 
 def _entity(ns: int, frame: str, ident: str, what: str, solids: list[tuple[str, Any, Any, Any]]) -> dict:
+    """A foxglove.SceneEntity of the cell's or the tool's solids (mm in, m out)."""
     import numpy as np
 
     e: dict[str, Any] = {"timestamp": _stamp(ns), "frame_id": frame, "id": ident, "lifetime": {"sec": 0, "nsec": 0},
@@ -229,17 +233,21 @@ class _Messages:
     """The messages other than the arm's ticks (few): collected, then sorted by time."""
 
     def __init__(self) -> None:
+        """No message yet."""
         self.items: list[tuple[int, int, int, bytes]] = []  # (time ns, topic order, seq, JSON)
 
     @staticmethod
     def encode(message: dict) -> bytes:
+        """A message as compact JSON bytes."""
         return json.dumps(message, separators=(",", ":"), ensure_ascii=False, allow_nan=False).encode("utf-8")
 
     def add(self, topic: str, ns: int, message: dict) -> None:
+        """A message on `topic` at `ns`."""
         self.items.append((ns, list(TOPICS).index(topic), len(self.items), self.encode(message)))
 
 
 def _rigid_inverse(P):
+    """The inverses of rigid transforms P (N, 4, 4)."""
     import numpy as np
 
     out = np.zeros_like(P)
@@ -250,22 +258,22 @@ def _rigid_inverse(P):
     return out
 
 
-def _arm_ticks(links, model, edges, tools, times, Q, V, idx):
+def _arm_ticks(scene, edges, tools, times, Q, V, idx):
     """The arm's messages (/tf, /tcp, /joint_states) tick by tick, made a block of ticks at a time
     (memory stays bounded whatever the length of the run): (ns, topic order, 0, JSON bytes)."""
     import numpy as np
 
-    world, flange = links.world, model.flange_frame
+    world, flange = scene.world_frame, scene.flange_frame
     order = list(TOPICS)
     o_tf, o_tcp, o_js = order.index("/tf"), order.index("/tcp"), order.index("/joint_states")
-    names_j, units = list(model.joint_names), list(model.joint_units)
-    limits = np.asarray(model.joint_limits, dtype=float)
+    names_j, units = list(scene.joint_names), list(scene.joint_units)
+    limits = np.asarray(scene.joint_limits, dtype=float)
     lower, upper = limits[:, 0].tolist(), limits[:, 1].tolist()
-    speeds = [float(s) for s in model.nominal_speeds]
+    speeds = [float(s) for s in scene.nominal_speeds]
     dump = _Messages.encode
     for b0 in range(0, len(times), BLOCK):
         sl = slice(b0, b0 + BLOCK)
-        poses = links.poses_many(Q[sl])
+        poses = scene.kinematics.link_poses_many(Q[sl])
         tool_at = np.stack([tools[j] if j >= 0 else np.eye(4) for j in idx[sl].tolist()])
         tcp_world = poses[flange] @ tool_at
         # each link in its URDF parent (the URDF's own tree, so that Foxglove's URDF layer agrees):
@@ -298,6 +306,7 @@ def _m(P):
 
 
 def _q(R):
+    """Quaternions of rotations R, to 1e-12."""
     import numpy as np
 
     return (np.round(quaternions(R), 12) + 0.0).tolist()
@@ -308,8 +317,6 @@ def trace_messages(report: Any, cell: Any = None):
     and what the file carries besides (`urdf`: (file name, text) of the arm's URDF, or None)."""
     import numpy as np
 
-    from .html.from_run import app_frames
-
     result = report.result
     out = _Messages()
     arm: Any = iter(())
@@ -319,25 +326,22 @@ def trace_messages(report: Any, cell: Any = None):
         cell = getattr(collision, "cell", None)
     end_ns = _ns(result.sim_time_us / 1e6)
     extra: dict[str, Any] = {"urdf": None}
-    frames = app_frames(result)
     if m is not None:
-        from ..robot.links import arm_links
-
-        model = m.model
-        links = arm_links(model)
-        world = links.world
-        edges = [(links.edges[c].parent, c, links.edges[c].kind != "fixed" and links.edges[c].index >= 0)
-                 for c in links.links[1:]]
-        urdf_text = Path(model.source).read_text(encoding="utf-8")
-        extra["urdf"] = (Path(model.source).name, urdf_text)
+        scene = m.scene
+        frames = {name: f.matrix for name, f in scene.frames.items()}
+        world = scene.world_frame
+        edges = scene.kinematics.link_edges()
+        urdf_name, urdf_text = scene.kinematics.urdf()
+        extra["urdf"] = (urdf_name, urdf_text)
         out.add("/robot_description", 0, {"data": urdf_text})
         starts, tools, tool_names = [], [], []
-        for rec, cmd in zip(m.records, m.commands):
-            if rec.start is not None and cmd.kind != "connection":
-                starts.append(rec.start)
-                tools.append(np.eye(4) if cmd.tool is None else np.asarray(cmd.tool, dtype=float))
-                tool_names.append(rec.tool or "flange")
-        flange = model.flange_frame
+        for motion in m.motions:
+            if motion.start is not None and motion.kind != "connection":
+                starts.append(motion.start)
+                tools.append(np.eye(4) if motion.tool_in_flange is None else np.asarray(motion.tool_in_flange,
+                                                                                          dtype=float))
+                tool_names.append(motion.tool or "flange")
+        flange = scene.flange_frame
         # the ticks: t = 0, then every tick of every moving segment
         ks = [np.array([0])]
         qs = [np.asarray(m.trajectory.position(0.0), dtype=float)[None, :]]
@@ -352,11 +356,11 @@ def trace_messages(report: Any, cell: Any = None):
         K, Q, V = np.concatenate(ks), np.concatenate(qs), np.concatenate(vs)
         times = K * TICK_S
         idx = np.searchsorted(np.asarray(starts), times, side="right") - 1 if starts else np.full(len(K), -1)
-        arm = _arm_ticks(links, model, edges, tools, times, Q, V, idx)
+        arm = _arm_ticks(scene, edges, tools, times, Q, V, idx)
         # the application's frames (world) and tools (flange), as the run left them
-        shown = {n: M for n, M in frames.items() if "[" not in n or _size(result, n) > 1}  # fPallet, not fPallet[0] too
-        fr = sorted((n, M) for n, M in shown.items() if not _is_tool(result, n))
-        tl = sorted((n, M) for n, M in shown.items() if _is_tool(result, n))
+        shown = {n: f for n, f in scene.frames.items() if "[" not in n or f.array_size > 1}  # fPallet, not fPallet[0] too
+        fr = sorted((n, f.matrix) for n, f in shown.items() if f.kind != "tool")
+        tl = sorted((n, f.matrix) for n, f in shown.items() if f.kind == "tool")
         static = []
         if fr:
             static += _transforms(0, world, [n for n, _ in fr], np.stack([M for _, M in fr]))
@@ -387,7 +391,7 @@ def trace_messages(report: Any, cell: Any = None):
             if ents:
                 out.add("/scene", 0, {"deletions": [], "entities": ents})
             if cell.parts:
-                _parts(out, cell, m, links, flange, world)
+                _parts(out, cell, m, flange, world)
     for e in result.transcript:
         ns = _ns(e.time_us / 1e6)
         out.add("/log", ns, {"timestamp": _stamp(ns), "level": 2, "message": f"[{e.kind}] {e.text}",
@@ -403,11 +407,11 @@ def trace_messages(report: Any, cell: Any = None):
         out.add("/io", ns, {"timestamp": _stamp(ns), "kind": e.kind, "link": e.link,
                             "names": list(report.link_names.get((e.kind, e.link), [])), "value": value,
                             "source": e.source})
-    # per-sample clearance to the cell, when the run checked collisions (result.collision.by_motion:
-    # position in result.motion.records -> collision.records.MotionReport): a lower bound, exact
-    # where `exact`
-    records = result.motion.records if result.motion is not None else []
-    for mid, mr in sorted((getattr(collision, "by_motion", None) or {}).items()):
+    # per-sample clearance to the cell, when the run checked collisions (each motion's clearance, a
+    # collision.records.MotionReport): a lower bound, exact where `exact`
+    motions = m.motions if m is not None else []
+    for mid, motion in enumerate(motions):
+        mr = motion.clearance
         times = getattr(mr, "times", None)
         if times is None:
             continue
@@ -417,7 +421,7 @@ def trace_messages(report: Any, cell: Any = None):
                 continue  # nothing measured at that sample
             ns = _ns(round(t, 6))
             out.add("/clearance", ns, {"timestamp": _stamp(ns), "motion": int(mid),
-                                       "motion_id": records[mid].id if mid < len(records) else None, "clearance_mm": round(c, 6),
+                                       "motion_id": motion.id, "clearance_mm": round(c, 6),
                                        "exact": ex, "margin_mm": float(getattr(mr, "margin_mm", 0.0))})
     for c in result.task_states:
         ns = _ns(c.time_us / 1e6)
@@ -430,20 +434,7 @@ def trace_messages(report: Any, cell: Any = None):
     return ((topics[o], ns, data) for ns, o, _, data in merged), extra
 
 
-def _trsf(t):
-    """A VAL 3 trsf (mm, degrees, 9.3.2) as a 4x4 matrix."""
-    import numpy as np
-
-    from ..geometry.rotation import matrix
-
-    x, y, z, rx, ry, rz = (float(v) for v in t)
-    T = np.eye(4)
-    T[:3, :3] = np.reshape(matrix(rx, ry, rz), (3, 3))
-    T[:3, 3] = (x, y, z)
-    return T
-
-
-def _parts(out: "_Messages", cell: Any, m: Any, links: Any, flange: str, world: str) -> None:
+def _parts(out: "_Messages", cell: Any, m: Any, flange: str, world: str) -> None:
     """The cell's parts (docs/cell.md): a part appears on its tool when the program takes it (its
     `grasp` instruction, open or close), rides with the flange, and stays in the world where it
     was left (the other instruction): one entity per part left."""
@@ -452,7 +443,7 @@ def _parts(out: "_Messages", cell: Any, m: Any, links: Any, flange: str, world: 
     left = 0
     for ev in m.tool_events:
         ns = _ns(ev.time_us / 1e6)
-        T_tool = _trsf(ev.tcp_in_flange)
+        T_tool = ev.tcp_matrix
         for name in names:
             solids = [p for p in cell.parts if p.name == name and p.tool == ev.tool]
             if not solids:
@@ -464,22 +455,12 @@ def _parts(out: "_Messages", cell: Any, m: Any, links: Any, flange: str, world: 
                 out.add("/scene", ns, {"deletions": [], "entities": [e]})
             elif ev.action != solids[0].grasp and name in carried:
                 del carried[name]
-                F = links.poses(m.trajectory.position(ev.time_us / 1e6))[flange]
+                F = m.scene.kinematics.link_poses(m.trajectory.position(ev.time_us / 1e6))[flange]
                 left += 1
                 e = _entity(ns, world, f"part/{name}/{left}", "part",
                             [(n, shape, F @ pose, None) for n, shape, pose, _ in shown])
                 out.add("/scene", ns, {"deletions": [{"timestamp": _stamp(ns), "type": 0, "id": f"part/{name}"}],
                                        "entities": [e]})
-
-
-def _size(result: Any, name: str) -> int:
-    arr = (getattr(result, "globals", None) or {}).get(name.split("[", 1)[0])
-    return len(getattr(arr, "data", ()))
-
-
-def _is_tool(result: Any, name: str) -> bool:
-    arr = (getattr(result, "globals", None) or {}).get(name.split("[", 1)[0])
-    return getattr(arr, "t", None) == "tool"
 
 
 def write_trace(report: Any, path: str, cell: Any = None) -> None:

@@ -88,7 +88,7 @@ def render_detail(m: RobotModel) -> str:
            + (f"; axis 3 stroke {m.stroke_mm:g} mm" if scara and m.stroke_mm else ""),
            f"mount: {m.mount}", ""]
     sp = "*" if "nominal_speeds" in m.assumed else ""
-    ac = "*" if m.assumed & {"ramp_s", "accelerations"} or "assumed" in m.acceleration_note else ""
+    ac = "*" if m.accelerations_assumed else ""
     if scara:
         head = ["axis", "unit", "min", "max", "speed /s", "accel /s²", "torque"]
         rows = [[f"j{i + 1}", "mm" if u == "mm" else "°", _n(lo), _n(hi), _n(v) + sp, _n(a) + ac, "-" if t is None else _n(t)]
@@ -99,7 +99,8 @@ def render_detail(m: RobotModel) -> str:
         rows = [[f"j{i + 1}", _n(lo), _n(hi), _n(v) + sp, _n(a) + ac, "-" if t is None else _n(t)]
                 for i, ((lo, hi), v, a, t) in enumerate(zip(m.joint_limits, m.nominal_speeds, m.accelerations, m.max_torques))]
     out += _table(head, rows, right=True)
-    out += ["", f"accelerations: {m.acceleration_note}"]
+    out += ["", f"accelerations: {m.acceleration_note}" + ("; no measured values: a cycle time holds within the "
+                                                          "range of accelerations ½ to 2 times these" if ac else "")]
     o, sc = m.opw, m.scara
     if o is not None:
         out.append(

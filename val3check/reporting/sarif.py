@@ -5,8 +5,9 @@ code order), results point at it with `ruleId` and `ruleIndex`. Paths are relati
 repository root (`LintResult.root`: the git top level, else the configuration's folder), not to
 the current folder, so that a CI step run in a sub-folder still puts alerts on the right files:
 URIs with `uriBaseId: "%SRCROOT%"`, and `originalUriBaseIds` says where %SRCROOT% was. Files
-outside it become `file://` URIs. Whole-file findings (line 0) have no `region` (GitHub requires
-startLine >= 1). Columns count Unicode code points, as val3check's do. `invocations` holds the
+outside it become `file://` URIs. Whole-file findings (line 0: an unreadable file, an application
+without project, ...) point at line 1 (`region: {startLine: 1}`): without a region GitHub shows
+an alert with no line, and it rejects startLine 0. Columns count Unicode code points, as val3check's do. `invocations` holds the
 exit code and whether the run could read its input (exit code 2: `executionSuccessful` false).
 
 `partialFingerprints["val3check/v1"]` hashes the code, repository path, message and the text of
@@ -95,9 +96,9 @@ def artifact_location(path: str) -> dict[str, str]:
     return {"uri": quote(posix), "uriBaseId": SRCROOT}
 
 
-def _region(diag: Diagnostic) -> dict[str, int] | None:
-    if diag.line < 1:
-        return None
+def _region(diag: Diagnostic) -> dict[str, int]:
+    if diag.line < 1:  # the whole file
+        return {"startLine": 1}
     region = {"startLine": diag.line}
     end_line = diag.end_line if diag.end_line is not None and diag.end_line >= diag.line else diag.line
     region["endLine"] = end_line
@@ -133,10 +134,7 @@ def report(result: "LintResult", exit_code: int | None = None) -> dict[str, Any]
     results = []
     for diag in result.diagnostics:
         path = repository_path(diag.path, root)
-        physical: dict[str, Any] = {"artifactLocation": artifact_location(path)}
-        region = _region(diag)
-        if region is not None:
-            physical["region"] = region
+        physical: dict[str, Any] = {"artifactLocation": artifact_location(path), "region": _region(diag)}
         digest = fingerprint(diag, path, sources)
         seen[digest] = seen.get(digest, 0) + 1
         results.append(

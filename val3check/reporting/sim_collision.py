@@ -39,7 +39,7 @@ def _n(n: int, what: str) -> str:
 def _by_instruction(run: Any) -> list[tuple[tuple, list[int]]]:
     """Motions grouped by the instruction that commanded them, in order of first start."""
     c = run.result.collision
-    recs = run.result.motion.records
+    recs = run.result.motion.motions
     groups: dict[tuple, list[int]] = {}
     for i in sorted(c.by_motion, key=lambda i: c.by_motion[i].start):
         s = recs[i].source
@@ -119,7 +119,7 @@ def section(run: Any) -> dict | None:
                 "parts": sorted({p.name for p in cl.parts}) if cl else [],
                 "margin_mm": _num(cl.margin_mm) if cl else None, "touch_mm": _num(cl.touch_mm) if cl else None}
     with_cell = c.cell is not None and bool(c.cell.obstacles or c.cell.parts)
-    recs = run.result.motion.records
+    recs = run.result.motion.motions
     motions = []
     for i in sorted(c.by_motion):
         r = c.by_motion[i]

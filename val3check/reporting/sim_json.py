@@ -23,14 +23,17 @@ TICK_S = 0.004
 
 
 def _t(us: int | None) -> float | None:
+    """Simulated microseconds as seconds (to the microsecond), None stays None."""
     return None if us is None else round(us / 1_000_000, 6)
 
 
 def _s(x: float | None, digits: int = 6) -> float | None:
+    """A number rounded to `digits` decimals, None stays None."""
     return None if x is None else round(float(x), digits)
 
 
 def _pos(pos) -> dict | None:
+    """(path, line, col, program) as the report's position object."""
     if not pos:
         return None
     path, line, col, program = pos
@@ -38,25 +41,15 @@ def _pos(pos) -> dict | None:
 
 
 def _diagnostic(run: Any, d) -> dict[str, Any]:
+    """A kept diagnostic in the report."""
     return {"code": d.code, "name": run.rule_name(d.code), "severity": d.severity.label, "message": d.message,
             "path": d.path, "line": d.line or None, "column": d.col or None, "time": _t(d.time_us),
             "task": d.task or None, "program": d.program or None, "error": d.error}
 
 
 def _pose(v) -> list[float] | None:
+    """Joint values or a trsf to 1e-4, None stays None."""
     return None if v is None else [round(float(x), 4) for x in v]
-
-
-def _matrix_pose(m) -> list[float] | None:
-    """A 4x4 matrix (mm) as [x, y, z, rx, ry, rz] (mm, degrees, 9.3.2)."""
-    if m is None:
-        return None
-    from ..geometry.rotation import angles_of
-
-    r = tuple(float(m[i][j]) for i in range(3) for j in range(3))
-    rx, ry, rz = angles_of(r)
-    return [round(float(m[0][3]), 4), round(float(m[1][3]), 4), round(float(m[2][3]), 4),
-            round(rx, 4), round(ry, 4), round(rz, 4)]
 
 
 class Raw(str):
@@ -73,32 +66,33 @@ def _rows(a, digits: int) -> list[Raw]:
 
 
 def _motion(run: Any) -> dict | None:
+    """The `motion` section: what the arm did (the run's record, simulation/arm_record.py)."""
     m = run.result.motion
     if m is None:
         return None
     motions = []
-    for rec, cmd in zip(m.records, m.commands):
-        d = rec.as_dict()
-        where = run.display((d["path"], d["line"], d["col"], ""))
+    for motion in m.motions:
+        src = motion.source
+        where = run.display((src.path, src.line, src.col, ""))
         motions.append({
-            "id": d["id"], "kind": d["kind"], "path": where[0] if where else None, "line": d["line"] or None,
-            "column": d["col"] or None, "task": d["task"] or None, "state": d["state"],
-            "recorded": d["recorded"], "start": d["start"], "end": d["end"], "duration": d["duration"],
-            "length_mm": d["length_mm"], "peak_tcp_mm_s": d["peak_tcp_mm_s"],
-            "dominant_limit": d["dominant_limit"] or None,
-            "limit_seconds": {k: round(v, 6) for k, v in d["limit_seconds"].items()},
-            "target": d["target"] or None, "frame": getattr(cmd, "frame_name", "") or None, "tool": d["tool"] or None,
-            "tool_in_flange": _matrix_pose(cmd.tool) if cmd.kind != "connection" else None,
-            "joints_start": _pose(cmd.q_start), "joints_end": _pose(cmd.q_end) if cmd.state != "failed" else None,
+            "id": motion.id, "kind": motion.kind, "path": where[0] if where else None, "line": src.line or None,
+            "column": src.col or None, "task": src.task or None, "state": motion.state,
+            "recorded": _s(motion.recorded), "start": _s(motion.start), "end": _s(motion.end),
+            "duration": _s(motion.duration), "length_mm": round(motion.length_mm, 3),
+            "peak_tcp_mm_s": round(motion.peak_tcp_mm_s, 3), "dominant_limit": motion.dominant_limit or None,
+            "limit_seconds": {k: round(v, 6) for k, v in sorted(motion.limit_seconds.items())},
+            "target": motion.target or None, "frame": motion.frame or None, "tool": motion.tool or None,
+            "tool_in_flange": _pose(motion.tool_trsf), "joints_start": _pose(motion.joints_start),
+            "joints_end": _pose(motion.joints_end),
         })
     cycles = []
     for task in sorted(m.cycles):
         st = m.cycles[task]
-        if st.marker is None:
-            continue
-        where = run.display((st.marker[0], st.marker[1], st.marker[2], ""))
+        where = run.display((st.marker[0], st.marker[1], st.marker[2], "")) if st.marker is not None else None
         times = st.times
-        cycles.append({"task": task, "path": where[0], "line": st.marker[1], "column": st.marker[2],
+        cycles.append({"task": task, "loop": st.kind, "path": where[0] if where else None,
+                       "line": st.marker[1] if st.marker else None, "column": st.marker[2] if st.marker else None,
+                       "program": st.program, "why": st.why, "passes": st.passes,
                        "cycles": st.count, "starts": [_s(x) for x in st.starts], "times": [_s(x) for x in times],
                        "min": _s(min(times)) if times else None, "max": _s(max(times)) if times else None,
                        "median": _s(statistics.median(times)) if times else None})
@@ -106,15 +100,15 @@ def _motion(run: Any) -> dict | None:
     for k0, q, v in m.trajectory.segments(m.end_s, TICK_S):
         segments.append({"start": round(k0 * TICK_S, 6), "first_tick": k0,
                          "positions": _rows(q, 4), "velocities": _rows(v, 3)})
-    model = m.model
+    scene = m.scene
     return {
         "summary": {
-            "commands": sum(1 for r in m.records if r.id is not None),
-            "done": sum(1 for r in m.records if r.state == "done"),
-            "failed": sum(1 for r in m.records if r.state == "failed"),
-            "cancelled": sum(1 for r in m.records if r.state == "cancelled"),
+            "commands": sum(1 for r in m.motions if r.id is not None),
+            "done": sum(1 for r in m.motions if r.state == "done"),
+            "failed": sum(1 for r in m.motions if r.state == "failed"),
+            "cancelled": sum(1 for r in m.motions if r.state == "cancelled"),
             "moving": _s(m.busy_s), "idle": _s(m.idle_s),
-            "tcp_length_mm": round(sum(r.length_mm for r in m.records), 3),
+            "tcp_length_mm": round(sum(r.length_mm for r in m.motions), 3),
         },
         "cycles": cycles,
         "motions": motions,
@@ -126,8 +120,8 @@ def _motion(run: Any) -> dict | None:
         ],
         "trajectory": {
             "period": TICK_S,
-            "axes": len(model.joint_limits),
-            "units": list(getattr(model, "joint_units", None) or ["deg"] * len(model.joint_limits)),
+            "axes": scene.axes,
+            "units": list(scene.joint_units),
             "segments": segments,
         },
     }
@@ -140,10 +134,9 @@ def report(run: Any) -> dict[str, Any]:
     if r.robot:
         robot = dict(r.robot)
         if r.motion is not None:
-            model = r.motion.model
-            robot.update(axes=len(model.joint_limits),
-                         joint_limits=[[lo, hi] for lo, hi in model.joint_limits],
-                         nominal_speeds=list(model.nominal_speeds), accelerations=list(model.accelerations))
+            scene = r.motion.scene
+            robot.update(axes=scene.axes, joint_limits=[[lo, hi] for lo, hi in scene.joint_limits],
+                         nominal_speeds=list(scene.nominal_speeds), accelerations=list(scene.accelerations))
     return {
         "version": VERSION,
         "tool": {"name": TOOL_NAME, "version": run.tool_version},
@@ -214,6 +207,7 @@ def number(x: float) -> str:
 
 
 def _scalar(v: Any) -> str:
+    """A JSON scalar as text."""
     if type(v) is Raw:
         return v
     if v is None:
@@ -230,6 +224,7 @@ def _scalar(v: Any) -> str:
 
 
 def _flat(v: Any) -> bool:
+    """A list written on one line (numbers only)."""
     return isinstance(v, list) and all(not isinstance(x, (list, dict)) for x in v) and all(
         not isinstance(x, str) or type(x) is Raw for x in v) and not (v and type(v[0]) is Raw)
 
@@ -253,4 +248,5 @@ def dumps(obj: Any, indent: int = 0) -> str:
 
 
 def render(run: Any) -> str:
+    """The report as text (sorted keys, 2-space indent, ASCII, a final newline)."""
     return dumps(report(run)) + "\n"

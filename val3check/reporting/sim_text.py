@@ -13,6 +13,7 @@ import statistics
 from typing import Any
 
 from . import sim_collision
+from ._common import printable
 
 MAX_TRANSCRIPT_LINES = 40
 MAX_IO_LINES = 20
@@ -109,22 +110,24 @@ def _value(v: Any) -> str:
 def _diag(d) -> str:
     loc = f"{d.path}:{d.line}:{d.col}" if d.line else d.path
     who = f" [task {d.task}" + (f", {d.program}()" if d.program else "") + "]" if d.task else ""
-    return f"  {loc}: {d.code} {d.severity.label}: {d.message} (at {fmt_time(d.time_us)}){who}"
+    return printable(f"  {loc}: {d.code} {d.severity.label}: {d.message} (at {fmt_time(d.time_us)}){who}")
 
 
 def _motion_summary(run: Any, m) -> list[str]:
     out = []
     for task in sorted(m.cycles):
         st = m.cycles[task]
-        if st.marker is None or not st.times:
+        if st.marker is None:
             continue
+        loop = f"the {st.kind} loop at {_where(run, *st.marker)}"
         t = st.times
-        rec = next((x for x in m.records if (x.source.path, x.source.line, x.source.col) == st.marker), None)
-        what = f" {rec.kind}" if rec is not None else ""
-        out.append(f"cycle time of task {task} (loop from{what} at {_where(run, *st.marker)}): {st.count} cycle"
+        if not t:
+            out.append(f"cycle of task {task}: {loop}, no complete cycle ({st.why})")
+            continue
+        out.append(f"cycle time of task {task} ({loop}): {st.count} cycle"
                    f"{'s' if st.count != 1 else ''}, min {seconds(min(t))} s, median {seconds(statistics.median(t))} s,"
                    f" max {seconds(max(t))} s")
-    cmds = [x for x in m.records if x.id is not None]
+    cmds = [x for x in m.motions if x.id is not None]
     done = sum(1 for x in cmds if x.state == "done")
     failed = sum(1 for x in cmds if x.state == "failed")
     states = f"{done} done" + (f", {failed} not executable" if failed else "")

@@ -10,6 +10,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Sequence
 
+from ..excerpt import shown
 from . import catalog as _catalog
 from . import scara as _scara
 from .configuration import Config, classify, resolve
@@ -21,6 +22,9 @@ from .urdf import IDENTITY, Mat, inverse, mul, read_urdf
 
 # Acceleration assumed when a URDF gives none (robots/README.md): nominal speed reached in this time.
 DEFAULT_RAMP_S = 0.25
+# Where accelerations are assumed (no measured values), cycle times are to be given with the range
+# they take for accelerations this many times the assumption (issue 23: half and twice).
+ASSUMED_ACCELERATION_RANGE = (0.5, 2.0)
 LIMIT_TOL_DEG = 1e-7  # a solution this close outside a joint limit is taken as on it (deg, or mm)
 
 FAMILY_TYPES = {"six-axis": "Rx", "scara": "Rs"}  # VAL 3 type family: pointRx/jointRx/configRx, pointRs…
@@ -56,8 +60,10 @@ class RobotModel:
     Attributes: name, source (URDF path), srs_arm_id, family ("six-axis" | "scara"),
     joint_names, joint_kinds ("revolute" | "prismatic" per axis), joint_limits ((min, max) per
     axis), nominal_speeds (deg/s or mm/s), accelerations (deg/s² or mm/s², see
-    acceleration_note), max_torques (N·m or None), reach_mm, provenance (facts, assumptions,
-    alternatives, missing values), mount, notes (how the model was chosen). Closed forms: opw
+    acceleration_note), accelerations_assumed (True unless measured values were given: the
+    reports then state the range for ASSUMED_ACCELERATION_RANGE), max_torques (N·m or None),
+    reach_mm, provenance (facts, assumptions, alternatives, missing values), mount, notes (how
+    the model was chosen). Closed forms: opw
     (six-axis) or scara; without one, ik() raises IKUnsupported with the reason in opw_reason."""
 
     name: str
@@ -88,6 +94,8 @@ class RobotModel:
     # internal value = sign × VAL 3 value, per axis (an override of an axis direction)
     joint_signs: tuple[int, ...] = ()
     world_shift: Mat | None = field(default=None, repr=False)  # world moved from the URDF's world link
+    # no measured accelerations: an assumption (a family rule, or the default ramp), robots/README.md
+    accelerations_assumed: bool = True
 
     def __post_init__(self) -> None:
         if not self.joint_kinds:
@@ -137,12 +145,22 @@ class RobotModel:
         """True when every axis is within its software limits (isInRange, 9.2.3)."""
         return all(lo - LIMIT_TOL_DEG <= j <= hi + LIMIT_TOL_DEG for j, (lo, hi) in zip(joints, self.joint_limits))
 
-    def with_accelerations(self, accelerations: Sequence[float], note: str = "given by the user") -> "RobotModel":
-        """A copy with other nominal accelerations (deg/s² or mm/s², one per axis)."""
+    def with_accelerations(self, accelerations: Sequence[float], note: str = "given by the user",
+                           assumed: bool = False) -> "RobotModel":
+        """A copy with other nominal accelerations (deg/s² or mm/s², one per axis): given values
+        (measured: no uncertainty range) unless `assumed`."""
         acc = tuple(float(a) for a in accelerations)
         if len(acc) != self.axes or any(not a > 0 for a in acc):
             raise RobotError(f"accelerations: {self.axes} positive values (deg/s², mm/s² for a prismatic axis) are needed")
-        return replace(self, accelerations=acc, acceleration_note=note)
+        return replace(self, accelerations=acc, acceleration_note=note, accelerations_assumed=assumed)
+
+    def with_acceleration_scale(self, factor: float) -> "RobotModel":
+        """A copy with every acceleration (and deceleration) times `factor`, the rest unchanged:
+        re-timing the same paths with ASSUMED_ACCELERATION_RANGE gives a cycle time's range."""
+        if not factor > 0:
+            raise RobotError("an acceleration scale must be positive")
+        return replace(self, accelerations=tuple(a * factor for a in self.accelerations),
+                       acceleration_note=f"{self.acceleration_note} (× {factor:g})")
 
     def with_assumptions(self, values: dict) -> "RobotModel":
         """A copy with the user's values in place of assumptions (overrides.KEYS: nominal_speeds,
@@ -443,6 +461,7 @@ class RobotModel:
                                                       self.nominal_speeds, self.accelerations, self.max_torques)
             ],
             "acceleration_note": self.acceleration_note,
+            "accelerations_assumed": self.accelerations_assumed,
             "closed_form_ik": o is not None or sc is not None,
             "opw_mm": None if o is None else {k: round(getattr(o, k), 9) for k in ("a1", "a2", "b", "c1", "c2", "c3", "c4")},
             "scara_mm": None if sc is None else {"l1": round(sc.l1, 9), "l2": round(sc.l2, 9), "z0": round(sc.z0, 9),
@@ -489,15 +508,15 @@ def from_urdf(path: str | os.PathLike, world_frame: str | None = None, flange_fr
         attrs = info.meta_joints.get(j.name, {})
         key, other = ("acceleration_mm_s2", "acceleration_deg_s2") if j.kind == "prismatic" else ("acceleration_deg_s2", "acceleration_mm_s2")
         if attrs.get(other) is not None:
-            raise RobotError(f"{info.path}: joint {j.name!r} is {j.kind}: its acceleration is {key}, not {other}")
+            raise RobotError(f"{info.path}: joint {shown(j.name)} is {j.kind}: its acceleration is {key}, not {other}")
         given = attrs.get(key)
         if given is not None:
             try:
                 a = float(given)
             except ValueError:
-                raise RobotError(f"{info.path}: joint {j.name!r}: {key}={given!r} is not a number") from None
+                raise RobotError(f"{info.path}: joint {shown(j.name)}: {key}={shown(given)} is not a number") from None
             if not a > 0:
-                raise RobotError(f"{info.path}: joint {j.name!r}: {key} must be positive")
+                raise RobotError(f"{info.path}: joint {shown(j.name)}: {key} must be positive")
             accs.append(a)
         else:
             accs.append(v / DEFAULT_RAMP_S)
@@ -518,10 +537,11 @@ def from_urdf(path: str | os.PathLike, world_frame: str | None = None, flange_fr
     else:  # upper bound: the lengths of the links after axis 1, end to end
         reach = sum(math.sqrt(sum(j.before[i][3] ** 2 for i in range(3))) for j in joints[1:])
         reach += math.sqrt(sum(chain.tip[i][3] ** 2 for i in range(3)))
+    provenance = Provenance.from_meta(info.meta_items)
     stroke = meta.get("stroke_mm")
     native = meta.get("native_mount", "floor")
     if native not in MOUNTS:
-        raise RobotError(f"{info.path}: <val3check native_mount={native!r}>: one of {', '.join(MOUNTS)}")
+        raise RobotError(f"{info.path}: <val3check native_mount={shown(native)}>: one of {', '.join(MOUNTS)}")
     return RobotModel(
         name=name or meta.get("arm") or info.robot_name or Path(info.path).stem,
         source=info.path,
@@ -544,10 +564,12 @@ def from_urdf(path: str | os.PathLike, world_frame: str | None = None, flange_fr
         scara=sc,
         stroke_mm=float(stroke) if stroke else None,
         series=meta.get("series", ""),
-        provenance=Provenance.from_meta(info.meta_items),
+        provenance=provenance,
         mount=native,
         native_mount=native,
         world_shift=world_shift,
+        # given per joint without an <assumption> about them: the URDF's author measured them
+        accelerations_assumed=bool(notes) or bool(provenance.assumed() & {"ramp_s", "accelerations"}),
     )
 
 

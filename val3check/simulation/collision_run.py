@@ -3,13 +3,13 @@ its frames and tools, every motion of `SimResult.motion` through `collision.Coll
 the grippers' open/close, and the findings R030-R037 at the lines that commanded them.
 
     cell, diags = load_cell(path, app)                        # R030 for a cell file that cannot be used
-    watch = ValueWatch(cell, machine)                         # arm.observer: frames/tools as the run goes
-    run, diags = check_run(motion_run, cell, watch, ...)      # -> CollisionRun, runtime diagnostics
+    watch = ValueWatch(cell, machine)                         # arm.watch(watch): frames/tools as the run goes
+    run, diags = check_run(arm_run, cell, watch, model, ...)  # -> CollisionRun, runtime diagnostics
 
 Frames and tools: the interpreter keeps only the current value of a variable. The watch reads the
 frames and tools the cell names each time a motion instruction records a command (ch10_motion)
 and each time the scheduler advances the arm (a command ends and the next one starts:
-motion/arm.py), and keeps the values that changed, with their time; a motion is checked with the
+moving_arm.py), and keeps the values that changed, with their time; a motion is checked with the
 last values read at or before its start (docs/cell.md).
 """
 
@@ -26,7 +26,7 @@ import numpy as np
 
 from ..collision import CellError, CollisionChecker, MotionSpan, arm_model, find_cell, read_cell
 from ..collision.cell import Cell
-from ..collision.checker import same_poses
+from ..collision.poses import same_poses
 from ..collision.records import Contact, MotionReport, PartDrop
 from ..diagnostics import Diagnostic
 from ..geometry import frames as geo_frames
@@ -44,7 +44,7 @@ class CollisionRun:
     cell_path   the cell file (as given or found), or None
     cell_found  how it was chosen: "option" (--cell), "found" (val3check-cell.toml beside the
                 application), "none" (no file there) or "disabled" (--cell none)
-    by_motion   {index in result.motion.records: collision.records.MotionReport} for every motion
+    by_motion   {index in result.motion.motions: collision.records.MotionReport} for every motion
                 the arm ran (min_clearance, first_contact, starts_in_collision, too_close,
                 per-sample clearance)
     contacts    [(record index, Contact)] every contact, by time (kind "contact", "inside" or "self")
@@ -90,13 +90,16 @@ def choose_cell(option: str | None, app_path: str) -> tuple[str | None, str]:
     return (str(found), "found") if found is not None else (None, "none")
 
 
-def load_cell(path: str, app, found: bool = False) -> tuple[Cell | None, list[Diagnostic]]:
+def load_cell(path: str, app, found: bool = False, budget=None,  # noqa: ANN001
+              out_of_time=None) -> tuple[Cell | None, list[Diagnostic]]:
     """Read a cell file for the application `app` (loading.model.Application): (cell, []) or
     (None, R030 diagnostics at every problem's line and column). `found`: beside the application
-    (confined to its folder), not named by the user."""
+    (confined to its folder), not named by the user. `budget` and `out_of_time()`: the run's
+    memory budget and whether its wall-clock budget has run out, applied to the cell's meshes."""
     unit = "mm" if getattr(app, "millimeter_unit", True) else "inch"
     try:
-        return read_cell(path, app_dir=str(Path(app.path).parent), app_unit=unit, found=found), []
+        return read_cell(path, app_dir=str(Path(app.path).parent), app_unit=unit, found=found, budget=budget,
+                         out_of_time=out_of_time), []
     except CellError as exc:
         return None, [Diagnostic("R030", f"cell file: {msg}", p, line, col, time_us=0, task="", program="")
                       for p, line, col, msg in exc.problems]
@@ -109,7 +112,7 @@ class ValueWatch:
     """Reads the frames and tools a cell names (world poses of frames, tools in the flange, 4x4 in
     the application's unit) in `machine` (interpretation.machine.Machine) when called with the
     simulated time; `frame(name, t)` and `tool(name, t)` give the values of the last reading at or
-    before t. Set as `MovingArm.observer`."""
+    before t. Registered with `MovingArm.watch`."""
 
     def __init__(self, cell: Cell | None, machine: Any = None) -> None:
         self.machine = machine
@@ -188,20 +191,20 @@ def _read(machine: Any, name: str, kind: type) -> np.ndarray | None:
 # ---- checking the run -------------------------------------------------------------------------------------
 
 
-def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, *, cell_path: str | None = None,
+def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, cell_path: str | None = None,
               cell_found: str = "none", app_unit_mm: float = 1.0, io_log=(),
               link_names: dict | None = None, app_path: str = "",
               max_wall: float = math.inf) -> tuple[CollisionRun | None, list[Diagnostic]]:
-    """Check every motion of `motion` (a simulation.result.MotionRun) in `cell` (None: the arm
-    against itself only), with the grippers' events and the parts taken away (`cleared_by`, from
+    """Check every motion of `motion` (the run's arm_record.ArmRun, on the arm `model`, a
+    robot.RobotModel) in `cell` (None: the arm against itself only), with the grippers' events and the parts taken away (`cleared_by`, from
     the run's `io_log`; `link_names`: (kind, link) -> the globals linked to it); (CollisionRun,
     diagnostics R031-R036), or (None, [R037]) when there is nothing to check the motions with or
     the arm's solids cannot be read. The checks stop (R037) after `max_wall` seconds of wall clock."""
     from ..robot import RobotError
 
-    name = getattr(motion.model, "name", "the arm")
+    name = motion.scene.name
     try:
-        arm = arm_model(motion.model)
+        arm = arm_model(model)
     except RobotError as exc:
         return None, [_not_checked(f"collisions not checked: the collision solids of {name} cannot be read: {exc}",
                                    motion.end_s, app_path)]
@@ -237,7 +240,7 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, *, cell_path: s
         while ev < len(events) and events[ev][0] / US <= start + 1e-9:
             diags.extend(event(events[ev][2]))
             ev += 1
-        rec = motion.records[index]
+        rec = motion.motions[index]
         times, joints = _samples(q_at, start, end)
         report = checker.check_motion(MotionSpan(index, rec.source, _label(rec)), times, joints, q_at=q_at)
         run.by_motion[index] = report
@@ -266,11 +269,7 @@ def _path_between_samples(traj: Any):
     def q_at(t: float):
         return traj.position(t)
 
-    def many(times):
-        s, _ = traj.profile.states(np.asarray(times, dtype=float))
-        return traj.path.q(s)
-
-    q_at.many = many
+    q_at.many = traj.positions
     return q_at
 
 
@@ -303,11 +302,11 @@ def _spans(motion: Any) -> list[tuple[int, float, float]]:
     """(record index, start, end) of every command the arm ran, in time order (stop() may move the
     arm after the run's end); a command not ended ends where the next one starts, or at the end of
     the run."""
-    started = [(r.start, i) for i, r in enumerate(motion.records) if r.start is not None]
+    started = [(r.start, i) for i, r in enumerate(motion.motions) if r.start is not None]
     started.sort()
     out = []
     for k, (start, i) in enumerate(started):
-        end = motion.records[i].end
+        end = motion.motions[i].end
         if end is None:
             end = started[k + 1][0] if k + 1 < len(started) else max(motion.end_s, start)
         out.append((i, start, max(end, start)))

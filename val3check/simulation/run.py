@@ -11,6 +11,7 @@ scenario's settings. Nothing here writes files: reports are `val3check.reporting
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -28,9 +29,11 @@ from ..interpretation.machine import Budgets, Machine
 from ..interpretation.registry import Registry
 from ..interpretation.scheduler import EndRun
 from ..loading.model import Application, Workspace
-from ..motion import ch10_motion
-from ..motion.arm import MovingArm
-from .result import SimResult, collect
+from . import ch10_motion
+from .collect import collect
+from .model_arm import INCH_MM
+from .moving_arm import MovingArm
+from .result import SimResult
 from .scenario import Scenario, apply_scenario
 
 # What the generated code calls, then the chapters of the manual, in order.
@@ -41,11 +44,13 @@ MOTION_MODULES = (ch10_motion,)
 
 @dataclass
 class SimOptions:
+    """How to run a simulation: budgets, the arm model, --cycles, progress, the collision checks."""
     duration: float = 60.0  # simulated seconds
     max_wall: float = 60.0  # wall-clock seconds
     max_lines: int = 50_000_000
     max_transcript: int = 10_000
     max_memory_mb: float = 512.0  # growth of the process, loading included (interpretation/memory_budget.py)
+    wall_clock: Any = time.monotonic  # what max_wall is measured with (tests: a clock of their own)
     disk_roots: list[str] = field(default_factory=list)
     # the arm model (val3check.robot.RobotModel) or None: see robot_choice.choose_sim_robot
     robot: Any = None
@@ -62,6 +67,7 @@ class SimOptions:
 
 
 def build_registry() -> Registry:
+    """The registry of every instruction the virtual controller runs: the interpreter's chapters, then chapter 10."""
     registry = Registry()
     for module in INTERPRETER_MODULES + MOTION_MODULES:
         module.register(registry)
@@ -74,7 +80,7 @@ def build_machine(ws: Workspace, app: Application, options: SimOptions, *, regis
     a `Subsystem`) replace the standard ones (tests, tools)."""
     budgets = Budgets(duration_us=int(round(options.duration * 1_000_000)), wall_s=options.max_wall,
                       max_lines=options.max_lines, max_transcript=options.max_transcript,
-                      max_memory_mb=options.max_memory_mb)
+                      max_memory_mb=options.max_memory_mb, wall_clock=options.wall_clock)
     arm = arm if arm is not None else MovingArm(options.robot, cycles=options.cycles)
     machine = Machine(ws, app, registry or build_registry(), arm, budgets=budgets, disk_roots=options.disk_roots)
     if hasattr(arm, "bind"):
@@ -84,10 +90,13 @@ def build_machine(ws: Workspace, app: Application, options: SimOptions, *, regis
         report = options.progress
 
         def motions_done() -> int:
-            queue = getattr(arm, "_queue", None)
-            return sum(1 for c in queue.history if c.state == "done" and c.id is not None) if queue is not None else 0
+            """Commands of the program the arm completed so far."""
+            queue = arm.queue_in_use if isinstance(arm, MovingArm) else None
+            return sum(1 for command in queue.history if command.state == "done" and command.id is not None) \
+                if queue is not None else 0
 
         def progress(now_us: int) -> None:
+            """The progress line at simulated time now_us."""
             report(now_us / 1e6, motions_done)
 
         machine.progress = progress
@@ -96,6 +105,7 @@ def build_machine(ws: Workspace, app: Application, options: SimOptions, *, regis
 
 def simulate(ws: Workspace, app: Application, options: SimOptions | None = None,
              scenario: Scenario | None = None) -> SimResult:
+    """Run the application `app` of `ws` (loaded and parsed) with `options` and `scenario`: its SimResult."""
     options = options or SimOptions()
     machine = build_machine(ws, app, options)
     checks = _collision_setup(app, options, machine)
@@ -113,19 +123,27 @@ def simulate(ws: Workspace, app: Application, options: SimOptions | None = None,
 
 
 def _collision_setup(app: Application, options: SimOptions, machine: Machine):
-    """(cell, R030 diagnostics, value watch) when the run checks collisions, else None; the watch
-    reads the cell's frames and tools as the run goes (at each motion instruction, each time the
-    arm advances)."""
+    """(cell, R030 diagnostics, value watch, arm model) when the run checks collisions, else None;
+    the watch reads the cell's frames and tools as the run goes (at each motion instruction, each
+    time the arm advances)."""
     arm = machine.arm
     if not (options.collisions or options.cell) or not getattr(arm, "has_model", False):
         return None
     from . import collision_run
 
-    cell, diags = (collision_run.load_cell(options.cell, app, found=options.cell_found == "found") if options.cell
+    # the cell's meshes are read within the run's budgets (memory priced before trimesh builds them)
+    budgets = machine.budgets
+
+    def out_of_time() -> bool:  # --max-wall, on the run's own clock
+        return budgets.wall_clock() > machine.wall_start + budgets.wall_s
+
+    cell, diags = (collision_run.load_cell(options.cell, app, found=options.cell_found == "found",
+                                           budget=machine.cell.budget, out_of_time=out_of_time) if options.cell
                    else (None, []))
     watch = collision_run.ValueWatch(cell, machine)
-    arm.observer = watch
-    return cell, diags, watch
+    if isinstance(arm, MovingArm):
+        arm.watch(watch)
+    return cell, diags, watch, arm.model
 
 
 def _collisions(result: SimResult, app: Application, options: SimOptions, checks) -> SimResult:
@@ -140,16 +158,19 @@ def _collisions(result: SimResult, app: Application, options: SimOptions, checks
         return result
     from . import collision_run
 
-    cell, diags, watch = checks
+    cell, diags, watch, model = checks
     found = list(diags)
     if result.motion is not None:
-        unit_mm = 1.0 if getattr(app, "millimeter_unit", True) else 25.4
+        unit_mm = 1.0 if getattr(app, "millimeter_unit", True) else INCH_MM
         how = options.cell_found if options.cell or options.cell_found == "disabled" else "none"
-        run, more = collision_run.check_run(result.motion, cell, watch, cell_path=options.cell, cell_found=how,
+        run, more = collision_run.check_run(result.motion, cell, watch, model, cell_path=options.cell, cell_found=how,
                                             app_unit_mm=unit_mm, io_log=result.io_log,
                                             link_names=result.link_names, app_path=app.path,
                                             max_wall=options.max_wall)
         result.collision = run
+        if run is not None:
+            for index, report in run.by_motion.items():  # each motion's clearances slot
+                result.motion.motions[index].clearance = report
         found.extend(more)
     if found:
         result.diagnostics = sorted([*result.diagnostics, *found],

@@ -398,8 +398,8 @@ def skeleton(workspace: Workspace, app: Application, app_label: str) -> str:
                 opened.setdefault(key, (path, []))[1].append(where)
     for key in sorted(opened):
         path, where = opened[key]
-        out += [f"# [[files]]                        # {', '.join(where)}: $fileOpen of the controller's disk "
-                "(docs/sim.md)", f"# path = {_toml(path)}", '# text = ""', ""]
+        note = f"{', '.join(where)}: $fileOpen of the controller's disk (docs/sim.md)"
+        out += [f"# [[files]]                        # {note}", f"# path = {_toml(path)}", '# text = ""', ""]
     for what in serial:
         out += [f"# [[serial]]                       # {what}", f"# sio = {_toml(what.split(' ')[0])}",
                 "# at = 1.0", '# send = ""', ""]

@@ -3,7 +3,7 @@
 Each module has `register(registry)`, which puts its instruction handlers, the inline forms
 the compiler writes for it and the helpers its generated code calls into a `Registry`
 (registry.py). Nothing registers on import: `val3check.simulation` calls them, in this order
-(chapter 10, motion, is `val3check.motion.ch10_motion`):
+(chapter 10, motion, is `val3check.simulation.ch10_motion`, over `val3check.motion`):
 
 - `ch02_variables`     size, isDefined, insert, delete, append, resize, first... getData
 - `ch03_simple_types`  num, bit fields, strings (pure: builtins/); dio, aio, sio

@@ -1,25 +1,32 @@
 """The HTML report of a simulation run (docs/html-report.md).
 
-    from val3check.reporting.html import render, arm_chain, synthetic_model, check_model
+    from val3check.reporting.html import render, synthetic_model, check_model
 
-    model = synthetic_model(duration=60.0)       # or a model built from a run
-    model["scene"]["arm"] = arm_chain("robots/tx2-60.urdf")
+    model = synthetic_model(duration=60.0)       # or a model built from a run (from_run.py)
     html = render(model)                         # one self-contained page
 
 `render(model) -> str` checks the model (`check_model`, ModelError with the key at fault) and
-returns the page; `arm_chain(urdf, ...)` reads an arm's chain and solids for the 3D view;
-`chain_fk(arm, joints)` is the same forward kinematics the page runs; `synthetic_model(...)`
-gives a scripted pick-and-place run for tests and the demo
-(`python -m val3check.reporting.html --demo -o demo.html`).
+returns the page; `synthetic_model(...)` gives a scripted pick-and-place run for tests and the
+demo (`python -m val3check.reporting.html --demo -o demo.html`); `model_from_sim_report` builds
+a model from the JSON report of a run. The arm's chain of the 3D view is read by
+`val3check.robot.chain.arm_chain` (a run publishes it in its record of the scene). The names are
+imported when first used, so that the page of a run (from_run.py) loads nothing else.
 """
 
 from __future__ import annotations
 
-from .arm import arm_chain, chain_fk
-from .from_sim import model_from_sim_report
-from .model import VERSION, ModelError, check_model
-from .page import render
-from .synthetic import synthetic_model
+from importlib import import_module
+from typing import Any
 
-__all__ = ["VERSION", "ModelError", "arm_chain", "chain_fk", "check_model", "model_from_sim_report", "render",
-           "synthetic_model"]
+_EXPORTS = {"VERSION": "model", "ModelError": "model", "check_model": "model", "render": "page",
+            "model_from_sim_report": "from_sim", "synthetic_model": "synthetic"}
+
+__all__ = ["ModelError", "VERSION", "check_model", "model_from_sim_report", "render", "synthetic_model"]
+
+
+def __getattr__(name: str) -> Any:
+    """The module's names, imported from their module when first used."""
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    return getattr(import_module(f"{__name__}.{module}"), name)

@@ -3,15 +3,17 @@
     model = model_from_run(report, fail_on="error")            # report: reporting.sim_report.SimReport
     html = render(model)
 
-Everything comes from the run itself, not from its JSON: the motion table (`result.motion`
-records and commands), the cycle of each task that loops, the joint trajectory on the
-controller's 4 ms clock with the TCP speed of the tool in use, the tasks' states over time
-(`result.task_states`), the arm moving or idle, the I/O log, the transcript, and the 3D scene (the
-arm's chain and collision solids, the tool, the cell's obstacles).
+Everything comes from the run's record (simulation/arm_record.py), not from its JSON: the motion
+table (`result.motion.motions`), the cycle of each task that loops, the joint trajectory on the
+controller's 4 ms clock with the TCP speed of the tool in use (`ArmRun.tcp_speed`), the tasks'
+states over time (`result.task_states`), the arm moving or idle, the I/O log, the transcript, and
+the 3D scene (`result.motion.scene`: the arm's chain and collision solids, the application's
+frames; the tool; the cell's obstacles).
 
 The cell and the per-motion clearance come from the collision checks when the run has them
-(`result.collision`: `.cell`, a `collision.cell.Cell`, and `.by_motion`, position in
-`result.motion.records` -> `collision.records.MotionReport`), or are given (`cell=`, `clearances=`).
+(`result.collision.cell`, a `collision.cell.Cell`, and each motion's `clearance`, a
+`collision.records.MotionReport`), or are given (`cell=`, `clearances=`: position in
+`result.motion.motions` -> MotionReport).
 """
 
 from __future__ import annotations
@@ -21,16 +23,16 @@ from pathlib import Path
 from typing import Any
 
 from .._common import SourceCache
-from .from_sim import SEVERITY_ORDER, _excerpt
+from .excerpts import SEVERITY_ORDER, excerpt
 from .model import VERSION
 
 TICK_S = 0.004
-NO_LIMIT = 9999.0  # an mdesc's tvel at its default: no Cartesian speed limit (10.5.1)
 MAX_SAMPLES = 150_001  # ten minutes at 4 ms: a longer run is sampled at a multiple of 4 ms
 MAX_MESH_TRIANGLES = 50_000  # per mesh drawn: beyond, its bounding box (said in limitations)
 
 
 def _r(x: float | None, digits: int = 6) -> float | None:
+    """A number rounded to `digits` decimals without a negative zero; None stays None."""
     return None if x is None else round(float(x), digits) + 0.0
 
 
@@ -39,34 +41,8 @@ def _m34(M) -> list[list[float]]:
     return [[_r(M[i][k], 9) for k in range(4)] for i in range(3)]
 
 
-def app_frames(result: Any) -> dict[str, Any]:
-    """The application's frame and tool variables at the end of the run, by name (and `name[i]`
-    for each element): 4x4 matrices (mm) in the world frame (frames) or the flange (tools)."""
-    import numpy as np
-
-    from ...geometry.frames import Frame, root_pose
-
-    out: dict[str, Any] = {}
-    for name, arr in sorted((getattr(result, "globals", None) or {}).items()):
-        if getattr(arr, "t", None) not in ("frame", "tool"):
-            continue
-        for i, node in enumerate(getattr(arr, "data", [])):
-            if not isinstance(node, Frame):
-                continue
-            try:
-                R, v, _ = root_pose(node)
-            except Exception:  # noqa: BLE001 - an undefined frame (error 163) is simply not drawn
-                continue
-            M = np.eye(4)
-            M[:3, :3] = np.reshape(R, (3, 3))  # row-major (geometry/rotation.py)
-            M[:3, 3] = v
-            out[f"{name}[{i}]"] = M
-            if i == 0:
-                out[name] = M
-    return out
-
-
 def _diagnostics(report: Any, roots: list[str]) -> list[dict]:
+    """The kept diagnostics, each with the lines around it (from files inside `roots` only)."""
     cache = SourceCache()
     out = []
     for d in report.diagnostics:
@@ -74,29 +50,32 @@ def _diagnostics(report: Any, roots: list[str]) -> list[dict]:
                     "message": d.message, "path": d.path, "line": d.line or None, "column": d.col or None,
                     "time": _r(d.time_us / 1e6) if d.time_us is not None else None, "task": d.task or None,
                     "program": d.program or None,
-                    "excerpt": _excerpt(cache, d.path, d.line, roots)})
+                    "excerpt": excerpt(cache, d.path, d.line, roots)})
     return out
 
 
 def _motions(report: Any, m: Any, end: float, clearances: dict) -> list[dict]:
+    """The motion table: the motions that ran within the run, with their closest approach to the
+    cell (`clearances`: position in m.motions -> MotionReport)."""
     out = []
-    for k, (rec, cmd) in enumerate(zip(m.records, m.commands)):
-        if rec.start is None or rec.end is None or rec.start > end:
+    for k, motion in enumerate(m.motions):
+        if motion.start is None or motion.start > end:
             continue  # failed before it moved (its diagnostic says why), or not started within the run
-        src = rec.source
+        stop = end if motion.end is None else min(motion.end, end)  # None: under way when the run ended
+        src = motion.source
         where = report.display((src.path, src.line, src.col, ""))
-        mdesc = cmd.mdesc
+        limits = motion.limits  # None: a connection move
         entry = {
-            "id": len(out) + 1, "kind": rec.kind, "path": where[0] if where else None, "line": src.line or None,
-            "column": src.col or None, "task": src.task or None, "target": rec.target or None,
-            "start": _r(rec.start), "end": _r(min(rec.end, end)), "duration": _r(min(rec.end, end) - rec.start),
-            "dominant_limit": rec.dominant or None,
-            "vel": _r(mdesc.vel, 3) if rec.kind != "connection" else None,
-            "tvel": _r(mdesc.tvel, 3) if rec.kind != "connection" and mdesc.tvel < NO_LIMIT else None,
+            "id": len(out) + 1, "kind": motion.kind, "path": where[0] if where else None, "line": src.line or None,
+            "column": src.col or None, "task": src.task or None, "target": motion.target or None,
+            "start": _r(motion.start), "end": _r(stop),
+            "duration": _r(stop - motion.start), "dominant_limit": motion.dominant_limit or None,
+            "vel": _r(limits.vel, 3) if limits is not None else None,
+            "tvel": _r(limits.tvel, 3) if limits is not None and limits.tvel is not None else None,
             "min_clearance": None, "clearance_to": None,
-            "state": rec.state, "motion_id": rec.id,
+            "state": motion.state, "motion_id": motion.id,
         }
-        mr = clearances.get(k)  # keyed by the position in m.records (identifiers repeat, 10.6)
+        mr = clearances.get(k)  # keyed by the position in m.motions (identifiers repeat, 10.6)
         c = getattr(mr, "min_clearance", None)
         if c is not None:
             entry["min_clearance"] = _r(c.mm, 3)
@@ -116,7 +95,9 @@ def _obstacle_of(a: str, b: str) -> str:
 
 
 def _cycles(report: Any, m: Any, end: float) -> tuple[list[dict], dict | None]:
-    cycles, best = [], None
+    """Each looping task's iterations, and the cycle time of the verdict (the task with the most
+    complete cycles)."""
+    cycles = []
     for task in sorted(m.cycles):
         st = m.cycles[task]
         if st.marker is None or not st.starts:
@@ -126,50 +107,17 @@ def _cycles(report: Any, m: Any, end: float) -> tuple[list[dict], dict | None]:
         if st.starts[-1] < end:
             its.append({"start": _r(st.starts[-1]), "duration": _r(end - st.starts[-1]), "complete": False})
         cycles.append({"task": task, "path": where[0], "line": st.marker[1],
-                       "label": f"from the motion at line {st.marker[1]} of {Path(where[0]).name}", "iterations": its})
-        if st.count and (best is None or st.count > best[1].count):
-            best = (where, st)
+                       "label": f"{st.kind} loop at line {st.marker[1]} of {Path(where[0]).name}", "iterations": its})
+    from ...simulation.arm_record import main_cycle
+
     cycle_time = None
-    if best is not None:
-        where, st = best
+    st = main_cycle(m.cycles)
+    if st is not None:
+        where = report.display((st.marker[0], st.marker[1], st.marker[2], ""))
         cycle_time = {"seconds": _r(statistics.median(st.times)), "task": st.task,
-                      "basis": f"median of {st.count} complete cycles of task {st.task} (from the motion at line "
+                      "basis": f"median of {st.count} complete cycles of task {st.task} (the {st.kind} loop at line "
                                f"{st.marker[1]} of {Path(where[0]).name})"}
     return cycles, cycle_time
-
-
-def _tool_at(m: Any):
-    """(start times, tools) of the motions in order: the tool in use from each motion's start."""
-    starts, tools = [], []
-    for rec, cmd in zip(m.records, m.commands):
-        if rec.start is not None and cmd.kind != "connection":
-            starts.append(rec.start)
-            tools.append(cmd.tool)
-    return starts, tools
-
-
-def tcp_speeds(m: Any, links: Any, times, positions, velocities):
-    """The TCP's Cartesian speed (mm/s) at each sample, for the tool of the motion under way: the
-    TCP moved along the joint velocity over a small step (no spike when the tool changes)."""
-    import bisect
-
-    import numpy as np
-
-    flange = m.model.flange_frame
-    h = 1e-4  # s
-    P0 = links.poses_many(positions)[flange]
-    P1 = links.poses_many(positions + h * velocities)[flange]
-    starts, tools = _tool_at(m)
-    idx = np.array([max(bisect.bisect_right(starts, t) - 1, 0) for t in times]) if starts else np.zeros(len(times), int)
-    out = np.zeros(len(times))
-    for k in sorted(set(idx.tolist())):
-        sel = idx == k
-        tool = tools[k] if tools else None
-        p = np.array([0.0, 0.0, 0.0, 1.0]) if tool is None else np.asarray(tool, dtype=float)[:, 3]
-        a = P0[sel] @ p
-        b = P1[sel] @ p
-        out[sel] = np.linalg.norm((b - a)[:, :3], axis=1) / h
-    return out
 
 
 def sample_period(end_s: float) -> float:
@@ -179,7 +127,8 @@ def sample_period(end_s: float) -> float:
     return TICK_S * max(1, -(-ticks // (MAX_SAMPLES - 1)))
 
 
-def _trajectory(m: Any, links: Any, limits: list[str]) -> dict | None:
+def _trajectory(m: Any, limits: list[str]) -> dict | None:
+    """The joints and the TCP speed over the run, every 4 ms (or a multiple of it)."""
     import numpy as np
 
     if not m.trajectory.moving(m.end_s):
@@ -190,12 +139,12 @@ def _trajectory(m: Any, links: Any, limits: list[str]) -> dict | None:
                       f"(a multiple of the controller's 4 ms), at most {MAX_SAMPLES} samples.")
     times, q, v = m.sample(0.0, m.end_s, dt)
     times, q, v = np.asarray(times, dtype=float), np.asarray(q, dtype=float), np.asarray(v, dtype=float)
-    model = m.model
-    speed = tcp_speeds(m, links, times, q, v)
+    scene = m.scene
+    speed = m.tcp_speed(times, q, v)
     return {
         "joints": [{"name": n, "unit": u, "min": lo, "max": hi, "speed": s}
-                   for n, u, (lo, hi), s in zip(model.joint_names, model.joint_units, model.joint_limits,
-                                                model.nominal_speeds)],
+                   for n, u, (lo, hi), s in zip(scene.joint_names, scene.joint_units, scene.joint_limits,
+                                                scene.nominal_speeds)],
         "times": [_r(t) for t in times.tolist()],
         "positions": (np.round(q.T, 6) + 0.0).tolist(),
         "velocities": (np.round(v.T, 4) + 0.0).tolist(),
@@ -204,6 +153,7 @@ def _trajectory(m: Any, links: Any, limits: list[str]) -> dict | None:
 
 
 def _task_segments(result: Any, end: float) -> list[dict]:
+    """Each task's states over the run, as segments of the timeline."""
     by_task: dict[str, list[dict]] = {}
     for c in result.task_states:
         t = min(c.time_us / 1e6, end)
@@ -225,6 +175,7 @@ def _task_segments(result: Any, end: float) -> list[dict]:
 
 
 def _arm_timeline(m: Any, end: float) -> list[dict]:
+    """The arm moving or idle over the run."""
     segs, t = [], 0.0
     for a, b in m.trajectory.moving(m.end_s):
         a, b = min(a, end), min(b, end)
@@ -239,6 +190,8 @@ def _arm_timeline(m: Any, end: float) -> list[dict]:
 
 
 def _shape_solid(name: str, shape: Any, pose, limits: list[str]) -> dict:
+    """A solid of the cell (a collision.cell shape) at `pose`, as the 3D view draws it (a mesh of
+    too many triangles as its bounding box)."""
     import numpy as np
 
     s: dict[str, Any] = {"name": name, "pose": _m34(pose)}
@@ -263,44 +216,38 @@ def _shape_solid(name: str, shape: Any, pose, limits: list[str]) -> dict:
 
 
 def _scene(result: Any, m: Any, cell: Any, limits: list[str]) -> dict:
+    """The 3D view: the arm's chain at its initial joints, the tool most motions use (its TCP, its
+    solids from the cell file), the cell's obstacles."""
     import numpy as np
 
-    from .arm import arm_chain
-
-    model = m.model if m is not None else None
     scene: dict[str, Any] = {"arm": None, "tool": None, "obstacles": []}
-    if model is not None:
-        scene["arm"] = arm_chain(model.source, world_frame=model.world_frame, flange_frame=model.flange_frame,
-                                 joint_names=model.joint_names, name=model.name,
-                                 source=f"robots/{Path(model.source).name}" if "/robots/" in model.source
-                                 else Path(model.source).name)
-        scene["joints"] = [_r(x) for x in (result.robot or {}).get("initial_joints") or [0.0] * model.axes]
-        # the tool: the one the motions use most (the page draws one tool)
-        counts: dict[str, int] = {}
-        tcp: dict[str, Any] = {}
-        for rec, cmd in zip(m.records, m.commands):
-            if cmd.kind != "connection" and cmd.tool is not None and rec.tool:
-                counts[rec.tool] = counts.get(rec.tool, 0) + 1
-                tcp.setdefault(rec.tool, cmd.tool)
-        if counts:
-            name = max(sorted(counts), key=counts.get)
-            solids = []
-            if cell is not None:  # a tool solid sits in its tool variable's frame; the page's in the flange
-                tools = app_frames(result)
-                for ts in cell.tools:
-                    base = np.eye(4) if ts.tool == "flange" else tools.get(ts.tool)
-                    if base is None and ts.tool == name:
-                        base = np.asarray(tcp[name], dtype=float)
-                    if base is None:
-                        limits.append(f"The tool solid {ts.name!r} hangs on {ts.tool}, which the run did not define: "
-                                      "not drawn.")
-                        continue
-                    solids.append(_shape_solid(ts.name, ts.shape, base @ ts.pose, limits))
-                if cell.parts:
-                    limits.append("The parts of the cell file (what the tool carries) are not drawn.")
-            scene["tool"] = {"name": name, "tcp": _m34(np.asarray(tcp[name], dtype=float)), "solids": solids}
+    frames = {name: f.matrix for name, f in m.scene.frames.items()}
+    scene["arm"] = m.scene.kinematics.chain()
+    scene["joints"] = [_r(x) for x in m.scene.initial_joints or [0.0] * m.scene.axes]
+    # the tool: the one the motions use most (the page draws one tool)
+    counts: dict[str, int] = {}
+    tcp: dict[str, Any] = {}
+    for motion in m.motions:
+        if motion.kind != "connection" and motion.tool_in_flange is not None and motion.tool:
+            counts[motion.tool] = counts.get(motion.tool, 0) + 1
+            tcp.setdefault(motion.tool, motion.tool_in_flange)
+    if counts:
+        name = max(sorted(counts), key=counts.get)
+        solids = []
+        if cell is not None:  # a tool solid sits in its tool variable's frame; the page's in the flange
+            for ts in cell.tools:
+                base = np.eye(4) if ts.tool == "flange" else frames.get(ts.tool)
+                if base is None and ts.tool == name:
+                    base = np.asarray(tcp[name], dtype=float)
+                if base is None:
+                    limits.append(f"The tool solid {ts.name!r} hangs on {ts.tool}, which the run did not define: "
+                                  "not drawn.")
+                    continue
+                solids.append(_shape_solid(ts.name, ts.shape, base @ ts.pose, limits))
+            if cell.parts:
+                limits.append("The parts of the cell file (what the tool carries) are not drawn.")
+        scene["tool"] = {"name": name, "tcp": _m34(np.asarray(tcp[name], dtype=float)), "solids": solids}
     if cell is not None:
-        frames = app_frames(result)
         for ob in cell.obstacles:
             if ob.frame == "world":
                 place = np.eye(4)
@@ -321,14 +268,16 @@ def _scene(result: Any, m: Any, cell: Any, limits: list[str]) -> dict:
 def model_from_run(report: Any, *, fail_on: str = "error", cell: Any = None, clearances: dict | None = None,
                    roots: list[str] | None = None, title: str | None = None) -> dict:
     """The report model (docs/html-report.md) of a run. `report`: a `reporting.sim_report.SimReport`.
-    `cell`, `clearances`: the cell and per-motion `MotionReport`s (default: `result.collision`'s).
+    `cell`, `clearances`: the cell and per-motion `MotionReport`s by position in the motions
+    (default: `result.collision.cell` and each motion's `clearance`).
     `roots`: folders whose files the excerpts may quote (default: the application's folder)."""
     result = report.result
     collision = getattr(result, "collision", None)
     if cell is None and collision is not None:
         cell = getattr(collision, "cell", None)
+    m = result.motion
     if clearances is None:
-        clearances = dict(getattr(collision, "by_motion", None) or {})
+        clearances = {k: mo.clearance for k, mo in enumerate(m.motions) if mo.clearance is not None} if m else {}
     if roots is None:
         roots = [str(Path(result.app_path).parent)]
     end = _r(result.sim_time_us / 1e6)
@@ -336,15 +285,11 @@ def model_from_run(report: Any, *, fail_on: str = "error", cell: Any = None, cle
     threshold = SEVERITY_ORDER.get(fail_on)
     passed = threshold is None or not any(SEVERITY_ORDER[s] >= threshold and counts[s] for s in counts)
     limits: list[str] = []
-    m = result.motion
     motions, cycles, cycle_time, trajectory, arm_timeline = [], [], None, None, []
     if m is not None:
-        from ...robot.links import arm_links
-
-        links = arm_links(m.model)
         motions = _motions(report, m, end, clearances)
         cycles, cycle_time = _cycles(report, m, end)
-        trajectory = _trajectory(m, links, limits)
+        trajectory = _trajectory(m, limits)
         arm_timeline = _arm_timeline(m, end)
         if cell is None:
             limits.append("No cell file: the 3D view has no obstacles and the motions no clearance (docs/cell.md).")
@@ -356,7 +301,7 @@ def model_from_run(report: Any, *, fail_on: str = "error", cell: Any = None, cle
         "title": title or result.application,
         "tool": {"name": "val3check", "version": report.tool_version},
         "application": {"name": result.application, "path": report.app_path},
-        "robot": {"name": m.model.name} if m is not None else None,
+        "robot": {"name": m.scene.name} if m is not None else None,
         "synthetic": False,
         "limitations": limits,
         "verdict": {

@@ -12,40 +12,12 @@ or `arm_urdf`) at its initial joint position. What is not drawn yet is absent an
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 from typing import Any
 
 from .._common import SourceCache
+from .excerpts import SEVERITY_ORDER, excerpt
 from .model import VERSION, ModelError
-
-SEVERITY_ORDER = {"info": 0, "warning": 1, "error": 2}
-EXCERPT_AROUND = 2
-
-
-def _inside(path: str, roots: list[str]) -> bool:
-    real = os.path.realpath(path)
-    for root in roots:
-        r = os.path.realpath(root)
-        try:
-            if os.path.commonpath([real, r]) == r:
-                return True
-        except ValueError:  # another drive
-            continue
-    return False
-
-
-def _excerpt(cache: SourceCache, path: str | None, line: int | None, roots: list[str]) -> dict | None:
-    if not path or not line or not _inside(path, roots):
-        return None
-    lines = cache.lines(path)
-    if lines and lines[-1] == "":  # the text after the last newline is not a line
-        lines = lines[:-1]
-    if lines is None or line > len(lines):
-        return None
-    first = max(1, line - EXCERPT_AROUND)
-    return {"first_line": first, "lines": lines[first - 1:line + EXCERPT_AROUND]}
-
 
 def model_from_sim_report(report: dict[str, Any], *, fail_on: str = "error", arm_urdf: str | None = None,
                           roots: list[str] | None = None, title: str | None = None) -> dict:
@@ -65,7 +37,7 @@ def model_from_sim_report(report: dict[str, Any], *, fail_on: str = "error", arm
     for d in report.get("diagnostics", []):
         entry = {k: d.get(k) for k in ("code", "name", "severity", "message", "path", "line", "column", "time", "task",
                                        "program")}
-        entry["excerpt"] = _excerpt(cache, d.get("path"), d.get("line"), roots)
+        entry["excerpt"] = excerpt(cache, d.get("path"), d.get("line"), roots)
         diagnostics.append(entry)
     counts = {s: int(report["summary"].get(s, 0)) for s in ("error", "warning", "info")}
     threshold = SEVERITY_ORDER.get(fail_on)
@@ -78,7 +50,7 @@ def model_from_sim_report(report: dict[str, Any], *, fail_on: str = "error", arm
         limitations.append(f"Built from the JSON report: the arm's motion is not drawn (the 3D view shows "
                            f"{robot['name']} at its initial joint position); `val3check sim --report html` draws it.")
         from ...robot import load_robot
-        from .arm import arm_chain
+        from ...robot.chain import arm_chain
 
         model = load_robot(arm_urdf or robot["name"])
         scene = {"arm": arm_chain(model.source, joint_names=model.joint_names, name=model.name,

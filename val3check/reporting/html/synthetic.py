@@ -19,7 +19,7 @@ import math
 import random
 from pathlib import Path
 
-from .arm import arm_chain
+from ...robot.chain import arm_chain
 from .model import VERSION
 
 PROGRAMS = {

@@ -1,4 +1,5 @@
-"""The arm's kinematic chain for the HTML report's 3D view (docs/html-report.md, `scene.arm`).
+"""The arm's kinematic chain as plain data, for the HTML report's 3D view (docs/html-report.md,
+`scene.arm`): the run publishes it in its record of the scene (simulation/arm_record.py).
 
     arm = arm_chain("robots/tx2-60.urdf")          # a plain JSON-able dict
     poses = chain_fk(arm, [0, -30, 90, 0, 45, 0])  # {link: 3x4 pose in the world frame, mm}
@@ -18,8 +19,8 @@ import math
 from pathlib import Path
 from typing import Sequence
 
-from ...robot.errors import RobotError
-from ...robot.urdf import IDENTITY, Mat, axis_angle, inverse, mul, read_urdf, transform
+from .errors import RobotError
+from .urdf import IDENTITY, Mat, axis_angle, inverse, mul, read_urdf, transform
 
 MOVING = ("revolute", "continuous", "prismatic")
 
@@ -30,6 +31,7 @@ def _r(x: float) -> float:
 
 
 def _mm(M: Mat) -> list[list[float]]:
+    """A 3x4 transform (metres) as rows in millimetres."""
     return [[_r(M[i][0]), _r(M[i][1]), _r(M[i][2]), _r(M[i][3] * 1000.0)] for i in range(3)]
 
 
@@ -102,7 +104,7 @@ def arm_chain(urdf: str | Path, world_frame: str | None = None, flange_frame: st
             "upper": _r(j.upper * scale) if limited else None,
         })
     reached = {root} | {j["child"] for j in joints}
-    from ...robot.links import read_collision_solids  # the collision checks' reader (numpy: sim path only)
+    from .links import read_collision_solids  # the collision checks' reader (numpy: sim path only)
 
     solids: dict[str, list] = {}
     for s in read_collision_solids(path, resolve_meshes=False):
@@ -145,6 +147,7 @@ def arm_chain(urdf: str | Path, world_frame: str | None = None, flange_frame: st
 
 
 def _joint_motion(joint: dict, value: float) -> Mat:
+    """The motion of one joint of the chain at `value` (degrees, or mm for a prismatic joint)."""
     if joint["type"] == "prismatic":
         x, y, z = joint["axis"]
         return ((1.0, 0.0, 0.0, x * value), (0.0, 1.0, 0.0, y * value), (0.0, 0.0, 1.0, z * value))

@@ -1,8 +1,10 @@
 """The arm of a run: the `Arm` port (interpretation/arm_port.py) and a `Subsystem` of the
-scheduler (interpretation/subsystem.py) over the motion queue of chapter 10 (queue.py).
+scheduler (interpretation/subsystem.py) over the motion queue of chapter 10 (motion/queue.py):
+where the interpreter meets motion.
 
     arm = MovingArm(model, cycles=None)     # model: val3check.robot.RobotModel, or None
-    build_machine(..., arm=arm)             # simulation/run.py; arm.bind(machine.controller)
+    build_machine(..., arm=arm)             # run.py; arm.bind(machine.controller)
+    arm.watch(reader)                       # reader(time_us, cycle): after each record, each cycle
 
 What the interpreter reads (herej, here, open/close, the chapter 10 handlers of ch10_motion.py)
 is the commanded position of the queue at the simulated time asked; the scheduler asks
@@ -18,6 +20,11 @@ Units are converted here and nowhere else (2.1.4.1): poses, tvel, leave and reac
 application's length unit, and the prismatic axis of a SCARA (joint 3) in it too; the queue
 works in millimetres and degrees, seconds.
 
+`watch(reader)` registers a reader of the program's values (collision_run.ValueWatch reads the
+frames and tools of the cell): called (time_us, cycle=False) after each motion instruction
+records a command, and (time_us, cycle=True) at the start of each scheduler cycle that advances
+the arm (a command ends, the next starts).
+
 Without an arm model (`model` None) the arm is idle: what acts on an idle arm works
 (`isEmpty()`, `resetMotion()`, `autoConnectMove()`, `waitEndMove()`...), motion commands stop
 the task with R002 saying how to name the arm (ch10_motion.py).
@@ -25,7 +32,7 @@ the task with R002 saying how to name the arm (ch10_motion.py).
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
@@ -33,12 +40,13 @@ import numpy as np
 from ..interpretation.arm_port import Joints
 from ..interpretation.scheduler import EndRun
 from ..language.runtime_errors import Val3RuntimeError
-from .arm_state import INCH_MM, ModelArm
-from .commands import MoveCommand, Target
-from .cycle import CycleCounter
-from .findings import MotionError, Source
-from .mdesc import MDesc
-from .queue import MotionQueue, QueueFull
+from ..motion.commands import MoveCommand, Target
+from ..motion.cycle import Context, CycleCounter, Loop, Pass
+from ..motion.findings import MotionError, Source
+from ..motion.mdesc import MDesc
+from ..motion.queue import MotionQueue, QueueFull
+from ..motion.records import time_leaving
+from .model_arm import INCH_MM, ModelArm
 
 US = 1_000_000
 
@@ -47,24 +55,29 @@ class MovingArm(ModelArm):
     """See the module docstring."""
 
     def __init__(self, model: Any = None, *, cycles: int | None = None) -> None:
+        """The arm of `model` (None: an idle arm); `cycles`: --cycles N."""
         super().__init__(model)
         self._queue: MotionQueue | None = None
         self.controller: Any = None
         self.auto_connect = False  # autoConnectMove (kept; the connection move is always automatic)
         self.counter = CycleCounter()
         self.cycles_goal = cycles  # --cycles N: the run ends when the arm starts cycle N + 1
-        self._end_cmd = None  # that command, once recorded
+        self._end_command = None  # that command, once recorded
+        self.contexts: dict[int, Context] = {}  # command key -> the loops it was recorded in
+        self._entries: dict[int, tuple[Any, int]] = {}  # id(pass counter) -> (it, entry number)
+        self._entry_count: dict[Loop, int] = {}
         self.prismatic = tuple(k == "prismatic" for k in (getattr(model, "joint_kinds", None) or ())) \
             if model is not None else ()
-        # called (time_us) after each motion instruction records a command, and (time_us, cycle=True)
-        # at the start of each scheduler cycle that advances the arm (a command ends, the next
-        # starts): the collision checks read the frames and tools of the cell there
-        # (simulation/collision_run.py)
-        self.observer = None
+        self._readers: list[Callable[[int, bool], None]] = []  # `watch`
 
     def bind(self, controller: Any) -> None:
         """The controller whose power and monitor speed the arm follows (chapter 8)."""
         self.controller = controller
+
+    def watch(self, reader: Callable[[int, bool], None]) -> None:
+        """Call `reader(time_us, cycle)` after each command recorded (cycle False) and at the start
+        of each scheduler cycle that advances the arm (cycle True): see the module docstring."""
+        self._readers.append(reader)
 
     # ---- the queue -----------------------------------------------------------------------------
 
@@ -77,6 +90,12 @@ class MovingArm(ModelArm):
             self._queue = MotionQueue(self.model, np.array(self._initial, dtype=float),
                                       powered=True if ctl is None else bool(ctl.powered),
                                       monitor=100.0 if ctl is None else float(ctl.monitor_speed))
+        return self._queue
+
+    @property
+    def queue_in_use(self) -> MotionQueue | None:
+        """The motion queue if the run used it (a motion instruction, or the arm's state read),
+        else None: what the run's record of the arm is made from (collect.py)."""
         return self._queue
 
     def sync(self, time_us: int) -> MotionQueue | None:
@@ -94,10 +113,12 @@ class MovingArm(ModelArm):
     # ---- the Arm port ----------------------------------------------------------------------------
 
     def start_at(self, joints: Sequence[float]) -> None:
+        """The scenario's [robot] joints: the arm starts there (the queue is made again at first use)."""
         super().start_at(joints)
         self._queue = None
 
     def joints_at(self, time_us: int, millimeter_unit: bool = True) -> Joints:
+        """herej(): the commanded joints at `time_us`, in the caller's unit."""
         q = self.sync(time_us)
         if q is None:
             return self._initial
@@ -105,6 +126,7 @@ class MovingArm(ModelArm):
         return self.joints_out(j, millimeter_unit)
 
     def motion_done(self, time_us: int) -> bool:
+        """The motion queue is empty (9.5.4, 10.6): no command left to execute."""
         q = self.sync(time_us)
         return q is None or q.is_empty(time_us / US)
 
@@ -133,6 +155,9 @@ class MovingArm(ModelArm):
         q = self._queue
         if q is None or (not q.pending and q.open is None):
             return None
+        if q.monitor <= 0.0 and q.powered and not q.held:
+            return "R003", ("the monitor speed is 0 %: the arm holds until setMonitorSpeed() or the scenario "
+                            "([controller] changes = [{ at = ..., monitor_speed = ... }]) raises it")
         if not q.powered:
             ctl = self.controller
             if ctl is not None and (ctl.working_mode != 4 or ctl.es_status != 0):
@@ -150,6 +175,7 @@ class MovingArm(ModelArm):
     # ---- the Subsystem -----------------------------------------------------------------------------
 
     def next_time(self, now_us: int) -> int | None:
+        """The Subsystem's next change: a command completes, the arm rests or has rested 50 ms, or --cycles ends the run."""
         q = self.sync(now_us)
         if q is None:
             return None
@@ -162,34 +188,34 @@ class MovingArm(ModelArm):
         return t
 
     def advance(self, to_us: int) -> None:
+        """The Subsystem's advance: the watchers read the program's values, the commands done by `to_us` complete; EndRun when the arm starts the cycle after the last one asked for."""
         q = self.sync(to_us)
         if q is None:
             return
-        if self.observer is not None:
-            self.observer(to_us, cycle=True)
+        for reader in self._readers:
+            reader(to_us, True)
         q.advance_us(to_us)
         end = self._cycles_end()
         if end is not None and end * US <= to_us + 1e-6:
-            self._end_cmd = None  # once: stop() then runs as after any end of a run
+            self._end_command = None  # once: stop() then runs as after any end of a run
             self.cycles_goal = None
             raise EndRun("cycles")
 
     def _cycles_end(self) -> float | None:
         """When the arm starts the command that begins cycle N + 1 (--cycles N)."""
-        c = self._end_cmd
-        if c is None or c.S_begin is None or c.state == "cancelled":
+        command = self._end_command
+        if command is None or command.placement.s_begin is None or command.state == "cancelled":
             return None
-        from .records import time_leaving
-
-        return time_leaving(self._queue.trajectory.profile, c.S_begin)
+        return time_leaving(self._queue.trajectory.profile, command.placement.s_begin)
 
     # ---- for the chapter 10 handlers -------------------------------------------------------------------
 
     def record(self, kind: str, target: Target, tool_in_flange, md: dict, via: Target | None, source: Source,
-               tool_name: str, millimeter_unit: bool, time_us: int):
+               tool_name: str, millimeter_unit: bool, time_us: int, loops: tuple = ()):
         """movej/movel/movec: the command's identifier, or QueueFull. Poses of `target`/`via`
         and `tool_in_flange` are 4x4 matrices in the caller's length unit; joints too (a
-        SCARA's axis 3). Raises MotionError (mdesc 100-106, 154, 150, 81)."""
+        SCARA's axis 3); `loops`: the loops the instruction runs in (Machine.loop_passes).
+        Raises MotionError (mdesc 100-106, 154, 150, 81)."""
         q = self.sync(time_us)
         s = 1.0 if millimeter_unit else INCH_MM
         target = self._target_in_mm(target, s)
@@ -198,18 +224,36 @@ class MovingArm(ModelArm):
         if tool_in_flange is not None:
             tool = np.array(tool_in_flange, dtype=float)
             tool[:3, 3] *= s
-        cmd = MoveCommand(kind, target, MDesc.from_fields(md, s), tool=tool, via=via, source=source,
-                          tool_name=tool_name)
-        r = q.record(cmd, time_us / US)
+        move = MoveCommand(kind, target, MDesc.from_fields(md, s), tool=tool, via=via, source=source,
+                           tool_name=tool_name)
+        r = q.record(move, time_us / US)
         if not isinstance(r, QueueFull):
             task = source.task
-            self.counter.note(task, source)
-            if self.cycles_goal is not None and self._end_cmd is None and \
+            context = self.context(loops)
+            self.contexts[q.history[-1].key] = context
+            self.counter.note(task, context)
+            if self.cycles_goal is not None and self._end_command is None and \
                     self.counter.completed(task) >= self.cycles_goal:
-                self._end_cmd = q.history[-1]
+                self._end_command = q.history[-1]
+            for reader in self._readers:
+                reader(time_us, False)
         return r
 
+    def context(self, loops: tuple) -> Context:
+        """The loops of Machine.loop_passes as motion.cycle passes: each loop statement with the
+        number of its entry (the n-th pass counter seen for it) and the pass."""
+        out = []
+        for compiled, site, counter in loops:
+            loop = Loop(compiled.path, site.line, site.col, compiled.name, site.kind)
+            seen = self._entries.get(id(counter))
+            if seen is None or seen[0] is not counter:
+                n = self._entry_count[loop] = self._entry_count.get(loop, 0) + 1
+                seen = self._entries[id(counter)] = (counter, n)  # kept: its id is not reused
+            out.append(Pass(loop, seen[1], int(counter[0])))
+        return tuple(out)
+
     def _target_in_mm(self, tg: Target, s: float) -> Target:
+        """`tg` with its lengths (and a SCARA's axis 3) in mm: `s` millimetres per unit."""
         if tg.is_joint:
             return Target.joint(self.joints_in(tg.joints, s == 1.0), tg.name)
         pose = np.array(tg.pose, dtype=float)
@@ -224,9 +268,11 @@ class MovingArm(ModelArm):
                      for k, v in enumerate(joints))
 
     def joints_out(self, joints: Sequence[float], millimeter_unit: bool) -> Joints:
+        """Joint values of the model in the caller's unit (a prismatic axis in inches for an inch application)."""
         return tuple(self._out(float(v), k, millimeter_unit) + 0.0 for k, v in enumerate(joints))
 
     def _out(self, v: float, k: int, millimeter_unit: bool) -> float:
+        """One joint value (axis k) in the caller's unit."""
         if millimeter_unit or not (k < len(self.prismatic) and self.prismatic[k]):
             return v
         return v / INCH_MM

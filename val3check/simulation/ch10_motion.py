@@ -1,4 +1,5 @@
-"""Chapter 10: the motion instructions, on the arm of the run (arm.MovingArm).
+"""Chapter 10: the motion instructions, on the arm of the run (moving_arm.MovingArm): where the
+interpreter's values meet the motion queue (motion/queue.py).
 
 Each handler converts the VAL 3 values (points and tools with their references, joints,
 mdesc) at the instruction, as the controller does when it records a command, and hands them to
@@ -6,12 +7,14 @@ the arm, which converts units and records the command in its motion queue (docs/
 The position of the instruction (file, line, column, program, task) goes with the command: the
 motion diagnostics (R010-R019) point at it.
 
-Errors (12.1): an invalid mdesc field stops the task at the instruction with 100-106 (R017), an
-arc that movec cannot define with 154 (R015), a joint or point of the other arm family (Rx on an
-RS/TS arm or the reverse) with 81 (R001); a command the arm cannot execute (target out of reach
-or outside the joint limits, a configuration change imposed on a line, a path through a
-singularity) is recorded, reported at its line, and the next motion instruction, waitEndMove(),
-open() or close() stops with 150.
+Errors (12.1; the table of docs/motion.md, "Runtime errors of 10.6"): what is known when the
+command is recorded stops the task at the instruction, nothing recorded: an invalid mdesc field
+with 100-106 (R017); a target outside the software limits, out of reach, or only in another
+configuration than a line or a circle allows, and a movec intermediate point it cannot pass, with
+154 (R010-R012); an arc that movec cannot define with 154 (R015); a joint or point of the other
+arm family (Rx on an RS/TS arm or the reverse) with 81 (R001). A command whose path the arm cannot
+follow (a joint limit, the workspace's edge or a singularity on the way) is recorded, reported at
+its line, and the next motion instruction, waitEndMove(), open() or close() stops with 150.
 
 Without an arm model the arm is idle: isEmpty(), isSettled(), resetMotion(), waitEndMove(),
 stopMove(), restartMove(), autoConnectMove(), getMoveId(), setMoveId() and getSpeed() act on it
@@ -31,9 +34,10 @@ from ..interpretation.chapters.ch09_geometry import ct, jd, jt, millimeter_unit,
 from ..interpretation.not_simulated import ARM_LIMIT, NO_ARM, SimLimit
 from ..interpretation.waiting import WAIT
 from ..language.runtime_errors import Val3RuntimeError
-from .commands import Target
-from .findings import MotionError, Source
-from .queue import QueueFull
+from ..motion.commands import Target
+from ..motion.findings import MotionError, Source
+from ..motion.queue import QueueFull
+from .model_arm import INCH_MM
 
 E = Val3RuntimeError
 US = 1_000_000
@@ -52,6 +56,7 @@ def _matrix(pose) -> np.ndarray:
 
 
 def _source(task) -> Source:
+    """Where the task's running instruction is written (the motion diagnostics point at it)."""
     w = task.machine.line_running()
     if w is None:
         return Source(task.machine.app.path, 0, 0, task.program, task.name)
@@ -83,6 +88,7 @@ def _check_family(arm, value, what: str) -> None:
 
 
 def _point(task, p: Point, what: str) -> Target:
+    """A point as the queue's target: its TCP pose in world through its frames, configuration and names."""
     geo_points.check_defined(p)
     ref = p.ref
     frame = getattr(ref, "name", "") or ("world" if ref is not None and ref.is_root else "")
@@ -90,6 +96,7 @@ def _point(task, p: Point, what: str) -> Target:
 
 
 def _tool(tool: Tool) -> np.ndarray | None:
+    """A tool as its TCP in the flange through its base tools (4x4), None for the flange."""
     pose = geo_frames.root_pose(tool)
     return None if tool.is_root else _matrix(pose)
 
@@ -103,16 +110,14 @@ def _record(task, unit, kind: str, target: Target, via: Target | None, tool: Too
     tool_m = _tool(tool)
     mm = millimeter_unit(unit)
     name = tool.name or ("flange" if tool.is_root else "")
+    loops = task.machine.loop_passes()  # which pass of which loops records it (the cycle)
     while True:
         try:
-            r = arm.record(kind, target, tool_m, mdesc, via, source, name, mm, clock.time_of(task))
+            r = arm.record(kind, target, tool_m, mdesc, via, source, name, mm, clock.time_of(task), loops)
         except MotionError as exc:
             rule = exc.finding.code if exc.finding is not None else None
             raise E(exc.code, exc.message, rule=rule) from None
         if not isinstance(r, QueueFull):
-            observer = getattr(arm, "observer", None)
-            if observer is not None:
-                observer(clock.time_of(task))
             return float(r)
         room = lambda: arm.has_room(clock.now)  # noqa: E731
         room.motion = True
@@ -159,6 +164,7 @@ def I_waitendmove(task, unit):
 
 
 def _now(task) -> int:
+    """The task's simulated time (microseconds)."""
     return task.machine.clock.time_of(task)
 
 
@@ -231,7 +237,7 @@ def I_getspeed(task, unit, tool: Tool) -> float:
         return 0.0
     m = _tool(tool)
     mm = millimeter_unit(unit)
-    s = 1.0 if mm else 25.4
+    s = 1.0 if mm else INCH_MM
     if m is not None:
         m = m.copy()
         m[:3, 3] *= s
@@ -246,15 +252,17 @@ def I_getpositionerr(task, unit) -> dict:
 
 def I_getjointforce(task, unit, forces) -> None:
     """10.6 getJointForce(nForce[]): the inverse dynamics of the commanded motion, when the arm
-    model has masses; the Stäubli models have none (not public): R002."""
+    model has masses; the Stäubli models have none (not public): R002. An array too small for
+    the arm's axes is error 70 first (10.6: "si le paramètre n'est pas un tableau de valeurs
+    numériques d'une taille suffisante"), whatever the model knows."""
     arm = _arm(task, "getJointForce")
+    if forces.size() < arm.axes:
+        raise E(70, f"getJointForce: the array holds {forces.size()} values for {arm.axes} axes")
     q = arm.sync(_now(task))
     f = q.joint_force(_now(task) / US)
     if f is None:
         raise SimLimit(ARM_LIMIT, "getJointForce", f"getJointForce needs the masses and inertias of the arm, which the "
                                                    f"model {arm.name} does not have (Stäubli does not publish them)")
-    if forces.size() < len(f):
-        raise E(70, f"getJointForce: the array holds {forces.size()} values for {len(f)} axes")
     for i, v in enumerate(f):
         forces.data[forces.off + i] = float(v)
 
@@ -277,6 +285,7 @@ def I_setmoveid(task, unit, n: float) -> float:
 
 
 def register(registry) -> None:
+    """The instructions of chapter 10 (nothing registers on import)."""
     for name, func in (("movej", I_movej), ("movel", I_movel), ("movec", I_movec), ("waitEndMove", I_waitendmove)):
         registry.instruction(name, func, blocking=True)
     for name, func in (("isEmpty", I_isempty), ("isSettled", I_issettled), ("stopMove", I_stopmove),

@@ -1,8 +1,8 @@
-"""Loading must be fast: a 20,000-line application well above 20,000 lines/s."""
+"""A 20,000-line application (BOM, CRLF, half CDATA, half escaped text, 2000 globals) loads
+whole and exactly. How fast (the goal: at least 20,000 lines/s) is measured by
+bench/bench_lint.py, not here: a test may not depend on the machine's speed (issue 28 item 11)."""
 
 from __future__ import annotations
-
-import time
 
 from .loadhelp import PGX_NS, XSI, dtx, pjx, write
 
@@ -46,16 +46,12 @@ def make_big_app(root):
     return folder
 
 
-def test_loading_speed(tmp_path):
+def test_loading_a_big_application(tmp_path):
     folder = make_big_app(tmp_path)
-    load([str(folder)])  # warm the file cache
-    t0 = time.perf_counter()
     ws, diags = load([str(folder)])
-    elapsed = time.perf_counter() - t0
     assert diags == []
     app = ws.apps[ws.targets[0]]
     code_lines = sum(p.code.count("\n") + 1 for p in app.programs.values())
     assert code_lines == N_PROGRAMS * LINES_PER_PROGRAM
-    rate = code_lines / elapsed
-    print(f"\nloaded {code_lines} code lines (+2000 globals) in {elapsed * 1000:.0f} ms: {rate:,.0f} code lines/s")
-    assert rate > 20_000, f"{rate:.0f} lines/s"
+    assert len(app.programs) == N_PROGRAMS and len(app.data) == 2000
+    assert app.programs["prog001"].code == app.programs["prog000"].code  # CDATA and escaped text alike

@@ -1,0 +1,111 @@
+"""Time parameterisation: a path plus its limits → how fast the arm goes along it (10.3).
+
+The one interface the rest of motion/ uses (planner.py), in the spirit of toppra's path /
+constraint / algorithm:
+
+    timing = Timing(kin)
+    piece = timing.time(path, a, b, v0, limits)   # TimedPiece: ṡ along [a, b] from speed v0 to rest
+    s, sd = timing.brake(path, a, b, sd0, limits) # stop on the path as soon as the limits allow
+
+`path` is a paths.Path (global path parameter s, in degrees of joint motion), [a, b] a piece of
+it between two stops, `limits(key)` the mdesc.Limits of the command whose key owns a stretch of
+it. The answer is a profile of breakpoints (s, ṡ) with a constant path acceleration between
+them (trajectory.Profile appends it). Inside:
+
+* `grid.py`      the path sampled with the limits at each gridpoint (`Grid`);
+* `analytic.py`  the exact profile of a straight joint line under one set of limits (trapezoid);
+* `optimal.py`   toppra on everything else;
+* `safe.py`      braking, and the safe profile when toppra fails (R019).
+
+Every limit of 10.3.1 is obeyed: joint speeds, accelerations and decelerations, tvel, rvel, all
+times the monitor speed (docs/motion.md, "Timing").
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .analytic import duration, trapezoid
+from .grid import Grid, sample_path
+from .optimal import TimedProfile, topp
+from .safe import brake_stop
+
+TOPP_CACHE = 512  # time parameterisations remembered (`Timing._topp`)
+
+
+@dataclass
+class TimedPiece:
+    """The path speed ṡ at path positions s (constant path acceleration in between), from the
+    piece's start speed to rest. `fallback`: toppra failed and the safe, slower profile was used
+    (R019); `owner`: the key of the command that owns the start of the piece."""
+
+    s: np.ndarray
+    sd: np.ndarray
+    fallback: bool
+    owner: int
+
+    @property
+    def duration(self) -> float:
+        """The piece's time (s)."""
+        return duration(self.s, self.sd)
+
+
+class Timing:
+    """Time parameterisations of the paths of one arm (`kin`: kin.ArmKin), with a cache: a cyclic
+    program times the same pieces of path again and again."""
+
+    def __init__(self, kin) -> None:
+        """Nothing timed yet."""
+        self.kin = kin
+        self._cache: dict = {}
+
+    def time(self, path, a: float, b: float, v0: float, limits) -> TimedPiece:
+        """The profile of the piece [a, b] of `path` (no stop inside) from path speed v0 to rest:
+        exact on a straight joint line with one set of limits, toppra otherwise."""
+        grid, owners = sample_path(path, a, b, self.kin, limits)
+        s = grid.s
+        if _straight(grid, owners):
+            aq = np.abs(grid.q1[0])
+            mv = aq > 1e-12
+            V = float(np.min(grid.V[0][mv] / aq[mv]))
+            A = float(np.min(grid.A[0][mv] / aq[mv]))
+            D = float(np.min(grid.D[0][mv] / aq[mv]))
+            if np.max(grid.pt) * V <= grid.tv[0] and np.max(grid.rt) * V <= grid.rv[0]:
+                ss, sd = trapezoid(float(s[-1] - s[0]), v0, V, A, D)
+                return TimedPiece(ss + s[0], sd, False, int(owners[0]))
+        res = self._topp(grid, v0)
+        return TimedPiece(res.s, res.sd, res.fallback, int(owners[0]))
+
+    def brake(self, path, a: float, b: float, sd0: float, limits) -> tuple[np.ndarray, np.ndarray]:
+        """Stop on `path` from position a at speed sd0 as soon as the decelerations allow (at the
+        latest at b, the next stop): (s, ṡ) breakpoints ending at rest."""
+        grid, _ = sample_path(path, a, b, self.kin, limits)
+        return brake_stop(grid, sd0)
+
+    def _topp(self, grid: Grid, v0: float) -> TimedProfile:
+        """optimal.topp, remembered: an identical problem has an identical answer."""
+        s0 = grid.s[0]
+        key = (v0, (grid.s - s0).tobytes(), grid.q1.tobytes(), grid.q2.tobytes(), grid.pt.tobytes(),
+               grid.rt.tobytes(), grid.V.tobytes(), grid.A.tobytes(), grid.D.tobytes(), grid.tv.tobytes(),
+               grid.rv.tobytes())
+        hit = self._cache.get(key)
+        if hit is not None:
+            s_rel, sd, fallback = hit
+            s = s_rel + s0
+            if len(s) == len(grid.s):  # toppra's answer is on the grid: exactly its positions
+                s = grid.s.copy()
+            s[0], s[-1] = grid.s[0], grid.s[-1]  # the ends exactly (a command ends there)
+            return TimedProfile(s, sd.copy(), fallback)
+        res = topp(grid, v0)
+        if len(self._cache) >= TOPP_CACHE:
+            self._cache.pop(next(iter(self._cache)))
+        self._cache[key] = (res.s - s0, res.sd.copy(), res.fallback)
+        return res
+
+
+def _straight(grid: Grid, owners: np.ndarray) -> bool:
+    """A straight joint line with one set of limits (the exact trapezoid applies)."""
+    return bool(np.all(np.abs(grid.q2) < 1e-12) and np.all(owners == owners[0])
+                and np.allclose(grid.q1, grid.q1[0], atol=1e-12))

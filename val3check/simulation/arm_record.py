@@ -1,0 +1,229 @@
+"""What the arm did in a run, as the run publishes it: the one record the reports read
+(docs/sim-report.md, "For developers"). Built once at the end of the run (collect.py).
+
+    m = result.motion                  # ArmRun | None (no arm model, or the arm never used)
+    m.scene                            # ArmScene: the arm and the application's frames, once
+    m.motions[i]                       # MotionEntry: one per command recorded, in recording order
+    m.cycles[task]                     # CycleEntry: the cycle of a task that moves the arm (its loop)
+    main_cycle(m.cycles)               # the one the verdict quotes (most complete cycles)
+    m.trajectory                       # JointTrajectory: the joints at any simulated time
+    m.tcp_speed(times, joints, speeds) # the TCP's speed at samples of the trajectory
+
+Times are simulated seconds, joints degrees (a SCARA's axis 3 millimetres), lengths
+millimetres, poses 4x4 matrices in millimetres. Everything is plain data but the two ports,
+`JointTrajectory` and `ArmKinematics` (the arm's forward kinematics and its URDF, read once when
+first asked): a report reads this record and imports nothing of robot/, geometry/ or motion/.
+"""
+
+from __future__ import annotations
+
+import bisect
+from dataclasses import dataclass, field
+from typing import Any, Protocol
+
+import numpy as np
+
+TCP_STEP_S = 1e-4  # the TCP speed: the TCP moved along the joint velocity over this step
+
+
+class JointTrajectory(Protocol):
+    """The arm's commanded joint trajectory (motion/trajectory.py implements it)."""
+
+    def position(self, t: float) -> np.ndarray: ...  # joints at time t
+    def velocity(self, t: float) -> np.ndarray: ...  # joint speeds at time t
+    def positions(self, times) -> np.ndarray: ...  # joints at many times (N, axes)
+    def sample(self, t0: float, t1: float, dt: float = 0.004): ...  # (times, joints, speeds) every dt
+    def segments(self, t_end: float, dt: float = 0.004): ...  # [(first tick, joints, speeds)] where it moves
+    def moving(self, t_end: float) -> list[tuple[float, float]]: ...  # the intervals of motion
+
+
+class ArmKinematics(Protocol):
+    """The arm's links and their forward kinematics (collect.ModelKinematics implements it)."""
+
+    def chain(self) -> dict: ...  # the kinematic chain as plain data (robot/chain.py): the 3D view's
+    def urdf(self) -> tuple[str, str]: ...  # (file name, text) of the arm's URDF
+    def link_edges(self) -> list[tuple[str, str, bool]]: ...  # (parent, child, moves) below the root
+    def link_poses(self, joints) -> dict[str, np.ndarray]: ...  # {link: 4x4 in world} at one position
+    def link_poses_many(self, joints) -> dict[str, np.ndarray]: ...  # {link: (N, 4, 4)} at N positions
+
+
+@dataclass(frozen=True)
+class FramePose:
+    """A frame or tool variable of the application at the end of the run: `kind` "frame" (its pose
+    in world) or "tool" (its TCP in the flange), the number of elements of its array, the pose."""
+
+    kind: str
+    array_size: int
+    matrix: np.ndarray
+
+
+@dataclass(frozen=True)
+class ArmScene:
+    """The arm of the run and the application's frames, once (what does not change over the run).
+    `frames`: by name, and `name[i]` for each element of an array (the first also by name)."""
+
+    name: str
+    axes: int
+    joint_names: tuple[str, ...]
+    joint_units: tuple[str, ...]
+    joint_limits: tuple
+    nominal_speeds: tuple
+    accelerations: tuple
+    initial_joints: tuple[float, ...]
+    world_frame: str
+    flange_frame: str
+    frames: dict[str, FramePose]
+    kinematics: ArmKinematics
+
+
+@dataclass(frozen=True)
+class MotionLimits:
+    """What a motion instruction's mdesc asked (10.5.1): vel, accel, decel in %, tvel (mm/s) and
+    rvel (deg/s) or None at their default (no Cartesian limit)."""
+
+    vel: float
+    accel: float
+    decel: float
+    tvel: float | None
+    rvel: float | None
+
+
+@dataclass
+class MotionEntry:
+    """One command recorded (connection moves included). `id`: the identifier the instruction
+    returned (10.6; None for a connection move); `source`: where the instruction is written (path,
+    line, col, program, task); `state`: done, failed, cancelled, pending; `recorded`, `start`,
+    `end` (None when it never ran); `length_mm`, `peak_tcp_mm_s` of the TCP over its part of the
+    path; `dominant_limit` and `limit_seconds` (the seconds under each limit); the names of its
+    target, the target's frame and its tool; `tool_in_flange` (4x4 mm, None for the flange and
+    connection moves) and the same as a VAL 3 trsf `tool_trsf` (x, y, z mm, rx, ry, rz degrees,
+    9.3.2); the joints it goes from and to (`joints_end` None when it failed); `limits`
+    (None for a connection move, at reduced speed, 10.1.3); `clearance`: the collision checks'
+    report of this motion (a collision.records.MotionReport), None when they did not check it."""
+
+    id: int | float | None
+    kind: str
+    source: Any
+    state: str
+    recorded: float
+    start: float | None
+    end: float | None
+    length_mm: float
+    peak_tcp_mm_s: float
+    dominant_limit: str
+    limit_seconds: dict
+    target: str
+    frame: str
+    tool: str
+    tool_in_flange: np.ndarray | None
+    tool_trsf: tuple[float, ...] | None
+    joints_start: np.ndarray
+    joints_end: np.ndarray | None
+    limits: MotionLimits | None
+    clearance: Any = None
+
+    @property
+    def duration(self) -> float | None:
+        """end - start, None when it never ran."""
+        return None if self.start is None or self.end is None else self.end - self.start
+
+
+@dataclass(frozen=True)
+class ToolUse:
+    """An open() or close() of a tool (9.5.4; interpretation.recorder.ToolEvent): when, the task,
+    "open" or "close", the tool's name, its gripper's link, its centre point in the flange as a
+    VAL 3 trsf (x, y, z mm, rx, ry, rz degrees) and as a 4x4 matrix (mm), and the instruction's
+    (path, line, col, program)."""
+
+    time_us: int
+    task: str
+    action: str
+    tool: str
+    gripper: str
+    tcp_in_flange: tuple
+    position: tuple
+    tcp_matrix: np.ndarray
+
+
+@dataclass(frozen=True)
+class CycleEntry:
+    """The cycle of a task that records motions (docs/motion.md, "Cycle time"): the loop that
+    moves the arm once per part. `marker` (path, line, col), `program` and `kind` (while, do,
+    for) of that loop statement, all None without a cycle; `why` it is the cycle (or why there is
+    none); `passes` of it that recorded motions; `starts`: when the arm started each pass (its
+    first command)."""
+
+    task: str
+    marker: tuple[str, int, int] | None
+    starts: tuple[float, ...] = ()
+    program: str | None = None
+    kind: str | None = None
+    why: str = ""
+    passes: int = 0
+
+    @property
+    def times(self) -> list[float]:
+        """The cycle times: between successive starts."""
+        return [b - a for a, b in zip(self.starts, self.starts[1:])]
+
+    @property
+    def count(self) -> int:
+        """Complete cycles."""
+        return max(len(self.starts) - 1, 0)
+
+
+def main_cycle(cycles: dict[str, CycleEntry]) -> CycleEntry | None:
+    """The cycle a run's verdict quotes: the task's with the most complete cycles (ties: the first
+    task by name); None when no task completed one."""
+    best = None
+    for task in sorted(cycles):
+        entry = cycles[task]
+        if entry.count and (best is None or entry.count > best.count):
+            best = entry
+    return best
+
+
+@dataclass
+class ArmRun:
+    """What the arm did in a run (see the module docstring): `busy_s`, `idle_s` its moving and
+    standing time, `end_s` the end of the run; `tool_events` every open()/close() (ToolUse)."""
+
+    scene: ArmScene
+    motions: list[MotionEntry]
+    cycles: dict[str, CycleEntry]
+    trajectory: JointTrajectory
+    tool_events: list[ToolUse] = field(default_factory=list)
+    busy_s: float = 0.0
+    idle_s: float = 0.0
+    end_s: float = 0.0
+
+    def sample(self, t0: float = 0.0, t1: float | None = None, dt: float = 0.004):
+        """(times (N,), joint positions (N, axes), joint velocities (N, axes)) every `dt` s."""
+        return self.trajectory.sample(t0, self.end_s if t1 is None else t1, dt)
+
+    def tcp_speed(self, times, positions, velocities) -> np.ndarray:
+        """The TCP's Cartesian speed (mm/s) at samples of the trajectory (times (N,), joints and
+        joint velocities (N, axes)), for the tool of the motion under way (the last motion started,
+        connection moves aside; before any, the first motion's): the TCP moved along the joint
+        velocity over a small step (no spike when the tool changes)."""
+        flange = self.scene.flange_frame
+        h = TCP_STEP_S
+        poses = self.scene.kinematics.link_poses_many
+        P0 = poses(positions)[flange]
+        P1 = poses(positions + h * velocities)[flange]
+        starts, tools = [], []
+        for motion in self.motions:
+            if motion.start is not None and motion.kind != "connection":
+                starts.append(motion.start)
+                tools.append(motion.tool_in_flange)
+        idx = np.array([max(bisect.bisect_right(starts, t) - 1, 0) for t in times]) if starts \
+            else np.zeros(len(times), int)
+        out = np.zeros(len(times))
+        for k in sorted(set(idx.tolist())):
+            sel = idx == k
+            tool = tools[k] if tools else None
+            p = np.array([0.0, 0.0, 0.0, 1.0]) if tool is None else np.asarray(tool, dtype=float)[:, 3]
+            a = P0[sel] @ p
+            b = P1[sel] @ p
+            out[sel] = np.linalg.norm((b - a)[:, :3], axis=1) / h
+        return out

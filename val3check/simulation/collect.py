@@ -1,0 +1,231 @@
+"""The record of a run, collected from the machine when it ends: `collect(machine) -> SimResult`
+(result.py) with the record of what the arm did and of the scene (`arm_run`, arm_record.py).
+
+This is where the run's objects (the motion queue, the arm model, the program's variables) become
+the plain records the reports read: the motion table with each command's tool, limits and
+joints, the cycles, the arm's chain and the application's frames once. Nothing else hands the
+reports anything of motion/, robot/ or geometry/.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from ..diagnostics import Diagnostic
+from ..geometry.frames import Frame, root_pose
+from ..geometry.rotation import angles_of, matrix
+from ..interpretation.machine import Machine
+from ..motion.cycle import cycle_stats
+from ..motion.records import busy_time, motion_records
+from .arm_record import ArmRun, ArmScene, CycleEntry, FramePose, MotionEntry, MotionLimits, ToolUse
+from .moving_arm import MovingArm
+from .result import END_REASONS, SimResult, TaskSummary
+
+
+def collect(machine: Machine) -> SimResult:
+    """The SimResult of a machine whose run ended: how it ended, the tasks, the diagnostics (the
+    arm's findings included), the I/O and user page, and the record of the arm (`arm_run`)."""
+    reason = machine.end_reason
+    message = END_REASONS.get(reason, reason)
+    if reason.startswith("budget:"):
+        message = reason[len("budget:"):]
+        reason = "budget"
+    diags = list(machine.diags)
+    if reason == "deadlock" and any(d.code == "R009" for d in diags) and not any(d.code == "R003" for d in diags):
+        # no task waits only for variables: the cell, not the program, would go on (R009)
+        message = ("every task waits for the cell (inputs, serial or socket peers, keys, the controller's state), "
+                   "which nothing in the run plays (a scenario can: docs/scenario.md)")
+    if reason == "duration":
+        running = [t.name for t in machine.scheduler.history if t.final is not None]
+        diags.append(Diagnostic("R007", f"run stopped at --duration {machine.end_time / 1e6:g} s; tasks still alive: "
+                                + (", ".join(running) or "none"), machine.app.path, 0, 0,
+                                time_us=machine.end_time, task="", program=""))
+    elif reason in ("wall-clock", "steps", "budget"):
+        diags.append(Diagnostic("R006", f"run cut short: {message}", machine.app.path, 0, 0, time_us=machine.end_time,
+                                task="", program=""))
+    tasks = []
+    for t in machine.scheduler.history:
+        final = t.final
+        where = (final.where if final is not None else None) or t.errpos
+        stopped_on_error = t.state.value == "error" or (final is not None and final.state == "error")
+        tasks.append(TaskSummary(
+            name=t.name,
+            program=t.program,
+            library=t.unit.name if t.unit is not machine.main else None,
+            priority=t.prio if not t.period else None,
+            period=t.period / 1e6 if t.period else None,
+            created=t.created,
+            ended=t.ended,
+            end=t.end_state or "alive",
+            state_at_end_of_run=final.state if final is not None else t.end_state or "ended",
+            error=t.error if stopped_on_error else None,
+            error_text=t.errdetail or None,
+            blocked_on=final.blocked_on if final is not None else None,
+            position=where,
+            lines=t.lines,
+        ))
+    motion = arm_run(machine, diags)
+    diags.sort(key=lambda d: d.time_us if d.time_us is not None else 0)  # stable: by time, then as recorded
+    page = machine.user_page.default
+    screen = {"title": page.title, "lines": page.text()}
+    arm = machine.arm
+    robot = {"name": arm.name, "initial_joints": list(arm.initial_joints)} if arm.has_model else None
+    return SimResult(machine.app.name, machine.app.path, reason, message, machine.end_time,
+                     machine.scheduler.total_lines, tasks, diags, machine.recorder.transcript, machine.recorder.io_log,
+                     screen, list(machine.destroyed), {k: sorted(v) for k, v in machine.link_names.items()},
+                     robot=robot, globals=dict(machine.main.globals) if machine.main is not None else {},
+                     motion=motion, tool_events=list(machine.recorder.tool_events),
+                     task_states=list(machine.recorder.finish_task_states()))
+
+
+def arm_run(machine: Machine, diags: list[Diagnostic]) -> ArmRun | None:
+    """The arm's findings as diagnostics (added to `diags`), and the record of what it did: None
+    when the run has no moving arm or never used it."""
+    arm = machine.arm
+    q = arm.queue_in_use if isinstance(arm, MovingArm) else None
+    if q is None:
+        return None
+    end_s = machine.end_time / 1_000_000
+    q.advance(end_s)
+    for f in q.findings:
+        src = f.source
+        diags.append(Diagnostic(f.code, f.message, src.path, src.line, src.col, time_us=int(round(f.time * 1e6)),
+                                task=src.task, program=src.program, error=f.error))
+    records = motion_records(q, end_s)
+    motions = [_entry(rec, command) for rec, command in zip(records, q.history)]
+    cycles = {task: CycleEntry(st.task, st.marker, tuple(st.starts), st.loop and st.loop.program,
+                               st.loop and st.loop.kind, st.why, st.passes)
+              for task, st in _cycles(machine, arm, records, q.history).items()}
+    busy, idle = busy_time(q.trajectory.profile, end_s)
+    scene = arm_scene(arm.model, arm.initial_joints, machine.main.globals if machine.main is not None else {})
+    tools = [ToolUse(*e, tcp_matrix=_matrix(e.tcp_in_flange)) for e in machine.recorder.tool_events]
+    return ArmRun(scene, motions, cycles, q.trajectory, tools, busy, idle, end_s)
+
+
+def _cycles(machine: Machine, arm: MovingArm, records, commands) -> dict:
+    """Each task's cycle (motion/cycle.py): from the loops each command was recorded in and the
+    loops each task was in when the run ended."""
+    contexts = [arm.contexts.get(command.key, ()) for command in commands]
+    inside = {t.name: arm.context(t.final.loops) for t in machine.scheduler.history
+              if t.final is not None and t.final.loops}
+    return cycle_stats(records, contexts, inside)
+
+
+def _entry(rec, command) -> MotionEntry:
+    """A row of the motion table: the motion record (motion/records.py) and what its command
+    (motion/queued.py) asked."""
+    req = command.request
+    connection = req.kind == "connection"
+    md = req.mdesc
+    limits = None if connection else MotionLimits(md.vel, md.accel, md.decel, md.tvel_limit, md.rvel_limit)
+    return MotionEntry(
+        rec.id, rec.kind, rec.source, rec.state, rec.recorded, rec.start, rec.end, rec.length_mm, rec.peak_tcp_mm_s,
+        rec.dominant, rec.limit_share, rec.target, req.frame_name, rec.tool,
+        tool_in_flange=None if connection else req.tool,
+        tool_trsf=None if connection or req.tool is None else _trsf(req.tool), joints_start=command.geometry.q_start,
+        joints_end=command.geometry.q_end if command.state != "failed" else None, limits=limits)
+
+
+def _trsf(m) -> tuple[float, ...]:
+    """A 4x4 matrix (mm) as a VAL 3 trsf: x, y, z (mm), rx, ry, rz (degrees, 9.3.2)."""
+    r = tuple(float(m[i][j]) for i in range(3) for j in range(3))
+    rx, ry, rz = angles_of(r)
+    return (float(m[0][3]), float(m[1][3]), float(m[2][3]), rx, ry, rz)
+
+
+def _matrix(trsf) -> Any:
+    """A VAL 3 trsf (x, y, z mm, rx, ry, rz degrees, 9.3.2) as a 4x4 matrix (mm)."""
+    import numpy as np
+
+    x, y, z, rx, ry, rz = (float(v) for v in trsf)
+    T = np.eye(4)
+    T[:3, :3] = np.reshape(matrix(rx, ry, rz), (3, 3))
+    T[:3, 3] = (x, y, z)
+    return T
+
+
+def arm_scene(model: Any, initial_joints, globals_: dict) -> ArmScene:
+    """The scene of a run on `model` (robot.RobotModel): the arm, and the frame and tool variables
+    of the application (`globals_`: name -> Arr of run-time values) as the run left them."""
+    axes = len(model.joint_limits)
+    return ArmScene(model.name, axes, tuple(model.joint_names),
+                    tuple(getattr(model, "joint_units", None) or ["deg"] * axes), tuple(model.joint_limits),
+                    tuple(model.nominal_speeds), tuple(model.accelerations), tuple(initial_joints),
+                    model.world_frame, model.flange_frame, app_frames(globals_), ModelKinematics(model))
+
+
+def app_frames(globals_: dict) -> dict[str, FramePose]:
+    """The application's frame and tool variables, by name (and `name[i]` for each element):
+    their pose in the world frame (frames) or the flange (tools), 4x4 mm. A frame whose pose is
+    undefined (error 163...) is left out."""
+    import numpy as np
+
+    out: dict[str, FramePose] = {}
+    for name, arr in sorted(globals_.items()):
+        kind = getattr(arr, "t", None)
+        if kind not in ("frame", "tool"):
+            continue
+        data = getattr(arr, "data", [])
+        for i, node in enumerate(data):
+            if not isinstance(node, Frame):
+                continue
+            try:
+                R, v, _ = root_pose(node)
+            except Exception:  # noqa: BLE001 - an undefined frame (error 163) is simply not drawn
+                continue
+            M = np.eye(4)
+            M[:3, :3] = np.reshape(R, (3, 3))  # row-major (geometry/rotation.py)
+            M[:3, 3] = v
+            pose = FramePose(kind, len(data), M)
+            out[f"{name}[{i}]"] = pose
+            if i == 0:
+                out[name] = pose
+    return out
+
+
+class ModelKinematics:
+    """The arm's links and their forward kinematics over a robot.RobotModel (the ArmKinematics port
+    of arm_record.py): its URDF is read once, when first asked."""
+
+    def __init__(self, model: Any) -> None:
+        """Nothing is read yet."""
+        self.model = model
+        self._links: Any = None
+
+    def _arm_links(self):
+        """robot.links.ArmLinks of the model, read once."""
+        if self._links is None:
+            from ..robot.links import arm_links
+
+            self._links = arm_links(self.model)
+        return self._links
+
+    def chain(self) -> dict:
+        """The kinematic chain and solids of the 3D view (robot.chain.arm_chain), with the URDF named
+        as the repository holds it (`robots/tx2-60.urdf`) or by its file name."""
+        from ..robot.chain import arm_chain
+
+        m = self.model
+        return arm_chain(m.source, world_frame=m.world_frame, flange_frame=m.flange_frame, joint_names=m.joint_names,
+                         name=m.name, source=f"robots/{Path(m.source).name}" if "/robots/" in m.source
+                         else Path(m.source).name)
+
+    def urdf(self) -> tuple[str, str]:
+        """(file name, text) of the arm's URDF."""
+        return Path(self.model.source).name, Path(self.model.source).read_text(encoding="utf-8")
+
+    def link_edges(self) -> list[tuple[str, str, bool]]:
+        """(parent, child, the joint between them moves) for every link below the root, parents
+        first."""
+        links = self._arm_links()
+        return [(links.edges[c].parent, c, links.edges[c].kind != "fixed" and links.edges[c].index >= 0)
+                for c in links.links[1:]]
+
+    def link_poses(self, joints) -> dict:
+        """{link: 4x4 pose in world (mm)} at one joint position."""
+        return self._arm_links().poses(joints)
+
+    def link_poses_many(self, joints) -> dict:
+        """{link: (N, 4, 4) poses in world (mm)} at N joint positions."""
+        return self._arm_links().poses_many(joints)
