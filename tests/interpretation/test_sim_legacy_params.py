@@ -79,8 +79,8 @@ def test_s6_reference_parameter_indexed_by_the_program_takes_the_whole_array(tmp
         "stop": ("", "", ""),
         # handed on to a parameter the callee indexes: an array too
         "fill": ('<param name="x_sOut" type="string" byVal="false" />', "", '  call paste(x_sOut, "b")'),
-        "paste": ('<param name="x_sPaste" type="string" byVal="false" />'
-                  '<param name="x_sWhat" type="string" byVal="true" />',
+        "paste": (('<param name="x_sPaste" type="string" byVal="false" />'
+                   '<param name="x_sWhat" type="string" byVal="true" />'),
                   '<local name="l_i" type="num" size="1" />',
                   '  for l_i = 0 to size(x_sPaste) - 1\n    x_sPaste[l_i] = x_sWhat + toString("", l_i)\n  endFor'),
         # not used as an array: an element reference (2.6.2)

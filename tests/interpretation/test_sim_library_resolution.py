@@ -61,7 +61,7 @@ def test_two_applications_of_that_name_are_not_a_guess(tmp_path):
     (tmp_path / ".git").mkdir()
     _libraries(tmp_path / "vendor" / "driver")
     make_library(tmp_path / "old", "ifCS8", globals_=["num nV"])
-    lr, r = _sim(_app(tmp_path))
+    _lr, r = _sim(_app(tmp_path))
     assert gv(r, "nCode") == 39  # 6.6: not found
 
 
@@ -80,6 +80,6 @@ def test_6_2_private_globals_are_the_librarys_own(tmp_path):
                 '  bSeen = isDefined(ct:nHidden)\n  bExist = ct:libExist("nHidden")\nend',
                 globals_=["num nGot", "bool bSeen", "bool bExist"], name="App")
     add_libraries(app, {"ct": "Disk://Counter"}, name="App", autoload="true")
-    lr, r = _sim(app)
+    _lr, r = _sim(app)
     assert errors(r) == [] and gv(r, "nGot") == 20
     assert gv(r, "bSeen") is False and gv(r, "bExist") is False

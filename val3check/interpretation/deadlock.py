@@ -26,6 +26,7 @@ from ..loading.model import Application, Container
 from ..parsing import ast
 from .scheduler import ERROR, HELD, SUSPENDED, WAIT
 
+
 def report_blocked(machine) -> None:
     """Every task waits for something no scheduled event can change: R009 for the waits only the
     cell can end (and for the waits those tasks may end once released), R018 for a motion power

@@ -107,7 +107,7 @@ def _shown(v) -> str:
 
 
 def _count(n: float, room: int) -> int:
-    return max(0, min(room, int(n) if n == n and abs(n) < 1e9 else 0))
+    return max(0, min(room, int(n) if abs(n) < 1e9 else 0))
 
 
 def S_fileopen(task, unit, path: str, mode: str):
@@ -148,7 +148,7 @@ def S_fileset(task, unit, handle: float, arr, count: float):
     if arr.t == "string":
         data = "".join(f"{v}\n" for v in values).encode("utf-8")
     else:
-        data = bytes(int(v + 0.5) % 256 if v == v and abs(v) < 1e15 else 0 for v in values)
+        data = bytes(int(v + 0.5) % 256 if abs(v) < 1e15 else 0 for v in values)
     ok = task.machine.files.write(handle, data)
     yield from YIELD(task)
     return float(n) if ok else -1.0

@@ -14,8 +14,8 @@ from ...language import lookup
 from ...parsing import ast
 from ..not_simulated import ARM_LIMIT
 from ..registry import system_symbol
-from .overloads import overloads_with_arity
 from ..values import ENUM_CONSTANTS
+from .overloads import overloads_with_arity
 from .structures import UNKNOWN, Code, CompileError, VariableArg
 
 # Functions whose value changes with time alone: a wait on them cannot be skipped over by

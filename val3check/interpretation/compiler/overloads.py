@@ -5,8 +5,7 @@
 
 from __future__ import annotations
 
-from ...language import lookup
-from ...language import s8
+from ...language import lookup, s8
 from ...language.instructions import Overload, Param
 
 # s8 forms whose parameters are not public, as the simulator binds them (docs/sim.md, "s8 and

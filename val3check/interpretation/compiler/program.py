@@ -18,8 +18,8 @@ from ...loading.model import Application, Container, Program
 from ...loading.types import base_type
 from ..memory import TypeSpace
 from .calls import CallCompiler
-from .legacy import effective_parameters
 from .expressions import ExpressionCompiler
+from .legacy import effective_parameters
 from .statements import StatementCompiler
 from .structures import Compiled, CompileError, VarInfo
 from .variables import CALL_BYTES, VariableCompiler
