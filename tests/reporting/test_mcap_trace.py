@@ -5,6 +5,7 @@ kinematics (here()) at the sampled times, the log, I/O and task channels, the UR
 from __future__ import annotations
 
 import json
+from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
@@ -20,6 +21,38 @@ from val3check.robot import load_robot
 from .runhelp import APP, CELL, SCENARIO, pickplace
 
 FOXGLOVE = {"foxglove.FrameTransforms", "foxglove.PoseInFrame", "foxglove.SceneUpdate", "foxglove.Log"}
+# Foxglove's published JSON schemas (tests/data/foxglove/README.md says where they come from)
+PUBLISHED = Path(__file__).resolve().parents[1] / "data" / "foxglove"
+
+
+def _published() -> dict:
+    """{schema name: Foxglove's JSON schema} of the four Foxglove schemas the trace uses."""
+    out = {}
+    for f in sorted(PUBLISHED.glob("*.json")):
+        schema = json.loads(f.read_text(encoding="utf-8"))
+        out[schema["title"]] = schema
+    assert set(out) == FOXGLOVE
+    return out
+
+
+def _violations(path) -> tuple[dict, list]:
+    """Read a trace back: ({schema name: messages}, [(topic, error)]) of every message of a
+    Foxglove schema against Foxglove's published schema, and of every message against the schema
+    the file embeds."""
+    import jsonschema
+
+    published = {n: jsonschema.Draft7Validator(s) for n, s in _published().items()}
+    counts: dict = {}
+    bad = []
+    with open(path, "rb") as f:
+        for sc, ch, msg in make_reader(f).iter_messages():
+            message = json.loads(msg.data)
+            counts[sc.name] = counts.get(sc.name, 0) + 1
+            checks = [jsonschema.Draft7Validator(json.loads(sc.data))]
+            if sc.name in published:
+                checks.append(published[sc.name])
+            bad += [(ch.topic, e.message) for v in checks for e in v.iter_errors(message)]
+    return counts, bad
 
 
 @pytest.fixture(scope="module")
@@ -165,7 +198,7 @@ def test_transforms_reproduce_here_at_the_sampled_times(trace, run):
 
 
 def test_frames_tools_scene_log_io_tasks_and_urdf(trace, run):
-    result, report = run
+    result, _ = run
     static = next(m[4] for m in _by(trace, "/tf") if m[2] == 0 and any(
         x["child_frame_id"] == "fPallet" for x in m[4]["transforms"]))
     by = {x["child_frame_id"]: x for x in static["transforms"]}
@@ -218,6 +251,63 @@ def test_frames_tools_scene_log_io_tasks_and_urdf(trace, run):
     (att,) = trace.attachments
     assert att.name == "tx2-60.urdf" and att.data.decode() == desc[4]["data"] and "<robot" in desc[4]["data"]
     assert trace.metadata[0].metadata["robot"] == "TX2-60"
+
+
+def test_every_message_of_the_bundled_example_holds_to_foxglove_s_schemas(tmp_path, capsys):
+    """The README's run of the bundled example (its cell beside it, so the scene has the cell, the
+    tool and the parts) read back: every message of a Foxglove schema validates against Foxglove's
+    published JSON schema (a SceneEntity needs all its primitive arrays, even empty)."""
+    path = tmp_path / "run.mcap"
+    assert main(["sim", str(APP), "--robot", "tx2-60", "--scenario", str(SCENARIO), "--duration", "12",
+                 "--trace", str(path)]) == 0
+    capsys.readouterr()
+    counts, bad = _violations(path)
+    assert bad == []
+    assert counts["foxglove.SceneUpdate"] > 5 and counts["foxglove.FrameTransforms"] > 1000
+    assert FOXGLOVE <= set(counts)
+
+
+def test_the_test_trace_holds_to_foxglove_s_schemas(trace):
+    """The module's trace (a cell, a clearance, the log): every message validates."""
+    counts, bad = _violations(trace.path)
+    assert bad == [] and FOXGLOVE <= set(counts)
+
+
+def test_a_mesh_obstacle_is_a_triangle_list_foxglove_accepts():
+    """A mesh of the cell (docs/cell.md) as a SceneEntity's triangle list (with its `colors`, empty)."""
+    import jsonschema
+
+    from val3check.reporting.mcap_trace import _entity
+
+    mesh = SimpleNamespace(vertices=[[0, 0, 0], [100, 0, 0], [0, 100, 0], [0, 0, 100]],
+                           faces=[[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+    e = _entity(0, "world", "obstacle/machine", "obstacle", [("machine", SimpleNamespace(kind="mesh", mesh=mesh),
+                                                                np.eye(4), None)])
+    (tri,) = e["triangles"]
+    assert len(tri["points"]) == 4 and tri["indices"][:3] == [0, 2, 1] and tri["points"][1]["x"] == 0.1
+    jsonschema.Draft7Validator(_published()["foxglove.SceneUpdate"]).validate({"deletions": [], "entities": [e]})
+
+
+def _required(ours: dict, theirs: dict, where: str = "") -> list[str]:
+    """Where the schema val3check embeds requires other fields than Foxglove's (walking the
+    properties both describe)."""
+    out = []
+    if "properties" in ours:
+        if set(ours.get("required", [])) != set(theirs.get("required", [])):
+            out.append(f"{where or '/'}: {sorted(ours.get('required', []))} != {sorted(theirs.get('required', []))}")
+        for k, sub in ours["properties"].items():
+            if k in theirs.get("properties", {}):
+                out += _required(sub, theirs["properties"][k], f"{where}/{k}")
+    if "items" in ours and "items" in theirs:
+        out += _required(ours["items"], theirs["items"], f"{where}[]")
+    return out
+
+
+def test_the_embedded_schemas_require_what_foxglove_s_require():
+    for name, theirs in _published().items():
+        ours = SCHEMAS[name]
+        assert _required(ours, theirs) == [], name
+        assert set(ours["properties"]) <= set(theirs["properties"])
 
 
 def test_schema_field_names_are_foxglove_s():
