@@ -253,18 +253,61 @@ def test_frames_tools_scene_log_io_tasks_and_urdf(trace, run):
     assert trace.metadata[0].metadata["robot"] == "TX2-60"
 
 
-def test_every_message_of_the_bundled_example_holds_to_foxglove_s_schemas(tmp_path, capsys):
-    """The README's run of the bundled example (its cell beside it, so the scene has the cell, the
-    tool and the parts) read back: every message of a Foxglove schema validates against Foxglove's
-    published JSON schema (a SceneEntity needs all its primitive arrays, even empty)."""
-    path = tmp_path / "run.mcap"
+@pytest.fixture(scope="module")
+def readme_trace(tmp_path_factory):
+    """The README's run of the bundled example (its cell beside it, so that the scene has the
+    cell, the tool and the parts), 12 simulated seconds, through the command line."""
+    path = tmp_path_factory.mktemp("readme") / "run.mcap"
     assert main(["sim", str(APP), "--robot", "tx2-60", "--scenario", str(SCENARIO), "--duration", "12",
                  "--trace", str(path)]) == 0
+    return path
+
+
+def test_every_message_of_the_bundled_example_holds_to_foxglove_s_schemas(readme_trace, capsys):
+    """Read back, every message of a Foxglove schema validates against Foxglove's published JSON
+    schema (a SceneEntity needs all its primitive arrays, even empty)."""
     capsys.readouterr()
-    counts, bad = _violations(path)
+    counts, bad = _violations(readme_trace)
     assert bad == []
     assert counts["foxglove.SceneUpdate"] > 5 and counts["foxglove.FrameTransforms"] > 1000
     assert FOXGLOVE <= set(counts)
+
+
+def test_the_shipped_layout_is_the_bundled_example_s_one_row_per_task(readme_trace, tmp_path, capsys):
+    """docs/foxglove-layout.json is what `python -m val3check.reporting.foxglove_layout` makes of the
+    bundled example's trace: Foxglove's State Transitions panel draws one row per path, and each
+    task's path keeps that task's messages only (a message path filter on its name)."""
+    from val3check.reporting.foxglove_layout import main as layout_main
+
+    out = tmp_path / "layout.json"
+    assert layout_main([str(readme_trace), "-o", str(out)]) == 0
+    assert "3 task(s), 6 joint(s)" in capsys.readouterr().err
+    shipped = (Path(__file__).resolve().parents[2] / "docs" / "foxglove-layout.json").read_text(encoding="utf-8")
+    assert out.read_text(encoding="utf-8") == shipped
+    rows = json.loads(shipped)["configById"]["StateTransitions!tasks"]["paths"]
+    with open(readme_trace, "rb") as f:
+        tasks = [json.loads(m.data)["task"] for _, _, m in make_reader(f).iter_messages(topics=["/tasks"])]
+    assert [r["label"] for r in rows] == list(dict.fromkeys(tasks)) == ["PickPlace~", "robot", "~PickPlace"]
+    assert [r["value"] for r in rows] == [f'/tasks{{task=="{t}"}}.state' for t in ("PickPlace~", "robot", "~PickPlace")]
+
+
+def test_layout_of_a_scara_and_of_names_that_need_quoting():
+    from val3check.reporting.foxglove_layout import layout, task_path
+
+    lay = layout(["a\"b", "t"], axes=4)
+    assert [p["label"] for p in lay["configById"]["Plot!velocities"]["paths"]] == ["j1", "j2", "j3", "j4"]
+    assert task_path('a"b') == '/tasks{task=="a\\"b"}.state'
+
+
+def test_a_file_that_is_no_trace_is_refused_with_its_name(tmp_path, capsys):
+    from val3check.reporting.foxglove_layout import main as layout_main
+
+    bad = tmp_path / "x.mcap"
+    bad.write_text("not mcap")
+    assert layout_main([str(bad)]) == 2
+    assert layout_main([str(tmp_path / "none.mcap")]) == 2
+    err = capsys.readouterr().err
+    assert "x.mcap: not a trace" in err and "none.mcap: cannot read" in err
 
 
 def test_the_test_trace_holds_to_foxglove_s_schemas(trace):
