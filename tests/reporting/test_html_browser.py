@@ -331,7 +331,9 @@ def test_page_of_the_pick_and_place_cell_s_json_report(chromium, tmp_path, monke
                          .filter((r) => /^[0-9.]+ /.test(r.lastElementChild.textContent)).length,
         verdict: document.querySelector('.verdict').textContent,
         text: document.body.textContent,
+        where: document.querySelector('table.motions tbody tr td:nth-child(2)').textContent,
     })""")
+    assert counts["where"] == "start.pgx:15"  # the program with the line
     assert counts["motions"] == 111 and counts["jointPlots"] == 12 and counts["tcpPlots"] == 1
     assert counts["bars"] >= 18 and counts["clearances"] == 111
     assert "median of 18 complete cycles" in counts["verdict"]

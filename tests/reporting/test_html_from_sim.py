@@ -117,6 +117,10 @@ def test_the_bundled_example_s_json_gives_its_motions_cycles_and_trajectory(caps
     html = render(model)
     for absent in ("No motion in this run", "did not move", "no complete loop iteration", "No TCP speed"):
         assert absent not in html
+    # the motion table says which program each line is in (item 13), the whole position on hover
+    assert '<th scope="col">program:line</th>' in html
+    assert '<span title="fixtures/valid/PickPlace/start.pgx:15:3">start.pgx:15</span>' in html
+    assert '<span title="fixtures/valid/PickPlace/pick.pgx:6:3">pick.pgx:6</span>' in html
 
 
 def test_the_page_of_the_json_is_the_page_of_the_run(capsys):
