@@ -302,6 +302,70 @@ def test_html_index_and_junit_escape_what_comes_from_the_input():
     assert root.find(".//failure").get("message") == 'a < b & "c"'
 
 
+def test_cases_are_in_natural_order():
+    """Issue 28 item 13: numbers inside names order as numbers (tx2-60 before tx2-140, ms50.toml
+    before ms100.toml), override values as numbers (monitor_speed=50 before =100), in every format."""
+    from val3check.batch.summary import ordered, render_text
+
+    cases = []
+    for arm in ("tx2-140", "tx2-60"):
+        for sc in ("ms100.toml", "ms50.toml"):
+            for ms in (100.0, 50.0):
+                ov = (("monitor_speed", ms),)
+                cases.append(_summary(key=("a.pjx", arm, sc, "", ov), arm=arm, scenario=sc, overrides=ov))
+    got = [(s.arm, s.scenario, s.overrides[0][1]) for s in ordered(cases)]
+    assert got[:4] == [("tx2-60", "ms50.toml", 50.0), ("tx2-60", "ms50.toml", 100.0),
+                       ("tx2-60", "ms100.toml", 50.0), ("tx2-60", "ms100.toml", 100.0)]
+    assert got[4][0] == "tx2-140"
+    text = render_text(cases)
+    assert text.index("tx2-60") < text.index("tx2-140") and text.index("ms50.toml") < text.index("ms100.toml")
+
+
+def test_index_paths_are_relative_to_the_index_and_link_to_the_files(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    s = _summary(app=str(tmp_path / "cell" / "Pick" / "Pick.pjx"), scenario="cell/run.toml", verdict="fail",
+                 reason="cell/Pick/start.pgx:3:1: R032 error: " + "x" * 400)
+    page = render_html([s], set(), "0", index_dir=str(tmp_path / "out"))
+    assert '<a href="../cell/Pick/Pick.pjx">../cell/Pick/Pick.pjx</a>' in page
+    assert '<a href="../cell/run.toml">../cell/run.toml</a>' in page
+    assert str(tmp_path) not in page  # no absolute path
+    # the reason on a row of its own, as wide as the table
+    assert '<tr class="why"><td colspan="' in page and "x" * 400 in page
+
+
+@pytest.mark.browser
+def test_index_shows_every_reason_whole_at_1400_and_900_px(tmp_path, monkeypatch):
+    """The reason of a failing case with long paths is never cut (item 13: the index cut it at 1400 px)."""
+    import browser_client
+
+    why = browser_client.skip_reason()
+    if why:
+        if browser_client.required():
+            raise RuntimeError(why)
+        pytest.skip(why)
+    monkeypatch.chdir(tmp_path)
+    deep = tmp_path / ("very-long-folder-name-of-a-cell-" * 3) / "Application" / "Application.pjx"
+    cases = [_summary(key=(str(deep), arm), app=str(deep), arm=arm, scenario=str(deep.parent / "scenario.toml"),
+                      verdict="fail", reason=f"{deep.parent}/start.pgx:15:3: R032 error: movej starts in collision: "
+                      "link_1 (shoulder) hits obstacle 'table' at 0.152 s, 30.0 mm deep, at (185.0, 0.0, -133.0) mm")
+             for arm in ("tx2-60", "tx2-90")]
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "index.html").write_text(render_html(cases, set(), "0", index_dir=str(out)), encoding="utf-8")
+    for width in (1400, 900):
+        with browser_client.Chromium(width=width) as chromium:
+            page = chromium.open(out / "index.html", wait=False)
+            assert page.console_errors == [] and page.refused == []
+            got = page.evaluate("""() => ({
+                scroll: document.documentElement.scrollWidth, client: document.documentElement.clientWidth,
+                right: Math.max(...Array.from(document.querySelectorAll('tr.why td'))
+                                     .map((td) => td.getBoundingClientRect().right)),
+                reasons: Array.from(document.querySelectorAll('tr.why td')).map((td) => td.textContent)})""")
+            assert got["scroll"] <= got["client"] and got["right"] <= got["client"], (width, got)
+            assert got["reasons"] == [c.reason for c in cases]
+            page.page.screenshot(path=str(tmp_path / f"index-{width}.png"), full_page=True)
+
+
 def test_case_names_are_safe_and_stay_in_the_out_dir(cell, tmp_path):
     (case,) = product_cases(Axes(["apps/A"], ["tx2-60"], [], [], []), Settings(), RunOptions())
     hostile = replace(case, app_name="../../etc/passwd", scenario="../../x/..\\evil name.toml", arm="..")

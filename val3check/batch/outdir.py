@@ -49,7 +49,7 @@ def write_summaries(out_dir: str, summaries: list[CaseSummary], reports: set[str
     """`reports`: the file names written under cases/ (write_case), that the index links to."""
     for name, text in (("summary.txt", render_text(summaries)), ("summary.json", render_json(summaries, tool_version)),
                        ("junit.xml", render_junit(summaries)),
-                       ("index.html", render_html(summaries, reports, tool_version))):
+                       ("index.html", render_html(summaries, reports, tool_version, index_dir=out_dir))):
         _write(inside(out_dir, name), text.encode("utf-8"))
 
 
