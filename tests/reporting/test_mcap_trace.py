@@ -222,7 +222,7 @@ def test_frames_tools_scene_log_io_tasks_and_urdf(trace, run):
     (arrow,) = tcp["arrows"]  # +x turned onto the flange's z: the arrow points to the TCP
     q = arrow["pose"]["orientation"]
     x_axis = _matrix({"rotation": q, "translation": {"x": 0, "y": 0, "z": 0}})[:3, 0]
-    assert x_axis == pytest.approx([0, 0, 1]) and arrow["shaft_length"] + arrow["head_length"] == pytest.approx(0.12)
+    assert x_axis == pytest.approx([0, 0, 1], abs=1e-11) and arrow["shaft_length"] + arrow["head_length"] == pytest.approx(0.12)
     # the part rides on the flange from close(), and stays in the world where open() leaves it
     model = load_robot(result.motion.scene.name)
     tool = np.eye(4)
@@ -271,6 +271,43 @@ def test_every_message_of_the_bundled_example_holds_to_foxglove_s_schemas(readme
     assert bad == []
     assert counts["foxglove.SceneUpdate"] > 5 and counts["foxglove.FrameTransforms"] > 1000
     assert FOXGLOVE <= set(counts)
+
+
+def _decimals(x: float) -> int:
+    r = repr(float(x))
+    if "e" in r:
+        mant, exp = r.split("e")
+        return (len(mant.split(".")[1]) if "." in mant else 0) - int(exp)
+    return len(r.split(".")[1]) if "." in r else 0
+
+
+def _too_precise(message, limit: int, out: list) -> list:
+    """Numbers of the poses, sizes and lengths written with more decimals than docs/trace.md says
+    (quaternion components 12, lengths in metres 10)."""
+    if isinstance(message, dict):
+        for k, v in message.items():
+            if k in ("rotation", "orientation"):
+                _too_precise(v, 12, out)
+            elif k not in ("color", "colors", "timestamp", "lifetime", "indices", "metadata"):
+                _too_precise(v, limit, out)
+    elif isinstance(message, list):
+        for v in message:
+            _too_precise(v, limit, out)
+    elif isinstance(message, float) and _decimals(message) > limit:
+        out.append(message)
+    return out
+
+
+def test_poses_are_written_to_the_precision_docs_trace_md_says(readme_trace):
+    """Positions and lengths to 1e-10 m, quaternion components to 1e-12: the arm's ticks, the
+    application's frames and tools, the cell, the tool and the parts (item 12: the static frames and
+    the scene were written to the last bit)."""
+    bad, n = [], 0
+    with open(readme_trace, "rb") as f:
+        for _, _, m in make_reader(f).iter_messages(topics=["/tf", "/tcp", "/scene"]):
+            _too_precise(json.loads(m.data), 10, bad)
+            n += 1
+    assert n > 2000 and bad == []
 
 
 def test_the_shipped_layout_is_the_bundled_example_s_one_row_per_task(readme_trace, tmp_path, capsys):

@@ -156,16 +156,19 @@ def quaternions(R):
 
 
 def _pose(M) -> dict:
-    """A 4x4 (mm) as a foxglove.Pose (m)."""
-    x, y, z, w = quaternions(M[:3, :3])[0].tolist()
-    return {"position": {"x": float(M[0, 3]) * MM, "y": float(M[1, 3]) * MM, "z": float(M[2, 3]) * MM},
-            "orientation": {"x": x, "y": y, "z": z, "w": w}}
+    """A 4x4 (mm) as a foxglove.Pose (m; rounded as every pose of the trace, _m and _q)."""
+    import numpy as np
+
+    M = np.asarray(M, dtype=float)
+    (x, y, z, w), = _q(M[None, :3, :3])
+    (px, py, pz), = _m(M[None, :3, 3])
+    return {"position": {"x": px, "y": py, "z": pz}, "orientation": {"x": x, "y": y, "z": z, "w": w}}
 
 
 def _transforms(ns: int, parent: str, names: list[str], mats) -> list[dict]:
     """FrameTransform entries for frames `names` with poses `mats` (K, 4, 4, mm) in `parent`."""
-    q = quaternions(mats[:, :3, :3]).tolist()
-    p = (mats[:, :3, 3] * MM).tolist()
+    q = _q(mats[:, :3, :3])
+    p = _m(mats[:, :3, 3])
     st = _stamp(ns)
     return [_tf(st, parent, n, a, b) for n, a, b in zip(names, p, q)]
 
@@ -182,13 +185,13 @@ def _solid(kind: str, size, pose) -> tuple[str, dict]:
 
     M = np.asarray(pose, dtype=float)
     if kind == "box":
-        return "cubes", {"pose": _pose(M), "size": dict(zip("xyz", (float(v) * MM for v in size)))}
+        return "cubes", {"pose": _pose(M), "size": dict(zip("xyz", (_len(v) for v in size)))}
     if kind == "sphere":
-        d = 2 * float(size[0]) * MM
+        d = _len(2 * float(size[0]))
         return "spheres", {"pose": _pose(M), "size": {"x": d, "y": d, "z": d}}
     if kind == "cylinder":
-        d = 2 * float(size[0]) * MM
-        return "cylinders", {"pose": _pose(M), "size": {"x": d, "y": d, "z": float(size[1]) * MM},
+        d = _len(2 * float(size[0]))
+        return "cylinders", {"pose": _pose(M), "size": {"x": d, "y": d, "z": _len(size[1])},
                              "bottom_scale": 1.0, "top_scale": 1.0}
     raise ValueError(kind)
 
@@ -223,8 +226,8 @@ def _tcp_marker(ns: int, flange: str, name: str, tool) -> dict:
         R = np.eye(4)
         R[:3, :3] = np.column_stack([x, y, np.cross(x, y)])
         head = min(0.2 * L, 20.0)
-        e["arrows"].append({"pose": _pose(R), "shaft_length": (L - head) * MM, "shaft_diameter": 0.006,
-                            "head_length": head * MM, "head_diameter": 0.014, "color": COLORS["tcp"]})
+        e["arrows"].append({"pose": _pose(R), "shaft_length": _len(L - head), "shaft_diameter": 0.006,
+                            "head_length": _len(head), "head_diameter": 0.014, "color": COLORS["tcp"]})
     return e
 
 
@@ -235,10 +238,10 @@ def _entity(ns: int, frame: str, ident: str, what: str, solids: list[tuple[str, 
     e = _scene_entity(ns, frame, ident, {"kind": what})
     for name, shape, pose, _ in solids:
         if shape.kind == "mesh":
-            v = np.asarray(shape.mesh.vertices, dtype=float) * MM
+            v = _m(np.asarray(shape.mesh.vertices, dtype=float))
             f = np.asarray(shape.mesh.faces, dtype=int)
             e["triangles"].append({"pose": _pose(np.asarray(pose, dtype=float)),
-                                   "points": [{"x": a, "y": b, "z": c} for a, b, c in v.tolist()],
+                                   "points": [{"x": a, "y": b, "z": c} for a, b, c in v],
                                    "indices": f.reshape(-1).tolist(), "color": COLORS[what], "colors": []})
             continue
         key, prim = _solid(shape.kind, shape.size, pose)
@@ -314,6 +317,11 @@ def _arm_ticks(scene, edges, tools, times, Q, V, idx):
                                      "velocity": Vl[i], "lower": lower, "upper": upper, "nominal_speed": speeds})
             yield ns, o_tcp, 0, dump({"timestamp": st, "frame_id": world, "pose": {
                 "position": dict(zip("xyz", tcp_p[i])), "orientation": dict(zip("xyzw", tcp_q[i]))}})
+
+
+def _len(x) -> float:
+    """A length (mm) in metres, to 1e-10 m as every position (_m)."""
+    return round(float(x) * MM, 10) + 0.0
 
 
 def _m(P):
