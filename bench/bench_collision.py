@@ -39,6 +39,8 @@ sys.path.insert(0, str(ROOT))
 import numpy as np  # noqa: E402
 
 from val3check.collision import CollisionChecker, MotionSpan, arm_model, read_cell  # noqa: E402
+from val3check.collision.measure import Probe  # noqa: E402
+from val3check.collision.path import ArmPath  # noqa: E402
 from val3check.robot import load_robot  # noqa: E402
 
 DT = 0.004
@@ -293,15 +295,18 @@ def main(argv: list[str] | None = None) -> int:
     Qall = np.concatenate([s[2] for s in plan if len(s) == 3])
     sel = Qall[:: max(1, len(Qall) // 2000)]
     checker2.check_motion(MotionSpan(0), np.arange(len(sel)) * DT, sel)  # sets up the scene
-    watches = checker2._watches()
+    world = checker2.world
+    watches = world.watches()
     n0 = checker2.measurements
     t0 = time.perf_counter()
     for k in range(len(sel)):
+        # one configuration: the links' poses, then every watch measured exactly from its bodies
+        probe = Probe(world, ArmPath(arm, np.zeros(1), sel[k:k + 1], None), checker2.backend)
         for w in watches:
             w.a.placed = -1.0
             if w.b is not None:
                 w.b.placed = -1.0
-            checker2._measure(w, float(k), math.inf)
+            probe.measure(w, 0.0, math.inf)
     dwall = time.perf_counter() - t0
     qps = len(sel) / dwall
     pairs = (checker2.measurements - n0) / dwall

@@ -1,8 +1,11 @@
-"""The long fuzz run (issue 9): the properties of tests/hostile/test_hostile_fuzz.py with fresh
-random inputs, round after round, for a time budget; then how many inputs each property ran and
-what failed. CI runs the same properties on 25 fixed inputs each (docs/fuzzing.md).
+"""The long fuzz run (issues 9 and 21): the properties of tests/hostile/test_hostile_fuzz.py with
+fresh random inputs, round after round, for a time budget; then how many inputs each property ran
+and what failed. The properties cover the XML reader, the loader and checker, the parser, `sim`,
+configurations, scenarios, any TOML text, cell files, meshes and the language server. CI runs the
+same properties on 25 fixed inputs each (docs/fuzzing.md).
 
-Run: python bench/fuzz.py --minutes 10 [--examples 200] [-k sim]   (-k language_server: the LSP server)
+Run: python bench/fuzz.py --minutes 10 [--examples 200] [-k sim]   (-k language_server: the LSP server;
+     -k "cell or mesh": the cell files)
      (writes only into temporary folders; exit code 1 when an input failed)
 """
 

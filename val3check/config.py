@@ -29,13 +29,16 @@ from .records import dataclass, field
 from .exclusion import DEFAULT_EXCLUDE, Exclusion
 
 from .diagnostics import Severity
+from .excerpt import excerpt
 from .rules.catalogue import OPT_IN
 from .language.target import TargetError, TargetSpec, parse_target
 
 CONFIG_NAMES = ("val3check.toml", "pyproject.toml")
 # `[tool.val3check]`, `[tool.val3check.severity]`, `tool.val3check.x = `, or a `[tool]` table
 # (which may hold `val3check = {...}`): a pyproject.toml without any of them has no section of ours.
-_TOOL_SECTION = re.compile(rb"tool\s*\.\s*\"?val3check|^\s*\[\s*tool\s*\]", re.MULTILINE)
+# Linear: blanks before the header are spaces and tabs of its own line (`^\s*` would run over all
+# the blank lines below each line start: quadratic on a file of newlines).
+_TOOL_SECTION = re.compile(rb"tool\s*\.\s*\"?val3check|^[ \t]*\[[ \t]*tool[ \t]*\]", re.MULTILINE)
 FAIL_ON_CHOICES = ("error", "warning", "info", "never")
 
 
@@ -128,22 +131,18 @@ MAX_FILE_SIZE_LIMIT = 1 << 30  # max-file-size cannot exceed 1 GiB
 
 def _read_toml(path: str) -> dict:
     """The TOML document at `path`, read through val3check.confine (a regular file, its size
-    checked before reading); ConfigError for anything else."""
-    import tomllib  # only when there is a configuration to read (start-up time)
-
+    checked before reading) and val3check.tomlfile; ConfigError for anything else."""
+    from . import tomlfile
     from .confine import Refused, Roots, read_bytes
 
     try:
         data = read_bytes(path, Roots.user_given(), MAX_CONFIG_SIZE)
-        return tomllib.loads(data.decode("utf-8"))
+        return tomlfile.load_bytes(data)[0]
     except Refused as exc:
         raise ConfigError(f"{path}: cannot read configuration: {exc.reason}") from None
-    except UnicodeDecodeError:
-        raise ConfigError(f"{path}: cannot read configuration: not UTF-8") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise ConfigError(f"{path}: cannot read configuration: {exc}") from None
-    except RecursionError:
-        raise ConfigError(f"{path}: cannot read configuration: tables or arrays nested too deeply") from None
+    except tomlfile.TomlError as exc:
+        where = f"{path}:{exc.line}:{exc.col}" if exc.line else path
+        raise ConfigError(f"{where}: cannot read configuration: {exc.message}") from None
 
 
 def _read_bytes_capped(path: str) -> bytes:
@@ -216,7 +215,8 @@ def load_settings(path: str) -> Settings:
             data = section
     unknown = sorted(set(data) - KNOWN_KEYS)
     if unknown:
-        raise ConfigError(f"{path}: unknown option(s): {', '.join(unknown)} (known: {', '.join(sorted(KNOWN_KEYS))})")
+        shown = ", ".join(excerpt(k) for k in unknown[:10]) + (f" and {len(unknown) - 10} more" if len(unknown) > 10 else "")
+        raise ConfigError(f"{path}: unknown option(s): {shown} (known: {', '.join(sorted(KNOWN_KEYS))})")
     root = os.path.dirname(os.path.abspath(path))
     s = Settings(root=root, source=path)
     if "select" in data:
@@ -233,7 +233,7 @@ def load_settings(path: str) -> Settings:
     try:
         s.severity = {k.upper(): Severity.parse(str(v)) for k, v in sev.items()}
     except ValueError as exc:
-        raise ConfigError(f"{path}: severity: {exc}") from None
+        raise ConfigError(f"{path}: severity: {excerpt(str(exc), 200)}") from None
     fail_on = data.get("fail-on", "error")
     fail_on = fail_on.lower() if isinstance(fail_on, str) else ""
     if fail_on not in FAIL_ON_CHOICES:
@@ -259,5 +259,5 @@ def load_settings(path: str) -> Settings:
         try:
             s.target = parse_target(data["target"])
         except TargetError as exc:
-            raise ConfigError(f"{path}: {exc}") from None
+            raise ConfigError(f"{path}: {excerpt(str(exc), 300)}") from None
     return s

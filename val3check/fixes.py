@@ -22,6 +22,7 @@ with a byte-order mark) are not edited.
 
 from __future__ import annotations
 
+import bisect
 import difflib
 import os
 import re
@@ -81,19 +82,20 @@ class FixPlan:
             os.replace(tmp, path)
 
 
+_LINE_END = re.compile(rb"\n|\r(?!\n)")  # as expat counts lines: LF, CRLF or a lone CR
+
+
 class _File:
     """A file's bytes with the positions of its lines (as expat counts them)."""
 
     def __init__(self, data: bytes) -> None:
         self.data = data
         self.bom = 3 if data.startswith(b"\xef\xbb\xbf") else 0
-        self.starts = [0]
-        i, n = 0, len(data)
-        while i < n:
-            c = data[i]
-            if c == 0x0A or (c == 0x0D and (i + 1 >= n or data[i + 1] != 0x0A)):
-                self.starts.append(i + 1)
-            i += 1
+        self.starts = [0] + [m.end() for m in _LINE_END.finditer(data)]
+
+    def line_of(self, offset: int) -> int:
+        """The 1-based line holding byte `offset`."""
+        return bisect.bisect_right(self.starts, offset)
 
     def line_span(self, line: int) -> tuple[int, int, int]:
         """(start, end of its text, start of the next line) of 1-based `line`, in bytes."""
@@ -170,14 +172,15 @@ def _remove_element(d: Diagnostic, f: _File) -> Edit | str:
         return "the element does not declare that name"
     end = close + 1
     if not element.endswith(b"/>"):
-        closing = re.compile(rb"</" + re.escape(tag) + rb"\s*>").search(f.data, end)
-        inner = f.data[end:closing.start()] if closing else b"<"
-        if closing is None or b"<" in inner:
+        # its closing tag must be the next tag: anything else means it holds other elements (and
+        # looking no further than the next '<' keeps a file of unclosed elements linear)
+        nxt_tag = f.data.find(b"<", end)
+        closing = re.compile(rb"</" + re.escape(tag) + rb"\s*>").match(f.data, nxt_tag) if nxt_tag >= 0 else None
+        if closing is None:
             return "the element holds other elements"
         end = closing.end()
     start_line, _, _ = f.line_span(d.line)
-    # the line holding the end of the element
-    end_line = max(i for i, s in enumerate(f.starts, 1) if s <= end)
+    end_line = f.line_of(end)  # the line holding the end of the element
     _, text_end, nxt = f.line_span(end_line)
     if not f.data[start_line:at].strip() and not f.data[end:text_end].strip():
         return Edit(start_line, nxt, b"", d.code)  # alone on its lines: they go with it

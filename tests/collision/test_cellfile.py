@@ -12,7 +12,7 @@ from .helpers import write_cell
 
 from val3check.collision import CELL_FILE_NAME, CellError, find_cell, read_cell  # noqa: E402
 from val3check.collision import meshes  # noqa: E402
-from val3check.collision.tomlpos import positions  # noqa: E402
+from val3check.tomlpos import positions  # noqa: E402
 
 trimesh = pytest.importorskip("trimesh")
 
@@ -236,7 +236,6 @@ def test_mesh_problems_name_the_file(tmp_path):
 def test_mesh_size_is_limited(tmp_path, monkeypatch):
     trimesh.creation.icosphere().export(tmp_path / "ball.stl")
     monkeypatch.setattr(meshes, "MAX_MESH_BYTES", 100)
-    monkeypatch.setattr(meshes.load_mesh, "__defaults__", (100, None))
     with pytest.raises(CellError, match="larger than the 100 bytes read"):
         read_cell(_mesh_cell(tmp_path, "ball.stl"))
 

@@ -89,9 +89,9 @@ def test_a_part_taken_again_where_it_was_left_leaves_the_cell():
     chk.check_motion(MotionSpan(1), times, q)
     chk.gripper("tTool", "close", float(times[-1]))
     chk.gripper("tTool", "open", float(times[-1]) + 0.1)
-    assert len(chk._dropped) == 1
+    assert len(chk.world.dropped) == 1
     chk.gripper("tTool", "close", float(times[-1]) + 0.2)  # the same brick, taken again
-    assert chk._dropped == [] and "brick" in chk.carried
+    assert chk.world.dropped == [] and "brick" in chk.carried
     times, q = line_motion(spot, up, 200.0, t0=float(times[-1]) + 0.3)
     rep = chk.check_motion(MotionSpan(2), times, q)
     assert rep.first_contact is None and rep.starts_in_collision is None

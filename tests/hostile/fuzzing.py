@@ -311,6 +311,78 @@ def check_sim(ws, app, *, scenario=None, duration: float = 1.0, max_wall: float 
     return result
 
 
+# ---- TOML texts, cell files and meshes (issue 21) --------------------------------------------------
+
+TOML_HOSTILE = st.sampled_from([
+    "a = " + "[" * 200 + "]" * 200, "a = " + "{b=" * 100 + "1" + "}" * 100, "a" + ".a" * 300 + " = 1",
+    "[" + "t." * 300 + "t]", "x = " + "9" * 4400, "x = 0x" + "f" * 20, "x = -9223372036854775809", "x = 1e999",
+    'x = "\\u0000"', "x = '''\n[[[[\n'''", 'x = """\\\n"""', "[[a]]\n[a]", "x = 1979-13-45", "\ufeffx = 1",
+    "x = [1, 'a', {b = 2}]", "# " + "[" * 100,
+])
+TOML_TEXT = st.one_of(
+    st.text(max_size=300),
+    st.lists(st.one_of(TOML_HOSTILE, st.text(max_size=30)), max_size=6).map("\n".join),
+    VALUES.map(lambda v: toml_text({"k": v})),
+)
+
+CELL_SEED = (ROOT / "fixtures" / "valid" / "PickPlace" / "val3check-cell.toml").read_bytes()
+SCENARIO_SEED = (ROOT / "fixtures" / "scenarios" / "pickplace.toml").read_bytes()
+CELL_NUMBERS = st.one_of(st.floats(allow_nan=True, allow_infinity=True), st.integers(-2**63, 2**63 - 1),
+                         st.sampled_from([0, -1, 1e-9, 1e6, 1e6 + 1, 1e40, 1e100, 1e308, 36000, 36001]))
+_SOLID = st.fixed_dictionaries({"shape": st.sampled_from(["box", "cylinder", "sphere", "mesh", "cone", 5])}, optional={
+    "name": st.one_of(st.text(max_size=10), st.sampled_from(["a\x00b", "x" * 300, "é"])),
+    "size": st.lists(CELL_NUMBERS, max_size=4), "radius": CELL_NUMBERS, "length": CELL_NUMBERS,
+    "file": st.sampled_from(["m.stl", "m.obj", "m.glb", "../m.stl", "a\x00.stl", "/etc/passwd", "missing.stl", "m"]),
+    "scale": st.one_of(CELL_NUMBERS, st.lists(CELL_NUMBERS, max_size=4)), "solid": st.one_of(st.booleans(), SCALARS),
+    "at": st.one_of(st.lists(CELL_NUMBERS, max_size=7),
+                    st.dictionaries(st.sampled_from(["x", "y", "z", "rx", "ry", "rz", "w"]), CELL_NUMBERS, max_size=4)),
+    "frame": st.sampled_from(["world", "fA", "fA[2]", "lib:f", "f[", "x" * 300]),
+    "tool": st.sampled_from(["flange", "tGripper", "t[1]", "", "\x1b"]),
+    "grasp": st.sampled_from(["close", "open", "x"]), "cleared_by": SCALARS, "touch_links": VALUES, "bogus": VALUES,
+})
+CELL = st.fixed_dictionaries({}, optional={
+    "version": st.one_of(st.just(1), SCALARS), "unit": st.sampled_from(["mm", "inch", "m", 1]),
+    "margin_mm": CELL_NUMBERS, "touch_mm": CELL_NUMBERS, "description": SCALARS,
+    "obstacle": st.lists(_SOLID, max_size=3), "tool": st.lists(_SOLID, max_size=2), "part": st.lists(_SOLID, max_size=2),
+    "bogus": VALUES,
+})
+
+
+@st.composite
+def mutated(draw, seed: bytes, tokens: list[bytes]) -> bytes:
+    """`seed` with 1 to 3 mutations: truncation, a hostile token, a deleted, duplicated or
+    replaced span, bytes overwritten."""
+    data = bytearray(seed)
+    for _ in range(draw(st.integers(1, 3))):
+        pos = draw(st.integers(0, len(data)))
+        op = draw(st.integers(0, 4))
+        if op == 0:
+            data = data[:pos]
+        elif op == 1:
+            data[pos:pos] = draw(st.sampled_from(tokens))
+        elif op == 2:
+            del data[pos:pos + draw(st.integers(1, 40))]
+        elif op == 3:
+            span = data[pos:pos + draw(st.integers(1, 100))]
+            data[pos:pos] = span * draw(st.integers(1, 30))
+        else:
+            chunk = draw(st.binary(min_size=1, max_size=8))
+            data[pos:pos + len(chunk)] = chunk
+    return bytes(data)
+
+
+CELL_TOKENS = [b"[", b"]", b"{", b"}", b"=", b'"', b"\n", b".", b"9" * 4400, b"1e400", b"-1", b"nan", b"[[obstacle]]",
+               b"\\u0000", b"\xff", b"0x" + b"f" * 20, b"[" * 100, b"a." * 100]
+MESH_TOKENS = [b"\x00" * 4, b"\xff\xff\xff\xff", b"solid", b"facet", b"f 1 2 3 4 5", b"v nan inf 1e400",
+               b'"uri":"x.bin",', b'"count":999999999,', b'"children":[0],', b"mtllib ../x.mtl\n", b"[" * 50]
+
+
+def mesh_seeds() -> dict[str, bytes]:
+    from .meshfiles import cube_glb, obj, stl_ascii, stl_binary
+
+    return {"stl": stl_binary(), "ascii.stl": stl_ascii(), "obj": obj(), "glb": cube_glb(nodes=2)}
+
+
 # ---- the language server's messages ---------------------------------------------------------------
 
 JSON = st.recursive(

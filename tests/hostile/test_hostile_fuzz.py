@@ -20,13 +20,19 @@ from hypothesis import HealthCheck, event, given, settings
 from hypothesis import strategies as st
 
 from .fuzzing import (
+    CELL,
+    CELL_SEED,
+    CELL_TOKENS,
     CONFIG,
     GLOBALS,
     LOCALS,
+    MESH_TOKENS,
     MESSAGE,
     PROGRAM,
     SCENARIO,
+    SCENARIO_SEED,
     SUB,
+    TOML_TEXT,
     check_lint_result,
     check_lsp_output,
     check_sim,
@@ -34,6 +40,8 @@ from .fuzzing import (
     lint_files,
     lsp_operations,
     lsp_requests,
+    mesh_seeds,
+    mutated,
     mutated_app,
     toml_text,
 )
@@ -142,7 +150,7 @@ def test_configuration_is_a_setting_or_a_config_error(text):
 _APP_WITH_IO = "begin\n  delay(0.2)\n  diY = diX\n  putln(toString(\"\", aiX))\nend\n"
 
 
-@given(st.one_of(SCENARIO.map(toml_text), st.text(max_size=300)))
+@given(st.one_of(SCENARIO.map(toml_text), st.text(max_size=300), TOML_TEXT, mutated(SCENARIO_SEED, CELL_TOKENS)))
 def test_scenario_is_applied_or_refused_and_the_run_ends(text):
     from val3check.config import Settings
     from val3check.simulation.scenario import ScenarioError, load_scenario
@@ -154,7 +162,7 @@ def test_scenario_is_applied_or_refused_and_the_run_ends(text):
     try:
         folder = build(tmp, _APP_WITH_IO, globals_=["dio diX", "dio diY", "aio aiX", "sio siX", "num nX"],
                        links={"diX": "BasicIO-1\\%I0", "diY": "BasicIO-1\\%Q0", "aiX": "AI-0", "siX": "Serial-0"})
-        (tmp / "sc.toml").write_text(text, encoding="utf-8")
+        (tmp / "sc.toml").write_bytes(text if isinstance(text, bytes) else text.encode("utf-8", "surrogatepass"))
         lr = run([str(folder)], Settings())
         ws = lr.workspace
         try:
@@ -163,6 +171,68 @@ def test_scenario_is_applied_or_refused_and_the_run_ends(text):
             event(f"ran: {result.end_reason}")
         except ScenarioError:
             event("refused (ScenarioError)")
+    finally:
+        shutil.rmtree(tmp)
+
+
+# ---- issue 21: TOML texts, cell files, meshes --------------------------------------------------------
+
+@given(TOML_TEXT)
+def test_toml_reader_gives_data_or_a_positioned_error(text):
+    from val3check.tomlfile import TomlError, loads
+
+    try:
+        loads(text)
+        event("accepted")
+    except TomlError as exc:
+        assert exc.line >= 0 and exc.col >= 0 and exc.message and "\n" not in exc.message
+        event("TomlError")
+
+
+@given(st.one_of(CELL.map(toml_text), mutated(CELL_SEED, CELL_TOKENS), TOML_TEXT.map(str.encode)))
+def test_cell_file_is_a_cell_or_positioned_problems(data):
+    from val3check.collision import CellError, read_cell
+
+    from .meshfiles import obj, stl_binary
+
+    tmp = Path(tempfile.mkdtemp(prefix="val3fuzz"))
+    try:
+        (tmp / "m.stl").write_bytes(stl_binary())
+        (tmp / "m.obj").write_bytes(obj())
+        (tmp / "cell.toml").write_bytes(data if isinstance(data, bytes) else data.encode("utf-8", "surrogatepass"))
+        try:
+            cell = read_cell(tmp / "cell.toml")
+            for o in cell.obstacles:
+                assert all(0 < v <= 1e6 for v in o.shape.size)
+            event("accepted")
+        except CellError as exc:
+            for path, line, col, message in exc.problems:
+                assert line >= 0 and col >= 0 and message and len(message) < 2000, message
+                assert all(c.isprintable() for c in message), message
+            event("CellError")
+    finally:
+        shutil.rmtree(tmp)
+
+
+_MESH_SEEDS = mesh_seeds()
+
+
+@given(st.sampled_from(sorted(_MESH_SEEDS)).flatmap(lambda k: st.tuples(st.just(k), mutated(_MESH_SEEDS[k], MESH_TOKENS))))
+def test_mesh_file_is_a_mesh_or_a_problem(kind_and_data):
+    from val3check.collision.meshes import MeshProblem, load_mesh
+
+    kind, data = kind_and_data
+    tmp = Path(tempfile.mkdtemp(prefix="val3fuzz"))
+    try:
+        path = tmp / f"m.{kind.split('.')[-1]}"
+        path.write_bytes(data)
+        try:
+            mesh = load_mesh(path, path.name, (1.0, 1.0, 1.0), solid=False, roots=[tmp])
+            assert len(mesh.faces) > 0 and abs(mesh.vertices).max() <= 1e6
+            event(f"{kind}: loaded")
+        except MeshProblem as exc:
+            assert path.name in str(exc)
+            event(f"{kind}: MeshProblem")
     finally:
         shutil.rmtree(tmp)
 

@@ -96,7 +96,7 @@ def test_failure_contents_round_trip(make_result, d):
     assert failure.get("message") == "F101: unexpected 'endWhile'"
     assert failure.text.startswith("a.pgx:12:5: F101 [error] unexpected 'endWhile'")
     nasty = [f for c, f in by_type["S301"] if c.get("classname") == "a.pgx"][0]
-    expected = NASTY.replace("\x01", "\ufffd").replace("\x1b", "\ufffd")
+    expected = NASTY.replace("\x01", "\\x01").replace("\x1b", "\\x1b")  # written as escapes
     assert nasty.get("message") == "S301: " + expected
     assert nasty.text.startswith("a.pgx:14: S301 [warning] " + expected)
     case, failure = by_type["F001"][0]

@@ -86,7 +86,7 @@ def test_control_characters_are_neutralised(workdir, make_result, d):
     (workdir / "a.pgx").write_text("a\x1b[31mb\n", encoding="utf-8")
     out = render("text", make_result([d("S301", "x", "a.pgx", 1, 7)]))
     assert "\x1b" not in out
-    assert caret_under(out, "a\ufffd[31mb") == "b"
+    assert caret_under(out, "a\u241b[31mb") == "b"  # ESC shown as its Control Picture
 
 
 def test_whole_file_and_missing_file_have_no_snippet(workdir, make_result, d):

@@ -13,7 +13,6 @@ import hashlib
 import itertools
 import os
 import re
-import tomllib
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -175,12 +174,14 @@ def cell_meshes(cell_path: str, app_folder: str) -> list[str]:
     travel with the case. A file it would refuse stays behind, and the case's run says why."""
     from pathlib import Path
 
+    from .. import tomlfile
+    from ..collision.cellfile import MAX_CELL_BYTES
     from ..collision.meshes import MeshProblem, resolve_mesh_path
 
     try:
         with open(cell_path, "rb") as fh:
-            data = tomllib.load(fh)
-    except (OSError, tomllib.TOMLDecodeError, UnicodeDecodeError, RecursionError):
+            data = tomlfile.load_bytes(fh.read(MAX_CELL_BYTES + 1))[0]
+    except (OSError, tomlfile.TomlError):
         return []
     names, todo = [], [data]
     while todo:  # iterative: a hostile file must not exhaust the stack

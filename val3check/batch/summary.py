@@ -12,6 +12,7 @@ from collections import Counter
 from urllib.parse import quote
 from xml.sax.saxutils import escape, quoteattr
 
+from ..reporting._common import printable, visible
 from .worker import VERDICTS, CaseSummary
 
 SUMMARY_VERSION = 1
@@ -78,7 +79,7 @@ def render_text(summaries: list[CaseSummary]) -> str:
         out += [f"  {s.verdict}: {s.app} | {s.arm or s.model} | {s.scenario or '-'}"
                 + (f" | {s.cell}" if s.cell else "") + (f" | {_overrides(s)}" if s.overrides else "")
                 + f": {s.reason or 'no reason recorded'}" for s in failed]
-    return "\n".join(out) + "\n"
+    return printable("\n".join(out), keep_newlines=True) + "\n"  # control characters of names visible
 
 
 def render_json(summaries: list[CaseSummary], tool_version: str) -> str:
@@ -113,7 +114,7 @@ def render_junit(summaries: list[CaseSummary]) -> str:
         out.append(f"      <system-out>{escape(props)}</system-out>")
         out.append("    </testcase>")
     out += ["  </testsuite>", "</testsuites>"]
-    return "\n".join(out) + "\n"
+    return visible("\n".join(out)) + "\n"  # XML 1.0 cannot hold control characters
 
 
 _STYLE = """body{font:14px system-ui,sans-serif;margin:1.5em;color:#222}
@@ -166,10 +167,10 @@ def render_html(summaries: list[CaseSummary], reports: set[str], tool_version: s
             rows.append(f'<tr class="why"><td colspan="{len(keep) + 2}">{e(s.reason)}</td></tr>')
     heads = [HEADERS[0]] + [HEADERS[i] for i in keep] + ["report"]
     head = "".join(f"<th>{e(h)}</th>" for h in heads)
-    return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+    return visible("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
             "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
             "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; style-src 'unsafe-inline'\">"
             f"<title>val3check sim batch</title><style>{_STYLE}</style></head><body>\n"
             f"<h1>{e(_headline(summaries))}</h1>\n<p>val3check {e(tool_version)}</p>\n"
             f"<table><thead><tr>{head}</tr></thead><tbody>\n" + "\n".join(rows)
-            + "\n</tbody></table>\n</body></html>\n")
+            + "\n</tbody></table>\n</body></html>\n")  # control characters: parse errors in HTML

@@ -3,18 +3,17 @@ scenarios, cells and overrides make the cases of a batch.
 
 Two shapes: the product of axes (`applications`, `arms`, `scenarios`, `cells`, `[[overrides]]`),
 or an explicit list of `[[case]]` tables. Paths are relative to the sweep file's folder.
-Every mistake is reported at its line and column (collision.tomlpos finds them: tomllib keeps
+Every mistake is reported at its line and column (val3check.tomlpos finds them: tomllib keeps
 none)."""
 
 from __future__ import annotations
 
 import math
 import os
-import re
-import tomllib
 from dataclasses import dataclass, field
 
-from ..collision.tomlpos import positions
+from .. import tomlfile
+from ..tomlpos import positions
 
 SWEEP_VERSION = 1
 MAX_SWEEP_SIZE = 1024 * 1024  # bytes: a sweep is a page of TOML
@@ -107,16 +106,9 @@ def load_sweep(path: str) -> Sweep:
     except Refused as exc:
         raise SweepError(path, 0, 0, f"cannot read: {exc.reason}") from None
     try:
-        text = raw.decode("utf-8")
-        data = tomllib.loads(text)
-    except UnicodeDecodeError:
-        raise SweepError(path, 0, 0, "not UTF-8") from None
-    except tomllib.TOMLDecodeError as exc:
-        m = re.search(r"line (\d+), column (\d+)", str(exc))
-        line, col = (int(m.group(1)), int(m.group(2))) if m else (0, 0)
-        raise SweepError(path, line, col, f"invalid TOML: {re.sub(r' [(]at line .*', '', str(exc))}") from None
-    except (RecursionError, MemoryError):
-        raise SweepError(path, 0, 0, "tables or arrays nested too deeply") from None
+        data, text = tomlfile.load_bytes(raw)
+    except tomlfile.TomlError as exc:
+        raise SweepError(path, exc.line, exc.col, exc.message) from None
     return _Reader(path, text).sweep(data)
 
 

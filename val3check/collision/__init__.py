@@ -11,9 +11,23 @@ Modules
 - `bodies`     solids as python-fcl objects with their bounding boxes; point-in-mesh
 - `acm`        the allowed-collision matrix, computed as MoveIt's setup assistant does
 - `armmodel`   `ArmModel` / `arm_model(robot)`: the arm's link solids, matrix and motion bounds
-- `checker`    `CollisionChecker`: conservative advancement along a motion, minimum clearance,
-               first contact, grasp and release of parts
+- `poses`      frames and tools from the caller as 4x4 matrices; comparing two readings
+- `fcl_backend` `FclBackend`: every distance and contact query between two bodies (python-fcl)
+- `groups`     `Group` (bodies carried by one link, or the static set) and `Watch` (two groups
+               that must not touch)
+- `world`      `World`: the scene between motions: obstacles in their frames, the tool, parts
+               carried and left in the cell, touch allowances; open/close
+- `path`       `ArmPath`: the arm along one motion, at its samples and between them
+- `bounds`     the motion bound, the broad phase's boxes and each watch's per-sample `Track`
+- `measure`    `Probe`: one watch measured at one position (`Measurement`, `Nearest`, `Hit`)
+- `sweep`      `Sweep`: conservative advancement along a motion, the clearance per sample and
+               the motion's minimum
+- `checker`    `CollisionChecker`: combines the world, the sweep and the backend (the API below)
 - `records`    what comes back: `MotionReport`, `Contact`, `Clearance`, `PartDrop`, `CellProblem`
+
+Imports go one way (tests/collision/test_structure.py): checker -> sweep -> measure, bounds ->
+path -> groups -> armmodel; the sweep and the probe read the world; world -> groups,
+fcl_backend, poses; fcl_backend -> bodies; nothing but the package imports the checker.
 
 API
 ---

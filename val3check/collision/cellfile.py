@@ -3,7 +3,8 @@
     read_cell(path, app_dir=None, app_unit="mm") -> Cell      raises CellError (all problems found)
     find_cell(app_dir) -> Path | None                          the cell file beside an application
 
-tomllib parses; `tomlpos.positions` finds where each key and value is written, so that a message
+tomllib parses (through val3check.tomlfile: a hostile text is a positioned error);
+`tomlpos.positions` finds where each key and value is written, so that a message
 points at the value at fault (`cell.toml:12:8: obstacle 'table': size must be three positive
 numbers`). Bad input is a CellError, never a traceback.
 """
@@ -13,21 +14,30 @@ from __future__ import annotations
 import math
 import os
 import re
-import tomllib
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from .. import tomlfile
+from ..excerpt import shown
+from ..tomlpos import positions
 from . import meshes
 from .cell import INCH_MM, SHAPES, Cell, MeshData, Obstacle, Part, Shape, ToolSolid, Where
 from .errors import CellError
-from .tomlpos import positions
 
 CELL_FILE_NAME = "val3check-cell.toml"  # found beside the application (find_cell)
 CELL_VERSION = 1
 MAX_CELL_BYTES = 4 * 1024 * 1024
 MAX_ENTRIES = 10_000
+# The sane range of every number of a cell (docs/cell.md "Limits"): beyond, fcl's arithmetic loses
+# all precision (a 1e100 mm box around the arm was "nothing in reach") or overflows.
+MAX_LENGTH_MM = 1e6  # positions and sizes: 1 km
+MIN_SIZE_MM = 1e-3  # sizes, radii and lengths of solids: 1 µm
+MAX_ANGLE_DEG = 36_000.0  # rx, ry, rz: a hundred turns
+MIN_SCALE, MAX_SCALE = 1e-6, 1e6  # a mesh's scale (its file's unit to the cell's)
+MAX_TOLERANCE_MM = 10_000.0  # margin_mm, touch_mm
+MAX_NAME = 200  # characters of a name, a tool or frame, a link name
 
 _TOP = {"version", "description", "unit", "margin_mm", "touch_mm", "obstacle", "tool", "part"}
 _SHAPE_KEYS = {"box": {"size"}, "cylinder": {"radius", "length"}, "sphere": {"radius"}, "mesh": {"file", "scale", "solid"}}
@@ -52,11 +62,14 @@ def find_cell(app_dir: str | os.PathLike) -> Path | None:
 
 
 def read_cell(path: str | os.PathLike, app_dir: str | os.PathLike | None = None, app_unit: str = "mm",
-              roots: list[str | os.PathLike] | None = None, found: bool = False) -> Cell:
+              roots: list[str | os.PathLike] | None = None, found: bool = False, budget=None,  # noqa: ANN001
+              out_of_time=None) -> Cell:  # noqa: ANN001
     """Read and check a cell file. Mesh files may lie in the cell file's folder, the application's
     folder (`app_dir`) or one of `roots`. Lengths are in the cell's `unit` (default: the
     application's, `app_unit`); the Cell holds millimetres. `found`: the file was found beside the
-    application, not named by the user: a link may not lead out of that folder."""
+    application, not named by the user: a link may not lead out of that folder. `budget` (the
+    run's memory budget) and `out_of_time()` (true once --max-wall has run out) apply to its
+    meshes (meshes.load_mesh)."""
     from .. import confine
 
     shown = str(path)
@@ -67,18 +80,11 @@ def read_cell(path: str | os.PathLike, app_dir: str | os.PathLike | None = None,
     except confine.Refused as exc:
         raise CellError([(shown, 0, 0, f"cannot read the cell file: {exc.reason}")]) from None
     try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise CellError([(shown, 0, 0, f"the cell file is not UTF-8 (byte {exc.start})")]) from None
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        m = re.search(r"\(at line (\d+), column (\d+)\)", str(exc))
-        msg = re.sub(r"\s*\(at line \d+, column \d+\)", "", str(exc)) or "invalid TOML"
-        msg = "".join(c if c.isprintable() else repr(c)[1:-1] for c in msg)  # one line: '\n', not a newline
-        line, col = (int(m.group(1)), int(m.group(2))) if m else (0, 0)
-        raise CellError([(shown, line, col, f"invalid TOML: {msg}")]) from None
+        data, text = tomlfile.load_bytes(raw)
+    except tomlfile.TomlError as exc:
+        raise CellError([(shown, exc.line, exc.col, exc.message)]) from None
     r = _Reader(shown, text, Path(path).resolve().parent, app_dir, roots or [], app_unit)
+    r.budget, r.out_of_time = budget, out_of_time
     cell = r.cell(data)
     if r.problems:
         raise CellError(r.problems)
@@ -97,6 +103,8 @@ class _Reader:
         self._meshes: dict[tuple, MeshData] = {}
         self._mesh_files: set[str] = set()
         self._mesh_bytes = 0
+        self.budget = None  # read_cell: the run's memory budget and wall-clock budget
+        self.out_of_time = None
 
     # ---- reporting --------------------------------------------------------------------------------
 
@@ -122,16 +130,41 @@ class _Reader:
             return None
         return float(v)
 
-    def string(self, v: Any, path: tuple, what: str) -> str | None:
+    def length(self, v: Any, path: tuple, what: str, size: bool = False) -> float | None:
+        """A length in the cell's unit, in millimetres, within ±MAX_LENGTH_MM; a size (`size`) from
+        MIN_SIZE_MM to MAX_LENGTH_MM."""
+        x = self.number(v, path, what, positive=size)
+        if x is None:
+            return None
+        mm = x * self.scale
+        if size and not MIN_SIZE_MM <= mm <= MAX_LENGTH_MM or not abs(mm) <= MAX_LENGTH_MM:
+            unit = f" inches ({mm:.6g} mm)" if self.scale != 1.0 else " mm"
+            low = f"{MIN_SIZE_MM:g}" if size else f"{-MAX_LENGTH_MM:,.0f}"
+            self.fail(path, f"{what} must be from {low} to {MAX_LENGTH_MM:,.0f} mm (1 km), not {_show(v)}{unit}")
+            return None
+        return mm
+
+    def bounded(self, v: Any, path: tuple, what: str, low: float, high: float, unit: str) -> float | None:
+        x = self.number(v, path, what, min0=low == 0)
+        if x is not None and not low <= x <= high:
+            self.fail(path, f"{what} must be from {low:,g} to {high:,g} {unit}, not {_show(v)}")
+            return None
+        return x
+
+    def string(self, v: Any, path: tuple, what: str, longest: int = MAX_NAME) -> str | None:
         if not isinstance(v, str) or not v.strip():
             self.fail(path, f"{what} must be a non-empty string, not {_show(v)}")
+            return None
+        if not v.isprintable() or len(v) > longest:
+            why = "control characters" if not v.isprintable() else f"more than {longest} characters"
+            self.fail(path, f"{what} must be printable text of at most {longest} characters, not {_show(v)} ({why})")
             return None
         return v.strip()
 
     def keys(self, table: dict, allowed: set[str], path: tuple, what: str) -> None:
         for k in table:
             if k not in allowed:
-                self.fail(path + (k,), f"{what}: unknown key {k!r} (known: {', '.join(sorted(allowed))})", key=True)
+                self.fail(path + (k,), f"{what}: unknown key {shown(k)} (known: {', '.join(sorted(allowed))})", key=True)
 
     # ---- the document -----------------------------------------------------------------------------
 
@@ -152,10 +185,10 @@ class _Reader:
         else:
             cell.description = desc
         if "margin_mm" in data:
-            m = self.number(data["margin_mm"], ("margin_mm",), "margin_mm", min0=True)
+            m = self.bounded(data["margin_mm"], ("margin_mm",), "margin_mm", 0.0, MAX_TOLERANCE_MM, "mm")
             cell.margin_mm = m if m is not None else 0.0
         if "touch_mm" in data:
-            t = self.number(data["touch_mm"], ("touch_mm",), "touch_mm", min0=True)
+            t = self.bounded(data["touch_mm"], ("touch_mm",), "touch_mm", 0.0, MAX_TOLERANCE_MM, "mm")
             cell.touch_mm = t if t is not None else cell.touch_mm
         for kind in ("obstacle", "tool", "part"):
             entries = data.get(kind, [])
@@ -210,7 +243,8 @@ class _Reader:
             touch = e.get("touch_links")
             links = None
             if touch is not None:
-                if not isinstance(touch, list) or not all(isinstance(t, str) and t for t in touch):
+                if not isinstance(touch, list) or not all(isinstance(t, str) and t and t.isprintable()
+                                                          and len(t) <= MAX_NAME for t in touch):
                     self.fail(path + ("touch_links",), f"{label}: touch_links must be a list of link names of the arm")
                     return None
                 links = tuple(touch)
@@ -222,7 +256,7 @@ class _Reader:
             return None
         cleared = e.get("cleared_by")
         if cleared is not None and (not isinstance(cleared, str) or not cleared.strip()
-                                    or not all(c.isprintable() for c in cleared)):
+                                    or not cleared.isprintable() or len(cleared) > MAX_NAME):
             self.fail(path + ("cleared_by",), f"{label}: cleared_by must be the name or the link of a digital "
                       f"input or output of the application (doPalletFull), not {_show(cleared)}")
             return None
@@ -248,29 +282,28 @@ class _Reader:
                 bad = True
         if bad:
             return None
-        s = self.scale
         if kind == "box":
             size = e["size"]
             if not (isinstance(size, list) and len(size) == 3):
                 self.fail(path + ("size",), f"{label}: size must be three positive numbers [x, y, z], not {_show(size)}")
                 return None
-            vals = [self.number(v, path + ("size", i), f"{label}: size", positive=True) for i, v in enumerate(size)]
+            vals = [self.length(v, path + ("size", i), f"{label}: size", size=True) for i, v in enumerate(size)]
             if None in vals:
                 return None
-            return Shape("box", tuple(v * s for v in vals))  # type: ignore[operator]
+            return Shape("box", tuple(vals))  # type: ignore[arg-type]
         if kind == "cylinder":
-            r = self.number(e["radius"], path + ("radius",), f"{label}: radius", positive=True)
-            ln = self.number(e["length"], path + ("length",), f"{label}: length", positive=True)
+            r = self.length(e["radius"], path + ("radius",), f"{label}: radius", size=True)
+            ln = self.length(e["length"], path + ("length",), f"{label}: length", size=True)
             if r is None or ln is None:
                 return None
-            return Shape("cylinder", (r * s, ln * s))
+            return Shape("cylinder", (r, ln))
         if kind == "sphere":
-            r = self.number(e["radius"], path + ("radius",), f"{label}: radius", positive=True)
-            return None if r is None else Shape("sphere", (r * s,))
+            r = self.length(e["radius"], path + ("radius",), f"{label}: radius", size=True)
+            return None if r is None else Shape("sphere", (r,))
         return self.mesh(e, path, label)
 
     def mesh(self, e: dict, path: tuple, label: str) -> Shape | None:
-        name = self.string(e["file"], path + ("file",), f"{label}: file")
+        name = self.string(e["file"], path + ("file",), f"{label}: file", longest=4096)
         if name is None:
             return None
         sc = e.get("scale", 1.0)
@@ -286,6 +319,10 @@ class _Reader:
         if any(v == 0 for v in vals):  # type: ignore[comparison-overlap]
             self.fail(path + ("scale",), f"{label}: scale must not be zero")
             return None
+        if not all(MIN_SCALE <= abs(v) <= MAX_SCALE for v in vals):  # type: ignore[arg-type]
+            self.fail(path + ("scale",), f"{label}: scale must be from {MIN_SCALE:g} to {MAX_SCALE:g} "
+                      f"(or its negative: a mirror), not {_show(sc)}")
+            return None
         solid = e.get("solid", True)
         if not isinstance(solid, bool):
             self.fail(path + ("solid",), f"{label}: solid must be true (a closed volume) or false (a surface), not {_show(solid)}")
@@ -300,12 +337,13 @@ class _Reader:
                     self._mesh_bytes += size
                     self._mesh_files.add(str(target))
                 if self._mesh_bytes > meshes.MAX_TOTAL_MESH_BYTES:
-                    raise meshes.MeshProblem(f"mesh file {name!r}: the cell's meshes add up to more than "
+                    raise meshes.MeshProblem(f"mesh file {shown(name)}: the cell's meshes add up to more than "
                                              f"{meshes.MAX_TOTAL_MESH_BYTES} bytes")
-                self._meshes[key] = meshes.load_mesh(target, name, scale, solid,
-                                                     roots=[self.folder, *self.roots])  # type: ignore[arg-type]
+                self._meshes[key] = meshes.load_mesh(target, name, scale, solid,  # type: ignore[arg-type]
+                                                     roots=[self.folder, *self.roots], budget=self.budget,
+                                                     out_of_time=self.out_of_time)
         except OSError as exc:
-            self.fail(path + ("file",), f"{label}: mesh file {name!r}: cannot read: {exc.strerror or exc}")
+            self.fail(path + ("file",), f"{label}: mesh file {shown(name)}: cannot read: {exc.strerror or exc}")
             return None
         except meshes.MeshProblem as exc:
             self.fail(path + ("file",), f"{label}: {exc}")
@@ -321,20 +359,26 @@ class _Reader:
             if len(v) != 6:
                 self.fail(path, f"{label}: at is {{x, y, z, rx, ry, rz}} or six numbers, not {_show(v)}")
                 return None
-            vals = [self.number(x, path + (i,), f"{label}: at") for i, x in enumerate(v)]
+            vals = [self.coordinate(x, path + (i,), f"{label}: at", i) for i, x in enumerate(v)]
         elif isinstance(v, dict):
             for k in v:
                 if k not in _TRSF:
-                    self.fail(path + (k,), f"{label}: at has the fields x, y, z, rx, ry, rz, not {k!r}", key=True)
+                    self.fail(path + (k,), f"{label}: at has the fields x, y, z, rx, ry, rz, not {shown(k)}", key=True)
                     return None
-            vals = [self.number(v[k], path + (k,), f"{label}: at.{k}") if k in v else 0.0 for k in _TRSF]
+            vals = [self.coordinate(v[k], path + (k,), f"{label}: at.{k}", i) if k in v else 0.0
+                    for i, k in enumerate(_TRSF)]
         else:
             self.fail(path, f"{label}: at is {{x, y, z, rx, ry, rz}} or six numbers, not {_show(v)}")
             return None
         if None in vals:
             return None
-        x, y, z, rx, ry, rz = vals
-        return trsf_matrix((x * self.scale, y * self.scale, z * self.scale, rx, ry, rz))  # type: ignore[operator]
+        return trsf_matrix(vals)
+
+    def coordinate(self, v: Any, path: tuple, what: str, i: int) -> float | None:
+        """x, y, z (i < 3): a length, in mm; rx, ry, rz: an angle in degrees."""
+        if i < 3:
+            return self.length(v, path, what)
+        return self.bounded(v, path, what, -MAX_ANGLE_DEG, MAX_ANGLE_DEG, "degrees")
 
     def check_parts(self, cell: Cell) -> None:
         grasp: dict[str, tuple[str, str]] = {}
@@ -367,9 +411,9 @@ def _show(v: Any) -> str:
     if isinstance(v, bool):
         return "true" if v else "false"
     if isinstance(v, str):
-        return repr(v)
+        return shown(v)
     if isinstance(v, dict):
         return "a table"
     if isinstance(v, list):
         return "a list" if len(v) > 6 else "[" + ", ".join(_show(x) for x in v) + "]"
-    return repr(v)[:40]
+    return shown(v)

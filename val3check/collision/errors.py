@@ -18,3 +18,7 @@ def _fmt(p: tuple[str, int, int, str]) -> str:
     if line:
         return f"{path}:{line}:{col}: {msg}"
     return f"{path}: {msg}"
+
+
+class MeshProblem(ValueError):
+    """Why a mesh file cannot be used (the message names the file)."""

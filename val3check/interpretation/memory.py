@@ -9,7 +9,6 @@ converts the loader's `Data`/`Value` records into run-time values (`values.py`).
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -17,6 +16,7 @@ from ..geometry.frames import Frame, Tool
 from ..geometry.points import Point
 from ..geometry.trsf import Trsf
 from ..loading.model import Application, Container, Data, Value, Workspace
+from ..loading.reader import parse_father
 from ..loading.types import DEFAULTS, arm_family, base_type, is_builtin
 from .memory_budget import UNKNOWN_BYTES, VALUE_BYTES, MemoryBudgetExceeded
 
@@ -50,7 +50,6 @@ def _trsf(fields: dict) -> Trsf:
                 _num(fields, "rz"))
 
 
-_FATHER = re.compile(r"^\s*([A-Za-z_]\w*)\s*(?:\[\s*([^\]]*?)\s*\])?\s*$")
 
 
 def resolve_fathers(cell, globals_: dict[str, Any]) -> None:
@@ -62,10 +61,10 @@ def resolve_fathers(cell, globals_: dict[str, Any]) -> None:
     lower = None
     for obj, father in pending:
         want = Tool if type(obj) is Tool else Frame
-        m = _FATHER.match(father)
+        m = parse_father(father)
         found = None
         if m:
-            name, idx = m.group(1), m.group(2)
+            name, idx = m
             low = name.lower()
             if low == "world" and name not in globals_:
                 found = cell.world

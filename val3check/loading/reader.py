@@ -85,7 +85,9 @@ def check_root(root: Node, expected: str, path: str) -> tuple[str | None, list[D
 # ---------------------------------------------------------------------------------------------
 # Small value parsers.
 
-_NUM = re.compile(r"^\s*[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?\s*$")
+# Unambiguous (`\d+(?:\.\d*)?`, not `\d+\.?\d*`, which can split a run of digits in two in
+# n ways and takes quadratic time on "111...1x"): linear on any text.
+_NUM = re.compile(r"^\s*[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?\s*$")
 _CONTAINERS = {"element": Container.ELEMENT, "array": Container.ARRAY, "collection": Container.COLLECTION}
 
 
@@ -93,6 +95,26 @@ def parse_num(text: str) -> float | None:
     if _NUM.match(text):
         return float(text)
     return None
+
+
+_IDENTIFIER = re.compile(r"[A-Za-z_]\w*")
+
+
+def parse_father(text: str) -> tuple[str, str | None] | None:
+    """A fatherId as (name, index): "fPallet[2]" -> ("fPallet", "2"), "world" -> ("world", None),
+    " a [ 1 2 ] " -> ("a", "1 2"); None when it is not `name` or `name[index]`. Written without
+    a backtracking regular expression: the lazy index pattern with blanks on both sides that it
+    replaces took quadratic time on "world[x" followed by thousands of spaces (17 s for 150 KB)."""
+    t = text.strip()
+    m = _IDENTIFIER.match(t)
+    if m is None:
+        return None
+    rest = t[m.end():].lstrip()
+    if not rest:
+        return m.group(), None
+    if rest[0] != "[" or rest[-1] != "]" or "]" in rest[1:-1]:
+        return None
+    return m.group(), rest[1:-1].strip()
 
 
 def _short(text: str, limit: int = 60) -> str:

@@ -18,7 +18,6 @@ are listed as such. The result is a `ReachReport` (val3check/reporting/reach.py 
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -29,18 +28,18 @@ from ..geometry import rotation as R
 from ..geometry.frames import Frame, Tool
 from ..geometry.points import Point
 from ..geometry.trsf import Trsf
+from ..loading.reader import parse_father
 from ..loading.types import arm_family, base_type
 from .checks import LIMIT_MARGIN, THRESHOLDS, UNITS, WHAT
 from .kin import ArmKin
 
 INCH_MM = 25.4
-_FATHER = re.compile(r"^\s*([A-Za-z_]\w*)\s*(?:\[\s*([^\]]*?)\s*\])?\s*$")
 ORDER = {"family": 0, "unreachable": 1, "limits": 2, "config": 3, "unresolved": 4, "near-singularity": 5,
          "near-limit": 6, "ok": 7}
 # A point may be used with only some of the declared tools, or not at all: a static "unreachable"
 # is not certain to be a defect, so nothing here is an error (`sim` reports what a run does).
-SEVERITY = {"family": "warning", "unreachable": "warning", "limits": "warning", "config": "warning", "unresolved": "warning",
-            "near-singularity": "info", "near-limit": "info", "ok": "info"}
+SEVERITY = {"family": "warning", "unreachable": "warning", "limits": "warning", "config": "warning",
+            "unresolved": "warning", "near-singularity": "info", "near-limit": "info", "ok": "info"}
 
 
 @dataclass
@@ -146,10 +145,10 @@ class _Space:
             if not father:
                 node.ref = root
                 continue
-            m = _FATHER.match(father)
+            m = parse_father(father)
             if not m:
                 continue
-            fname, idx = m.group(1).lower(), (m.group(2) or "0").strip().strip('"')
+            fname, idx = m[0].lower(), (m[1] or "0").strip().strip('"')
             if fname == "world" and b != "tool":
                 node.ref = world
             elif fname == "flange" and b == "tool":

@@ -63,16 +63,54 @@ def plural(n: int, word: str) -> str:
     return f"{n} {word}" if n == 1 else f"{n} {word}s"
 
 
-# C0 controls (other than tab) and DEL would move the cursor or colour a terminal, and are not
-# allowed in XML 1.0: show them as U+FFFD, which keeps the column count unchanged.
-_CONTROL = {c: "\ufffd" for c in (*range(0x00, 0x09), *range(0x0A, 0x20), 0x7F)}
-
-
+# C0 controls (other than tab) and DEL would move the cursor or colour a terminal, are not
+# allowed in XML 1.0 and are parse errors in HTML. In the text reports they are shown as their
+# Control Pictures (NUL as U+2400 '␀', ESC as '␛', DEL as '␡'), one character each so that
+# columns still line up under a caret; C1 controls, lone surrogates (undecodable bytes of a file
+# name: they cannot even be written as UTF-8) and the non-characters U+FFFE, U+FFFF as U+FFFD.
+_CONTROL = {c: 0x2400 + c for c in (*range(0x00, 0x09), *range(0x0A, 0x20))}
+_CONTROL.update({0x7F: 0x2421, 0xFFFE: 0xFFFD, 0xFFFF: 0xFFFD})
+_CONTROL.update({c: 0xFFFD for c in (*range(0x80, 0xA0), *range(0xD800, 0xE000))})
 _CONTROL_KEEP_NEWLINE = {c: r for c, r in _CONTROL.items() if c != 0x0A}
+# In HTML and XML, where no column lines up and many fonts have no Control Pictures, they are
+# written as escapes, legible in any font: "\x00", "\x1b", "\x9b"; a lone surrogate of an
+# undecodable byte as that byte ("\xff"), any other as "\udXXX"; U+FFFE, U+FFFF as "\ufffe".
+_ESCAPED = {c: f"\\x{c:02x}" for c in (*range(0x00, 0x09), *range(0x0B, 0x20), 0x7F, *range(0x80, 0xA0))}
+_ESCAPED.update({c: f"\\x{c - 0xDC00:02x}" for c in range(0xDC80, 0xDD00)})
+_ESCAPED.update({c: f"\\u{c:04x}" for c in (*range(0xD800, 0xDC80), *range(0xDD00, 0xE000), 0xFFFE, 0xFFFF)})
 
 
 def printable(text: str, *, keep_newlines: bool = False) -> str:
+    """`text` safe on a terminal: every control character shown as one visible character (see
+    _CONTROL); `keep_newlines` keeps line feeds."""
     return text.translate(_CONTROL_KEEP_NEWLINE if keep_newlines else _CONTROL)
+
+
+def visible(text: str) -> str:
+    """`text` as HTML and XML 1.0 text may hold it: tabs and line feeds kept, every other control
+    character, lone surrogate and non-character written as an escape (see _ESCAPED)."""
+    return text.translate(_ESCAPED)
+
+
+def visible_data(value):  # noqa: ANN001, ANN201
+    """`value` (JSON-like: dicts, lists, strings, numbers) with `visible` applied to every string
+    and key (iterative: no depth limit)."""
+    root = [value]
+    todo = [(root, 0)]
+    while todo:
+        holder, key = todo.pop()
+        v = holder[key]
+        if isinstance(v, str):
+            holder[key] = visible(v)
+        elif isinstance(v, (list, tuple)):
+            copy = list(v)
+            holder[key] = copy
+            todo.extend((copy, i) for i in range(len(copy)))
+        elif isinstance(v, dict):
+            copy = {visible(k) if isinstance(k, str) else k: x for k, x in v.items()}
+            holder[key] = copy
+            todo.extend((copy, k) for k in copy)
+    return root[0]
 
 
 class SourceCache:

@@ -14,7 +14,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from ..diagnostics import Diagnostic, Severity
-from ._common import repository_path, root_of, rule_name, severity_of
+from ._common import printable, repository_path, root_of, rule_name, severity_of
 
 if TYPE_CHECKING:
     from ..result import LintResult
@@ -23,7 +23,8 @@ COMMANDS = {Severity.ERROR: "error", Severity.WARNING: "warning", Severity.INFO:
 
 
 def escape_data(text: str) -> str:
-    return text.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
+    # other control characters (ESC...) would reach the CI log raw: shown as their pictures
+    return printable(text.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A"))
 
 
 def escape_property(text: str) -> str:

@@ -12,8 +12,9 @@ Findings below `--fail-on` never fail: they are listed in the `<system-out>` of 
 test case. So `tests` = passing files + failing findings, `failures` = failing findings,
 `errors` = `skipped` = 0, and a clean file still shows up as a passed test.
 
-Escaping is done by ElementTree; characters that XML 1.0 cannot hold (C0 controls) become
-U+FFFD and non-ASCII characters become character references, so the output is pure ASCII.
+Escaping is done by ElementTree; characters that XML 1.0 cannot hold are written as escapes
+("\\x00", "\\x1b": reporting._common.visible) and non-ASCII characters become character
+references, so the output is pure ASCII.
 """
 
 from __future__ import annotations
@@ -22,16 +23,16 @@ import xml.etree.ElementTree as ET
 from typing import TYPE_CHECKING
 
 from ..diagnostics import Diagnostic, Severity
-from ._common import TOOL_NAME, printable, rule_name, severity_of
+from ._common import TOOL_NAME, rule_name, severity_of, visible
 
 if TYPE_CHECKING:
     from ..result import LintResult
 
 
 def _xml(text: str) -> str:
-    """Text XML 1.0 can hold: controls other than tab/newline and lone surrogates replaced."""
-    text = printable(text, keep_newlines=True).replace("\ufffe", "\ufffd").replace("\uffff", "\ufffd")
-    return text.encode("utf-8", "replace").decode("utf-8")  # lone surrogates -> "?"
+    """Text XML 1.0 can hold: controls other than tab and newline, lone surrogates and
+    non-characters written as escapes ("\\x1b", reporting._common.visible)."""
+    return visible(text)
 
 
 def _position(diag: Diagnostic) -> str:

@@ -13,6 +13,7 @@ import statistics
 from typing import Any
 
 from . import sim_collision
+from ._common import printable
 
 MAX_TRANSCRIPT_LINES = 40
 MAX_IO_LINES = 20
@@ -109,7 +110,7 @@ def _value(v: Any) -> str:
 def _diag(d) -> str:
     loc = f"{d.path}:{d.line}:{d.col}" if d.line else d.path
     who = f" [task {d.task}" + (f", {d.program}()" if d.program else "") + "]" if d.task else ""
-    return f"  {loc}: {d.code} {d.severity.label}: {d.message} (at {fmt_time(d.time_us)}){who}"
+    return printable(f"  {loc}: {d.code} {d.severity.label}: {d.message} (at {fmt_time(d.time_us)}){who}")
 
 
 def _motion_summary(run: Any, m) -> list[str]:

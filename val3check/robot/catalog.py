@@ -13,6 +13,7 @@ import os
 import re
 from pathlib import Path
 
+from ..excerpt import shown
 from ..resources import resource_dir
 from .errors import RobotError
 
@@ -34,12 +35,20 @@ def normalize(name: str) -> str:
     return re.sub(r"[\s_\-.]+", "", n)
 
 
+_SUFFIX_CHARS = "-abcdefghijklmnopqrstuvwxyz0123456789"
+_GENERATION = re.compile(r"-s\d")
+
+
 def normalize_id(arm_id: str) -> str:
     """An arm.cfx value as compared: lower case, '_' as '-', without the '-S<n>' suffix (the arm's
     generation: tx200-S3, ts2_60-S1 -> tx200, ts2-60)."""
     n = arm_id.strip().lower().replace("_", "-")
-    m = re.match(r"^(.+?)-s\d+[-a-z0-9]*$", n)
-    return m.group(1) if m else n
+    # As `^(.+?)-s\d+[-a-z0-9]*$` would take it, in linear time (that regex is quadratic on
+    # "-s1-s1...-s1."): the suffix starts at the first "-s<digit>" of the trailing run of
+    # [-a-z0-9] characters, after the first character.
+    tail = len(n.rstrip(_SUFFIX_CHARS))
+    m = _GENERATION.search(n, max(1, tail))
+    return n[:m.start()] if m else n
 
 
 @functools.lru_cache(maxsize=1)
@@ -93,7 +102,7 @@ def find(name: str) -> str:
     for known in catalog():
         if normalize(known) == key:
             return known
-    raise RobotError(f"unknown robot {name!r}; known arms: {', '.join(names())} (or a path to a URDF)")
+    raise RobotError(f"unknown robot {shown(name)}; known arms: {', '.join(names())} (or a path to a URDF)")
 
 
 def find_srs(arm_id: str) -> str:

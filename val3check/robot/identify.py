@@ -21,10 +21,12 @@ import os
 import re
 from dataclasses import dataclass, replace
 
+from ..excerpt import shown
 from . import catalog as _catalog
 from .errors import RobotError
 from .provenance import Assumption
 
+_STROKE = re.compile(r"\d+(?:\.\d+)?")
 _MOUNT_WORDS = {"floor": "floor", "ground": "floor", "wall": "wall", "ceiling": "ceiling", "roof": "ceiling"}
 
 
@@ -41,8 +43,13 @@ class ArmConfig:
     def stroke_mm(self) -> float | None:
         if not self.length_axis3:
             return None
-        m = re.fullmatch(r"\s*L?\s*(\d+(?:\.\d+)?)\s*(?:mm)?\s*", self.length_axis3, re.IGNORECASE)
-        return float(m.group(1)) if m else None
+        # "L200", "200 mm", " l 200.5 ": without a regex of adjacent optional blanks (quadratic)
+        t = self.length_axis3.strip()
+        if t[:1] in ("L", "l"):
+            t = t[1:].lstrip()
+        if t[-2:].lower() == "mm":
+            t = t[:-2].rstrip()
+        return float(t) if _STROKE.fullmatch(t) else None
 
 
 @dataclass(frozen=True)
@@ -126,13 +133,13 @@ def match_id(arm_id: str, stroke_mm: float | None = None) -> Match:
     if not cands:
         for known in _catalog.known_without_model():
             if _key(_catalog.normalize_id(known["id"])) == key:
-                raise RobotError(f"arm {arm_id!r} is the Stäubli {known['arm']}, which has no model: {known['why']}; the "
+                raise RobotError(f"arm {shown(arm_id)} is the Stäubli {known['arm']}, which has no model: {known['why']}; the "
                                  f"closest model is {known['closest']} (use --robot {known['closest']}, or a URDF of your own)")
         closest = closest_model(n)
         hint = f"; the closest model is {closest} (use --robot {closest}, or a URDF of your own)" if closest else \
             " (use --robot NAME or a URDF)"
         ids = ", ".join(dict.fromkeys(e["ids"][0] for e in _catalog.catalog().values() if e.get("ids")))
-        raise RobotError(f"arm {arm_id!r} is {_describe_kind(n)} that val3check has no model for{hint}; known ids: {ids}")
+        raise RobotError(f"arm {shown(arm_id)} is {_describe_kind(n)} that val3check has no model for{hint}; known ids: {ids}")
     notes = []
     name, entry = cands[0]
     if len(cands) > 1:  # several strokes of one SCARA
@@ -178,7 +185,7 @@ def with_mount(model, mount: str, by: str = "controller"):
 
     m = _MOUNT_WORDS.get(mount.strip().lower())
     if m is None:
-        raise RobotError(f"mount {mount!r}: one of {', '.join(MOUNTS)}")
+        raise RobotError(f"mount {shown(mount)}: one of {', '.join(MOUNTS)}")
     text = ("The VAL 3 world frame is taken as attached to the arm's base whatever the mount (points taught on the "
             f"arm stay valid); the mount only turns it in the cell (for gravity, cell geometry and views): {m}")
     if model.family == "scara" and m == "wall":
@@ -193,10 +200,10 @@ def from_arm_cfx(path: str | os.PathLike):
 
     cfg = read_arm_config(path)
     stroke = cfg.stroke_mm
-    notes = [f"{path}: arm {cfg.arm!r}" + (f", mount {cfg.mount!r}" if cfg.mount else "")
-             + (f", lengthAxis3 {cfg.length_axis3!r}" if cfg.length_axis3 else "")]
+    notes = [f"{path}: arm {shown(cfg.arm)}" + (f", mount {shown(cfg.mount)}" if cfg.mount else "")
+             + (f", lengthAxis3 {shown(cfg.length_axis3)}" if cfg.length_axis3 else "")]
     if cfg.length_axis3 and stroke is None:
-        notes.append(f"lengthAxis3 {cfg.length_axis3!r} is not a length such as L200: ignored")
+        notes.append(f"lengthAxis3 {shown(cfg.length_axis3)} is not a length such as L200: ignored")
     match = match_id(cfg.arm, stroke)
     model = catalog_model(match.name)
     notes += match.notes
@@ -207,7 +214,7 @@ def from_arm_cfx(path: str | os.PathLike):
         try:
             model = with_mount(model, cfg.mount)
         except RobotError:
-            notes.append(f"mount {cfg.mount!r} is not floor, wall or ceiling: {model.mount} kept")
+            notes.append(f"mount {shown(cfg.mount)} is not floor, wall or ceiling: {model.mount} kept")
     return replace(model, notes=tuple(notes))
 
 
@@ -225,10 +232,10 @@ def by_name(text: str):
         try:
             base = _catalog.find(m.group(1))
         except RobotError:
-            raise RobotError(f"unknown robot {text!r}; known arms: {', '.join(_catalog.names())} (or a path to a URDF)") from None
+            raise RobotError(f"unknown robot {shown(text)}; known arms: {', '.join(_catalog.names())} (or a path to a URDF)") from None
         model = catalog_model(base)
         if model.family != "scara":
-            raise RobotError(f"unknown robot {text!r}: {base} is not a SCARA, it has no stroke to choose") from None
+            raise RobotError(f"unknown robot {shown(text)}: {base} is not a SCARA, it has no stroke to choose") from None
         stroke = float(m.group(2))
         same = [n for n, e in _catalog.catalog().items() if e.get("stroke_mm") == stroke and _key(n).startswith(_key(base))]
         if same:

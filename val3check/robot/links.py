@@ -19,6 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..excerpt import shown
 from .errors import RobotError
 from .urdf import UrdfInfo, read_urdf
 
@@ -76,7 +77,7 @@ class ArmLinks:
         index = {n: i for i, n in enumerate(self.joint_names)}
         missing = [n for n in self.joint_names if n not in info.joints]
         if missing:
-            raise RobotError(f"{info.path}: no joint named {missing[0]!r}")
+            raise RobotError(f"{info.path}: no joint named {shown(missing[0])}")
         self.edges: dict[str, _Edge] = {}  # by child link
         order = [root]
         stack = [root]
@@ -85,27 +86,27 @@ class ArmLinks:
             link = stack.pop()
             for j in sorted(children.get(link, []), key=lambda j: j.name):
                 if j.child in seen:
-                    raise RobotError(f"{info.path}: link {j.child!r} has two parents")
+                    raise RobotError(f"{info.path}: link {shown(j.child)} has two parents")
                 seen.add(j.child)
                 T = _transform(j.xyz, j.rpy)
                 ax = np.asarray(j.axis, dtype=float)
                 n = float(np.linalg.norm(ax))
                 kind = j.kind if j.kind in _MOVING else "fixed"
                 if kind != "fixed" and n == 0.0:
-                    raise RobotError(f"{info.path}: joint {j.name!r} has a zero axis")
+                    raise RobotError(f"{info.path}: joint {shown(j.name)} has a zero axis")
                 self.edges[j.child] = _Edge(link, j.child, T, ax / n if n else ax, kind, index.get(j.name, -1), j.name)
                 order.append(j.child)
                 stack.append(j.child)
         self.links = tuple(order)
         if world not in seen:
-            raise RobotError(f"{info.path}: no link named {world!r} (the world frame)")
+            raise RobotError(f"{info.path}: no link named {shown(world)} (the world frame)")
         # pose of the root in the VAL 3 world frame: the inverse of root -> world (fixed joints)
         T = np.eye(4)
         link = world
         while link != root:
             e = self.edges[link]
             if e.kind != "fixed":
-                raise RobotError(f"{info.path}: the world frame {world!r} must be fixed to the base")
+                raise RobotError(f"{info.path}: the world frame {shown(world)} must be fixed to the base")
             T = e.origin @ T
             link = e.parent
         self.root = root
@@ -231,9 +232,9 @@ def read_collision_solids(path: str | os.PathLike, resolve_meshes: bool = True) 
             g = col.find("geometry")
             shape = None if g is None or len(g) == 0 else g[0]
             if shape is None:
-                raise RobotError(f"{path}: link {lname!r}: <collision> without <geometry>")
+                raise RobotError(f"{path}: link {shown(lname)}: <collision> without <geometry>")
             tag = shape.tag
-            where = f"{path}: link {lname!r}, collision {name!r}"
+            where = f"{path}: link {shown(lname)}, collision {shown(name)}"
             if tag == "box":
                 size = tuple(v * 1000.0 for v in _floats(shape.get("size"), 3, None, path, lname))
             elif tag == "cylinder":
@@ -267,12 +268,12 @@ def _mesh_path(filename: str, base: Path, where: str) -> str:
                 root, filename = folder, rest
                 break
         else:
-            raise RobotError(f"{where}: mesh {filename!r}: no folder {pkg!r} above the URDF to resolve package:// in")
+            raise RobotError(f"{where}: mesh {shown(filename)}: no folder {shown(pkg)} above the URDF to resolve package:// in")
     if not filename or "://" in filename:
-        raise RobotError(f"{where}: mesh {filename!r}: give a path relative to the URDF")
+        raise RobotError(f"{where}: mesh {shown(filename)}: give a path relative to the URDF")
     p = (root / filename).resolve()
     if root not in p.parents:
-        raise RobotError(f"{where}: mesh {filename!r} is outside the URDF's folder")
+        raise RobotError(f"{where}: mesh {shown(filename)} is outside the URDF's folder")
     return str(p)
 
 
@@ -280,20 +281,20 @@ def _num(text, where: str, what: str) -> float:
     try:
         return float(text)
     except (TypeError, ValueError):
-        raise RobotError(f"{where}: {what}={text!r} is not a number") from None
+        raise RobotError(f"{where}: {what}={shown(text)} is not a number") from None
 
 
 def _floats(text, n, default, path, link) -> tuple[float, ...]:
     if text is None:
         if default is None:
-            raise RobotError(f"{path}: link {link!r}: a collision size is missing")
+            raise RobotError(f"{path}: link {shown(link)}: a collision size is missing")
         return default
     try:
         vals = tuple(float(t) for t in text.split())
     except ValueError:
-        raise RobotError(f"{path}: link {link!r}: {text!r} is not {n} numbers") from None
+        raise RobotError(f"{path}: link {shown(link)}: {shown(text)} is not {n} numbers") from None
     if len(vals) != n or not all(math.isfinite(v) for v in vals):
-        raise RobotError(f"{path}: link {link!r}: {text!r} is not {n} numbers")
+        raise RobotError(f"{path}: link {shown(link)}: {shown(text)} is not {n} numbers")
     return vals
 
 

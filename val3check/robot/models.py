@@ -10,6 +10,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Sequence
 
+from ..excerpt import shown
 from . import catalog as _catalog
 from . import scara as _scara
 from .configuration import Config, classify, resolve
@@ -507,15 +508,15 @@ def from_urdf(path: str | os.PathLike, world_frame: str | None = None, flange_fr
         attrs = info.meta_joints.get(j.name, {})
         key, other = ("acceleration_mm_s2", "acceleration_deg_s2") if j.kind == "prismatic" else ("acceleration_deg_s2", "acceleration_mm_s2")
         if attrs.get(other) is not None:
-            raise RobotError(f"{info.path}: joint {j.name!r} is {j.kind}: its acceleration is {key}, not {other}")
+            raise RobotError(f"{info.path}: joint {shown(j.name)} is {j.kind}: its acceleration is {key}, not {other}")
         given = attrs.get(key)
         if given is not None:
             try:
                 a = float(given)
             except ValueError:
-                raise RobotError(f"{info.path}: joint {j.name!r}: {key}={given!r} is not a number") from None
+                raise RobotError(f"{info.path}: joint {shown(j.name)}: {key}={shown(given)} is not a number") from None
             if not a > 0:
-                raise RobotError(f"{info.path}: joint {j.name!r}: {key} must be positive")
+                raise RobotError(f"{info.path}: joint {shown(j.name)}: {key} must be positive")
             accs.append(a)
         else:
             accs.append(v / DEFAULT_RAMP_S)
@@ -540,7 +541,7 @@ def from_urdf(path: str | os.PathLike, world_frame: str | None = None, flange_fr
     stroke = meta.get("stroke_mm")
     native = meta.get("native_mount", "floor")
     if native not in MOUNTS:
-        raise RobotError(f"{info.path}: <val3check native_mount={native!r}>: one of {', '.join(MOUNTS)}")
+        raise RobotError(f"{info.path}: <val3check native_mount={shown(native)}>: one of {', '.join(MOUNTS)}")
     return RobotModel(
         name=name or meta.get("arm") or info.robot_name or Path(info.path).stem,
         source=info.path,

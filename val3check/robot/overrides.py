@@ -29,6 +29,7 @@ import os
 from dataclasses import replace
 from pathlib import Path
 
+from ..excerpt import shown
 from .errors import RobotError
 from .provenance import Assumption
 
@@ -39,7 +40,7 @@ SCARA_ONLY = ("world_z_mm", "axis3_sign", "axis4_sign", "stroke_mm")
 
 def _num(v, what: str) -> float:
     if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-        raise RobotError(f"{what}: a number is needed, not {v!r}")
+        raise RobotError(f"{what}: a number is needed, not {shown(v)}")
     return float(v)
 
 
@@ -55,7 +56,7 @@ def _per_axis(model, value, what: str, current: tuple) -> list:
         for k, v in value.items():
             ks = str(k).lower()
             if not (ks.startswith("j") and ks[1:].isdigit() and 1 <= int(ks[1:]) <= n):
-                raise RobotError(f"{what}: {k!r} is not an axis of {model.name} (j1 to j{n})")
+                raise RobotError(f"{what}: {shown(k)} is not an axis of {model.name} (j1 to j{n})")
             out[int(ks[1:]) - 1] = v
         return out
     raise RobotError(f"{what}: a list of {n} values or a table such as {{ j1 = ... }} is needed")
@@ -86,7 +87,7 @@ def apply(model, values: dict, by: str = "user"):
         clean = []
         for i, pair in enumerate(lims):
             if not (isinstance(pair, (list, tuple)) and len(pair) == 2):
-                raise RobotError(f"limits: j{i + 1}: a pair [min, max] is needed, not {pair!r}")
+                raise RobotError(f"limits: j{i + 1}: a pair [min, max] is needed, not {shown(pair)}")
             lo, hi = _num(pair[0], f"limits j{i + 1}"), _num(pair[1], f"limits j{i + 1}")
             if not lo < hi:
                 raise RobotError(f"limits: j{i + 1}: min {lo:g} is not below max {hi:g}")
@@ -160,21 +161,18 @@ def _world_z(model, w: float):
 
 def load_robot_file(path: str | os.PathLike, app_path=None):
     """A robot file (module docstring): its arm with the user's values."""
-    import tomllib
-
-    from .models import load_robot
-
+    from .. import tomlfile
     from ..confine import Refused, Roots, read_bytes
+    from .models import load_robot
 
     p = Path(path)
     try:  # val3check.confine: a regular file (not a FIFO or /dev/zero), 1 MB at most
-        data = tomllib.loads(read_bytes(str(p), Roots.user_given(), 1 << 20).decode("utf-8"))
+        data = tomlfile.load_bytes(read_bytes(str(p), Roots.user_given(), 1 << 20))[0]
     except Refused as exc:
         raise RobotError(f"{p}: cannot read the robot file: {exc.reason}") from None
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
-        raise RobotError(f"{p}: not a valid TOML robot file: {exc}") from None
-    except RecursionError:
-        raise RobotError(f"{p}: not a valid TOML robot file: nested too deeply") from None
+    except tomlfile.TomlError as exc:
+        where = f"{p}:{exc.line}:{exc.col}" if exc.line else str(p)
+        raise RobotError(f"{where}: not a valid TOML robot file: {exc.message}") from None
     extra = [k for k in data if k not in ("arm", "name", "assume")]
     if extra:
         raise RobotError(f"{p}: unknown key {', '.join(map(repr, extra))}: a robot file has arm, name and [assume]")
@@ -182,7 +180,7 @@ def load_robot_file(path: str | os.PathLike, app_path=None):
     if not isinstance(arm, str) or not arm.strip():
         raise RobotError(f'{p}: arm = "TX2-60" (a catalogue name, a URDF or an arm.cfx) is needed')
     if arm.lower().endswith(".toml"):
-        raise RobotError(f"{p}: arm = {arm!r}: a robot file cannot name another robot file")
+        raise RobotError(f"{p}: arm = {shown(arm)}: a robot file cannot name another robot file")
     if arm.lower().endswith((".urdf", ".xml", ".cfx")) and not os.path.isabs(arm):
         arm = str(p.parent / arm)
     model = load_robot(arm, app_path)

@@ -24,6 +24,7 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from ..excerpt import shown
 from .errors import RobotError
 
 Mat = tuple[tuple[float, float, float, float], tuple[float, float, float, float], tuple[float, float, float, float]]
@@ -82,9 +83,9 @@ def _floats(text: str | None, n: int, default: tuple, what: str, path: str) -> t
     try:
         vals = tuple(float(t) for t in text.split())
     except ValueError:
-        raise RobotError(f"{path}: {what} is not {n} numbers: {text!r}") from None
+        raise RobotError(f"{path}: {what} is not {n} numbers: {shown(text)}") from None
     if len(vals) != n or not all(math.isfinite(v) for v in vals):
-        raise RobotError(f"{path}: {what} is not {n} finite numbers: {text[:80]!r}")
+        raise RobotError(f"{path}: {what} is not {n} finite numbers: {shown(text[:80])}")
     return vals
 
 
@@ -93,7 +94,7 @@ def _opt(el, attr: str) -> float | None:
         return None
     v = float(el.get(attr))
     if not math.isfinite(v):
-        raise ValueError(f"{attr}={el.get(attr)[:40]!r} is not a finite number")
+        raise ValueError(f"{attr}={shown(el.get(attr)[:40])} is not a finite number")
     return v
 
 
@@ -133,15 +134,15 @@ def _check_tree(path: str, joints: dict[str, UrdfJoint]) -> None:
     by_child: dict[str, UrdfJoint] = {}
     for j in joints.values():
         if j.kind != "fixed" and math.sqrt(sum(a * a for a in j.axis)) < 1e-12:
-            raise RobotError(f"{path}: joint {j.name!r} has the axis 0 0 0: an axis needs a direction")
+            raise RobotError(f"{path}: joint {shown(j.name)} has the axis 0 0 0: an axis needs a direction")
         if j.lower is not None and j.upper is not None and j.lower > j.upper:
-            raise RobotError(f"{path}: joint {j.name!r}: lower limit {j.lower:g} above upper limit {j.upper:g}")
+            raise RobotError(f"{path}: joint {shown(j.name)}: lower limit {j.lower:g} above upper limit {j.upper:g}")
         if any(abs(v) > MAX_OFFSET_M for v in j.xyz):
-            raise RobotError(f"{path}: joint {j.name!r}: origin xyz beyond {MAX_OFFSET_M:g} m")
+            raise RobotError(f"{path}: joint {shown(j.name)}: origin xyz beyond {MAX_OFFSET_M:g} m")
         if j.parent == j.child:
-            raise RobotError(f"{path}: joint {j.name!r} connects link {j.child!r} to itself")
+            raise RobotError(f"{path}: joint {shown(j.name)} connects link {shown(j.child)} to itself")
         if j.child in by_child:
-            raise RobotError(f"{path}: link {j.child!r} is the child of two joints ({by_child[j.child].name!r}, {j.name!r})")
+            raise RobotError(f"{path}: link {shown(j.child)} is the child of two joints ({shown(by_child[j.child].name)}, {shown(j.name)})")
         by_child[j.child] = j
     done: set[str] = set()
     for start in by_child:
@@ -170,23 +171,23 @@ def read_urdf(path: str | Path) -> UrdfInfo:
         limit = el.find("limit")
         parent, child = el.find("parent"), el.find("child")
         if parent is None or child is None:
-            raise RobotError(f"{path}: joint {name!r} lacks <parent> or <child>")
+            raise RobotError(f"{path}: joint {shown(name)} lacks <parent> or <child>")
         try:
             joints[name] = UrdfJoint(
                 name=name,
                 kind=el.get("type", ""),
                 parent=parent.get("link", ""),
                 child=child.get("link", ""),
-                xyz=_floats(origin.get("xyz") if origin is not None else None, 3, (0.0, 0.0, 0.0), f"joint {name!r} origin xyz", path),
-                rpy=_floats(origin.get("rpy") if origin is not None else None, 3, (0.0, 0.0, 0.0), f"joint {name!r} origin rpy", path),
-                axis=_floats(axis.get("xyz") if axis is not None else None, 3, (1.0, 0.0, 0.0), f"joint {name!r} axis", path),
+                xyz=_floats(origin.get("xyz") if origin is not None else None, 3, (0.0, 0.0, 0.0), f"joint {shown(name)} origin xyz", path),
+                rpy=_floats(origin.get("rpy") if origin is not None else None, 3, (0.0, 0.0, 0.0), f"joint {shown(name)} origin rpy", path),
+                axis=_floats(axis.get("xyz") if axis is not None else None, 3, (1.0, 0.0, 0.0), f"joint {shown(name)} axis", path),
                 lower=_opt(limit, "lower"),
                 upper=_opt(limit, "upper"),
                 velocity=_opt(limit, "velocity"),
                 effort=_opt(limit, "effort"),
             )
         except ValueError as exc:
-            raise RobotError(f"{path}: joint {name!r}: bad <limit>: {exc}") from None
+            raise RobotError(f"{path}: joint {shown(name)}: bad <limit>: {exc}") from None
     _check_tree(path, joints)
     meta_el = root.find("val3check")
     meta = dict(meta_el.attrib) if meta_el is not None else None

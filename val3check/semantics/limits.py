@@ -15,18 +15,17 @@ rather than types.
 from __future__ import annotations
 
 import math
-import re
 
 from ..diagnostics import Diagnostic, Severity
 from ..language.target import Target, target_for
 from ..language.version_facts import over
 from ..loading.model import Application, Container, Data, Value, Workspace
-from ..loading.reader import HUGE
+from ..loading.reader import HUGE, parse_father
 from ..loading.types import base_type
 from ..parsing import ast as A
 
-# What a fatherId may look like: `name` or `name[index]` (2-D: "i j" or "i,j"; a collection: "key").
-_FATHER = re.compile(r"^\s*([A-Za-z_]\w*)\s*(?:\[\s*([^\]]*?)\s*\])?\s*$")
+# What a fatherId may look like: `name` or `name[index]` (2-D: "i j" or "i,j"; a collection: "key"):
+# loading.reader.parse_father.
 
 
 def check_application(workspace: Workspace, app: Application, target: Target | None = None) -> list[Diagnostic]:
@@ -115,10 +114,10 @@ def _father_diag(d: Data, v: Value, problem: str) -> Diagnostic:
 
 
 def _father_problem(father: str, want: str, data: dict[str, Data], lower: dict[str, Data]) -> str | None:
-    m = _FATHER.match(father)
+    m = parse_father(father)
     if m is None:
         return "is not a reference (expected name or name[index])"
-    name, idx = m.group(1), m.group(2)
+    name, idx = m
     low = name.lower()
     if low in ("world", "flange") and name not in data:  # as the simulator resolves it
         if (low == "world") == (want == "frame"):

@@ -26,7 +26,7 @@ import numpy as np
 
 from ..collision import CellError, CollisionChecker, MotionSpan, arm_model, find_cell, read_cell
 from ..collision.cell import Cell
-from ..collision.checker import same_poses
+from ..collision.poses import same_poses
 from ..collision.records import Contact, MotionReport, PartDrop
 from ..diagnostics import Diagnostic
 from ..geometry import frames as geo_frames
@@ -90,13 +90,16 @@ def choose_cell(option: str | None, app_path: str) -> tuple[str | None, str]:
     return (str(found), "found") if found is not None else (None, "none")
 
 
-def load_cell(path: str, app, found: bool = False) -> tuple[Cell | None, list[Diagnostic]]:
+def load_cell(path: str, app, found: bool = False, budget=None,  # noqa: ANN001
+              out_of_time=None) -> tuple[Cell | None, list[Diagnostic]]:
     """Read a cell file for the application `app` (loading.model.Application): (cell, []) or
     (None, R030 diagnostics at every problem's line and column). `found`: beside the application
-    (confined to its folder), not named by the user."""
+    (confined to its folder), not named by the user. `budget` and `out_of_time()`: the run's
+    memory budget and whether its wall-clock budget has run out, applied to the cell's meshes."""
     unit = "mm" if getattr(app, "millimeter_unit", True) else "inch"
     try:
-        return read_cell(path, app_dir=str(Path(app.path).parent), app_unit=unit, found=found), []
+        return read_cell(path, app_dir=str(Path(app.path).parent), app_unit=unit, found=found, budget=budget,
+                         out_of_time=out_of_time), []
     except CellError as exc:
         return None, [Diagnostic("R030", f"cell file: {msg}", p, line, col, time_us=0, task="", program="")
                       for p, line, col, msg in exc.problems]

@@ -131,7 +131,14 @@ def _collision_setup(app: Application, options: SimOptions, machine: Machine):
         return None
     from . import collision_run
 
-    cell, diags = (collision_run.load_cell(options.cell, app, found=options.cell_found == "found") if options.cell
+    # the cell's meshes are read within the run's budgets (memory priced before trimesh builds them)
+    budgets = machine.budgets
+
+    def out_of_time() -> bool:  # --max-wall, on the run's own clock
+        return budgets.wall_clock() > machine.wall_start + budgets.wall_s
+
+    cell, diags = (collision_run.load_cell(options.cell, app, found=options.cell_found == "found",
+                                           budget=machine.cell.budget, out_of_time=out_of_time) if options.cell
                    else (None, []))
     watch = collision_run.ValueWatch(cell, machine)
     if isinstance(arm, MovingArm):

@@ -11,17 +11,17 @@ from __future__ import annotations
 
 import datetime
 import math
-import re
-import tomllib
 from dataclasses import dataclass, field
 from typing import Any
 
+from ..excerpt import excerpt, shown
 from ..interpretation.cell import Reaction, SerialReply
 from ..interpretation.events import ControllerChange, InputsChange, KeyPress, SerialData
 from ..interpretation.user_page import Key
 from ..interpretation.values import Arr, FaultyIOPoint, IOPoint
 
 SCENARIO_VERSION = 1
+LIMIT_TOL = 1e-7  # a joint this close outside its limit is on it (robot.models.LIMIT_TOL_DEG)
 
 
 class ScenarioError(Exception):
@@ -44,7 +44,8 @@ MAX_NESTING = 32  # tables and arrays inside each other: the format needs 3
 
 def load_scenario(path: str) -> Scenario:
     """Read a scenario file: a regular file (not a FIFO or a device: val3check.confine), at most
-    MAX_SCENARIO_SIZE bytes, UTF-8 TOML nested at most MAX_NESTING deep."""
+    MAX_SCENARIO_SIZE bytes, UTF-8 TOML nested at most MAX_NESTING deep (val3check.tomlfile)."""
+    from .. import tomlfile
     from ..confine import Refused, Roots, read_bytes
 
     try:
@@ -52,70 +53,15 @@ def load_scenario(path: str) -> Scenario:
     except Refused as exc:
         raise ScenarioError(path, 0, f"cannot read: {exc.reason}") from None
     try:
-        text = raw.decode("utf-8")
-        data = tomllib.loads(text)
-    except UnicodeDecodeError:
-        raise ScenarioError(path, 0, "not UTF-8") from None
-    except tomllib.TOMLDecodeError as exc:
-        m = re.search(r"line (\d+)", str(exc))
-        raise ScenarioError(path, int(m.group(1)) if m else 0, f"invalid TOML: {exc}") from None
-    except (RecursionError, MemoryError):
-        raise ScenarioError(path, 0, f"tables or arrays nested too deeply (at most {MAX_NESTING})") from None
-    if _depth(data) > MAX_NESTING:
-        raise ScenarioError(path, 0, f"tables or arrays nested too deeply (at most {MAX_NESTING})")
+        data, text = tomlfile.load_bytes(raw, max_depth=MAX_NESTING)
+    except tomlfile.TomlError as exc:
+        raise ScenarioError(path, exc.line, exc.message) from None
     return Scenario(path, text, data)
-
-
-def _depth(value: Any) -> int:
-    """How deep tables and arrays nest (iterative: a hostile file must not exhaust the stack)."""
-    deepest, stack = 0, [(value, 1)]
-    while stack:
-        v, d = stack.pop()
-        if isinstance(v, dict):
-            items = v.values()
-        elif isinstance(v, list):
-            items = v
-        else:
-            continue
-        deepest = max(deepest, d)
-        if deepest > MAX_NESTING:
-            return deepest
-        stack.extend((x, d + 1) for x in items)
-    return deepest
 
 
 def _finite(v: Any) -> bool:
     """A TOML number val3check can compute with: not a bool, not nan or inf."""
     return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and abs(v) <= 1e300
-
-
-class _Lines:
-    """Find the line of a key: tomllib does not keep positions."""
-
-    def __init__(self, text: str) -> None:
-        self.lines = text.splitlines()
-
-    def section(self, header: str, index: int = 0) -> int:
-        if not hasattr(self, "_headers"):
-            self._headers: dict[str, list[int]] = {}
-            pat = re.compile(r"^\s*\[\[?\s*([^\]]+?)\s*\]\]?\s*(#.*)?$")
-            for i, line in enumerate(self.lines, 1):
-                m = pat.match(line)
-                if m:
-                    self._headers.setdefault(m.group(1).strip().strip('"'), []).append(i)
-        found = self._headers.get(header, [])
-        return found[index] if index < len(found) else 0
-
-    def key(self, key: str, start: int = 0) -> int:
-        k = re.escape(key)
-        pat = re.compile(r'(^|[\s{,])("' + k + r'"|\'' + k + r"'|" + k + r")\s*=")
-        for i in range(max(start, 1), len(self.lines) + 1):
-            line = self.lines[i - 1]
-            if i > start and start and re.match(r"^\s*\[", line):
-                break
-            if pat.search(line):
-                return i
-        return start
 
 
 def _seconds(v: Any) -> int | None:
@@ -127,14 +73,23 @@ def _seconds(v: Any) -> int | None:
 
 
 class Applier:
+    """Applies a scenario to a machine; every mistake is a ScenarioError at the line of the key
+    at fault (val3check.tomlpos: where each key of the text is written)."""
+
     def __init__(self, machine, scenario: Scenario) -> None:
+        from ..tomlpos import positions
+
         self.machine = machine
         self.sc = scenario
-        self.lines = _Lines(scenario.text)
+        self.pos = positions(scenario.text)
         self.signals = self._signals()
 
-    def fail(self, line: int, message: str) -> None:
-        raise ScenarioError(self.sc.path, line, message)
+    def at(self, path: tuple) -> int:
+        """The line of the key `path` (("events", 2, "at")), else of its closest known parent."""
+        return self.pos.at(path, key=True)[0]
+
+    def fail(self, where: int | tuple, message: str) -> None:
+        raise ScenarioError(self.sc.path, where if isinstance(where, int) else self.at(where), message)
 
     def _signals(self) -> dict[str, IOPoint]:
         out: dict[str, IOPoint] = {}
@@ -150,33 +105,32 @@ class Applier:
             out.setdefault(link, io)
         return out
 
-    def signal(self, name: str, line: int, kinds=("dio", "aio")) -> IOPoint:
+    def signal(self, name: str, where: tuple, kinds=("dio", "aio")) -> IOPoint:
         io = self.signals.get(name)
         if io is None:
-            self.fail(line, f"unknown signal {name!r} (a global dio/aio/sio of the application, or a link of its data)")
+            self.fail(where, f"unknown signal {shown(name)} (a global dio/aio/sio of the application, or a link of its data)")
         if not io.link:
-            self.fail(line, f"signal {name!r} is not linked to an input/output (its link is empty in the data file)")
+            self.fail(where, f"signal {shown(name)} is not linked to an input/output (its link is empty in the data file)")
         if io.kind not in kinds:
-            self.fail(line, f"signal {name!r} is a {io.kind}, expected {' or '.join(kinds)}")
+            self.fail(where, f"signal {shown(name)} is a {io.kind}, expected {' or '.join(kinds)}")
         return io
 
-    def value(self, io: IOPoint, v: Any, line: int, name: str) -> Any:
+    def value(self, io: IOPoint, v: Any, where: tuple, name: str) -> Any:
         if io.kind == "dio":
             if not isinstance(v, bool):
-                self.fail(line, f"{name}: a dio takes true or false, not {v!r}")
+                self.fail(where, f"{excerpt(name)}: a dio takes true or false, not {shown(v)}")
             return v
         if not _finite(v):
-            self.fail(line, f"{name}: an aio takes a number (finite), not {v!r}")
+            self.fail(where, f"{excerpt(name)}: an aio takes a number (finite), not {shown(v)}")
         return float(v)
 
-    def settings(self, table: Any, line: int, what: str) -> list[tuple[IOPoint, Any]]:
+    def settings(self, table: Any, where: tuple, what: str) -> list[tuple[IOPoint, Any]]:
         if not isinstance(table, dict):
-            self.fail(line, f"{what}: expected a table of signal = value")
+            self.fail(where, f"{what}: expected a table of signal = value")
         out = []
         for name, v in table.items():
-            ln = self.lines.key(name, line) or line
-            io = self.signal(name, ln)
-            out.append((io, self.value(io, v, ln, name)))
+            io = self.signal(name, where + (name,))
+            out.append((io, self.value(io, v, where + (name,), name)))
             io.driven = True  # driven by the scenario: an input (writing it is error 122)
         return out
 
@@ -186,76 +140,76 @@ class Applier:
         known = {"version", "description", "inputs", "events", "reactions", "keys", "serial", "controller", "io", "robot"}
         for k in d:
             if k not in known:
-                self.fail(self.lines.key(k) or self.lines.section(k), f"unknown table or key {k!r}")
+                self.fail((k,), f"unknown table or key {shown(k)}")
         version = d.get("version", SCENARIO_VERSION)
         if version != SCENARIO_VERSION:
-            self.fail(self.lines.key("version"), f"unsupported scenario version {version!r} (expected 1)")
+            self.fail(("version",), f"unsupported scenario version {shown(version)} (expected 1)")
         machine = self.machine
         cell = machine.cell_subsystem
         if "inputs" in d:
-            line = self.lines.section("inputs")
-            for io, v in self.settings(d["inputs"], line, "[inputs]"):
+            for io, v in self.settings(d["inputs"], ("inputs",), "[inputs]"):
                 io.value = v
                 machine.log_io(0, io, v, "scenario")
         for i, ev in enumerate(_list(d, "events", self)):
-            line = self.lines.section("events", i)
-            self._keys(ev, {"at", "set"}, line, "[[events]]")
+            here = ("events", i)
+            self._keys(ev, {"at", "set"}, here, "[[events]]")
             at = _seconds(ev.get("at"))
             if at is None:
-                self.fail(self.lines.key("at", line) or line, "[[events]] needs at = seconds (a finite number from 0 to 1e7)")
-            cell.schedule(at, InputsChange(tuple(self.settings(ev.get("set", {}), line, "[[events]] set"))))
+                self.fail(here + ("at",), "[[events]] needs at = seconds (a finite number from 0 to 1e7)")
+            cell.schedule(at, InputsChange(tuple(self.settings(ev.get("set", {}), here + ("set",), "[[events]] set"))))
         for i, r in enumerate(_list(d, "reactions", self)):
-            line = self.lines.section("reactions", i)
-            self._keys(r, {"when", "becomes", "after", "set"}, line, "[[reactions]]")
+            here = ("reactions", i)
+            self._keys(r, {"when", "becomes", "after", "set"}, here, "[[reactions]]")
             name = r.get("when")
             if not isinstance(name, str):
-                self.fail(line, "[[reactions]] needs when = \"output\"")
-            io = self.signal(name, self.lines.key("when", line) or line)
-            becomes = self.value(io, r.get("becomes", True), self.lines.key("becomes", line) or line, name)
+                self.fail(here, "[[reactions]] needs when = \"output\"")
+            io = self.signal(name, here + ("when",))
+            becomes = self.value(io, r.get("becomes", True), here + ("becomes",), name)
             after = _seconds(r.get("after", 0))
             if after is None:
-                self.fail(self.lines.key("after", line) or line, "after = seconds (a finite number from 0 to 1e7)")
+                self.fail(here + ("after",), "after = seconds (a finite number from 0 to 1e7)")
             cell.reactions.append(Reaction(io, becomes, after,
-                                           tuple(self.settings(r.get("set", {}), line, "[[reactions]] set")), line))
+                                           tuple(self.settings(r.get("set", {}), here + ("set",), "[[reactions]] set")),
+                                           self.at(here)))
         keys = []
         for i, k in enumerate(_list(d, "keys", self)):
-            line = self.lines.section("keys", i)
-            self._keys(k, {"at", "key", "text", "hold"}, line, "[[keys]]")
+            here = ("keys", i)
+            self._keys(k, {"at", "key", "text", "hold"}, here, "[[keys]]")
             at = _seconds(k.get("at", 0))
             if at is None:
-                self.fail(self.lines.key("at", line) or line, "[[keys]] at = seconds (a finite number from 0 to 1e7)")
+                self.fail(here + ("at",), "[[keys]] at = seconds (a finite number from 0 to 1e7)")
             code = k.get("key", 270 if "text" in k else None)
             if isinstance(code, bool) or not isinstance(code, int) or not -1 < code < 1000:
-                self.fail(self.lines.key("key", line) or line, "[[keys]] key = a key code (4.3), e.g. 270 for Return")
+                self.fail(here + ("key",), "[[keys]] key = a key code (4.3), e.g. 270 for Return")
             text = k.get("text")
             if text is not None and not isinstance(text, str):
-                self.fail(self.lines.key("text", line) or line, "[[keys]] text = \"what the operator types\"")
+                self.fail(here + ("text",), "[[keys]] text = \"what the operator types\"")
             hold = _seconds(k.get("hold", 0.2))
             if hold is None:
-                self.fail(self.lines.key("hold", line) or line, "[[keys]] hold = seconds")
+                self.fail(here + ("hold",), "[[keys]] hold = seconds")
             keys.append(Key(at, code, text, hold))
             cell.schedule(at, KeyPress())
         machine.user_page.set_keys(keys)
         for i, s in enumerate(_list(d, "serial", self)):
-            line = self.lines.section("serial", i)
-            self._keys(s, {"sio", "at", "send", "bytes", "when_sent", "after"}, line, "[[serial]]")
+            here = ("serial", i)
+            self._keys(s, {"sio", "at", "send", "bytes", "when_sent", "after"}, here, "[[serial]]")
             name = s.get("sio")
             if not isinstance(name, str):
-                self.fail(line, "[[serial]] needs sio = \"siVariable\"")
-            io = self.signal(name, self.lines.key("sio", line) or line, kinds=("sio",))
-            data = self._bytes(s, line, io)
+                self.fail(here, "[[serial]] needs sio = \"siVariable\"")
+            io = self.signal(name, here + ("sio",), kinds=("sio",))
+            data = self._bytes(s, here, io)
             if "when_sent" in s:
                 pat = s["when_sent"]
                 if not isinstance(pat, str) or not pat:
-                    self.fail(self.lines.key("when_sent", line) or line, "when_sent = \"text the program sends\"")
+                    self.fail(here + ("when_sent",), "when_sent = \"text the program sends\"")
                 after = _seconds(s.get("after", 0))
                 if after is None:
-                    self.fail(self.lines.key("after", line) or line, "after = seconds")
+                    self.fail(here + ("after",), "after = seconds")
                 cell.serial_replies.append(SerialReply(io, pat.encode("utf-8"), after, data))
             else:
                 at = _seconds(s.get("at", 0))
                 if at is None:
-                    self.fail(self.lines.key("at", line) or line, "[[serial]] at = seconds (a finite number from 0 to 1e7)")
+                    self.fail(here + ("at",), "[[serial]] at = seconds (a finite number from 0 to 1e7)")
                 cell.schedule(at, SerialData(io, data))
         if "controller" in d:
             self._controller(d["controller"])
@@ -265,77 +219,83 @@ class Applier:
             self._robot(d["robot"])
 
     def _robot(self, table: Any) -> None:
-        """[robot] joints = [j1, ..., j6]: the arm's joint position at the start (degrees), the
-        one herej() and here() return. Without an arm model (--robot) it has no effect."""
-        line = self.lines.section("robot")
+        """[robot] joints = [j1, ..., j6]: the arm's joint position at the start (degrees, a
+        SCARA's joint 3 in millimetres), the one herej() and here() return; each within the arm's
+        joint limits. Without an arm model (--robot) it has no effect."""
+        here = ("robot",)
         if not isinstance(table, dict):
-            self.fail(line, "[robot] must be a table: joints = [j1, j2, j3, j4, j5, j6]")
-        self._keys(table, {"joints"}, line, "[robot]")
+            self.fail(here, "[robot] must be a table: joints = [j1, j2, j3, j4, j5, j6]")
+        self._keys(table, {"joints"}, here, "[robot]")
         if "joints" not in table:
             return
-        ln = self.lines.key("joints", line) or line
+        here = here + ("joints",)
         j = table["joints"]
         if not isinstance(j, list) or not j or not all(_finite(v) for v in j):
-            self.fail(ln, "[robot] joints = [finite numbers], one per axis, in degrees")
+            self.fail(here, "[robot] joints = [finite numbers], one per axis, in degrees")
         arm = self.machine.arm
         if not arm.has_model:
             return
         if len(j) != arm.axes:
-            self.fail(ln, f"[robot] joints: {len(j)} values for the {arm.axes}-axis arm {arm.name}")
+            self.fail(here, f"[robot] joints: {len(j)} values for the {arm.axes}-axis arm {arm.name}")
+        kinds = getattr(getattr(arm, "model", None), "joint_kinds", ()) or ()
+        for n, (v, (lo, hi)) in enumerate(zip(j, arm.joint_limits)):
+            if not lo - LIMIT_TOL <= v <= hi + LIMIT_TOL:
+                unit = "mm" if n < len(kinds) and kinds[n] == "prismatic" else "degrees"
+                self.fail(here, f"[robot] joints: joint {n + 1} = {shown(v)} is outside the limits of the arm "
+                                f"{arm.name}: [{lo:g}, {hi:g}] {unit}")
         arm.start_at(j)
 
     def _io(self, table: Any) -> None:
         """[io]: the state of inputs/outputs as ioStatus() reports it (3.5.3), their description,
         and integer analog outputs (3.6.2)."""
-        line = self.lines.section("io")
         if not isinstance(table, dict):
-            self.fail(line, "[io] must be a table of signal = { status = ..., description = \"...\", integer = ... }")
+            self.fail(("io",), "[io] must be a table of signal = { status = ..., description = \"...\", integer = ... }")
         for name, spec in table.items():
-            ln = self.lines.key(name, line) or line
-            io = self.signal(name, ln, kinds=("dio", "aio", "sio"))
+            here = ("io", name)
+            io = self.signal(name, here, kinds=("dio", "aio", "sio"))
+            label = excerpt(name)
             if not isinstance(spec, dict):
-                self.fail(ln, f"[io] {name}: expected {{ status = 0, description = \"...\" }}")
-            self._keys(spec, {"status", "description", "integer"}, ln, f"[io] {name}")
+                self.fail(here, f"[io] {label}: expected {{ status = 0, description = \"...\" }}")
+            self._keys(spec, {"status", "description", "integer"}, here, f"[io] {label}")
             status = spec.get("status", 0)
             if isinstance(status, bool) or status not in (0, 1, 2, -2, -3):
-                self.fail(ln, f"[io] {name}: status is 0 (works), 1 (locked), 2 (simulated), -2 (not installed) "
-                              f"or -3 (device in error), not {status!r}")
+                self.fail(here + ("status",), f"[io] {label}: status is 0 (works), 1 (locked), 2 (simulated), "
+                          f"-2 (not installed) or -3 (device in error), not {shown(status)}")
             desc = spec.get("description", "")
             if not isinstance(desc, str):
-                self.fail(ln, f"[io] {name}: description = \"text\"")
+                self.fail(here + ("description",), f"[io] {label}: description = \"text\"")
             integer = spec.get("integer", False)
             if not isinstance(integer, bool) or integer and io.kind != "aio":
-                self.fail(ln, f"[io] {name}: integer = true|false, for an aio only")
+                self.fail(here + ("integer",), f"[io] {label}: integer = true|false, for an aio only")
             io.status = status
             io.description = desc
             io.integer = integer
             if status < 0:
                 io.__class__ = FaultyIOPoint
 
-    def _bytes(self, s: dict, line: int, io: IOPoint) -> bytes:
+    def _bytes(self, s: dict, here: tuple, io: IOPoint) -> bytes:
         if "send" in s:
             if not isinstance(s["send"], str):
-                self.fail(self.lines.key("send", line) or line, "send = \"text\" (sent with the end-of-string character)")
+                self.fail(here + ("send",), "send = \"text\" (sent with the end-of-string character)")
             return s["send"].encode("utf-8") + bytes([io.eos])
         if "bytes" in s:
             b = s["bytes"]
             if not isinstance(b, list) or not all(isinstance(x, int) and not isinstance(x, bool) and 0 <= x <= 255 for x in b):
-                self.fail(self.lines.key("bytes", line) or line, "bytes = [numbers from 0 to 255]")
+                self.fail(here + ("bytes",), "bytes = [numbers from 0 to 255]")
             return bytes(b)
-        self.fail(line, "[[serial]] needs send = \"text\" or bytes = [...]")
+        self.fail(here, "[[serial]] needs send = \"text\" or bytes = [...]")
         return b""
 
-    def _keys(self, table: Any, allowed: set[str], line: int, what: str) -> None:
+    def _keys(self, table: Any, allowed: set[str], here: tuple, what: str) -> None:
         if not isinstance(table, dict):
-            self.fail(line, f"{what}: expected a table")
+            self.fail(here, f"{what}: expected a table")
         for k in table:
             if k not in allowed:
-                self.fail(self.lines.key(k, line) or line, f"{what}: unknown key {k!r} (allowed: {', '.join(sorted(allowed))})")
+                self.fail(here + (k,), f"{what}: unknown key {shown(k)} (allowed: {', '.join(sorted(allowed))})")
 
     def _controller(self, c: Any) -> None:
-        line = self.lines.section("controller")
         if not isinstance(c, dict):
-            self.fail(line, "[controller] must be a table")
+            self.fail(("controller",), "[controller] must be a table")
         ctl = self.machine.controller
         spec = {
             "working_mode": (int, range(0, 5)), "working_state": (int, range(0, 7)), "es_status": (int, range(0, 3)),
@@ -345,21 +305,21 @@ class Applier:
             "date": ((str, datetime.datetime, datetime.date), None), "versions": (dict, None), "changes": (list, None),
         }
         for k, v in c.items():
-            ln = self.lines.key(k, line) or line
+            here = ("controller", k)
             if k not in spec:
-                self.fail(ln, f"[controller]: unknown key {k!r}")
+                self.fail(here, f"[controller]: unknown key {shown(k)}")
             types, rng = spec[k]
             if isinstance(v, bool) and types is not bool or isinstance(v, float) and not _finite(v):
-                self.fail(ln, f"[controller] {k}: bad value {v!r}")
+                self.fail(here, f"[controller] {k}: bad value {shown(v)}")
             if not isinstance(v, types) or (rng is not None and v not in rng):
-                self.fail(ln, f"[controller] {k}: bad value {v!r}")
+                self.fail(here, f"[controller] {k}: bad value {shown(v)}")
             if k == "power_delay":
                 if _seconds(v) is None:
-                    self.fail(ln, f"[controller] power_delay: seconds from 0 to {MAX_SECONDS:g}")
+                    self.fail(here, f"[controller] power_delay: seconds from 0 to {MAX_SECONDS:g}")
                 ctl.power_delay_us = int(round(v * 1_000_000))
             elif k == "monitor_speed":
                 if not 0 <= v <= 100:
-                    self.fail(ln, "[controller] monitor_speed: 0 to 100")
+                    self.fail(here, "[controller] monitor_speed: 0 to 100")
                 ctl.monitor_speed = float(v)
             elif k == "date":
                 try:
@@ -368,41 +328,44 @@ class Applier:
                         else datetime.datetime.fromisoformat(v))
                     ctl.date = ctl.date.replace(tzinfo=None)
                 except ValueError:
-                    self.fail(ln, f"[controller] date: not an ISO date {v!r}")
+                    self.fail(here, f"[controller] date: not an ISO date {shown(v)}")
             elif k == "profiles":
                 if not all(isinstance(x, str) for x in v.values()):
-                    self.fail(ln, "[controller] profiles = { login = \"password\" }")
+                    self.fail(here, "[controller] profiles = { login = \"password\" }")
                 ctl.profiles = dict(v)
             elif k == "languages":
                 ctl.languages = tuple(str(x) for x in v)
             elif k == "versions":
                 ctl.versions.update({str(a): str(b) for a, b in v.items()})
             elif k == "changes":
-                for i, ch in enumerate(v):
-                    if not isinstance(ch, dict) or _seconds(ch.get("at")) is None:
-                        self.fail(ln, "[controller] changes = [{ at = seconds, working_mode = 3, ... }]")
-                    payload = {}
-                    for ck, cv in ch.items():
-                        if ck == "at":
-                            continue
-                        if ck not in ("working_mode", "working_state", "es_status", "powered", "monitor_speed",
-                                      "safety_fault", "calibrated"):
-                            self.fail(ln, f"[controller] changes: cannot change {ck!r}")
-                        ctypes, crng = spec[ck]
-                        if (isinstance(cv, bool) and ctypes is not bool or not isinstance(cv, ctypes)
-                                or crng is not None and cv not in crng
-                                or ck == "monitor_speed" and not (_finite(cv) and 0 <= cv <= 100)):
-                            self.fail(ln, f"[controller] changes: {ck}: bad value {cv!r}")
-                        payload[ck] = cv
-                    self.machine.cell_subsystem.schedule(_seconds(ch["at"]), ControllerChange(tuple(payload.items())))
+                self._changes(v, here, spec)
             else:
                 setattr(ctl, k, v)
+
+    def _changes(self, changes: list, here: tuple, spec: dict) -> None:
+        for i, ch in enumerate(changes):
+            if not isinstance(ch, dict) or _seconds(ch.get("at")) is None:
+                self.fail(here + (i,), "[controller] changes = [{ at = seconds, working_mode = 3, ... }]")
+            payload = {}
+            for ck, cv in ch.items():
+                if ck == "at":
+                    continue
+                if ck not in ("working_mode", "working_state", "es_status", "powered", "monitor_speed",
+                              "safety_fault", "calibrated"):
+                    self.fail(here + (i, ck), f"[controller] changes: cannot change {shown(ck)}")
+                ctypes, crng = spec[ck]
+                if (isinstance(cv, bool) and ctypes is not bool or not isinstance(cv, ctypes)
+                        or crng is not None and cv not in crng
+                        or ck == "monitor_speed" and not (_finite(cv) and 0 <= cv <= 100)):
+                    self.fail(here + (i, ck), f"[controller] changes: {ck}: bad value {shown(cv)}")
+                payload[ck] = cv
+            self.machine.cell_subsystem.schedule(_seconds(ch["at"]), ControllerChange(tuple(payload.items())))
 
 
 def _list(d: dict, key: str, ap: Applier) -> list:
     v = d.get(key, [])
     if not isinstance(v, list):
-        ap.fail(ap.lines.section(key) or ap.lines.key(key), f"{key} must be an array of tables ([[{key}]])")
+        ap.fail((key,), f"{key} must be an array of tables ([[{key}]])")
     return v
 
 

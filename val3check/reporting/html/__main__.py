@@ -8,6 +8,8 @@ import argparse
 import json
 import sys
 
+MAX_MODEL_BYTES = 512 * 1024 * 1024  # a report model of a long run with its trajectories
+
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="python -m val3check.reporting.html",
@@ -36,14 +38,18 @@ def main(argv: list[str] | None = None) -> int:
                 return 2
             model = synthetic_model(duration=args.duration, failing=args.failing)
         else:
+            from ...confine import Refused, Roots, read_bytes
+
             try:
-                with open(source, encoding="utf-8") as fh:
-                    model = json.load(fh)
-            except OSError as exc:
-                print(f"{source}: cannot read: {exc.strerror or exc}", file=sys.stderr)
+                model = json.loads(read_bytes(source, Roots.user_given(), MAX_MODEL_BYTES).decode("utf-8"))
+            except Refused as exc:
+                print(f"{source}: cannot read: {exc.reason}", file=sys.stderr)
                 return 2
-            except ValueError as exc:
-                print(f"{source}: not JSON: {exc}", file=sys.stderr)
+            except RecursionError:
+                print(f"{source}: not a report: its arrays or objects are nested too deeply", file=sys.stderr)
+                return 2
+            except ValueError as exc:  # UnicodeDecodeError included
+                print(f"{source}: not JSON: {str(exc)[:200]}", file=sys.stderr)
                 return 2
             if args.sim_report:
                 from ...robot import RobotError
@@ -57,6 +63,17 @@ def main(argv: list[str] | None = None) -> int:
         page = render(model)
     except ModelError as exc:
         print(f"{source}: {exc}", file=sys.stderr)
+        return 2
+    except RecursionError:  # a model that check_model let through, nested too deeply to render
+        print(f"{source}: not a report: its values are nested too deeply", file=sys.stderr)
+        return 2
+    except (KeyError, IndexError, TypeError, AttributeError, ValueError) as exc:
+        # check_model covers what the page needs, not every type of every key a hand-written
+        # file may get wrong: such a file is refused, said so, never a traceback
+        from ...excerpt import excerpt
+
+        print(f"{source}: not a report model the page can show ({type(exc).__name__}: {excerpt(str(exc), 120)}); "
+              "see docs/html-report.md and docs/html-report.schema.json", file=sys.stderr)
         return 2
     if args.model_out:
         with open(args.model_out, "w", encoding="utf-8") as fh:

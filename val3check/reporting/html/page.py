@@ -19,6 +19,7 @@ import json
 from importlib import resources
 from typing import Any
 
+from .._common import visible, visible_data
 from .model import check_model
 from .pack import page_data
 
@@ -33,7 +34,9 @@ def _asset(name: str) -> str:
 
 
 def _e(value: Any) -> str:
-    return html.escape("" if value is None else str(value), quote=True)
+    """Escaped HTML text; control characters (a program's chr(0), chr(27)...) written as escapes
+    ("\\x00"): raw, they are parse errors in HTML (reporting._common.visible)."""
+    return html.escape(visible("" if value is None else str(value)), quote=True)
 
 
 def _s(seconds: float | None, digits: int = 3) -> str:
@@ -410,7 +413,9 @@ def render(model: dict) -> str:
             '<noscript><p class="empty">JavaScript is off: the plots, timelines and the 3D view are not drawn.</p></noscript>')
     css = _asset("report.css")
     script = "\n".join(_asset(name) for name in SCRIPTS)
-    data = json.dumps(page_data(model), separators=(",", ":"), sort_keys=True, ensure_ascii=True, allow_nan=False)
+    # the script writes these strings into the page: their control characters visible too
+    data = json.dumps(visible_data(page_data(model)), separators=(",", ":"), sort_keys=True, ensure_ascii=True,
+                      allow_nan=False)
     # inside <script>: no "</script>", "<!--" can be formed
     data = data.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
     csp = ("default-src 'none'; "

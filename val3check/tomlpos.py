@@ -6,7 +6,8 @@ as the parsed data is indexed: `("obstacle", 2, "size", 1)` is the second number
 third `[[obstacle]]`. Columns count characters from 1. The walk is a small TOML lexer (strings,
 comments, arrays over several lines, inline tables, dotted keys, `[table]` and `[[array]]`
 headers); on anything it does not follow it stops, and lookups fall back to the nearest known
-ancestor, so a position is always found.
+ancestor, so a position is always found. It is linear in the text: it stops at a key path deeper
+than `MAX_PATH` (building ever longer paths would be quadratic; tomlfile refuses such documents).
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ import bisect
 import re
 
 Path = tuple  # tuple[str | int, ...]
+MAX_PATH = 200  # keys and indices in one path: deeper documents are refused by tomlfile anyway
 
 _BARE = re.compile(r"[A-Za-z0-9_-]+")
 _SCALAR = re.compile(r"[^,\]}#\r\n]+")
@@ -46,7 +48,7 @@ def positions(text: str) -> Positions:
     out = Positions()
     try:
         _Walker(text, out).document()
-    except (_Stop, IndexError, ValueError):
+    except (_Stop, IndexError, ValueError, RecursionError):
         pass
     return out
 
@@ -120,13 +122,14 @@ class _Walker:
 
     def dotted_key(self) -> list[tuple[str, int]]:
         parts = [self.simple_key()]
-        while True:
+        while len(parts) <= MAX_PATH:
             self.blanks()
             if self.peek() != ".":
                 return parts
             self.i += 1
             self.blanks()
             parts.append(self.simple_key())
+        raise _Stop
 
     def basic_string(self) -> str:
         self.expect('"')
@@ -191,6 +194,8 @@ class _Walker:
 
     def resolve(self, keys: list[str], array: bool) -> Path:
         """The data path of a header: intermediate arrays of tables mean their last element."""
+        if len(keys) > MAX_PATH:
+            raise _Stop
         path: Path = ()
         for n, k in enumerate(keys):
             path = path + (k,)
@@ -205,6 +210,8 @@ class _Walker:
 
     def keyval(self, table: Path) -> None:
         keys = self.dotted_key()
+        if len(table) + len(keys) > MAX_PATH:
+            raise _Stop
         path = table
         for k, start in keys:
             path = path + (k,)
@@ -215,6 +222,8 @@ class _Walker:
         self.value(path)
 
     def value(self, path: Path) -> None:
+        if len(path) > MAX_PATH:
+            raise _Stop
         self.out.values[path] = self.pos(self.i)
         s = self.s
         c = self.peek()

@@ -1,0 +1,345 @@
+"""The world between motions: the static solids (obstacles placed in their frames, parts left in
+the cell), the tool placed by the tool variables, the parts carried, and the touch allowances
+(body pairs touching at a grasp or a release, not checked until they have moved apart).
+
+The world changes at a motion's start (`refresh`: frames and tools read again) and at the
+grippers' open/close (`gripper`); `version` changes with it, and what is computed from the scene
+(`per_scene`) is computed again.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from .armmodel import ArmModel
+from .bodies import Body, aabb_gap, make_bodies, point_inside
+from .cell import Cell, Obstacle, ToolSolid
+from .fcl_backend import FclBackend
+from .groups import Group, Watch, link_group, make_watches
+from .poses import PoseSource, as_matrix, same_poses
+from .records import CellProblem, PartDrop
+
+
+@dataclass(slots=True)
+class ToolBody:
+    """A body of a tool solid: `in_solid` is its pose in the solid (a mesh piece's own pose)."""
+
+    solid: ToolSolid
+    body: Body
+    in_solid: np.ndarray
+
+
+@dataclass(slots=True)
+class ObstacleBody:
+    """A body of an obstacle of the cell."""
+
+    obstacle: Obstacle
+    body: Body
+
+
+class World:
+    """The scene one arm moves in: see the module's docstring.
+
+    frames / tools: where the caller reads application frames (in world) and tool variables (in
+    the flange); unit: mm per application unit; touch: mm of overlap that is only touching."""
+
+    def __init__(self, arm: ArmModel, cell: Cell, backend: FclBackend, *, frames: PoseSource = None,
+                 tools: PoseSource = None, app_unit_mm: float = 1.0, touch_mm: float = 0.05) -> None:
+        self.arm = arm
+        self.cell = cell
+        self.backend = backend
+        self.frames = frames
+        self.tools = tools
+        self.unit = float(app_unit_mm)
+        self.touch = float(touch_mm)
+        self.problems: list[CellProblem] = []
+        self._reported: set[tuple[str, str]] = set()
+        self.link_groups: dict[str, Group] = {link: link_group(arm, link, bodies) for link, bodies in arm.bodies.items()}
+        # tool solids, placed when the tool poses are read
+        self.tool_bodies: list[ToolBody] = []
+        for t in cell.tools:
+            label = f"tool {t.tool} {t.name!r}" if t.name else f"tool {t.tool}"
+            for b in make_bodies("tool", t.tool, t.name, label, t.shape.kind, t.shape.size, np.eye(4),
+                                 *_mesh(t.shape), solid=_solid(t.shape)):
+                self.tool_bodies.append(ToolBody(t, b, b.local))
+        self.tool_group: Group | None = None
+        self.tool_in_flange: dict[str, np.ndarray | None] | None = None
+        # parts: carried ({name: group}) and left in the cell
+        self.carried: dict[str, Group] = {}
+        self.dropped: list[Body] = []
+        self.obstacle_bodies: list[ObstacleBody] = []
+        for o in cell.obstacles:
+            for b in make_bodies("obstacle", o.name, o.name, f"obstacle {o.name!r}", o.shape.kind, o.shape.size,
+                                 np.eye(4), *_mesh(o.shape), solid=_solid(o.shape)):
+                self.obstacle_bodies.append(ObstacleBody(o, b))
+        # the static set, and world-aligned boxes (S, 3) around its bodies
+        self.static: list[Body] = []
+        self.static_lo = np.zeros((0, 3))
+        self.static_hi = np.zeros((0, 3))
+        self._placed_obstacles: list[Body] = []
+        self._frames_read: dict | None = None
+        self.version = 0
+        self._scene_cache: dict[str, tuple[int, Any]] = {}
+        # body pairs touching at a grasp or a release, not checked until they have moved apart
+        self.allowed: dict[frozenset[int], tuple[Body, Body]] = {}
+        self.last_q: np.ndarray | None = None
+        self.time = 0.0
+
+    # ---- reading the program's frames and tools ------------------------------------------------------------
+
+    def _pose(self, source: PoseSource, name: str, time: float) -> np.ndarray | None:
+        if source is None:
+            return None
+        try:
+            p = source(name, time) if callable(source) else source.get(name)  # type: ignore[union-attr]
+        except Exception as exc:  # a caller's lookup that fails: the solid is left out, and said so
+            self.problem(time, name, f"{name}: cannot be read: {exc}")
+            return None
+        return None if p is None else as_matrix(p, self.unit)
+
+    def problem(self, time: float, what: str, message: str, where=None) -> None:
+        """Say once that something of the cell cannot be placed."""
+        key = (what, message)
+        if key not in self._reported:
+            self._reported.add(key)
+            self.problems.append(CellProblem(time, what, message, where))
+
+    def refresh(self, time: float) -> None:
+        """Read the frames of the obstacles and the tool poses (at a motion's start); the scene is
+        rebuilt only when one of them changed."""
+        self.time = time
+        frames: dict[str, np.ndarray | None] = {"world": np.eye(4)}
+        for ob in self.obstacle_bodies:
+            if ob.obstacle.frame not in frames:
+                frames[ob.obstacle.frame] = self._pose(self.frames, ob.obstacle.frame, time)
+        poses: dict[str, np.ndarray | None] = {}
+        for tb in self.tool_bodies:
+            self.tool_pose(tb.solid.tool, time, poses, tb.solid.where)
+        if same_poses(frames, self._frames_read) and same_poses(poses, self.tool_in_flange):
+            return
+        self._frames_read = frames
+        static: list[Body] = []
+        for ob in self.obstacle_bodies:
+            o, b = ob.obstacle, ob.body
+            base = frames[o.frame]
+            if base is None:
+                self.problem(time, o.frame, f"obstacle {o.name!r} is in frame {o.frame}, which has no "
+                             "position in the program: the obstacle is left out", o.where)
+                continue
+            b.local = base @ o.pose
+            b.place(np.eye(4))
+            static.append(b)
+        self._placed_obstacles = static
+        self._set_static([*static, *self.dropped])
+        tool_bodies: list[Body] = []
+        for tb in self.tool_bodies:
+            T = poses[tb.solid.tool]
+            if T is not None:
+                tb.body.local = T @ tb.solid.pose @ tb.in_solid
+                tool_bodies.append(tb.body)
+        self.tool_in_flange = poses
+        self.tool_group = self._flange_group("tool", "tool", tool_bodies) if tool_bodies else None
+        self.version += 1
+
+    def tool_pose(self, tool: str, time: float, cache: dict, where=None) -> np.ndarray | None:
+        """The pose of a tool variable in the flange (the flange itself for "flange"), read once
+        into `cache`; a tool the program has no value for is said (its solids are left out)."""
+        if tool not in cache:
+            if tool == "flange":
+                cache[tool] = np.eye(4)
+            else:
+                T = self._pose(self.tools, tool, time)
+                if T is None:
+                    self.problem(time, tool, f"tool {tool} has no value in the program: its solids and parts "
+                                 "are left out", where)
+                cache[tool] = T
+        return cache[tool]
+
+    # ---- the scene ---------------------------------------------------------------------------------------
+
+    def _set_static(self, bodies: list[Body]) -> None:
+        self.static = bodies
+        self.version += 1
+        if bodies:
+            boxes = [b.aabb() for b in bodies]
+            self.static_lo = np.array([lo for lo, _ in boxes])
+            self.static_hi = np.array([hi for _, hi in boxes])
+        else:
+            self.static_lo = np.zeros((0, 3))
+            self.static_hi = np.zeros((0, 3))
+
+    def _flange_group(self, name: str, kind: str, bodies: list[Body]) -> Group:
+        return link_group(self.arm, self.arm.flange_link, bodies, name, kind)
+
+    def arm_groups(self) -> list[Group]:
+        """The groups the arm moves: its links, the tool, the carried parts."""
+        out = list(self.link_groups.values())
+        if self.tool_group is not None:
+            out.append(self.tool_group)
+        out.extend(self.carried.values())
+        return out
+
+    def per_scene(self, key: str, make: Callable[[], Any]) -> Any:
+        """make(), computed once per version of the scene."""
+        version, value = self._scene_cache.get(key, (-1, None))
+        if version != self.version:
+            value = make()
+            self._scene_cache[key] = (self.version, value)
+        return value
+
+    def watches(self) -> list[Watch]:
+        """The pairs of groups checked in the scene as it is (`groups.make_watches`)."""
+        return self.per_scene("watches", self._make_watches)
+
+    def _make_watches(self) -> list[Watch]:
+        arm = self.arm
+        flange_side = [g for g in (self.tool_group, *self.carried.values()) if g is not None]
+        tool_touch = {id(tb.body): (tb.solid.touch_links if tb.solid.touch_links is not None else arm.touch_links)
+                      for tb in self.tool_bodies}
+        return make_watches(arm, self.link_groups, flange_side, tool_touch)
+
+    # ---- the grippers -----------------------------------------------------------------------------------
+
+    def gripper(self, tool: str, instruction: str, time: float, joints=None, source: Any = None) -> list[PartDrop]:
+        """open(tool) or close(tool) ran at `time`, the arm at `joints` (default: where the last
+        motion ended): the parts grasped on it are attached, the parts released are left in the
+        cell where they are; returns the parts left inside an obstacle or another part
+        (`CollisionChecker.gripper`)."""
+        if instruction not in ("open", "close"):
+            raise ValueError("instruction is 'open' or 'close'")
+        q = np.asarray(joints, dtype=float) if joints is not None else self.last_q
+        if q is None:
+            q = np.zeros(self.arm.n_joints)
+        self.refresh(time)
+        poses = self.arm.links.poses(q)
+        flange = poses[self.arm.flange_link]
+        arm_bodies: list[Body] = []
+        for g in self.arm_groups():
+            for b in g.bodies:
+                b.place(poses[g.link])
+            g.placed = -1.0
+            arm_bodies.extend(b for b in g.bodies)
+        names: list[str] = []
+        for p in self.cell.parts:
+            if p.tool == tool and p.name not in names:
+                names.append(p.name)
+        drops: list[PartDrop] = []
+        cache: dict = dict(self.tool_in_flange or {})
+        for name in names:
+            solids = [p for p in self.cell.parts if p.name == name]
+            first = solids[0]
+            if instruction == first.grasp and name not in self.carried:
+                T = self.tool_pose(tool, time, cache, first.where)
+                if T is None:
+                    continue
+                bodies = []
+                for p in solids:
+                    for b in make_bodies("part", name, name, f"part {name!r}", p.shape.kind, p.shape.size, np.eye(4),
+                                         *_mesh(p.shape), solid=_solid(p.shape)):
+                        b.local = T @ p.pose @ b.local
+                        bodies.append(b)
+                for b in bodies:
+                    b.place(flange)
+                self._pick_up(name, bodies)
+                self._allow_touching(bodies, self.static)
+                self.carried[name] = self._flange_group(f"part {name!r}", "part", bodies)
+                self.version += 1
+            elif instruction == first.release and name in self.carried:
+                g = self.carried.pop(name)
+                self.version += 1
+                for b in g.bodies:
+                    b.place(flange)
+                    b.local = b.pose.copy()
+                    b.kind = "obstacle"
+                drops.extend(self._dropped_inside(g.bodies, time, source))
+                self._allow_touching(g.bodies, [b for b in arm_bodies if b.owner != name])
+                self.dropped.extend(g.bodies)
+                self._set_static([*self._placed_obstacles, *self.dropped])
+        return drops
+
+    def clear_parts(self, name: str) -> int:
+        """The parts named `name` left in the cell are taken away: how many solids left the cell."""
+        gone = {id(d) for d in self.dropped if d.owner == name}
+        if gone:
+            self._forget(gone)
+            self.dropped = [d for d in self.dropped if id(d) not in gone]
+            self._set_static([*self._placed_obstacles, *self.dropped])
+        return len(gone)
+
+    def _forget(self, gone: set[int]) -> None:
+        """Touch allowances of bodies that left the cell are dropped."""
+        self.allowed = {k: v for k, v in self.allowed.items() if not (k & gone)}
+
+    def _pick_up(self, name: str, bodies: list[Body]) -> None:
+        """A part taken where a part of the same name was left is that part: it leaves the cell."""
+        keep = [d for d in self.dropped if not (d.owner == name and any(self._overlap(d, b) for b in bodies))]
+        if len(keep) != len(self.dropped):
+            gone = {id(d) for d in self.dropped} - {id(d) for d in keep}
+            self._forget(gone)
+            self.dropped = keep
+            self._set_static([*self._placed_obstacles, *self.dropped])
+
+    def _overlap(self, a: Body, b: Body) -> bool:
+        la, ha = a.aabb()
+        lb, hb = b.aabb()
+        if float(aabb_gap(la, ha, lb, hb)) > self.touch:
+            return False
+        return self.backend.distance(a, b).mm <= self.touch
+
+    def _allow_touching(self, bodies: list[Body], others: list[Body]) -> None:
+        for a in bodies:
+            for b in others:
+                if b is a:
+                    continue
+                la, ha = a.aabb()
+                lb, hb = b.aabb()
+                if float(aabb_gap(la, ha, lb, hb)) > self.touch:
+                    continue
+                if self.backend.distance(a, b).mm <= self.touch:
+                    self.allowed[frozenset((id(a), id(b)))] = (a, b)
+
+    def _dropped_inside(self, bodies: list[Body], time: float, source: Any) -> list[PartDrop]:
+        """The part's solids left overlapping an obstacle (deeper than the touch tolerance), or wholly
+        inside a closed mesh."""
+        out = []
+        seen: set[tuple[int, int]] = set()
+        for a in bodies:
+            la, ha = a.aabb()
+            for b in self.static:
+                if b in bodies or (a.whole, b.whole) in seen:
+                    continue
+                lb, hb = b.whole_aabb()
+                if float(aabb_gap(la, ha, lb, hb)) > 0.0:
+                    continue
+                c = self.backend.collide(a, b)
+                if c is not None and c.depth > self.touch:
+                    seen.add((a.whole, b.whole))
+                    out.append(PartDrop(time, a.label, b.label, c.point, c.depth, source))
+                    continue
+                for inner, outer in ((a, b), (b, a)):
+                    if outer.mesh is not None and outer.solid:
+                        inv = np.linalg.inv(outer.pose)
+                        p = inv[:3, :3] @ inner.pose[:3, 3] + inv[:3, 3]
+                        if point_inside(outer.mesh[0], outer.mesh[1], p):
+                            seen.add((a.whole, b.whole))
+                            out.append(PartDrop(time, a.label, b.label, _point(inner.pose[:3, 3]), None, source))
+                            break
+        return out
+
+
+def _point(p) -> tuple[float, float, float]:
+    return (float(p[0]), float(p[1]), float(p[2]))
+
+
+def _mesh(shape) -> tuple:
+    if shape.kind == "mesh":
+        return (shape.mesh.vertices, shape.mesh.faces)
+    return (None, None)
+
+
+def _solid(shape) -> bool:
+    return shape.mesh.solid if shape.kind == "mesh" else True
