@@ -1,8 +1,9 @@
 """Batch simulation on this machine and on a Dask cluster (issue 17):
 
 200 small cases (fixtures/valid/PickPlace with fixtures/scenarios/pickplace.toml, 2 arms ×
-100 monitor speeds, 3 simulated seconds each), run with -j 1 (in this process), -j 2 (a pool
-of 2 processes) and the Dask executor on a LocalCluster of 2 worker processes of 1 thread.
+100 monitor speeds, 3 simulated seconds each), run with -j 1 (one child process), -j 2 (two
+child processes) and the Dask executor on a LocalCluster of 2 worker processes of 1 thread;
+every case runs in a child process under the watchdog (val3check/batch/runner.py).
 Prints the wall time of each, the speed-up of -j 2 over -j 1, the Dask executor's overhead per
 case against -j 2, the mean cost of a case where it runs, and checks that the three summaries
 are identical. The machine is shared: each executor runs --repeat times, in turn (-j 1, -j 2,
@@ -79,8 +80,8 @@ def main() -> None:
             best[label] = result
 
     for _ in range(args.repeat):
-        keep("j1", timed("-j 1 (this process)", lambda done: run_serial(cases, done, never)))
-        keep("j2", timed("-j 2 (process pool)", lambda done: run_pool(cases, 2, done, never)))
+        keep("j1", timed("-j 1 (one process)", lambda done: run_serial(cases, done, never)))
+        keep("j2", timed("-j 2 (two processes)", lambda done: run_pool(cases, 2, done, never)))
         s0 = time.perf_counter()
         with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as lc:
             start = time.perf_counter() - s0

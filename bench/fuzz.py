@@ -1,8 +1,8 @@
-"""The long fuzz run (issues 9 and 21): the properties of tests/hostile/test_hostile_fuzz.py with
+"""The long fuzz run (issues 9 and 21): the properties of tests/hostile/test_hostile_fuzz*.py with
 fresh random inputs, round after round, for a time budget; then how many inputs each property ran
 and what failed. The properties cover the XML reader, the loader and checker, the parser, `sim`,
-configurations, scenarios, any TOML text, cell files, meshes and the language server. CI runs the
-same properties on 25 fixed inputs each (docs/fuzzing.md).
+configurations, scenarios, any TOML text, cell files, meshes, the language server, sweep files and
+the batch. CI runs the same properties on 25 fixed inputs each (docs/fuzzing.md).
 
 Run: python bench/fuzz.py --minutes 10 [--examples 200] [-k sim]   (-k language_server: the LSP server;
      -k "cell or mesh": the cell files)
@@ -21,7 +21,7 @@ from collections import defaultdict
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-SUITE = "tests/hostile/test_hostile_fuzz.py"
+SUITES = sorted(str(p.relative_to(ROOT)) for p in (ROOT / "tests" / "hostile").glob("test_hostile_fuzz*.py"))
 _TEST = re.compile(r"::(test_\w+):")
 _COUNTS = re.compile(r"- (\d+) passing, (\d+) failing, and (\d+) invalid")
 
@@ -29,7 +29,7 @@ _COUNTS = re.compile(r"- (\d+) passing, (\d+) failing, and (\d+) invalid")
 def one_round(examples: int, keyword: str | None, timeout: float) -> tuple[dict, int, str]:
     env = dict(os.environ, VAL3CHECK_FUZZ_LONG="1", VAL3CHECK_FUZZ_EXAMPLES=str(examples),
                PYTHONPATH=str(ROOT) + os.pathsep + os.environ.get("PYTHONPATH", ""))
-    cmd = [sys.executable, "-m", "pytest", SUITE, "-q", "-p", "no:cacheprovider", "--hypothesis-show-statistics",
+    cmd = [sys.executable, "-m", "pytest", *SUITES, "-q", "-p", "no:cacheprovider", "--hypothesis-show-statistics",
            "-x"]
     if keyword:
         cmd += ["-k", keyword]

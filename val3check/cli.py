@@ -274,73 +274,54 @@ def _sim(args: argparse.Namespace) -> int:
         return run_batch(args, settings, __version__, _write)
 
     from .diagnostics import Severity
-    from .lint import run
     from .reporting import render
+    from .simulation import case as sim_case
 
-    outcome = run([args.app], settings)
-    apps = [outcome.workspace.apps[k] for k in outcome.workspace.targets]
-    if outcome.unreadable or not apps:
-        sys.stdout.write(render("text", outcome.result))
+    def say(note: str) -> None:
+        print(f"val3check sim: note: {_shown(note)}", file=sys.stderr)
+
+    spec = sim_case.CaseSpec(args.app, settings, robot=args.robot, scenario=args.scenario, cell=args.cell,
+                             duration=args.duration, cycles=args.cycles, max_wall=args.max_wall,
+                             max_lines=args.max_lines, max_memory_mb=args.max_memory)
+    if args.init_scenario:
+        done = sim_case.lint_case(spec, say)
+        if done.refused is None:
+            return _init_scenario(done.lint.workspace, done.app, args.init_scenario)
+    else:
+        from .reporting.progress import Progress
+
+        spec.progress = lambda: Progress.for_stream(sys.stderr, args.duration)  # only on a terminal
+        done = sim_case.run_case(spec, say)
+    if done.refused == sim_case.UNREADABLE:
+        sys.stdout.write(render("text", done.lint.result))
         print(f"val3check sim: error: no application could be read at {_shown(args.app)}", file=sys.stderr)
         return EXIT_USAGE
-    if len(apps) != 1:
-        apps = _app_of_folder(args.app, apps)
-        if apps is None:
-            return EXIT_USAGE
-    errors = [d for d in outcome.result.diagnostics if d.severity is not None and d.severity >= Severity.ERROR]
-    if errors:
+    if done.refused == sim_case.SEVERAL:
+        print(f"val3check sim: error: {done.message}", file=sys.stderr)
+        return EXIT_USAGE
+    if done.refused == sim_case.LINT_ERRORS:
         from .result import LintResult
 
-        r = outcome.result  # only the errors that keep it from running, not every warning
-        sys.stderr.write(render("text", LintResult(errors, r.files, r.applications, r.rules, r.tool_version,
+        r = done.lint.result  # only the errors that keep it from running, not every warning
+        sys.stderr.write(render("text", LintResult(done.errors, r.files, r.applications, r.rules, r.tool_version,
                                                    r.quotable)))
-        print(f"val3check sim: not run: the application has {len(errors)} error(s) (val3check lint); fix them first",
-              file=sys.stderr)
+        print(f"val3check sim: not run: the application has {len(done.errors)} error(s) (val3check lint); fix them"
+              " first", file=sys.stderr)
         return EXIT_USAGE
-    app = apps[0]
-    if args.init_scenario:
-        return _init_scenario(outcome.workspace, app, args.init_scenario)
-    if not any(n.lower() == "start" for n in app.programs):
-        print(f"val3check sim: not run: {app.name} has no start() program (2.1.2)", file=sys.stderr)
+    if done.refused == sim_case.NO_START:
+        print(f"val3check sim: not run: {done.message}", file=sys.stderr)
         return EXIT_USAGE
-
-    from .simulation.scenario import ScenarioError, load_scenario
-    from .reporting.sim_report import build_report
-    from .robot import RobotError
-    from .rules.catalogue import catalogue
-    from .simulation import SimOptions, choose_sim_robot, simulate
-
-    try:
-        robot, note = choose_sim_robot(args.robot, app.path)
-    except RobotError as exc:
-        print(f"val3check sim: --robot: {_shown(str(exc))}", file=sys.stderr)
+    if done.refused == sim_case.ROBOT:
+        print(f"val3check sim: --robot: {_shown(done.message)}", file=sys.stderr)
         return EXIT_USAGE
-    if note:
-        print(f"val3check sim: note: {_shown(note)}", file=sys.stderr)
-    scenario = None
-    try:
-        if args.scenario:
-            scenario = load_scenario(args.scenario)
-        from .reporting.progress import Progress
-        from .simulation.collision_run import choose_cell
-
-        cell, cell_found = choose_cell(args.cell, app.path)
-        progress = Progress.for_stream(sys.stderr, args.duration)  # only on a terminal
-        options = SimOptions(duration=args.duration, max_wall=args.max_wall, max_lines=args.max_lines,
-                             max_memory_mb=args.max_memory, disk_roots=list(settings.disk_roots), robot=robot,
-                             cycles=args.cycles, progress=progress, collisions=True, cell=cell,
-                             cell_found=cell_found)
-        try:
-            result = simulate(outcome.workspace, app, options, scenario)
-        finally:
-            if progress is not None:
-                progress.close()
-    except ScenarioError as exc:
-        print(f"val3check sim: bad scenario: {_shown(str(exc))}", file=sys.stderr)
+    if done.refused == sim_case.SCENARIO:
+        print(f"val3check sim: bad scenario: {_shown(done.message)}", file=sys.stderr)
         return EXIT_USAGE
-    report = build_report(result, settings, catalogue(), __version__)
     from .reporting.sim_render import render_sim
+    from .reporting.sim_report import build_report
+    from .rules.catalogue import catalogue
 
+    report = build_report(done.result, settings, catalogue(), __version__)
     if not _write(render_sim(args.format, report, fail_on=settings.fail_on, scenario=args.scenario), args.output):
         return EXIT_USAGE
     if args.trace and not _write_trace(report, args.trace):
@@ -416,25 +397,6 @@ def _init_scenario(workspace, app, path: str) -> int:  # noqa: ANN001
     print(f"val3check sim: wrote the scenario skeleton {_shown(path)}; run it with --scenario {_shown(path)}",
           file=sys.stderr)
     return EXIT_OK
-
-
-def _app_of_folder(folder: str, apps: list) -> list | None:  # noqa: ANN001
-    """`sim DIR` where DIR holds its own .pjx and its libraries in sub-folders: the application
-    of DIR itself (`DIR/DIR.pjx`, or the only .pjx in DIR), as a controller's usr/usrapp/DIR
-    would be loaded; said on standard error. None (after the error) when DIR has no such one."""
-    from .loading.resolve import project_in_folder
-
-    main = project_in_folder(folder) if os.path.isdir(folder) else None
-    chosen = [a for a in apps if main is not None and os.path.normcase(a.path) == os.path.normcase(main)]
-    if not chosen:
-        names = ", ".join(_shown(os.path.relpath(a.path)) for a in apps[:8]) + (", ..." if len(apps) > 8 else "")
-        print(f"val3check sim: error: {_shown(folder)} holds {len(apps)} applications ({names}); name one of them"
-              f", or run them all as a batch: val3check sim {_shown(folder)} -j {os.cpu_count() or 1} (docs/batch.md)",
-              file=sys.stderr)
-        return None
-    print(f"val3check sim: note: {_shown(folder)} holds {len(apps)} applications; running"
-          f" {_shown(os.path.relpath(chosen[0].path))}, the one named after the folder", file=sys.stderr)
-    return chosen
 
 
 def _lint(args: argparse.Namespace) -> int:

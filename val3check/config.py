@@ -199,6 +199,26 @@ def _str_list(value, key: str, path: str) -> list[str]:
     return [v.strip().upper() if key in ("select", "extend-select", "ignore") else v for v in value]
 
 
+def _paths(value, key: str, path: str) -> list[str]:
+    """`_str_list` of paths: a NUL character (no file name holds one) is reported at its line."""
+    values = _str_list(value, key, path)
+    if any("\x00" in v for v in values):
+        raise ConfigError(f"{path}:{_line_of(path, key)}: '{key}': a path cannot hold a NUL character")
+    return values
+
+
+def _line_of(path: str, key: str) -> int:
+    """The line where `key` is set in the file at `path` (tomllib keeps no positions); 0 when not found."""
+    import re
+
+    pattern = re.compile(r"""^[ \t]*["']?""" + re.escape(key) + r"""["']?[ \t]*=""")
+    try:
+        lines = _read_bytes_capped(path).decode("utf-8", "replace").splitlines()
+    except ConfigError:
+        return 0
+    return next((i for i, line in enumerate(lines, 1) if pattern.match(line)), 0)
+
+
 KNOWN_KEYS = {
     "select", "extend-select", "ignore", "per-file-ignores", "severity", "fail-on", "disk-roots", "exclude", "max-file-size",
     "target", "extend-exclude", "force-exclude", "baseline",
@@ -239,7 +259,7 @@ def load_settings(path: str) -> Settings:
     if fail_on not in FAIL_ON_CHOICES:
         raise ConfigError(f"{path}: 'fail-on' must be one of {', '.join(FAIL_ON_CHOICES)}")
     s.fail_on = fail_on
-    s.disk_roots = [os.path.normpath(os.path.join(root, d)) for d in _str_list(data.get("disk-roots", []), "disk-roots", path)]
+    s.disk_roots = [os.path.normpath(os.path.join(root, d)) for d in _paths(data.get("disk-roots", []), "disk-roots", path)]
     if "exclude" in data:
         s.exclude = _str_list(data["exclude"], "exclude", path)
     s.extend_exclude = _str_list(data.get("extend-exclude", []), "extend-exclude", path)
@@ -250,6 +270,7 @@ def load_settings(path: str) -> Settings:
     baseline = data.get("baseline", "")
     if not isinstance(baseline, str):
         raise ConfigError(f"{path}: 'baseline' must be the path of a file")
+    _paths(baseline, "baseline", path)
     s.baseline = os.path.normpath(os.path.join(root, baseline)) if baseline else ""
     size = data.get("max-file-size", s.max_file_size)
     if not isinstance(size, int) or isinstance(size, bool) or not 0 < size <= MAX_FILE_SIZE_LIMIT:

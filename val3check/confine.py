@@ -58,6 +58,8 @@ class Roots:
         return cls(anywhere=True)
 
     def add(self, folder: str) -> None:
+        if "\x00" in str(folder):  # no folder has one: nothing is allowed through it
+            return
         real = os.path.realpath(folder)
         if real not in self._real and not is_special(real):
             self._real.append(real)
@@ -70,6 +72,8 @@ class Roots:
         """`path`, symbolic links resolved, lies in one of the roots."""
         if self.anywhere:
             return True
+        if "\x00" in str(path):
+            return False
         real = os.path.realpath(path)
         return any(_inside(real, r) for r in self._real)
 
@@ -79,6 +83,8 @@ class Roots:
 
     def containing(self, path: str) -> list[str]:
         """The roots that hold `path` (symbolic links resolved)."""
+        if "\x00" in str(path):
+            return []
         real = os.path.realpath(path)
         return [r for r in self._real if _inside(real, r)]
 
@@ -103,6 +109,8 @@ def human_size(n: int) -> str:
 
 def check(path: str, roots: Roots) -> str:
     """The real path of a file that may be read, or `Refused` (nothing is opened)."""
+    if "\x00" in str(path):
+        raise Refused("F001", "cannot be read: the path holds a NUL character")
     real = os.path.realpath(path)
     if is_special(real):
         raise Refused("F001", "a special file (under /proc, /sys or /dev): not read")

@@ -88,23 +88,21 @@ def test_a_failing_application_does_not_stop_the_batch(cell, capsys):
     assert [cases[n]["verdict"] for n in ("PickPlace",)] == ["pass"]
 
 
-def test_a_crashing_case_is_reported_and_the_others_run(cell, capsys, monkeypatch):
-    from val3check.batch import worker
+class _Boom:
+    """A case setting that raises where the case runs (its settings are copied first)."""
 
-    real = worker._run
+    def __deepcopy__(self, memo):
+        raise RuntimeError("boom")
 
-    def crash_on_b(case, mirror):
-        if "/B/" in case.app:
-            raise RuntimeError("boom")
-        return real(case, mirror)
 
-    monkeypatch.setattr(worker, "_run", crash_on_b)
-    code, out, _ = sim(capsys, "apps/*", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST, "--format", "json",
-                       "-j", "1")
-    cases = cases_of(out)
-    assert code == 1
-    assert [c["verdict"] for c in cases] == ["pass", "crash"]
-    assert cases[1]["reason"].startswith("RuntimeError: boom")
+def test_a_crashing_case_is_reported_and_the_others_run(cell):
+    from val3check.batch.executors import run_pool
+
+    cases = product_cases(Axes(["apps/*"], ["tx2-60"], ["pickplace.toml"], [], []), Settings(), RunOptions(duration=2.0))
+    got = []
+    run_pool([cases[0], replace(cases[1], settings=_Boom())], 1, got.append, lambda: False)
+    assert [o.summary.verdict for o in got] == ["pass", "crash"]
+    assert got[1].summary.reason.startswith("RuntimeError: boom (at test_batch.py:")
 
 
 class _DiesWhenUnpickled:
@@ -222,15 +220,6 @@ def test_jobs_1_and_2_give_byte_identical_summaries_and_reports(cell, capsys):
     assert one == two
     assert len([k for k in one if k.startswith("cases/")]) == 12
     assert "long.urdf" in out1 and "TX2-60L" in one["summary.json"].decode()
-
-
-def test_a_case_report_is_the_single_runs_report(cell, capsys):
-    code, _, _ = sim(capsys, "apps/A", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST, "--out-dir", "o")
-    assert code == 0
-    (report,) = (cell / "o" / "cases").iterdir()
-    code, single, _ = sim(capsys, "apps/A", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST,
-                          "--format", "json")
-    assert report.read_text() == single
 
 
 @pytest.mark.dask
@@ -481,34 +470,41 @@ def test_sweep_paths_are_relative_to_the_sweep_file(cell, capsys):
 
 
 class _DiesInADaskWorker:
-    """Ends the process that unpickles it where VAL3CHECK_TEST_DIE is set (the test's Dask
-    workers); elsewhere (the scheduler unpickles the tasks too, and pickles them again for the
-    worker) it comes back as itself."""
+    """Ends the process that unpickles it where VAL3CHECK_TEST_DIE names a file (the test's Dask
+    workers and their children), after adding a line to that file; elsewhere it comes back as
+    itself."""
 
     def __reduce__(self):
-        return (eval, ("__import__('os')._exit(7) if __import__('os').environ.get('VAL3CHECK_TEST_DIE') else "
+        return (eval, ("(open(__import__('os').environ['VAL3CHECK_TEST_DIE'], 'a').write('x\\n'), "
+                       "__import__('os')._exit(7)) if __import__('os').environ.get('VAL3CHECK_TEST_DIE') else "
                        f"__import__('sys').modules[{__name__!r}]._DiesInADaskWorker()",))
 
 
 @pytest.mark.dask
-def test_dask_a_case_that_kills_its_worker_takes_only_itself(cell):
+def test_dask_a_case_that_kills_its_process_takes_only_itself_and_no_worker(cell, tmp_path):
+    """The case dies in the child process that runs it (runner.py), never in the Dask worker:
+    the worker stays, Dask retries nothing (allowed-failures left at its default, 3), the case is
+    tried twice in all and reported as a crash."""
     distributed = pytest.importorskip("distributed")
     import dask
 
     from val3check.batch.executors import run_dask
+    from val3check.batch.runner import DIED
 
     axes = Axes(["apps/*"], ["tx2-60"], ["pickplace.toml"], [], [])
     good, other = product_cases(axes, Settings(), RunOptions(duration=2.0))
     killer = replace(other, settings=_DiesInADaskWorker())
+    tries = tmp_path / "tries"
     got = []
-    # no retry of a task whose worker died; the variable that arms the killer, in the workers only
-    with dask.config.set({"distributed.scheduler.allowed-failures": 0,
-                          "distributed.nanny.environ": {"VAL3CHECK_TEST_DIE": "1"}}):
+    with dask.config.set({"distributed.nanny.environ": {"VAL3CHECK_TEST_DIE": str(tries)}}):
         with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None) as lc:
+            workers = set(lc.scheduler_info["workers"])
             run_dask([good, killer], lc.scheduler_address, got.append, lambda: False, chunk=2)
+            assert set(lc.scheduler_info["workers"]) == workers  # no worker was lost
     verdicts = {o.summary.app: o.summary.verdict for o in got}
     assert verdicts == {"apps/A/PickPlace.pjx": "pass", "apps/B/PickPlace.pjx": "crash"}
-    assert "KilledWorker" in next(o.summary.reason for o in got if o.summary.verdict == "crash")
+    assert next(o.summary.reason for o in got if o.summary.verdict == "crash") == DIED
+    assert tries.read_text() == "x\n" * 2
 
 
 @pytest.mark.parametrize("text, line, col, words", [
@@ -570,7 +566,9 @@ def test_sweep_mode_must_match_its_shape(cell):
     assert (exc.value.line, exc.value.col) == (1, 8)
 
 
-def test_case_reports_html_and_trace_are_the_single_runs(cell, capsys):
+def test_case_reports_are_the_single_runs(cell, capsys):
+    """A case runs as the single run (simulation/case.py) in a mirror of its files: its reports
+    are the single run's, byte for byte, with no path of the mirror."""
     code, _, err = sim(capsys, "apps/A", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST, "--out-dir", "o",
                        "--case-reports", "json,html,trace")
     assert code == 0, err
@@ -578,6 +576,8 @@ def test_case_reports_html_and_trace_are_the_single_runs(cell, capsys):
     assert sorted(files) == [".html", ".json", ".mcap"]
     single = ["apps/A", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST]
     assert main(["sim", *single, "--report", "html", "-o", "one.html", "--trace", "one.mcap"]) == 0
+    assert main(["sim", *single, "--report", "json", "-o", "one.json"]) == 0
+    assert files[".json"].read_bytes() == (cell / "one.json").read_bytes()
     assert files[".html"].read_bytes() == (cell / "one.html").read_bytes()
     assert files[".mcap"].read_bytes() == (cell / "one.mcap").read_bytes()
     index = (cell / "o" / "index.html").read_text()

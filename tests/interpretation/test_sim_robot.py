@@ -170,29 +170,26 @@ def test_scenario_joints_are_checked(tmp_path):
 # ---- movej: what the arm cannot execute ------------------------------------------------------------
 
 
-def test_movej_to_an_unreachable_point_is_reported_and_150_follows(tmp_path):
-    """12.1: 150 "un mouvement demandé précédemment n'a pas pu être terminé (point hors
-    d'atteinte...)": the command is recorded, reported at its line (R010), and the next motion
-    instruction stops with 150."""
+def test_movej_to_an_unreachable_point_stops_the_instruction(tmp_path):
+    """10.6 movej: "une erreur d'exécution est générée ... si pPosition ne peut pas être atteinte":
+    the task stops at the movej with 12.1's 154, reported with its cause (R010)."""
     r = rsim(tmp_path, """begin
   pFar.trsf = {2000, 0, 0, 0, 0, 0}
   pFar.config = {sfree, efree, wfree}
   movej(pFar, flange, mD)
-  putln("recorded")
-  waitEndMove()
   putln("not reached")
+  waitEndMove()
 end
 """)
-    assert out(r) == ["recorded"]
-    assert codes(r) == ["R010", "R001"] and errors(r) == [150]
-    far, stop = r.diagnostics
-    assert "reach" in far.message and far.line == code_pos(r, 4, 3)[0]
-    assert stop.line == code_pos(r, 6, 3)[0] and "pFar" in stop.message
+    assert out(r) == []
+    (far,) = r.diagnostics
+    assert far.code == "R010" and far.error == 154 and "reach" in far.message and "pFar" in far.message
+    assert far.line == code_pos(r, 4, 3)[0]
 
 
 def test_movej_outside_the_joint_limits_is_reported(tmp_path):
     r = rsim(tmp_path, "begin\n  movej({0, 0, 0, 0, 0, 300}, flange, mD)\n  waitEndMove()\nend\n")
-    assert codes(r) == ["R011", "R001"] and errors(r) == [150]
+    assert codes(r) == ["R011"] and r.diagnostics[0].error == 154
     assert "j6" in r.diagnostics[0].message and "limit" in r.diagnostics[0].message
 
 
@@ -260,9 +257,9 @@ def test_arm_cfx_of_the_controller_tree_chooses_the_robot(tmp_path, capsys):
     data = json.loads(text)
     assert data["robot"]["name"] == "TX2-60" and data["robot"]["initial_joints"] == [0, 0, 0, 0, 0, 0]  # tx2-60-S1
     # pStart (fatherId fJig, 620 mm in front of the arm, tool 310 mm long) is out of reach: R010,
-    # then 150 at the next motion instruction (12.1)
+    # error 154 at the movej (10.6, 12.1)
     assert [d["code"] for d in data["diagnostics"]][:1] == ["R010"]
-    assert [d["error"] for d in data["diagnostics"] if d["code"] == "R001"] == [150]
+    assert data["diagnostics"][0]["error"] == 154
     assert _json(["sim", str(welder), "--report", "json"], capsys)[1] == text  # byte-identical
     # --robot none: no model, movej stops with R002
     code, text, err = _json(["sim", str(welder), "--report", "json", "--robot", "none"], capsys)

@@ -12,7 +12,7 @@ from val3check.motion.commands import Target
 from val3check.motion.findings import MotionError
 from val3check.motion.mdesc import MDesc
 
-from .motionhelp import HOME, KIN, T_HOME, movec, movej, movel, point, queue, run
+from .motionhelp import HOME, KIN, ROBOT, T_HOME, movec, movej, movel, point, queue, run
 
 
 def pose(q):
@@ -41,41 +41,55 @@ def test_mdesc_defaults_are_the_manuals():
         tvel=254.0, leave=50.8, reach=25.4, blend="Cartesian")
 
 
-def deferred(q, command, now=0.0):
-    """A command the arm cannot execute is recorded (it returns its id), reported, and the next
-    motion instruction raises 150 (12.1: "point hors d'atteinte, singularité, problème de
-    configuration"); resetMotion clears it."""
-    i = q.record(command, now)
-    assert isinstance(i, int)
-    f = q.findings[-1]
-    assert f.error == 150 and q.failure is f
+def at_instruction(q, command, now=0.0):
+    """A target the command cannot reach stops the instruction with 154 (10.6 movej: "une erreur
+    d'exécution est générée ... si jPosition se situe en dehors des butées logicielles, si
+    pPosition ne peut pas être atteinte"): nothing is recorded, no identifier is used, no 150
+    follows, and the arm goes on with what was recorded before."""
+    n = q.next_id
     with pytest.raises(MotionError) as e:
-        q.record(movej(HOME), now)
-    assert e.value.code == 150 and e.value.finding is None
-    with pytest.raises(MotionError) as e:
-        q.wait_end_move(now)
-    assert e.value.code == 150
+        q.record(command, now)
+    f = e.value.finding
+    assert e.value.code == 154 and f.error == 154
+    assert q.failure is None and q.next_id == n and len(q.history) == 0 and q.is_empty(now)
+    assert q.record(movej(HOME + [5, 0, 0, 0, 0, 0]), now) == n  # the next instruction records
     q.reset_motion(now)
-    assert q.failure is None
     return f
 
 
 def test_unreachable_point():
     q = queue()
     far = point(dx=2000.0, name="pFar")
-    f = deferred(q, movej(far, line=12))
+    f = at_instruction(q, movej(far, line=12))
     assert f.code == F.UNREACHABLE and f.source.line == 12 and "pFar" in f.message and f.severity == "error"
-    assert deferred(q, movel(far, line=13)).code == F.UNREACHABLE
+    assert at_instruction(queue(), movel(far, line=13)).code == F.UNREACHABLE
 
 
 def test_joint_target_outside_the_limits():
     q = queue()
     target = HOME.copy()
     target[1] = 130.0  # j2 limit 127.5
-    f = deferred(q, movej(target, line=4))
+    f = at_instruction(q, movej(target, line=4))
     assert f.code == F.JOINT_LIMIT
     assert f.data["axis"] == 2 and f.data["excess_deg"] == pytest.approx(2.5)
     assert "j2" in f.message and "2.500" in f.message
+
+
+def test_a_target_error_leaves_the_commands_before_it_to_the_arm():
+    """movej 20 degrees beyond j1's limit after a recorded move: the task stops there with 154; the
+    arm completes the move before it (recorded at 0), and nothing else."""
+    q = queue()
+    a = HOME + [30, 0, 0, 0, 0, 0]
+    assert q.record(movej(a, MDesc(blend="joint")), 0.0) == 0
+    beyond = HOME.copy()
+    beyond[0] = ROBOT.joint_limits[0][1] + 20.0
+    with pytest.raises(MotionError) as e:
+        q.record(movej(beyond, line=5), 0.01)
+    assert e.value.code == 154 and e.value.finding.data["excess_deg"] == pytest.approx(20.0)
+    assert e.value.finding.data["axis"] == 1 and len(q.history) == 1 and q.failure is None
+    q.wait_end_move(0.02)
+    q.advance(10.0)
+    assert np.allclose(q.position(10.0), a)
 
 
 def test_point_reachable_only_outside_the_limits_names_the_axis():
@@ -83,8 +97,8 @@ def test_point_reachable_only_outside_the_limits_names_the_axis():
     j = HOME.copy()
     j[4] = -125.0  # below j5's limit of -121
     T = pose(j)
-    f = deferred(q, movej(Target.point(T, ("righty" if KIN.shoulder_value(j[None])[0] < 0 else "lefty",
-                                           "epositive", "wnegative"))))
+    f = at_instruction(q, movej(Target.point(T, ("righty" if KIN.shoulder_value(j[None])[0] < 0 else "lefty",
+                                                 "epositive", "wnegative"))))
     assert f.code == F.JOINT_LIMIT and f.data["axis"] == 5 and f.data["excess_deg"] == pytest.approx(4.0, abs=1e-6)
 
 
@@ -112,7 +126,7 @@ def test_movel_path_outside_the_joint_limits_is_150_on_the_next_instruction():
 def test_imposed_configuration_change_in_movel():
     q = queue()
     other = "righty" if KIN.shoulder_value(HOME[None])[0] >= 0 else "lefty"
-    f = deferred(q, movel(point(dy=50.0, config=(other, "esame", "wsame")), line=9))
+    f = at_instruction(q, movel(point(dy=50.0, config=(other, "esame", "wsame")), line=9))
     assert f.code == F.CONFIG_CHANGE and f.data["field"] == "shoulder" and f.source.line == 9
     # free and same are fine
     q.record(movel(point(dy=50.0, config=("sfree", "efree", "wsame"))), 0.0)
@@ -124,7 +138,7 @@ def test_movel_target_only_reachable_in_another_configuration():
     start = np.array([0.0, 20.0, 100.0, 180.0, -60.0, 180.0])  # wnegative
     q = queue(joints=start)
     target = Target.point(pose([0.0, 20.0, 100.0, 0.0, 125.0, 0.0]), ("sfree", "efree", "wfree"))
-    f = deferred(q, movel(target, line=8))
+    f = at_instruction(q, movel(target, line=8))
     assert f.code == F.JOINT_LIMIT and f.data["axis"] == 5
     # movej may change configuration: it goes there
     q.record(movej(target), 0.0)
@@ -209,6 +223,16 @@ def test_movec_ambiguous_intermediate_point():
     with pytest.raises(MotionError) as e:
         q.record(movec(Target.point(T), on_circle(180.0)), 0.0)
     assert e.value.finding.code == F.CIRCLE
+
+
+def test_movec_intermediate_point_out_of_reach_stops_the_instruction():
+    """10.6 movec: "une erreur d'exécution est générée ... si point pIntermédiaire (ou point pCible)
+    ne peut pas être atteint": 154 at the instruction, whatever the circle."""
+    f = at_instruction(queue(), movec(point(dx=900.0, dy=400.0, name="pVia"), point(dy=800.0), line=41))
+    assert f.code == F.UNREACHABLE and "intermediate point pVia" in f.message and f.source.line == 41
+    # the same circle through a reachable intermediate point is recorded
+    q = queue()
+    assert q.record(movec(point(dx=60.0, dy=60.0), point(dy=120.0)), 0.0) == 0
 
 
 def test_movej_to_its_own_start_is_a_noop():

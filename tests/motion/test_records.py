@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from val3check.motion.cycle import CycleCounter, cycle_stats
+from val3check.motion.cycle import CycleCounter, Loop, Pass, cycle_stats
 from val3check.motion.findings import Source
 from val3check.motion.mdesc import MDesc
 from val3check.motion.records import busy_time, motion_records
@@ -44,32 +44,53 @@ def test_movej_records_name_the_axis_and_the_phase():
     assert sum(r1.limit_share.values()) == pytest.approx(r1.duration, rel=1e-9)
 
 
-def test_cycle_times_start_at_the_first_motion_of_the_loop():
+def test_cycle_times_are_between_the_starts_of_the_loops_passes():
     q = queue()
     home = Source("app/start.pgx", 5, 3, "start", "robot")
     a = Source("app/start.pgx", 8, 5, "start", "robot")
     b = Source("app/start.pgx", 9, 5, "start", "robot")
+    loop = Loop("app/start.pgx", 7, 3, "start", "while")
     counter = CycleCounter()
+    contexts = []
     now = 0.0
     q.record(_mj(HOME + [10, 0, 0, 0, 0, 0], home), now)
-    counter.note("robot", home)
-    for _ in range(4):
-        q.record(_mj(HOME + [40, 0, 0, 0, 0, 0], a), now)
-        counter.note("robot", a)
-        q.record(_mj(HOME + [-20, 10, 0, 0, 0, 0], b), now)
-        counter.note("robot", b)
+    contexts.append(())
+    counter.note("robot", ())
+    for k in range(1, 5):
+        for j, src in ((HOME + [40, 0, 0, 0, 0, 0], a), (HOME + [-20, 10, 0, 0, 0, 0], b)):
+            q.record(_mj(j, src), now)
+            contexts.append((Pass(loop, 1, k),))
+            counter.note("robot", contexts[-1])
         now = run(q, now) + 0.3  # the program waits 0.3 s each cycle
-    st = cycle_stats(motion_records(q))["robot"]
-    assert st.marker == ("app/start.pgx", 8, 5)
+    recs = motion_records(q, now)
+    st = cycle_stats(recs, contexts)["robot"]
+    assert st.loop == loop and st.marker == ("app/start.pgx", 7, 3) and st.passes == 4
     assert st.count == 3 == counter.completed("robot")
     times = st.times
     assert times[1] == pytest.approx(times[2], abs=1e-9)  # from the second pass on, the same cycle
-    recs = motion_records(q)
     one = recs[4].end - recs[3].start  # a (from b) then b, then the program's 0.3 s
     assert times[1] == pytest.approx(one + 0.3, abs=1e-9)
     assert times[0] == pytest.approx(recs[2].end - recs[1].start + 0.3, abs=1e-9)
     busy, idle = busy_time(q.profile, now)
     assert busy + idle == pytest.approx(now) and idle >= 4 * 0.3 - 1e-9
+
+
+def test_a_motion_the_arm_has_not_started_when_the_run_ends_has_no_start():
+    """docs/sim-report.md: start and end are null when the motion never ran; one under way has
+    no end, and only the part of the path it ran."""
+    q = queue()
+    for k in range(3):  # three 60-degree moves of j1, recorded at once, one after the other
+        q.record(movej(HOME + [60 * (k + 1), 0, 0, 0, 0, 0]), 0.0)
+    planned = motion_records(q)
+    assert all(r.start is not None for r in planned)
+    t_mid = 0.5 * (planned[1].start + planned[1].end)
+    q.advance(t_mid)
+    done, under_way, waiting = motion_records(q, t_mid)
+    assert done.state == "done" and done.end == pytest.approx(planned[0].end)
+    assert under_way.state == "pending" and under_way.start == pytest.approx(planned[1].start)
+    assert under_way.end is None and 0 < under_way.length_mm < planned[1].length_mm
+    assert waiting.state == "pending" and waiting.start is None and waiting.end is None
+    assert waiting.length_mm == 0.0
 
 
 def _mj(j, src):

@@ -28,8 +28,13 @@ def test_pick_and_place_cell_runs_its_cycles(capsys):
     assert [d["code"] for d in r["diagnostics"]] == ["R007"]
     mo = r["motion"]
     assert mo["summary"]["failed"] == 0 and mo["summary"]["done"] >= 50
-    (cy,) = mo["cycles"]
-    assert cy["task"] == "robot" and cy["path"].endswith("pick.pgx") and cy["cycles"] >= 10
+    start, cy = mo["cycles"]
+    # start() moves the arm home once, outside any loop: no cycle, and why
+    assert start["task"] == "PickPlace~" and start["loop"] is None and start["cycles"] == 0
+    assert "outside any loop" in start["why"]
+    # the robot task's cycle is cycle()'s `while bStop == false`, around the calls of pick and place
+    assert cy["task"] == "robot" and cy["path"].endswith("cycle.pgx") and cy["cycles"] >= 10
+    assert (cy["loop"], cy["program"], cy["line"]) == ("while", "cycle", 9) and "outermost" in cy["why"]
     # a cycle: 0.8 s of conveyor, two approaches at 250 mm/s, the gripper's 0.25 s and 0.15 s
     assert 0.8 + 0.25 + 0.15 + 4 * 100 / 250 < cy["median"] < 4.0
     # the pallet change (3 s) makes one cycle longer

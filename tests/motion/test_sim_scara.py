@@ -116,9 +116,8 @@ def test_a_line_cannot_change_the_shoulder(tmp_path):
   waitEndMove()
 end
 """, ["point pA", "mdesc mD"])
-    (d,) = [d for d in r.diagnostics if d.code == "R012"]
-    assert d.line == code_pos(r, 7, 3)[0] and "lefty" in d.message
-    assert errors(r) == [150]
+    (d,) = r.diagnostics  # 10.6 movel: "si un mouvement en ligne droite vers pPosition n'est pas possible"
+    assert d.code == "R012" and d.error == 154 and d.line == code_pos(r, 7, 3)[0] and "lefty" in d.message
 
 
 def test_blending_on_a_scara_is_never_slower(tmp_path):

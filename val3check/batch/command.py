@@ -2,7 +2,7 @@
 --out-dir: the batch (docs/batch.md). cli.py parses the options and hands them here.
 
 Exit codes: 0 every case passed; 1 a case failed at --fail-on, was not run (lint errors, no
-start(), bad scenario) or crashed; 2 the batch could not be made (usage, bad sweep file, no
+start(), bad scenario), crashed or went over its budget; 2 the batch could not be made (usage, bad sweep file, no
 application, executor unavailable)."""
 
 from __future__ import annotations
@@ -12,8 +12,9 @@ import sys
 import time
 from typing import Any
 
-from .cases import Axes, CaseError, RunOptions, list_cases, product_cases
+from .cases import Axes, CaseError, RunOptions, TooManyCases, list_cases, product_cases
 from .outdir import OutDirError, prepare, write_case, write_summaries
+from .outputs import KINDS
 from .progress import Progress
 from .summary import render_json, render_text
 from .sweep import SweepError, load_sweep
@@ -21,7 +22,6 @@ from .worker import CaseOutcome, CaseSummary, summary_of
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
 _GLOB_CHARS = set("*?[")
-_ROBOT_FILES = (".urdf", ".cfx", ".toml")
 
 
 def wanted(args: Any) -> bool:
@@ -44,8 +44,6 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
     if args.format not in ("text", "json"):
         return _err(f"--report {args.format}: a batch prints its summary as text or json; --out-dir DIR writes"
                     " every format (summary.json, junit.xml, index.html) and each case's reports")
-    from .outputs import KINDS
-
     kinds = tuple(k for k in KINDS if k in {x.strip().lower() for x in args.case_reports.split(",")})
     unknown = sorted({x.strip().lower() for x in args.case_reports.split(",")} - set(KINDS) - {""})
     if unknown or not kinds:
@@ -77,23 +75,34 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
             cases = product_cases(axes, settings, options)
     except SweepError as exc:
         return _err(f"bad sweep file: {printable_path(str(exc))}")
+    except TooManyCases as exc:
+        if sweep is not None and sweep.applications:  # at the sweep's applications
+            e = sweep.applications[0]
+            return _err(f"bad sweep file: {printable_path(str(SweepError(sweep.path, e.line, e.col, str(exc))))}")
+        return _err(f"{exc}" if sweep is None else f"bad sweep file: {printable_path(sweep.path)}: {exc}")
     except CaseError as exc:
         return _err(str(exc))
     if args.out_dir:
+        suffixes = [KINDS[k] for k in kinds]
         try:
-            prepare(args.out_dir)
+            prepare(args.out_dir, [c.name() + s for c in cases for s in suffixes])
         except OutDirError as exc:
-            return _err(str(exc))
+            return _err(f"--out-dir: {exc}")
 
     summaries: list[CaseSummary] = []
     reports: set[str] = set()  # the files written under --out-dir/cases
     progress = Progress(len(cases))
     failed = [False]
 
+    unwritten: list[str] = []  # --out-dir files that could not be written (the batch goes on)
+
     def on_done(outcome: CaseOutcome) -> None:  # written at once: the reports are not kept in memory
         ok = outcome.summary.verdict == "pass"
         if args.out_dir and outcome.outputs:
-            reports.update(write_case(args.out_dir, outcome))
+            try:
+                reports.update(write_case(args.out_dir, outcome))
+            except OutDirError as exc:
+                unwritten.append(str(exc))
         summaries.append(outcome.summary)
         failed[0] = failed[0] or not ok
         progress.update(ok)
@@ -128,12 +137,17 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
     if not write(text, args.output):
         return EXIT_USAGE
     if args.out_dir:
-        write_summaries(args.out_dir, summaries, reports, tool_version)
+        try:
+            write_summaries(args.out_dir, summaries, reports, tool_version)
+        except OutDirError as exc:
+            unwritten.append(str(exc))
+        if unwritten:
+            return _err(f"--out-dir: {unwritten[0]}" + (f" (and {len(unwritten) - 1} more)" if len(unwritten) > 1 else ""))
         print(f"val3check sim: wrote the summary and {len(reports)} case report(s) in "
               f"{display_path(args.out_dir)} (index.html)", file=sys.stderr)
     if sys.stderr.isatty():
         print(f"val3check sim: {len(cases)} cases in {time.monotonic() - start:.1f} s", file=sys.stderr)
-    return EXIT_FAILED if any(s.verdict in ("fail", "not-run", "crash") for s in summaries) else EXIT_OK
+    return EXIT_FAILED if any(s.verdict in ("fail", "not-run", "crash", "over-budget") for s in summaries) else EXIT_OK
 
 
 def _cores() -> int:
@@ -161,43 +175,42 @@ def _axes(args: Any) -> tuple[Axes, Any]:
         for name, given, from_sweep in both:
             if given and from_sweep:
                 raise CaseError(f"{name} are given both on the command line and in {args.sweep}: keep one")
-        axes.apps = axes.apps or [sweep.resolve(e) for e in sweep.applications] or ["."]
-        axes.arms = axes.arms or [sweep.resolve(e) if e.value.lower().endswith(_ROBOT_FILES) else e.value
-                                  for e in sweep.arms]
+        if sweep.applications and not args.app:
+            axes.apps = _sweep_apps(sweep)
+        axes.apps = axes.apps or ["."]
+        axes.arms = axes.arms or [sweep.resolve(e) if sweep.is_arm_file(e) else e.value for e in sweep.arms]
         axes.scenarios = axes.scenarios or [None if e is None else sweep.resolve(e) for e in sweep.scenarios]
         axes.cells = axes.cells or ["none" if e is None else sweep.resolve(e) for e in sweep.cells]
         axes.overrides = sweep.overrides
-        if sweep.applications and not args.app:
-            _check_globs(sweep)
     elif args.app:
         raise CaseError(f"{args.sweep} lists its cases ([[case]]): name no application on the command line")
     return axes, sweep
 
 
-def _check_globs(sweep: Any) -> None:
-    """A sweep's application that matches nothing is reported at its line."""
-    from .cases import expand
+def _sweep_apps(sweep: Any) -> list[str]:
+    """The sweep's applications, globs expanded inside its repository; a pattern that leads
+    outside or matches nothing is reported at its line."""
+    from .cases import check_sweep_app, sweep_apps
 
+    for e in sweep.applications:  # every entry inside the repository before any is expanded
+        check_sweep_app(sweep, e)
+    out: list[str] = []
     for e in sweep.applications:
-        try:
-            found = expand([sweep.resolve(e)])
-        except CaseError as exc:
-            raise SweepError(sweep.path, e.line, e.col, str(exc)) from None
-        for path in found:
-            sweep.check_inside(e, path)
+        out += [p for p in sweep_apps(sweep, e) if p not in out]
+    return out
 
 
 def check_files(sweep: Any) -> None:
-    """A scenario, cell or robot file of the sweep that does not exist, at its line and column."""
+    """Every scenario, cell and arm file of the sweep, at its line and column: inside the sweep's
+    repository (checked before anything is opened), and an existing file."""
     entries = [("scenario", e) for e in sweep.scenarios] + [("cell", e) for e in sweep.cells]
-    entries += [("arm", e) for e in sweep.arms if e.value.lower().endswith(_ROBOT_FILES)]
+    entries += [("arm", e) for e in sweep.arms if sweep.is_arm_file(e)]
     for case in sweep.cases:
         entries += [(k, case[k]) for k in ("scenario", "cell") if case.get(k) is not None]
-        if "arm" in case and case["arm"].value.lower().endswith(_ROBOT_FILES):
+        if "arm" in case and sweep.is_arm_file(case["arm"]):
             entries.append(("arm", case["arm"]))
     for kind, e in entries:
         if e is None:
             continue
-        sweep.check_inside(e, sweep.resolve(e))
-        if not os.path.isfile(sweep.resolve(e)):
+        if not os.path.isfile(sweep.path_of(e)):
             raise SweepError(sweep.path, e.line, e.col, f"{kind} {e.value}: no such file")

@@ -1,23 +1,27 @@
-"""Where the cases run: in this process (-j 1), in a pool of processes on this machine
-(-j N), or on a Dask distributed cluster (--executor dask). Every executor runs the same
-`worker.run_case` on the same self-contained cases, so results do not depend on the executor;
-the caller sorts them. `on_done(outcome)` is called in this process as each case ends (progress,
---fail-fast); when `stop()` turns true no further case is started.
+"""Where the cases run: in child processes on this machine (-j N: N at once; -j 1 one after
+the other), or on a Dask distributed cluster (--executor dask). Every case runs `worker.run_case`
+in a child process under the watchdog of runner.py, on the same self-contained cases, so results
+do not depend on the executor; the caller sorts them. `on_done(outcome)` is called in this
+process as each case ends (progress, --fail-fast); when `stop()` turns true no further case is
+started.
 
-A case that raises is a "crash" result (worker.run_case). A pool process that dies (a crash
-in native code, the kernel's OOM killer) breaks the pool: the cases it took down are run again
-one at a time, each in a fresh process, and the one that dies again is reported as a crash."""
+A case that raises is a "crash" result (worker.run_case); one stuck or too big outside VAL 3
+code is stopped by the watchdog ("over-budget"); a child process that dies (a crash in native
+code, the kernel's OOM killer) is its case's "crash" after one more try in a fresh process
+(runner.Runner). Nothing a case does ends this process, a Dask worker, or the batch."""
 
 from __future__ import annotations
 
 import math
-import multiprocessing
-from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
-from concurrent.futures.process import BrokenProcessPool
+import queue
+import threading
+from collections import deque
+from dataclasses import replace
 from typing import Callable
 
 from .cases import Case
-from .worker import CaseOutcome, run_case, run_chunk, summary_of
+from .runner import Runner, Ticket, give_back, run_tickets, take, ticket
+from .worker import CaseOutcome
 
 OnDone = Callable[[CaseOutcome], None]
 Stop = Callable[[], bool]
@@ -30,67 +34,72 @@ class ExecutorError(Exception):
     """The executor cannot run (Dask missing, scheduler unreachable): a usage error."""
 
 
-def run_serial(cases: list[Case], on_done: OnDone, stop: Stop) -> None:
-    for case in cases:
-        if stop():
-            return
-        on_done(run_case(case))
-
-
-def _context():  # noqa: ANN202
-    # spawn: a fresh interpreter per worker on every platform (no state inherited from the parent)
-    return multiprocessing.get_context("spawn")
-
-
 def run_pool(cases: list[Case], jobs: int, on_done: OnDone, stop: Stop) -> None:
-    """At most `jobs` cases at a time, each submitted alone: a case lasts long against the
-    pool's per-task cost (about a millisecond), and one task per case keeps every core busy to
-    the end and isolates a worker that dies."""
-    broken: list[Case] = []
-    ex = ProcessPoolExecutor(max_workers=jobs, mp_context=_context())
+    """At most `jobs` cases at a time, in order, each in one of `jobs` child processes kept from
+    case to case (a thread here watches each). A case is pickled only when its turn comes."""
+    todo = deque(cases)
+    lock = threading.Lock()
+    halt = threading.Event()
+    done: queue.Queue = queue.Queue()
+    runners = [take() for _ in range(max(1, min(jobs, len(cases))))]
+    for r in runners:
+        r.spawn()  # from this thread, which outlives the batch (the children end with the thread that starts them)
+
+    def work(runner: Runner) -> None:
+        try:
+            while not halt.is_set():
+                with lock:
+                    if not todo:
+                        break
+                    case = todo.popleft()
+                seen = threading.Event()  # the next case starts once this one is taken in (--fail-fast)
+                done.put((runner.run(ticket(case)), seen))
+                while not seen.wait(0.1):
+                    if runner.aborted:
+                        return
+            give_back(runner)  # idle, for a next batch of this process
+        except BaseException as exc:  # noqa: BLE001 - reported in the main thread
+            runner.close()
+            done.put(exc)
+        finally:
+            done.put(None)
+
+    threads = [threading.Thread(target=work, args=(r,), daemon=True) for r in runners]
+    for t in threads:
+        t.start()
+    working = len(threads)
     try:
-        todo = list(cases)
-        running: dict = {}
-        while todo or running:
-            while todo and len(running) < 2 * jobs and not stop():  # a short queue: --fail-fast stops soon
-                case = todo.pop(0)
-                running[ex.submit(run_case, case)] = case
-            if not running:
-                break
-            done, _ = wait(running, return_when=FIRST_COMPLETED)
-            for f in sorted(done, key=lambda f: running[f].key()):
-                case = running.pop(f)
-                if f.cancelled():
-                    continue
+        while working:
+            try:
+                got = done.get(timeout=0.5)  # a timeout: Ctrl-C is seen here
+            except queue.Empty:
+                continue
+            if got is None:
+                working -= 1
+            elif isinstance(got, BaseException):
+                raise got
+            else:
+                outcome, seen = got
                 try:
-                    on_done(f.result())
-                except BrokenProcessPool:
-                    broken.append(case)
-            if stop():  # --fail-fast: the cases not started yet are not started
-                for f in list(running):
-                    if f.cancel():
-                        running.pop(f)
-                todo = []
-            if broken:
-                broken += list(running.values()) + todo
-                running, todo = {}, []
+                    on_done(outcome)
+                    if stop():  # --fail-fast: the cases not started yet are not started
+                        halt.set()
+                finally:
+                    seen.set()
+    except BaseException:
+        halt.set()
+        for r in runners:
+            r.abort()  # a case still running is abandoned (Ctrl-C, an error here)
+        raise
     finally:
-        ex.shutdown(wait=True, cancel_futures=True)
-    for case in sorted(broken, key=Case.key):
-        if stop():
-            return
-        on_done(_isolated(case))
+        halt.set()
+        for t in threads:
+            t.join()
 
 
-def _isolated(case: Case) -> CaseOutcome:
-    ex = ProcessPoolExecutor(max_workers=1, mp_context=_context())
-    try:
-        return ex.submit(run_case, case).result()
-    except BrokenProcessPool:
-        return CaseOutcome(summary_of(case, "crash", "the process running the case died (a crash in native code, "
-                                      "or killed by the system: out of memory?)"))
-    finally:
-        ex.shutdown(wait=True)
+def run_serial(cases: list[Case], on_done: OnDone, stop: Stop) -> None:
+    """One case after the other, each in a child process under the watchdog (`-j 1`)."""
+    run_pool(cases, 1, on_done, stop)
 
 
 def chunk_size(n_cases: int, n_workers: int) -> int:
@@ -102,11 +111,11 @@ def chunk_size(n_cases: int, n_workers: int) -> int:
     return max(1, min(8, math.ceil(n_cases / (8 * max(n_workers, 1)))))
 
 
-def _alone(client, case: Case) -> CaseOutcome:  # noqa: ANN001 - a distributed.Client
+def _alone(client, t: Ticket) -> CaseOutcome:  # noqa: ANN001 - a distributed.Client
     try:
-        return client.submit(run_chunk, [case], pure=False).result()[0]
+        return client.submit(run_tickets, [t], pure=False).result()[0]
     except Exception as exc:  # noqa: BLE001
-        return CaseOutcome(summary_of(case, "crash", f"Dask: {type(exc).__name__}: {exc}"))
+        return CaseOutcome(replace(t.blank, reason=f"Dask: {type(exc).__name__}: {exc}"))
 
 
 def run_dask(cases: list[Case], address: str, on_done: OnDone, stop: Stop, chunk: int | None = None) -> None:
@@ -133,16 +142,20 @@ def run_dask(cases: list[Case], address: str, on_done: OnDone, stop: Stop, chunk
             raise ExecutorError(f"Dask workers must run one thread each (dask worker --nthreads 1); "
                                 f"{len(many)} of {len(threads)} have more")
         size = chunk or chunk_size(len(cases), len(threads))
-        chunks = [cases[i:i + size] for i in range(0, len(cases), size)]
-        futures = client.map(run_chunk, chunks, pure=False)
+        # each case runs in a child of the Dask worker, under the watchdog (runner.py): a case
+        # stuck, too big or crashing ends that child, never the worker, so Dask has no task to
+        # retry (its distributed.scheduler.allowed-failures, 3 by default, is left to workers
+        # lost for other reasons: a node going away)
+        tickets = [ticket(c) for c in cases]
+        chunks = [tickets[i:i + size] for i in range(0, len(tickets), size)]
+        futures = client.map(run_tickets, chunks, pure=False)
         which = {f.key: c for f, c in zip(futures, chunks, strict=True)}
         for f in as_completed(futures):
             try:
                 outcomes = f.result()
-            except Exception:  # noqa: BLE001 - its worker died (KilledWorker), an error on the way
-                # one case may have taken the task down: each runs again alone, one after the
-                # other (two on the same worker would fall together), the culprit is the crash
-                outcomes = [_alone(client, c) for c in which[f.key]]
+            except Exception:  # noqa: BLE001 - its worker was lost (KilledWorker), an error on the way
+                # each case runs again alone, one after the other; one that fails again is the crash
+                outcomes = [_alone(client, t) for t in which[f.key]]
             for o in outcomes:
                 on_done(o)
             if stop():

@@ -90,21 +90,22 @@ def render_json(summaries: list[CaseSummary], tool_version: str) -> str:
 
 def render_junit(summaries: list[CaseSummary]) -> str:
     """One <testcase> per case: classname the application, name the arm, scenario, cell and
-    overrides; a failing run is a <failure>, a case not run or crashed an <error>, a case left
-    by --fail-fast <skipped>."""
+    overrides; a failing run is a <failure>, a case not run, crashed or stopped by the watchdog
+    an <error>, a case left by --fail-fast <skipped>."""
     c = counts(summaries)
+    errors = c.get("not-run", 0) + c.get("crash", 0) + c.get("over-budget", 0)
     out = ['<?xml version="1.0" encoding="UTF-8"?>',
            f'<testsuites name="val3check sim" tests="{len(summaries)}" failures="{c.get("fail", 0)}"'
-           f' errors="{c.get("not-run", 0) + c.get("crash", 0)}" skipped="{c.get("skipped", 0)}">',
+           f' errors="{errors}" skipped="{c.get("skipped", 0)}">',
            f'  <testsuite name="val3check sim" tests="{len(summaries)}" failures="{c.get("fail", 0)}"'
-           f' errors="{c.get("not-run", 0) + c.get("crash", 0)}" skipped="{c.get("skipped", 0)}">']
+           f' errors="{errors}" skipped="{c.get("skipped", 0)}">']
     for s in ordered(summaries):
         name = " | ".join(x for x in (s.arm or f"({s.model})", s.scenario or "no scenario", s.cell, _overrides(s)) if x)
         out.append(f"    <testcase classname={quoteattr(s.app)} name={quoteattr(name)}>")
         reason = s.reason or s.verdict
         if s.verdict == "fail":
             out.append(f"      <failure type=\"fail\" message={quoteattr(reason)}>{escape(reason)}</failure>")
-        elif s.verdict in ("not-run", "crash"):
+        elif s.verdict in ("not-run", "crash", "over-budget"):
             out.append(f"      <error type={quoteattr(s.verdict)} message={quoteattr(reason)}>{escape(reason)}</error>")
         elif s.verdict == "skipped":
             out.append(f"      <skipped message={quoteattr(reason)} />")
@@ -150,7 +151,8 @@ def render_html(summaries: list[CaseSummary], reports: set[str], tool_version: s
     keep = [i for i in range(1, len(HEADERS)) if i not in (4, 5) or any(r[i] != "-" for r in table)]
     rows = []
     for s, cells in zip(cases, table):
-        out = [f'<td class="{e(s.verdict)} nw">{e(s.verdict)}</td>']
+        css = "over-budget crash" if s.verdict == "over-budget" else s.verdict  # shown as a crash is
+        out = [f'<td class="{e(css)} nw">{e(s.verdict)}</td>']
         for i in keep:
             if i in (1, 3, 4):
                 out.append(f'<td class="path">{_linked(cells[i], index_dir)}</td>')

@@ -16,11 +16,18 @@ from .. import tomlfile
 from ..tomlpos import positions
 
 SWEEP_VERSION = 1
-MAX_SWEEP_SIZE = 1024 * 1024  # bytes: a sweep is a page of TOML
+MAX_SWEEP_SIZE = 512 * 1024  # bytes: a sweep is a page of TOML (10,000 [[case]] tables fit)
+MAX_CASES = 10_000  # cases in one batch, counted before any is made (docs/batch.md): split larger sweeps
 MAX_DURATION = 1e7  # seconds, as `sim --duration`
 AXES = ("applications", "arms", "scenarios", "cells")
 OVERRIDE_KEYS = ("monitor_speed", "cycles", "duration")
 CASE_KEYS = ("application", "arm", "scenario", "cell") + OVERRIDE_KEYS
+
+
+def case_count(sizes: dict[str, int]) -> str:
+    """`2 applications × 3 arms × 2 overrides make 12 cases`: how a batch's size comes about."""
+    total = math.prod(sizes.values())
+    return " × ".join(f"{n:,} {k}" for k, n in sizes.items()) + f" make {total:,} case{'s' if total != 1 else ''}"
 
 
 class SweepError(Exception):
@@ -89,13 +96,31 @@ class Sweep:
         return [os.path.realpath(r) for r in ([top] if top else [folder, os.getcwd()])]
 
     def check_inside(self, entry: Entry, path: str) -> None:
-        """SweepError at the entry's line when `path` (one it leads to) is outside roots()."""
-        real = os.path.realpath(path)
-        if not any(os.path.commonpath([real, r]) == r for r in self.roots()):
+        """SweepError at the entry's line when `path` (one it leads to, symbolic links resolved)
+        is outside roots(): checked before anything there is opened or listed."""
+        from ..confine import Roots
+
+        if not Roots(self.roots()).allows(path):
             where = "the repository" if len(self.roots()) == 1 else "the folder"
             raise SweepError(self.path, entry.line, entry.col,
                              f"{entry.value}: leads outside {where} of the sweep file"
                              " (paths in a sweep stay inside it)")
+
+    def path_of(self, entry: Entry) -> str:
+        """The path an entry names, resolved and checked inside roots()."""
+        path = self.resolve(entry)
+        self.check_inside(entry, path)
+        return path
+
+    def is_arm_file(self, entry: Entry) -> bool:
+        """An `arms` value that names a file (a URDF, an arm.cfx, a robot file, anything else
+        with a folder or an extension, or a file beside the sweep) rather than a catalogue arm:
+        it goes through check_inside like every path of the sweep, whatever its extension."""
+        v = entry.value.strip()
+        if v.lower() == "none":
+            return False
+        return (os.sep in v or "/" in v or "\\" in v or v.startswith("~") or bool(os.path.splitext(v)[1])
+                or os.path.lexists(self.resolve(entry)))
 
 
 def load_sweep(path: str) -> Sweep:
@@ -150,6 +175,9 @@ class _Reader:
             cases = data["case"]
             if not isinstance(cases, list) or not cases or not all(isinstance(c, dict) for c in cases):
                 self.fail(("case",), "[[case]]: expected one or more tables")
+            if len(cases) > MAX_CASES:
+                self.fail(("case", MAX_CASES), f"{len(cases):,} [[case]] tables, more than the {MAX_CASES:,} cases a batch"
+                          " runs (docs/batch.md): split the sweep", key=True)
             sweep.cases = [self.case(i, c) for i, c in enumerate(cases)]
             return sweep
         sweep.applications = self.strings("applications", data)
@@ -160,7 +188,15 @@ class _Reader:
             table = data["overrides"]
             if not isinstance(table, list) or not table or not all(isinstance(t, dict) for t in table):
                 self.fail(("overrides",), "[[overrides]]: expected one or more tables")
+            if len(table) > MAX_CASES:
+                self.fail(("overrides", MAX_CASES), f"{len(table):,} [[overrides]] tables, more than the {MAX_CASES:,}"
+                          " cases a batch runs (docs/batch.md): split the sweep", key=True)
             sweep.overrides = [self.overrides(("overrides", i), t, OVERRIDE_KEYS) for i, t in enumerate(table)]
+        sizes = {k: len(v) for k in ("arms", "scenarios", "cells", "overrides") if (v := getattr(sweep, k))}
+        if math.prod(sizes.values()) > MAX_CASES:
+            biggest = max(sizes, key=lambda k: sizes[k])
+            self.fail((biggest,), f"{case_count(sizes)} for each application, more than the {MAX_CASES:,} cases a"
+                      " batch runs (docs/batch.md): split the sweep", key=True)
         return sweep
 
     def strings(self, key: str, data: dict, allow_none: bool = False) -> list:
@@ -169,12 +205,17 @@ class _Reader:
         values = data[key]
         if not isinstance(values, list) or not values:
             self.fail((key,), f"{key}: expected a non-empty array of strings")
+        if len(values) > MAX_CASES:
+            self.fail((key,), f"{key}: {len(values):,} values, more than the {MAX_CASES:,} cases a batch runs"
+                      " (docs/batch.md): split the sweep", key=True)
         out: list = []
         for i, v in enumerate(values):
             if not isinstance(v, str) or not v.strip():
                 self.fail((key, i), f"{key}[{i}]: expected a non-empty string"
                           + (' ("none" for none)' if allow_none else ""))
             line, col = self.pos.at((key, i))
+            if "\x00" in v:
+                self.fail((key, i), f"{key}[{i}]: a path cannot hold a NUL character")
             out.append(None if allow_none and v.strip().lower() == "none" else Entry(v, line, col))
         return out
 
@@ -192,6 +233,8 @@ class _Reader:
                 v = table[k]
                 if not isinstance(v, str) or not v.strip():
                     self.fail(where + (k,), f"[[case]] {index + 1}: {k}: expected a non-empty string")
+                if "\x00" in v:
+                    self.fail(where + (k,), f"[[case]] {index + 1}: {k}: a path cannot hold a NUL character")
                 line, col = self.pos.at(where + (k,))
                 out[k] = None if k in ("scenario", "cell") and v.strip().lower() == "none" else Entry(v, line, col)
         out["overrides"] = self.overrides(where, table, OVERRIDE_KEYS, only=OVERRIDE_KEYS)

@@ -1,12 +1,11 @@
-"""One case, run where it lands (this process, a pool process, a Dask worker).
+"""One case, run where it lands: a child process under the watchdog (runner.py), here or on a Dask worker.
 
 The case's files are written under a private temporary folder that mirrors their absolute
 paths, and the run happens with the current folder set to the mirror of the folder the batch
 was started from: display paths in the report are then those of a single `val3check sim`, and
 the mirror's prefix is taken out of everything that comes back (absolute paths read as on the
-machine that made the case). The steps are those of the single run (cli.py `_sim`): lint,
-refuse an application with errors or without start(), choose the arm, read the scenario,
-simulate, build the report. Any exception is the case's result ("crash"), never the batch's."""
+machine that made the case). The steps are the single run's: both run `simulation.case.run_case`.
+Any exception is the case's result ("crash"), never the batch's."""
 
 from __future__ import annotations
 
@@ -23,7 +22,8 @@ from dataclasses import dataclass, field
 from .cases import Case
 from .outputs import case_outputs
 
-VERDICTS = ("pass", "fail", "not-run", "crash", "skipped")
+VERDICTS = ("pass", "fail", "not-run", "crash", "over-budget", "skipped")
+STEP = None  # step(name) as a case goes on ("lint", "run", "report"): set by runner.py for its watchdog
 
 
 @dataclass(frozen=True)
@@ -42,7 +42,7 @@ class CaseSummary:
     verdict: str  # one of VERDICTS
     errors: int = 0  # runtime diagnostics of severity error
     warnings: int = 0
-    cycle_time: float | None = None  # s: median cycle of the first task (by name) that cycles the arm
+    cycle_time: float | None = None  # s: median of the verdict's cycle (arm_record.main_cycle)
     cycles: int = 0
     end: str = ""  # how the run ended (SimResult end reason)
     reason: str = ""  # why the verdict is not "pass": the first failing diagnostic, the error, the crash
@@ -74,22 +74,13 @@ def summary_of(case: Case, verdict: str, reason: str = "", **kw) -> CaseSummary:
                        overrides=tuple(sorted(case.overrides.as_dict().items())), verdict=verdict, reason=reason, **kw)
 
 
-def run_chunk(cases: list[Case]) -> list[CaseOutcome]:
-    """Several cases in one task (the Dask executor's unit of work)."""
-    return [run_case(c) for c in cases]
-
-
 def run_case(case: Case) -> CaseOutcome:
     start, cpu = time.perf_counter(), time.process_time()
     here = os.getcwd()
     tmp = tempfile.mkdtemp(prefix="val3check-case-")
     mirror = os.path.join(tmp, "m")
     try:
-        for path, data in case.files:
-            target = _mirrored(mirror, path)
-            os.makedirs(os.path.dirname(target), exist_ok=True)
-            with open(target, "wb") as fh:
-                fh.write(data)
+        _write_mirror(case, mirror)
         cwd = _mirrored(mirror, case.cwd)
         os.makedirs(cwd, exist_ok=True)
         os.chdir(cwd)
@@ -107,6 +98,31 @@ def run_case(case: Case) -> CaseOutcome:
     return outcome
 
 
+def _write_mirror(case: Case, mirror: str) -> None:
+    """The case's files under `mirror`, then the stand-ins of the files its run finds and refuses
+    (a size, no content), then its symbolic links, their absolute targets mirrored too (not those
+    under /proc, /sys or /dev: the gate refuses them by name, and they are the same everywhere)."""
+    from ..confine import is_special
+
+    for path, data in case.files:
+        target = _mirrored(mirror, path)
+        os.makedirs(os.path.dirname(target), exist_ok=True)
+        with open(target, "wb") as fh:
+            fh.write(data)
+    for path, size in case.stubs:
+        target = _mirrored(mirror, path)
+        if not os.path.lexists(target):
+            os.makedirs(os.path.dirname(target), exist_ok=True)
+            with open(target, "wb") as fh:
+                fh.truncate(size)  # sparse: no byte of the refused file travels
+    for path, to in case.links:
+        where = _mirrored(mirror, path)
+        if os.path.lexists(where):
+            continue  # the loader took this path as a folder: files were written below it
+        os.makedirs(os.path.dirname(where), exist_ok=True)
+        os.symlink(_mirrored(mirror, to) if os.path.isabs(to) and not is_special(to) else to, where)
+
+
 def _mirrored(mirror: str, path: str) -> str:
     drive, rest = os.path.splitdrive(os.path.abspath(path))
     return os.path.join(mirror, drive.replace(":", ""), rest.lstrip("\\/"))
@@ -122,59 +138,41 @@ def _unmirrored(outcome: CaseOutcome, mirror: str) -> CaseOutcome:
 
 
 def _run(case: Case, mirror: str) -> CaseOutcome:
+    """The case as the single run runs it (simulation/case.py), its files read from the mirror."""
     from .. import __version__
     from ..diagnostics import Severity
-    from ..lint import display_path, run
+    from ..lint import display_path
     from ..reporting.sim_report import build_report
-    from ..robot import RobotError
     from ..rules.catalogue import catalogue
-    from ..simulation import SimOptions, choose_sim_robot, simulate
-    from ..simulation.collision_run import choose_cell
-    from ..simulation.scenario import Scenario, ScenarioError, load_scenario
+    from ..simulation import case as sim_case
 
     settings = copy.deepcopy(case.settings)
     settings.disk_roots = [_mirrored(mirror, d) for d in settings.disk_roots]
     if settings.root:
         settings.root = _mirrored(mirror, settings.root)
-    app_path = _mirrored(mirror, case.app_path)
-    outcome = run([app_path], settings)
-    apps = [a for a in (outcome.workspace.apps[k] for k in outcome.workspace.targets)
-            if os.path.normcase(a.path) == os.path.normcase(app_path)]
-    if outcome.unreadable or not apps:
-        first = next((d for d in outcome.result.diagnostics if d.severity is not None and d.severity >= Severity.ERROR),
-                     None)
-        why = f": {d.path}:{d.line}:{d.col}: {d.code} {d.message}" if (d := first) else ""
-        return CaseOutcome(summary_of(case, "not-run", f"the application could not be read{why}"))
-    app = apps[0]
-    errors = [d for d in outcome.result.diagnostics if d.severity is not None and d.severity >= Severity.ERROR]
-    if errors:
-        d = errors[0]
-        return CaseOutcome(summary_of(case, "not-run", f"{len(errors)} lint error(s), the first: "
-                                      f"{d.path}:{d.line}:{d.col}: {d.code} {d.message}"))
-    if not any(n.lower() == "start" for n in app.programs):
-        return CaseOutcome(summary_of(case, "not-run", f"{app.name} has no start() program (2.1.2)"))
-    spec = _mirrored(mirror, case.robot_path) if case.robot_path else (case.arm or None)
-    try:
-        robot, _note = choose_sim_robot(spec, app.path)
-    except RobotError as exc:
-        return CaseOutcome(summary_of(case, "not-run", f"--robot: {exc}"))
-    model = getattr(robot, "name", None) or "none"
     ov, opts = case.overrides, case.options
-    try:
-        scenario = load_scenario(display_path(_mirrored(mirror, case.scenario_path))) if case.scenario_path else None
-        if ov.monitor_speed is not None:  # as the scenario's [controller] monitor_speed would set it
-            scenario = scenario or Scenario("", "", {})
-            scenario.data = {**scenario.data, "controller": {**scenario.data.get("controller", {}),
-                                                             "monitor_speed": ov.monitor_speed}}
+    spec = sim_case.CaseSpec(
+        _mirrored(mirror, case.app_path), settings, exact=True,
+        robot=display_path(_mirrored(mirror, case.robot_path)) if case.robot_path else (case.arm or None),
+        scenario=display_path(_mirrored(mirror, case.scenario_path)) if case.scenario_path else None,
         # the cell as `sim --cell` chooses it: the case's file, none, or the one beside the application
-        given = display_path(_mirrored(mirror, case.cell_path)) if case.cell_path else (case.cell or None)
-        cell, cell_found = choose_cell(given, app.path)
-        options = SimOptions(duration=ov.duration or opts.duration, max_wall=opts.max_wall, max_lines=opts.max_lines,
-                             max_memory_mb=opts.max_memory_mb, disk_roots=list(settings.disk_roots), robot=robot,
-                             cycles=ov.cycles or opts.cycles, collisions=True, cell=cell, cell_found=cell_found)
-        result = simulate(outcome.workspace, app, options, scenario)
-    except ScenarioError as exc:
-        return CaseOutcome(summary_of(case, "not-run", f"bad scenario: {exc}", model=model))
+        cell=display_path(_mirrored(mirror, case.cell_path)) if case.cell_path else (case.cell or None),
+        monitor_speed=ov.monitor_speed, duration=ov.duration or opts.duration, cycles=ov.cycles or opts.cycles,
+        max_wall=opts.max_wall, max_lines=opts.max_lines, max_memory_mb=opts.max_memory_mb, step=STEP)
+    done = sim_case.run_case(spec)
+    model = getattr(done.model, "name", None) or "none"
+    if done.refused is not None:
+        d = done.errors[0] if done.errors else None
+        where = f"{d.path}:{d.line}:{d.col}: {d.code} {d.message}" if d is not None else ""
+        reason = {sim_case.UNREADABLE: "the application could not be read" + (f": {where}" if where else ""),
+                  sim_case.LINT_ERRORS: f"{len(done.errors)} lint error(s), the first: {where}",
+                  sim_case.ROBOT: f"--robot: {done.message}",
+                  sim_case.SCENARIO: f"bad scenario: {done.message}"}.get(done.refused, done.message)
+        return CaseOutcome(summary_of(case, "not-run", reason, **({"model": model} if done.refused == sim_case.SCENARIO
+                                                                  else {})))
+    result = done.result
+    if STEP is not None:
+        STEP("report")
     report = build_report(result, settings, catalogue(), __version__)
     errors_n = sum(1 for d in report.diagnostics if d.severity >= Severity.ERROR)
     warnings_n = sum(1 for d in report.diagnostics if d.severity == Severity.WARNING)
@@ -194,8 +192,7 @@ def _run(case: Case, mirror: str) -> CaseOutcome:
 def _cycle(motion) -> tuple[float | None, int]:  # noqa: ANN001
     if motion is None:
         return None, 0
-    for task in sorted(motion.cycles):
-        st = motion.cycles[task]
-        if st.times:
-            return round(statistics.median(st.times), 6), st.count
-    return None, 0
+    from ..simulation.arm_record import main_cycle
+
+    st = main_cycle(motion.cycles)  # the verdict's (reporting/html/from_run.py, sim_junit.py)
+    return (None, 0) if st is None else (round(statistics.median(st.times), 6), st.count)

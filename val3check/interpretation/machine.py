@@ -60,6 +60,7 @@ class FinalState(NamedTuple):
     state: str  # TaskState.report_name
     where: tuple | None  # (path, line, col, program)
     blocked_on: str | None
+    loops: tuple = ()  # the loops it was in (Machine.loop_passes)
 
 
 class Machine:
@@ -290,6 +291,43 @@ class Machine:
                 yield compiled[code.co_filename], frame.f_lineno
             g = getattr(g, "gi_yieldfrom", None)
 
+    def loop_passes(self, task: Task | None = None) -> tuple:
+        """The loops the running line (or the suspended `task`) is in, outermost first, across the
+        programs of its call stack: (compiled program, compiler.structures.LoopSite, the loop's
+        pass counter: a list, new at each entry of the loop, whose [0] is the current pass)."""
+        import sys
+
+        frames = []
+        if task is None:
+            compiled = self.compiled
+            f = sys._getframe(1)
+            while f is not None:
+                c = compiled.get(f.f_code.co_filename)
+                if c is not None:
+                    frames.append((c, f))
+                f = f.f_back
+            frames.reverse()
+        else:
+            frames = list(self._task_frames(task))
+        out = []
+        for c, f in frames:
+            sites = [site for site in c.loops if site.py_first <= f.f_lineno <= site.py_last]
+            if sites:
+                local = f.f_locals
+                out.extend((c, site, local[site.var]) for site in sites if site.var in local)
+        return tuple(out)
+
+    def _task_frames(self, task: Task):
+        """(compiled program, frame) of each VAL 3 program a suspended task is in, outermost first."""
+        g = task.gen
+        compiled = self.compiled
+        while g is not None:
+            code = getattr(g, "gi_code", None)
+            frame = getattr(g, "gi_frame", None)
+            if code is not None and frame is not None and code.co_filename in compiled:
+                yield compiled[code.co_filename], frame
+            g = getattr(g, "gi_yieldfrom", None)
+
     def line_running(self) -> tuple[str, int, int, str] | None:
         """The file position of the VAL 3 line being executed now, for an instruction handler
         (the innermost program on the Python stack; `where` only sees suspended tasks)."""
@@ -380,7 +418,7 @@ class Machine:
             if stopped and task.errpos:
                 where = task.errpos
             task.final = FinalState(task.state.report_name, where,
-                                    self.blocked_on(task) if task.state is WAIT else None)
+                                    self.blocked_on(task) if task.state is WAIT else None, self.loop_passes(task))
 
     def _report_blocked(self) -> None:
         """Deadlock: every task waits for something no scheduled event can change."""

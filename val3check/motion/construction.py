@@ -9,10 +9,12 @@ space (10.1), or the reason the arm cannot execute it.
 * movel, movec (10.1.4): the TCP curve (cartesian.Line, Arc) solved in the configuration of the
   start (tracking.track), joined into a paths.JointSpline.
 
-Errors of the instruction itself raise `MotionError` at once (81: a joint of the other arm
-family; 154: an arc that three positions do not define). A command the arm cannot execute (its
-target or its path) comes back with its `failure` (failures.py): the queue records it and the
-next motion instruction raises 150.
+Errors of the instruction itself raise `MotionError` at once, before anything is recorded (81: a
+joint of the other arm family; 154: a target outside the software limits, out of reach or only in
+another configuration than the instruction allows, a movec intermediate point the arc cannot pass,
+an arc that three positions do not define; failures.py says why these are known at the
+instruction). A command whose path the arm cannot follow comes back with its `failure`: the queue
+records it and the next motion instruction raises 150.
 """
 
 from __future__ import annotations
@@ -23,7 +25,7 @@ import numpy as np
 
 from . import findings as F
 from .cartesian import Arc, ArcError, Line
-from .failures import limit_finding, named, path_failure, rounded, unreachable_finding
+from .failures import limit_finding, named, path_failure, rounded, target_error, unreachable_finding
 from .findings import Finding, MotionError
 from .paths import JointLine, JointSpline
 from .queued import Geometry
@@ -49,9 +51,7 @@ def construct(kin, move, q_start: np.ndarray, tool: np.ndarray | None, now: floa
     the flange (4x4 mm, None: the flange), recorded at `now` (s)."""
     built = Construction(Geometry(q_start, q_start.copy()), move.mdesc.blend)
     if move.kind == "movej":
-        q_end = _movej_target(kin, built, move, q_start, tool, now)
-        if q_end is None:
-            return built
+        q_end = _movej_target(kin, move, q_start, tool, now)
         built.geometry.q_end = q_end
         if np.max(np.abs(q_end - q_start)) <= JOINT_EQ:
             built.notes.append(Finding(
@@ -66,8 +66,9 @@ def construct(kin, move, q_start: np.ndarray, tool: np.ndarray | None, now: floa
     return built
 
 
-def _movej_target(kin, built: Construction, move, q_start, tool, now) -> np.ndarray | None:
-    """The joint target of a movej; None when the arm cannot go there (`built.failure` says why)."""
+def _movej_target(kin, move, q_start, tool, now) -> np.ndarray:
+    """The joint target of a movej; MotionError 154 when the arm cannot go there (10.6: "si
+    jPosition se situe en dehors des butées logicielles, si pPosition ne peut pas être atteinte")."""
     target = move.target
     source = move.source
     if target.is_joint:
@@ -77,8 +78,7 @@ def _movej_target(kin, built: Construction, move, q_start, tool, now) -> np.ndar
         over = np.maximum(kin.lo - j, j - kin.hi)
         if np.any(over > 1e-7):
             ax = int(np.argmax(over))
-            built.failure = limit_finding(kin, "movej: the joint target", ax, float(over[ax]), j[ax], source, now)
-            return None
+            raise target_error(limit_finding(kin, "movej: the joint target", ax, float(over[ax]), j[ax], source, now))
         return j
     T = target.pose if tool is None else target.pose @ np.linalg.inv(tool)
     from ..robot.errors import Unreachable
@@ -86,13 +86,14 @@ def _movej_target(kin, built: Construction, move, q_start, tool, now) -> np.ndar
     try:
         j = kin.model.solve(T[:3, :4].tolist(), target.config, initial=tuple(q_start))
     except Unreachable as exc:
-        built.failure = unreachable_finding(kin, "movej", target, T, q_start, exc.reason, source, now)
-        return None
+        raise target_error(unreachable_finding(kin, "movej", target, T, q_start, exc.reason, source, now)) from None
     return np.asarray(j, dtype=float)
 
 
 def _cartesian(kin, built: Construction, move, q_start, tool, now) -> None:
-    """movel, movec: the TCP curve solved in the start configuration (10.1.4.2), or the failure."""
+    """movel, movec: the TCP curve solved in the start configuration (10.1.4.2). A target (or a
+    movec intermediate point) the curve cannot end at (or pass) raises 154 at the instruction; a
+    curve the arm cannot follow is `built.failure` (150 later)."""
     source = move.source
     kind = move.kind
     T_end = move.target.pose
@@ -111,36 +112,14 @@ def _cartesian(kin, built: Construction, move, q_start, tool, now) -> None:
         if w.endswith("same") or w.endswith("free"):
             continue
         if w != have:
-            built.failure = Finding(
+            raise target_error(Finding(
                 F.CONFIG_CHANGE, f"{kind}: the target imposes {field_name} {w} but the motion starts in {have}: "
                 f"a straight line or a circle cannot change configuration (10.1.4.2); use movej, or "
                 f"{field_name[0]}same/{field_name[0]}free", source, now,
-                data={"field": field_name, "requested": w, "start": have})
-            return
-    flange_end = T_end if tool is None else T_end @ np.linalg.inv(tool)
-    sols, sol_codes = kin.solutions(flange_end)
-    codes = {int(x) for x in sol_codes}
-    if code0 not in codes:
-        if codes:
-            other = kin.config_name(min(codes))
-            built.failure = Finding(
-                F.CONFIG_CHANGE, f"{kind}: the target can only be reached in configuration {'/'.join(other)}, not in "
-                f"the start configuration {'/'.join(cfg0)}: a straight line or a circle cannot change "
-                "configuration (10.1.4.2); use movej", source, now, data={"start": list(cfg0), "target": list(other)})
-        else:
-            built.failure = Finding(F.UNREACHABLE, f"{kind}: the target{named(move.target)} is out of the arm's "
-                                    "reach", source, now, data={"target_mm": rounded(T_end[:3, 3])})
-        return
-    # the target in the start configuration: within the joint limits?
-    mine = kin.turns(sols[sol_codes == code0], q_start)
-    over = np.maximum(kin.lo - mine, mine - kin.hi).max(axis=1)
-    if np.all(over > 1e-7):
-        best = mine[int(np.argmin(over))]
-        ex = np.maximum(kin.lo - best, best - kin.hi)
-        ax = int(np.argmax(ex))
-        built.failure = limit_finding(kin, f"{kind}: the target{named(move.target)} in the start configuration "
-                                      f"{'/'.join(cfg0)}", ax, float(ex[ax]), float(best[ax]), source, now)
-        return
+                data={"field": field_name, "requested": w, "start": have}))
+    if kind == "movec":  # 10.6: "si point pIntermédiaire ... ne peut pas être atteint" (its configuration is not used)
+        _in_start_configuration(kin, move.via, "the intermediate point", tool, q_start, code0, kind, source, now)
+    _in_start_configuration(kin, move.target, "the target", tool, q_start, code0, kind, source, now)
     built.geometry.tcp_curve = curve
     if curve.length_mm < 1e-6 and curve.angle_deg < 1e-6:
         built.blend = "off"
@@ -154,3 +133,32 @@ def _cartesian(kin, built: Construction, move, q_start, tool, now) -> None:
     spline.curve = curve
     built.geometry.joint_curve = spline
     built.geometry.q_end = tr.Q[-1].copy()
+
+
+def _in_start_configuration(kin, target, what: str, tool, q_start, code0: int, kind: str, source, now) -> None:
+    """MotionError 154 unless a joint position within the software limits, in the configuration
+    of the start (code `code0`), puts the TCP at `target`: a line or a circle cannot end at (or
+    pass) it otherwise (10.1.4.2)."""
+    cfg0 = kin.config_name(code0)
+    T = target.pose
+    flange = T if tool is None else T @ np.linalg.inv(tool)
+    sols, sol_codes = kin.solutions(flange)
+    codes = {int(x) for x in sol_codes}
+    if code0 not in codes:
+        if codes:
+            other = kin.config_name(min(codes))
+            raise target_error(Finding(
+                F.CONFIG_CHANGE, f"{kind}: {what}{named(target)} can only be reached in configuration "
+                f"{'/'.join(other)}, not in the start configuration {'/'.join(cfg0)}: a straight line or a circle "
+                "cannot change configuration (10.1.4.2); use movej", source, now,
+                data={"start": list(cfg0), "target": list(other)}))
+        raise target_error(Finding(F.UNREACHABLE, f"{kind}: {what}{named(target)} is out of the arm's reach", source,
+                                   now, data={"target_mm": rounded(T[:3, 3])}))
+    mine = kin.turns(sols[sol_codes == code0], q_start)
+    over = np.maximum(kin.lo - mine, mine - kin.hi).max(axis=1)
+    if np.all(over > 1e-7):
+        best = mine[int(np.argmin(over))]
+        ex = np.maximum(kin.lo - best, best - kin.hi)
+        ax = int(np.argmax(ex))
+        raise target_error(limit_finding(kin, f"{kind}: {what}{named(target)} in the start configuration "
+                                         f"{'/'.join(cfg0)}", ax, float(ex[ax]), float(best[ax]), source, now))

@@ -1,11 +1,16 @@
-"""The findings of a command the arm cannot execute (R010-R013) and the error 150 that follows.
+"""The findings of a motion command the arm cannot execute (R010-R013), and their runtime errors.
 
-A target out of reach, outside the software joint limits or only in another configuration, and
-a Cartesian path through a joint limit, the edge of the workspace, a singularity or a
-configuration change: the command is recorded and returns its identifier, the arm stops before
-it, and the next motion instruction, waitEndMove, open or close raises 150 (12.1: "un mouvement
-demandé précédemment n'a pas pu être terminé (point hors d'atteinte, singularité, problème de
-configuration...)"; waitEndMove, 10.6: "destination hors d'atteinte").
+10.6 names two moments. What is known when the instruction records its command stops the task at
+that instruction (`target_error`, 154 of 12.1, "instruction de mouvement invalide"): `movej`
+"génère une erreur d'exécution ... si jPosition se situe en dehors des butées logicielles, si
+pPosition ne peut pas être atteinte", `movel` also "si un mouvement en ligne droite vers pPosition
+n'est pas possible" (a configuration change, 10.1.4.2), `movec` "si point pIntermédiaire (ou point
+pCible) ne peut pas être atteint". What the trajectory generator only finds while it interpolates
+the path (10.1.4.3: "une erreur est générée lors du mouvement du robot"): a line or a circle
+through a joint limit, the edge of the workspace, a singularity or a configuration change. That
+command is recorded and returns its identifier, the arm stops before it, and the next motion
+instruction, waitEndMove, open or close raises 150 (12.1: "un mouvement demandé précédemment n'a
+pas pu être terminé (point hors d'atteinte, singularité, problème de configuration...)").
 
 Every function builds a `findings.Finding` from explicit inputs (the arm's kinematics, the
 numbers of the failure, the instruction's source and time); nothing here keeps state.
@@ -17,7 +22,18 @@ import numpy as np
 
 from . import findings as F
 from .checks import WHAT
-from .findings import Finding, Source
+from .findings import Finding, MotionError, Source
+
+INVALID_MOTION = 154  # 12.1: "instruction de mouvement invalide": a target the command cannot reach
+LATER = 150  # 12.1: "un mouvement demandé précédemment n'a pas pu être terminé"
+
+
+def target_error(finding: Finding) -> MotionError:
+    """The error at the instruction for a target it cannot reach (module docstring): 154, with
+    the finding (R010-R012) behind it."""
+    f = Finding(finding.code, finding.message, finding.source, finding.time, finding.move_id, INVALID_MOTION,
+                finding.data)
+    return MotionError(INVALID_MOTION, f.message, f)
 
 
 def deferred(finding: Finding) -> Finding:

@@ -16,7 +16,7 @@ stopMove's hold, the monitor speed, and the failure that makes the next instruct
 Its collaborators do the rest, each with explicit inputs and outputs:
 
 * construction.py  a recorded command's joint-space geometry (10.1), or why it cannot be executed;
-* failures.py      the findings of commands the arm cannot execute (R010-R013), error 150's text;
+* failures.py      the findings of commands the arm cannot execute (R010-R013): 154 or 150;
 * planner.py       the path built from the commands, blends (blending.py) and replans;
 * timing/          a path plus its limits → a time parameterisation (the one place of 10.3);
 * checks.py        the singularity analysis (R014 when a command completes).
@@ -28,9 +28,12 @@ Semantics (docs/motion.md gives the choices where the manual is silent):
   it comes, the blend to it is built and the not-yet-executed tail is re-timed from the arm's
   exact state. waitEndMove cancels the last blend: the arm goes on to the target and stops
   (10.1.2.2).
-* Errors at the instruction raise `MotionError` (mdesc 100-106, an arc movec cannot define 154,
-  81). A command whose path cannot be executed is accepted, the arm stops before it, and the next
-  motion instruction, waitEndMove, open or close raises 150 (12.1) until resetMotion.
+* Errors at the instruction raise `MotionError` before anything is recorded (mdesc 100-106; 154
+  for a target outside the software limits, out of reach or only in another configuration, and an
+  arc movec cannot define; 81). A command whose path the arm cannot follow (found while the path
+  is interpolated: a joint limit, the workspace's edge, a singularity on the way) is accepted, the
+  arm stops before it, and the next motion instruction, waitEndMove, open or close raises 150
+  (12.1) until resetMotion (failures.py).
 * getMoveId: integer part the command being executed, fraction its progress along its own
   part of the path (a blend belongs to the first command up to that command's target, then to
   the next); at rest after command n: n + 1 (10.6 examples).
@@ -147,14 +150,13 @@ class MotionQueue:
         if len(self.pending) >= self.capacity:
             return QueueFull(self._first_done_time())
         q_s = self._start_joints()
-        if self.connect_to is not None:
-            target = self.connect_to
-            self.connect_to = None
-            if np.max(np.abs(target - q_s)) > JOINT_EQ:
-                self._add_connection(q_s, target, now, source)
-                q_s = target
+        connect = self.connect_to is not None and np.max(np.abs(self.connect_to - q_s)) > JOINT_EQ
         tool = None if move.tool is None else np.asarray(move.tool, dtype=float)
-        built = construct(self.kin, move, q_s, tool, now)
+        # raises at the instruction (154, 81: construction.py) before anything is recorded
+        built = construct(self.kin, move, self.connect_to if connect else q_s, tool, now)
+        if connect:
+            self._add_connection(q_s, self.connect_to, now, source)
+        self.connect_to = None
         command = self._new_command(Request(move.kind, source, now, move.mdesc, tool, move.tool_name,
                                             move.target.name, move.target.frame), built.geometry)
         command.placement.blend = built.blend

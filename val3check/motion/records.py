@@ -62,17 +62,22 @@ def _speeds_at(profile, s: np.ndarray) -> np.ndarray:
     return np.sqrt(np.maximum(np.interp(s, S[keep], X[keep]), 0.0))
 
 
-def motion_records(queue) -> list[MotionRecord]:
-    """One record per command recorded (in recording order), connection moves included. The
-    path is evaluated once for all commands (grouped by tool)."""
+def motion_records(queue, end_s: float | None = None) -> list[MotionRecord]:
+    """One record per command recorded (in recording order), connection moves included, as the
+    arm did it by `end_s` (the end of the run; None: as planned). A command the arm had not
+    started by then has no start and no end, one it had not finished no end, and both only the
+    part of the path it ran (docs/sim-report.md: "null when it never ran"). The path is evaluated
+    once for all commands (grouped by tool)."""
     prof = queue.trajectory.profile
+    reached = prof.s_end if end_s is None else prof.state(end_s)[0]  # how far the arm got
     out: list[MotionRecord | None] = []
     todo = []  # (index in out, command, s0, s1, start, end, points, mids)
     for command in queue.history:
         req = command.request
         place = command.placement
         base = dict(target=req.target_name, tool=req.tool_name)
-        if place.s_begin is None or command.state == "failed":
+        start = None if place.s_begin is None or command.state == "failed" else time_leaving(prof, place.s_begin)
+        if start is None or (end_s is not None and start > end_s + 1e-9):
             out.append(MotionRecord(command.id, req.kind, req.source, command.state, req.recorded, None, None, 0.0,
                                     0.0, "", {}, **base))
             continue
@@ -80,11 +85,15 @@ def motion_records(queue) -> list[MotionRecord]:
         s1 = place.s_end if place.s_end is not None else min(prof.s_end, place.s_provisional or prof.s_end)
         if command.state in ("cancelled", "pending"):
             s1 = min(s1, prof.s_end)
-        start = time_leaving(prof, s0)
         end = command.t_done if command.state == "done" else prof.time_at(s1)
+        if command.state != "done" and s1 > reached + 1e-9 * max(1.0, abs(s1)):
+            s1, end = max(reached, s0), None  # under way when the run ended
+        elif end is not None and end_s is not None and end > end_s + 1e-9:
+            end = None  # a cancelled command braking when the run ended
         if s1 - s0 <= 1e-12:
             out.append(MotionRecord(command.id, req.kind, req.source, command.state, req.recorded, start,
-                                    end if end is not None else start, 0.0, 0.0, "", {}, **base))
+                                    end if end is not None or command.state == "pending" else start, 0.0, 0.0, "",
+                                    {}, **base))
             continue
         k0 = bisect.bisect_left(prof.S, s0)
         k1 = bisect.bisect_right(prof.S, s1)

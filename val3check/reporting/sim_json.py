@@ -88,11 +88,11 @@ def _motion(run: Any) -> dict | None:
     cycles = []
     for task in sorted(m.cycles):
         st = m.cycles[task]
-        if st.marker is None:
-            continue
-        where = run.display((st.marker[0], st.marker[1], st.marker[2], ""))
+        where = run.display((st.marker[0], st.marker[1], st.marker[2], "")) if st.marker is not None else None
         times = st.times
-        cycles.append({"task": task, "path": where[0], "line": st.marker[1], "column": st.marker[2],
+        cycles.append({"task": task, "loop": st.kind, "path": where[0] if where else None,
+                       "line": st.marker[1] if st.marker else None, "column": st.marker[2] if st.marker else None,
+                       "program": st.program, "why": st.why, "passes": st.passes,
                        "cycles": st.count, "starts": [_s(x) for x in st.starts], "times": [_s(x) for x in times],
                        "min": _s(min(times)) if times else None, "max": _s(max(times)) if times else None,
                        "median": _s(statistics.median(times)) if times else None})

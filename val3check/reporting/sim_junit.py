@@ -31,7 +31,9 @@ def _cycle_time(result: Any) -> str | None:
     m = result.motion
     if m is None:
         return None
-    best = max((st for st in m.cycles.values() if st.count), key=lambda st: st.count, default=None)
+    from ..simulation.arm_record import main_cycle
+
+    best = main_cycle(m.cycles)
     return None if best is None else f"{statistics.median(best.times):.6f}"
 
 

@@ -117,12 +117,14 @@ def _motion_summary(run: Any, m) -> list[str]:
     out = []
     for task in sorted(m.cycles):
         st = m.cycles[task]
-        if st.marker is None or not st.times:
+        if st.marker is None:
             continue
+        loop = f"the {st.kind} loop at {_where(run, *st.marker)}"
         t = st.times
-        rec = next((x for x in m.motions if (x.source.path, x.source.line, x.source.col) == st.marker), None)
-        what = f" {rec.kind}" if rec is not None else ""
-        out.append(f"cycle time of task {task} (loop from{what} at {_where(run, *st.marker)}): {st.count} cycle"
+        if not t:
+            out.append(f"cycle of task {task}: {loop}, no complete cycle ({st.why})")
+            continue
+        out.append(f"cycle time of task {task} ({loop}): {st.count} cycle"
                    f"{'s' if st.count != 1 else ''}, min {seconds(min(t))} s, median {seconds(statistics.median(t))} s,"
                    f" max {seconds(max(t))} s")
     cmds = [x for x in m.motions if x.id is not None]

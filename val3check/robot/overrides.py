@@ -162,7 +162,7 @@ def _world_z(model, w: float):
 def load_robot_file(path: str | os.PathLike, app_path=None):
     """A robot file (module docstring): its arm with the user's values."""
     from .. import tomlfile
-    from ..confine import Refused, Roots, read_bytes
+    from ..confine import Refused, Roots, read_bytes, repository_root
     from .models import load_robot
 
     p = Path(path)
@@ -183,6 +183,13 @@ def load_robot_file(path: str | os.PathLike, app_path=None):
         raise RobotError(f"{p}: arm = {shown(arm)}: a robot file cannot name another robot file")
     if arm.lower().endswith((".urdf", ".xml", ".cfx")) and not os.path.isabs(arm):
         arm = str(p.parent / arm)
+    if "\x00" in arm:
+        raise RobotError(f"{p}: arm = {shown(data['arm'])}: a path cannot hold a NUL character")
+    if arm.lower().endswith((".urdf", ".xml", ".cfx")) or os.path.sep in arm or os.path.isfile(arm):
+        # a path written in a file: it stays in the robot file's repository (val3check/confine.py)
+        if not Roots([repository_root(str(p))]).allows(arm):
+            raise RobotError(f"{p}: arm = {shown(data['arm'])}: leads outside the robot file's repository (or its"
+                             " folder, outside any repository): not read")
     model = load_robot(arm, app_path)
     assume = data.get("assume", {})
     if not isinstance(assume, dict):

@@ -1,6 +1,8 @@
 """`val3check sim`: assemble a run of the virtual controller (interpretation/, motion/),
 run it, and hand its `SimResult` to the reports (reporting/).
 
+- `case`          one case of `val3check sim` (lint, refuse, arm, scenario, cell, run): what
+                  the command and a batch's worker both call;
 - `run`           `simulate()`, `SimOptions`: the registry of instructions, the arm, the
                   machine and its subsystems, the scenario;
 - `scenario`      the cell around the application (docs/scenario.md): read the file, then set

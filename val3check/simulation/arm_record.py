@@ -4,7 +4,8 @@
     m = result.motion                  # ArmRun | None (no arm model, or the arm never used)
     m.scene                            # ArmScene: the arm and the application's frames, once
     m.motions[i]                       # MotionEntry: one per command recorded, in recording order
-    m.cycles[task]                     # CycleEntry: the loop of a task that moves the arm
+    m.cycles[task]                     # CycleEntry: the cycle of a task that moves the arm (its loop)
+    main_cycle(m.cycles)               # the one the verdict quotes (most complete cycles)
     m.trajectory                       # JointTrajectory: the joints at any simulated time
     m.tcp_speed(times, joints, speeds) # the TCP's speed at samples of the trajectory
 
@@ -146,13 +147,19 @@ class ToolUse:
 
 @dataclass(frozen=True)
 class CycleEntry:
-    """The loop of a task that moves the arm (docs/motion.md, "Cycle time"): `marker` (path, line,
-    col) of the loop's first motion instruction, None when the task repeats no motion; `starts`:
-    when the arm started that instruction's command, each pass."""
+    """The cycle of a task that records motions (docs/motion.md, "Cycle time"): the loop that
+    moves the arm once per part. `marker` (path, line, col), `program` and `kind` (while, do,
+    for) of that loop statement, all None without a cycle; `why` it is the cycle (or why there is
+    none); `passes` of it that recorded motions; `starts`: when the arm started each pass (its
+    first command)."""
 
     task: str
     marker: tuple[str, int, int] | None
     starts: tuple[float, ...] = ()
+    program: str | None = None
+    kind: str | None = None
+    why: str = ""
+    passes: int = 0
 
     @property
     def times(self) -> list[float]:
@@ -163,6 +170,17 @@ class CycleEntry:
     def count(self) -> int:
         """Complete cycles."""
         return max(len(self.starts) - 1, 0)
+
+
+def main_cycle(cycles: dict[str, CycleEntry]) -> CycleEntry | None:
+    """The cycle a run's verdict quotes: the task's with the most complete cycles (ties: the first
+    task by name); None when no task completed one."""
+    best = None
+    for task in sorted(cycles):
+        entry = cycles[task]
+        if entry.count and (best is None or entry.count > best.count):
+            best = entry
+    return best
 
 
 @dataclass

@@ -7,12 +7,14 @@ the arm, which converts units and records the command in its motion queue (docs/
 The position of the instruction (file, line, column, program, task) goes with the command: the
 motion diagnostics (R010-R019) point at it.
 
-Errors (12.1): an invalid mdesc field stops the task at the instruction with 100-106 (R017), an
-arc that movec cannot define with 154 (R015), a joint or point of the other arm family (Rx on an
-RS/TS arm or the reverse) with 81 (R001); a command the arm cannot execute (target out of reach
-or outside the joint limits, a configuration change imposed on a line, a path through a
-singularity) is recorded, reported at its line, and the next motion instruction, waitEndMove(),
-open() or close() stops with 150.
+Errors (12.1; the table of docs/motion.md, "Runtime errors of 10.6"): what is known when the
+command is recorded stops the task at the instruction, nothing recorded: an invalid mdesc field
+with 100-106 (R017); a target outside the software limits, out of reach, or only in another
+configuration than a line or a circle allows, and a movec intermediate point it cannot pass, with
+154 (R010-R012); an arc that movec cannot define with 154 (R015); a joint or point of the other
+arm family (Rx on an RS/TS arm or the reverse) with 81 (R001). A command whose path the arm cannot
+follow (a joint limit, the workspace's edge or a singularity on the way) is recorded, reported at
+its line, and the next motion instruction, waitEndMove(), open() or close() stops with 150.
 
 Without an arm model the arm is idle: isEmpty(), isSettled(), resetMotion(), waitEndMove(),
 stopMove(), restartMove(), autoConnectMove(), getMoveId(), setMoveId() and getSpeed() act on it
@@ -135,9 +137,10 @@ def _record(task, unit, kind: str, target: Target, via: Target | None, tool: Too
     tool_m = _tool(tool)
     mm = millimeter_unit(unit)
     name = tool.name or ("flange" if tool.is_root else "")
+    loops = task.machine.loop_passes()  # which pass of which loops records it (the cycle)
     while True:
         try:
-            r = arm.record(kind, target, tool_m, mdesc, via, source, name, mm, clock.time_of(task))
+            r = arm.record(kind, target, tool_m, mdesc, via, source, name, mm, clock.time_of(task), loops)
         except MotionError as exc:
             rule = exc.finding.code if exc.finding is not None else None
             raise E(exc.code, exc.message, rule=rule) from None
@@ -276,15 +279,17 @@ def I_getpositionerr(task, unit) -> dict:
 
 def I_getjointforce(task, unit, forces) -> None:
     """10.6 getJointForce(nForce[]): the inverse dynamics of the commanded motion, when the arm
-    model has masses; the Stäubli models have none (not public): R002."""
+    model has masses; the Stäubli models have none (not public): R002. An array too small for
+    the arm's axes is error 70 first (10.6: "si le paramètre n'est pas un tableau de valeurs
+    numériques d'une taille suffisante"), whatever the model knows."""
     arm = _arm(task, "getJointForce")
+    if forces.size() < arm.axes:
+        raise E(70, f"getJointForce: the array holds {forces.size()} values for {arm.axes} axes")
     q = arm.sync(_now(task))
     f = q.joint_force(_now(task) / US)
     if f is None:
         raise SimLimit(ARM_LIMIT, "getJointForce", f"getJointForce needs the masses and inertias of the arm, which the "
                                                    f"model {arm.name} does not have (Stäubli does not publish them)")
-    if forces.size() < len(f):
-        raise E(70, f"getJointForce: the array holds {forces.size()} values for {len(f)} axes")
     for i, v in enumerate(f):
         forces.data[forces.off + i] = float(v)
 

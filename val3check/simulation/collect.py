@@ -91,13 +91,24 @@ def arm_run(machine: Machine, diags: list[Diagnostic]) -> ArmRun | None:
         src = f.source
         diags.append(Diagnostic(f.code, f.message, src.path, src.line, src.col, time_us=int(round(f.time * 1e6)),
                                 task=src.task, program=src.program, error=f.error))
-    records = motion_records(q)
+    records = motion_records(q, end_s)
     motions = [_entry(rec, command) for rec, command in zip(records, q.history)]
-    cycles = {task: CycleEntry(st.task, st.marker, tuple(st.starts)) for task, st in cycle_stats(records).items()}
+    cycles = {task: CycleEntry(st.task, st.marker, tuple(st.starts), st.loop and st.loop.program,
+                               st.loop and st.loop.kind, st.why, st.passes)
+              for task, st in _cycles(machine, arm, records, q.history).items()}
     busy, idle = busy_time(q.trajectory.profile, end_s)
     scene = arm_scene(arm.model, arm.initial_joints, machine.main.globals if machine.main is not None else {})
     tools = [ToolUse(*e, tcp_matrix=_matrix(e.tcp_in_flange)) for e in machine.recorder.tool_events]
     return ArmRun(scene, motions, cycles, q.trajectory, tools, busy, idle, end_s)
+
+
+def _cycles(machine: Machine, arm: MovingArm, records, commands) -> dict:
+    """Each task's cycle (motion/cycle.py): from the loops each command was recorded in and the
+    loops each task was in when the run ended."""
+    contexts = [arm.contexts.get(command.key, ()) for command in commands]
+    inside = {t.name: arm.context(t.final.loops) for t in machine.scheduler.history
+              if t.final is not None and t.final.loops}
+    return cycle_stats(records, contexts, inside)
 
 
 def _entry(rec, command) -> MotionEntry:

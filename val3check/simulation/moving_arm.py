@@ -41,7 +41,7 @@ from ..interpretation.arm_port import Joints
 from ..interpretation.scheduler import EndRun
 from ..language.runtime_errors import Val3RuntimeError
 from ..motion.commands import MoveCommand, Target
-from ..motion.cycle import CycleCounter
+from ..motion.cycle import Context, CycleCounter, Loop, Pass
 from ..motion.findings import MotionError, Source
 from ..motion.mdesc import MDesc
 from ..motion.queue import MotionQueue, QueueFull
@@ -63,6 +63,9 @@ class MovingArm(ModelArm):
         self.counter = CycleCounter()
         self.cycles_goal = cycles  # --cycles N: the run ends when the arm starts cycle N + 1
         self._end_command = None  # that command, once recorded
+        self.contexts: dict[int, Context] = {}  # command key -> the loops it was recorded in
+        self._entries: dict[int, tuple[Any, int]] = {}  # id(pass counter) -> (it, entry number)
+        self._entry_count: dict[Loop, int] = {}
         self.prismatic = tuple(k == "prismatic" for k in (getattr(model, "joint_kinds", None) or ())) \
             if model is not None else ()
         self._readers: list[Callable[[int, bool], None]] = []  # `watch`
@@ -208,10 +211,11 @@ class MovingArm(ModelArm):
     # ---- for the chapter 10 handlers -------------------------------------------------------------------
 
     def record(self, kind: str, target: Target, tool_in_flange, md: dict, via: Target | None, source: Source,
-               tool_name: str, millimeter_unit: bool, time_us: int):
+               tool_name: str, millimeter_unit: bool, time_us: int, loops: tuple = ()):
         """movej/movel/movec: the command's identifier, or QueueFull. Poses of `target`/`via`
         and `tool_in_flange` are 4x4 matrices in the caller's length unit; joints too (a
-        SCARA's axis 3). Raises MotionError (mdesc 100-106, 154, 150, 81)."""
+        SCARA's axis 3); `loops`: the loops the instruction runs in (Machine.loop_passes).
+        Raises MotionError (mdesc 100-106, 154, 150, 81)."""
         q = self.sync(time_us)
         s = 1.0 if millimeter_unit else INCH_MM
         target = self._target_in_mm(target, s)
@@ -225,13 +229,28 @@ class MovingArm(ModelArm):
         r = q.record(move, time_us / US)
         if not isinstance(r, QueueFull):
             task = source.task
-            self.counter.note(task, source)
+            context = self.context(loops)
+            self.contexts[q.history[-1].key] = context
+            self.counter.note(task, context)
             if self.cycles_goal is not None and self._end_command is None and \
                     self.counter.completed(task) >= self.cycles_goal:
                 self._end_command = q.history[-1]
             for reader in self._readers:
                 reader(time_us, False)
         return r
+
+    def context(self, loops: tuple) -> Context:
+        """The loops of Machine.loop_passes as motion.cycle passes: each loop statement with the
+        number of its entry (the n-th pass counter seen for it) and the pass."""
+        out = []
+        for compiled, site, counter in loops:
+            loop = Loop(compiled.path, site.line, site.col, compiled.name, site.kind)
+            seen = self._entries.get(id(counter))
+            if seen is None or seen[0] is not counter:
+                n = self._entry_count[loop] = self._entry_count.get(loop, 0) + 1
+                seen = self._entries[id(counter)] = (counter, n)  # kept: its id is not reused
+            out.append(Pass(loop, seen[1], int(counter[0])))
+        return tuple(out)
 
     def _target_in_mm(self, tg: Target, s: float) -> Target:
         """`tg` with its lengths (and a SCARA's axis 3) in mm: `s` millimetres per unit."""

@@ -53,6 +53,7 @@ class ProgramCompiler(StatementCompiler, CallCompiler, ExpressionCompiler, Varia
         self.ctx: tuple[int, int, int] | None = None
         self.bpos: dict[int, tuple[int, int, int] | None] = {}
         self.sw_flags: list[str] = []
+        self.loops: list = []  # structures.LoopSite (statements.py: loop_start, loop_end)
 
     # ---- output -------------------------------------------------------------------------------
 
@@ -150,7 +151,7 @@ class ProgramCompiler(StatementCompiler, CallCompiler, ExpressionCompiler, Varia
         source = head + "\n" + "\n".join(self.out) + "\n"
         filename = f"<val3 {self.unit.uid}:{prog.name}>"
         return Compiled(prog.name, None, prog.parameters, self.pos, prog.origin.path, filename, fb, source,
-                        bpos=self.bpos)
+                        bpos=self.bpos, loops=self.loops)
 
     def default_code(self, t: str, name: str = "") -> str:
         b = base_type(t)

@@ -18,7 +18,7 @@ from ...loading.model import Container
 from ...loading.types import base_type
 from ...parsing import ast
 from ..values import NODE_TYPES
-from .structures import Code, CompileError
+from .structures import Code, CompileError, LoopSite
 
 
 # A budget on the Python the compiler writes: 150,000 lines (about 15,000 VAL 3 lines in one
@@ -36,6 +36,7 @@ class _Mark(NamedTuple):
     ctx: tuple | None
     level: int
     sw_flags: int
+    loops: int
 
 
 class StatementCompiler:
@@ -146,7 +147,7 @@ class StatementCompiler:
         self.at(s)
         ts = type(s)
         mark = _Mark(len(self.out), self.ind, self.loop_depth, self.in_switch, self.ctx, self.level,
-                     len(self.sw_flags))
+                     len(self.sw_flags), len(self.loops))
         try:
             if ts is ast.Assign:
                 self.line()
@@ -195,6 +196,7 @@ class StatementCompiler:
             self.ind, self.loop_depth, self.in_switch = mark.ind, mark.loop_depth, mark.in_switch
             self.ctx, self.level = mark.ctx, mark.level
             del self.sw_flags[mark.sw_flags:]
+            del self.loops[mark.loops:]
             self.at(s)
             self.line()
             self.guarded([f"NOTSIM({str(exc)!r})"], True)
@@ -311,21 +313,45 @@ class StatementCompiler:
             self.emit("pass")
         self.ind -= depth
 
+    # A loop counts its passes in a local list (`_lN = [0]`, new at each entry, `_lN[0] += 1` at
+    # each pass): a motion instruction reads which pass of which loops records it (the cycle of
+    # docs/motion.md). The site spans the Python lines of the loop (structures.LoopSite).
+
+    def loop_start(self, s, kind: str) -> int:
+        """The loop's counter, before its first line: the index of its site."""
+        k = len(self.loops)
+        self.emit(f"_l{k} = [0]")
+        self.loops.append(LoopSite(kind, s.line, s.col, len(self.out) + 2, 0, f"_l{k}"))
+        return k
+
+    def loop_pass(self, k: int) -> None:
+        """One more pass of loop `k`."""
+        self.emit(f"_l{k}[0] += 1")
+
+    def loop_end(self, k: int) -> None:
+        """The last Python line of loop `k`."""
+        self.loops[k] = self.loops[k]._replace(py_last=len(self.out) + 1)
+
     def while_stmt(self, s: ast.While) -> None:
+        k = self.loop_start(s, "while")
         self.emit("while 1:")
         self.ind += 1
         self.at(s)
         self.line()
         self.guarded([f"_c = {self.cond(s.cond)}"], False)
         self.emit("if not _c: break")
+        self.loop_pass(k)
         self.loop_depth += 1
         self.block(s.body)
         self.loop_depth -= 1
         self.ind -= 1
+        self.loop_end(k)
 
     def do_stmt(self, s: ast.DoUntil) -> None:
+        k = self.loop_start(s, "do")
         self.emit("while 1:")
         self.ind += 1
+        self.loop_pass(k)
         self.loop_depth += 1
         self.block(s.body)
         self.loop_depth -= 1
@@ -334,6 +360,7 @@ class StatementCompiler:
         self.guarded([f"_c = {self.cond(s.cond)}"], False)
         self.emit("if _c: break")
         self.ind -= 1
+        self.loop_end(k)
 
     def for_stmt(self, s: ast.For) -> None:
         n = self.fresh("f")
@@ -344,11 +371,13 @@ class StatementCompiler:
         stop = self.num(s.stop)
         step = self.num(s.step) if s.step is not None else "1.0"
         self.guarded([f"{n}b = {stop}", f"{n}s = {step}", f"{place} = {start}"], False)
+        site = self.loop_start(s, "for")
         self.emit("while 1:")
         self.ind += 1
         # 2.2.5: positive step: stop when the counter is above nFin; negative: below
         self.guarded([f"_c = ({place} > {n}b) if {n}s >= 0 else ({place} < {n}b)"], False)
         self.emit("if _c: break")
+        self.loop_pass(site)
         self.loop_depth += 1
         self.block(s.body)
         self.loop_depth -= 1
@@ -356,6 +385,7 @@ class StatementCompiler:
         self.line()
         self.guarded([f"{place} = {place} + {n}s"], False)
         self.ind -= 1
+        self.loop_end(site)
 
     def switch_stmt(self, s: ast.Switch) -> None:
         n = self.fresh("k")

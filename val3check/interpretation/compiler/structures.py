@@ -86,6 +86,20 @@ class VarInfo:
     space: TypeSpace | None = None  # where the type's name is resolved
 
 
+class LoopSite(NamedTuple):
+    """A loop statement of a program (while, do, for: 2.2.5) in the generated code: where it is
+    written, the Python lines it spans, and the local `var`, a one-element list counting the
+    passes of the current entry (a new list each time the loop is entered). What a motion
+    instruction reads to know which pass of which loops records it (machine.loop_passes)."""
+
+    kind: str  # "while" | "do" | "for"
+    line: int
+    col: int
+    py_first: int
+    py_last: int
+    var: str
+
+
 @dataclass
 class Compiled:
     """One program, ready to run."""
@@ -101,3 +115,4 @@ class Compiled:
     error: CompileError | None = None
     # python line -> (sequence, index, length) of the VAL 3 instruction (taskResume jumps)
     bpos: dict = field(default_factory=dict)
+    loops: list[LoopSite] = field(default_factory=list)  # in the order they are written

@@ -60,16 +60,17 @@ def _motions(report: Any, m: Any, end: float, clearances: dict) -> list[dict]:
     cell (`clearances`: position in m.motions -> MotionReport)."""
     out = []
     for k, motion in enumerate(m.motions):
-        if motion.start is None or motion.end is None or motion.start > end:
+        if motion.start is None or motion.start > end:
             continue  # failed before it moved (its diagnostic says why), or not started within the run
+        stop = end if motion.end is None else min(motion.end, end)  # None: under way when the run ended
         src = motion.source
         where = report.display((src.path, src.line, src.col, ""))
         limits = motion.limits  # None: a connection move
         entry = {
             "id": len(out) + 1, "kind": motion.kind, "path": where[0] if where else None, "line": src.line or None,
             "column": src.col or None, "task": src.task or None, "target": motion.target or None,
-            "start": _r(motion.start), "end": _r(min(motion.end, end)),
-            "duration": _r(min(motion.end, end) - motion.start), "dominant_limit": motion.dominant_limit or None,
+            "start": _r(motion.start), "end": _r(stop),
+            "duration": _r(stop - motion.start), "dominant_limit": motion.dominant_limit or None,
             "vel": _r(limits.vel, 3) if limits is not None else None,
             "tvel": _r(limits.tvel, 3) if limits is not None and limits.tvel is not None else None,
             "min_clearance": None, "clearance_to": None,
@@ -102,36 +103,38 @@ def _cycles(report: Any, m: Any, end: float) -> tuple[list[dict], dict | None]:
         if st.marker is None or not st.starts:
             continue
         where = report.display((st.marker[0], st.marker[1], st.marker[2], ""))
-        loops.append({"task": task, "path": where[0], "line": st.marker[1], "starts": list(st.starts)})
+        loops.append({"task": task, "loop": st.kind, "path": where[0], "line": st.marker[1],
+                      "starts": list(st.starts)})
     return cycles_model(loops, end)
 
 
 def cycles_model(loops: list[dict], end: float) -> tuple[list[dict], dict | None]:
-    """The page's cycles and the verdict's cycle time, from each looping task's `task`, `path`
-    and `line` of the loop's first motion and `starts` (when the arm started it, each pass; and
-    `times` between them, when given): the iterations (the last one cut by the end of the run),
-    and the median of the task with the most complete cycles."""
+    """The page's cycles and the verdict's cycle time, from each looping task's `task`, `loop`
+    (while, do, for), `path` and `line` of its cycle's loop statement and `starts` (when the arm
+    started each pass; and `times` between them, when given): the iterations (the last one cut by
+    the end of the run), and the median of the task with the most complete cycles (ties: the
+    first task by name, as simulation.arm_record.main_cycle)."""
     cycles, best = [], None
-    for loop in loops:
+    for loop in sorted(loops, key=lambda c: c["task"]):
         starts = loop["starts"]
-        if not starts:
+        if not starts or loop.get("path") is None or loop.get("line") is None:
             continue
         name = Path(loop["path"]).name
         times = loop.get("times") or [b - a for a, b in pairwise(starts)]
         its = [{"start": _r(a), "duration": _r(d), "complete": True} for a, d in zip(starts, times)]
         if starts[-1] < end:
             its.append({"start": _r(starts[-1]), "duration": _r(end - starts[-1]), "complete": False})
+        what = f"{loop['loop']} loop" if loop.get("loop") else "loop"
         cycles.append({"task": loop["task"], "path": loop["path"], "line": loop["line"],
-                       "label": f"from the motion at line {loop['line']} of {name}", "iterations": its})
-        if len(starts) > 1 and (best is None or len(starts) > len(best["starts"])):
-            best = loop
+                       "label": f"{what} at line {loop['line']} of {name}", "iterations": its})
+        if times and (best is None or len(times) > len(best[1])):
+            best = (loop, times, what, name)
     cycle_time = None
     if best is not None:
-        st = best["starts"]
-        times = best.get("times") or [b - a for a, b in pairwise(st)]
-        cycle_time = {"seconds": _r(statistics.median(times)), "task": best["task"],
-                      "basis": f"median of {len(times)} complete cycles of task {best['task']} (from the motion at "
-                               f"line {best['line']} of {Path(best['path']).name})"}
+        loop, times, what, name = best
+        cycle_time = {"seconds": _r(statistics.median(times)), "task": loop["task"],
+                      "basis": f"median of {len(times)} complete cycles of task {loop['task']} (the {what} at "
+                               f"line {loop['line']} of {name})"}
     return cycles, cycle_time
 
 
