@@ -111,15 +111,16 @@ def _motions(motion: dict, collision: dict | None, end: float) -> list[dict]:
     closest = {c["motion"]: c.get("min_clearance") for c in (collision or {}).get("motions", [])}
     out = []
     for k, mo in enumerate(motion.get("motions", [])):
-        if mo.get("start") is None or mo.get("end") is None or mo["start"] > end:
+        if mo.get("start") is None or mo["start"] > end:
             continue  # failed before it moved (its diagnostic says why), or not started within the run
+        stop = end if mo.get("end") is None else min(mo["end"], end)  # None: under way when the run ended
         c = closest.get(k)
         out.append({
             "id": len(out) + 1, "kind": mo["kind"], "path": mo.get("path"), "line": mo.get("line"),
             "column": mo.get("column"), "task": mo.get("task"), "target": mo.get("target"),
-            "start": _r(mo["start"]), "end": _r(min(mo["end"], end)),
-            "duration": _r(mo["duration"] if mo["end"] <= end and mo.get("duration") is not None
-                           else min(mo["end"], end) - mo["start"]),
+            "start": _r(mo["start"]), "end": _r(stop),
+            "duration": _r(mo["duration"] if mo.get("end") is not None and mo["end"] <= end
+                           and mo.get("duration") is not None else stop - mo["start"]),
             "dominant_limit": mo.get("dominant_limit"), "vel": None, "tvel": None,
             "min_clearance": _r(c["mm"], 3) if c else None,
             "clearance_to": _obstacle_of(c["body_a"], c["body_b"]) if c else None,
