@@ -519,7 +519,12 @@ def _reach(args: argparse.Namespace) -> int:
     """`val3check reach`: no run; 1 when a finding is at or above --fail-on (as lint)."""
     from .loading import LoadOptions, load
     from .robot import RobotError, choose_robot
+    from .simulation.requirements import install_hint, missing_sim_packages
 
+    missing = missing_sim_packages()  # the reach check computes with the sim extra (numpy): none on a light install
+    if missing:
+        print(f"val3check: error: {install_hint(missing, 'reach')}", file=sys.stderr)
+        return EXIT_USAGE
     ws, _diags = load([args.app], LoadOptions(disk_roots=[os.path.abspath(d) for d in args.disk_root]))
     apps = [ws.apps[k] for k in ws.targets]
     if len(apps) != 1:
