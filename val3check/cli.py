@@ -273,7 +273,6 @@ def _sim(args: argparse.Namespace) -> int:
 
         return run_batch(args, settings, __version__, _write)
 
-    from .diagnostics import Severity
     from .reporting import render
     from .simulation import case as sim_case
 
@@ -321,15 +320,17 @@ def _sim(args: argparse.Namespace) -> int:
     from .reporting.sim_report import build_report
     from .rules.catalogue import catalogue
 
+    from .reporting.sim_verdict import closing_line, failed
+
     report = build_report(done.result, settings, catalogue(), __version__)
     if not _write(render_sim(args.format, report, fail_on=settings.fail_on, scenario=args.scenario), args.output):
         return EXIT_USAGE
     if args.trace and not _write_trace(report, args.trace):
         return EXIT_USAGE
-    if settings.fail_on == "never":
-        return EXIT_OK
-    threshold = Severity.parse(settings.fail_on)
-    return EXIT_FINDINGS if any(d.severity >= threshold for d in report.diagnostics) else EXIT_OK
+    written = [_shown(p) for p in (args.output, args.trace) if p and p != "-"]
+    if written or args.format != "text":  # the text report on standard output ends with the line itself
+        print(f"val3check sim: {closing_line(report, settings.fail_on, written)}", file=sys.stderr)
+    return EXIT_FINDINGS if failed(report, settings.fail_on) else EXIT_OK
 
 
 def _write_trace(report, path: str) -> bool:

@@ -234,13 +234,80 @@ def test_dask_local_cluster_gives_the_same_summary(cell, capsys):
     assert out == serial and len(cases_of(out)) == 12
 
 
-def test_dask_needs_a_scheduler_and_says_so(cell, capsys):
-    code, _, err = sim(capsys, *ARGS, "--executor", "dask")
-    assert code == 2 and "--executor dask needs --scheduler" in err
+def test_scheduler_and_jobs_go_with_their_executor(cell, capsys):
     code, _, err = sim(capsys, *ARGS, "--scheduler", "tcp://127.0.0.1:8786")
     assert code == 2 and "--scheduler goes with --executor dask" in err
     code, _, err = sim(capsys, *ARGS, "--executor", "dask", "--scheduler", "tcp://127.0.0.1:8786", "-j", "2")
-    assert code == 2 and "--jobs is for the local executor" in err
+    assert code == 2 and "with a scheduler, the workers' processes set the parallelism" in err
+
+
+@pytest.mark.dask
+def test_dask_without_a_scheduler_starts_a_local_cluster_as_dask_does(cell, capsys, monkeypatch):
+    """Issue 28 item 7: `--executor dask` alone runs on a local cluster (Dask's `Client()`), its
+    summary the same as `-j 1`'s; the progress line says what it starts before any case ends."""
+    pytest.importorskip("distributed")
+    import dask
+
+    from val3check.batch import command
+
+    monkeypatch.delenv("DASK_SCHEDULER_ADDRESS", raising=False)
+    args = ["apps/*", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST, "--format", "json"]
+    _, serial, _ = sim(capsys, *args, "-j", "1")
+    shown = []
+    monkeypatch.setattr(command, "Progress", lambda total: _Recorded(total, shown))
+    with dask.config.set({"scheduler-address": None}):
+        code, out, err = sim(capsys, *args, "--executor", "dask", "-j", "2")
+    assert code == 0, err
+    assert out == serial and len(cases_of(out)) == 2
+    lines = "".join(shown).split("\r\x1b[K")
+    assert lines[1] == "0/2 cases, 0 failed, 0:00 elapsed: starting a local Dask cluster of 2 worker process(es)"
+    assert "running on 2 Dask worker processes" in lines[2]
+
+
+@pytest.mark.dask
+def test_dask_without_a_scheduler_takes_the_one_dask_s_configuration_names(cell, capsys, monkeypatch):
+    """DASK_SCHEDULER_ADDRESS (Dask's configuration key scheduler-address): that cluster, no local one."""
+    distributed = pytest.importorskip("distributed")
+    import dask
+
+    args = ["apps/A", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST, "--format", "json"]
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None) as lc:
+        def no_local_cluster(*a, **k):
+            raise AssertionError("a local cluster was started although Dask's configuration names a scheduler")
+
+        monkeypatch.setattr(distributed, "LocalCluster", no_local_cluster)
+        with dask.config.set({"scheduler-address": lc.scheduler_address}):
+            code, out, err = sim(capsys, *args, "--executor", "dask")
+            assert code == 0, err
+            assert [c["verdict"] for c in cases_of(out)] == ["pass"]
+            code, _, err = sim(capsys, *args, "--executor", "dask", "-j", "2")
+            assert code == 2 and "with a scheduler, the workers' processes set the parallelism" in err
+
+
+class _Recorded(Progress):
+    """The batch's progress line as a terminal would show it, recorded."""
+
+    def __init__(self, total: int, shown: list) -> None:
+        import io
+
+        class Terminal(io.StringIO):
+            def write(self, text: str) -> int:
+                shown.append(text)
+                return len(text)
+
+        super().__init__(total, Terminal(), enabled=True)
+
+
+def test_the_batch_shows_its_phase_before_the_first_case_ends(cell, capsys, monkeypatch):
+    """Issue 28 item 3: the first seconds of a batch (processes starting, the first cases) show a line."""
+    from val3check.batch import command
+
+    shown = []
+    monkeypatch.setattr(command, "Progress", lambda total: _Recorded(total, shown))
+    assert sim(capsys, "apps/*", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST, "-j", "1")[0] == 0
+    lines = [x for x in "".join(shown).split("\r\x1b[K") if x]
+    assert lines[0] == "0/2 cases, 0 failed, 0:00 elapsed: running on 1 process"
+    assert lines[1].startswith("1/2 cases, 0 failed") and lines[1].endswith(": running on 1 process")
 
 
 def test_dask_chunks_keep_a_few_tasks_per_worker():

@@ -20,7 +20,7 @@ import re
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, Callable
 
 import numpy as np
 
@@ -194,12 +194,14 @@ def _read(machine: Any, name: str, kind: type) -> np.ndarray | None:
 def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, cell_path: str | None = None,
               cell_found: str = "none", app_unit_mm: float = 1.0, io_log=(),
               link_names: dict | None = None, app_path: str = "",
-              max_wall: float = math.inf) -> tuple[CollisionRun | None, list[Diagnostic]]:
+              max_wall: float = math.inf,
+              on_motion: Callable[[int, int], None] | None = None) -> tuple[CollisionRun | None, list[Diagnostic]]:
     """Check every motion of `motion` (the run's arm_record.ArmRun, on the arm `model`, a
     robot.RobotModel) in `cell` (None: the arm against itself only), with the grippers' events and the parts taken away (`cleared_by`, from
     the run's `io_log`; `link_names`: (kind, link) -> the globals linked to it); (CollisionRun,
     diagnostics R031-R036), or (None, [R037]) when there is nothing to check the motions with or
-    the arm's solids cannot be read. The checks stop (R037) after `max_wall` seconds of wall clock."""
+    the arm's solids cannot be read. The checks stop (R037) after `max_wall` seconds of wall clock.
+    `on_motion(done, total)` is told before each motion is checked (the progress display)."""
     from ..robot import RobotError
 
     name = motion.scene.name
@@ -231,6 +233,8 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
 
     deadline = time.monotonic() + max_wall
     for done, (index, start, end) in enumerate(spans):
+        if on_motion is not None:
+            on_motion(done, len(spans))
         if time.monotonic() > deadline:
             diags.append(_not_checked(f"collision checks cut short by the wall-clock budget (--max-wall "
                                       f"{max_wall:g} s): {done} of {len(spans)} motions checked, up to {start:.3f} s",
