@@ -58,7 +58,7 @@ def _add_batch(sim: argparse.ArgumentParser) -> None:
     b.add_argument("--sweep", metavar="FILE", help="sweep file (TOML): the applications, arms, scenarios, cells and overrides to combine")
     b.add_argument("-j", "--jobs", type=int, metavar="N", help="cases run at once in processes on this machine (default: the number of cores)")
     b.add_argument("--executor", choices=("local", "dask"), default="local", help="where cases run: local processes, or a Dask cluster (the dask extra)")
-    b.add_argument("--scheduler", metavar="ADDRESS", help="the Dask scheduler's address, tcp://host:8786 (with --executor dask)")
+    b.add_argument("--scheduler", metavar="ADDRESS", help="the Dask scheduler's address, tcp://host:8786 (with --executor dask; default: DASK_SCHEDULER_ADDRESS, else a local cluster of -j processes)")
     b.add_argument("--out-dir", metavar="DIR", help="write the summary (text, JSON, JUnit, index.html) and each case's report under DIR")
     b.add_argument("--fail-fast", action="store_true", help="stop at the first case that does not pass")
     b.add_argument("--case-reports", default="json", metavar="KINDS", help="what --out-dir writes for each case, comma-separated: json, html, trace (default: json)")
