@@ -318,9 +318,8 @@ def _sim(args: argparse.Namespace) -> int:
         return EXIT_USAGE
     from .reporting.sim_render import render_sim
     from .reporting.sim_report import build_report
-    from .rules.catalogue import catalogue
-
     from .reporting.sim_verdict import closing_line, failed
+    from .rules.catalogue import catalogue
 
     report = build_report(done.result, settings, catalogue(), __version__)
     if not _write(render_sim(args.format, report, fail_on=settings.fail_on, scenario=args.scenario), args.output):
@@ -414,8 +413,8 @@ def _lint(args: argparse.Namespace) -> int:
     if settings is None:
         return EXIT_USAGE
     if args.show_settings or args.show_files:
-        from .reporting.settings import render_files, render_settings
         from .lint import discover
+        from .reporting.settings import render_files, render_settings
         from .rules.catalogue import catalogue
 
         found = discover(paths, settings)
@@ -556,8 +555,8 @@ def _reach(args: argparse.Namespace) -> int:
 
 def _robots(args: argparse.Namespace) -> int:
     """`val3check robots`: the catalogue, or one model in detail (val3check/robot)."""
-    from .robot import RobotError, load_robot, names
     from .reporting.robot_text import render_detail, render_list
+    from .robot import RobotError, load_robot, names
     from .robot.catalog import known_without_model
 
     args.robot = args.robot or args.robot_opt

@@ -18,9 +18,10 @@ from __future__ import annotations
 import math
 import re
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 import numpy as np
 
@@ -90,7 +91,7 @@ def choose_cell(option: str | None, app_path: str) -> tuple[str | None, str]:
     return (str(found), "found") if found is not None else (None, "none")
 
 
-def load_cell(path: str, app, found: bool = False, budget=None,  # noqa: ANN001
+def load_cell(path: str, app, found: bool = False, budget=None,
               out_of_time=None) -> tuple[Cell | None, list[Diagnostic]]:
     """Read a cell file for the application `app` (loading.model.Application): (cell, []) or
     (None, R030 diagnostics at every problem's line and column). `found`: beside the application
