@@ -105,7 +105,13 @@ def _cycles(report: Any, m: Any, end: float) -> tuple[list[dict], dict | None]:
         where = report.display((st.marker[0], st.marker[1], st.marker[2], ""))
         loops.append({"task": task, "loop": st.kind, "path": where[0], "line": st.marker[1],
                       "starts": list(st.starts)})
-    return cycles_model(loops, end)
+    cycles, cycle_time = cycles_model(loops, end)
+    if cycle_time is not None and m.acceleration_range is not None:
+        spread = m.acceleration_range.cycle_time(cycle_time["task"])
+        if spread is not None:  # issue 23: the model assumes the accelerations
+            cycle_time["range"] = [_r(spread[0]), _r(spread[1])]
+            cycle_time["off_by"] = m.acceleration_range.off_by
+    return cycles, cycle_time
 
 
 def cycles_model(loops: list[dict], end: float) -> tuple[list[dict], dict | None]:
