@@ -93,18 +93,20 @@ def _pickplace_json(capsys, *extra: str) -> dict:
 
 
 def test_the_bundled_example_s_json_gives_its_motions_cycles_and_trajectory(capsys):
-    """Issue 28 item 4: the page of a JSON report holding 111 motions, 18 cycles and the
-    trajectory says so, not "No motion in this run" nor "the arm did not move"."""
+    """Issue 28 item 4: the page of a JSON report holding over a hundred motions, 18 or more
+    cycles and the trajectory says so, not "No motion in this run" nor "the arm did not move"."""
     report = _pickplace_json(capsys)
     model = model_from_sim_report(report)
     check_model(model)
     runs = [m for m in report["motion"]["motions"] if m["start"] is not None]
-    assert len(model["motions"]) == len(runs) == 111
+    assert len(model["motions"]) == len(runs) > 100
     (loop,) = model["cycles"]  # the main task records its motions outside any loop: no cycle
     (robot,) = [c for c in report["motion"]["cycles"] if c["starts"]]
-    assert sum(it["complete"] for it in loop["iterations"]) == 18 == robot["cycles"]
+    n = robot["cycles"]
+    assert sum(it["complete"] for it in loop["iterations"]) == n >= 18
     ct = model["verdict"]["cycle_time"]
-    assert ct["seconds"] == robot["median"] and "median of 18 complete cycles" in ct["basis"]
+    # the JSON rounds each time to 1e-6 s: the median of the rounded times is within 1e-6 of its own
+    assert ct["seconds"] == pytest.approx(robot["median"], abs=2e-6) and f"median of {n} complete cycles" in ct["basis"]
     assert "while loop at line 9 of cycle.pgx" in ct["basis"]
     tr = model["trajectory"]
     assert len(tr["times"]) == 15001 and tr["times"][-1] == 60.0 and max(tr["tcp_speed"]) > 1000
