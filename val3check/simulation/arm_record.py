@@ -158,16 +158,16 @@ class PoseChange:
 @dataclass(frozen=True)
 class PartSpan:
     """A part of the cell file (docs/cell.md) over [start, end) (end None: to the end of the run):
-    `carried` on the flange from its tool's grasp instruction (`poses` in the flange), or left in
-    the cell (`poses` in world) until taken again or away (`cleared_by`). `poses`: one 4x4 (mm) per
-    solid of the part, in the order the cell file writes them."""
+    `carried` on the flange from its tool's grasp instruction, or left in the cell until taken
+    again or away (`cleared_by`). `pose` (4x4 mm): the part's frame, its tool's frame when it was
+    taken (its solids are at their `at` in it), in the flange while carried, else in world."""
 
     name: str
     tool: str
     carried: bool
     start: float
     end: float | None
-    poses: tuple[np.ndarray, ...]
+    pose: np.ndarray
 
 
 @dataclass(frozen=True)

@@ -34,7 +34,7 @@ class TimelineLog:
         self.frames: dict[str, list[PoseChange]] = {}
         self.tools: dict[str, list[PoseChange]] = {}
         self.tool_solids = {t.tool for t in cell.tools if t.tool != "flange"}
-        self.spans: list[dict] = []  # open and closed spans: name, tool, carried, start, end, poses, bodies
+        self.spans: list[dict] = []  # open and closed spans: name, tool, carried, start, end, pose, bodies (left: ids of its solids in the checker)
         self._carried: set[str] = set()
         self._left: set[int] = set()
 
@@ -80,16 +80,11 @@ class TimelineLog:
         self._carried = carried
         self._left = left_now
 
-    def _solids(self, name: str) -> list:
-        return [p for p in self.cell.parts if p.name == name]
-
     def _take(self, name: str, t: float) -> None:
-        solids = self._solids(name)
-        tool = solids[0].tool
-        T = np.eye(4) if tool == "flange" else self.watch.tool(tool, t)
-        T = np.eye(4) if T is None else as_matrix(T, self.unit)
+        tool = next(p.tool for p in self.cell.parts if p.name == name)
+        T = None if tool == "flange" else self.watch.tool(tool, t)  # the checker took it: the tool has a value
         self.spans.append({"name": name, "tool": tool, "carried": True, "start": float(t), "end": None,
-                           "poses": tuple(T @ p.pose for p in solids), "bodies": set()})
+                           "pose": np.eye(4) if T is None else as_matrix(T, self.unit), "bodies": set()})
 
     def _leave(self, name: str, t: float, bodies: set[int]) -> None:
         span = next(s for s in reversed(self.spans) if s["carried"] and s["name"] == name and s["end"] is None)
@@ -97,12 +92,12 @@ class TimelineLog:
         scene = self.run.scene
         F = scene.kinematics.link_poses(self.run.trajectory.position(t))[scene.flange_frame]
         self.spans.append({"name": name, "tool": span["tool"], "carried": False, "start": float(t), "end": None,
-                           "poses": tuple(F @ P for P in span["poses"]), "bodies": bodies})
+                           "pose": F @ span["pose"], "bodies": bodies})
 
     def timeline(self) -> CellTimeline:
         """What was logged, as the run's record keeps it."""
         spans = sorted(self.spans, key=lambda s: s["start"])  # stable: a part left, then taken again
         return CellTimeline({k: tuple(v) for k, v in sorted(self.frames.items())},
                             {k: tuple(v) for k, v in sorted(self.tools.items())},
-                            tuple(PartSpan(s["name"], s["tool"], s["carried"], s["start"], s["end"], s["poses"])
+                            tuple(PartSpan(s["name"], s["tool"], s["carried"], s["start"], s["end"], s["pose"])
                                   for s in spans))
