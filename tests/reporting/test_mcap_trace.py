@@ -24,7 +24,7 @@ FOXGLOVE = {"foxglove.FrameTransforms", "foxglove.PoseInFrame", "foxglove.SceneU
 
 @pytest.fixture(scope="module")
 def run():
-    return pickplace(20.0)
+    return pickplace(20.0, str(CELL))  # its collisions checked: the parts carried and left
 
 
 @pytest.fixture(scope="module")
@@ -34,13 +34,14 @@ def trace(run, tmp_path_factory):
     rec = next(r for r in result.motion.motions if r.id is not None and r.start is not None)
     checked = MotionReport(MotionSpan(rec.id), np.array([rec.start, rec.start + 0.004, rec.start + 0.008]),
                            np.array([80.0, 75.5, np.inf]), np.array([False, True, False]), margin_mm=10.0)
-    result.collision = SimpleNamespace(cell=read_cell(CELL), by_motion={result.motion.motions.index(rec): checked})
-    rec.clearance = checked  # the motion's clearances slot (simulation/arm_record.py)
+    kept = [r.clearance for r in result.motion.motions]
+    for r in result.motion.motions:  # one motion's clearances slot (simulation/arm_record.py), known values
+        r.clearance = checked if r is rec else None
     try:
         write_trace(report, str(path))
     finally:
-        del result.collision
-        rec.clearance = None
+        for r, c in zip(result.motion.motions, kept):
+            r.clearance = c
     with open(path, "rb") as f:
         reader = make_reader(f)
         summary = reader.get_summary()
