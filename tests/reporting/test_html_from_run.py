@@ -152,8 +152,8 @@ def test_cell_obstacles_tool_solids_and_clearance(run):
     assert not any("No cell file" in s for s in model["limitations"])
     assert model["scene"]["parts"] == []
     assert [s for s in model["limitations"] if "collision checks did not run" in s] == [
-        "The collision checks did not run: obstacles placed in application frames are drawn where those frames "
-        "are at the end of the run.",
+        ("The collision checks did not run: obstacles placed in application frames are drawn where those frames "
+         "are at the end of the run."),
         "The collision checks did not run: the parts of the cell file (what the tool carries) are not drawn."]
     assert "pallet" in render(model)
 
