@@ -3,9 +3,12 @@ held to the run it comes from, to the arm model, or to the cell file."""
 
 from __future__ import annotations
 
+import json
 import statistics
+from pathlib import Path
 from types import SimpleNamespace
 
+import jsonschema
 import numpy as np
 import pytest
 
@@ -15,6 +18,8 @@ from val3check.collision.records import Clearance, MotionReport, MotionSpan
 from val3check.reporting.html import check_model, render
 from val3check.reporting.html.from_run import model_from_run
 from val3check.robot import load_robot
+
+SCHEMA = json.loads((Path(__file__).resolve().parents[2] / "docs" / "html-report.schema.json").read_text(encoding="utf-8"))
 
 
 @pytest.fixture(scope="module")
@@ -164,6 +169,7 @@ def test_frames_and_parts_as_the_collision_checks_placed_them(tmp_path):
     result, report = moving_run(tmp_path)
     model = model_from_run(report)
     check_model(model)
+    jsonschema.Draft202012Validator(SCHEMA).validate(model)
     assert not [d for d in result.diagnostics if d.code.startswith("R03")]
     assert not any("frames" in s or "parts" in s for s in model["limitations"]), model["limitations"]
     scene = model["scene"]
