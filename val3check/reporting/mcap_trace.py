@@ -458,7 +458,7 @@ def _cell(out: "_Messages", cell: Any, m: Any, frames: dict, tracks: dict) -> No
             {"timestamp": _stamp(ns), "type": 0, "id": ident})
 
     solids = [(world, f"obstacle/{o.name}", "obstacle", o, o.frame.replace(" ", "")) for o in cell.obstacles]
-    solids += [(flange, f"tool/{t.name}", "tool", t, t.tool) for t in cell.tools]
+    solids += [(flange, f"tool/{t.name}", "tool", t, t.tool.replace(" ", "")) for t in cell.tools]
     for frame, ident, what, solid, on in solids:
         fixed = on in ("world", "flange")
         for k, (ns, base) in enumerate(_placed(_ns, np.eye(4) if fixed else frames.get(on),

@@ -173,10 +173,11 @@ class PartSpan:
 @dataclass(frozen=True)
 class CellTimeline:
     """The cell as the collision checks placed it over the run, as changes (a long run grows it by
-    what changes, not by its length): `frames` {name as the cell writes it: (PoseChange, ...)} of
-    the frames obstacles hang on, `tools` the same for the tool variables tool solids hang on, each
-    value from the time the checks read it (a motion's start, an open()/close(); the first one
-    holds from the start of the run); `parts` (PartSpan, ...) by start."""
+    what changes, not by its length): `frames` {name as the cell writes it, spaces left out:
+    (PoseChange, ...)} of the frames obstacles hang on, `tools` the same for the tool variables
+    tool solids hang on, each value from the time the checks read it (a motion's start, an
+    open()/close(); the first one holds from the start of the run); `parts` (PartSpan, ...) by
+    start."""
 
     frames: dict[str, tuple[PoseChange, ...]]
     tools: dict[str, tuple[PoseChange, ...]]

@@ -55,7 +55,7 @@ class TimelineLog:
 
     def _log(self, into: dict[str, list[PoseChange]], name: str, t: float, value) -> None:
         M = None if value is None else as_matrix(value, self.unit)
-        changes = into.setdefault(name, [])
+        changes = into.setdefault(name.replace(" ", ""), [])  # "fPallet[ 1 ]" is fPallet[1]
         if changes:
             last = changes[-1].matrix
             if (last is None) == (M is None) and (M is None or np.array_equal(last, M)):

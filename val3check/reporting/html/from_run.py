@@ -226,7 +226,7 @@ def _tracks(m: Any, cell: Any, limits: list[str]) -> dict:
     collision checks placed them (`m.cell_timeline`), else as the run left them (said)."""
     timeline = m.cell_timeline
     wanted = {o.frame.replace(" ", ""): "frame" for o in cell.obstacles if o.frame != "world"}
-    wanted.update({t.tool: "tool" for t in cell.tools if t.tool != "flange"})
+    wanted.update({t.tool.replace(" ", ""): "tool" for t in cell.tools if t.tool != "flange"})
     out = {}
     end_of_run = []
     for name, kind in sorted(wanted.items()):
@@ -287,11 +287,12 @@ def _scene(result: Any, m: Any, cell: Any, limits: list[str]) -> dict:
             for ts in cell.tools:
                 solid = _shape_solid(ts.name, ts.shape, ts.pose, limits)
                 if ts.tool != "flange":
-                    if all(p is None for p in tracks[ts.tool]["poses"]):
+                    key = ts.tool.replace(" ", "")
+                    if all(p is None for p in tracks[key]["poses"]):
                         limits.append(f"The tool solid {ts.name!r} hangs on {ts.tool}, which the run did not "
                                       "define: not drawn.")
                         continue
-                    solid["track"] = ts.tool
+                    solid["track"] = key
                 solids.append(solid)
         scene["tool"] = {"name": name, "tcp": _m34(np.asarray(tcp[name], dtype=float)), "solids": solids}
     if cell is not None:
