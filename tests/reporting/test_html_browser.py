@@ -303,6 +303,17 @@ def test_sim_report_html_of_the_pick_and_place_cell(chromium, tmp_path, monkeypa
     assert counts["clearances"] == counts["motions"]
     assert _painted(page, [120, 80, 0], [255, 200, 60]) > 2000  # the arm
     p = page.page
+    # the cell as the checks placed it: nothing left undrawn (no note), the cube carried at 3.0 s
+    # (close at 2.248 s, open at 3.352 s), then on the pallet until doPalletFull clears it
+    assert p.locator(".verdict [role=note]").count() == 0
+    # (the solids the view drew: the fence in front of them is what the pointer would pick)
+    zoom = "const v = V3.view; v.target = [350, 0, -100]; v.dist = 1500; v.draw();"
+    drawn = "new Set(V3.view.prims.filter((p) => p.pts && p.part.name === 'part: cube').map((p) => p.part)).size"
+    cubes = [p.evaluate(f"() => {{ V3.time.setCursor({t}); {zoom} return {drawn}; }}") for t in (2.0, 3.0, 11.5, 27.0)]
+    assert cubes == [0, 1, 4, 0]  # none yet; carried; three on the pallet and one carried; pallet cleared at 26.5 s
+    p.evaluate(f"() => {{ V3.time.setCursor(11.5); {zoom} }}")
+    p.locator("#view3d").screenshot(path=str(tmp_path / "pickplace-3d-parts.png"))
+    p.evaluate("() => { V3.time.setCursor(0); V3.view.resetView(); }")
     p.screenshot(path=str(tmp_path / "pickplace.png"), full_page=True)
     p.close()
 
