@@ -29,7 +29,7 @@ from ..interpretation.machine import Budgets, Machine
 from ..interpretation.registry import Registry
 from ..interpretation.scheduler import EndRun
 from ..loading.model import Application, Workspace
-from . import ch10_motion
+from . import ch09_latch, ch10_motion, ch11_absolute, ch11_alter, ch11_compliance, ch11_continuous, ch11_licences
 from .collect import collect
 from .model_arm import INCH_MM
 from .moving_arm import MovingArm
@@ -39,7 +39,8 @@ from .scenario import Scenario, apply_scenario
 # What the generated code calls, then the chapters of the manual, in order.
 INTERPRETER_MODULES = (code_support, waiting, not_simulated, ch02_variables, ch03_simple_types, ch04_user_page,
                        ch05_tasks, ch06_libraries, ch08_controller, ch09_geometry)
-MOTION_MODULES = (ch10_motion,)
+MOTION_MODULES = (ch10_motion, ch09_latch, ch11_licences, ch11_absolute, ch11_continuous, ch11_compliance,
+                  ch11_alter)
 
 
 @dataclass
@@ -82,6 +83,8 @@ def build_machine(ws: Workspace, app: Application, options: SimOptions, *, regis
                       max_lines=options.max_lines, max_transcript=options.max_transcript,
                       max_memory_mb=options.max_memory_mb, wall_clock=options.wall_clock)
     arm = arm if arm is not None else MovingArm(options.robot, cycles=options.cycles)
+    if isinstance(arm, MovingArm) and arm.has_model and ch11_continuous.uses_reset_turn(ws, app):
+        ch11_continuous.set_continuous(arm, True)  # the continuous axis option is in use (11.5)
     machine = Machine(ws, app, registry or build_registry(), arm, budgets=budgets, disk_roots=options.disk_roots)
     if hasattr(arm, "bind"):
         arm.bind(machine.controller)  # its power and monitor speed (chapter 8)
@@ -143,7 +146,7 @@ def _collision_setup(app: Application, options: SimOptions, machine: Machine):
     watch = collision_run.ValueWatch(cell, machine)
     if isinstance(arm, MovingArm):
         arm.watch(watch)
-    return cell, diags, watch, arm.model
+    return cell, diags, watch, arm.model, arm
 
 
 def _collisions(result: SimResult, app: Application, options: SimOptions, checks) -> SimResult:
@@ -158,7 +161,7 @@ def _collisions(result: SimResult, app: Application, options: SimOptions, checks
         return result
     from . import collision_run
 
-    cell, diags, watch, model = checks
+    cell, diags, watch, model, arm = checks
     found = list(diags)
     if result.motion is not None:
         unit_mm = 1.0 if getattr(app, "millimeter_unit", True) else INCH_MM
@@ -166,7 +169,7 @@ def _collisions(result: SimResult, app: Application, options: SimOptions, checks
         run, more = collision_run.check_run(result.motion, cell, watch, model, cell_path=options.cell, cell_found=how,
                                             app_unit_mm=unit_mm, io_log=result.io_log,
                                             link_names=result.link_names, app_path=app.path,
-                                            max_wall=options.max_wall)
+                                            max_wall=options.max_wall, geometries=getattr(arm, "geometries", ()))
         result.collision = run
         if run is not None:
             for index, report in run.by_motion.items():  # each motion's clearances slot
