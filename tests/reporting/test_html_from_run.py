@@ -255,3 +255,21 @@ def test_a_long_run_is_sampled_at_a_multiple_of_4_ms():
     assert sample_period(60.0) == 0.004 and sample_period(600.0) == 0.004  # 150,001 samples
     assert sample_period(600.004) == 0.008
     assert sample_period(3600.0) == pytest.approx(0.024) and 3600.0 / 0.024 + 1 <= MAX_SAMPLES
+
+
+def test_a_part_taken_again_where_it_was_left_leaves_the_cell(tmp_path):
+    """docs/cell.md: a part taken where a part of the same name was left is that part. The brick of
+    runhelp.MOVING is taken again at pPlace after open(): its left span ends there, a new carried
+    span starts, and nothing is left in the cell at the end."""
+    from interpretation.simsupport import sim
+
+    from .runhelp import MOVING, MOVING_CELL, MOVING_GLOBALS
+
+    code = MOVING.replace("  open(tGrip)\n", "  open(tGrip)\n  close(tGrip)\n")
+    cell = tmp_path / "cell.toml"
+    cell.write_text(MOVING_CELL, encoding="utf-8")
+    result = sim(tmp_path, code, globals_=MOVING_GLOBALS, robot=load_robot("tx2-60"), collisions=True,
+                 cell=str(cell))
+    close1, open_, close2 = (e.time_us / 1e6 for e in result.motion.tool_events)
+    spans = [(s.carried, s.start, s.end) for s in result.motion.cell_timeline.parts]
+    assert spans == [(True, close1, open_), (False, open_, close2), (True, close2, None)]
