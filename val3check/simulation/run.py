@@ -109,6 +109,12 @@ def build_machine(ws: Workspace, app: Application, options: SimOptions, *, regis
 def simulate(ws: Workspace, app: Application, options: SimOptions | None = None,
              scenario: Scenario | None = None) -> SimResult:
     """Run the application `app` of `ws` (loaded and parsed) with `options` and `scenario`: its SimResult."""
+    return run_machine(ws, app, options, scenario)[1]
+
+
+def run_machine(ws: Workspace, app: Application, options: SimOptions | None = None,
+                scenario: Scenario | None = None) -> tuple[Machine, SimResult]:
+    """`simulate`, and the machine that ran (for the tools that look at its arm: fit.py)."""
     options = options or SimOptions()
     machine = build_machine(ws, app, options)
     checks = _collision_setup(app, options, machine)
@@ -120,9 +126,9 @@ def simulate(ws: Workspace, app: Application, options: SimOptions | None = None,
         machine.end_reason = (stop.reason if isinstance(stop, EndRun) else f"budget:{stop}"
                               if isinstance(stop, MemoryError)
                               else "budget:the application's values are nested too deeply for the simulator")
-        return _collisions(collect(machine), app, options, checks)
+        return machine, _collisions(collect(machine), app, options, checks)
     machine.run()
-    return _collisions(collect(machine), app, options, checks)
+    return machine, _collisions(collect(machine), app, options, checks)
 
 
 def _collision_setup(app: Application, options: SimOptions, machine: Machine):
