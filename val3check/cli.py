@@ -62,6 +62,10 @@ def _add_batch(sim: argparse.ArgumentParser) -> None:
     b.add_argument("--out-dir", metavar="DIR", help="write the summary (text, JSON, JUnit, index.html) and each case's report under DIR")
     b.add_argument("--fail-fast", action="store_true", help="stop at the first case that does not pass")
     b.add_argument("--case-reports", default="json", metavar="KINDS", help="what --out-dir writes for each case, comma-separated: json, html, trace (default: json)")
+    e = sim.add_argument_group("exploration (timings of the scenario: docs/explore.md)")
+    e.add_argument("--explore", type=int, metavar="N", help="run N variants of the --scenario's times and delays; write each failure, shrunk, as a scenario that reproduces it (in --out-dir, default val3check-explore)")
+    e.add_argument("--jitter", type=float, metavar="SECONDS", help="move each time and delay by up to ± SECONDS (default: the scenario's [explore] jitter; its ranges win)")
+    e.add_argument("--seed", type=int, default=0, metavar="K", help="the seed of the draws: the same command gives the same variants anywhere (default: 0)")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -277,6 +281,15 @@ def _sim(args: argparse.Namespace) -> int:
     missing = missing_sim_packages() if not args.init_scenario else []
     if missing:
         print(f"val3check: error: {install_hint(missing)}", file=sys.stderr)
+        return EXIT_USAGE
+    if args.explore is not None:
+        from .batch.explore.command import run as run_explore
+
+        if not batch:
+            args.app, args.robot = [args.app], [args.robot] if args.robot else []
+        return run_explore(args, settings, __version__, _write)
+    if args.jitter is not None:
+        print("val3check: error: --jitter goes with --explore N", file=sys.stderr)
         return EXIT_USAGE
     if batch:
         from .batch.command import run as run_batch
