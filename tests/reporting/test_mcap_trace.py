@@ -13,7 +13,6 @@ import pytest
 from mcap.reader import make_reader
 
 from val3check.cli import main
-from val3check.collision.cellfile import read_cell
 from val3check.collision.records import MotionReport, MotionSpan
 from val3check.reporting.mcap_trace import SCHEMAS, TOPICS, write_trace
 from val3check.robot import load_robot
@@ -57,7 +56,7 @@ def _violations(path) -> tuple[dict, list]:
 
 @pytest.fixture(scope="module")
 def run():
-    return pickplace(20.0)
+    return pickplace(20.0, str(CELL))  # its collisions checked: the parts carried and left
 
 
 @pytest.fixture(scope="module")
@@ -67,13 +66,14 @@ def trace(run, tmp_path_factory):
     rec = next(r for r in result.motion.motions if r.id is not None and r.start is not None)
     checked = MotionReport(MotionSpan(rec.id), np.array([rec.start, rec.start + 0.004, rec.start + 0.008]),
                            np.array([80.0, 75.5, np.inf]), np.array([False, True, False]), margin_mm=10.0)
-    result.collision = SimpleNamespace(cell=read_cell(CELL), by_motion={result.motion.motions.index(rec): checked})
-    rec.clearance = checked  # the motion's clearances slot (simulation/arm_record.py)
+    kept = [r.clearance for r in result.motion.motions]
+    for r in result.motion.motions:  # one motion's clearances slot (simulation/arm_record.py), known values
+        r.clearance = checked if r is rec else None
     try:
         write_trace(report, str(path))
     finally:
-        del result.collision
-        rec.clearance = None
+        for r, c in zip(result.motion.motions, kept):
+            r.clearance = c
     with open(path, "rb") as f:
         reader = make_reader(f)
         summary = reader.get_summary()
@@ -465,3 +465,33 @@ def test_quaternions_of_any_rotation():
     for Rk, qk in zip(R, q):
         back = _matrix({"rotation": dict(zip("xyzw", qk)), "translation": {"x": 0, "y": 0, "z": 0}})[:3, :3]
         assert np.abs(back - Rk).max() < 1e-12
+
+
+def test_obstacles_follow_their_frame_and_parts_their_spans(tmp_path):
+    """A run that moves fBlock between two motions and carries a part (runhelp.MOVING), read back:
+    the block is sent again, 800 mm further, when the checks read fBlock's new value, and fBlock's
+    transform with it; the brick rides on the flange from close() and is left where open() leaves it."""
+    from .runhelp import moving_run
+
+    result, report = moving_run(tmp_path)
+    path = tmp_path / "moving.mcap"
+    write_trace(report, str(path))
+    with open(path, "rb") as f:
+        messages = [(ch.topic, msg.log_time, json.loads(msg.data))
+                    for _, ch, msg in make_reader(f).iter_messages(log_time_order=True)]
+    moved = round(result.motion.motions[3].start * 1e9)
+    close, open_ = (e.time_us * 1000 for e in result.motion.tool_events)
+    ents = [(t, e) for topic, t, m in messages if topic == "/scene" for e in m["entities"]]
+    block = [(t, e["frame_id"], e["cubes"][0]["pose"]["position"]) for t, e in ents if e["id"] == "obstacle/block"]
+    assert [(t, frame, pytest.approx([p["x"], p["y"], p["z"]])) for t, frame, p in block] == [
+        (0, "world", [-0.4, 0.5, 0.1]), (moved, "world", [0.4, 0.5, 0.1])]
+    tf = [(t, x["translation"]["x"]) for topic, t, m in messages if topic == "/tf" for x in m["transforms"]
+          if x["child_frame_id"] == "fBlock"]
+    assert tf == [(0, pytest.approx(-0.4)), (moved, pytest.approx(0.4))]
+    brick = [(t, e["id"], e["frame_id"], e["cubes"][0]["pose"]["position"]) for t, e in ents
+             if e["id"].startswith("part/")]
+    assert [(t, i, f) for t, i, f, _ in brick] == [(close, "part/brick", "flange"), (open_, "part/brick/1", "world")]
+    assert brick[0][3]["z"] == pytest.approx(0.12)  # 100 mm (tGrip) + 20 mm (at) out of the flange
+    assert [brick[1][3][k] for k in "xyz"] == pytest.approx([0.4, 0.2, 0.02], abs=1e-9)  # on the table at pPlace
+    gone = [(t, d["id"]) for topic, t, m in messages if topic == "/scene" for d in m["deletions"]]
+    assert gone == [(open_, "part/brick")]

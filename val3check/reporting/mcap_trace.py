@@ -383,17 +383,29 @@ def trace_messages(report: Any, cell: Any = None):
         times = K * TICK_S
         idx = np.searchsorted(np.asarray(starts), times, side="right") - 1 if starts else np.full(len(K), -1)
         arm = _arm_ticks(scene, edges, tools, times, Q, V, idx)
-        # the application's frames (world) and tools (flange), as the run left them
+        # the application's frames (world) and tools (flange): those the cell hangs solids on as the
+        # collision checks read them (at each change), the others as the run left them
+        timeline = m.cell_timeline
+        tracks = {**timeline.frames, **timeline.tools} if timeline is not None else {}
         shown = {n: f for n, f in scene.frames.items() if "[" not in n or f.array_size > 1}  # fPallet, not fPallet[0] too
-        fr = sorted((n, f.matrix) for n, f in shown.items() if f.kind != "tool")
-        tl = sorted((n, f.matrix) for n, f in shown.items() if f.kind == "tool")
-        static = []
-        if fr:
-            static += _transforms(0, world, [n for n, _ in fr], np.stack([M for _, M in fr]))
-        if tl:
-            static += _transforms(0, flange, [n for n, _ in tl], np.stack([M for _, M in tl]))
-        if static:
-            out.add("/tf", 0, {"transforms": static})
+        at0 = {n: (f.kind, f.matrix) for n, f in shown.items() if n not in tracks}
+        changes: dict[int, dict] = {}
+        for n, track in tracks.items():
+            kind = "frame" if n in timeline.frames else "tool"
+            for k, c in enumerate(track):
+                if c.matrix is not None:
+                    changes.setdefault(0 if k == 0 else _ns(c.time), {})[n] = (kind, c.matrix)
+        if at0:
+            changes.setdefault(0, {}).update(at0)
+        for ns in sorted(changes):
+            fr = sorted((n, M) for n, (kind, M) in changes[ns].items() if kind != "tool")
+            tl = sorted((n, M) for n, (kind, M) in changes[ns].items() if kind == "tool")
+            tfs = []
+            if fr:
+                tfs += _transforms(ns, world, [n for n, _ in fr], np.stack([M for _, M in fr]))
+            if tl:
+                tfs += _transforms(ns, flange, [n for n, _ in tl], np.stack([M for _, M in tl]))
+            out.add("/tf", ns, {"transforms": tfs})
         # the TCP marker, at each change of tool (from the start of the motion that uses it)
         last = None
         for t0, tool, name in zip(starts, tools, tool_names):
@@ -403,21 +415,7 @@ def trace_messages(report: Any, cell: Any = None):
                 out.add("/scene", ns, {"deletions": [], "entities": [_tcp_marker(ns, flange, name, tool)]})
                 last = key
         if cell is not None:
-            ents = []
-            for ob in cell.obstacles:
-                base = np.eye(4) if ob.frame == "world" else frames.get(ob.frame.replace(" ", ""))
-                if base is None:
-                    continue
-                ents.append(_entity(0, world, f"obstacle/{ob.name}", "obstacle", [(ob.name, ob.shape, base @ ob.pose, None)]))
-            for ts in cell.tools:
-                base = np.eye(4) if ts.tool == "flange" else frames.get(ts.tool)
-                if base is None:
-                    continue
-                ents.append(_entity(0, flange, f"tool/{ts.name}", "tool", [(ts.name, ts.shape, base @ ts.pose, None)]))
-            if ents:
-                out.add("/scene", 0, {"deletions": [], "entities": ents})
-            if cell.parts:
-                _parts(out, cell, m, flange, world)
+            _cell(out, cell, m, frames, tracks)
     for e in result.transcript:
         ns = _ns(e.time_us / 1e6)
         out.add("/log", ns, {"timestamp": _stamp(ns), "level": 2, "message": f"[{e.kind}] {e.text}",
@@ -460,33 +458,54 @@ def trace_messages(report: Any, cell: Any = None):
     return ((topics[o], ns, data) for ns, o, _, data in merged), extra
 
 
-def _parts(out: _Messages, cell: Any, m: Any, flange: str, world: str) -> None:
-    """The cell's parts (docs/cell.md): a part appears on its tool when the program takes it (its
-    `grasp` instruction, open or close), rides with the flange, and stays in the world where it
-    was left (the other instruction): one entity per part left."""
-    names = list(dict.fromkeys(p.name for p in cell.parts))
-    carried: dict[str, Any] = {}
+def _placed(ns_of, base, track) -> list[tuple[int, Any]]:
+    """(time ns, pose of the base or None) at each change: a track of the cell timeline, else `base`
+    from t = 0."""
+    if not track:
+        return [(0, base)]
+    return [(0 if k == 0 else ns_of(c.time), c.matrix) for k, c in enumerate(track)]
+
+
+def _cell(out: "_Messages", cell: Any, m: Any, frames: dict, tracks: dict) -> None:
+    """The cell's solids (docs/trace.md): obstacles in the world, tool solids on the flange, each
+    sent again when the frame or tool it hangs on changes (deleted while it has no value), and the
+    parts: on the flange while carried, in the world where they were left (`m.cell_timeline`)."""
+    import numpy as np
+
+    world, flange = m.scene.world_frame, m.scene.flange_frame
+    updates: dict[int, dict] = {}
+
+    def put(ns: int, frame: str, ident: str, what: str, solids: list) -> None:
+        updates.setdefault(ns, {"deletions": [], "entities": []})["entities"].append(
+            _entity(ns, frame, ident, what, solids))
+
+    def delete(ns: int, ident: str) -> None:
+        updates.setdefault(ns, {"deletions": [], "entities": []})["deletions"].append(
+            {"timestamp": _stamp(ns), "type": 0, "id": ident})
+
+    solids = [(world, f"obstacle/{o.name}", "obstacle", o, o.frame.replace(" ", "")) for o in cell.obstacles]
+    solids += [(flange, f"tool/{t.name}", "tool", t, t.tool.replace(" ", "")) for t in cell.tools]
+    for frame, ident, what, solid, on in solids:
+        fixed = on in ("world", "flange")
+        for k, (ns, base) in enumerate(_placed(_ns, np.eye(4) if fixed else frames.get(on),
+                                               None if fixed else tracks.get(on))):
+            if base is not None:
+                put(ns, frame, ident, what, [(solid.name, solid.shape, base @ solid.pose, None)])
+            elif k:
+                delete(ns, ident)
+    timeline = m.cell_timeline
     left = 0
-    for ev in m.tool_events:
-        ns = _ns(ev.time_us / 1e6)
-        T_tool = ev.tcp_matrix
-        for name in names:
-            solids = [p for p in cell.parts if p.name == name and p.tool == ev.tool]
-            if not solids:
-                continue
-            shown = [(p.name, p.shape, T_tool @ p.pose, None) for p in solids]
-            if ev.action == solids[0].grasp and name not in carried:
-                carried[name] = T_tool
-                e = _entity(ns, flange, f"part/{name}", "part", shown)
-                out.add("/scene", ns, {"deletions": [], "entities": [e]})
-            elif ev.action != solids[0].grasp and name in carried:
-                del carried[name]
-                F = m.scene.kinematics.link_poses(m.trajectory.position(ev.time_us / 1e6))[flange]
-                left += 1
-                e = _entity(ns, world, f"part/{name}/{left}", "part",
-                            [(n, shape, F @ pose, None) for n, shape, pose, _ in shown])
-                out.add("/scene", ns, {"deletions": [{"timestamp": _stamp(ns), "type": 0, "id": f"part/{name}"}],
-                                       "entities": [e]})
+    for span in timeline.parts if timeline is not None else ():
+        shown = [(p.name, p.shape, span.pose @ p.pose, None) for p in cell.parts if p.name == span.name]
+        ident = f"part/{span.name}"
+        if not span.carried:
+            left += 1
+            ident = f"{ident}/{left}"
+        put(_ns(span.start), flange if span.carried else world, ident, "part", shown)
+        if span.end is not None:
+            delete(_ns(span.end), ident)
+    for ns in sorted(updates):
+        out.add("/scene", ns, updates[ns])
 
 
 def write_trace(report: Any, path: str, cell: Any = None) -> None:

@@ -345,6 +345,8 @@ def _key3d(scene: dict, moving: bool) -> str:
         key += ["dark grey: the tool", "orange dot: the TCP"]
     if scene.get("obstacles"):
         key.append("blue-grey: the cell")
+    if scene.get("parts"):
+        key.append("green: the parts, carried or left in the cell")
     if moving and scene.get("arm"):
         key.append(f"blue line: the path of the {'TCP' if scene.get('tool') else 'flange'} (darker where already travelled)")
     return "; ".join(key).capitalize() + "." if key else ""
