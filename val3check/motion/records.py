@@ -105,7 +105,8 @@ def motion_records(queue, end_s: float | None = None) -> list[MotionRecord]:
         out.append(None)
     groups: dict = {}
     for item in todo:
-        groups.setdefault(id(item[1].tool), []).append(item)
+        tool = item[1].tool  # the same TCP (by value: each command holds its own copy) in one evaluation
+        groups.setdefault(None if tool is None else np.asarray(tool, dtype=float).tobytes(), []).append(item)
     for items in groups.values():
         allp = np.concatenate([np.concatenate([it[6], it[7]]) for it in items])
         q = queue.path.q(allp)
