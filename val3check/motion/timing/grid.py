@@ -129,7 +129,6 @@ def _sample_spans(path, a: float, b: float, kin, limits, points: np.ndarray | No
         return _assemble(parts, limits)
     i0, _ = path.locate(a)
     parts = []
-    keys = ("sigma", "q1", "q2", "pt", "rt")
     i = i0
     while i < len(path.spans):
         off = path.offsets[i]
@@ -138,43 +137,63 @@ def _sample_spans(path, a: float, b: float, kin, limits, points: np.ndarray | No
         if hi < lo - 1e-12 or off > b + 1e-12:
             break
         smp = sp.sample(kin)
-        sig = smp["sigma"][:-1]  # the grid (the last row is the junction point)
         first = not parts
+        # the span's rows between lo and hi depend on its samples (shared by the same part of the
+        # same geometry, paths.Span.sample), lo, hi and its owners only: a repeated motion reuses them
+        start = None
         if first:  # from one of the span's own gridpoints, its very row (a re-timing from there, planner.py)
+            sig = smp["sigma"][:-1]
             tol = 1e-12 * max(1.0, abs(a))
             k = int(np.searchsorted(sig, lo - tol))
             start = k if k < len(sig) and abs(sig[k] - lo) <= tol else None
-            from_ = lo
-        else:  # at the junction the curvature may jump: constrain this span's side too
-            start = len(sig)  # the junction row
-            from_ = smp["sigma"][-1]
-        j0 = int(np.searchsorted(sig, from_ + 1e-9, side="right"))
-        j1 = int(np.searchsorted(sig, hi - 1e-9, side="left"))
-        end = len(sig) - 1 if abs(hi - sig[-1]) <= 1e-9 else None
-        blocks = []
-        if start is None:
-            blocks.append(sp.sample_at(kin, lo))
-        else:
-            blocks.append({k: smp[k][start:start + 1] for k in keys})
-        if j1 > j0:
-            blocks.append({k: smp[k][j0:j1] for k in keys})
-        blocks.append({k: smp[k][end:end + 1] for k in keys} if end is not None else sp.sample_at(kin, hi))
-        pts = np.concatenate([bl["sigma"] for bl in blocks])
-        q1 = np.vstack([bl["q1"] for bl in blocks])
-        q2 = np.vstack([bl["q2"] for bl in blocks])
-        pt = np.concatenate([bl["pt"] for bl in blocks])
-        rt = np.concatenate([bl["rt"] for bl in blocks])
-        if len(sp.owners) == 1:
-            own = np.full(len(pts), sp.owners[0][0])
-        else:
-            owner_starts = np.array([st for _, st in sp.owners])
-            owner_keys = np.array([k for k, _ in sp.owners])
-            own = owner_keys[np.clip(np.searchsorted(owner_starts, pts + 1e-12, side="right") - 1, 0, None)]
+        memo = smp.setdefault("rows", {})
+        key = (lo, hi, first, start, tuple(st for _, st in sp.owners))
+        hit = memo.get(key)
+        if hit is None:
+            if len(memo) > 32:
+                memo.clear()
+            hit = memo[key] = _span_rows(sp, smp, kin, lo, hi, first, start)
+        pts, q1, q2, pt, rt, which = hit
+        own = np.full(len(pts), sp.owners[0][0]) if which is None else np.array([k for k, _ in sp.owners])[which]
         parts.append((pts + off, q1, q2, pt, rt, own))
         if off + sp.length >= b - 1e-12:
             break
         i += 1
     return _assemble(parts, limits)
+
+
+def _span_rows(sp, smp: dict, kin, lo: float, hi: float, first: bool, start: int | None) -> tuple:
+    """(σ, q1, q2, pt, rt, owner) of a span's gridpoints between σ = lo and hi (`_sample_spans`);
+    `start`: the row of lo in the span's grid (first span), None when lo is not on it; owner: the
+    index in `sp.owners` of each gridpoint's owner (None: the only one)."""
+    keys = ("sigma", "q1", "q2", "pt", "rt")
+    sig = smp["sigma"][:-1]  # the grid (the last row is the junction point)
+    if first:
+        from_ = lo
+    else:  # at the junction the curvature may jump: constrain this span's side too
+        start = len(sig)  # the junction row
+        from_ = smp["sigma"][-1]
+    j0 = int(np.searchsorted(sig, from_ + 1e-9, side="right"))
+    j1 = int(np.searchsorted(sig, hi - 1e-9, side="left"))
+    end = len(sig) - 1 if abs(hi - sig[-1]) <= 1e-9 else None
+    blocks = []
+    if start is None:
+        blocks.append(sp.sample_at(kin, lo))
+    else:
+        blocks.append({k: smp[k][start:start + 1] for k in keys})
+    if j1 > j0:
+        blocks.append({k: smp[k][j0:j1] for k in keys})
+    blocks.append({k: smp[k][end:end + 1] for k in keys} if end is not None else sp.sample_at(kin, hi))
+    pts = np.concatenate([bl["sigma"] for bl in blocks])
+    q1 = np.vstack([bl["q1"] for bl in blocks])
+    q2 = np.vstack([bl["q2"] for bl in blocks])
+    pt = np.concatenate([bl["pt"] for bl in blocks])
+    rt = np.concatenate([bl["rt"] for bl in blocks])
+    which = None
+    if len(sp.owners) > 1:
+        owner_starts = np.array([st for _, st in sp.owners])
+        which = np.clip(np.searchsorted(owner_starts, pts + 1e-12, side="right") - 1, 0, None)
+    return pts, q1, q2, pt, rt, which
 
 
 def _assemble(parts, limits) -> tuple[Grid, np.ndarray]:
