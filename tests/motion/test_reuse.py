@@ -81,3 +81,28 @@ def test_span_samples_are_shared_only_for_the_same_part_tool_and_arm():
                                                             for k, v in enumerate(nominal.d)))))
     moved = Span(geom, 0.0, 1.0).sample(kin)  # the same joints, a new geometry: the TCP rates again
     assert moved is not first and not np.array_equal(moved["pt"], first["pt"])
+
+
+def _blends(md_reach: float):
+    """The blend curves of a cycle from the home position (movej to joints: the same start each
+    time) through three blended lines, recorded three times."""
+    from val3check.motion.mdesc import MDesc
+
+    from .motionhelp import OFF, queue, run
+
+    q = queue()
+    md = MDesc(blend="joint", leave=20.0, reach=md_reach)
+    for _ in range(3):
+        q.record(movej(HOME, OFF), 0.0)
+        for dx, dy in ((60.0, 40.0), (60.0, 0.0), (0.0, 40.0)):
+            q.record(movel(point(dx=dx, dy=dy), md), 0.0)
+    run(q)
+    return [sp.geom for sp in q.path.spans if len(sp.owners) == 2]
+
+
+def test_a_repeated_blend_is_reused_and_another_reach_is_not():
+    first = _blends(20.0)
+    assert len(first) >= 3
+    assert len({id(g) for g in first}) < len(first)  # blends of later cycles are those of the first
+    other = _blends(25.0)
+    assert all(g is not f for g in other for f in first)

@@ -82,7 +82,33 @@ def distance_lambda(kin, command, d: float, from_end: bool) -> float | None:
 def candidate(kin, previous, command, limits_of) -> Candidate | None:
     """The blend from `previous`'s leave point to `command`'s reach point (10.1.2), or None when
     the two cannot be blended (the reach point too close, a cusp). `limits_of(command)`: the
-    limits (mdesc.Limits) the shape estimate uses. Nothing is changed."""
+    limits (mdesc.Limits) the shape estimate uses. Nothing is changed.
+
+    Reused (kin.reuse) when everything it depends on is the same: both commands' curves (the same
+    objects: construction.py reuses them), the leave point, the reach distance, the blend kind,
+    both tools and both commands' limits (mdesc and monitor speed)."""
+    pg, cg = previous.geometry, command.geometry
+    curves = (pg.joint_curve, pg.tcp_curve, cg.joint_curve, cg.tcp_curve)
+    # the limits choose between shapes only when there are several (`blend_time`)
+    limits = (_limits_key(limits_of(previous)), _limits_key(limits_of(command))) if len(BLEND_SHAPES) > 1 else ()
+    key = ("blend", *map(id, curves), previous.placement.lam_leave, previous.request.mdesc.reach,
+           previous.placement.blend, _value(previous.tool), _value(command.tool), limits)
+    hit = kin.reuse.get(key)
+    if hit is not None and all(a is b for a, b in zip(hit[0], curves)):
+        return hit[1]
+    return kin.reuse.keep(key, (curves, _candidate(kin, previous, command, limits_of)))[1]
+
+
+def _value(a) -> bytes | None:
+    return None if a is None else np.asarray(a, dtype=float).tobytes()
+
+
+def _limits_key(lim) -> tuple:
+    return (_value(lim.V), _value(lim.A), _value(lim.D), float(lim.tvel), float(lim.rvel))
+
+
+def _candidate(kin, previous, command, limits_of) -> Candidate | None:
+    """`candidate`, computed."""
     lam_r = distance_lambda(kin, command, previous.request.mdesc.reach, from_end=False)
     if lam_r is None or lam_r >= 1.0 - 1e-9:
         return None
