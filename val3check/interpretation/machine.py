@@ -15,6 +15,7 @@ integer microseconds: runs are deterministic.
 
 from __future__ import annotations
 
+from ..rules import codes
 import os
 import time as _time
 from dataclasses import dataclass
@@ -30,7 +31,7 @@ from .controller import Controller
 from .libraries import autoload_libraries
 from .memory import TypeSpace
 from .memory_budget import MemoryBudget
-from .not_simulated import ARM_LIMIT, SimLimit, arm_message
+from .not_simulated import ARM_LIMIT, SimLimit, arm_message, limit_code
 from .recorder import IOEvent, Recorder, TranscriptEntry
 from .registry import Registry
 from .scheduler import ERROR, HELD, START_PRIORITY, SUSPENDED, WAIT, EndRun, Scheduler, Task
@@ -164,7 +165,7 @@ class Machine:
 
     def _record_full(self, message: str, task: Task | None) -> None:
         """A record budget is reached: said once (R006), the run goes on without recording."""
-        self.diags.append(Diagnostic("R006", message, self.app.path, 0, 0,
+        self.diags.append(Diagnostic(codes.BUDGET_EXCEEDED, message, self.app.path, 0, 0,
                                      time_us=self.clock.time_of(task) if task is not None else self.clock.now,
                                      task=task.name if task is not None else "", program=""))
 
@@ -226,7 +227,7 @@ class Machine:
         if isinstance(e, SimLimit):
             task.state = HELD
             task.limit = e.kind
-            code = "R002" if e.kind == ARM_LIMIT else "R004"
+            code = limit_code(e.kind)
             if e.message:
                 msg = e.message
             elif e.kind == ARM_LIMIT:
@@ -246,7 +247,11 @@ class Machine:
         if rule:  # a motion instruction's error has the rule of its cause (R017 mdesc, R015 movec...)
             self.add_diag(rule, f"error {code}: {detail}", task, pos, code)
         else:
-            self.add_diag("R001", f"error {code}: {text}{extra}", task, pos, code)
+            self.runtime_error(task, pos, code, f"{text}{extra}")
+
+    def runtime_error(self, task: Task | None, pos, code: int, message: str) -> None:
+        """A task stopped by the runtime error `code` of 12.1 (R001)."""
+        self.add_diag(codes.RUNTIME_ERROR, f"error {code}: {message}", task, pos, code)
 
     def library_failed(self, owner: Unit, alias: str, display: str, code: int, meaning: str, findings: list,
                        task: Task | None) -> None:
@@ -263,20 +268,37 @@ class Machine:
             return
         self._libraries_reported.add(display)
         more = f" (and {len(findings) - 1} more finding(s) in the library)" if len(findings) > 1 else ""
-        self.diags.append(Diagnostic(
-            "R040", f"library {display} (identifier {alias} of {owner.name}) cannot be loaded because of this "
-                    f"{first.code} finding: {first.message}{more}; libLoad returns {code} and the data and "
-                    f"programs of {alias}: are error 80 where they are used", first.path, first.line, first.col,
-            time_us=self.clock.time_of(task) if task is not None else self.clock.now,
-            task=task.name if task is not None else "", program=""))
+        self.diags.append(
+            Diagnostic(
+                codes.LIBRARY_NOT_LOADED,
+                f"library {display} (identifier {alias} of {owner.name}) cannot be loaded because of this "
+                f"{first.code} finding: {first.message}{more}; libLoad returns {code} and the data and "
+                f"programs of {alias}: are error 80 where they are used",
+                first.path,
+                first.line,
+                first.col,
+                time_us=self.clock.time_of(task) if task is not None else self.clock.now,
+                task=task.name if task is not None else "",
+                program="",
+            )
+        )
 
     def report_overrun(self, task: Task) -> None:
         """R005: a synchronous task used more than its period (5.6)."""
         w = self.where(task)
         path, line, col = (self.app.path, 0, 0) if w is None else w[:3]
-        self.diags.append(Diagnostic("R005", f"synchronous task {task.name} overran its period of "
-                                             f"{task.period / 1e6:g} s", path, line, col,
-                                     time_us=self.clock.now, task=task.name, program=task.program))
+        self.diags.append(
+            Diagnostic(
+                codes.SYNC_OVERRUN,
+                f"synchronous task {task.name} overran its period of {task.period / 1e6:g} s",
+                path,
+                line,
+                col,
+                time_us=self.clock.now,
+                task=task.name,
+                program=task.program,
+            )
+        )
 
     # ---- where a task is ------------------------------------------------------------------------
 
@@ -417,8 +439,12 @@ class Machine:
             where = self.where(task) if not stopped else None
             if stopped and task.errpos:
                 where = task.errpos
-            task.final = FinalState(task.state.report_name, where,
-                                    self.blocked_on(task) if task.state is WAIT else None, self.loop_passes(task))
+            task.final = FinalState(
+                task.state.report_name,
+                where,
+                self.blocked_on(task) if task.state is WAIT else None,
+                self.loop_passes(task),
+            )
 
     def _report_blocked(self) -> None:
         """Deadlock: every task waits for something no scheduled event can change."""
@@ -427,7 +453,7 @@ class Machine:
                 continue
             w = self.where(task)
             path, line, col, prog = w if w else (self.app.path, 0, 0, task.program)
-            code = "R003"
+            code = codes.DEADLOCK
             if task.state is SUSPENDED:
                 msg = f"task {task.name} is suspended and no task can resume it"
             else:
@@ -440,14 +466,17 @@ class Machine:
                     if hint:
                         # the condition reads I/O: in the cell, the outside world can release it;
                         # only the simulation has nobody to set it (R009, a warning)
-                        code = "R009"
-                        msg = (f"task {task.name} waits in {self.blocked_on(task)}, which only an input the "
-                               f"run does not drive can release ({hint})")
+                        code = codes.INPUT_NEVER_DRIVEN
+                        msg = (
+                            f"task {task.name} waits in {self.blocked_on(task)}, which only an input the "
+                            f"run does not drive can release ({hint})"
+                        )
                     else:
                         msg = f"task {task.name} waits in {self.blocked_on(task)}, which nothing scheduled can change"
             task.errpos = (path, line, col, prog)
-            self.diags.append(Diagnostic(code, msg, path, line, col, time_us=self.clock.now, task=task.name,
-                                         program=prog))
+            self.diags.append(
+                Diagnostic(code, msg, path, line, col, time_us=self.clock.now, task=task.name, program=prog)
+            )
 
     def _motion_reason(self, task: Task) -> tuple[str, str] | None:
         """(rule, why) when the task waits for the arm's motion and the arm cannot move."""
@@ -460,13 +489,22 @@ class Machine:
         motion that power never allows (R018)."""
         for task in self.scheduler.tasks:
             why = self._motion_reason(task)
-            if why is None or why[0] != "R018":
+            if why is None or why[0] != codes.MOTION_WITHOUT_POWER:
                 continue
             w = self.where(task)
             path, line, col, prog = w if w else (self.app.path, 0, 0, task.program)
-            self.diags.append(Diagnostic("R018", f"task {task.name} waits in {self.blocked_on(task)} for a motion "
-                                                 f"that cannot happen: {why[1]}", path, line, col,
-                                         time_us=self.clock.now, task=task.name, program=prog))
+            self.diags.append(
+                Diagnostic(
+                    codes.MOTION_WITHOUT_POWER,
+                    f"task {task.name} waits in {self.blocked_on(task)} for a motion that cannot happen: {why[1]}",
+                    path,
+                    line,
+                    col,
+                    time_us=self.clock.now,
+                    task=task.name,
+                    program=prog,
+                )
+            )
 
     def _stop_after(self, reason: str) -> None:
         """As when the application is stopped from the pendant (2.1.3, 5.2): the start task is
@@ -487,8 +525,10 @@ class Machine:
         try:
             self.scheduler.loop(limit, stopping=True)
         except EndRun as extra:
-            what = {"stop-timeout": f"still running {self.budgets.stop_us / 1e6:g} s after the run was stopped",
-                    "deadlock": "blocked"}.get(extra.reason, extra.reason)
+            what = {
+                "stop-timeout": f"still running {self.budgets.stop_us / 1e6:g} s after the run was stopped",
+                "deadlock": "blocked",
+            }.get(extra.reason, extra.reason)
             self._stop_did_not_end(what)
 
     def _stop_did_not_end(self, what: str) -> None:
@@ -497,8 +537,18 @@ class Machine:
         if task is not None and task in self.scheduler.tasks and task.state is not ERROR and task.state is not HELD:
             w = self.where(task)
             path, line, col, prog = w if w else (self.app.path, 0, 0, "stop")
-            self.diags.append(Diagnostic("R006", f"stop() did not end: {what}", path, line, col,
-                                         time_us=self.clock.now, task=task.name, program=prog))
+            self.diags.append(
+                Diagnostic(
+                    codes.BUDGET_EXCEEDED,
+                    f"stop() did not end: {what}",
+                    path,
+                    line,
+                    col,
+                    time_us=self.clock.now,
+                    task=task.name,
+                    program=prog,
+                )
+            )
 
     def start_stop_program(self) -> None:
         stop = self.main.program("stop")
