@@ -15,6 +15,7 @@ integer microseconds: runs are deterministic.
 
 from __future__ import annotations
 
+from ..lengths import app_mm
 from ..rules import codes
 import os
 import time as _time
@@ -185,7 +186,7 @@ class Machine:
         if len(self.recorder.tool_events) >= self.recorder.max_io_log:
             return
         x, y, z, rx, ry, rz = Trsf.from_pose(root_pose(tool)).as_tuple()
-        s = 1.0 if millimeter_unit else 25.4
+        s = app_mm(millimeter_unit)
         grip = getattr(tool.gripper, "link", "") or ""
         where = self.line_running()
         self.recorder.tool_events.append(ToolEvent(

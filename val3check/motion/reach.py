@@ -28,12 +28,12 @@ from ..geometry import rotation as R
 from ..geometry.frames import Frame, Tool
 from ..geometry.points import Point
 from ..geometry.trsf import Trsf
+from ..lengths import INCH_MM
 from ..loading.reader import parse_father
 from ..loading.types import base_type
 from .checks import LIMIT_MARGIN, THRESHOLDS, UNITS, WHAT
 from .kin import ArmKin
 
-INCH_MM = 25.4
 ORDER = {"unreachable": 0, "limits": 1, "config": 2, "unresolved": 3, "near-singularity": 4, "near-limit": 5, "ok": 6}
 # A point may be used with only some of the declared tools, or not at all: a static "unreachable"
 # is not certain to be a defect, so nothing here is an error (`sim` reports what a run does).

@@ -40,13 +40,14 @@ import numpy as np
 from ..interpretation.arm_port import Joints
 from ..interpretation.scheduler import EndRun
 from ..language.runtime_errors import Val3RuntimeError
+from ..lengths import INCH_MM
 from ..motion.commands import MoveCommand, Target
 from ..motion.cycle import Context, CycleCounter, Loop, Pass
 from ..motion.findings import MotionError, Source
 from ..motion.mdesc import MDesc
 from ..motion.queue import MotionQueue, QueueFull
 from ..motion.records import time_leaving
-from .model_arm import INCH_MM, ModelArm
+from .model_arm import ModelArm
 
 US = 1_000_000
 
