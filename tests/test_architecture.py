@@ -182,7 +182,9 @@ def _doc_table() -> dict[str, tuple[set[str], str]]:
     """docs/architecture.md's layer table: row name -> (names in backquotes of its packages and
     modules, `dir/` or `file.py` without the suffix; what it may also import)."""
     rows = {}
-    for line in ARCHITECTURE.read_text(encoding="utf-8").splitlines():
+    text = ARCHITECTURE.read_text(encoding="utf-8")
+    layers = text[text.index("\n## Layers\n"):text.index("\n## ", text.index("\n## Layers\n") + 1)]
+    for line in layers.splitlines():
         m = re.match(r"^\| ([a-z ]+) \| (.+) \| (.+) \|$", line)
         if m and m.group(1) != "layer":
             rows[m.group(1)] = (set(re.findall(r"`((?:html/)?[a-z_]+)(?:/|\.py)`", m.group(2))), m.group(3))
