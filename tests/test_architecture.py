@@ -318,3 +318,10 @@ def test_nothing_registers_on_import():
         assert callable(module.register)
         assert not any(isinstance(v, Registry) for v in vars(module).values()), module.__name__
     assert registry.handler("movej") is not None and registry.handler("taskStatus") is not None
+
+
+def test_one_junit_writer():
+    """Every JUnit XML document (lint, sim, the batch summary) is written by reporting/junit.py."""
+    writers = sorted(str(p.relative_to(PACKAGE)) for p in PACKAGE.rglob("*.py")
+                     if re.search(r"""["'<]testsuites?\b|["']testcase["']""", p.read_text(encoding="utf-8")))
+    assert writers == ["reporting/junit.py"]
