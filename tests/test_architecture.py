@@ -325,3 +325,29 @@ def test_one_junit_writer():
     writers = sorted(str(p.relative_to(PACKAGE)) for p in PACKAGE.rglob("*.py")
                      if re.search(r"""["'<]testsuites?\b|["']testcase["']""", p.read_text(encoding="utf-8")))
     assert writers == ["reporting/junit.py"]
+
+
+# Reporting modules that still read an arm model: the page of a JSON report draws the arm of the
+# URDF the report names (html/from_sim.py), and its command line names that reader's error.
+ARM_READERS_IN_REPORTING = {"val3check.reporting.html.from_sim", "val3check.reporting.html.__main__"}
+
+
+def test_reporting_reads_the_run_s_record_not_the_arm_s_packages():
+    """Every module of reporting/, not only the run reports: nothing of robot/, geometry/,
+    motion/, collision/ or the interpreter, and of simulation/ only the run's records (but the
+    modules listed above, for robot/)."""
+    modules = _modules()
+    bad, readers = [], set()
+    for module, path in sorted(modules.items()):
+        if _top(module) != "reporting":
+            continue
+        for target, name, line in _imports(path):
+            t = _resolve(target, name, modules)
+            layer = LAYER_OF.get(_top(t))
+            if layer == "robot" and module in ARM_READERS_IN_REPORTING:
+                readers.add(module)
+            elif layer in ("robot", "geometry", "motion", "collision", "interpretation") or \
+                    layer == "simulation" and t not in RECORDS:
+                bad.append(f"{module}:{line}: {t}")
+    assert bad == []
+    assert readers == ARM_READERS_IN_REPORTING

@@ -551,7 +551,7 @@ def _reach(args: argparse.Namespace) -> int:
 def _robots(args: argparse.Namespace) -> int:
     """`val3check robots`: the catalogue, or one model in detail (val3check/robot)."""
     from .robot import RobotError, load_robot, names
-    from .reporting.robot_text import render_detail, render_list
+    from .robot.listing import render_detail, render_list
     from .robot.catalog import known_without_model
 
     args.robot = args.robot or args.robot_opt

@@ -107,13 +107,13 @@ UNKNOWN_SUPPRESSION_CODE = "S020"         # suppression.py
 UNUSED_SUPPRESSION = "S021"               # suppression.py
 
 # runtime and simulation (R)
-RUNTIME_ERROR = "R001"                    # interpretation/machine.py, reporting/html/synthetic.py
+RUNTIME_ERROR = "R001"                    # interpretation/machine.py
 ARM_NOT_SIMULATED = "R002"                # interpretation/not_simulated.py
 DEADLOCK = "R003"                         # interpretation/machine.py, simulation/moving_arm.py
 NOT_SIMULATED = "R004"                    # interpretation/not_simulated.py
-SYNC_OVERRUN = "R005"                     # interpretation/machine.py, reporting/html/synthetic.py
+SYNC_OVERRUN = "R005"                     # interpretation/machine.py
 BUDGET_EXCEEDED = "R006"                  # interpretation/machine.py, simulation/collect.py
-DURATION_REACHED = "R007"                 # reporting/html/synthetic.py, simulation/collect.py
+DURATION_REACHED = "R007"                 # simulation/collect.py
 SCENARIO_REACTION_LOOP = "R008"           # interpretation/cell.py
 INPUT_NEVER_DRIVEN = "R009"               # interpretation/machine.py
 TARGET_OUT_OF_REACH = "R010"              # motion/findings.py
