@@ -425,7 +425,7 @@ def build_from_grammar(text: str, transformer: Any = None):
 
 
 def load_tables() -> dict:
-    """The parse tables (build_parser.compile_tables): the shipped ones when they match the
+    """The parse tables (tables.compile_tables): the shipped ones when they match the
     grammar file, else computed from the grammar file itself with Lark (while editing it)."""
     text = grammar_text()
     try:
@@ -436,9 +436,9 @@ def load_tables() -> dict:
     except Exception:  # missing or incompatible tables: fall back on the grammar
         if text is None:
             raise
-    from .build_parser import compile_tables
+    from .tables import compile_tables
 
-    return compile_tables(build_from_grammar(text))  # type: ignore[arg-type]
+    return compile_tables(build_from_grammar(text), frozenset(dir(_Builder)))  # type: ignore[arg-type]
 
 
 # ---------------------------------------------------------------- the engine
@@ -453,7 +453,7 @@ def _lone(children: list) -> Any:
 def _reducer(builder: "_Builder", plan: tuple):
     """The function of one rule: children as the LALR driver pops them -> the node.
 
-    It does what Lark's tree builder does (build_parser.compile_tables), written out as straight
+    It does what Lark's tree builder does (tables.compile_tables), written out as straight
     code: e.g. `call: callee _LPAR [args] _RPAR` without args becomes
     `lambda c: builder.call([c[0], None])`."""
     callback, expand1, include, nones = plan
