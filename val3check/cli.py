@@ -128,13 +128,23 @@ def build_parser() -> argparse.ArgumentParser:
     reach.add_argument("--disk-root", action="append", default=[], metavar="DIR", help="folder where Disk:// libraries are also searched (repeatable)")
     reach.add_argument("--fail-on", choices=("error", "warning", "info", "never"), default="error", help="lowest finding severity that makes the exit code 1 (default: error; reach findings are warnings and infos, docs/motion.md)")
 
-    robots = sub.add_parser("robots", help="list the arm models by family (reach, joint limits, speeds, assumptions) or show one")
-    robots.add_argument("robot", nargs="?", metavar="ROBOT",
+    robots = sub.add_parser("robots", help="list the arm models by family (reach, joint limits, speeds, assumptions), show "
+                            "one, or fit one's accelerations to a measured cycle (robots fit APP --robot ROBOT "
+                            "--measured-cycle S -o FILE)")
+    robots.add_argument("robot", nargs="*", metavar="ROBOT",
                         help="an arm name (case-insensitive: tx2-60, TX2_60, ts60-L200…), a URDF, an arm.cfx or a robot file "
-                             "(.toml): show that model, its facts and assumptions")
+                             "(.toml): show that model, its facts and assumptions; or `fit APP`: fit the accelerations of "
+                             "--robot to the cycle measured on the cell (docs/sim.md, \"Fitting the accelerations\")")
     robots.add_argument("--robot", dest="robot_opt", metavar="ROBOT", help="same as ROBOT")
     robots.add_argument("--app", metavar="PATH", help="show the arm chosen from the controller tree holding PATH (usr/configs/arm.cfx)")
     _add_format(robots, ("text", "json"))
+    robots.add_argument("--measured-cycle", type=float, metavar="S",
+                        help="fit: the cycle time measured on the cell, in seconds (the loop the reports give)")
+    robots.add_argument("--scenario", metavar="FILE", help="fit: the I/O scenario of the run (TOML, docs/scenario.md)")
+    robots.add_argument("--duration", type=float, default=60.0, metavar="S",
+                        help="fit: simulated seconds of each run at most (default: 60)")
+    robots.add_argument("--cycles", type=int, metavar="N", help="fit: end each run after N cycles")
+    robots.add_argument("-o", "--output", metavar="FILE", help="fit: write the robot file to FILE (default: standard output)")
 
     server = sub.add_parser("server", help="run the language server for editors, over stdio (docs/editors.md)")
     server.add_argument("--stdio", action="store_true", help="talk LSP over standard input and output (the default and only transport)")
@@ -549,12 +559,27 @@ def _reach(args: argparse.Namespace) -> int:
 
 
 def _robots(args: argparse.Namespace) -> int:
-    """`val3check robots`: the catalogue, or one model in detail (val3check/robot)."""
+    """`val3check robots`: the catalogue, or one model in detail (val3check/robot); `robots fit`."""
     from .robot import RobotError, load_robot, names
     from .robot.listing import render_detail, render_list
     from .robot.catalog import known_without_model
 
-    args.robot = args.robot or args.robot_opt
+    if args.robot[:1] == ["fit"]:
+        from .simulation.fit import command
+
+        if len(args.robot) != 2:
+            print("val3check robots fit: error: one application is needed: val3check robots fit APP --robot ROBOT "
+                  "--measured-cycle S", file=sys.stderr)
+            return EXIT_USAGE
+        return command(args.robot[1], args.robot_opt, args.measured_cycle, args.scenario, args.duration, args.cycles,
+                       args.output)
+    fit_only = [o for o, v in (("--measured-cycle", args.measured_cycle), ("--scenario", args.scenario),
+                               ("--cycles", args.cycles), ("-o", args.output)) if v is not None]
+    if len(args.robot) > 1 or fit_only:
+        print(f"val3check robots: error: {' '.join(fit_only) or ' '.join(args.robot[1:])}: only with "
+              "`val3check robots fit APP` (one ROBOT otherwise)", file=sys.stderr)
+        return EXIT_USAGE
+    args.robot = (args.robot[0] if args.robot else None) or args.robot_opt
     try:
         if args.robot or args.app:
             models = [load_robot(args.robot or None, args.app)]

@@ -44,6 +44,7 @@ class CaseSummary:
     warnings: int = 0
     cycle_time: float | None = None  # s: median of the verdict's cycle (arm_record.main_cycle)
     cycles: int = 0
+    cycle_range: tuple | None = None  # s: (lowest, highest) cycle_time if the assumed accelerations are off by 2×
     end: str = ""  # how the run ended (SimResult end reason)
     reason: str = ""  # why the verdict is not "pass": the first failing diagnostic, the error, the crash
 
@@ -51,7 +52,8 @@ class CaseSummary:
         return {"application": self.app, "name": self.app_name, "arm": self.arm or None, "model": self.model,
                 "scenario": self.scenario or None, "cell": self.cell or None, "overrides": dict(self.overrides),
                 "verdict": self.verdict, "errors": self.errors, "warnings": self.warnings,
-                "cycle_time": self.cycle_time, "cycles": self.cycles, "end": self.end or None,
+                "cycle_time": self.cycle_time, "cycles": self.cycles,
+                "cycle_time_range": None if self.cycle_range is None else list(self.cycle_range), "end": self.end or None,
                 "reason": self.reason or None, "report": self.name}
 
 
@@ -183,16 +185,23 @@ def _run(case: Case, mirror: str) -> CaseOutcome:
         d = failing[0]
         loc = f"{d.path}:{d.line}:{d.col}" if d.line else d.path
         reason = f"{loc}: {d.code} {d.severity.label}: {d.message}"
-    cycle_time, cycles = _cycle(result.motion)
+    cycle_time, cycles, spread = _cycle(result.motion)
     summary = summary_of(case, "fail" if failing else "pass", reason, model=model, errors=errors_n,
-                         warnings=warnings_n, cycle_time=cycle_time, cycles=cycles, end=result.end_reason)
+                         warnings=warnings_n, cycle_time=cycle_time, cycles=cycles, cycle_range=spread,
+                         end=result.end_reason)
     return CaseOutcome(summary, case_outputs(report, opts.case_reports, opts.fail_on) if opts.reports else {})
 
 
-def _cycle(motion) -> tuple[float | None, int]:  # noqa: ANN001
+def _cycle(motion) -> tuple[float | None, int, tuple | None]:  # noqa: ANN001
+    """The median of the verdict's cycle (arm_record.main_cycle), its count, and its range if the
+    assumed accelerations are off (ArmRun.acceleration_range; None when measured)."""
     if motion is None:
-        return None, 0
+        return None, 0, None
     from ..simulation.arm_record import main_cycle
 
     st = main_cycle(motion.cycles)  # the verdict's (reporting/html/from_run.py, sim_junit.py)
-    return (None, 0) if st is None else (round(statistics.median(st.times), 6), st.count)
+    if st is None:
+        return None, 0, None
+    spread = motion.acceleration_range.cycle_time(st.task) if motion.acceleration_range is not None else None
+    return (round(statistics.median(st.times), 6), st.count,
+            None if spread is None else (round(spread[0], 6), round(spread[1], 6)))

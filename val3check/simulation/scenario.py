@@ -10,7 +10,6 @@ signal, key or a value of the wrong type is an error that names the line.
 from __future__ import annotations
 
 import datetime
-import math
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -19,6 +18,11 @@ from ..interpretation.cell import Reaction, SerialReply
 from ..interpretation.events import ControllerChange, InputsChange, KeyPress, SerialData
 from ..interpretation.user_page import Key
 from ..interpretation.values import Arr, FaultyIOPoint, IOPoint
+from .scenario_numbers import MAX_SECONDS
+from .scenario_numbers import finite as _finite
+from .scenario_numbers import seconds as _seconds
+from .scenario_options import TABLES as OPTION_TABLES
+from .scenario_options import apply_options
 
 SCENARIO_VERSION = 1
 LIMIT_TOL = 1e-7  # a joint this close outside its limit is on it (robot.models.LIMIT_TOL_DEG)
@@ -38,7 +42,6 @@ class Scenario:
 
 
 MAX_SCENARIO_SIZE = 8 * 1024 * 1024  # bytes: a scenario is a few pages of TOML
-MAX_SECONDS = 1e7  # a time, duration or delay (about 115 days): more is a mistake
 MAX_NESTING = 32  # tables and arrays inside each other: the format needs 3
 
 
@@ -57,19 +60,6 @@ def load_scenario(path: str) -> Scenario:
     except tomlfile.TomlError as exc:
         raise ScenarioError(path, exc.line, exc.message) from None
     return Scenario(path, text, data)
-
-
-def _finite(v: Any) -> bool:
-    """A TOML number val3check can compute with: not a bool, not nan or inf."""
-    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and abs(v) <= 1e300
-
-
-def _seconds(v: Any) -> int | None:
-    """Microseconds from a number of seconds in [0, MAX_SECONDS]; None for anything else
-    (nan, inf, negative, not a number)."""
-    if not _finite(v) or not 0 <= v <= MAX_SECONDS:
-        return None
-    return int(round(v * 1_000_000))
 
 
 class Applier:
@@ -137,7 +127,8 @@ class Applier:
     def apply(self) -> None:
         d = self.sc.data
         self.machine.cell_subsystem.scenario_path = self.sc.path
-        known = {"version", "description", "inputs", "events", "reactions", "keys", "serial", "controller", "io", "robot"}
+        known = {"version", "description", "inputs", "events", "reactions", "keys", "serial", "controller", "io", "robot",
+                 *OPTION_TABLES}
         for k in d:
             if k not in known:
                 self.fail((k,), f"unknown table or key {shown(k)}")
@@ -217,6 +208,7 @@ class Applier:
             self._io(d["io"])
         if "robot" in d:
             self._robot(d["robot"])
+        apply_options(self, d)  # chapter 11: scenario_options.py
 
     def _robot(self, table: Any) -> None:
         """[robot] joints = [j1, ..., j6]: the arm's joint position at the start (degrees, a
