@@ -12,14 +12,14 @@ import json
 import random
 from pathlib import Path
 
+import browser_client
 import pytest
 
-import browser_client
 from val3check.cli import main
 from synthetic_run import synthetic_model
 from val3check.reporting.html import model_from_sim_report, render
-from val3check.robot.chain import chain_fk
 from val3check.robot import load_robot
+from val3check.robot.chain import chain_fk
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -127,7 +127,7 @@ def test_3d_forward_kinematics_is_the_arm_models(loaded, model):
 def test_keyboard_and_mouse_drive_the_time_window_and_the_3d_view(chromium, report, model):
     page = chromium.open(report)
     p = page.page
-    window = lambda: p.locator("#tw-range").text_content()  # noqa: E731
+    window = lambda: p.locator("#tw-range").text_content()
     assert window() == "0.000 – 60.000 s"
     p.locator("#joint-plots svg.chart").first.focus()
     p.keyboard.press("+")
@@ -306,6 +306,44 @@ def test_sim_report_html_of_the_pick_and_place_cell(chromium, tmp_path, monkeypa
     p = page.page
     p.screenshot(path=str(tmp_path / "pickplace.png"), full_page=True)
     p.close()
+
+
+def test_page_of_the_pick_and_place_cell_s_json_report(chromium, tmp_path, monkeypatch, capsys):
+    """`python -m val3check.reporting.html --sim-report run.json` on the bundled example's JSON
+    report (issue 28 item 4): the motions, cycles, joint and TCP plots and the arm's timeline of the
+    run, the arm and the cell in the 3D view; what the JSON lacks is said at the top."""
+    from val3check.reporting.html.__main__ import main as html_main
+
+    monkeypatch.chdir(ROOT)
+    run = tmp_path / "run.json"
+    assert main(["sim", "fixtures/valid/PickPlace", "--robot", "tx2-60", "--scenario",
+                 "fixtures/scenarios/pickplace.toml", "--report", "json", "-o", str(run)]) == 0
+    out = tmp_path / "report.html"
+    assert html_main(["--sim-report", str(run), "-o", str(out)]) == 0
+    capsys.readouterr()
+    page = chromium.open(out)
+    _clean(page)
+    counts = page.evaluate("""() => ({
+        motions: document.querySelectorAll('table.motions tbody tr').length,
+        jointPlots: document.querySelectorAll('#joint-plots svg.chart').length,
+        tcpPlots: document.querySelectorAll('#tcp-plot svg.chart').length,
+        bars: document.querySelectorAll('.cyclebars svg rect[role=button]').length,
+        clearances: Array.from(document.querySelectorAll('table.motions tbody tr'))
+                         .filter((r) => /^[0-9.]+ /.test(r.lastElementChild.textContent)).length,
+        verdict: document.querySelector('.verdict').textContent,
+        text: document.body.textContent,
+        where: document.querySelector('table.motions tbody tr td:nth-child(2)').textContent,
+    })""")
+    assert counts["where"] == "start.pgx:15"  # the program with the line
+    assert counts["motions"] == 111 and counts["jointPlots"] == 12 and counts["tcpPlots"] == 1
+    assert counts["bars"] >= 18 and counts["clearances"] == 111
+    assert "median of 18 complete cycles" in counts["verdict"]
+    for absent in ("No motion in this run", "did not move", "no complete loop iteration"):
+        assert absent not in counts["text"]
+    assert "does not record what each task was doing" in counts["text"]
+    assert _painted(page, [120, 80, 0], [255, 200, 60]) > 2000  # the arm
+    page.page.screenshot(path=str(tmp_path / "pickplace-from-json.png"), full_page=True)
+    page.page.close()
 
 
 def test_real_run_with_a_cell_draws_its_obstacles_and_tool(chromium, tmp_path):

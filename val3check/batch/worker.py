@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 from .cases import Case
 from .outputs import case_outputs
 
+MAX_CAUSES = 8
 VERDICTS = ("pass", "fail", "not-run", "crash", "over-budget", "skipped")
 STEP = None  # step(name) as a case goes on ("lint", "run", "report"): set by runner.py for its watchdog
 
@@ -47,6 +48,10 @@ class CaseSummary:
     cycle_range: tuple | None = None  # s: (lowest, highest) cycle_time if the assumed accelerations are off by 2×
     end: str = ""  # how the run ended (SimResult end reason)
     reason: str = ""  # why the verdict is not "pass": the first failing diagnostic, the error, the crash
+    # each failing diagnostic: (code, severity, path, line, col, time_us, task, message), at most
+    # MAX_CAUSES (sim --explore groups failures by them; not in the summary's JSON)
+    causes: tuple = ()
+    cycle_max: float | None = None  # s: the longest of the verdict's cycles
 
     def as_dict(self) -> dict:
         return {"application": self.app, "name": self.app_name, "arm": self.arm or None, "model": self.model,
@@ -134,6 +139,7 @@ def _unmirrored(outcome: CaseOutcome, mirror: str) -> CaseOutcome:
     """Absolute paths as on the machine that made the case."""
     s = outcome.summary
     fix = {f: getattr(s, f).replace(mirror, "") for f in ("reason", "model", "end")}
+    fix["causes"] = tuple(c[:2] + (c[2].replace(mirror, ""),) + c[3:] for c in s.causes)
     summary = CaseSummary(**{**s.__dict__, **fix})
     prefix = mirror.encode("utf-8")
     return CaseOutcome(summary, {k: zlib.compress(v.replace(prefix, b""), 1) for k, v in outcome.outputs.items()})
@@ -186,10 +192,22 @@ def _run(case: Case, mirror: str) -> CaseOutcome:
         loc = f"{d.path}:{d.line}:{d.col}" if d.line else d.path
         reason = f"{loc}: {d.code} {d.severity.label}: {d.message}"
     cycle_time, cycles, spread = _cycle(result.motion)
+    causes = tuple((d.code, d.severity.label, d.path, d.line, d.col, d.time_us, d.task or "", d.message)
+                   for d in failing[:MAX_CAUSES])
     summary = summary_of(case, "fail" if failing else "pass", reason, model=model, errors=errors_n,
                          warnings=warnings_n, cycle_time=cycle_time, cycles=cycles, cycle_range=spread,
-                         end=result.end_reason)
+                         end=result.end_reason, causes=causes, cycle_max=_longest(result.motion))
     return CaseOutcome(summary, case_outputs(report, opts.case_reports, opts.fail_on) if opts.reports else {})
+
+
+def _longest(motion) -> float | None:  # noqa: ANN001
+    """The longest of the verdict's cycles (sim --explore's bound, [explore] max_cycle_time)."""
+    if motion is None:
+        return None
+    from ..simulation.arm_record import main_cycle
+
+    st = main_cycle(motion.cycles)
+    return None if st is None or not st.times else round(max(st.times), 6)
 
 
 def _cycle(motion) -> tuple[float | None, int, tuple | None]:  # noqa: ANN001

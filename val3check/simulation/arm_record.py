@@ -233,27 +233,32 @@ class ArmRun:
 
     def tcp_speed(self, times, positions, velocities) -> np.ndarray:
         """The TCP's Cartesian speed (mm/s) at samples of the trajectory (times (N,), joints and
-        joint velocities (N, axes)), for the tool of the motion under way (the last motion started,
-        connection moves aside; before any, the first motion's): the TCP moved along the joint
-        velocity over a small step (no spike when the tool changes)."""
-        flange = self.scene.flange_frame
-        h = TCP_STEP_S
-        poses = self.scene.kinematics.link_poses_many
-        P0 = poses(positions)[flange]
-        P1 = poses(positions + h * velocities)[flange]
-        starts, tools = [], []
-        for motion in self.motions:
-            if motion.start is not None and motion.kind != "connection":
-                starts.append(motion.start)
-                tools.append(motion.tool_in_flange)
-        idx = np.array([max(bisect.bisect_right(starts, t) - 1, 0) for t in times]) if starts \
-            else np.zeros(len(times), int)
-        out = np.zeros(len(times))
-        for k in sorted(set(idx.tolist())):
-            sel = idx == k
-            tool = tools[k] if tools else None
-            p = np.array([0.0, 0.0, 0.0, 1.0]) if tool is None else np.asarray(tool, dtype=float)[:, 3]
-            a = P0[sel] @ p
-            b = P1[sel] @ p
-            out[sel] = np.linalg.norm((b - a)[:, :3], axis=1) / h
-        return out
+        joint velocities (N, axes)), for the tool of the motion under way (`tcp_speed` below)."""
+        uses = [(motion.start, motion.tool_in_flange) for motion in self.motions
+                if motion.start is not None and motion.kind != "connection"]
+        return tcp_speed(self.scene.kinematics, self.scene.flange_frame, uses, times, positions, velocities)
+
+
+def tcp_speed(kinematics: ArmKinematics, flange: str, tool_uses, times, positions, velocities) -> np.ndarray:
+    """The TCP's Cartesian speed (mm/s) at samples of a trajectory (times (N,), joints and joint
+    velocities (N, axes)), for the tool of the motion under way: `tool_uses` (start, tool in the
+    flange 4x4 or None) of each motion in order of start, connection moves aside; before any, the
+    first motion's tool. The TCP moved along the joint velocity over a small step (no spike when
+    the tool changes)."""
+    h = TCP_STEP_S
+    positions, velocities = np.asarray(positions, dtype=float), np.asarray(velocities, dtype=float)
+    P0 = kinematics.link_poses_many(positions)[flange]
+    P1 = kinematics.link_poses_many(positions + h * velocities)[flange]
+    starts = [t for t, _ in tool_uses]
+    tools = [tool for _, tool in tool_uses]
+    idx = np.array([max(bisect.bisect_right(starts, t) - 1, 0) for t in times]) if starts \
+        else np.zeros(len(times), int)
+    out = np.zeros(len(times))
+    for k in sorted(set(idx.tolist())):
+        sel = idx == k
+        tool = tools[k] if tools else None
+        p = np.array([0.0, 0.0, 0.0, 1.0]) if tool is None else np.asarray(tool, dtype=float)[:, 3]
+        a = P0[sel] @ p
+        b = P1[sel] @ p
+        out[sel] = np.linalg.norm((b - a)[:, :3], axis=1) / h
+    return out

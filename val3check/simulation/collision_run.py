@@ -18,6 +18,7 @@ from __future__ import annotations
 import math
 import re
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -90,7 +91,7 @@ def choose_cell(option: str | None, app_path: str) -> tuple[str | None, str]:
     return (str(found), "found") if found is not None else (None, "none")
 
 
-def load_cell(path: str, app, found: bool = False, budget=None,  # noqa: ANN001
+def load_cell(path: str, app, found: bool = False, budget=None,
               out_of_time=None) -> tuple[Cell | None, list[Diagnostic]]:
     """Read a cell file for the application `app` (loading.model.Application): (cell, []) or
     (None, R030 diagnostics at every problem's line and column). `found`: beside the application
@@ -194,14 +195,16 @@ def _read(machine: Any, name: str, kind: type) -> np.ndarray | None:
 def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, cell_path: str | None = None,
               cell_found: str = "none", app_unit_mm: float = 1.0, io_log=(),
               link_names: dict | None = None, app_path: str = "",
-              max_wall: float = math.inf, geometries=()) -> tuple[CollisionRun | None, list[Diagnostic]]:
+              max_wall: float = math.inf, geometries=(),
+              on_motion: Callable[[int, int], None] | None = None) -> tuple[CollisionRun | None, list[Diagnostic]]:
     """Check every motion of `motion` (the run's arm_record.ArmRun, on the arm `model`, a
     robot.RobotModel) in `cell` (None: the arm against itself only), with the grippers' events and the parts taken away (`cleared_by`, from
     the run's `io_log`; `link_names`: (kind, link) -> the globals linked to it); (CollisionRun,
     diagnostics R031-R036), or (None, [R037]) when there is nothing to check the motions with or
     the arm's solids cannot be read. The checks stop (R037) after `max_wall` seconds of wall clock.
     `geometries`: (from time, model) of each setDH (11.4): a motion is checked with the geometry in
-    force when it starts (setDH waits for the motion to be empty)."""
+    force when it starts (setDH waits for the motion to be empty). `on_motion(done, total)` is told
+    before each motion is checked (the progress display)."""
     from ..robot import RobotError
 
     name = motion.scene.name
@@ -236,6 +239,8 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
 
     deadline = time.monotonic() + max_wall
     for done, (index, start, end) in enumerate(spans):
+        if on_motion is not None:
+            on_motion(done, len(spans))
         if time.monotonic() > deadline:
             diags.append(_not_checked(f"collision checks cut short by the wall-clock budget (--max-wall "
                                       f"{max_wall:g} s): {done} of {len(spans)} motions checked, up to {start:.3f} s",

@@ -18,6 +18,7 @@ from ..interpretation.cell import Reaction, SerialReply
 from ..interpretation.events import ControllerChange, InputsChange, KeyPress, SerialData
 from ..interpretation.user_page import Key
 from ..interpretation.values import Arr, FaultyIOPoint, IOPoint
+from ..interpretation.virtual_disk import disk_key
 from .scenario_numbers import MAX_SECONDS
 from .scenario_numbers import finite as _finite
 from .scenario_numbers import seconds as _seconds
@@ -60,6 +61,34 @@ def load_scenario(path: str) -> Scenario:
     except tomlfile.TomlError as exc:
         raise ScenarioError(path, exc.line, exc.message) from None
     return Scenario(path, text, data)
+
+
+RANGE_KEYS = frozenset({"min", "max", "nominal"})
+
+
+def time_range(v: Any) -> tuple[float, float, float] | None:
+    """A time or delay of the scenario as (nominal, min, max) seconds: a number (its own min and
+    max), or a range `{ min = 0.1, max = 0.4 }` that `sim --explore` draws in (docs/explore.md),
+    whose nominal, the value a plain run uses, is its middle unless `nominal` is given. None when
+    it is neither (a bad key, min > max, a nominal outside, a value out of [0, MAX_SECONDS])."""
+    if isinstance(v, dict):
+        if set(v) - RANGE_KEYS or not {"min", "max"} <= set(v):
+            return None
+        lo, hi = v["min"], v["max"]
+        mid = v.get("nominal", (lo + hi) / 2 if _finite(lo) and _finite(hi) else None)
+        if any(_seconds(x) is None for x in (lo, hi, mid)) or not lo <= mid <= hi:
+            return None
+        return float(mid), float(lo), float(hi)
+    return (float(v),) * 3 if _seconds(v) is not None else None
+
+
+def _time(v: Any) -> int | None:
+    """Microseconds of a time that may be a range (its nominal); None when it is not one."""
+    r = time_range(v)
+    return None if r is None else _seconds(r[0])
+
+
+EXPLORE_KEYS = {"jitter", "max_cycle_time"}
 
 
 class Applier:
@@ -128,7 +157,7 @@ class Applier:
         d = self.sc.data
         self.machine.cell_subsystem.scenario_path = self.sc.path
         known = {"version", "description", "inputs", "events", "reactions", "keys", "serial", "controller", "io", "robot",
-                 *OPTION_TABLES}
+                 "files", *OPTION_TABLES, "explore"}
         for k in d:
             if k not in known:
                 self.fail((k,), f"unknown table or key {shown(k)}")
@@ -144,7 +173,7 @@ class Applier:
         for i, ev in enumerate(_list(d, "events", self)):
             here = ("events", i)
             self._keys(ev, {"at", "set"}, here, "[[events]]")
-            at = _seconds(ev.get("at"))
+            at = _time(ev.get("at"))
             if at is None:
                 self.fail(here + ("at",), "[[events]] needs at = seconds (a finite number from 0 to 1e7)")
             cell.schedule(at, InputsChange(tuple(self.settings(ev.get("set", {}), here + ("set",), "[[events]] set"))))
@@ -156,7 +185,7 @@ class Applier:
                 self.fail(here, "[[reactions]] needs when = \"output\"")
             io = self.signal(name, here + ("when",))
             becomes = self.value(io, r.get("becomes", True), here + ("becomes",), name)
-            after = _seconds(r.get("after", 0))
+            after = _time(r.get("after", 0))
             if after is None:
                 self.fail(here + ("after",), "after = seconds (a finite number from 0 to 1e7)")
             cell.reactions.append(Reaction(io, becomes, after,
@@ -166,7 +195,7 @@ class Applier:
         for i, k in enumerate(_list(d, "keys", self)):
             here = ("keys", i)
             self._keys(k, {"at", "key", "text", "hold"}, here, "[[keys]]")
-            at = _seconds(k.get("at", 0))
+            at = _time(k.get("at", 0))
             if at is None:
                 self.fail(here + ("at",), "[[keys]] at = seconds (a finite number from 0 to 1e7)")
             code = k.get("key", 270 if "text" in k else None)
@@ -193,15 +222,17 @@ class Applier:
                 pat = s["when_sent"]
                 if not isinstance(pat, str) or not pat:
                     self.fail(here + ("when_sent",), "when_sent = \"text the program sends\"")
-                after = _seconds(s.get("after", 0))
+                after = _time(s.get("after", 0))
                 if after is None:
                     self.fail(here + ("after",), "after = seconds")
                 cell.serial_replies.append(SerialReply(io, pat.encode("utf-8"), after, data))
             else:
-                at = _seconds(s.get("at", 0))
+                at = _time(s.get("at", 0))
                 if at is None:
                     self.fail(here + ("at",), "[[serial]] at = seconds (a finite number from 0 to 1e7)")
                 cell.schedule(at, SerialData(io, data))
+        for i, f in enumerate(_list(d, "files", self)):
+            self._file(f, ("files", i))
         if "controller" in d:
             self._controller(d["controller"])
         if "io" in d:
@@ -209,6 +240,18 @@ class Applier:
         if "robot" in d:
             self._robot(d["robot"])
         apply_options(self, d)  # chapter 11: scenario_options.py
+        if "explore" in d:
+            self._explore(d["explore"])
+
+    def _explore(self, table: Any) -> None:
+        """[explore]: what `sim --explore` varies and bounds (docs/explore.md); a plain run
+        checks it and does nothing else with it."""
+        if not isinstance(table, dict):
+            self.fail(("explore",), "[explore] must be a table: jitter = seconds, max_cycle_time = seconds")
+        self._keys(table, EXPLORE_KEYS, ("explore",), "[explore]")
+        for k, v in table.items():
+            if _seconds(v) is None:
+                self.fail(("explore", k), f"[explore] {k} = seconds (a finite number from 0 to {MAX_SECONDS:g})")
 
     def _robot(self, table: Any) -> None:
         """[robot] joints = [j1, ..., j6]: the arm's joint position at the start (degrees, a
@@ -278,6 +321,27 @@ class Applier:
         self.fail(here, "[[serial]] needs send = \"text\" or bytes = [...]")
         return b""
 
+    def _file(self, f: Any, here: tuple) -> None:
+        """[[files]]: a file of the controller's disk for the system library's $file... instructions
+        (interpretation/virtual_disk.py); never the user's disk."""
+        self._keys(f, {"path", "text", "bytes"}, here, "[[files]]")
+        path = f.get("path")
+        if not isinstance(path, str) or disk_key(path) is None:
+            self.fail(here + ("path",), '[[files]] needs path = "Disk://folder/name.txt"')
+        if ("text" in f) == ("bytes" in f):
+            self.fail(here, '[[files]] needs text = "..." or bytes = [...]')
+        if "text" in f:
+            if not isinstance(f["text"], str):
+                self.fail(here + ("text",), '[[files]] text = "the content"')
+            data = f["text"].encode("utf-8")
+        else:
+            b = f["bytes"]
+            if not isinstance(b, list) or not all(isinstance(x, int) and not isinstance(x, bool) and 0 <= x <= 255 for x in b):
+                self.fail(here + ("bytes",), "bytes = [numbers from 0 to 255]")
+            data = bytes(b)
+        if not self.machine.files.put(path, data):
+            self.fail(here, "[[files]]: the controller's disk is full")
+
     def _keys(self, table: Any, allowed: set[str], here: tuple, what: str) -> None:
         if not isinstance(table, dict):
             self.fail(here, f"{what}: expected a table")
@@ -336,7 +400,7 @@ class Applier:
 
     def _changes(self, changes: list, here: tuple, spec: dict) -> None:
         for i, ch in enumerate(changes):
-            if not isinstance(ch, dict) or _seconds(ch.get("at")) is None:
+            if not isinstance(ch, dict) or _time(ch.get("at")) is None:
                 self.fail(here + (i,), "[controller] changes = [{ at = seconds, working_mode = 3, ... }]")
             payload = {}
             for ck, cv in ch.items():
@@ -351,7 +415,7 @@ class Applier:
                         or ck == "monitor_speed" and not (_finite(cv) and 0 <= cv <= 100)):
                     self.fail(here + (i, ck), f"[controller] changes: {ck}: bad value {shown(cv)}")
                 payload[ck] = cv
-            self.machine.cell_subsystem.schedule(_seconds(ch["at"]), ControllerChange(tuple(payload.items())))
+            self.machine.cell_subsystem.schedule(_time(ch["at"]), ControllerChange(tuple(payload.items())))
 
 
 def _list(d: dict, key: str, ap: Applier) -> list:
