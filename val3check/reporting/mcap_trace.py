@@ -21,8 +21,9 @@ import json
 import math
 from typing import Any
 
+from ..lengths import MM_M as MM  # Foxglove works in metres
+
 TICK_S = 0.004
-MM = 0.001  # Foxglove works in metres
 CHUNK_SIZE = 1 << 20
 BLOCK = 2048  # ticks whose poses are computed at once
 LIBRARY = "val3check"

@@ -28,10 +28,10 @@ from ..interpretation.chapters import (
 from ..interpretation.machine import Budgets, Machine
 from ..interpretation.registry import Registry
 from ..interpretation.scheduler import EndRun
+from ..lengths import INCH_MM
 from ..loading.model import Application, Workspace
 from . import ch09_latch, ch10_motion, ch11_absolute, ch11_alter, ch11_compliance, ch11_continuous, ch11_licences
 from .collect import collect
-from .model_arm import INCH_MM
 from .moving_arm import MovingArm
 from .result import SimResult
 from .scenario import Scenario, apply_scenario
