@@ -31,6 +31,7 @@ from ..collision.records import Contact, MotionReport, PartDrop
 from ..diagnostics import Diagnostic
 from ..geometry import frames as geo_frames
 from ..interpretation.clock import TICK_US
+from .budget import WALL
 
 US = 1_000_000
 _NAME = re.compile(r"^(?:([A-Za-z_][A-Za-z0-9_]*):)?([A-Za-z_][A-Za-z0-9_]*)(?:\[\s*(\d+)\s*\])?$")
@@ -194,12 +195,14 @@ def _read(machine: Any, name: str, kind: type) -> np.ndarray | None:
 def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, cell_path: str | None = None,
               cell_found: str = "none", app_unit_mm: float = 1.0, io_log=(),
               link_names: dict | None = None, app_path: str = "",
-              max_wall: float = math.inf) -> tuple[CollisionRun | None, list[Diagnostic]]:
+              max_wall: float = math.inf,
+              out_of_budget: Any = None) -> tuple[CollisionRun | None, list[Diagnostic]]:
     """Check every motion of `motion` (the run's arm_record.ArmRun, on the arm `model`, a
     robot.RobotModel) in `cell` (None: the arm against itself only), with the grippers' events and the parts taken away (`cleared_by`, from
     the run's `io_log`; `link_names`: (kind, link) -> the globals linked to it); (CollisionRun,
     diagnostics R031-R036), or (None, [R037]) when there is nothing to check the motions with or
-    the arm's solids cannot be read. The checks stop (R037) after `max_wall` seconds of wall clock."""
+    the arm's solids cannot be read. The checks stop (R037) after `max_wall` seconds of wall clock,
+    or when `out_of_budget()` says what the run's budgets have spent (simulation/budget.py)."""
     from ..robot import RobotError
 
     name = motion.scene.name
@@ -231,10 +234,12 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
 
     deadline = time.monotonic() + max_wall
     for done, (index, start, end) in enumerate(spans):
-        if time.monotonic() > deadline:
-            diags.append(_not_checked(f"collision checks cut short by the wall-clock budget (--max-wall "
-                                      f"{max_wall:g} s): {done} of {len(spans)} motions checked, up to {start:.3f} s",
-                                      start, app_path))
+        spent = out_of_budget() if out_of_budget is not None else None
+        if spent is not None or time.monotonic() > deadline:
+            why = (f"by the wall-clock budget (--max-wall {max_wall:g} s)" if spent is None or spent.startswith(WALL)
+                   else f"({spent})")
+            diags.append(_not_checked(f"collision checks cut short {why}: {done} of {len(spans)} motions checked, "
+                                      f"up to {start:.3f} s", start, app_path))
             events = events[:ev]
             break
         while ev < len(events) and events[ev][0] / US <= start + 1e-9:

@@ -30,7 +30,9 @@ from ..interpretation.registry import Registry
 from ..interpretation.scheduler import EndRun
 from ..loading.model import Application, Workspace
 from . import ch10_motion
+from .budget import RUN_SHARE, RunBudget
 from .collect import collect
+from .folding import fold
 from .model_arm import INCH_MM
 from .moving_arm import MovingArm
 from .result import SimResult
@@ -51,6 +53,9 @@ class SimOptions:
     max_transcript: int = 10_000
     max_memory_mb: float = 512.0  # growth of the process, loading included (interpretation/memory_budget.py)
     wall_clock: Any = time.monotonic  # what max_wall is measured with (tests: a clock of their own)
+    # the share of max_wall the simulation may take; the collision checks and reports have the rest
+    # (budget.py: the budgets cover every phase)
+    run_share: float = RUN_SHARE
     disk_roots: list[str] = field(default_factory=list)
     # the arm model (val3check.robot.RobotModel) or None: see robot_choice.choose_sim_robot
     robot: Any = None
@@ -80,7 +85,8 @@ def build_machine(ws: Workspace, app: Application, options: SimOptions, *, regis
     a `Subsystem`) replace the standard ones (tests, tools)."""
     budgets = Budgets(duration_us=int(round(options.duration * 1_000_000)), wall_s=options.max_wall,
                       max_lines=options.max_lines, max_transcript=options.max_transcript,
-                      max_memory_mb=options.max_memory_mb, wall_clock=options.wall_clock)
+                      max_memory_mb=options.max_memory_mb, wall_clock=options.wall_clock,
+                      run_share=options.run_share)
     arm = arm if arm is not None else MovingArm(options.robot, cycles=options.cycles)
     machine = Machine(ws, app, registry or build_registry(), arm, budgets=budgets, disk_roots=options.disk_roots)
     if hasattr(arm, "bind"):
@@ -117,9 +123,19 @@ def simulate(ws: Workspace, app: Application, options: SimOptions | None = None,
         machine.end_reason = (stop.reason if isinstance(stop, EndRun) else f"budget:{stop}"
                               if isinstance(stop, MemoryError)
                               else "budget:the application's values are nested too deeply for the simulator")
-        return _collisions(collect(machine), app, options, checks)
+        return _finish(machine, app, options, checks)
     machine.run()
-    return _collisions(collect(machine), app, options, checks)
+    return _finish(machine, app, options, checks)
+
+
+def _finish(machine: Machine, app: Application, options: SimOptions, checks) -> SimResult:
+    """The run's record, its collision checks within what is left of its budgets, its findings
+    folded (folding.py)."""
+    budget = RunBudget.of(machine)
+    result = _collisions(collect(machine), app, options, checks, budget)
+    result.diagnostics = fold(result.diagnostics, app.path, result.sim_time_us)
+    result.budget = budget
+    return result
 
 
 def _collision_setup(app: Application, options: SimOptions, machine: Machine):
@@ -146,7 +162,7 @@ def _collision_setup(app: Application, options: SimOptions, machine: Machine):
     return cell, diags, watch, arm.model
 
 
-def _collisions(result: SimResult, app: Application, options: SimOptions, checks) -> SimResult:
+def _collisions(result: SimResult, app: Application, options: SimOptions, checks, budget: RunBudget) -> SimResult:
     """Check the motions of the run (SimResult.collision) and add the findings."""
     if checks is None:
         if options.cell and result.motion is None:  # said, not silently ignored
@@ -166,7 +182,8 @@ def _collisions(result: SimResult, app: Application, options: SimOptions, checks
         run, more = collision_run.check_run(result.motion, cell, watch, model, cell_path=options.cell, cell_found=how,
                                             app_unit_mm=unit_mm, io_log=result.io_log,
                                             link_names=result.link_names, app_path=app.path,
-                                            max_wall=options.max_wall)
+                                            max_wall=options.max_wall,
+                                            out_of_budget=budget.spent)
         result.collision = run
         if run is not None:
             for index, report in run.by_motion.items():  # each motion's clearances slot
