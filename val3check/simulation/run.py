@@ -56,6 +56,9 @@ class SimOptions:
     # the share of max_wall the simulation may take; the collision checks and reports have the rest
     # (budget.py: the budgets cover every phase)
     run_share: float = RUN_SHARE
+    # when the command started, on wall_clock (None: when the machine is made): --max-wall then
+    # covers the lint and the arm's loading too
+    started: float | None = None
     disk_roots: list[str] = field(default_factory=list)
     # the arm model (val3check.robot.RobotModel) or None: see robot_choice.choose_sim_robot
     robot: Any = None
@@ -89,6 +92,8 @@ def build_machine(ws: Workspace, app: Application, options: SimOptions, *, regis
                       run_share=options.run_share)
     arm = arm if arm is not None else MovingArm(options.robot, cycles=options.cycles)
     machine = Machine(ws, app, registry or build_registry(), arm, budgets=budgets, disk_roots=options.disk_roots)
+    if options.started is not None:
+        machine.wall_start = options.started
     if hasattr(arm, "bind"):
         arm.bind(machine.controller)  # its power and monitor speed (chapter 8)
     machine.add_subsystem(arm)  # after the cell: inputs are refreshed before the arm moves
