@@ -7,6 +7,7 @@ budget reads a clock of the test's (simsupport.StepClock): nothing depends on th
 
 from __future__ import annotations
 
+import itertools
 import json
 
 import pytest
@@ -150,7 +151,7 @@ def test_the_trace_is_thinned_and_says_so(loop_run, tmp_path, monkeypatch):
     every = -(-thinning.moving_ticks(loop_run.motion) // 500)
     assert meta["arm_period_s"] == f"{0.004 * every:.6f}" and "thinned" in meta
     assert len(times) <= 500 + 50
-    steps = {b - a for a, b in zip(times, times[1:])}
+    steps = {b - a for a, b in itertools.pairwise(times)}
     assert min(steps) == round(0.004 * every * 1e9)
 
 

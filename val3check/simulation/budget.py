@@ -13,8 +13,9 @@ so the command overshoots --max-wall by at most that: writing tables of bounded 
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, Callable
+from typing import Any
 
 RUN_SHARE = 0.75  # of --max-wall for the simulation; the checks and reports have the rest
 WALL = "the wall-clock budget"
@@ -28,7 +29,7 @@ class RunBudget:
     memory: Any = None  # interpretation.memory_budget.MemoryBudget: --max-memory
 
     @classmethod
-    def of(cls, machine: Any) -> "RunBudget":
+    def of(cls, machine: Any) -> RunBudget:
         """The budgets of the run of `machine` (interpretation.machine.Machine)."""
         b = machine.budgets
         return cls(b.wall_clock, machine.wall_start + b.wall_s, b.wall_s, machine.cell.budget)
