@@ -119,7 +119,7 @@ def run_case(spec: CaseSpec, say: Say | None = None) -> CaseOutcome:
         options = SimOptions(duration=spec.duration, max_wall=spec.max_wall, max_lines=spec.max_lines,
                              max_memory_mb=spec.max_memory_mb, disk_roots=list(spec.settings.disk_roots),
                              robot=robot, cycles=spec.cycles, progress=progress, collisions=True, cell=cell,
-                             cell_found=cell_found, started=started)
+                             cell_found=cell_found, started=started, reports_in_budget=True)
         try:
             case.result = simulate(case.lint.workspace, app, options, scenario)
         finally:

@@ -59,6 +59,10 @@ class SimOptions:
     # when the command started, on wall_clock (None: when the machine is made): --max-wall then
     # covers the lint and the arm's loading too
     started: float | None = None
+    # the budgets also cover the reports written from the result (SimResult.budget): the `sim`
+    # command and a batch's case write them at once; a caller of the API who writes them later
+    # leaves this off
+    reports_in_budget: bool = False
     disk_roots: list[str] = field(default_factory=list)
     # the arm model (val3check.robot.RobotModel) or None: see robot_choice.choose_sim_robot
     robot: Any = None
@@ -139,7 +143,7 @@ def _finish(machine: Machine, app: Application, options: SimOptions, checks) -> 
     budget = RunBudget.of(machine)
     result = _collisions(collect(machine), app, options, checks, budget)
     result.diagnostics = fold(result.diagnostics, app.path, result.sim_time_us)
-    result.budget = budget
+    result.budget = budget if options.reports_in_budget else None
     return result
 
 
