@@ -210,3 +210,13 @@ def test_the_collision_checks_stop_at_the_runs_budget(tmp_path):
     done, total = (int(x) for x in cut[0].message.split(": ")[1].split(" motions")[0].split(" of "))
     assert 0 < done < total == len(r.motion.motions)
     assert len(r.collision.by_motion) == done
+
+
+def test_no_collision_check_starts_once_the_budget_is_spent(loop_run):
+    from val3check.simulation.collision_run import ValueWatch, check_run
+
+    run, diags = check_run(loop_run.motion, None, ValueWatch(None), TX2_60, max_wall=10.0, app_path="a.pjx",
+                           out_of_budget=lambda: "the simulation uses 900 MB, more than its memory budget of 200 MB")
+    assert run is None and [d.code for d in diags] == ["R037"]
+    assert "(the simulation uses 900 MB" in diags[0].message
+    assert f"0 of {len(loop_run.motion.motions)} motions checked" in diags[0].message

@@ -206,6 +206,11 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
     from ..robot import RobotError
 
     name = motion.scene.name
+    spent = out_of_budget() if out_of_budget is not None else None
+    if spent is not None and motion.motions:  # not even the arm's solids are read
+        why = (f"by the wall-clock budget (--max-wall {max_wall:g} s)" if spent.startswith(WALL) else f"({spent})")
+        return None, [_not_checked(f"collision checks cut short {why}: 0 of {len(motion.motions)} motions checked",
+                                   0.0, app_path)]
     try:
         arm = arm_model(model)
     except RobotError as exc:
