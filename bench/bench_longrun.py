@@ -7,7 +7,7 @@ resident memory of the process, the size of each output, simulated seconds per C
 how the run ended. Also the movej loop of issue 21 H under --max-wall 10 --max-memory 200.
 
 The bounds these figures hold (docs/performance.md, "Long runs"): the JSON trajectory and the
-trace at most about 75,000 samples (a multiple of 4 ms beyond), the motion tables 5,000 rows, at
+trace at most about 75,000 and 40,000 samples (a multiple of 4 ms beyond), the motion tables 5,000 rows, at
 most 10,000 distinct findings with repeats folded; wall and memory budgets over every phase.
 
 Run: python bench/bench_longrun.py [--only 10min,1h,8h,H] [--json FILE]

@@ -17,7 +17,7 @@ from typing import Any
 
 TICK_S = 0.004  # the controller's clock (manual 5.x: the 4 ms cycle)
 JSON_TICKS = 75_000  # samples of the JSON trajectory: 5 minutes of motion at 4 ms (about 9 MB)
-TRACE_TICKS = 75_000  # ticks of the MCAP trace's arm messages: 5 minutes of motion at 4 ms (about 12 MB)
+TRACE_TICKS = 40_000  # ticks of the MCAP trace's arm messages: 160 s of motion at 4 ms (about 15 MB)
 MOTION_ROWS = 5_000  # rows of the motion tables (JSON, HTML): about 2.5 MB of JSON
 
 

@@ -24,6 +24,7 @@ from typing import Any, Protocol
 import numpy as np
 
 TCP_STEP_S = 1e-4  # the TCP speed: the TCP moved along the joint velocity over this step
+BLOCK = 4096  # samples whose link poses are computed at once (memory bounded on long runs)
 
 
 class JointTrajectory(Protocol):
@@ -209,8 +210,12 @@ class ArmRun:
         flange = self.scene.flange_frame
         h = TCP_STEP_S
         poses = self.scene.kinematics.link_poses_many
-        P0 = poses(positions)[flange]
-        P1 = poses(positions + h * velocities)[flange]
+        positions, velocities = np.asarray(positions, dtype=float), np.asarray(velocities, dtype=float)
+        # a block of samples at a time: every link's poses at once take 1 KB a sample
+        P0 = np.concatenate([poses(positions[b:b + BLOCK])[flange] for b in range(0, len(positions), BLOCK)]) \
+            if len(positions) else np.zeros((0, 4, 4))
+        P1 = np.concatenate([poses(positions[b:b + BLOCK] + h * velocities[b:b + BLOCK])[flange]
+                             for b in range(0, len(positions), BLOCK)]) if len(positions) else np.zeros((0, 4, 4))
         starts, tools = [], []
         for motion in self.motions:
             if motion.start is not None and motion.kind != "connection":
