@@ -244,7 +244,7 @@ def main() -> int:
     kin = ArmKin(robot)
     rng = np.random.default_rng(12)
     ok = True
-    # warm-up: imports of toppra and scipy are not part of the figures
+    # warm-up: imports of numpy and scipy are not part of the figures
     pick_and_place(robot, kin, 1)
 
     r = optimality(robot, args.n, rng)
@@ -281,7 +281,7 @@ def main() -> int:
     print(f"5. simulation: {p['sim_s']:.1f} simulated s in {p['wall_s']:.3f} wall s (queue {p['run_s']:.3f} s, "
           f"4 ms trajectory of {p['samples']:,} samples and {p['records']} motion records {p['report_s']:.3f} s): "
           f"{speed:,.0f} simulated s per wall s, {p['sim_s'] / cpu:,.0f} per CPU s (goal 100); cycle "
-          f"{p['sim_s'] / args.cycles:.2f} s; {p['fallbacks']} toppra fallbacks")
+          f"{p['sim_s'] / args.cycles:.2f} s; {p['fallbacks']} safe-profile fallbacks")
     ok &= rate >= 200 and p["sim_s"] / cpu >= 100
     print()
     print("PASS" if ok else "FAIL")

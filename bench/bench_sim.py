@@ -135,7 +135,7 @@ def pick_and_place(duration: float = 600.0) -> None:
     app = ws.apps[ws.targets[0]]
     robot = load_robot("TX2-60")
     scenario = load_scenario(str(ROOT / "fixtures" / "scenarios" / "pickplace.toml"))
-    simulate(ws, app, SimOptions(duration=10.0, robot=robot), scenario)  # warm-up: imports (toppra...)
+    simulate(ws, app, SimOptions(duration=10.0, robot=robot), scenario)  # warm-up: imports (numpy, pinocchio...)
     w0, c0 = time.perf_counter(), time.process_time()
     result = simulate(ws, app, SimOptions(duration=duration, max_wall=600, robot=robot), scenario)
     w1, c1 = time.perf_counter(), time.process_time()

@@ -19,7 +19,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 APP = ROOT / "fixtures" / "valid" / "Cell"
-FORBIDDEN = ("pinocchio", "toppra", "trimesh", "fcl", "mcap", "numpy", "scipy")
+FORBIDDEN = ("pinocchio", "trimesh", "fcl", "mcap", "numpy", "scipy")
 
 
 def main() -> None:

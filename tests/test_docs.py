@@ -264,6 +264,7 @@ def _scenario(block: Block, tmp: Path) -> None:
     for r in data.get("reactions", []):
         names |= {r["when"]} | set(r.get("set", {}))
     names |= set(data.get("io", {}))
+    names |= {p["when"] for p in data.get("pushes", []) if "when" in p}  # compliant moves (11.1)
     sios = {s["sio"] for s in data.get("serial", [])}
     rows, k = [], 0
     for name in sorted(names | sios):

@@ -7,7 +7,7 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-HEAVY = ("pinocchio", "toppra", "trimesh", "fcl", "mcap", "numpy", "scipy", "example_robot_data", "dask", "distributed")
+HEAVY = ("pinocchio", "trimesh", "fcl", "mcap", "numpy", "scipy", "example_robot_data", "dask", "distributed")
 
 
 def test_lint_imports_nothing_heavy():

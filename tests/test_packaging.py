@@ -13,7 +13,7 @@ from val3check.testing import write_app
 
 ROOT = Path(__file__).resolve().parent.parent
 PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
-SIM_STACK = {"pin", "pinocchio", "numpy", "scipy", "toppra", "python-fcl", "fcl", "trimesh", "mcap"}
+SIM_STACK = {"pin", "pinocchio", "numpy", "scipy", "python-fcl", "fcl", "trimesh", "mcap"}
 # the packages of the lint layers (tests/test_architecture.py LINT_PATH)
 LINT_PACKAGES = ("language", "loading", "parsing", "semantics", "rules")
 LINT_MODULES = ("__init__.py", "__main__.py", "cli.py", "diagnostics.py", "positions.py", "resources.py", "lint.py",
@@ -30,7 +30,7 @@ def test_the_base_install_has_no_robotics_stack():
     base = {_name(r) for r in PYPROJECT["project"]["dependencies"]}
     assert base == {"lark", "defusedxml", "pathspec"}
     extras = PYPROJECT["project"]["optional-dependencies"]
-    assert {"pin", "numpy", "toppra", "python-fcl", "trimesh"} <= {_name(r) for r in extras["sim"]}
+    assert {"pin", "numpy", "python-fcl", "trimesh"} <= {_name(r) for r in extras["sim"]}
     assert "val3check[sim]" in extras["test"]  # the README's test command installs everything
 
 
@@ -95,3 +95,35 @@ def test_lark_is_pinned_to_the_range_the_shipped_tables_are_made_with():
             "print('LARK', 'lark' in sys.modules)\n")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, timeout=60).stdout
     assert "LARK False" in out
+
+
+# import name -> distribution, where they differ (lsprotocol comes with pygls)
+_DIST_OF = {"pinocchio": "pin", "fcl": "python-fcl", "distributed": "dask", "lsprotocol": "pygls"}
+# declared but imported only by a dependency: trimesh's mesh operations use scipy
+_NEEDED_BY_A_DEPENDENCY = {"scipy"}
+
+
+def _third_party_imports() -> set[str]:
+    names = set()
+    for path in (ROOT / "val3check").rglob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Import):
+                names.update(a.name.split(".")[0] for a in node.names)
+            elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
+                names.add(node.module.split(".")[0])
+    return {_DIST_OF.get(n, n) for n in names
+            if n != "val3check" and not n.startswith("_") and n not in sys.stdlib_module_names}
+
+
+def test_the_declared_dependencies_are_the_imported_ones():
+    # what the code imports is declared (base or an extra), and the sim extra holds nothing the
+    # code no longer uses (issue 23: toppra replaced by motion/timing's own solver)
+    project = PYPROJECT["project"]
+    declared = {_name(r) for r in project["dependencies"]}
+    for extra in ("sim", "lsp", "dask"):
+        declared |= {_name(r) for r in project["optional-dependencies"][extra]}
+    imported = _third_party_imports()
+    assert imported <= declared, imported - declared
+    sim = {_name(r) for r in project["optional-dependencies"]["sim"]}
+    assert sim - _NEEDED_BY_A_DEPENDENCY <= imported, sim - imported
+    assert "toppra" not in declared | imported

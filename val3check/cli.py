@@ -62,6 +62,10 @@ def _add_batch(sim: argparse.ArgumentParser) -> None:
     b.add_argument("--out-dir", metavar="DIR", help="write the summary (text, JSON, JUnit, index.html) and each case's report under DIR")
     b.add_argument("--fail-fast", action="store_true", help="stop at the first case that does not pass")
     b.add_argument("--case-reports", default="json", metavar="KINDS", help="what --out-dir writes for each case, comma-separated: json, html, trace (default: json)")
+    e = sim.add_argument_group("exploration (timings of the scenario: docs/explore.md)")
+    e.add_argument("--explore", type=int, metavar="N", help="run N variants of the --scenario's times and delays; write each failure, shrunk, as a scenario that reproduces it (in --out-dir, default val3check-explore)")
+    e.add_argument("--jitter", type=float, metavar="SECONDS", help="move each time and delay by up to ± SECONDS (default: the scenario's [explore] jitter; its ranges win)")
+    e.add_argument("--seed", type=int, default=0, metavar="K", help="the seed of the draws: the same command gives the same variants anywhere (default: 0)")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -128,13 +132,23 @@ def build_parser() -> argparse.ArgumentParser:
     reach.add_argument("--disk-root", action="append", default=[], metavar="DIR", help="folder where Disk:// libraries are also searched (repeatable)")
     reach.add_argument("--fail-on", choices=("error", "warning", "info", "never"), default="error", help="lowest finding severity that makes the exit code 1 (default: error; reach findings are warnings and infos, docs/motion.md)")
 
-    robots = sub.add_parser("robots", help="list the arm models by family (reach, joint limits, speeds, assumptions) or show one")
-    robots.add_argument("robot", nargs="?", metavar="ROBOT",
+    robots = sub.add_parser("robots", help="list the arm models by family (reach, joint limits, speeds, assumptions), show "
+                            "one, or fit one's accelerations to a measured cycle (robots fit APP --robot ROBOT "
+                            "--measured-cycle S -o FILE)")
+    robots.add_argument("robot", nargs="*", metavar="ROBOT",
                         help="an arm name (case-insensitive: tx2-60, TX2_60, ts60-L200…), a URDF, an arm.cfx or a robot file "
-                             "(.toml): show that model, its facts and assumptions")
+                             "(.toml): show that model, its facts and assumptions; or `fit APP`: fit the accelerations of "
+                             "--robot to the cycle measured on the cell (docs/sim.md, \"Fitting the accelerations\")")
     robots.add_argument("--robot", dest="robot_opt", metavar="ROBOT", help="same as ROBOT")
     robots.add_argument("--app", metavar="PATH", help="show the arm chosen from the controller tree holding PATH (usr/configs/arm.cfx)")
     _add_format(robots, ("text", "json"))
+    robots.add_argument("--measured-cycle", type=float, metavar="S",
+                        help="fit: the cycle time measured on the cell, in seconds (the loop the reports give)")
+    robots.add_argument("--scenario", metavar="FILE", help="fit: the I/O scenario of the run (TOML, docs/scenario.md)")
+    robots.add_argument("--duration", type=float, default=60.0, metavar="S",
+                        help="fit: simulated seconds of each run at most (default: 60)")
+    robots.add_argument("--cycles", type=int, metavar="N", help="fit: end each run after N cycles")
+    robots.add_argument("-o", "--output", metavar="FILE", help="fit: write the robot file to FILE (default: standard output)")
 
     server = sub.add_parser("server", help="run the language server for editors, over stdio (docs/editors.md)")
     server.add_argument("--stdio", action="store_true", help="talk LSP over standard input and output (the default and only transport)")
@@ -267,6 +281,15 @@ def _sim(args: argparse.Namespace) -> int:
     missing = missing_sim_packages() if not args.init_scenario else []
     if missing:
         print(f"val3check: error: {install_hint(missing)}", file=sys.stderr)
+        return EXIT_USAGE
+    if args.explore is not None:
+        from .batch.explore.command import run as run_explore
+
+        if not batch:
+            args.app, args.robot = [args.app], [args.robot] if args.robot else []
+        return run_explore(args, settings, __version__, _write)
+    if args.jitter is not None:
+        print("val3check: error: --jitter goes with --explore N", file=sys.stderr)
         return EXIT_USAGE
     if batch:
         from .batch.command import run as run_batch
@@ -549,12 +572,27 @@ def _reach(args: argparse.Namespace) -> int:
 
 
 def _robots(args: argparse.Namespace) -> int:
-    """`val3check robots`: the catalogue, or one model in detail (val3check/robot)."""
+    """`val3check robots`: the catalogue, or one model in detail (val3check/robot); `robots fit`."""
     from .robot import RobotError, load_robot, names
     from .reporting.robot_text import render_detail, render_list
     from .robot.catalog import known_without_model
 
-    args.robot = args.robot or args.robot_opt
+    if args.robot[:1] == ["fit"]:
+        from .simulation.fit import command
+
+        if len(args.robot) != 2:
+            print("val3check robots fit: error: one application is needed: val3check robots fit APP --robot ROBOT "
+                  "--measured-cycle S", file=sys.stderr)
+            return EXIT_USAGE
+        return command(args.robot[1], args.robot_opt, args.measured_cycle, args.scenario, args.duration, args.cycles,
+                       args.output)
+    fit_only = [o for o, v in (("--measured-cycle", args.measured_cycle), ("--scenario", args.scenario),
+                               ("--cycles", args.cycles), ("-o", args.output)) if v is not None]
+    if len(args.robot) > 1 or fit_only:
+        print(f"val3check robots: error: {' '.join(fit_only) or ' '.join(args.robot[1:])}: only with "
+              "`val3check robots fit APP` (one ROBOT otherwise)", file=sys.stderr)
+        return EXIT_USAGE
+    args.robot = (args.robot[0] if args.robot else None) or args.robot_opt
     try:
         if args.robot or args.app:
             models = [load_robot(args.robot or None, args.app)]

@@ -60,7 +60,9 @@ def test_several_applications_by_glob_run_one_case_each_in_order(cell, capsys):
     cases = cases_of(out)
     assert [c["application"] for c in cases] == ["apps/A/PickPlace.pjx", "apps/B/PickPlace.pjx"]
     assert all(c["verdict"] == "pass" and c["model"] == "TX2-60" and c["cycles"] == 1 for c in cases)
-    assert cases[0]["cycle_time"] == pytest.approx(2.748243)
+    assert cases[0]["cycle_time"] == pytest.approx(2.679287)  # 2.748243 before the exact ramps of issue 23
+    low, high = cases[0]["cycle_time_range"]  # TX2-60: accelerations assumed, the range stated
+    assert low < cases[0]["cycle_time"] < high
 
 
 def test_a_folder_of_applications_and_a_controller_tree(cell, capsys):

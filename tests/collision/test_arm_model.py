@@ -8,14 +8,14 @@ import random
 import numpy as np
 import pytest
 
-from .helpers import ARM, ROBOT
-
 from val3check.collision import ArmModel, arm_model  # noqa: E402
 from val3check.collision.acm import compute_acm, read_acm  # noqa: E402
 from val3check.collision.bodies import make_bodies  # noqa: E402
 from val3check.robot import from_urdf, load_robot  # noqa: E402
 from val3check.robot.catalog import example_robot_urdf  # noqa: E402
 from val3check.robot.links import arm_links  # noqa: E402
+
+from .helpers import ARM, ROBOT
 
 
 @pytest.mark.parametrize("name", ["TX2-60", "TX90XL", "RX160L"])

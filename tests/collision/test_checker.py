@@ -7,11 +7,11 @@ import math
 import numpy as np
 import pytest
 
-from .helpers import DT, ROBOT, TOOL, MotionSpan, checker, joint_motion, line_motion, read_cell, write_cell
-
 from val3check.collision import Cell, Obstacle, Part, Shape, ToolSolid  # noqa: E402
 from val3check.collision.cellfile import trsf_matrix  # noqa: E402
 from val3check.geometry import Trsf  # noqa: E402
+
+from .helpers import DT, ROBOT, TOOL, MotionSpan, checker, joint_motion, line_motion, read_cell, write_cell
 
 TIP = 10.0  # radius of the tool's tip ball, centred on the TCP of tTool
 

@@ -5,11 +5,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from .helpers import TOOL, MotionSpan, checker, line_motion
-
 from val3check.collision import Cell, Obstacle, Part, Shape, ToolSolid  # noqa: E402
 from val3check.collision.cell import MeshData  # noqa: E402
 from val3check.collision.cellfile import trsf_matrix  # noqa: E402
+
+from .helpers import TOOL, MotionSpan, checker, line_motion
 
 TABLE_TOP = -100.0
 BRICK = 40.0  # a cube carried with its centre 20 mm below the TCP: its bottom is 40 mm below the TCP
@@ -110,7 +110,9 @@ def test_a_tool_solid_inside_a_closed_mesh_is_a_collision():
     rep = checker(c).check_motion(MotionSpan(1), times, q)
     s = rep.starts_in_collision
     assert s is not None and s.kind == "inside" and s.body_b == "obstacle 'dome'"
-    assert s.depth_mm == pytest.approx(80.0 - 10.0, abs=2.0)  # how deep: from the tip to the surface
+    # the penetration depth: the tip must move its radius past the nearest face (docs/cell.md)
+    inradius = float(np.abs((ico.face_normals * ico.triangles_center).sum(axis=1)).min())
+    assert s.depth_mm == pytest.approx(inradius + 10.0, abs=1e-6)
     # an open surface holds nothing inside
     open_mesh = MeshData("dome.stl", np.asarray(ico.vertices), np.asarray(ico.faces), solid=False)
     c.obstacles[0] = Obstacle("dome", Shape("mesh", (), open_mesh), "world", trsf_matrix((350.0, -200.0, 100.0, 0, 0, 0)))
@@ -210,7 +212,9 @@ def test_a_solid_inside_a_non_convex_closed_mesh_is_found():
     rep = chk.check_motion(MotionSpan(1), times, q)
     s = rep.starts_in_collision
     assert s is not None and s.kind == "inside" and s.body_b == "obstacle 'ring'"
-    assert s.depth_mm == pytest.approx(50.0, abs=2.0)  # 60 - 10 to the top and bottom faces, 70 to the sides
+    # the penetration depth: the tip's centre is 60 mm from the top and bottom faces (70 from the
+    # sides): it must move 60 + 10 to get out
+    assert s.depth_mm == pytest.approx(70.0, abs=1e-6)
     # a part left there is reported too
     c.parts.append(Part("pin", "tTool", "close", Shape("sphere", (5.0,)), np.eye(4)))
     chk = checker(c)

@@ -23,24 +23,7 @@ from .simsupport import build, gv
 
 # Every catalogue instruction the simulator does not simulate, with the diagnostic it stops on
 # and why. An instruction that gets a handler leaves this table.
-NOT_SIMULATED = {
-    "setLatch": ("R002", "position capture of the arm's hardware (9.2.3)"),
-    "getLatch": ("R002", "position capture of the arm's hardware (9.2.3)"),
-    "movejf": ("R002", "the compliance option (11.1)"),
-    "movelf": ("R002", "the compliance option (11.1)"),
-    "isCompliant": ("R002", "the compliance option (11.1)"),
-    "alterMovej": ("R002", "the alter option (11.2)"),
-    "alterMovel": ("R002", "the alter option (11.2)"),
-    "alterMovec": ("R002", "the alter option (11.2)"),
-    "alterBegin": ("R002", "the alter option (11.2)"),
-    "alterEnd": ("R002", "the alter option (11.2)"),
-    "alter": ("R002", "the alter option (11.2)"),
-    "alterStopTime": ("R002", "the alter option (11.2)"),
-    "getLicence": ("R004", "the licences of options (11.3): nothing to simulate them against"),
-    "getDH": ("R002", "the absolute robot option's calibration (11.4)"),
-    "getDefaultDH": ("R002", "the absolute robot option's calibration (11.4)"),
-    "setDH": ("R002", "the absolute robot option's calibration (11.4)"),
-    "resetTurn": ("R002", "the continuous axis option (11.5)"),
+NOT_SIMULATED: dict[str, tuple[str, str]] = {
 }
 
 

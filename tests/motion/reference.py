@@ -248,7 +248,11 @@ def sample_joint_path(model, path, s0: float, s1: float, tool=None, n: int = 200
     (central differences 2h apart). JointLine, or any object with that method."""
     s = np.linspace(s0, s1, n)
     h = (s1 - s0) * 1e-5 if h is None else h
-    Q, dQ, ddQ = path.q(s, 0), path.q(s, 1), path.q(s, 2)
+    # the derivatives at s1 from inside [s0, s1]: a path of pieces (val3check's Path) gives at a
+    # junction those of the piece that starts there, which may go the other way
+    inside = s.copy()
+    inside[-1] = np.nextafter(s1, s0)
+    Q, dQ, ddQ = path.q(s, 0), path.q(inside, 1), path.q(inside, 2)
     sm, sp = np.maximum(s - h, s0), np.minimum(s + h, s1)  # one-sided at the ends
     Qm, Qp = path.q(sm, 0), path.q(sp, 0)
     dP, dW = [], []

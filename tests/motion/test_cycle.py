@@ -269,8 +269,9 @@ def test_the_verdict_junit_and_the_batch_summary_quote_the_main_loop(tmp_path, c
     model = model_from_run(build_report(r, Settings(), catalogue(), "test"))
     ct = model["verdict"]["cycle_time"]
     assert ct["seconds"] == pytest.approx(expected, abs=1e-6) and "while loop at line" in ct["basis"]
-    seconds, count = _cycle(r.motion)
+    seconds, count, spread = _cycle(r.motion)
     assert seconds == pytest.approx(expected, abs=1e-6) and count == cycle(r).count
+    assert spread[0] < seconds < spread[1]  # the same loop re-timed (accelerations assumed: issue 23)
     folder = build(tmp_path / "junit", code, globals_=["mdesc mD", "num nI"])
     main(["sim", str(folder), "--robot", "TX2-60", "--duration", "6", "--report", "junit"])
     props = {p.get("name"): p.get("value") for p in ET.fromstring(capsys.readouterr().out).iter("property")}

@@ -301,3 +301,16 @@ def test_pose_helpers_agree(model):
     T = mul(chain_fk(arm, q)["flange"], tuple(tuple(r) for r in tool["tcp"]))
     F = load_robot("tx2-60").fk_matrix(q, (0, 0, 120, 0, 0, 0))
     assert max(abs(T[i][3] - F[i][3]) for i in range(3)) < 1e-6
+
+
+def test_the_verdict_names_the_cycle_s_task_once(model):
+    # the basis of a run's cycle names its task ("... of task robot (the while loop ...)"): the
+    # verdict adds "(task robot)" only when it does not; the range follows the cycle time
+    m = copy.deepcopy(model)
+    m["verdict"]["cycle_time"] = {"seconds": 2.757, "task": "robot", "range": [2.564, 3.107], "off_by": 2,
+                                  "basis": "median of 3 complete cycles of task robot (the while loop at line 9)"}
+    html = render(m)
+    assert "of task robot (the while loop at line 9)</span>" in html and "(task robot)" not in html
+    assert "2.757 s</b> (2.564–3.107 s if the assumed accelerations are off by 2×)" in html
+    m["verdict"]["cycle_time"]["basis"] = "mean of 3 complete iterations of the loop at line 9"
+    assert "line 9 (task robot)</span>" in render(m)

@@ -33,7 +33,7 @@ def test_failing_run_is_a_failed_test_case_with_file_and_line(capsys, monkeypatc
     assert failure.get("type") == "R015"
     assert failure.text.splitlines() == [
         "fixtures/valid/Cell/moves.pgx:29:3: R015 [error] error 154: movec: the positions are too close to define "
-        "an arc (at 1.928 s, task robot)"]
+        "an arc (at 1.912 s, task robot)"]  # 1.928 s before the exact ramps of issue 23
     props = {p.get("name"): p.get("value") for p in case.iter("property")}
     assert props["end_reason"] == "stalled" and props["robot"] == "TX2-60"
 

@@ -103,3 +103,15 @@ def prepare(out_dir: str, case_files: list[str] = ()) -> None:
             raise OutDirError(f"{_shown(path)} is a symbolic link: not written through (remove it)")
         if os.path.lexists(path) and not os.path.isfile(path):
             raise OutDirError(f"{_shown(path)} exists and is not a regular file (remove it)")
+
+
+def write_file(out_dir: str, name: str, data: bytes) -> str:
+    """Write `name` (a relative path) under `out_dir`, never outside it nor through a link at its
+    place; its folders are made. The path written."""
+    path = inside(out_dir, name)
+    try:
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+    except OSError as exc:
+        raise OutDirError(f"cannot create {_shown(os.path.dirname(path))}: {exc.strerror or exc}") from None
+    _write(path, data)
+    return path

@@ -13,8 +13,8 @@ def _clock(seconds: float) -> str:
 
 
 class Progress:
-    def __init__(self, total: int, stream=None, enabled: bool | None = None) -> None:  # noqa: ANN001
-        self.total, self.done, self.failed = total, 0, 0
+    def __init__(self, total: int, stream=None, enabled: bool | None = None, unit: str = "cases") -> None:  # noqa: ANN001
+        self.total, self.done, self.failed, self.unit = total, 0, 0, unit
         self.stream = stream or sys.stderr
         self.enabled = self.stream.isatty() if enabled is None else enabled
         self.start = time.monotonic()
@@ -24,7 +24,7 @@ class Progress:
         left = ""
         if 0 < self.done < self.total:
             left = f", about {_clock(elapsed / self.done * (self.total - self.done))} left"
-        return (f"{self.done}/{self.total} cases, {self.failed} failed, {_clock(elapsed)} elapsed{left}")
+        return (f"{self.done}/{self.total} {self.unit}, {self.failed} failed, {_clock(elapsed)} elapsed{left}")
 
     def update(self, passed: bool) -> None:
         self.done += 1

@@ -282,12 +282,7 @@ def main() -> int:
     os.dup2(sys.stderr.fileno(), sys.stdout.fileno())  # what a case prints goes to standard error
     from . import worker
     from ..reporting import sim_json, sim_report  # noqa: F401 - loaded before the first case's clock starts
-    from ..simulation import case, run  # noqa: F401
-
-    try:  # what every run loads (toppra: 70 MB), before the watchdog measures the first case's size
-        import toppra  # noqa: F401
-    except ImportError:
-        pass
+    from ..simulation import case, run  # noqa: F401 - with them the motion core and numpy: what every run loads
 
     _send(out, _READY)
     worker.STEP = lambda name: _send(out, pickle.dumps(("step", name)))

@@ -39,7 +39,8 @@ def _overrides(s: CaseSummary) -> str:
 def _cycle(s: CaseSummary) -> str:
     if s.cycle_time is None:
         return "-"
-    return f"{s.cycle_time:.3f} s ({s.cycles} cycle{'s' if s.cycles != 1 else ''})"
+    spread = "" if s.cycle_range is None else f", {s.cycle_range[0]:.3f}–{s.cycle_range[1]:.3f} s if accelerations off 2×"
+    return f"{s.cycle_time:.3f} s ({s.cycles} cycle{'s' if s.cycles != 1 else ''}{spread})"
 
 
 def _row(s: CaseSummary) -> list[str]:

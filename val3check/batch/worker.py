@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 from .cases import Case
 from .outputs import case_outputs
 
+MAX_CAUSES = 8
 VERDICTS = ("pass", "fail", "not-run", "crash", "over-budget", "skipped")
 STEP = None  # step(name) as a case goes on ("lint", "run", "report"): set by runner.py for its watchdog
 
@@ -44,14 +45,20 @@ class CaseSummary:
     warnings: int = 0
     cycle_time: float | None = None  # s: median of the verdict's cycle (arm_record.main_cycle)
     cycles: int = 0
+    cycle_range: tuple | None = None  # s: (lowest, highest) cycle_time if the assumed accelerations are off by 2×
     end: str = ""  # how the run ended (SimResult end reason)
     reason: str = ""  # why the verdict is not "pass": the first failing diagnostic, the error, the crash
+    # each failing diagnostic: (code, severity, path, line, col, time_us, task, message), at most
+    # MAX_CAUSES (sim --explore groups failures by them; not in the summary's JSON)
+    causes: tuple = ()
+    cycle_max: float | None = None  # s: the longest of the verdict's cycles
 
     def as_dict(self) -> dict:
         return {"application": self.app, "name": self.app_name, "arm": self.arm or None, "model": self.model,
                 "scenario": self.scenario or None, "cell": self.cell or None, "overrides": dict(self.overrides),
                 "verdict": self.verdict, "errors": self.errors, "warnings": self.warnings,
-                "cycle_time": self.cycle_time, "cycles": self.cycles, "end": self.end or None,
+                "cycle_time": self.cycle_time, "cycles": self.cycles,
+                "cycle_time_range": None if self.cycle_range is None else list(self.cycle_range), "end": self.end or None,
                 "reason": self.reason or None, "report": self.name}
 
 
@@ -132,6 +139,7 @@ def _unmirrored(outcome: CaseOutcome, mirror: str) -> CaseOutcome:
     """Absolute paths as on the machine that made the case."""
     s = outcome.summary
     fix = {f: getattr(s, f).replace(mirror, "") for f in ("reason", "model", "end")}
+    fix["causes"] = tuple(c[:2] + (c[2].replace(mirror, ""),) + c[3:] for c in s.causes)
     summary = CaseSummary(**{**s.__dict__, **fix})
     prefix = mirror.encode("utf-8")
     return CaseOutcome(summary, {k: zlib.compress(v.replace(prefix, b""), 1) for k, v in outcome.outputs.items()})
@@ -183,16 +191,35 @@ def _run(case: Case, mirror: str) -> CaseOutcome:
         d = failing[0]
         loc = f"{d.path}:{d.line}:{d.col}" if d.line else d.path
         reason = f"{loc}: {d.code} {d.severity.label}: {d.message}"
-    cycle_time, cycles = _cycle(result.motion)
+    cycle_time, cycles, spread = _cycle(result.motion)
+    causes = tuple((d.code, d.severity.label, d.path, d.line, d.col, d.time_us, d.task or "", d.message)
+                   for d in failing[:MAX_CAUSES])
     summary = summary_of(case, "fail" if failing else "pass", reason, model=model, errors=errors_n,
-                         warnings=warnings_n, cycle_time=cycle_time, cycles=cycles, end=result.end_reason)
+                         warnings=warnings_n, cycle_time=cycle_time, cycles=cycles, cycle_range=spread,
+                         end=result.end_reason, causes=causes, cycle_max=_longest(result.motion))
     return CaseOutcome(summary, case_outputs(report, opts.case_reports, opts.fail_on) if opts.reports else {})
 
 
-def _cycle(motion) -> tuple[float | None, int]:  # noqa: ANN001
+def _longest(motion) -> float | None:  # noqa: ANN001
+    """The longest of the verdict's cycles (sim --explore's bound, [explore] max_cycle_time)."""
     if motion is None:
-        return None, 0
+        return None
+    from ..simulation.arm_record import main_cycle
+
+    st = main_cycle(motion.cycles)
+    return None if st is None or not st.times else round(max(st.times), 6)
+
+
+def _cycle(motion) -> tuple[float | None, int, tuple | None]:  # noqa: ANN001
+    """The median of the verdict's cycle (arm_record.main_cycle), its count, and its range if the
+    assumed accelerations are off (ArmRun.acceleration_range; None when measured)."""
+    if motion is None:
+        return None, 0, None
     from ..simulation.arm_record import main_cycle
 
     st = main_cycle(motion.cycles)  # the verdict's (reporting/html/from_run.py, sim_junit.py)
-    return (None, 0) if st is None else (round(statistics.median(st.times), 6), st.count)
+    if st is None:
+        return None, 0, None
+    spread = motion.acceleration_range.cycle_time(st.task) if motion.acceleration_range is not None else None
+    return (round(statistics.median(st.times), 6), st.count,
+            None if spread is None else (round(spread[0], 6), round(spread[1], 6)))

@@ -38,8 +38,9 @@ class ArmModel:
                     from ..robot.errors import RobotError
 
                     raise RobotError(f"{robot.source}: link {s.link!r}: {exc}") from None
+                # not known to be closed: a surface; a convex one is measured as its solid hull (an envelope)
                 bodies = make_bodies("link", s.link, s.name, label, "mesh", (), s.origin, mesh.vertices, mesh.faces,
-                                     solid=False)
+                                     solid=False, hull_solid=True)
             else:
                 bodies = make_bodies("link", s.link, s.name, label, s.kind, s.size, s.origin)
             self.bodies.setdefault(s.link, []).extend(bodies)

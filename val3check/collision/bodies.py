@@ -1,11 +1,13 @@
 """Solids as python-fcl objects, with what the broad phase and the motion bound need.
 
 A `Body` is one convex piece of a solid: an fcl object whose distance to another is exact
-(box, cylinder, sphere, or the convex hull of a convex mesh), or, for a piece of a non-convex
-mesh, the convex hull of its triangles (a distance that is a lower bound) together with the
-triangles themselves (`exact`, an fcl BVH) for the exact distance and for contacts. Each body
-keeps its pose in the frame of the group that carries it (`local`), an oriented box around it (for
-a world-aligned box at any pose) and a few points that bound it (for the motion bound).
+(box, cylinder, sphere, or the convex hull of a closed convex mesh), or, for a piece of a
+non-convex mesh or of a surface, the convex hull of its triangles (a distance that is a lower
+bound) together with the triangles themselves (`exact`, an fcl BVH) for the exact distance and
+for contacts. Each body keeps its pose in the frame of the group that carries it (`local`), an
+oriented box around it (for a world-aligned box at any pose) and a few points that bound it (for
+the motion bound); and its exact geometry for `shapes` (`geometry`: "sphere", "box",
+"cylinder", "convex" for a solid convex hull, "triangles" for a piece of a mesh or a surface).
 
 fcl measures between a cylinder and a triangle mesh slowly (milliseconds for 5,000 triangles at
 an angle) but between convex shapes in microseconds: hence the pieces. `make_bodies` cuts a
@@ -19,7 +21,10 @@ import math
 import fcl
 import numpy as np
 
+from .mesh_shape import MeshShape
+
 PIECE = 128  # triangles per piece of a non-convex mesh
+RIM = 64  # points around each rim of a cylinder for depth estimates (`local_samples`)
 _SIDES = 32  # polygon around a cylinder for its bounding points
 
 
@@ -51,15 +56,23 @@ class Body:
     kind: link, tool, part or obstacle; owner: the link name, tool variable, part name or obstacle
     name; label: how reports name it ("link_4 (forearm)", "obstacle 'table'"); local: pose in the
     carrying frame (link, flange, or world); obj: fcl object (exact distances when `exact` is None);
-    exact: fcl BVH of the piece's triangles, or None; mesh: (vertices, faces) of the whole closed
-    mesh the piece belongs to (for point-in-mesh), or None."""
+    exact: fcl BVH of the piece's triangles, or None; whole_shape: the whole mesh the piece
+    belongs to (`mesh_shape.MeshShape`: its inside when closed), or None.
 
-    __slots__ = ("axis", "center", "exact", "half", "kind", "label", "lb", "local", "mesh", "name", "obj", "owner",
-                 "points", "pose", "radius", "solid", "whole", "whole_box")
+    Exact geometry (`shapes`): geometry ("sphere", "box", "cylinder", "convex", "triangles"),
+    size (of a primitive), triangle_shape (the piece's triangles, or the hull's), planes (a
+    convex hull's faces: outward normals (F, 3) and offsets (F,)), edge_directions (a convex
+    hull's edges, unit, each direction once), support_points (a polyhedron's vertices),
+    sample_points (points of the body for depth estimates), all in the body's frame."""
+
+    __slots__ = ("axis", "center", "edge_directions", "exact", "geometry", "half", "kind", "label", "lb", "local",
+                 "name", "obj", "owner", "planes", "points", "pose", "radius", "sample_points", "size", "solid",
+                 "support_points", "triangle_shape", "whole", "whole_box", "whole_shape")
 
     def __init__(self, kind: str, owner: str, name: str, label: str, shape_kind: str, size: tuple[float, ...],
-                 local: np.ndarray, vertices=None, faces=None, solid: bool = True, exact=None, mesh=None,
-                 whole: int = 0) -> None:
+                 local: np.ndarray, vertices=None, faces=None, solid: bool = True, exact=None,
+                 whole_shape: MeshShape | None = None, whole: int = 0, triangles: MeshShape | None = None,
+                 hull_solid: bool = True) -> None:
         self.kind = kind
         self.owner = owner
         self.name = name
@@ -68,10 +81,13 @@ class Body:
         self.obj = fcl.CollisionObject(fcl_geometry(shape_kind, size, vertices, faces), fcl.Transform())
         self.exact = exact
         self.lb = False  # True: obj is the hull of a piece, its distance a lower bound (exact: the BVH)
-        self.mesh = mesh
+        self.whole_shape = whole_shape
         self.solid = solid
         self.whole = whole  # id of the solid the piece belongs to (pieces of one mesh share it)
         self.pose = np.eye(4)
+        self.size = tuple(float(x) for x in size)
+        self.planes = None
+        self.edge_directions = None
         # bounding points in the body's own frame, and its axis of revolution (point, direction) if any
         if shape_kind == "box":
             hx, hy, hz = (0.5 * s for s in size)
@@ -97,6 +113,27 @@ class Body:
         hi = self.points.max(axis=0) + self.radius
         self.center, self.half = 0.5 * (lo + hi), 0.5 * (hi - lo)
         self.whole_box = (self.center, self.half)  # box around the whole solid a piece belongs to
+        # exact geometry
+        if shape_kind in ("box", "cylinder", "sphere"):
+            self.geometry = shape_kind
+            self.triangle_shape = None
+            self.support_points = None
+        elif shape_kind == "convex" and hull_solid:
+            self.geometry = "convex"
+            self.triangle_shape = MeshShape(vertices, faces, closed=True)
+            self.planes = _planes(np.asarray(vertices, dtype=float), np.asarray(faces, dtype=np.int64))
+            self.edge_directions = _edge_directions(np.asarray(vertices, dtype=float), np.asarray(faces, dtype=np.int64))
+            self.support_points = np.asarray(vertices, dtype=float)
+        else:  # a piece of a mesh, or a surface: its own triangles
+            self.geometry = "triangles"
+            self.triangle_shape = triangles if triangles is not None else MeshShape(vertices, faces, closed=False)
+            self.support_points = self.triangle_shape.vertices
+        self.sample_points = local_samples(self.geometry, self.size, self.support_points)
+
+    @property
+    def closed_mesh(self) -> bool:
+        """A piece of a closed mesh that is not convex (its inside is not its hull's: `whole_shape`)."""
+        return self.geometry == "triangles" and self.whole_shape is not None and self.whole_shape.closed
 
     def place(self, frame: np.ndarray) -> None:
         """Put the body at `frame` @ local (world, mm)."""
@@ -151,25 +188,31 @@ class Body:
 
 
 def make_bodies(kind: str, owner: str, name: str, label: str, shape_kind: str, size: tuple[float, ...],
-                local: np.ndarray, vertices=None, faces=None, solid: bool = True) -> list[Body]:
-    """The bodies of one solid: one for a primitive or a convex mesh, pieces for another mesh."""
+                local: np.ndarray, vertices=None, faces=None, solid: bool = True,
+                hull_solid: bool | None = None) -> list[Body]:
+    """The bodies of one solid: one for a primitive or a convex mesh, pieces for another mesh.
+    solid: a mesh is a closed volume (else a surface); hull_solid: a convex mesh is measured as
+    its solid hull (default: when solid; the arm's link meshes are envelopes: always)."""
     if shape_kind != "mesh":
         b = Body(kind, owner, name, label, shape_kind, size, local, solid=solid)
         b.whole = id(b)
         return [b]
+    hull_solid = solid if hull_solid is None else hull_solid
     v = np.asarray(vertices, dtype=float)
     f = np.asarray(faces, dtype=np.int64)
-    whole_mesh = (v, f) if solid else None
+    pieces, whole_shape = _pieces(v, f, solid, hull_solid)
     key = object()
     lo, hi = v.min(axis=0), v.max(axis=0)
     whole_box = (0.5 * (lo + hi), 0.5 * (hi - lo))
     out = []
-    for pv, pf, hv, hf, bvh, lb in _pieces(v, f):
+    for pv, pf, hv, hf, bvh, lb, tris in pieces:
         exact = fcl.CollisionObject(bvh, fcl.Transform())
         if hv is None:  # a flat piece: its triangles are the convex object too
-            b = Body(kind, owner, name, label, "mesh", (), local, pv, pf, solid=solid, exact=exact, mesh=whole_mesh)
+            b = Body(kind, owner, name, label, "mesh", (), local, pv, pf, solid=solid, exact=exact,
+                     whole_shape=whole_shape, triangles=tris)
         else:
-            b = Body(kind, owner, name, label, "convex", (), local, hv, hf, solid=solid, exact=exact, mesh=whole_mesh)
+            b = Body(kind, owner, name, label, "convex", (), local, hv, hf, solid=solid, exact=exact,
+                     whole_shape=whole_shape, triangles=tris, hull_solid=not lb)
             b.lb = lb
         b.whole = id(key)
         b.whole_box = whole_box
@@ -177,35 +220,38 @@ def make_bodies(kind: str, owner: str, name: str, label: str, shape_kind: str, s
     return out
 
 
-_PIECES: dict[bytes, list] = {}
+_PIECES: dict[tuple, tuple] = {}
 
 
-def _pieces(v: np.ndarray, f: np.ndarray) -> list:
-    """(vertices, faces, hull vertices, hull faces, BVH geometry, hull is a lower bound only) per
-    piece; one piece (the hull, exact) for a convex closed mesh. Computed once per mesh."""
+def _pieces(v: np.ndarray, f: np.ndarray, solid: bool, hull_solid: bool) -> tuple[list, MeshShape]:
+    """(vertices, faces, hull vertices, hull faces, BVH geometry, hull is a lower bound only, the
+    piece's triangles) per piece, and the whole mesh; one piece (the hull, exact) for a convex mesh
+    measured as its solid hull. Computed once per mesh."""
     import hashlib
 
     import trimesh
 
-    key = hashlib.sha1(v.tobytes() + f.tobytes()).digest()
+    key = (hashlib.sha1(v.tobytes() + f.tobytes()).digest(), solid, hull_solid)
     if key in _PIECES:
         return _PIECES[key]
     out = []
+    whole = MeshShape(v, f, closed=solid)
     if trimesh.Trimesh(v, f, process=False).is_convex:
         hull = _hull(v, f)
         if hull is not None:
-            out.append((v, f, hull[0], hull[1], fcl_geometry("mesh", (), v, f), False))
+            # a surface's hull is only a lower bound: the surface has no inside
+            out.append((v, f, hull[0], hull[1], fcl_geometry("mesh", (), v, f), not hull_solid, whole))
     if not out:
         for idx in _split(v, f):
             used, inv = np.unique(f[idx], return_inverse=True)
             pv, pf = v[used], inv.reshape(-1, 3)
             ph = _hull(pv, pf)
             out.append((pv, pf, None if ph is None else ph[0], None if ph is None else ph[1],
-                        fcl_geometry("mesh", (), pv, pf), True))
+                        fcl_geometry("mesh", (), pv, pf), True, MeshShape(pv, pf, closed=False)))
     if len(_PIECES) > 64:
         _PIECES.clear()
-    _PIECES[key] = out
-    return out
+    _PIECES[key] = (out, whole)
+    return out, whole
 
 
 def _split(v: np.ndarray, f: np.ndarray) -> list[np.ndarray]:
@@ -245,28 +291,50 @@ def aabb_gap(lo_a: np.ndarray, hi_a: np.ndarray, lo_b: np.ndarray, hi_b: np.ndar
     return np.sqrt((gap * gap).sum(axis=-1))
 
 
-# Three fixed, unrelated directions for the ray-parity test (no axis-aligned ray grazes box edges).
-_RAYS = np.array([[0.5773, 0.6172, 0.5345], [-0.7071, 0.3015, 0.6396], [0.2673, -0.8018, 0.5345]])
+def local_samples(geometry: str, size: tuple[float, ...], vertices) -> np.ndarray:
+    """Points of a body in its own frame whose depth inside another solid bounds the penetration
+    depth from below (`shapes.samples`): a box's corners, edge middles, face centres and centre; a
+    cylinder's rims (RIM points each), cap centres and centre; a polyhedron's vertices; a sphere's
+    centre (its radius is added by the caller)."""
+    if geometry == "sphere":
+        return np.zeros((1, 3))
+    if geometry == "box":
+        h = 0.5 * np.asarray(size, dtype=float)
+        g = np.array([[i, j, k] for i in (-1, 0, 1) for j in (-1, 0, 1) for k in (-1, 0, 1)], dtype=float)
+        return g * h
+    if geometry == "cylinder":
+        r, h = size[0], 0.5 * size[1]
+        a = np.arange(RIM) * 2.0 * math.pi / RIM
+        ring = np.stack([r * np.cos(a), r * np.sin(a), np.zeros(RIM)], axis=1)
+        return np.concatenate([ring + [0.0, 0.0, -h], ring + [0.0, 0.0, h], [[0.0, 0.0, -h], [0.0, 0.0, h],
+                                                                            [0.0, 0.0, 0.0]]])
+    return np.asarray(vertices, dtype=float)
 
 
-def point_inside(vertices: np.ndarray, faces: np.ndarray, point: np.ndarray) -> bool:
-    """Whether `point` is inside a closed (watertight) triangle mesh: the number of faces a ray
-    from the point crosses is odd. Three rays vote, so a ray through an edge cannot decide alone."""
-    a = vertices[faces[:, 0]]
-    e1 = vertices[faces[:, 1]] - a
-    e2 = vertices[faces[:, 2]] - a
-    votes = 0
-    for d in _RAYS:
-        d = d / np.linalg.norm(d)
-        p = np.cross(d, e2)
-        det = (e1 * p).sum(axis=1)
-        ok = np.abs(det) > 1e-12
-        inv = np.where(ok, 1.0 / np.where(ok, det, 1.0), 0.0)
-        s = point - a
-        u = (s * p).sum(axis=1) * inv
-        q = np.cross(s, e1)
-        v = (q * d).sum(axis=1) * inv
-        t = (q * e2).sum(axis=1) * inv
-        hits = ok & (u >= 0.0) & (v >= 0.0) & (u + v <= 1.0) & (t > 0.0)
-        votes += int(hits.sum()) % 2
-    return votes >= 2
+def _edge_directions(vertices: np.ndarray, faces: np.ndarray) -> np.ndarray:
+    """The directions of a polyhedron's edges, unit, each once (up to sign); the diagonals of flat
+    faces cut into triangles come too (more directions to try are harmless)."""
+    e = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
+    d = vertices[e[:, 1]] - vertices[e[:, 0]]
+    d = d[np.linalg.norm(d, axis=1) > 1e-12]
+    d /= np.linalg.norm(d, axis=1)[:, None]
+    sign = np.where((d[:, 0] < -1e-9) | ((np.abs(d[:, 0]) <= 1e-9) & ((d[:, 1] < -1e-9)
+                    | ((np.abs(d[:, 1]) <= 1e-9) & (d[:, 2] < 0.0)))), -1.0, 1.0)
+    d = d * sign[:, None]
+    return np.unique(np.round(d, 9), axis=0)
+
+
+def _planes(vertices: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The face planes of a convex polyhedron: outward unit normals (F, 3) and offsets (F,) (a
+    point x is inside when n·x <= d for every face)."""
+    tri = vertices[faces]
+    n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    length = np.linalg.norm(n, axis=1)
+    keep = length > 1e-12
+    n = n[keep] / length[keep][:, None]
+    d = (n * tri[keep, 0]).sum(axis=1)
+    centre = vertices.mean(axis=0)
+    flip = (n @ centre) > d  # the centre must be inside: turn inward normals out
+    n[flip] *= -1.0
+    d[flip] *= -1.0
+    return n, d

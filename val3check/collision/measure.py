@@ -1,6 +1,9 @@
 """Measuring one watch at one position of a motion: its body pairs nearest first (the boxes), the
-distances and contacts of those that matter (the fcl backend), and solids wholly inside a closed
-mesh (which fcl, measuring to the surface, does not see)."""
+distances and overlaps of those that matter (the fcl backend), and solids wholly inside a closed
+mesh (which fcl, measuring to the surface, does not see).
+
+A clearance is the distance between two solids when they are apart, and minus the penetration
+depth when they overlap (docs/cell.md, "What a clearance is")."""
 
 from __future__ import annotations
 
@@ -9,21 +12,33 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .bodies import Body, aabb_gap, point_inside
-from .fcl_backend import FclBackend, Point
+from .bodies import Body, aabb_gap
+from .fcl_backend import Distance, FclBackend, Penetration, Point
 from .groups import Watch
 from .path import ArmPath
 from .world import World
 
 
-@dataclass(frozen=True, slots=True)
 class Nearest:
-    """Where a measured distance is: body a, body b, a point on each (world, mm)."""
+    """Where a measured clearance is: body a, body b, and a point of each (world, mm): the
+    nearest points when they are apart (from a `Distance`, computed when asked), the witnesses of
+    the penetration when they overlap (`Penetration`)."""
 
-    a: Body
-    b: Body
-    point_a: Point
-    point_b: Point
+    __slots__ = ("_distance", "_points", "a", "b")
+
+    def __init__(self, a: Body, b: Body, distance: Distance | None = None,
+                 points: tuple[Point, Point] | None = None) -> None:
+        self.a = a
+        self.b = b
+        self._distance = distance
+        self._points = points
+
+    @property
+    def points(self) -> tuple[Point, Point]:
+        """(point of a, point of b)."""
+        if self._points is None:
+            self._points = self._distance.points()  # type: ignore[union-attr]
+        return self._points
 
 
 @dataclass(frozen=True, slots=True)
@@ -61,16 +76,6 @@ class Measurement:
     clearance_valid_until: float
 
 
-@dataclass(frozen=True, slots=True)
-class Inside:
-    """A body wholly inside a closed mesh: the inner body, a piece of the mesh, and how deep
-    inside it is (the distance to the mesh's triangles)."""
-
-    inner: Body
-    outer: Body
-    depth: float
-
-
 class Probe:
     """Measures the watches of one motion (`path`) in `world` through `backend`.
 
@@ -82,6 +87,7 @@ class Probe:
         self.path = path
         self.backend = backend
         self.allowed_until: dict[frozenset[int], float] = {}
+        self._insides: dict[tuple, list] = {}  # per position and watch: the solids inside a closed mesh
 
     def place(self, w: Watch, u: float) -> None:
         """Put the bodies of both sides of a watch where they are at position u."""
@@ -146,7 +152,9 @@ class Probe:
             pairs = kept
         bound = clear = math.inf
         exact, nearest = True, None
-        touching: list[tuple[Body, Body, bool]] = []
+        # (body a, body b, leaves the clearance alone, the overlap when known)
+        touching: list[tuple[Body, Body, bool, Penetration | None]] = [
+            (ba, bb, False, pen) for ba, bb, pen in self.insides(w, u)]
         for gap, ba, bb in pairs:
             if gap > max(clear, 0.0):
                 break
@@ -158,35 +166,55 @@ class Probe:
             dist = self.backend.distance(ba, bb, need == math.inf if exact_mesh is None else exact_mesh)
             lands = bool(landing) and (id(ba), id(bb)) in landing
             if dist.mm <= 0.0:  # overlapping or touching: the depth decides, below
-                touching.append((ba, bb, lands))
+                touching.append((ba, bb, lands, None))
                 continue
             bound = min(bound, dist.mm)
             if not lands and dist.mm < clear:
                 clear, exact = dist.mm, dist.exact
-                nearest = Nearest(ba, bb, dist.point_a, dist.point_b) if dist.exact else None
+                nearest = Nearest(ba, bb, dist) if dist.exact else None
         hit = None
         kind = "contact" if w.b is None else "self"
-        for ba, bb, lands in touching:
-            pen = self.backend.collide(ba, bb)
-            depth, point = (pen.depth, pen.point) if pen is not None else (0.0, None)
+        for ba, bb, lands, known in touching:
+            pen = known if known is not None else self.backend.contact(ba, bb)
+            depth = pen.depth if pen is not None else 0.0
             bound = min(bound, -depth)
+            if pen is not None and pen.inner == "b":  # a solid inside a closed mesh comes first
+                x, y, px, py = bb, ba, pen.point_b, pen.point_a
+            elif pen is not None:
+                x, y, px, py = ba, bb, pen.point_a, pen.point_b
             if not lands and -depth <= clear:
-                p = point if point is not None else _point(0.5 * (ba.pose[:3, 3] + bb.pose[:3, 3]))
-                clear, exact, nearest = -depth, True, Nearest(ba, bb, p, p)
+                # overlapping: the penetration's witnesses; touching: where they touch
+                found = Nearest(x, y, points=(px, py)) if pen is not None else Nearest(ba, bb, self.backend.distance(ba, bb))
+                clear, exact, nearest = -depth, True, found
             if pen is not None and (hit is None or depth > hit.depth):
-                hit = Hit(ba, bb, pen.point, depth, kind)
+                hit = Hit(x, y, px, depth, "inside" if pen.kind == "inside" else kind)
         return Measurement(bound, clear, exact, nearest, hit, valid, valid_clear)
 
-    def contained(self, w: Watch, u: float) -> Inside | None:
-        """A body of the watch wholly inside a closed mesh of the other side (fcl measures only
-        to the surface, so this is tested apart, at a motion's start)."""
+    def _crosses(self, body: Body, pieces: list[Body], lo: np.ndarray, hi: np.ndarray) -> bool:
+        """Whether the body touches the surface of a mesh (given by its pieces): then it is not
+        wholly inside, and the pairs measure the overlap."""
+        for p in pieces:
+            plo, phi = p.aabb()
+            if float(aabb_gap(lo, hi, plo, phi)) <= 0.0 and self.backend.distance(body, p).mm <= 0.0:
+                return True
+        return False
+
+    def insides(self, w: Watch, u: float) -> list[tuple[Body, Body, Penetration]]:
+        """The bodies of one side of the watch wholly inside a closed mesh of the other (fcl
+        measures only to the surface, so this is looked for apart): (inner, a piece of the mesh,
+        the overlap). Only bodies whose box lies in the mesh's box, and that touch none of its
+        triangles, are tested."""
+        key = (u, id(w))
+        if key in self._insides:
+            return self._insides[key]
         world = self.world
         self.place(w, u)
+        out: list[tuple[Body, Body, Penetration]] = []
         sides = (w.a.bodies, world.static if w.b is None else w.b.bodies)
         for inners, outers in (sides, sides[::-1]):
             wholes: dict[int, list[Body]] = {}
             for o in outers:
-                if o.mesh is not None and o.solid:
+                if o.closed_mesh:
                     wholes.setdefault(o.whole, []).append(o)
             for pieces in wholes.values():
                 outer = pieces[0]
@@ -197,16 +225,15 @@ class Probe:
                             or frozenset((id(inner), id(p))) in world.allowed for p in pieces):
                         continue
                     lo, hi = inner.aabb()
-                    if np.any(lo < olo) or np.any(hi > ohi):
+                    if np.any(lo < olo) or np.any(hi > ohi) or self._crosses(inner, pieces, lo, hi):
                         continue
-                    inv = np.linalg.inv(outer.pose)
-                    c = inv[:3, :3] @ (0.5 * (lo + hi)) + inv[:3, 3]
-                    if point_inside(outer.mesh[0], outer.mesh[1], c):
-                        depth = math.inf
-                        for p in pieces:
-                            depth = min(depth, self.backend.surface_distance(inner, p))
-                        return Inside(inner, outer, max(depth, 0.0))
-        return None
+                    pen = self.backend.inside(inner, outer)
+                    if pen is not None:
+                        out.append((inner, outer, pen))
+        if len(self._insides) > 1024:
+            self._insides.clear()
+        self._insides[key] = out
+        return out
 
 
 def _boxes(bodies: list[Body]) -> tuple[np.ndarray, np.ndarray]:

@@ -23,7 +23,7 @@ import numpy as np
 from .bodies import aabb_gap
 from .bounds import Track, prepare, scene_layout
 from .fcl_backend import FclBackend
-from .measure import Hit, Nearest, Probe
+from .measure import Nearest, Probe
 from .path import ArmPath
 from .records import Clearance, Contact, MotionReport
 from .world import World
@@ -87,7 +87,7 @@ class Sweep:
         if best is not None:
             near = best.nearest
             report.min_clearance = Clearance(float(best.mm), path.t(best.u), near.a.label, near.b.label,
-                                             near.point_a, near.point_b)
+                                             *near.points)
             report.too_close = (report.first_contact is None and report.starts_in_collision is None
                                 and self.margin > 0.0 and best.mm < self.margin)
         n = path.last
@@ -133,7 +133,7 @@ class Sweep:
         boxes = []
         seen = set()
         for b in self.world.static:
-            if b.mesh is not None and b.solid and b.whole not in seen:
+            if b.closed_mesh and b.whole not in seen:
                 seen.add(b.whole)
                 boxes.append(b.whole_aabb())
         path = self.path
@@ -150,11 +150,11 @@ class Sweep:
         """Whether a body of one side may lie wholly inside a closed mesh of the other at the first
         sample: its box inside the mesh's box."""
         w = tr.watch
-        if w.b is None and not any(b.mesh is not None and b.solid for b in w.a.bodies):
+        if w.b is None and not any(b.closed_mesh for b in w.a.bodies):
             return any(id(b) in self._inside_first for b in w.a.bodies)
         others = self.world.static if w.b is None else w.b.bodies
         for inners, outers in ((w.a.bodies, others), (others, w.a.bodies)):
-            meshes = [b for b in outers if b.mesh is not None and b.solid]
+            meshes = [b for b in outers if b.closed_mesh]
             if not meshes:
                 continue
             self.probe.place(w, 0.0)
@@ -199,7 +199,7 @@ class Sweep:
                     break
                 d = self.backend.distance(ba, bb).mm
                 if d <= self.touch:
-                    pen = self.backend.collide(ba, bb) if d <= 0.0 else None
+                    pen = self.backend.contact(ba, bb) if d <= 0.0 else None
                     if pen is None or pen.depth <= self.touch:
                         out.add((id(ba), id(bb)))
         return out
@@ -224,15 +224,8 @@ class Sweep:
         while True:
             need = end - tr.bound_at(u)
             m = probe.measure(tr.watch, u, need if u > 0.0 else math.inf, landing=tr.landing)
-            bound, clear, nearest, hit = m.bound, m.clearance, m.nearest, m.hit
-            if u == 0.0 and hit is None:
-                inside = probe.contained(tr.watch, u)
-                if inside is not None:
-                    c = _point(inside.inner.pose[:3, 3])
-                    hit = Hit(inside.inner, inside.outer, c, inside.depth, "inside")
-                    bound = clear = -inside.depth
-                    nearest = Nearest(inside.inner, inside.outer, c, c)
-            self._record(tr, u, clear, m.exact, nearest, m.clearance_valid_until)
+            bound, hit = m.bound, m.hit
+            self._record(tr, u, m.clearance, m.exact, m.nearest, m.clearance_valid_until)
             if hit is not None and hit.depth > self.touch:
                 if not tr.in_contact:
                     c = Contact(path.t(u), hit.a.label, hit.b.label, hit.point, hit.depth, hit.kind)
@@ -341,6 +334,3 @@ def snap(u: float, nxt: float) -> float:
         return s
     return max(math.floor(nxt / MIN_STEP) * MIN_STEP, u + MIN_STEP)
 
-
-def _point(p) -> tuple[float, float, float]:
-    return (float(p[0]), float(p[1]), float(p[2]))

@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from .armmodel import ArmModel
-from .bodies import Body, aabb_gap, make_bodies, point_inside
+from .bodies import Body, aabb_gap, make_bodies
 from .cell import Cell, Obstacle, ToolSolid
 from .fcl_backend import FclBackend
 from .groups import Group, Watch, link_group, make_watches
@@ -315,24 +315,20 @@ class World:
                 lb, hb = b.whole_aabb()
                 if float(aabb_gap(la, ha, lb, hb)) > 0.0:
                     continue
-                c = self.backend.collide(a, b)
-                if c is not None and c.depth > self.touch:
-                    seen.add((a.whole, b.whole))
-                    out.append(PartDrop(time, a.label, b.label, c.point, c.depth, source))
+                if self.backend.distance(a, b).mm <= 0.0:
+                    pen = self.backend.contact(a, b)
+                    if pen is not None and pen.depth > self.touch:
+                        seen.add((a.whole, b.whole))
+                        out.append(PartDrop(time, a.label, b.label, pen.point_a, pen.depth, source))
                     continue
                 for inner, outer in ((a, b), (b, a)):
-                    if outer.mesh is not None and outer.solid:
-                        inv = np.linalg.inv(outer.pose)
-                        p = inv[:3, :3] @ inner.pose[:3, 3] + inv[:3, 3]
-                        if point_inside(outer.mesh[0], outer.mesh[1], p):
-                            seen.add((a.whole, b.whole))
-                            out.append(PartDrop(time, a.label, b.label, _point(inner.pose[:3, 3]), None, source))
-                            break
+                    pen = self.backend.inside(inner, outer)
+                    if pen is not None:
+                        seen.add((a.whole, b.whole))
+                        out.append(PartDrop(time, a.label, b.label, pen.point_a, None, source))
+                        break
         return out
 
-
-def _point(p) -> tuple[float, float, float]:
-    return (float(p[0]), float(p[1]), float(p[2]))
 
 
 def _mesh(shape) -> tuple:

@@ -109,6 +109,7 @@ class Curve:
 
     length_mm: float = 0.0  # TCP path length
     angle_deg: float = 0.0  # total rotation of the tool
+    turn_deg: float = 0.0  # how far the direction of travel turns along the curve
 
     def poses(self, lam: np.ndarray) -> np.ndarray:  # pragma: no cover - interface
         """TCP poses (N, 4, 4) at λ (array)."""
@@ -189,6 +190,7 @@ class Arc(Curve):
         self.r23 = math.radians(ang23) * ax23
         self.length_mm = self.radius * self.a3
         self.angle_deg = float(ang12 + ang23)
+        self.turn_deg = math.degrees(self.a3)
         # the orientation law changes at the intermediate point: a gridpoint there
         self.knots = (self.u2,)
 
@@ -239,6 +241,9 @@ class Blend(Curve):
         P = self.positions(lam)
         self.length_mm = float(np.linalg.norm(np.diff(P, axis=0), axis=1).sum())
         self.angle_deg = math.degrees(float(np.linalg.norm(rotvec(self.RL.T @ self.RR))))
+        nl, nr = np.linalg.norm(self.vL), np.linalg.norm(self.vR)
+        cos = float(self.vL @ self.vR) / (nl * nr) if nl > 0 and nr > 0 else 1.0
+        self.turn_deg = math.degrees(math.acos(min(max(cos, -1.0), 1.0)))
 
     def poses(self, lam):
         """Position on the blend shape, orientation the smooth-step superposition of the two rotations."""

@@ -16,6 +16,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..robot.dh import fk_many as dh_fk_many
+from ..robot.dh import refine as dh_refine
 from ..robot.errors import IKUnsupported
 from ..robot.ik import opw_ik
 
@@ -80,6 +82,7 @@ class ArmKin:
         self.revolute = np.array([k != "prismatic" for k in kinds])
         self.multi_turn &= self.revolute
         self.scara = getattr(model, "scara", None) is not None
+        self.dh = getattr(model, "dh", None)  # a geometry setDH changed (robot/absolute.py, 11.4)
         self.branch_is_config = False
         self._configs: list[tuple[str, ...]] = []  # arms without the OPW form: codes by first use
         if self.opw is not None:
@@ -90,11 +93,19 @@ class ArmKin:
             self.branch_is_config = bool(np.all(self.signs > 0) and o.a2 == 0.0)
             self._deg_signs = DEG * self.signs
 
+    def use_geometry(self, model) -> None:
+        """setDH (11.4): the same arm with the geometry of `model` (robot/absolute.py) from now on,
+        for everyone holding this object (the queue's collaborators)."""
+        self.model = model
+        self.dh = getattr(model, "dh", None)
+
     # ---- forward kinematics ------------------------------------------------------------------
 
     def fk(self, Q) -> np.ndarray:
         """Flange in world (N, 4, 4), mm, for joint positions Q (N, 6) in degrees."""
         Q = np.atleast_2d(np.asarray(Q, dtype=float))
+        if self.dh is not None:
+            return dh_fk_many(self.dh, Q)
         if self.opw is None:  # any URDF chain: one position at a time
             return np.array([as4(self.model.fk_matrix(q)) for q in Q])
         if len(Q) <= SMALL_N:  # numpy's per-call cost outweighs a few closed-form evaluations
@@ -224,7 +235,23 @@ class ArmKin:
         exist; branch index = 4·shoulder + 2·elbow + wrist (`branches`: compute only these).
         Where the wrist is exactly singular j4 is NaN (the caller takes it from its neighbour).
         On the Stäubli arms (no axis sign change, no forearm offset) the branch index is the
-        configuration code of 9.7.4 (`branch_is_config`)."""
+        configuration code of 9.7.4 (`branch_is_config`). A geometry setDH changed: each nominal
+        branch refined by Newton's method (robot/dh.py), NaN where it does not converge."""
+        out = self._ik_nominal(T, branches)
+        if self.dh is None:
+            return out
+        T = np.asarray(T, dtype=float)
+        T = T[None] if T.ndim == 2 else T
+        flat = out.reshape(-1, 6)
+        have = ~np.isnan(flat[:, [0, 1, 2, 4, 5]]).any(axis=1)
+        if np.any(have):
+            Q0 = np.where(np.isnan(flat[have]), 0.0, flat[have])
+            poses = np.repeat(T, out.shape[1], axis=0)[have]
+            flat[have] = dh_refine(self.dh, poses, Q0)
+        return flat.reshape(out.shape)
+
+    def _ik_nominal(self, T, branches=None) -> np.ndarray:
+        """ik_all of the model's closed form (the standard geometry)."""
         self.need_ik()
         o = self.opw
         T = np.asarray(T, dtype=float)

@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 
+TIMING_SPLIT = 4  # gridpoints of the timing per interval of a Cartesian path's knots (8 mm: one per 2 mm)
 H_FD = 1e-4  # path-units step of the finite differences of the TCP rates
 JUNCTION_EPS = 1e-6  # path units: the second gridpoint of a span, on its side of a junction
 
@@ -88,9 +89,14 @@ class JointSpline:
         return d if order == 0 else d / h ** order
 
     def grid(self, a: float, b: float) -> np.ndarray:
-        """The knots inside [a, b], and a and b."""
+        """The time parameterisation's gridpoints in [a, b]: the knots inside, a and b, and
+        TIMING_SPLIT - 1 more points evenly between each two (the timing's discretisation error
+        shrinks with the spacing, docs/motion.md "Timing")."""
         inner = self.lam[(self.lam > a + 1e-12) & (self.lam < b - 1e-12)]
-        return np.concatenate([[a], inner, [b]])
+        knots = np.concatenate([[a], inner, [b]])
+        f = np.arange(TIMING_SPLIT) / TIMING_SPLIT
+        fine = knots[:-1, None] + f[None, :] * np.diff(knots)[:, None]
+        return np.append(fine.ravel(), b)
 
 
 def blend_length(ell_l: float, ell_r: float) -> float:
@@ -142,7 +148,7 @@ def blend_controls(pL, vL, pR, vR, ell_l: float, ell_r: float):
 # corner. ("bezier": the Bézier curve through the corner of the two tangents, tighter when leave
 # and reach differ a lot; measured slower on random U cycles, bench/bench_motion.py.) When several
 # shapes are listed the queue takes the one its estimate says the arm follows fastest.
-BLEND_SHAPES = (1.0,)
+BLEND_SHAPES = ("bezier",)
 
 
 class BlendShape:
@@ -201,8 +207,8 @@ class JointBlend:
         return d if order == 0 else d * self.ell ** order
 
     def grid(self, a: float, b: float) -> np.ndarray:
-        """Gridpoints of λ in [a, b]: one per 4° of joint motion."""
-        n = max(12, min(60, math.ceil(self.ell * (b - a) / 4.0)))  # one per 4° of joint motion
+        """Gridpoints of λ in [a, b]: one per degree of joint motion (at least 24, at most 240)."""
+        n = max(24, min(240, math.ceil(self.ell * (b - a))))
         return np.linspace(a, b, n + 1)
 
 

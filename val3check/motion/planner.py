@@ -230,7 +230,8 @@ class Planner:
             if b - a <= _eps(b):
                 a = b
                 continue
-            piece = self.timing.time(trial, a, b, v0, self.limits_of)
+            piece = self.timing.time_from(trial, a, b, v0, self.limits_of,
+                                          lambda g, a_: self.profile.speed_at(g + shift, a_ + shift))
             total += piece.duration
             if piece.fallback:  # not reused: the plan reports it (R019)
                 pieces = None
@@ -303,7 +304,7 @@ class Planner:
             if b - a <= _eps(b):
                 a = b
                 continue
-            piece = self.timing.time(self.path, a, b, v0, self.limits_of)
+            piece = self.timing.time_from(self.path, a, b, v0, self.limits_of, self.profile.speed_at)
             if piece.fallback:
                 self.fallbacks += 1
                 self.on_fallback(piece.owner)

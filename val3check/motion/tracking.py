@@ -51,11 +51,13 @@ class Track:
     D: np.ndarray | None = None  # dq/dλ at the gridpoints (central differences), when no failure
 
 
-def grid_size(curve, per_mm: float = 0.125, per_deg: float = 0.25, lo: int = 8, hi: int = 300) -> int:
-    """Number of intervals for a curve: one per 8 mm of TCP path and per 4° of tool rotation (the
-    spline between them stays within a micrometre of the curve; near a singularity the grid is
-    refined, see `track`)."""
-    n = int(math.ceil(curve.length_mm * per_mm + curve.angle_deg * per_deg))
+def grid_size(curve, per_mm: float = 0.125, per_deg: float = 0.25, per_turn_deg: float = 1 / 6, lo: int = 8,
+              hi: int = 300) -> int:
+    """Number of intervals for a curve: one per 8 mm of TCP path, per 4° of tool rotation and per
+    6° the direction of travel turns (the spline between them stays within a micrometre of the
+    curve, and its curvature, which sets how fast a circle can be followed, within a fraction of a
+    percent; near a singularity the grid is refined, see `track`)."""
+    n = int(math.ceil(curve.length_mm * per_mm + curve.angle_deg * per_deg + curve.turn_deg * per_turn_deg))
     return max(lo, min(hi, n))
 
 

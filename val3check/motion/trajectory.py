@@ -1,7 +1,8 @@
 """The arm's trajectory: a path plus a time parameterisation behind one interface.
 
 `Profile` is the path parameter over simulated time, s(t): breakpoints (t, s, ṡ) with a constant
-path acceleration between them (the exact form of both the bang-bang profiles and toppra's
+path acceleration between them (the exact form of both the bang-bang profiles and the
+time-optimal solver's
 output); at rest between motions ṡ = 0. It only grows at its end, except that a replan cuts it at
 the replanning time and continues from the exact state there (position and speed continuous).
 
@@ -110,6 +111,22 @@ class Profile:
             self.T.append(float(times[i]))
             self.S.append(float(s[i + 1]))
             self.SD.append(float(sd[i + 1]))
+
+    def speed_at(self, s: float, until: float) -> float | None:
+        """ṡ where the profile passed position s on its way to position `until` (the last time),
+        None when it stood still in between or never got there."""
+        S, SD = self.S, self.SD
+        k = bisect.bisect_right(S, s) - 1
+        if k < 0 or k >= len(S) - 1:
+            return None
+        j = k + 1
+        while j < len(S) and S[j] < until:
+            if SD[j] <= 0.0:
+                return None
+            j += 1
+        ds = S[k + 1] - S[k]
+        x = SD[k] ** 2 + (SD[k + 1] ** 2 - SD[k] ** 2) * (s - S[k]) / ds if ds > 0 else SD[k] ** 2
+        return math.sqrt(max(x, 0.0))
 
     def time_at(self, s_target: float) -> float | None:
         """The first time at which s reaches s_target; None when the profile never gets there."""

@@ -94,12 +94,14 @@ def _motion(run: Any) -> dict | None:
         st = m.cycles[task]
         where = run.display((st.marker[0], st.marker[1], st.marker[2], "")) if st.marker is not None else None
         times = st.times
+        spread = m.acceleration_range.cycle_time(task) if m.acceleration_range is not None else None
         cycles.append({"task": task, "loop": st.kind, "path": where[0] if where else None,
                        "line": st.marker[1] if st.marker else None, "column": st.marker[2] if st.marker else None,
                        "program": st.program, "why": st.why, "passes": st.passes,
                        "cycles": st.count, "starts": [_s(x) for x in st.starts], "times": [_s(x) for x in times],
                        "min": _s(min(times)) if times else None, "max": _s(max(times)) if times else None,
-                       "median": _s(statistics.median(times)) if times else None})
+                       "median": _s(statistics.median(times)) if times else None,
+                       "median_range": None if spread is None else [_s(spread[0]), _s(spread[1])]})
     every = tick_multiple(m, JSON_TICKS)
     period = TICK_S * every
     segments = []
@@ -123,6 +125,8 @@ def _motion(run: Any) -> dict | None:
             "moving": _s(m.busy_s), "idle": _s(m.idle_s),
             "tcp_length_mm": round(sum(r.length_mm for r in m.motions), 3),
         },
+        "accelerations_assumed": m.acceleration_range is not None,
+        "acceleration_factors": None if m.acceleration_range is None else list(m.acceleration_range.factors),
         "cycles": cycles,
         "motions": motions,
         "tool_events": [

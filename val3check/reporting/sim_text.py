@@ -113,6 +113,15 @@ def _diag(d) -> str:
     return printable(f"  {loc}: {d.code} {d.severity.label}: {d.message} (at {fmt_time(d.time_us)}){who}")
 
 
+def _range(m, task: str) -> str:
+    """" (2.41–3.52 s if the assumed accelerations are off by 2×)" when the model assumes them."""
+    spread = m.acceleration_range
+    r = spread.cycle_time(task) if spread is not None else None
+    if r is None:
+        return ""
+    return f" ({seconds(r[0])}–{seconds(r[1])} s if the assumed accelerations are off by {spread.off_by:g}×)"
+
+
 def _motion_summary(run: Any, m) -> list[str]:
     out = []
     for task in sorted(m.cycles):
@@ -125,8 +134,8 @@ def _motion_summary(run: Any, m) -> list[str]:
             out.append(f"cycle of task {task}: {loop}, no complete cycle ({st.why})")
             continue
         out.append(f"cycle time of task {task} ({loop}): {st.count} cycle"
-                   f"{'s' if st.count != 1 else ''}, min {seconds(min(t))} s, median {seconds(statistics.median(t))} s,"
-                   f" max {seconds(max(t))} s")
+                   f"{'s' if st.count != 1 else ''}, min {seconds(min(t))} s, median {seconds(statistics.median(t))} s"
+                   f"{_range(m, task)}, max {seconds(max(t))} s")
     cmds = [x for x in m.motions if x.id is not None]
     done = sum(1 for x in cmds if x.state == "done")
     failed = sum(1 for x in cmds if x.state == "failed")

@@ -205,7 +205,12 @@ def arm_links(model) -> ArmLinks:
     """The `ArmLinks` of a `RobotModel` (read from its URDF)."""
     info = read_urdf(model.source)
     solids = read_collision_solids(info.path)
-    return ArmLinks(info, solids, tuple(model.joint_names), model.world_frame)
+    links = ArmLinks(info, solids, tuple(model.joint_names), model.world_frame)
+    if getattr(model, "dh", None) is not None:  # a geometry setDH changed (11.4)
+        from .dh_links import DHLinks
+
+        return DHLinks(links, model)  # type: ignore[return-value]
+    return links
 
 
 def read_collision_solids(path: str | os.PathLike, resolve_meshes: bool = True) -> list[Solid]:

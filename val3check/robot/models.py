@@ -334,7 +334,7 @@ class RobotModel:
                 return [], ("reach", f"{self.name}: a SCARA only turns its flange about the vertical: the target's Z "
                                      "axis is tilted from the flange's")
         else:
-            raw = opw_ik(solver, T, hint)
+            raw = self._branches(solver, T, hint)
         if not raw:
             return [], ("reach", f"{self.name}: the pose is out of the arm's reach")
         in_limits = self._turns(raw, near, all_turns)
@@ -360,6 +360,10 @@ class RobotModel:
         if near is not None:
             out.sort(key=lambda q: sum((a - b) ** 2 for a, b in zip(q, near)))
         return out, ("", "")
+
+    def _branches(self, solver, T, hint) -> list:
+        """Every inverse branch of the six-axis closed form (radians; absolute.py refines them)."""
+        return opw_ik(solver, T, hint)
 
     def _turns(self, raw, near, all_turns) -> list[tuple[float, ...]]:
         """VAL 3 values within the joint limits: per revolute axis, the value (mod 360) nearest

@@ -18,6 +18,7 @@ first asked): a report reads this record and imports nothing of robot/, geometry
 from __future__ import annotations
 
 import bisect
+import statistics
 from dataclasses import dataclass, field
 from typing import Any, Protocol
 
@@ -173,6 +174,32 @@ class CycleEntry:
         return max(len(self.starts) - 1, 0)
 
 
+@dataclass(frozen=True)
+class AccelerationRange:
+    """The cycles of the run re-timed with every acceleration and deceleration times each factor
+    (docs/motion.md, "Accelerations"): given when the model's accelerations are assumed, so that
+    the reports state the cycle time with the range it takes if they are off (issue 23)."""
+
+    factors: tuple[float, ...]  # robot.models.ASSUMED_ACCELERATION_RANGE: (0.5, 2.0)
+    cycles: tuple[dict[str, CycleEntry], ...]  # per factor, the re-timed run's cycles by task
+
+    @property
+    def off_by(self) -> float:
+        """How far the accelerations are taken to be off (2 for ½ and 2)."""
+        return max(max(self.factors), 1.0 / min(self.factors))
+
+    def cycle_time(self, task: str) -> tuple[float, float] | None:
+        """(lowest, highest) median cycle time of `task` over the factors; None when a re-timed
+        run has no complete cycle of it."""
+        medians = []
+        for by_task in self.cycles:
+            st = by_task.get(task)
+            if st is None or not st.times:
+                return None
+            medians.append(statistics.median(st.times))
+        return min(medians), max(medians)
+
+
 def main_cycle(cycles: dict[str, CycleEntry]) -> CycleEntry | None:
     """The cycle a run's verdict quotes: the task's with the most complete cycles (ties: the first
     task by name); None when no task completed one."""
@@ -187,7 +214,9 @@ def main_cycle(cycles: dict[str, CycleEntry]) -> CycleEntry | None:
 @dataclass
 class ArmRun:
     """What the arm did in a run (see the module docstring): `busy_s`, `idle_s` its moving and
-    standing time, `end_s` the end of the run; `tool_events` every open()/close() (ToolUse)."""
+    standing time, `end_s` the end of the run; `tool_events` every open()/close() (ToolUse);
+    `acceleration_range` the cycles if the assumed accelerations are off (None when they were
+    measured: a robot file's values)."""
 
     scene: ArmScene
     motions: list[MotionEntry]
@@ -197,6 +226,7 @@ class ArmRun:
     busy_s: float = 0.0
     idle_s: float = 0.0
     end_s: float = 0.0
+    acceleration_range: AccelerationRange | None = None
 
     def sample(self, t0: float = 0.0, t1: float | None = None, dt: float = 0.004):
         """(times (N,), joint positions (N, axes), joint velocities (N, axes)) every `dt` s."""

@@ -18,7 +18,10 @@ from ..geometry.rotation import angles_of, matrix
 from ..interpretation.machine import Machine
 from ..motion.cycle import cycle_stats
 from ..motion.records import busy_time, motion_records
-from .arm_record import ArmRun, ArmScene, CycleEntry, FramePose, MotionEntry, MotionLimits, ToolUse
+from ..motion.retime import retimed
+from ..robot.models import ASSUMED_ACCELERATION_RANGE
+from .arm_layers import ActualTrajectory
+from .arm_record import AccelerationRange, ArmRun, ArmScene, CycleEntry, FramePose, MotionEntry, MotionLimits, ToolUse
 from .moving_arm import MovingArm
 from .result import END_REASONS, SimResult, TaskSummary
 
@@ -86,34 +89,65 @@ def arm_run(machine: Machine, diags: list[Diagnostic]) -> ArmRun | None:
     if q is None:
         return None
     end_s = machine.end_time / 1_000_000
-    q.advance(end_s)
+    q.advance(arm.queue_time(machine.end_time))
     for f in q.findings:
         src = f.source
         diags.append(Diagnostic(f.code, f.message, src.path, src.line, src.col, time_us=int(round(f.time * 1e6)),
                                 task=src.task, program=src.program, error=f.error))
-    records = motion_records(q, end_s)
-    motions = [_entry(rec, command) for rec, command in zip(records, q.history)]
-    cycles = {task: CycleEntry(st.task, st.marker, tuple(st.starts), st.loop and st.loop.program,
-                               st.loop and st.loop.kind, st.why, st.passes)
-              for task, st in _cycles(machine, arm, records, q.history).items()}
-    busy, idle = busy_time(q.trajectory.profile, end_s)
+    layers = getattr(arm, "layers", None)
+    queue_records = records = motion_records(q, arm.queue_time(machine.end_time))
+    trajectory = q.trajectory
+    if layers is not None and not layers.trivial:  # chapter 11 moved the arm off the queue's trajectory
+        trajectory = ActualTrajectory(trajectory, layers)
+        records = [actual_record(rec, arm) for rec in records]
+    motions = [_entry(rec, command, layers) for rec, command in zip(records, q.history)]
+    cycles = _cycle_entries(machine, records)
+    if trajectory is q.trajectory:
+        busy, idle = busy_time(q.trajectory.profile, end_s)
+    else:
+        busy = sum(b - a for a, b in trajectory.moving(end_s))
+        idle = max(end_s - busy, 0.0)
     scene = arm_scene(arm.model, arm.initial_joints, machine.main.globals if machine.main is not None else {})
     tools = [ToolUse(*e, tcp_matrix=_matrix(e.tcp_in_flange)) for e in machine.recorder.tool_events]
-    return ArmRun(scene, motions, cycles, q.trajectory, tools, busy, idle, end_s)
+    spread = None
+    if getattr(arm.model, "accelerations_assumed", False):  # issue 23: the range if they are off
+        spread = AccelerationRange(ASSUMED_ACCELERATION_RANGE,
+                                   tuple(_cycle_entries(machine, retimed(q, queue_records, f))
+                                         for f in ASSUMED_ACCELERATION_RANGE))
+    return ArmRun(scene, motions, cycles, trajectory, tools, busy, idle, end_s, spread)
 
 
-def _cycles(machine: Machine, arm: MovingArm, records, commands) -> dict:
-    """Each task's cycle (motion/cycle.py): from the loops each command was recorded in and the
-    loops each task was in when the run ended."""
-    contexts = [arm.contexts.get(command.key, ()) for command in commands]
+def actual_record(rec, arm):
+    """A motion record (queue times) in real time: when the arm got there (arm_layers.Warp)."""
+    from dataclasses import replace
+
+    layers = arm.layers
+    start = rec.start if rec.start is None else layers.warp.leaving_time(rec.start)
+    end = arm.real_time(rec.end)
+    return replace(rec, start=start, end=end if end is not None or rec.end is None else None)
+
+
+def _cycle_entries(machine: Machine, records) -> dict[str, CycleEntry]:
+    """The cycles of the tasks that record motions, as the reports give them: the run's, and the
+    re-timed runs' of the acceleration range (the same commands, the same loops)."""
+    return {task: CycleEntry(st.task, st.marker, tuple(st.starts), st.loop and st.loop.program,
+                             st.loop and st.loop.kind, st.why, st.passes)
+            for task, st in task_cycles(machine, records).items()}
+
+
+def task_cycles(machine: Machine, records) -> dict:
+    """Each task's cycle (motion/cycle.py) from the run's motion records (or the same re-timed):
+    the loops each command was recorded in and the loops each task was in when the run ended."""
+    arm = machine.arm
+    contexts = [arm.contexts.get(command.key, ()) for command in arm.queue_in_use.history]
     inside = {t.name: arm.context(t.final.loops) for t in machine.scheduler.history
               if t.final is not None and t.final.loops}
     return cycle_stats(records, contexts, inside)
 
 
-def _entry(rec, command) -> MotionEntry:
+def _entry(rec, command, layers=None) -> MotionEntry:
     """A row of the motion table: the motion record (motion/records.py) and what its command
-    (motion/queued.py) asked."""
+    (motion/queued.py) asked; its joints with the turns resetTurn took off (`layers`)."""
     req = command.request
     connection = req.kind == "connection"
     md = req.mdesc
@@ -122,8 +156,17 @@ def _entry(rec, command) -> MotionEntry:
         rec.id, rec.kind, rec.source, rec.state, rec.recorded, rec.start, rec.end, rec.length_mm, rec.peak_tcp_mm_s,
         rec.dominant, rec.limit_share, rec.target, req.frame_name, rec.tool,
         tool_in_flange=None if connection else req.tool,
-        tool_trsf=None if connection or req.tool is None else _trsf(req.tool), joints_start=command.geometry.q_start,
-        joints_end=command.geometry.q_end if command.state != "failed" else None, limits=limits)
+        tool_trsf=None if connection or req.tool is None else _trsf(req.tool),
+        joints_start=_turned(command.geometry.q_start, rec.start, layers),
+        joints_end=_turned(command.geometry.q_end, rec.end, layers) if command.state != "failed" else None,
+        limits=limits)
+
+
+def _turned(joints, t, layers):
+    """Joints of the queue as the arm had them at t (the turns of resetTurn, 11.5)."""
+    if layers is None or not layers.turns.times or t is None:
+        return joints
+    return joints + layers.turns.at(t)
 
 
 def _trsf(m) -> tuple[float, ...]:

@@ -195,17 +195,20 @@ def _read(machine: Any, name: str, kind: type) -> np.ndarray | None:
 def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, cell_path: str | None = None,
               cell_found: str = "none", app_unit_mm: float = 1.0, io_log=(),
               link_names: dict | None = None, app_path: str = "",
-              max_wall: float = math.inf,
+              max_wall: float = math.inf, geometries=(),
               out_of_budget: Any = None) -> tuple[CollisionRun | None, list[Diagnostic]]:
     """Check every motion of `motion` (the run's arm_record.ArmRun, on the arm `model`, a
     robot.RobotModel) in `cell` (None: the arm against itself only), with the grippers' events and the parts taken away (`cleared_by`, from
     the run's `io_log`; `link_names`: (kind, link) -> the globals linked to it); (CollisionRun,
     diagnostics R031-R036), or (None, [R037]) when there is nothing to check the motions with or
     the arm's solids cannot be read. The checks stop (R037) after `max_wall` seconds of wall clock,
-    or when `out_of_budget()` says what the run's budgets have spent (simulation/budget.py)."""
+    or when `out_of_budget()` says what the run's budgets have spent (simulation/budget.py).
+    `geometries`: (from time, model) of each setDH (11.4): a motion is checked with the geometry in
+    force when it starts (setDH waits for the motion to be empty)."""
     from ..robot import RobotError
 
     name = motion.scene.name
+    epochs = None
     spent = out_of_budget() if out_of_budget is not None else None
     if spent is not None and motion.motions:  # not even the arm's solids are read
         why = (f"by the wall-clock budget (--max-wall {max_wall:g} s)" if spent.startswith(WALL) else f"({spent})")
@@ -213,6 +216,8 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
                                    0.0, app_path)]
     try:
         arm = arm_model(model)
+        if geometries:
+            arm, epochs = _geometry_epochs(model, geometries)
     except RobotError as exc:
         return None, [_not_checked(f"collisions not checked: the collision solids of {name} cannot be read: {exc}",
                                    motion.end_s, app_path)]
@@ -251,6 +256,8 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
             diags.extend(event(events[ev][2]))
             ev += 1
         rec = motion.motions[index]
+        if epochs is not None:
+            epochs.at(start)
         times, joints = _samples(q_at, start, end)
         report = checker.check_motion(MotionSpan(index, rec.source, _label(rec)), times, joints, q_at=q_at)
         run.by_motion[index] = report
@@ -270,6 +277,41 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
                                 program=""))
     run.checks = checker.measurements
     return run, diags
+
+
+class _GeometryEpochs:
+    """The arm's links under each geometry of the run (setDH, 11.4), the one in force chosen motion by
+    motion (`at`); the motion bound holds for all of them."""
+
+    def __init__(self, epochs: list) -> None:
+        self.epochs = epochs  # [(from time, links)], in time order
+        self.current = epochs[0][1]
+
+    def at(self, t: float) -> None:
+        for start, links in self.epochs:
+            if start <= t + 1e-9:
+                self.current = links
+
+    def __getattr__(self, name):
+        return getattr(self.current, name)
+
+    def reach_from_joint(self, link: str) -> dict[int, float]:
+        out: dict[int, float] = {}
+        for _, links in self.epochs:
+            for k, r in links.reach_from_joint(link).items():
+                out[k] = max(out.get(k, 0.0), r)
+        return out
+
+
+def _geometry_epochs(model: Any, geometries) -> tuple[Any, _GeometryEpochs]:
+    """An arm of its own (not the shared one of `arm_model`) whose links follow the geometries."""
+    from ..collision.armmodel import ArmModel
+    from ..robot.links import arm_links
+
+    arm = ArmModel(model)
+    epochs = _GeometryEpochs([(-math.inf, arm.links), *((t, arm_links(m)) for t, m in geometries)])
+    arm.links = epochs
+    return arm, epochs
 
 
 def _path_between_samples(traj: Any):

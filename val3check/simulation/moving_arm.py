@@ -42,13 +42,18 @@ from ..interpretation.scheduler import EndRun
 from ..language.runtime_errors import Val3RuntimeError
 from ..motion.commands import MoveCommand, Target
 from ..motion.cycle import Context, CycleCounter, Loop, Pass
-from ..motion.findings import MotionError, Source
+from ..motion.failures import failure_text
+from ..motion.findings import MDESC, Finding, MotionError, Source
 from ..motion.mdesc import MDesc
 from ..motion.queue import MotionQueue, QueueFull
 from ..motion.records import time_leaving
+from .alteration import Alteration
+from .arm_layers import Layers, QueueView
+from .compliance import Compliance
 from .model_arm import INCH_MM, ModelArm
 
 US = 1_000_000
+TICK_US = 4000  # the controller's setpoints (ALTER's samples, 11.2.3)
 
 
 class MovingArm(ModelArm):
@@ -69,6 +74,14 @@ class MovingArm(ModelArm):
         self.prismatic = tuple(k == "prismatic" for k in (getattr(model, "joint_kinds", None) or ())) \
             if model is not None else ()
         self._readers: list[Callable[[int, bool], None]] = []  # `watch`
+        self.base_model = model  # the standard geometry (setDH, 11.4, changes `model`)
+        # what chapter 11 adds on top of the queue's trajectory (arm_layers.py)
+        self.layers = Layers(len(model.joint_limits)) if model is not None else None
+        self.compliance = Compliance()  # compliant moves and the cell's forces on them (11.1)
+        self.alteration = Alteration(self)  # ALTER (11.2)
+        if self.layers is not None:
+            self.layers.hooks.append(_Hook(self))
+        self.geometries: list[tuple[float, Any]] = []  # (from time s, model) after each setDH
 
     def bind(self, controller: Any) -> None:
         """The controller whose power and monitor speed the arm follows (chapter 8)."""
@@ -90,6 +103,7 @@ class MovingArm(ModelArm):
             self._queue = MotionQueue(self.model, np.array(self._initial, dtype=float),
                                       powered=True if ctl is None else bool(ctl.powered),
                                       monitor=100.0 if ctl is None else float(ctl.monitor_speed))
+            self.layers.queue = self._queue
         return self._queue
 
     @property
@@ -99,16 +113,47 @@ class MovingArm(ModelArm):
         return self._queue
 
     def sync(self, time_us: int) -> MotionQueue | None:
-        """The queue, with the controller's power and monitor speed applied at `time_us`."""
+        """The queue, with the controller's power and monitor speed applied at `time_us`, as the
+        chapter 10 handlers use it: told the queue time of the real times they give when a layer
+        of chapter 11 holds the arm (arm_layers.QueueView)."""
+        q = self._sync(time_us)
+        if q is None or self.layers.trivial:
+            return q
+        return QueueView(q, self.layers)  # type: ignore[return-value]
+
+    def queue_time(self, time_us: int) -> float:
+        """The queue time (s) of real time `time_us` (arm_layers.Warp)."""
+        t = time_us / US
+        return t if self.layers is None else self.layers.queue_time(t)
+
+    def real_time(self, tau: float | None) -> float | None:
+        """The first real time (s) the arm reaches queue time `tau`."""
+        if tau is None or self.layers is None or self.layers.warp.identity:
+            return tau
+        return self.layers.warp.real_time(tau)
+
+    def _sync(self, time_us: int) -> MotionQueue | None:
+        """The queue itself, with the controller's power and monitor speed applied at `time_us`."""
         q = self.queue
         ctl = self.controller
         if q is not None and ctl is not None:
-            t = time_us / US
+            t = self.queue_time(time_us)
             if bool(ctl.powered) != q.powered:
                 q.set_power(bool(ctl.powered), t)
             if float(ctl.monitor_speed) != q.monitor:
                 q.set_monitor_speed(float(ctl.monitor_speed), t)
         return q
+
+    def set_geometry(self, model: Any, t: float) -> None:
+        """setDH (11.4): the arm's kinematics are those of `model` from `t` on (the motion queue is
+        empty: setDH waits for it)."""
+        self.model = model
+        self._kin = {}
+        q = self._queue
+        if q is not None:
+            q.model = model
+            q.kin.use_geometry(model)
+        self.geometries.append((t, model))
 
     # ---- the Arm port ----------------------------------------------------------------------------
 
@@ -119,42 +164,66 @@ class MovingArm(ModelArm):
 
     def joints_at(self, time_us: int, millimeter_unit: bool = True) -> Joints:
         """herej(): the commanded joints at `time_us`, in the caller's unit."""
-        q = self.sync(time_us)
+        q = self._sync(time_us)
         if q is None:
             return self._initial
-        j = q.position(time_us / US)
+        j = self.layers.actual(q.trajectory, time_us / US)
         return self.joints_out(j, millimeter_unit)
 
+    def actual_position(self, t: float) -> np.ndarray:
+        """The arm's commanded joints at `t` seconds (model units), what it does: the latch (9.2.3)
+        reads it; no power or monitor speed is applied (`sync`), so a past time can be read."""
+        q = self.queue
+        if q is None:
+            return np.array(self._initial, dtype=float) + self.layers.turns.at(t)
+        return self.layers.actual(q.trajectory, t)
+
     def motion_done(self, time_us: int) -> bool:
-        """The motion queue is empty (9.5.4, 10.6): no command left to execute."""
-        q = self.sync(time_us)
-        return q is None or q.is_empty(time_us / US)
+        """The motion queue is empty (9.5.4, 10.6): no command left to execute (a move waiting for
+        alterEnd is one, 11.2.3)."""
+        q = self._sync(time_us)
+        return q is None or q.is_empty(self.queue_time(time_us)) and not self.alteration.deferred
 
     def end_motion(self, time_us: int) -> None:
         """What waitEndMove() does before it waits (and open()/close(), 9.5.4): cancel the blend
         of the last command; error 150 when a recorded command cannot be executed."""
-        q = self.sync(time_us)
+        q = self._sync(time_us)
         if q is None:
             return
+        if self.alteration.deferred:  # the blend of the last move, when alterEnd records it
+            if q.failure is not None:
+                raise Val3RuntimeError(150, failure_text(q.failure))
+            self.alteration.close_after_flush = True
+            return
         try:
-            q.wait_end_move(time_us / US)
+            q.wait_end_move(self.queue_time(time_us))
         except MotionError as exc:
             raise Val3RuntimeError(exc.code, exc.message) from None
 
     def has_room(self, time_us: int) -> bool:
         """A place in the motion queue (a motion instruction that found it full waits for this)."""
-        q = self.sync(time_us)
+        q = self._sync(time_us)
         if q is None:
             return True
-        q.advance(time_us / US)
-        return len(q.pending) < q.capacity
+        q.advance(self.queue_time(time_us))
+        return len(q.pending) + len(self.alteration.deferred) < q.capacity
 
     def waiting_reason(self) -> tuple[str, str] | None:
         """Why recorded motion cannot go on, for a task that waits for it: (rule, words naming
         the condition and what changes it), or None when the arm can move."""
         q = self._queue
+        if q is not None and self.alteration.deferred:
+            move = self.alteration.deferred[0][0]
+            return "R003", (f"the {move.kind} of line {move.source.line}, after an alterable trajectory, waits for "
+                            "alterEnd() (11.2.3: it can be computed only after alterEnd), and no task calls it")
         if q is None or (not q.pending and q.open is None):
             return None
+        if self.alteration.state == "error":
+            return "R003", (f"the arm stopped on an invalid alteration ({q.failure.source.label()}, R055): the motion "
+                            "goes on only after resetMotion() (11.2.4)")
+        held = self.compliance.waiting_reason(q, self.layers, self.compliance.t_eval)
+        if held is not None:
+            return "R003", held
         if q.monitor <= 0.0 and q.powered and not q.held:
             return "R003", ("the monitor speed is 0 %: the arm holds until setMonitorSpeed() or the scenario "
                             "([controller] changes = [{ at = ..., monitor_speed = ... }]) raises it")
@@ -176,10 +245,17 @@ class MovingArm(ModelArm):
 
     def next_time(self, now_us: int) -> int | None:
         """The Subsystem's next change: a command completes, the arm rests or has rested 50 ms, or --cycles ends the run."""
-        q = self.sync(now_us)
+        q = self._sync(now_us)
         if q is None:
             return None
-        t = q.next_time(now_us)
+        t = self._next_queue_event(q, now_us)
+        tc = self.compliance.next_time(q, self.layers, now_us / US)
+        if tc is not None:
+            e = max(int(np.ceil(tc * US - 1e-6)), now_us + 1)
+            t = e if t is None else min(t, e)
+        if self.alteration.needs_ticks(q, now_us / US):  # the 4 ms setpoints of ALTER
+            e = (now_us // TICK_US + 1) * TICK_US
+            t = e if t is None else min(t, e)
         end = self._cycles_end()
         if end is not None:
             e = int(np.ceil(end * US - 1e-6))
@@ -189,12 +265,14 @@ class MovingArm(ModelArm):
 
     def advance(self, to_us: int) -> None:
         """The Subsystem's advance: the watchers read the program's values, the commands done by `to_us` complete; EndRun when the arm starts the cycle after the last one asked for."""
-        q = self.sync(to_us)
+        q = self._sync(to_us)
         if q is None:
             return
         for reader in self._readers:
             reader(to_us, True)
-        q.advance_us(to_us)
+        self.compliance.update(q, self.layers, to_us / US)
+        self.alteration.advance(q, to_us / US)
+        q.advance(self.queue_time(to_us))
         end = self._cycles_end()
         if end is not None and end * US <= to_us + 1e-6:
             self._end_command = None  # once: stop() then runs as after any end of a run
@@ -206,7 +284,18 @@ class MovingArm(ModelArm):
         command = self._end_command
         if command is None or command.placement.s_begin is None or command.state == "cancelled":
             return None
-        return time_leaving(self._queue.trajectory.profile, command.placement.s_begin)
+        return self.real_time(time_leaving(self._queue.trajectory.profile, command.placement.s_begin))
+
+    def _next_queue_event(self, q: MotionQueue, now_us: int) -> int | None:
+        """The queue's next event (next_time) in real time: when the arm reaches it."""
+        if self.layers.warp.identity:
+            return q.next_time(now_us)
+        tau = q.next_event(self.queue_time(now_us))
+        t = self.real_time(tau)
+        if t is None:
+            return None
+        e = int(np.ceil(t * US - 1e-6))
+        return e if e > now_us else now_us + 1
 
     # ---- for the chapter 10 handlers -------------------------------------------------------------------
 
@@ -216,7 +305,7 @@ class MovingArm(ModelArm):
         and `tool_in_flange` are 4x4 matrices in the caller's length unit; joints too (a
         SCARA's axis 3); `loops`: the loops the instruction runs in (Machine.loop_passes).
         Raises MotionError (mdesc 100-106, 154, 150, 81)."""
-        q = self.sync(time_us)
+        q = self._sync(time_us)
         s = 1.0 if millimeter_unit else INCH_MM
         target = self._target_in_mm(target, s)
         via = None if via is None else self._target_in_mm(via, s)
@@ -226,18 +315,57 @@ class MovingArm(ModelArm):
             tool[:3, 3] *= s
         move = MoveCommand(kind, target, MDesc.from_fields(md, s), tool=tool, via=via, source=source,
                            tool_name=tool_name)
-        r = q.record(move, time_us / US)
+        self.layers.before(time_us / US)
+        context = self.context(loops)
+        alterable, self.alteration.next_alterable = self.alteration.next_alterable, False
+        if self.alteration.defers(q, alterable):
+            # 11.2.3: after the alterable trajectory, waits for alterEnd (recorded then, by recorded())
+            return self._defer(q, move, alterable, context, time_us)
+        n = len(q.findings)
+        r = q.record(move, self.queue_time(time_us))
         if not isinstance(r, QueueFull):
-            task = source.task
-            context = self.context(loops)
-            self.contexts[q.history[-1].key] = context
-            self.counter.note(task, context)
-            if self.cycles_goal is not None and self._end_command is None and \
-                    self.counter.completed(task) >= self.cycles_goal:
-                self._end_command = q.history[-1]
+            if alterable:
+                self.alteration.alterable.add(q.history[-1].key)
+            else:
+                self.alteration.check_carrier(q, q.history[-1], q.findings[n:])
+            self.counter.note(source.task, context)
+            self.recorded(q.history[-1], context)
             for reader in self._readers:
                 reader(time_us, False)
         return r
+
+    def recorded(self, command: Any, context: Context) -> None:
+        """A command entered the queue: its loops, and whether it completes the cycles asked for."""
+        self.contexts[command.key] = context
+        task = command.request.source.task
+        if self.cycles_goal is not None and self._end_command is None and \
+                self.counter.completed(task) >= self.cycles_goal:
+            self._end_command = command
+
+    def _defer(self, q: MotionQueue, move: MoveCommand, alterable: bool, context: Context,
+               time_us: int) -> int | QueueFull:
+        """A move recorded after an alterable trajectory while alter mode is on: its identifier now,
+        recorded in the queue by alterEnd (11.2.3). What the queue checks at recording first (150, the
+        mdesc); a full queue counts the waiting moves."""
+        if q.failure is not None:
+            raise MotionError(150, failure_text(q.failure))
+        bad = move.mdesc.check()
+        if bad is not None:
+            code, msg = bad
+            f = Finding(MDESC, f"{move.kind}: {msg}", move.source, self.queue_time(time_us), error=code,
+                        data={"field": msg.split(" ")[0].replace("mdesc.", ""), "code": code})
+            raise MotionError(code, msg, f)
+        if len(q.pending) + len(self.alteration.deferred) >= q.capacity:
+            return QueueFull(None)  # a place frees when alterEnd records them and the arm goes on
+        ident = q.next_id
+        q.set_move_id(ident + 1)
+        self.alteration.deferred.append((move, ident, context))
+        if alterable:
+            self.alteration.deferred_alterable.add(ident)
+        self.counter.note(move.source.task, context)
+        for reader in self._readers:
+            reader(time_us, False)
+        return ident
 
     def context(self, loops: tuple) -> Context:
         """The loops of Machine.loop_passes as motion.cycle passes: each loop statement with the
@@ -261,11 +389,16 @@ class MovingArm(ModelArm):
         return Target(pose=pose, config=tg.config, name=tg.name, frame=tg.frame)
 
     def joints_in(self, joints: Sequence[float], millimeter_unit: bool) -> tuple[float, ...]:
-        """Joint values of the application (a prismatic axis in its length unit) in the model's."""
+        """Joint values of the application (a prismatic axis in its length unit) as the motion
+        queue's: the model's units, less the turns resetTurn took off the continuous axis (11.5)."""
         if millimeter_unit or not any(self.prismatic):
-            return tuple(float(v) for v in joints)
-        return tuple(float(v) * INCH_MM if k < len(self.prismatic) and self.prismatic[k] else float(v)
-                     for k, v in enumerate(joints))
+            out = tuple(float(v) for v in joints)
+        else:
+            out = tuple(float(v) * INCH_MM if k < len(self.prismatic) and self.prismatic[k] else float(v)
+                        for k, v in enumerate(joints))
+        if self.layers is None or not self.layers.turns.times:
+            return out
+        return tuple(float(v) for v in np.asarray(out) - self.layers.turns.latest[:len(out)])
 
     def joints_out(self, joints: Sequence[float], millimeter_unit: bool) -> Joints:
         """Joint values of the model in the caller's unit (a prismatic axis in inches for an inch application)."""
@@ -276,3 +409,20 @@ class MovingArm(ModelArm):
         if millimeter_unit or not (k < len(self.prismatic) and self.prismatic[k]):
             return v
         return v / INCH_MM
+
+
+class _Hook:
+    """The arm's own layer hooks (arm_layers.Layers.hooks): the compliance brought up to date
+    before the program acts on the queue."""
+
+    def __init__(self, arm: MovingArm) -> None:
+        self.arm = arm
+
+    def before(self, t: float) -> None:
+        q = self.arm.queue_in_use
+        if q is not None:
+            self.arm.compliance.update(q, self.arm.layers, t)
+            self.arm.alteration.advance(q, t)
+
+    def after_reset(self, t: float) -> None:
+        self.arm.alteration.after_reset(t)

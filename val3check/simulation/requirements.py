@@ -7,7 +7,7 @@ from __future__ import annotations
 from importlib.util import find_spec
 
 # module imported -> distribution to install (pyproject.toml [project.optional-dependencies] sim)
-SIM_MODULES = {"numpy": "numpy", "pinocchio": "pin", "toppra": "toppra", "fcl": "python-fcl", "trimesh": "trimesh",
+SIM_MODULES = {"numpy": "numpy", "pinocchio": "pin", "fcl": "python-fcl", "trimesh": "trimesh",
                "scipy": "scipy", "mcap": "mcap"}
 EXTRA = "sim"
 

@@ -29,7 +29,7 @@ from ..interpretation.machine import Budgets, Machine
 from ..interpretation.registry import Registry
 from ..interpretation.scheduler import EndRun
 from ..loading.model import Application, Workspace
-from . import ch10_motion
+from . import ch09_latch, ch10_motion, ch11_absolute, ch11_alter, ch11_compliance, ch11_continuous, ch11_licences
 from .budget import RUN_SHARE, RunBudget
 from .collect import collect
 from .folding import fold
@@ -41,7 +41,8 @@ from .scenario import Scenario, apply_scenario
 # What the generated code calls, then the chapters of the manual, in order.
 INTERPRETER_MODULES = (code_support, waiting, not_simulated, ch02_variables, ch03_simple_types, ch04_user_page,
                        ch05_tasks, ch06_libraries, ch08_controller, ch09_geometry)
-MOTION_MODULES = (ch10_motion,)
+MOTION_MODULES = (ch10_motion, ch09_latch, ch11_licences, ch11_absolute, ch11_continuous, ch11_compliance,
+                  ch11_alter)
 
 
 @dataclass
@@ -95,6 +96,8 @@ def build_machine(ws: Workspace, app: Application, options: SimOptions, *, regis
                       max_memory_mb=options.max_memory_mb, wall_clock=options.wall_clock,
                       run_share=options.run_share)
     arm = arm if arm is not None else MovingArm(options.robot, cycles=options.cycles)
+    if isinstance(arm, MovingArm) and arm.has_model and ch11_continuous.uses_reset_turn(ws, app):
+        ch11_continuous.set_continuous(arm, True)  # the continuous axis option is in use (11.5)
     machine = Machine(ws, app, registry or build_registry(), arm, budgets=budgets, disk_roots=options.disk_roots)
     if options.started is not None:
         machine.wall_start = options.started
@@ -121,6 +124,12 @@ def build_machine(ws: Workspace, app: Application, options: SimOptions, *, regis
 def simulate(ws: Workspace, app: Application, options: SimOptions | None = None,
              scenario: Scenario | None = None) -> SimResult:
     """Run the application `app` of `ws` (loaded and parsed) with `options` and `scenario`: its SimResult."""
+    return run_machine(ws, app, options, scenario)[1]
+
+
+def run_machine(ws: Workspace, app: Application, options: SimOptions | None = None,
+                scenario: Scenario | None = None) -> tuple[Machine, SimResult]:
+    """`simulate`, and the machine that ran (for the tools that look at its arm: fit.py)."""
     options = options or SimOptions()
     machine = build_machine(ws, app, options)
     checks = _collision_setup(app, options, machine)
@@ -132,9 +141,9 @@ def simulate(ws: Workspace, app: Application, options: SimOptions | None = None,
         machine.end_reason = (stop.reason if isinstance(stop, EndRun) else f"budget:{stop}"
                               if isinstance(stop, MemoryError)
                               else "budget:the application's values are nested too deeply for the simulator")
-        return _finish(machine, app, options, checks)
+        return machine, _finish(machine, app, options, checks)
     machine.run()
-    return _finish(machine, app, options, checks)
+    return machine, _finish(machine, app, options, checks)
 
 
 def _finish(machine: Machine, app: Application, options: SimOptions, checks) -> SimResult:
@@ -168,7 +177,7 @@ def _collision_setup(app: Application, options: SimOptions, machine: Machine):
     watch = collision_run.ValueWatch(cell, machine)
     if isinstance(arm, MovingArm):
         arm.watch(watch)
-    return cell, diags, watch, arm.model
+    return cell, diags, watch, arm.model, arm
 
 
 def _collisions(result: SimResult, app: Application, options: SimOptions, checks, budget: RunBudget) -> SimResult:
@@ -183,7 +192,7 @@ def _collisions(result: SimResult, app: Application, options: SimOptions, checks
         return result
     from . import collision_run
 
-    cell, diags, watch, model = checks
+    cell, diags, watch, model, arm = checks
     found = list(diags)
     if result.motion is not None:
         unit_mm = 1.0 if getattr(app, "millimeter_unit", True) else INCH_MM
@@ -191,7 +200,7 @@ def _collisions(result: SimResult, app: Application, options: SimOptions, checks
         run, more = collision_run.check_run(result.motion, cell, watch, model, cell_path=options.cell, cell_found=how,
                                             app_unit_mm=unit_mm, io_log=result.io_log,
                                             link_names=result.link_names, app_path=app.path,
-                                            max_wall=options.max_wall,
+                                            max_wall=options.max_wall, geometries=getattr(arm, "geometries", ()),
                                             out_of_budget=budget.spent)
         result.collision = run
         if run is not None:

@@ -10,7 +10,6 @@ signal, key or a value of the wrong type is an error that names the line.
 from __future__ import annotations
 
 import datetime
-import math
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -19,6 +18,11 @@ from ..interpretation.cell import Reaction, SerialReply
 from ..interpretation.events import ControllerChange, InputsChange, KeyPress, SerialData
 from ..interpretation.user_page import Key
 from ..interpretation.values import Arr, FaultyIOPoint, IOPoint
+from .scenario_numbers import MAX_SECONDS
+from .scenario_numbers import finite as _finite
+from .scenario_numbers import seconds as _seconds
+from .scenario_options import TABLES as OPTION_TABLES
+from .scenario_options import apply_options
 
 SCENARIO_VERSION = 1
 LIMIT_TOL = 1e-7  # a joint this close outside its limit is on it (robot.models.LIMIT_TOL_DEG)
@@ -38,7 +42,6 @@ class Scenario:
 
 
 MAX_SCENARIO_SIZE = 8 * 1024 * 1024  # bytes: a scenario is a few pages of TOML
-MAX_SECONDS = 1e7  # a time, duration or delay (about 115 days): more is a mistake
 MAX_NESTING = 32  # tables and arrays inside each other: the format needs 3
 
 
@@ -59,17 +62,32 @@ def load_scenario(path: str) -> Scenario:
     return Scenario(path, text, data)
 
 
-def _finite(v: Any) -> bool:
-    """A TOML number val3check can compute with: not a bool, not nan or inf."""
-    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and abs(v) <= 1e300
+RANGE_KEYS = frozenset({"min", "max", "nominal"})
 
 
-def _seconds(v: Any) -> int | None:
-    """Microseconds from a number of seconds in [0, MAX_SECONDS]; None for anything else
-    (nan, inf, negative, not a number)."""
-    if not _finite(v) or not 0 <= v <= MAX_SECONDS:
-        return None
-    return int(round(v * 1_000_000))
+def time_range(v: Any) -> tuple[float, float, float] | None:
+    """A time or delay of the scenario as (nominal, min, max) seconds: a number (its own min and
+    max), or a range `{ min = 0.1, max = 0.4 }` that `sim --explore` draws in (docs/explore.md),
+    whose nominal, the value a plain run uses, is its middle unless `nominal` is given. None when
+    it is neither (a bad key, min > max, a nominal outside, a value out of [0, MAX_SECONDS])."""
+    if isinstance(v, dict):
+        if set(v) - RANGE_KEYS or not {"min", "max"} <= set(v):
+            return None
+        lo, hi = v["min"], v["max"]
+        mid = v.get("nominal", (lo + hi) / 2 if _finite(lo) and _finite(hi) else None)
+        if any(_seconds(x) is None for x in (lo, hi, mid)) or not lo <= mid <= hi:
+            return None
+        return float(mid), float(lo), float(hi)
+    return (float(v),) * 3 if _seconds(v) is not None else None
+
+
+def _time(v: Any) -> int | None:
+    """Microseconds of a time that may be a range (its nominal); None when it is not one."""
+    r = time_range(v)
+    return None if r is None else _seconds(r[0])
+
+
+EXPLORE_KEYS = {"jitter", "max_cycle_time"}
 
 
 class Applier:
@@ -137,7 +155,8 @@ class Applier:
     def apply(self) -> None:
         d = self.sc.data
         self.machine.cell_subsystem.scenario_path = self.sc.path
-        known = {"version", "description", "inputs", "events", "reactions", "keys", "serial", "controller", "io", "robot"}
+        known = {"version", "description", "inputs", "events", "reactions", "keys", "serial", "controller", "io", "robot",
+                 *OPTION_TABLES, "explore"}
         for k in d:
             if k not in known:
                 self.fail((k,), f"unknown table or key {shown(k)}")
@@ -153,7 +172,7 @@ class Applier:
         for i, ev in enumerate(_list(d, "events", self)):
             here = ("events", i)
             self._keys(ev, {"at", "set"}, here, "[[events]]")
-            at = _seconds(ev.get("at"))
+            at = _time(ev.get("at"))
             if at is None:
                 self.fail(here + ("at",), "[[events]] needs at = seconds (a finite number from 0 to 1e7)")
             cell.schedule(at, InputsChange(tuple(self.settings(ev.get("set", {}), here + ("set",), "[[events]] set"))))
@@ -165,7 +184,7 @@ class Applier:
                 self.fail(here, "[[reactions]] needs when = \"output\"")
             io = self.signal(name, here + ("when",))
             becomes = self.value(io, r.get("becomes", True), here + ("becomes",), name)
-            after = _seconds(r.get("after", 0))
+            after = _time(r.get("after", 0))
             if after is None:
                 self.fail(here + ("after",), "after = seconds (a finite number from 0 to 1e7)")
             cell.reactions.append(Reaction(io, becomes, after,
@@ -175,7 +194,7 @@ class Applier:
         for i, k in enumerate(_list(d, "keys", self)):
             here = ("keys", i)
             self._keys(k, {"at", "key", "text", "hold"}, here, "[[keys]]")
-            at = _seconds(k.get("at", 0))
+            at = _time(k.get("at", 0))
             if at is None:
                 self.fail(here + ("at",), "[[keys]] at = seconds (a finite number from 0 to 1e7)")
             code = k.get("key", 270 if "text" in k else None)
@@ -202,12 +221,12 @@ class Applier:
                 pat = s["when_sent"]
                 if not isinstance(pat, str) or not pat:
                     self.fail(here + ("when_sent",), "when_sent = \"text the program sends\"")
-                after = _seconds(s.get("after", 0))
+                after = _time(s.get("after", 0))
                 if after is None:
                     self.fail(here + ("after",), "after = seconds")
                 cell.serial_replies.append(SerialReply(io, pat.encode("utf-8"), after, data))
             else:
-                at = _seconds(s.get("at", 0))
+                at = _time(s.get("at", 0))
                 if at is None:
                     self.fail(here + ("at",), "[[serial]] at = seconds (a finite number from 0 to 1e7)")
                 cell.schedule(at, SerialData(io, data))
@@ -217,6 +236,19 @@ class Applier:
             self._io(d["io"])
         if "robot" in d:
             self._robot(d["robot"])
+        apply_options(self, d)  # chapter 11: scenario_options.py
+        if "explore" in d:
+            self._explore(d["explore"])
+
+    def _explore(self, table: Any) -> None:
+        """[explore]: what `sim --explore` varies and bounds (docs/explore.md); a plain run
+        checks it and does nothing else with it."""
+        if not isinstance(table, dict):
+            self.fail(("explore",), "[explore] must be a table: jitter = seconds, max_cycle_time = seconds")
+        self._keys(table, EXPLORE_KEYS, ("explore",), "[explore]")
+        for k, v in table.items():
+            if _seconds(v) is None:
+                self.fail(("explore", k), f"[explore] {k} = seconds (a finite number from 0 to {MAX_SECONDS:g})")
 
     def _robot(self, table: Any) -> None:
         """[robot] joints = [j1, ..., j6]: the arm's joint position at the start (degrees, a
@@ -344,7 +376,7 @@ class Applier:
 
     def _changes(self, changes: list, here: tuple, spec: dict) -> None:
         for i, ch in enumerate(changes):
-            if not isinstance(ch, dict) or _seconds(ch.get("at")) is None:
+            if not isinstance(ch, dict) or _time(ch.get("at")) is None:
                 self.fail(here + (i,), "[controller] changes = [{ at = seconds, working_mode = 3, ... }]")
             payload = {}
             for ck, cv in ch.items():
@@ -359,7 +391,7 @@ class Applier:
                         or ck == "monitor_speed" and not (_finite(cv) and 0 <= cv <= 100)):
                     self.fail(here + (i, ck), f"[controller] changes: {ck}: bad value {shown(cv)}")
                 payload[ck] = cv
-            self.machine.cell_subsystem.schedule(_seconds(ch["at"]), ControllerChange(tuple(payload.items())))
+            self.machine.cell_subsystem.schedule(_time(ch["at"]), ControllerChange(tuple(payload.items())))
 
 
 def _list(d: dict, key: str, ap: Applier) -> list:

@@ -1,7 +1,7 @@
 """Time parameterisation: a path plus its limits → how fast the arm goes along it (10.3).
 
 The one interface the rest of motion/ uses (planner.py), in the spirit of toppra's path /
-constraint / algorithm:
+constraint / algorithm (written here: its grid set the ramps, issue 23):
 
     timing = Timing(kin)
     piece = timing.time(path, a, b, v0, limits)   # TimedPiece: ṡ along [a, b] from speed v0 to rest
@@ -14,8 +14,9 @@ them (trajectory.Profile appends it). Inside:
 
 * `grid.py`      the path sampled with the limits at each gridpoint (`Grid`);
 * `analytic.py`  the exact profile of a straight joint line under one set of limits (trapezoid);
-* `optimal.py`   toppra on everything else;
-* `safe.py`      braking, and the safe profile when toppra fails (R019).
+* `optimal.py`   the time-optimal profile of everything else at the gridpoints (reachability);
+* `refine.py`    the bang-bang inside each grid interval (ramps not set by the grid);
+* `safe.py`      braking, and the safe profile when no optimal one is found (R019).
 
 Every limit of 10.3.1 is obeyed: joint speeds, accelerations and decelerations, tvel, rvel, all
 times the monitor speed (docs/motion.md, "Timing").
@@ -28,17 +29,18 @@ from dataclasses import dataclass
 import numpy as np
 
 from .analytic import duration, trapezoid
-from .grid import Grid, sample_path
+from .grid import Grid, gridpoint_before, sample_path
 from .optimal import TimedProfile, topp
 from .safe import brake_stop
 
+MATCH = 1e-9  # relative ṡ² within which a re-timing from further back passes where the arm is
 TOPP_CACHE = 512  # time parameterisations remembered (`Timing._topp`)
 
 
 @dataclass
 class TimedPiece:
     """The path speed ṡ at path positions s (constant path acceleration in between), from the
-    piece's start speed to rest. `fallback`: toppra failed and the safe, slower profile was used
+    piece's start speed to rest. `fallback`: no optimal profile was found and the safe, slower one was used
     (R019); `owner`: the key of the command that owns the start of the piece."""
 
     s: np.ndarray
@@ -50,6 +52,18 @@ class TimedPiece:
     def duration(self) -> float:
         """The piece's time (s)."""
         return duration(self.s, self.sd)
+
+    def after(self, a: float, v0: float) -> TimedPiece | None:
+        """The piece from position a on, when it passes there at speed v0 (ṡ² linear in s between
+        breakpoints); None when it does not."""
+        s, sd = self.s, self.sd
+        i = int(np.clip(np.searchsorted(s, a, side="right") - 1, 0, len(s) - 2))
+        ds = s[i + 1] - s[i]
+        x = sd[i] ** 2 + (sd[i + 1] ** 2 - sd[i] ** 2) * (a - s[i]) / ds if ds > 0 else sd[i] ** 2
+        if abs(x - v0 * v0) > MATCH * max(x, v0 * v0):
+            return None
+        keep = s > a + 1e-12 * max(1.0, abs(a))
+        return TimedPiece(np.concatenate([[a], s[keep]]), np.concatenate([[v0], sd[keep]]), self.fallback, self.owner)
 
 
 class Timing:
@@ -63,7 +77,7 @@ class Timing:
 
     def time(self, path, a: float, b: float, v0: float, limits) -> TimedPiece:
         """The profile of the piece [a, b] of `path` (no stop inside) from path speed v0 to rest:
-        exact on a straight joint line with one set of limits, toppra otherwise."""
+        exact on a straight joint line with one set of limits, optimal.topp otherwise."""
         grid, owners = sample_path(path, a, b, self.kin, limits)
         s = grid.s
         if _straight(grid, owners):
@@ -77,6 +91,22 @@ class Timing:
                 return TimedPiece(ss + s[0], sd, False, int(owners[0]))
         res = self._topp(grid, v0)
         return TimedPiece(res.s, res.sd, res.fallback, int(owners[0]))
+
+    def time_from(self, path, a: float, b: float, v0: float, limits, speed_at) -> TimedPiece:
+        """`time` from position a at speed v0, the same whenever the re-timing happens: timed from
+        the path's last gridpoint before a, g, at the speed `speed_at(g, a)` the arm had there on
+        its way to a (None: it stood still in between), and taken from a on when the arm is where that
+        profile passes (it was not braking yet). A re-timing from a itself would put a gridpoint
+        at a, and the discretisation would differ by a few parts in 10⁴ with the moment of the
+        re-timing (docs/motion.md, "When the program is ahead of the arm")."""
+        if v0 > 0.0:
+            g = gridpoint_before(path, a, self.kin)
+            v_g = speed_at(g, a) if g < a - 1e-12 * max(1.0, abs(a)) else None
+            if v_g is not None:
+                cut = self.time(path, g, b, v_g, limits).after(a, v0)
+                if cut is not None:
+                    return cut
+        return self.time(path, a, b, v0, limits)
 
     def brake(self, path, a: float, b: float, sd0: float, limits) -> tuple[np.ndarray, np.ndarray]:
         """Stop on `path` from position a at speed sd0 as soon as the decelerations allow (at the
@@ -94,8 +124,6 @@ class Timing:
         if hit is not None:
             s_rel, sd, fallback = hit
             s = s_rel + s0
-            if len(s) == len(grid.s):  # toppra's answer is on the grid: exactly its positions
-                s = grid.s.copy()
             s[0], s[-1] = grid.s[0], grid.s[-1]  # the ends exactly (a command ends there)
             return TimedProfile(s, sd.copy(), fallback)
         res = topp(grid, v0)

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 XMAX = 1e12  # "no bound" on ṡ² (path units are degrees of joint motion: ṡ stays far below 1e6)
-MIN_GRID = 9  # gridpoints of the shortest piece of path given to toppra
+MIN_GRID = 9  # gridpoints of the shortest piece of path given to the solver
 
 
 @dataclass
@@ -95,12 +95,24 @@ class Grid:
 def sample_path(path, a: float, b: float, kin, limits) -> tuple[Grid, np.ndarray]:
     """The path (paths.Path) between global positions a and b sampled for the time
     parameterisation, and the key of the command that owns each gridpoint; `limits(key)` gives
-    that command's mdesc.Limits. At least MIN_GRID gridpoints (toppra cannot start and stop
+    that command's mdesc.Limits. At least MIN_GRID gridpoints (the solver cannot start and stop
     within fewer)."""
     grid, own = _sample_spans(path, a, b, kin, limits)
     if len(grid) >= MIN_GRID:
         return grid, own
     return _sample_spans(path, a, b, kin, limits, np.linspace(a, b, MIN_GRID))
+
+
+def gridpoint_before(path, s: float, kin) -> float:
+    """The last of the path's own gridpoints (those of the span holding s) at or before global
+    position s: a time parameterisation from there samples the path exactly as one from further
+    back (planner.py re-times from there)."""
+    i, sigma = path.locate(s)
+    if i < 0:
+        return s
+    sig = path.spans[i].sample(kin)["sigma"][:-1]
+    k = int(np.searchsorted(sig, sigma + 1e-12 * max(1.0, abs(s)), side="right")) - 1
+    return path.offsets[i] + float(sig[max(k, 0)])
 
 
 def _sample_spans(path, a: float, b: float, kin, limits, points: np.ndarray | None = None) -> tuple[Grid, np.ndarray]:
@@ -128,8 +140,10 @@ def _sample_spans(path, a: float, b: float, kin, limits, points: np.ndarray | No
         smp = sp.sample(kin)
         sig = smp["sigma"][:-1]  # the grid (the last row is the junction point)
         first = not parts
-        if first:
-            start = 0 if abs(lo - sig[0]) <= 1e-12 else None
+        if first:  # from one of the span's own gridpoints, its very row (a re-timing from there, planner.py)
+            tol = 1e-12 * max(1.0, abs(a))
+            k = int(np.searchsorted(sig, lo - tol))
+            start = k if k < len(sig) and abs(sig[k] - lo) <= tol else None
             from_ = lo
         else:  # at the junction the curvature may jump: constrain this span's side too
             start = len(sig)  # the junction row

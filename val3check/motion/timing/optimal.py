@@ -1,131 +1,51 @@
-"""The time-optimal profile of any path, by toppra (TOPP-RA, seidel solver), with VAL 3's limits.
+"""The time-optimal profile of any path on its grid, with VAL 3's limits (10.3.1).
 
-VAL 3 limits joint acceleration with `accel` while the path speed increases and with `decel`
-while it decreases; toppra's constraint is a polygon in (u = s̈, x = ṡ²) per gridpoint. For
-joint k, q̈ₖ = q'ₖ·u + q''ₖ·x. The inequality that bounds u from above (the greatest path
-acceleration) is q̈ₖ ≤ A if q'ₖ > 0, q̈ₖ ≥ -A if q'ₖ < 0; the one that bounds u from below (the
-greatest deceleration) uses D. So per gridpoint and axis the bounds are [-D, A] when q'ₖ ≥ 0 and
-[-A, D] otherwise: the forward pass (which takes the largest u) then accelerates with accel and
-the backward pass (the smallest u) brakes with decel — exactly the two limits VAL 3 states, in
-the two phases of a bang-bang profile. (A polygon cannot hold "A when u > 0, D when u < 0" in
-general; where the path speed is held on the velocity limit curve the looser of the two applies
-to the centripetal term. docs/motion.md.)
+10.3.1: "à chaque instant, le robot se déplace et accélère au maximum de ses capacités, tout en
+respectant les contraintes de vitesse et d'accélération". On the path parameter s, with x = ṡ²
+and u = s̈, joint k moves with q̇ₖ = q'ₖ·ṡ and q̈ₖ = q'ₖ·u + q''ₖ·x. VAL 3 bounds the acceleration
+with `accel` while an axis speeds up and with `decel` while it slows down, so per axis
+q̈ₖ·sign(q'ₖ) ∈ [-decel, accel] — for the path acceleration, u ∈ [L(x), U(x)] with
 
-Guards around toppra: empty or zero-length paths never reach it; a start speed a hair outside
-the controllable set is clamped into it; a start speed really above it (the monitor speed was
-lowered) first brakes along the path (safe.brake_into); and when toppra returns nothing,
-`safe.integrate()` gives a slower safe profile and the caller reports it (R019).
+    U(x) = minₖ (Ucₖ + Usₖ·x),   L(x) = maxₖ (Lcₖ + Lsₖ·x)   (linear in x per axis)
+
+and x below the velocity limit curve (joint speeds, tvel, rvel) and the acceleration limit curve
+(refine.accel_xmax). Between neighbouring gridpoints u is constant (x linear in s) and obeys the
+bounds at both ends (the "interpolation" discretisation of TOPP-RA: never faster than allowed).
+
+Reachability, as TOPP-RA does it (Pham & Pham 2018), written for these bounds, whose 1-D linear
+programs have closed forms: a backward pass gives at each gridpoint the largest x from which the
+end is still reachable braking as hard as allowed (braking from x over h: x + 2h·L(x) ≤ K next,
+and the bound at the next gridpoint too); a forward pass then accelerates as hard as allowed
+(x next = x + 2h·U(x), the next gridpoint's bound included) without leaving those sets. Every
+step is the minimum of a few affine functions of one number. The result at the gridpoints is
+the optimum of the discretised problem; refine.py then makes each interval a bang-bang, so that
+ramps are not set by the grid. The grid is dense enough (paths.py) for 0.5 % of the continuous
+optimum (bench/bench_timing.py).
+
+When the start speed is above what the path allows from there (the monitor speed was lowered),
+the arm first brakes along the path (safe.brake_into); when no profile exists (a cusp, the arm
+standing still inside the path), `safe.integrate()` gives a slower safe profile and the caller
+reports it (R019).
 """
 
 from __future__ import annotations
 
-import logging
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from .analytic import duration
 from .grid import Grid
+from .refine import accel_xmax, refine
 from .safe import brake_into, integrate
 
-_toppra = None
-
-
-def _load_toppra():
-    """toppra's classes, subclassed for VAL 3's constraints (imported when first timed)."""
-    global _toppra
-    if _toppra is None:
-        import toppra
-        import toppra.algorithm
-        import toppra.constraint
-        from toppra.constraint.linear_constraint import LinearConstraint, canlinear_colloc_to_interpolate
-
-        logging.getLogger("toppra").setLevel(logging.ERROR)
-
-        class AccelConstraint(LinearConstraint):
-            """q̈ₖ = q'ₖ u + q''ₖ x within per-gridpoint bounds (module docstring)."""
-
-            def __init__(self, grid: Grid):
-                """The constraint of the grid's accelerations and decelerations."""
-                super().__init__()
-                self.dof = grid.q1.shape[1]
-                self.grid = grid
-                self.discretization_type = toppra.constraint.DiscretizationType.Interpolation
-                self.identical = False
-                self._format_string = "    VAL 3 accel/decel\n"
-
-            def compute_constraint_params(self, path, gridpoints, *args, **kwargs):
-                """toppra's constraint parameters, per gridpoint (interpolation discretisation)."""
-                g = self.grid
-                n, d = g.q1.shape
-                up, lo = g.accel_bounds()
-                F = np.zeros((n, 2 * d, d))
-                eye = np.eye(d)
-                F[:, :d, :] = eye
-                F[:, d:, :] = -eye
-                # interpolation scheme: each interval's constant u obeys the limits at both ends
-                return canlinear_colloc_to_interpolate(g.q1, g.q2, np.zeros_like(g.q1), F, np.hstack([up, lo]),
-                                                       None, None, gridpoints, identical=False)
-
-        class SpeedConstraint(LinearConstraint):
-            """ṡ² below the velocity limit curve (joint speeds, tvel, rvel)."""
-
-            def __init__(self, xmax: np.ndarray, dof: int):
-                """The constraint ṡ² ≤ xmax per gridpoint."""
-                super().__init__()
-                self.dof = dof
-                self.xmax = xmax
-                self._format_string = "    VAL 3 speeds\n"
-
-            def compute_constraint_params(self, path, gridpoints, *args, **kwargs):
-                """Only bounds on ṡ² (x)."""
-                xb = np.zeros((len(self.xmax), 2))
-                xb[:, 1] = self.xmax
-                return None, None, None, None, None, None, xb
-
-        class GridPath(toppra.interpolator.AbstractGeometricPath):
-            """toppra wants a path object; every constraint here is precomputed on the grid."""
-
-            def __init__(self, s: np.ndarray, dof: int):
-                """A path of `dof` axes over the grid positions s."""
-                self._s = s
-                self._dof = dof
-
-            def __call__(self, path_positions, order=0):
-                """Unused values (the constraints are precomputed)."""
-                return np.zeros((np.size(path_positions), self._dof))
-
-            @property
-            def dof(self):
-                """The number of axes."""
-                return self._dof
-
-            @property
-            def path_interval(self):
-                """The grid's first and last positions."""
-                return np.array([self._s[0], self._s[-1]])
-
-        from toppra.algorithm.algorithm import ParameterizationAlgorithm
-        from toppra.solverwrapper.cy_seidel_solverwrapper import seidelWrapper
-
-        class TOPPRA(toppra.algorithm.TOPPRA):
-            """toppra's TOPPRA with its seidel solver, without probing for optional solvers on every
-            construction (the probe costs more than a short path's whole solution)."""
-
-            def __init__(self, constraints, path, gridpoints):
-                """TOPPRA over `gridpoints` with the seidel solver wrapper."""
-                ParameterizationAlgorithm.__init__(self, constraints, path, gridpoints=gridpoints)
-                self.solver_wrapper = seidelWrapper(self.constraints, self.path, self.gridpoints, solve_lp1d=True)
-
-        _toppra = (TOPPRA, AccelConstraint, SpeedConstraint, GridPath)
-    return _toppra
+_OFF = 1e300  # an affine bound that never binds: 0·x + _OFF
 
 
 @dataclass
 class TimedProfile:
-    """ṡ at the gridpoints of a Grid (constant path acceleration in between); `fallback` when
-    toppra failed and the safe numerical integration was used."""
+    """ṡ at breakpoints s (constant path acceleration in between); `fallback` when no optimal
+    profile exists and the safe numerical integration was used."""
 
     s: np.ndarray
     sd: np.ndarray
@@ -137,51 +57,102 @@ class TimedProfile:
         return duration(self.s, self.sd)
 
 
+def bounds(grid: Grid) -> tuple[np.ndarray, ...]:
+    """Per gridpoint and axis, the path acceleration bounds u ≤ Uc + Us·x and u ≥ Lc + Ls·x
+    (module docstring); an axis that does not move along the path bounds only the speed
+    (accel_xmax) and is given bounds that never bind."""
+    up, lo = grid.accel_bounds()
+    q1, q2 = grid.q1, grid.q2
+    moving = np.abs(q1) > 1e-12
+    g = np.where(moving, q1, 1.0)
+    uc = np.where(moving, np.where(q1 > 0, up / g, -lo / g), np.inf)
+    lc = np.where(moving, np.where(q1 > 0, -lo / g, up / g), -np.inf)
+    us = np.where(moving, -q2 / g, 0.0)
+    return uc, us, lc, us
+
+
+def steps(grid: Grid) -> tuple[np.ndarray, np.ndarray]:
+    """The affine maps of both passes, per interval k (between gridpoints k and k+1), as arrays
+    (intervals, pairs, 2) of (slope, offset) pairs: backward, K[k] ≤ slope·K[k+1] + offset; forward, x[k+1] ≤ slope·x[k] +
+    offset. Each pair is one axis's bound at one end of the interval (module docstring)."""
+    uc, us, lc, ls = bounds(grid)
+    h = np.diff(grid.s)[:, None]
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        # backward: braking at the start's bound, x(1 + 2h·Ls) + 2h·Lc ≤ K  (where 1 + 2h·Ls > 0)
+        e0 = 1.0 + 2.0 * h * ls[:-1]
+        ok0 = np.isfinite(lc[:-1]) & (e0 > 1e-12)
+        b_sl0 = np.where(ok0, 1.0 / np.where(ok0, e0, 1.0), 0.0)
+        b_of0 = np.where(ok0, -2.0 * h * lc[:-1] * b_sl0, _OFF)
+        # ... and at the end's bound, x ≤ K - 2h·(Lc' + Ls'·K)
+        ok1 = np.isfinite(lc[1:])
+        b_sl1 = np.where(ok1, 1.0 - 2.0 * h * ls[1:], 0.0)
+        b_of1 = np.where(ok1, -2.0 * h * lc[1:], _OFF)
+        # forward: accelerating at the start's bound, x + 2h·(Uc + Us·x)
+        f_sl0 = np.where(np.isfinite(uc[:-1]), 1.0 + 2.0 * h * us[:-1], 0.0)
+        f_of0 = np.where(np.isfinite(uc[:-1]), 2.0 * h * uc[:-1], _OFF)
+        # ... and at the end's: y ≤ x + 2h·(Uc' + Us'·y), i.e. y ≤ (x + 2h·Uc') / (1 - 2h·Us')
+        e1 = 1.0 - 2.0 * h * us[1:]
+        ok2 = np.isfinite(uc[1:]) & (e1 > 1e-12)
+        f_sl1 = np.where(ok2, 1.0 / np.where(ok2, e1, 1.0), 0.0)
+        f_of1 = np.where(ok2, 2.0 * h * uc[1:] * f_sl1, _OFF)
+    back = np.concatenate([np.stack([b_sl0, b_of0], -1), np.stack([b_sl1, b_of1], -1)], axis=1)
+    fwd = np.concatenate([np.stack([f_sl0, f_of0], -1), np.stack([f_sl1, f_of1], -1)], axis=1)
+    return back, fwd
+
+
+def reachable(grid: Grid, cap: list, back: list, x_end: float = 0.0) -> list:
+    """The backward pass: K[k], the largest ṡ² at gridpoint k from which the end (at x_end) is
+    reachable within the limits."""
+    n = len(cap)
+    K = [0.0] * n
+    K[-1] = min(x_end, cap[-1])
+    for k in range(n - 2, -1, -1):
+        kn = K[k + 1]
+        v = min([a * kn + b for a, b in back[k]])
+        K[k] = max(0.0, min(cap[k], v))
+    return K
+
+
+def forward(x0: float, cap: list, K: list, fwd: list, k0: int = 0) -> list:
+    """The forward pass from ṡ² = x0 at gridpoint k0: as fast as allowed, within K."""
+    n = len(cap)
+    x = [0.0] * n
+    x[k0] = x0
+    for k in range(k0, n - 1):
+        xk = x[k]
+        y = min([a * xk + b for a, b in fwd[k]])
+        x[k + 1] = max(0.0, min(y, K[k + 1], cap[k + 1]))
+    return x
+
+
 def topp(grid: Grid, sd0: float = 0.0) -> TimedProfile:
     """The time-optimal profile along `grid` from path speed sd0 to rest (module docstring)."""
     n = len(grid)
     if n < 2 or grid.s[-1] - grid.s[0] <= 0.0:
         return TimedProfile(grid.s[:1].copy(), np.array([0.0]))
-    xmax = grid.xmax()
-    dof = grid.q1.shape[1]
-    gp = grid.s
-    try:
-        TOPPRA, AccelConstraint, SpeedConstraint, GridPath = _load_toppra()
-        inst = TOPPRA([SpeedConstraint(xmax, dof), AccelConstraint(grid)], GridPath(gp, dof), gp)
-        sdd, sd, _v, K = inst.compute_parameterization(0.0, 0.0, return_data=True) if sd0 <= 0 else \
-            _with_start(inst, sd0)
-    except ImportError:
-        raise
-    except Exception:  # toppra raised (bad conditioning): the safe profile below
-        sd, K = None, None
-    if sd is not None and np.all(np.isfinite(sd)):
-        sd = np.maximum(sd, 0.0)
-        sd[-1] = 0.0
-        # the arm must not stand still inside the path (two zero speeds in a row: a cusp or a
-        # grid too coarse for toppra's discretisation): then the safe profile
-        still = (sd[:-1] + sd[1:] <= 1e-9 * max(float(sd.max()), 1.0)) & (np.diff(gp) > 0.0)
-        if not np.any(still):
-            return TimedProfile(gp.copy(), sd)
-        sd, K = None, None
-    if K is not None and sd0 > 0 and np.all(np.isfinite(K)) and sd0 * sd0 > K[0, 1]:
-        # the start is faster than the path allows from here (limits lowered under way): brake
-        # along the path into the controllable set, then the optimal profile from there
-        s_b, sd_b, j = brake_into(grid, sd0, K[:, 1])
-        if j is not None and j < n - 1:
-            rest = topp(grid.slice(j), sd_b[-1])
-            return TimedProfile(np.concatenate([s_b[:-1], rest.s]), np.concatenate([sd_b[:-1], rest.sd]),
-                                rest.fallback)
+    cap = np.minimum(grid.xmax(), accel_xmax(grid)).tolist()
+    back, fwd = steps(grid)
+    K = reachable(grid, cap, back.tolist())
+    x0 = sd0 * sd0
+    if x0 > K[0]:
+        if x0 <= K[0] * 1.02 + 1e-9:  # a hair outside (numerical noise of a new grid): clamp
+            x0 = K[0]
+        else:  # faster than the path allows from here (limits lowered under way): brake first
+            s_b, sd_b, j = brake_into(grid, sd0, np.asarray(K))
+            if j is not None and j < n - 1:
+                rest = topp(grid.slice(j), sd_b[-1])
+                return TimedProfile(np.concatenate([s_b[:-1], rest.s]), np.concatenate([sd_b[:-1], rest.sd]),
+                                    rest.fallback)
+            s_i, sd_i = integrate(grid, sd0)
+            return TimedProfile(s_i, sd_i, fallback=True)
+    x = np.array(forward(x0, cap, K, fwd.tolist()))
+    x[-1] = 0.0
+    sd = np.sqrt(x)
+    # the arm must not stand still inside the path (two zero speeds in a row: a cusp, or a path
+    # the limits cannot move along): then the safe profile
+    still = (sd[:-1] + sd[1:] <= 1e-9 * max(float(sd.max()), 1.0)) & (np.diff(grid.s) > 0.0)
+    if np.all(np.isfinite(sd)) and not np.any(still):
+        s_r, sd_r = refine(grid, sd, back, fwd)
+        return TimedProfile(s_r, sd_r)
     s_i, sd_i = integrate(grid, sd0)
     return TimedProfile(s_i, sd_i, fallback=True)
-
-
-def _with_start(inst, sd0: float):
-    """compute_parameterization from speed sd0, clamping a start a hair outside the controllable
-    set (numerical noise of a new grid) into it."""
-    sdd, sd, v, K = inst.compute_parameterization(sd0, 0.0, return_data=True)
-    if sd is None and K is not None and np.all(np.isfinite(K)):
-        x0 = sd0 * sd0
-        if x0 > K[0, 1] and x0 <= K[0, 1] * 1.02 + 1e-9:
-            sdd, sd, v, K = inst.compute_parameterization(math.sqrt(max(K[0, 1], 0.0)) * 0.999999, 0.0,
-                                                          return_data=True)
-    return sdd, sd, v, K

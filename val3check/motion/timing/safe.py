@@ -1,5 +1,5 @@
 """Numerical integration along a grid: braking (stopMove, resetMotion, power off, a start faster
-than the path allows) and the safe profile used when toppra fails (R019: its times are an upper
+than the path allows) and the safe profile used when no optimal profile is found (R019: its times are an upper
 bound)."""
 
 from __future__ import annotations
@@ -78,7 +78,7 @@ def u_bounds(grid: Grid, x) -> tuple[np.ndarray, np.ndarray]:
 
 
 def integrate(grid: Grid, sd0: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
-    """A safe profile when toppra fails: a trapezoid in the path parameter whose speed,
+    """A safe profile when no optimal one is found: a trapezoid in the path parameter whose speed,
     acceleration and deceleration hold at every gridpoint. The bounds on the path acceleration are
     concave (u_max) and convex (u_min) in ṡ², so checking them at ṡ² = 0 and at the cruise speed
     covers every speed in between; the cruise speed is halved until they hold. Slower than the

@@ -120,6 +120,10 @@ def _cycles(report: Any, m: Any, end: float) -> tuple[list[dict], dict | None]:
         cycle_time = {"seconds": _r(statistics.median(st.times)), "task": st.task,
                       "basis": f"median of {st.count} complete cycles of task {st.task} (the {st.kind} loop at line "
                                f"{st.marker[1]} of {Path(where[0]).name})"}
+        spread = m.acceleration_range.cycle_time(st.task) if m.acceleration_range is not None else None
+        if spread is not None:  # issue 23: the model assumes the accelerations
+            cycle_time["range"] = [_r(spread[0]), _r(spread[1])]
+            cycle_time["off_by"] = m.acceleration_range.off_by
     return cycles, cycle_time
 
 

@@ -100,8 +100,11 @@ def _verdict(m: dict) -> str:
         f'{_e(s if counts.get(s, 0) == 1 or s == "info" else s + "s")}</li>'
         for s in ("error", "warning", "info"))
     ct = v.get("cycle_time")
-    cycle = (f'<div><dt>Cycle time</dt><dd><b>{_s(ct["seconds"])}</b> <span class="muted">{_e(ct.get("basis", ""))}'
-             f'{" (task " + _e(ct["task"]) + ")" if ct.get("task") else ""}</span></dd></div>') if ct else (
+    spread = (f' ({ct["range"][0]:.3f}–{_s(ct["range"][1])} if the assumed accelerations are off by '
+              f'{ct.get("off_by", 2):g}×)') if ct and ct.get("range") else ""
+    cycle = (f'<div><dt>Cycle time</dt><dd><b>{_s(ct["seconds"])}</b>{_e(spread)} <span class="muted">'
+             f'{_e(ct.get("basis", ""))}'
+             f'{_task_suffix(ct)}</span></dd></div>') if ct else (
         '<div><dt>Cycle time</dt><dd class="muted">no complete loop iteration</dd></div>')
     return (
         '<section id="verdict" aria-labelledby="verdict-h"><h2 id="verdict-h">Verdict</h2>'
@@ -112,6 +115,12 @@ def _verdict(m: dict) -> str:
         f'<div><dt>Simulated time</dt><dd>{_s(v["simulated_duration"])}</dd></div>'
         f'{cycle}</dl></div></section>'
     )
+
+
+def _task_suffix(ct: dict) -> str:
+    """" (task robot)" after the cycle time's basis, unless the basis names the task already."""
+    task = ct.get("task")
+    return f" (task {_e(task)})" if task and f"task {task}" not in ct.get("basis", "") else ""
 
 
 def _excerpt(d: dict) -> str:
