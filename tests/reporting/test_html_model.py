@@ -186,6 +186,14 @@ def test_synthetic_model_is_valid_deterministic_and_fails_on_request(model):
     (lambda m: m["scene"]["obstacles"][0].update(pose=[[1, 0, 0]]), r"scene.obstacles\[0\].pose: a 3x4 matrix"),
     (lambda m: m["scene"]["obstacles"][4]["triangles"].append([0, 1, 99]), r"scene.obstacles\[4\].triangles\[8\]"),
     (lambda m: m["scene"]["arm"]["joints"].reverse(), r"scene.arm.joints\[0\]: parent link"),
+    (lambda m: m["scene"]["obstacles"][0].update(track="fNone"), r"scene.obstacles\[0\].track: 'fNone' is not in"),
+    (lambda m: m["scene"].update(tracks={"f": {"times": [0, 1], "poses": [None]}}),
+     r"scene.tracks\['f'\]: one pose \(or null\) per time"),
+    (lambda m: m["scene"].update(tracks={"f": {"times": [1, 0], "poses": [None, None]}}),
+     r"scene.tracks\['f'\].times\[1\]: times must not decrease"),
+    (lambda m: m["scene"].update(parts=[{"name": "p", "solids": [], "spans": [
+        {"start": 2, "end": 1, "carried": True, "pose": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]]}]}]),
+     r"scene.parts\[0\].spans\[0\]: end is before start"),
     (lambda m: m["verdict"].update(simulated_duration=float("nan")), "verdict.simulated_duration: a finite number"),
     (lambda m: m.pop("verdict"), "key 'verdict' is missing"),
 ])

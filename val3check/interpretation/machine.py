@@ -26,18 +26,21 @@ from ..language.runtime_errors import RUNTIME_CODES, Val3RuntimeError
 from .cell import Cell, CellSubsystem
 from .clock import TICK_US, Clock
 from .compiler import Compiled
-from .controller import Controller
+from .compiler.legacy import array_parameters
+from .controller import Controller, default_versions
+from .deadlock import report_blocked
 from .libraries import autoload_libraries
 from .memory import TypeSpace
 from .memory_budget import MemoryBudget
 from .not_simulated import ARM_LIMIT, SimLimit, arm_message
 from .recorder import IOEvent, Recorder, TranscriptEntry
 from .registry import Registry
-from .scheduler import ERROR, HELD, START_PRIORITY, SUSPENDED, WAIT, EndRun, Scheduler, Task
+from .scheduler import ERROR, HELD, START_PRIORITY, WAIT, EndRun, Scheduler, Task
 from .system_io import SystemIO
 from .units import Unit
 from .user_page import UserPage
 from .values import Arr, IOPoint, Screen
+from .virtual_disk import VirtualDisk
 
 
 @dataclass
@@ -87,6 +90,7 @@ class Machine:
         # joint and config values have the fields of the arm's family (9.7.2; RX/TX without a model)
         self.cell.arm_family = getattr(arm, "type_family", "Rx") or "Rx"
         self.controller = Controller()
+        self.controller.versions = default_versions(app.version, getattr(arm, "name", None))
         self.user_page = UserPage()
         self.recorder = Recorder(self.budgets.max_transcript, self.budgets.max_io_log, self._record_full)
         self.cell_subsystem = CellSubsystem(self.controller, self.log_io, self._cell_finding)
@@ -107,6 +111,10 @@ class Machine:
         self.stop_task: Task | None = None
         self.destroyed: list[str] = []
         self._libraries_reported: set[str] = set()
+        self._legacy_arrays: dict[str, dict[str, dict[str, int]]] = {}  # app path -> compiler/legacy.py
+        self.analysis_cache: dict[str, dict] = {}  # what the deadlock report computes from the code
+        self._outside_seen: set[tuple] = set()  # the lines already reported R041
+        self.files = VirtualDisk()  # the controller's disk of the system library's file instructions
         self.base_namespace = self._base_namespace()
 
     def add_subsystem(self, subsystem: Any) -> None:
@@ -140,6 +148,14 @@ class Machine:
 
     def library_model(self, app: Application, alias: str) -> Application | None:
         return self.ws.library(app, alias)
+
+    def legacy_arrays(self, app: Application) -> dict[str, dict[str, int]]:
+        """The s6 by-reference parameters an application's programs use as arrays
+        (compiler/legacy.py), computed once per application."""
+        found = self._legacy_arrays.get(app.path)
+        if found is None:
+            found = self._legacy_arrays[app.path] = array_parameters(app)
+        return found
 
     def load_main(self) -> Unit:
         unit = Unit(self, self.app, "Disk://" + self.app.name)
@@ -277,6 +293,18 @@ class Machine:
             time_us=self.clock.time_of(task) if task is not None else self.clock.now,
             task=task.name if task is not None else "", program=""))
 
+    def note_outside(self, task: Task, message: str) -> None:
+        """R041 (info): the line running acts on something outside the simulation; said once per
+        line of code."""
+        where = self.line_running()
+        path, line, col, program = where or (self.app.path, 0, 0, task.program)
+        key = (path, line, col)
+        if key in self._outside_seen:
+            return
+        self._outside_seen.add(key)
+        self.diags.append(Diagnostic("R041", message, path, line, col, time_us=self.clock.time_of(task),
+                                     task=task.name, program=program))
+
     def report_overrun(self, task: Task) -> None:
         """R005: a synchronous task used more than its period (5.6)."""
         w = self.where(task)
@@ -410,7 +438,7 @@ class Machine:
             self.end_reason = reason = "duration"
             self._stop_did_not_end(f"still running at --duration {self.budgets.duration_us / 1e6:g} s")
         if reason == "deadlock":
-            self._report_blocked()
+            report_blocked(self)
         else:
             self._report_motion_waits()
         if reason not in ("ended", "wall-clock"):
@@ -427,36 +455,7 @@ class Machine:
             task.final = FinalState(task.state.report_name, where,
                                     self.blocked_on(task) if task.state is WAIT else None, self.loop_passes(task))
 
-    def _report_blocked(self) -> None:
-        """Deadlock: every task waits for something no scheduled event can change."""
-        for task in self.scheduler.tasks:
-            if task.state is ERROR or task.state is HELD:
-                continue
-            w = self.where(task)
-            path, line, col, prog = w if w else (self.app.path, 0, 0, task.program)
-            code = "R003"
-            if task.state is SUSPENDED:
-                msg = f"task {task.name} is suspended and no task can resume it"
-            else:
-                why = self._motion_reason(task)
-                if why is not None:
-                    code, text = why
-                    msg = f"task {task.name} waits in {self.blocked_on(task)} for a motion that cannot happen: {text}"
-                else:
-                    hint = getattr(task.cond, "hint", "")
-                    if hint:
-                        # the condition reads I/O: in the cell, the outside world can release it;
-                        # only the simulation has nobody to set it (R009, a warning)
-                        code = "R009"
-                        msg = (f"task {task.name} waits in {self.blocked_on(task)}, which only an input the "
-                               f"run does not drive can release ({hint})")
-                    else:
-                        msg = f"task {task.name} waits in {self.blocked_on(task)}, which nothing scheduled can change"
-            task.errpos = (path, line, col, prog)
-            self.diags.append(Diagnostic(code, msg, path, line, col, time_us=self.clock.now, task=task.name,
-                                         program=prog))
-
-    def _motion_reason(self, task: Task) -> tuple[str, str] | None:
+    def motion_reason(self, task: Task) -> tuple[str, str] | None:
         """(rule, why) when the task waits for the arm's motion and the arm cannot move."""
         if task.state is not WAIT or not getattr(task.cond, "motion", False):
             return None
@@ -466,7 +465,7 @@ class Machine:
         """At the end of a run that did not end in a deadlock: the tasks still waiting for a
         motion that power never allows (R018)."""
         for task in self.scheduler.tasks:
-            why = self._motion_reason(task)
+            why = self.motion_reason(task)
             if why is None or why[0] != "R018":
                 continue
             w = self.where(task)

@@ -53,5 +53,24 @@ def NOTSIM(what: str) -> Any:
     raise SimLimit(OTHER_LIMIT, what)
 
 
+# the value a `$` call the simulator does not run gives, by the type its value is used as
+SYSTEM_DEFAULTS = {"num": 0.0, "bool": False, "string": "", "": None}
+
+
+def SYSTEM(task, name: str, text: str, used: str, why: str = "") -> Any:
+    """A `$name()` instruction of the system library that the simulator does not run
+    (undocumented, or called with other arguments than the form it runs): the call is recorded
+    in the transcript (kind "system"), an info says so once per line (R041), and the line goes on;
+    a value used is the default of its type (0, false, "")."""
+    value = SYSTEM_DEFAULTS[used]
+    machine = task.machine
+    machine.transcript_add(task, "system", text, None)
+    shown = {"num": "0", "bool": "false", "string": '""'}.get(used)
+    machine.note_outside(task, f"{name}: an undocumented instruction of the system library that the simulator does "
+                               f"not run{' (' + why + ')' if why else ''}; the line goes on without it"
+                               + (f", and its value is {shown}" if shown else ""))
+    return value
+
+
 def register(registry) -> None:
-    registry.helpers(ARM=ARM, NOTSIM=NOTSIM)
+    registry.helpers(ARM=ARM, NOTSIM=NOTSIM, SYSTEM=SYSTEM)

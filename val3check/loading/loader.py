@@ -96,6 +96,8 @@ class Loader(LibraryResolution):
         self.ws.roots = self.roots
         self.repos: list[str] = []  # repository roots of the targets (git top level, else the target)
         self.index = rs.RepositoryIndex(SKIP_DIRS)
+        self.ws.repos = self.repos  # the same list: it grows with each target
+        self.ws.repository_index = self.index
         self._real_folders: dict[str, str] = {}  # application folder -> its real path
         self.excluded = 0  # folders and files a walk skipped because the configuration excludes them
 

@@ -386,7 +386,7 @@ class MovingArm(ModelArm):
             return Target.joint(self.joints_in(tg.joints, s == 1.0), tg.name)
         pose = np.array(tg.pose, dtype=float)
         pose[:3, 3] *= s
-        return Target(pose=pose, config=tg.config, name=tg.name, frame=tg.frame)
+        return Target(pose=pose, config=tg.config, name=tg.name, frame=tg.frame, note=tg.note)
 
     def joints_in(self, joints: Sequence[float], millimeter_unit: bool) -> tuple[float, ...]:
         """Joint values of the application (a prismatic axis in its length unit) as the motion

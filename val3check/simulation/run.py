@@ -180,6 +180,14 @@ def _collision_setup(app: Application, options: SimOptions, machine: Machine):
     return cell, diags, watch, arm.model, arm
 
 
+def _phase(progress: Any):
+    """The collision checks' `on_motion` for a progress display that shows phases, else None."""
+    phase = getattr(progress, "phase", None)
+    if phase is None:
+        return None
+    return lambda done, total: phase(f"checking collisions: motion {done + 1} of {total}")
+
+
 def _collisions(result: SimResult, app: Application, options: SimOptions, checks, budget: RunBudget) -> SimResult:
     """Check the motions of the run (SimResult.collision) and add the findings."""
     if checks is None:
@@ -201,6 +209,7 @@ def _collisions(result: SimResult, app: Application, options: SimOptions, checks
                                             app_unit_mm=unit_mm, io_log=result.io_log,
                                             link_names=result.link_names, app_path=app.path,
                                             max_wall=options.max_wall, geometries=getattr(arm, "geometries", ()),
+                                            on_motion=_phase(options.progress),
                                             out_of_budget=budget.spent)
         result.collision = run
         if run is not None:
