@@ -35,7 +35,7 @@ KNOWN_SHARED = {
     "L012": {"semantics/calls.py", "semantics/expressions.py", "semantics/statements.py"},
     "N006": {"semantics/expressions.py", "semantics/statements.py"},
     "R003": {"interpretation/deadlock.py", "simulation/moving_arm.py"},
-    "R006": {"interpretation/machine.py", "simulation/collect.py"},
+    "R006": {"interpretation/machine.py", "simulation/collect.py", "simulation/folding.py"},
     "R010": {"motion/findings.py", "simulation/alteration.py"},
     "R017": {"motion/findings.py", "simulation/ch11_alter.py"},
     "R018": {"interpretation/machine.py", "motion/findings.py", "simulation/moving_arm.py"},

@@ -11,6 +11,7 @@ design, not by the length of the run).
 from __future__ import annotations
 
 from ..diagnostics import Diagnostic
+from ..rules import codes
 
 MAX_KEPT = 10_000  # distinct findings a run reports
 
@@ -52,7 +53,7 @@ def fold(diags: list[Diagnostic], app_path: str = "", end_us: int | None = None)
         out.append(d)
     if dropped:
         what = ", ".join(f"{n} of {code}" for code, n in sorted(dropped.items()))
-        out.append(Diagnostic("R006", f"findings not reported: {what} (a run reports at most {MAX_KEPT} distinct "
+        out.append(Diagnostic(codes.BUDGET_EXCEEDED, f"findings not reported: {what} (a run reports at most {MAX_KEPT} distinct "
                               "findings, repeats folded)", app_path, 0, 0,
                               time_us=end_us if end_us is not None else 0, task="", program=""))
     return out
