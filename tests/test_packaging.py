@@ -5,6 +5,7 @@ install; lark is pinned to the range the shipped parser tables load with."""
 from __future__ import annotations
 
 import ast
+import subprocess
 import sys
 import tomllib
 from pathlib import Path
@@ -74,13 +75,11 @@ def _minor(version: str) -> tuple[int, int]:
 def test_lark_is_pinned_to_the_range_the_shipped_tables_are_made_with():
     """The shipped tables are plain data made with one Lark version; Lark builds them again from
     the grammar while it is being edited: the pin is the range they are made and tested with."""
-    import subprocess
-
     import lark
 
     from val3check.parsing import _tables
-    from val3check.parsing.build_parser import compile_tables
-    from val3check.parsing.parser import build_from_grammar, grammar_text
+    from val3check.parsing.parser import _Builder, build_from_grammar, grammar_text
+    from val3check.parsing.tables import compile_tables
 
     (spec,) = [r for r in PYPROJECT["project"]["dependencies"] if _name(r) == "lark"]
     low, high = (_minor(v) for v in spec.split(">=")[1].split(",<"))
@@ -88,13 +87,62 @@ def test_lark_is_pinned_to_the_range_the_shipped_tables_are_made_with():
     assert low <= _minor(_tables.LARK_VERSION) < high
     # the installed Lark builds the tables the parser runs (the fallback while editing the
     # grammar; tests/parsing/test_tables.py compares them byte for byte)
-    built = compile_tables(build_from_grammar(grammar_text()))
+    built = compile_tables(build_from_grammar(grammar_text()), frozenset(dir(_Builder)))
     assert (len(built["STATES"]), len(built["RULES"])) == (len(_tables.STATES), len(_tables.RULES))
     # and linting runs on the shipped tables without importing Lark
     code = ("import sys\nfrom val3check.parsing import parser as P\nP.load_tables()\n"
             "print('LARK', 'lark' in sys.modules)\n")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, timeout=60).stdout
     assert "LARK False" in out
+
+
+# a light install as `pip install val3check` leaves it: the sim extra's modules cannot be found
+_LIGHT = """import sys
+from importlib.abc import MetaPathFinder
+from val3check.simulation.requirements import SIM_MODULES
+
+class Absent(MetaPathFinder):
+    def __init__(self, finders):
+        self.finders = finders
+
+    def find_spec(self, name, path=None, target=None):
+        if name.split(".")[0] in SIM_MODULES:
+            return None
+        for f in self.finders:
+            spec = f.find_spec(name, path, target) if hasattr(f, "find_spec") else None
+            if spec is not None:
+                return spec
+        return None
+
+sys.meta_path[:] = [Absent(list(sys.meta_path))]
+from val3check.cli import main
+sys.exit(main(sys.argv[1:]))
+"""
+
+
+def _light(*argv: str, cwd: Path) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([sys.executable, "-c", _LIGHT, *argv], capture_output=True, text=True, cwd=cwd, timeout=120,
+                          check=False)
+
+
+def test_a_light_install_says_which_extra_sim_and_reach_need_without_a_traceback(tmp_path):
+    """Issue 28 item 1: on a lint-only install `sim` (one run, a batch of arms, a sweep, the Dask
+    executor) and `reach` name the extra and exit 2; `--init-scenario` needs no extra and works;
+    never a traceback."""
+    folder = write_app(tmp_path, "begin\n  movej(jHome, tTool, mDesc)\nend\n",
+                       globals_=["joint jHome", "tool tTool", "mdesc mDesc"])
+    for argv in ((("sim", str(folder), "--robot", "tx2-60")), ("sim", str(folder), "--report", "html", "-o", "r.html"),
+                 ("sim", str(folder), "--robot", "tx2-60", "--robot", "tx2-90"),
+                 ("sim", str(folder), "--robot", "tx2-60", "--sweep", "monitor_speed=50,100"),
+                 ("sim", str(folder), "--robot", "tx2-60", "--robot", "tx2-90", "--executor", "dask"),
+                 ("reach", str(folder), "--robot", "tx2-60")):
+        r = _light(*argv, cwd=tmp_path)
+        assert r.returncode == 2 and "Traceback" not in r.stderr, (argv, r.stderr)
+        assert f"val3check {argv[0]} needs" in r.stderr and "pip install 'val3check[sim]'" in r.stderr, r.stderr
+        assert "missing: numpy, pin" in r.stderr
+    r = _light("sim", str(folder), "--init-scenario", "s.toml", cwd=tmp_path)
+    assert r.returncode == 0 and (tmp_path / "s.toml").is_file(), r.stderr
+    assert _light("lint", str(folder), cwd=tmp_path).returncode == 0
 
 
 # import name -> distribution, where they differ (lsprotocol comes with pygls)

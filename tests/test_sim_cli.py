@@ -92,3 +92,32 @@ def test_sim_of_a_folder_with_its_libraries_in_sub_folders(tmp_path):
     assert "holds 2 applications; running Cell/Cell.pjx, the one named after the folder" in r.stderr
     r = val3check("sim", ".", "--duration", "1", cwd=tmp_path)
     assert r.returncode == 2 and "holds 2 applications (Cell/Cell.pjx, Cell/libs/Tools/Tools.pjx)" in r.stderr
+
+
+def test_init_scenario_suggests_the_version_components_asked_and_the_state_waits(tmp_path):
+    """getVersion: the components the code asks for by name, as the run answers them (8.1); a
+    wait() on the controller's state: a commented `changes` entry that would end it (R009)."""
+    code = ('begin\n  if mid(getVersion("System"), 1, 1) == "8"\n    putln("CS9")\n  endIf\n'
+            '  wait(esStatus() < 2)\nend\n')
+    write_app(tmp_path, code, name="Ver")
+    assert val3check("sim", "Ver", "--init-scenario", "ver.toml", cwd=tmp_path).returncode == 0
+    text = (tmp_path / "ver.toml").read_text(encoding="utf-8")
+    data = tomllib.loads(text)
+    assert data["controller"]["versions"] == {"System": "s7.11"}
+    assert "# changes = [ { at = 1.0, es_status = 0 } ]   # start.pgx:" in text
+
+
+def test_init_scenario_suggests_the_files_the_application_opens(tmp_path):
+    write_app(tmp_path, 'begin\n  nH = $fileOpen("Disk://input.txt", "r")\n  $fileClose(nH)\n'
+              '  nH = $fileOpen("disk://INPUT.txt", "r")\n  nH = $fileOpen("Disk://out.txt", "w")\nend\n',
+              name="Files", globals_=["num nH"])
+    assert val3check("sim", "Files", "--init-scenario", "f.toml", cwd=tmp_path).returncode == 0
+    text = (tmp_path / "f.toml").read_text(encoding="utf-8")
+    # one entry per file read (however spelt), none for a file the program creates
+    assert text.count("# [[files]]") == 1 and '# path = "Disk://input.txt"' in text and "out.txt" not in text
+    edited = text.replace("# [[files]]", "[[files]]").replace('# path = "Disk', 'path = "Disk').replace(
+        '# text = ""', 'text = "1"')
+    (tmp_path / "g.toml").write_text(edited, encoding="utf-8")
+    r = val3check("sim", "Files", "--scenario", "g.toml", "--report", "json", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert not [d for d in json.loads(r.stdout)["diagnostics"] if d["code"] == "R041"]

@@ -58,7 +58,7 @@ def _add_batch(sim: argparse.ArgumentParser) -> None:
     b.add_argument("--sweep", metavar="FILE", help="sweep file (TOML): the applications, arms, scenarios, cells and overrides to combine")
     b.add_argument("-j", "--jobs", type=int, metavar="N", help="cases run at once in processes on this machine (default: the number of cores)")
     b.add_argument("--executor", choices=("local", "dask"), default="local", help="where cases run: local processes, or a Dask cluster (the dask extra)")
-    b.add_argument("--scheduler", metavar="ADDRESS", help="the Dask scheduler's address, tcp://host:8786 (with --executor dask)")
+    b.add_argument("--scheduler", metavar="ADDRESS", help="the Dask scheduler's address, tcp://host:8786 (with --executor dask; default: DASK_SCHEDULER_ADDRESS, else a local cluster of -j processes)")
     b.add_argument("--out-dir", metavar="DIR", help="write the summary (text, JSON, JUnit, index.html) and each case's report under DIR")
     b.add_argument("--fail-fast", action="store_true", help="stop at the first case that does not pass")
     b.add_argument("--case-reports", default="json", metavar="KINDS", help="what --out-dir writes for each case, comma-separated: json, html, trace (default: json)")
@@ -296,7 +296,6 @@ def _sim(args: argparse.Namespace) -> int:
 
         return run_batch(args, settings, __version__, _write)
 
-    from .diagnostics import Severity
     from .reporting import render
     from .simulation import case as sim_case
 
@@ -342,6 +341,7 @@ def _sim(args: argparse.Namespace) -> int:
         return EXIT_USAGE
     from .reporting.sim_render import render_sim
     from .reporting.sim_report import build_report
+    from .reporting.sim_verdict import closing_line, failed
     from .rules.catalogue import catalogue
 
     report = build_report(done.result, settings, catalogue(), __version__)
@@ -349,10 +349,10 @@ def _sim(args: argparse.Namespace) -> int:
         return EXIT_USAGE
     if args.trace and not _write_trace(report, args.trace):
         return EXIT_USAGE
-    if settings.fail_on == "never":
-        return EXIT_OK
-    threshold = Severity.parse(settings.fail_on)
-    return EXIT_FINDINGS if any(d.severity >= threshold for d in report.diagnostics) else EXIT_OK
+    written = [_shown(p) for p in (args.output, args.trace) if p and p != "-"]
+    if written or args.format != "text":  # the text report on standard output ends with the line itself
+        print(f"val3check sim: {closing_line(report, settings.fail_on, written)}", file=sys.stderr)
+    return EXIT_FINDINGS if failed(report, settings.fail_on) else EXIT_OK
 
 
 def _write_trace(report, path: str) -> bool:
@@ -436,8 +436,8 @@ def _lint(args: argparse.Namespace) -> int:
     if settings is None:
         return EXIT_USAGE
     if args.show_settings or args.show_files:
-        from .reporting.settings import render_files, render_settings
         from .lint import discover
+        from .reporting.settings import render_files, render_settings
         from .rules.catalogue import catalogue
 
         found = discover(paths, settings)
@@ -542,7 +542,12 @@ def _reach(args: argparse.Namespace) -> int:
     """`val3check reach`: no run; 1 when a finding is at or above --fail-on (as lint)."""
     from .loading import LoadOptions, load
     from .robot import RobotError, choose_robot
+    from .simulation.requirements import install_hint, missing_sim_packages
 
+    missing = missing_sim_packages()  # the reach check computes with the sim extra (numpy): none on a light install
+    if missing:
+        print(f"val3check: error: {install_hint(missing, 'reach')}", file=sys.stderr)
+        return EXIT_USAGE
     ws, _diags = load([args.app], LoadOptions(disk_roots=[os.path.abspath(d) for d in args.disk_root]))
     apps = [ws.apps[k] for k in ws.targets]
     if len(apps) != 1:
@@ -574,7 +579,7 @@ def _reach(args: argparse.Namespace) -> int:
 def _robots(args: argparse.Namespace) -> int:
     """`val3check robots`: the catalogue, or one model in detail (val3check/robot); `robots fit`."""
     from .robot import RobotError, load_robot, names
-    from .reporting.robot_text import render_detail, render_list
+    from .robot.listing import render_detail, render_list
     from .robot.catalog import known_without_model
 
     if args.robot[:1] == ["fit"]:

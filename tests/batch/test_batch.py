@@ -236,13 +236,80 @@ def test_dask_local_cluster_gives_the_same_summary(cell, capsys):
     assert out == serial and len(cases_of(out)) == 12
 
 
-def test_dask_needs_a_scheduler_and_says_so(cell, capsys):
-    code, _, err = sim(capsys, *ARGS, "--executor", "dask")
-    assert code == 2 and "--executor dask needs --scheduler" in err
+def test_scheduler_and_jobs_go_with_their_executor(cell, capsys):
     code, _, err = sim(capsys, *ARGS, "--scheduler", "tcp://127.0.0.1:8786")
     assert code == 2 and "--scheduler goes with --executor dask" in err
     code, _, err = sim(capsys, *ARGS, "--executor", "dask", "--scheduler", "tcp://127.0.0.1:8786", "-j", "2")
-    assert code == 2 and "--jobs is for the local executor" in err
+    assert code == 2 and "with a scheduler, the workers' processes set the parallelism" in err
+
+
+@pytest.mark.dask
+def test_dask_without_a_scheduler_starts_a_local_cluster_as_dask_does(cell, capsys, monkeypatch):
+    """Issue 28 item 7: `--executor dask` alone runs on a local cluster (Dask's `Client()`), its
+    summary the same as `-j 1`'s; the progress line says what it starts before any case ends."""
+    pytest.importorskip("distributed")
+    import dask
+
+    from val3check.batch import command
+
+    monkeypatch.delenv("DASK_SCHEDULER_ADDRESS", raising=False)
+    args = ["apps/*", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST, "--format", "json"]
+    _, serial, _ = sim(capsys, *args, "-j", "1")
+    shown = []
+    monkeypatch.setattr(command, "Progress", lambda total: _Recorded(total, shown))
+    with dask.config.set({"scheduler-address": None}):
+        code, out, err = sim(capsys, *args, "--executor", "dask", "-j", "2")
+    assert code == 0, err
+    assert out == serial and len(cases_of(out)) == 2
+    lines = "".join(shown).split("\r\x1b[K")
+    assert lines[1] == "0/2 cases, 0 failed, 0:00 elapsed: starting a local Dask cluster of 2 worker process(es)"
+    assert "running on 2 Dask worker processes" in lines[2]
+
+
+@pytest.mark.dask
+def test_dask_without_a_scheduler_takes_the_one_dask_s_configuration_names(cell, capsys, monkeypatch):
+    """DASK_SCHEDULER_ADDRESS (Dask's configuration key scheduler-address): that cluster, no local one."""
+    distributed = pytest.importorskip("distributed")
+    import dask
+
+    args = ["apps/A", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST, "--format", "json"]
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None) as lc:
+        def no_local_cluster(*a, **k):
+            raise AssertionError("a local cluster was started although Dask's configuration names a scheduler")
+
+        monkeypatch.setattr(distributed, "LocalCluster", no_local_cluster)
+        with dask.config.set({"scheduler-address": lc.scheduler_address}):
+            code, out, err = sim(capsys, *args, "--executor", "dask")
+            assert code == 0, err
+            assert [c["verdict"] for c in cases_of(out)] == ["pass"]
+            code, _, err = sim(capsys, *args, "--executor", "dask", "-j", "2")
+            assert code == 2 and "with a scheduler, the workers' processes set the parallelism" in err
+
+
+class _Recorded(Progress):
+    """The batch's progress line as a terminal would show it, recorded."""
+
+    def __init__(self, total: int, shown: list) -> None:
+        import io
+
+        class Terminal(io.StringIO):
+            def write(self, text: str) -> int:
+                shown.append(text)
+                return len(text)
+
+        super().__init__(total, Terminal(), enabled=True)
+
+
+def test_the_batch_shows_its_phase_before_the_first_case_ends(cell, capsys, monkeypatch):
+    """Issue 28 item 3: the first seconds of a batch (processes starting, the first cases) show a line."""
+    from val3check.batch import command
+
+    shown = []
+    monkeypatch.setattr(command, "Progress", lambda total: _Recorded(total, shown))
+    assert sim(capsys, "apps/*", "--robot", "tx2-60", "--scenario", "pickplace.toml", *FAST, "-j", "1")[0] == 0
+    lines = [x for x in "".join(shown).split("\r\x1b[K") if x]
+    assert lines[0] == "0/2 cases, 0 failed, 0:00 elapsed: running on 1 process"
+    assert lines[1].startswith("1/2 cases, 0 failed") and lines[1].endswith(": running on 1 process")
 
 
 def test_dask_chunks_keep_a_few_tasks_per_worker():
@@ -291,6 +358,70 @@ def test_html_index_and_junit_escape_what_comes_from_the_input():
     assert 'href="cases/n%3Cx%3E.json"' in page
     root = ET.fromstring(render_junit([s]))
     assert root.find(".//failure").get("message") == 'a < b & "c"'
+
+
+def test_cases_are_in_natural_order():
+    """Issue 28 item 13: numbers inside names order as numbers (tx2-60 before tx2-140, ms50.toml
+    before ms100.toml), override values as numbers (monitor_speed=50 before =100), in every format."""
+    from val3check.batch.summary import ordered, render_text
+
+    cases = []
+    for arm in ("tx2-140", "tx2-60"):
+        for sc in ("ms100.toml", "ms50.toml"):
+            for ms in (100.0, 50.0):
+                ov = (("monitor_speed", ms),)
+                cases.append(_summary(key=("a.pjx", arm, sc, "", ov), arm=arm, scenario=sc, overrides=ov))
+    got = [(s.arm, s.scenario, s.overrides[0][1]) for s in ordered(cases)]
+    assert got[:4] == [("tx2-60", "ms50.toml", 50.0), ("tx2-60", "ms50.toml", 100.0),
+                       ("tx2-60", "ms100.toml", 50.0), ("tx2-60", "ms100.toml", 100.0)]
+    assert got[4][0] == "tx2-140"
+    text = render_text(cases)
+    assert text.index("tx2-60") < text.index("tx2-140") and text.index("ms50.toml") < text.index("ms100.toml")
+
+
+def test_index_paths_are_relative_to_the_index_and_link_to_the_files(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    s = _summary(app=str(tmp_path / "cell" / "Pick" / "Pick.pjx"), scenario="cell/run.toml", verdict="fail",
+                 reason="cell/Pick/start.pgx:3:1: R032 error: " + "x" * 400)
+    page = render_html([s], set(), "0", index_dir=str(tmp_path / "out"))
+    assert '<a href="../cell/Pick/Pick.pjx">../cell/Pick/Pick.pjx</a>' in page
+    assert '<a href="../cell/run.toml">../cell/run.toml</a>' in page
+    assert str(tmp_path) not in page  # no absolute path
+    # the reason on a row of its own, as wide as the table
+    assert '<tr class="why"><td colspan="' in page and "x" * 400 in page
+
+
+@pytest.mark.browser
+def test_index_shows_every_reason_whole_at_1400_and_900_px(tmp_path, monkeypatch):
+    """The reason of a failing case with long paths is never cut (item 13: the index cut it at 1400 px)."""
+    import browser_client
+
+    why = browser_client.skip_reason()
+    if why:
+        if browser_client.required():
+            raise RuntimeError(why)
+        pytest.skip(why)
+    monkeypatch.chdir(tmp_path)
+    deep = tmp_path / ("very-long-folder-name-of-a-cell-" * 3) / "Application" / "Application.pjx"
+    cases = [_summary(key=(str(deep), arm), app=str(deep), arm=arm, scenario=str(deep.parent / "scenario.toml"),
+                      verdict="fail", reason=f"{deep.parent}/start.pgx:15:3: R032 error: movej starts in collision: "
+                      "link_1 (shoulder) hits obstacle 'table' at 0.152 s, 30.0 mm deep, at (185.0, 0.0, -133.0) mm")
+             for arm in ("tx2-60", "tx2-90")]
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "index.html").write_text(render_html(cases, set(), "0", index_dir=str(out)), encoding="utf-8")
+    for width in (1400, 900):
+        with browser_client.Chromium(width=width) as chromium:
+            page = chromium.open(out / "index.html", wait=False)
+            assert page.console_errors == [] and page.refused == []
+            got = page.evaluate("""() => ({
+                scroll: document.documentElement.scrollWidth, client: document.documentElement.clientWidth,
+                right: Math.max(...Array.from(document.querySelectorAll('tr.why td'))
+                                     .map((td) => td.getBoundingClientRect().right)),
+                reasons: Array.from(document.querySelectorAll('tr.why td')).map((td) => td.textContent)})""")
+            assert got["scroll"] <= got["client"] and got["right"] <= got["client"], (width, got)
+            assert got["reasons"] == [c.reason for c in cases]
+            page.page.screenshot(path=str(tmp_path / f"index-{width}.png"), full_page=True)
 
 
 def test_case_names_are_safe_and_stay_in_the_out_dir(cell, tmp_path):

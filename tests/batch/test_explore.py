@@ -109,6 +109,16 @@ def test_dask_finds_the_same_failures(cell, capsys):
     assert files(cell / "local") == files(cell / "dask")
 
 
+
+@pytest.mark.dask
+def test_dask_without_a_scheduler_starts_a_local_cluster(cell, capsys, monkeypatch):
+    pytest.importorskip("distributed")
+    monkeypatch.delenv("DASK_SCHEDULER_ADDRESS", raising=False)
+    sim(capsys, *EXPLORE_CLAMP, "--out-dir", "local", "-j", "1")
+    code, _, err = sim(capsys, *EXPLORE_CLAMP, "--out-dir", "dask", "--executor", "dask", "-j", "2")
+    assert code == 1, err
+    assert files(cell / "local") == files(cell / "dask")
+
 def test_junit_and_html_index_say_what_fails(cell, capsys):
     sim(capsys, *EXPLORE_CLAMP, "--out-dir", "out", "-j", "2")
     import xml.etree.ElementTree as ET

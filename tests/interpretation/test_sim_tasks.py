@@ -154,7 +154,7 @@ def test_a_wait_for_an_input_nothing_sets_is_r009_not_a_deadlock_error(tmp_path)
     d = r.diagnostics[0]
     assert "wait(diPart == true)" in open(d.path, encoding="utf-8").read().split("\n")[d.line - 1]
     assert "diPart" in d.message and d.severity is None  # the rule's severity (warning) is set by the report
-    assert r.end_message.startswith("every task waits, for inputs that nothing in the run sets")
+    assert r.end_message.startswith("every task waits for the cell (inputs, serial or socket peers")
     # a task that also waits for a variable nobody sets: a deadlock of the program (R003)
     r = sim(tmp_path / "both", """begin
   taskCreate "t1", 10, waiter()
@@ -241,6 +241,26 @@ def test_sync_task_runs_each_period(tmp_path):
 end
 """, globals_=["num nTicks", "bool bOver"], programs={"tick": {"code": "begin\n  while true\n    nTicks = nTicks + 1\n    delay(0)\n  endWhile\nend\n"}})
     assert out(r) in (["50"], ["49"], ["51"])
+
+
+def test_sync_period_below_the_4ms_cycle_runs_once_per_cycle(tmp_path):
+    """5.10 taskCreateSync: "Le système accepte toutes les durées positives": 0.002 s is not
+    refused (no error 70); nothing runs more often than the 4 ms cycle, so the task runs once
+    per cycle, as with 0.004 s. A period that is not positive is an invalid parameter (70)."""
+    code = """begin
+  taskCreateSync "fast", {period}, bOver, tick()
+  delay(0.2)
+  taskKill("fast")
+  putln(nTicks)
+end
+"""
+    progs = {"tick": {"code": "begin\n  while true\n    nTicks = nTicks + 1\n    delay(0)\n  endWhile\nend\n"}}
+    fast = sim(tmp_path / "a", code.format(period="0.002"), globals_=["num nTicks", "bool bOver"], programs=progs)
+    cycle = sim(tmp_path / "b", code.format(period="0.004"), globals_=["num nTicks", "bool bOver"], programs=progs)
+    assert errors(fast) == [] and out(fast) == out(cycle)
+    assert int(out(fast)[0]) in (49, 50, 51)  # 0.2 s / 4 ms
+    zero = sim(tmp_path / "c", code.format(period="0"), globals_=["num nTicks", "bool bOver"], programs=progs)
+    assert errors(zero) == [70]
 
 
 def test_two_sync_periods_only(tmp_path):

@@ -82,3 +82,33 @@ def test_cli(tmp_path, capsys):
     text = capsys.readouterr().out
     assert "val3check reach: Cell with TX2-90XL" in text
     assert main(["reach", str(CELL), "--robot", "nosuch"]) == 2
+
+
+PICKPLACE = ROOT / "fixtures" / "valid" / "PickPlace"
+
+
+def test_a_point_or_joint_of_the_other_arm_family_says_so(tmp_path):
+    """Issue 28 item 13: a six-axis configuration (elbow, wrist) on a SCARA is not just "out of
+    reach": the entry says the point belongs to another arm family (9.7.2), then what the check
+    finds with the shoulder alone."""
+    r = report_of(PICKPLACE, "TS2-60")
+    by = {e.name: e for e in r.entries}
+    assert by["pPick[0]"].status == "family" and by["pPick[0]"].severity == "warning"
+    assert "is a pointRx, of a six-axis arm" in by["pPick[0]"].message and "error 81" in by["pPick[0]"].message
+    assert by["jHome[0]"].status == "family" and "6 axes, a six-axis arm's" in by["jHome[0]"].message
+    # a generic `point` whose data imposes an elbow and a wrist, far away: the family first, then the reach
+    app = tmp_path / "PickPlace"
+    shutil.copytree(PICKPLACE, app)
+    dtx = app / "PickPlace.dtx"
+    text = dtx.read_text(encoding="utf-8").replace('type="pointRx"', 'type="point"')
+    dtx.write_text(text.replace('x="0" y="0" z="0" ry="180" shoulder="lefty"', 'x="2000" y="0" z="0" ry="180" '
+                                                                              'shoulder="lefty"'), encoding="utf-8")
+    by = {e.name: e for e in report_of(app, "TS2-60").entries}
+    e = by["pPick[0]"]
+    assert e.status == "family" and e.data["found"] == "unreachable"
+    assert e.message.startswith("point pPick[0] has the configuration of a six-axis arm (elbow epositive, wrist "
+                                "wpositive), not of the TS2-60, a SCARA")
+    assert "; point pPick[0] with tool tGripper[0] is out of the arm's reach" in e.message
+    assert by["pSlot0[0]"].status != "family"  # esame, wsame impose nothing
+    # on the six-axis arm it was written for, no family entry
+    assert "family" not in {e.status for e in report_of(PICKPLACE, "TX2-60").entries}

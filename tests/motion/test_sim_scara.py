@@ -10,8 +10,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
 from interpretation.simsupport import build, code_pos, codes, errors, gv, run_folder, sim
+
 from val3check.cli import main
 from val3check.motion.kin import ArmKin
 from val3check.robot import load_robot
@@ -167,7 +167,7 @@ end
     r = run_folder(folder, robot=TS)
     assert codes(r) == []
     assert gv(r, "jA")["j3"] == pytest.approx(5.0, abs=1e-9)
-    (m,) = motions(r)
+    (_,) = motions(r)
     assert r.motion.motions[0].joints_end[2] == pytest.approx(127.0, abs=1e-9)  # 5 inches, in mm for the model
     # stroke 200.1 mm = 7.878 inches
     assert gv(r, "bIn") is True and gv(r, "bOut") is False
@@ -207,3 +207,22 @@ def test_scara_pick_and_place_is_timed_against_its_joint_limits(tmp_path, capsys
     # two pick-and-place cycles, each with two 0.2 s waits
     assert r.motion.cycles["Pick~"].count == 1
     assert 2 * 0.4 < r.sim_time_us / 1e6 < 10.0
+
+
+def test_an_unreachable_point_written_for_a_six_axis_arm_says_so(tmp_path):
+    """Issue 28 item 13: a `point` of the data file whose configuration imposes an elbow and a wrist,
+    out of a SCARA's reach: R010 says the configuration is a six-axis arm's (9.7.2)."""
+    app = tmp_path / "PickPlace"
+    shutil.copytree(ROOT / "fixtures" / "valid" / "PickPlace", app)
+    dtx = app / "PickPlace.dtx"
+    text = dtx.read_text(encoding="utf-8").replace('type="pointRx"', 'type="point"').replace(
+        'type="jointRx"', 'type="joint"')
+    dtx.write_text(text.replace('x="0" y="0" z="0" ry="180" shoulder="lefty"', 'x="2000" y="0" z="0" ry="180" '
+                                                                              'shoulder="lefty"'), encoding="utf-8")
+    pgx = app / "start.pgx"
+    pgx.write_text(pgx.read_text(encoding="utf-8").replace("movej(jHome, tGripper, mFast)",
+                                                           "movej(pPick, tGripper, mFast)"), encoding="utf-8")
+    r = run_folder(app, robot=TS, duration=2.0)
+    (d,) = [d for d in r.diagnostics if d.code == "R010"]
+    assert "the point pPick is out of the arm's reach; its data gives it a six-axis arm's configuration " \
+           "(elbow epositive, wrist wpositive), not a SCARA's" in d.message

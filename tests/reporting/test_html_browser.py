@@ -12,13 +12,14 @@ import json
 import random
 from pathlib import Path
 
+import browser_client
 import pytest
 
-import browser_client
 from val3check.cli import main
-from val3check.reporting.html import model_from_sim_report, render, synthetic_model
-from val3check.robot.chain import chain_fk
+from synthetic_run import synthetic_model
+from val3check.reporting.html import model_from_sim_report, render
 from val3check.robot import load_robot
+from val3check.robot.chain import chain_fk
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -126,7 +127,7 @@ def test_3d_forward_kinematics_is_the_arm_models(loaded, model):
 def test_keyboard_and_mouse_drive_the_time_window_and_the_3d_view(chromium, report, model):
     page = chromium.open(report)
     p = page.page
-    window = lambda: p.locator("#tw-range").text_content()  # noqa: E731
+    window = lambda: p.locator("#tw-range").text_content()
     assert window() == "0.000 – 60.000 s"
     p.locator("#joint-plots svg.chart").first.focus()
     p.keyboard.press("+")
@@ -303,8 +304,60 @@ def test_sim_report_html_of_the_pick_and_place_cell(chromium, tmp_path, monkeypa
     assert counts["clearances"] == counts["motions"]
     assert _painted(page, [120, 80, 0], [255, 200, 60]) > 2000  # the arm
     p = page.page
+    # the cell as the checks placed it: nothing left undrawn (no note), the cube carried at 3.0 s
+    # (close at 2.248 s, open at 3.352 s), then on the pallet until doPalletFull clears it
+    assert p.locator(".verdict [role=note]").count() == 0
+    # (the solids the view drew: the fence in front of them is what the pointer would pick)
+    zoom = "const v = V3.view; v.target = [350, 0, -100]; v.dist = 1500; v.draw();"
+    drawn = "new Set(V3.view.prims.filter((p) => p.pts && p.part.name === 'part: cube').map((p) => p.part)).size"
+    cubes = [p.evaluate(f"() => {{ V3.time.setCursor({t}); {zoom} return {drawn}; }}") for t in (2.0, 3.0, 11.5, 27.0)]
+    assert cubes == [0, 1, 4, 0]  # none yet; carried; three on the pallet and one carried; pallet cleared at 26.5 s
+    p.evaluate(f"() => {{ V3.time.setCursor(11.5); {zoom} }}")
+    p.locator("#view3d").screenshot(path=str(tmp_path / "pickplace-3d-parts.png"))
+    p.evaluate("() => { V3.time.setCursor(0); V3.view.resetView(); }")
     p.screenshot(path=str(tmp_path / "pickplace.png"), full_page=True)
     p.close()
+
+
+def test_page_of_the_pick_and_place_cell_s_json_report(chromium, tmp_path, monkeypatch, capsys):
+    """`python -m val3check.reporting.html --sim-report run.json` on the bundled example's JSON
+    report (issue 28 item 4): the motions, cycles, joint and TCP plots and the arm's timeline of the
+    run, the arm and the cell in the 3D view; what the JSON lacks is said at the top."""
+    from val3check.reporting.html.__main__ import main as html_main
+
+    monkeypatch.chdir(ROOT)
+    run = tmp_path / "run.json"
+    assert main(["sim", "fixtures/valid/PickPlace", "--robot", "tx2-60", "--scenario",
+                 "fixtures/scenarios/pickplace.toml", "--report", "json", "-o", str(run)]) == 0
+    out = tmp_path / "report.html"
+    assert html_main(["--sim-report", str(run), "-o", str(out)]) == 0
+    capsys.readouterr()
+    page = chromium.open(out)
+    _clean(page)
+    counts = page.evaluate("""() => ({
+        motions: document.querySelectorAll('table.motions tbody tr').length,
+        jointPlots: document.querySelectorAll('#joint-plots svg.chart').length,
+        tcpPlots: document.querySelectorAll('#tcp-plot svg.chart').length,
+        bars: document.querySelectorAll('.cyclebars svg rect[role=button]').length,
+        clearances: Array.from(document.querySelectorAll('table.motions tbody tr'))
+                         .filter((r) => /^[0-9.]+ /.test(r.lastElementChild.textContent)).length,
+        verdict: document.querySelector('.verdict').textContent,
+        text: document.body.textContent,
+        where: document.querySelector('table.motions tbody tr td:nth-child(2)').textContent,
+    })""")
+    assert counts["where"] == "start.pgx:15"  # the program with the line
+    report = json.loads(run.read_text())
+    motions = len(report["motion"]["motions"])  # the JSON's own count (the timing decides how many fit)
+    assert motions > 100 and counts["motions"] == motions
+    assert counts["jointPlots"] == 12 and counts["tcpPlots"] == 1
+    assert counts["bars"] >= 18 and counts["clearances"] == motions
+    assert "median of 18 complete cycles" in counts["verdict"]
+    for absent in ("No motion in this run", "did not move", "no complete loop iteration"):
+        assert absent not in counts["text"]
+    assert "does not record what each task was doing" in counts["text"]
+    assert _painted(page, [120, 80, 0], [255, 200, 60]) > 2000  # the arm
+    page.page.screenshot(path=str(tmp_path / "pickplace-from-json.png"), full_page=True)
+    page.page.close()
 
 
 def test_real_run_with_a_cell_draws_its_obstacles_and_tool(chromium, tmp_path):
@@ -341,3 +394,53 @@ def test_real_run_with_a_cell_draws_its_obstacles_and_tool(chromium, tmp_path):
     page.page.close()
     for expected in ("cell: table", "cell: pallet", "cell: post", "tool tGripper: jaws", "arm: link_2"):
         assert any(n.startswith(expected) for n in names), (expected, names)
+
+
+def _where(page, name: str):
+    """The centre (CSS pixels) of what the 3D view draws for solids named `name`, and how many
+    probe points hit it (none: not drawn)."""
+    return page.evaluate("""(name) => {
+        const v = V3.view, c = document.getElementById('view3d');
+        let n = 0, x = 0, y = 0;
+        for (let i = 0; i < c.clientWidth; i += 4) for (let j = 0; j < c.clientHeight; j += 4)
+            if (v.pick(i, j) === name) { n++; x += i; y += j; }
+        return n ? [x / n, y / n, n] : [null, null, 0];
+    }""", name)
+
+
+def test_3d_view_moves_obstacles_with_their_frame_and_draws_the_parts(chromium, tmp_path):
+    """A real run (runhelp.MOVING): the block hangs on fBlock, which the program moves from x = -400
+    to x = 400 between two motions; the brick is carried from close() to open() and left at pPlace.
+    At four times the view shows each where the collision checks had it, and says nothing is
+    missing."""
+    from val3check.reporting.html.from_run import model_from_run
+
+    from .runhelp import moving_run
+
+    result, report = moving_run(tmp_path)
+    path = tmp_path / "moving.html"
+    path.write_text(render(model_from_run(report)), encoding="utf-8")
+    page = chromium.open(path)
+    _clean(page)
+    p = page.page
+    assert p.locator(".verdict [role=note]").count() == 0  # no warning about frames or parts
+    close, open_ = (e.time_us / 1e6 for e in result.motion.tool_events)
+    moved = result.motion.motions[3].start  # fBlock's new value, from this motion on
+    green = ([0, 60, 40], [40, 170, 130])  # the parts (#009E73, shaded)
+    seen = {}
+    for label, t in (("before", close - 0.1), ("carried", (close + moved) / 2), ("moved", (moved + open_) / 2),
+                     ("left", open_ + 0.1)):
+        p.evaluate(f"() => {{ V3.time.setCursor({t}); const v = V3.view; v.target = [200, 100, 0]; v.dist = 2200; v.draw(); }}")
+        seen[label] = (_where(page, "cell: block"), _where(page, "part: brick"), _painted(page, *green))
+        p.locator("#view3d").screenshot(path=str(tmp_path / f"moving-{label}.png"))
+    p.close()
+    (bx0, by0, nb0), (_, _, np0), g0 = seen["before"]
+    (bx1, by1, nb1), (px1, py1, np1), g1 = seen["carried"]
+    (bx2, by2, nb2), (px2, py2, np2), g2 = seen["moved"]
+    (bx3, by3, nb3), (_, _, np3), g3 = seen["left"]
+    assert nb0 and nb1 and nb2 and nb3
+    assert (bx0, by0) == (bx1, by1)  # fBlock unchanged until the motion after the program moved it
+    assert abs(bx2 - bx1) + abs(by2 - by1) > 50 and (bx2, by2) == (bx3, by3)  # 800 mm further, then still
+    assert np0 == 0  # not taken yet: no part (the green of the axes' y only)
+    assert np1 and np2 and np3 and min(g1, g2, g3) > g0 + 200, (g0, g1, g2, g3)
+    assert abs(px2 - px1) + abs(py2 - py1) > 20  # it rides with the flange

@@ -3,18 +3,23 @@ held to the run it comes from, to the arm model, or to the cell file."""
 
 from __future__ import annotations
 
+import json
 import statistics
+from pathlib import Path
 from types import SimpleNamespace
 
+import jsonschema
 import numpy as np
 import pytest
 
-from .runhelp import CELL, pickplace
+from .runhelp import CELL, moving_run, pickplace
 from val3check.collision.cellfile import read_cell
 from val3check.collision.records import Clearance, MotionReport, MotionSpan
 from val3check.reporting.html import check_model, render
 from val3check.reporting.html.from_run import model_from_run
 from val3check.robot import load_robot
+
+SCHEMA = json.loads((Path(__file__).resolve().parents[2] / "docs" / "html-report.schema.json").read_text(encoding="utf-8"))
 
 
 @pytest.fixture(scope="module")
@@ -135,18 +140,60 @@ def test_cell_obstacles_tool_solids_and_clearance(run):
     assert set(obstacles) == {"table", "pallet", "post"}
     assert obstacles["table"]["shape"] == "box" and obstacles["table"]["size"] == [500.0, 1200.0, 40.0]
     assert [row[3] for row in obstacles["table"]["pose"]] == [450.0, 0.0, -130.0]
-    # the pallet sits in fPallet (300, 120, -80 in the world): at (70, 70, -10) in it
+    # the pallet sits in fPallet at (70, 70, -10); without the collision checks' timeline, fPallet
+    # is where the run left it (300, 120, -80 in the world), from t = 0 on, and the page says so
+    tracks = model["scene"]["tracks"]
     fpallet = result.motion.scene.frames["fPallet"].matrix
-    assert [row[3] for row in obstacles["pallet"]["pose"]] == pytest.approx(list(fpallet[:3, 3] + [70, 70, -10]))
+    assert obstacles["pallet"]["track"] == "fPallet" and [row[3] for row in obstacles["pallet"]["pose"]] == [70, 70, -10]
+    assert tracks["fPallet"]["times"] == [0.0] and tracks["fPallet"]["poses"] == [[list(r) for r in fpallet[:3]]]
+    assert "track" not in obstacles["table"]
     assert obstacles["post"]["radius"] == 40.0 and obstacles["post"]["length"] == 800.0
     solids = {s["name"]: s for s in model["scene"]["tool"]["solids"]}
-    assert solids["body"]["pose"][2][3] == 30.0  # on the flange
-    assert solids["jaws"]["pose"][2][3] == pytest.approx(120.0 - 30.0)  # in tGripper, 120 mm out
+    assert solids["body"]["pose"][2][3] == 30.0 and "track" not in solids["body"]  # on the flange
+    assert solids["jaws"]["track"] == "tGripper" and solids["jaws"]["pose"][2][3] == -30.0  # in tGripper,
+    assert tracks["tGripper"]["poses"][0][2][3] == 120.0  # 120 mm out of the flange
     first = next(mo for mo in model["motions"] if mo["motion_id"] == rec.id)
     assert (first["min_clearance"], first["clearance_to"]) == (42.5, "table")
     assert not any("No cell file" in s for s in model["limitations"])
-    assert any("parts of the cell file" in s for s in model["limitations"])  # said, not drawn (the trace draws them)
+    assert model["scene"]["parts"] == []
+    assert [s for s in model["limitations"] if "collision checks did not run" in s] == [
+        ("The collision checks did not run: obstacles placed in application frames are drawn where those frames "
+         "are at the end of the run."),
+        "The collision checks did not run: the parts of the cell file (what the tool carries) are not drawn."]
     assert "pallet" in render(model)
+
+
+def test_frames_and_parts_as_the_collision_checks_placed_them(tmp_path):
+    """A run that moves the frame an obstacle hangs on and carries a part (runhelp.MOVING): the
+    frame's two values with the times the checks read them, the part's two spans, no warning."""
+    result, report = moving_run(tmp_path)
+    model = model_from_run(report)
+    check_model(model)
+    jsonschema.Draft202012Validator(SCHEMA).validate(model)
+    assert not [d for d in result.diagnostics if d.code.startswith("R03")]
+    assert not any("frames" in s or "parts" in s for s in model["limitations"]), model["limitations"]
+    scene = model["scene"]
+    motions = result.motion.motions
+    # fBlock: x = -400 from the start, x = 400 from the start of the first motion recorded after the
+    # program moved it (the fourth, movel appro(pPlace)): the checks placed the block there for it
+    after = motions[3]
+    assert after.kind == "movel" and after.start > motions[2].end
+    track = scene["tracks"]["fBlock"]
+    assert track["times"] == [pytest.approx(motions[0].start), pytest.approx(after.start)]
+    assert [p[0][3] for p in track["poses"]] == [-400.0, 400.0]
+    (block,) = [o for o in scene["obstacles"] if o["name"] == "block"]
+    assert block["track"] == "fBlock" and [r[3] for r in block["pose"]] == [0.0, 500.0, 100.0]
+    # the brick: on the flange from close() to open(), in tGrip (100 mm out of the flange), at
+    # (0, 0, 20) in it; then left where open() leaves it, the TCP at pPlace (400, 200, 40) pointing down
+    (brick,) = scene["parts"]
+    close, open_ = (e.time_us / 1e6 for e in result.motion.tool_events)
+    assert [s["name"] for s in brick["solids"]] == ["brick"] and [r[3] for r in brick["solids"][0]["pose"]] == [0, 0, 20]
+    carried, left = brick["spans"]
+    assert (carried["start"], carried["end"], carried["carried"]) == (close, open_, True)
+    assert carried["pose"] == [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 100]]
+    assert (left["start"], left["end"], left["carried"]) == (open_, None, False)
+    assert np.asarray(left["pose"]) == pytest.approx(np.array([[-1, 0, 0, 400], [0, 1, 0, 200], [0, 0, -1, 40]]),
+                                                      abs=1e-6)
 
 
 def test_same_run_same_page(run):
@@ -208,3 +255,21 @@ def test_a_long_run_is_sampled_at_a_multiple_of_4_ms():
     assert sample_period(60.0) == 0.004 and sample_period(600.0) == 0.004  # 150,001 samples
     assert sample_period(600.004) == 0.008
     assert sample_period(3600.0) == pytest.approx(0.024) and 3600.0 / 0.024 + 1 <= MAX_SAMPLES
+
+
+def test_a_part_taken_again_where_it_was_left_leaves_the_cell(tmp_path):
+    """docs/cell.md: a part taken where a part of the same name was left is that part. The brick of
+    runhelp.MOVING is taken again at pPlace after open(): its left span ends there, a new carried
+    span starts, and nothing is left in the cell at the end."""
+    from interpretation.simsupport import sim
+
+    from .runhelp import MOVING, MOVING_CELL, MOVING_GLOBALS
+
+    code = MOVING.replace("  open(tGrip)\n", "  open(tGrip)\n  close(tGrip)\n")
+    cell = tmp_path / "cell.toml"
+    cell.write_text(MOVING_CELL, encoding="utf-8")
+    result = sim(tmp_path, code, globals_=MOVING_GLOBALS, robot=load_robot("tx2-60"), collisions=True,
+                 cell=str(cell))
+    close1, open_, close2 = (e.time_us / 1e6 for e in result.motion.tool_events)
+    spans = [(s.carried, s.start, s.end) for s in result.motion.cell_timeline.parts]
+    assert spans == [(True, close1, open_), (False, open_, close2), (True, close2, None)]

@@ -36,10 +36,10 @@ def test_model_of_a_run_with_an_arm_model(capsys):
     ex = d["excerpt"]
     assert ex["lines"][d["line"] - ex["first_line"]] == lines[d["line"] - 1]
     assert model["scene"]["arm"]["name"] == "TX2-60" and model["scene"]["joints"] == [0.0] * 6
-    assert model["trajectory"] is None and model["tasks"] == []
-    assert any("the arm's motion is not drawn" in n for n in model["limitations"])
-    html = render(model)
-    assert "motion is not drawn" in html and 'id="play"' not in html
+    assert model["tasks"] == [] and any("no task timeline" in n for n in model["limitations"])
+    moved = report["motion"] is not None and report["motion"]["trajectory"]["segments"]
+    assert (model["trajectory"] is not None) == bool(moved)
+    render(model)
 
 
 def test_model_of_a_run_that_passes_and_the_fail_on_threshold(capsys):
@@ -83,3 +83,97 @@ def test_command_renders_a_sim_report(capsys, tmp_path):
     assert "Supervisor" in out.read_text(encoding="utf-8")
     assert html_main(["--sim-report", str(tmp_path / "missing.json"), "-o", str(out)]) == 2
     assert "cannot read" in capsys.readouterr().err
+
+
+def _pickplace_json(capsys, *extra: str) -> dict:
+    """The JSON report of the bundled example (its scenario; its cell beside it)."""
+    assert main(["sim", "fixtures/valid/PickPlace", "--robot", "tx2-60", "--scenario",
+                 "fixtures/scenarios/pickplace.toml", "--report", "json", *extra]) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+def test_the_bundled_example_s_json_gives_its_motions_cycles_and_trajectory(capsys):
+    """Issue 28 item 4: the page of a JSON report holding over a hundred motions, 18 or more
+    cycles and the trajectory says so, not "No motion in this run" nor "the arm did not move"."""
+    report = _pickplace_json(capsys)
+    model = model_from_sim_report(report)
+    check_model(model)
+    runs = [m for m in report["motion"]["motions"] if m["start"] is not None]
+    assert len(model["motions"]) == len(runs) > 100
+    (loop,) = model["cycles"]  # the main task records its motions outside any loop: no cycle
+    (robot,) = [c for c in report["motion"]["cycles"] if c["starts"]]
+    n = robot["cycles"]
+    assert sum(it["complete"] for it in loop["iterations"]) == n >= 18
+    ct = model["verdict"]["cycle_time"]
+    # the JSON rounds each time to 1e-6 s: the median of the rounded times is within 1e-6 of its own
+    assert ct["seconds"] == pytest.approx(robot["median"], abs=2e-6) and f"median of {n} complete cycles" in ct["basis"]
+    assert "while loop at line 9 of cycle.pgx" in ct["basis"]
+    tr = model["trajectory"]
+    assert len(tr["times"]) == 15001 and tr["times"][-1] == 60.0 and max(tr["tcp_speed"]) > 1000
+    # the collision section's closest approach of each motion, and the cell's obstacles in the world
+    closest = {c["motion"]: c["min_clearance"]["mm"] for c in report["collision"]["motions"]}
+    assert [m["min_clearance"] for m in model["motions"]] == [closest[k] for k, m in
+                                                              enumerate(report["motion"]["motions"])
+                                                              if m["start"] is not None]
+    assert {o["name"] for o in model["scene"]["obstacles"]} == set(report["collision"]["cell"]["obstacles"]) - {"pallet"}
+    assert any("'pallet' is placed in fPallet" in n for n in model["limitations"])
+    assert model["scene"]["tool"]["name"] == "tGripper" and len(model["scene"]["tool"]["solids"]) == 3
+    html = render(model)
+    for absent in ("No motion in this run", "did not move", "no complete loop iteration", "No TCP speed"):
+        assert absent not in html
+    # the motion table says which program each line is in (item 13), the whole position on hover
+    assert '<th scope="col">program:line</th>' in html
+    assert '<span title="fixtures/valid/PickPlace/start.pgx:15:3">start.pgx:15</span>' in html
+    assert '<span title="fixtures/valid/PickPlace/pick.pgx:6:3">pick.pgx:6</span>' in html
+
+
+def test_the_page_of_the_json_is_the_page_of_the_run(capsys):
+    """The same run, its model built from the run's record and from its JSON report: the same
+    motions (but the descriptors' vel and tvel, not in the JSON), cycles, trajectory (to the
+    JSON's rounding), arm timeline (to a tick: a stop inside a motion is known to 4 ms) and tool."""
+    import numpy as np
+
+    from val3check.reporting import sim_json
+    from val3check.reporting.html.from_run import model_from_run
+
+    from .runhelp import pickplace
+
+    _, run = pickplace(20.0)
+    a = model_from_run(run)
+    b = model_from_sim_report(json.loads(sim_json.render(run)))
+    strip = [{k: v for k, v in m.items() if k not in ("vel", "tvel")} for m in a["motions"]]
+    assert strip == [{k: v for k, v in m.items() if k not in ("vel", "tvel")} for m in b["motions"]]
+    assert len(a["motions"]) > 30 and all(m["vel"] is None for m in b["motions"])
+    assert a["cycles"] == b["cycles"]
+    ca, cb = a["verdict"]["cycle_time"], b["verdict"]["cycle_time"]
+    assert ca["basis"] == cb["basis"] and abs(ca["seconds"] - cb["seconds"]) <= 1e-6  # a median of two
+    ta, tb = a["trajectory"], b["trajectory"]
+    assert ta["times"] == tb["times"] and ta["joints"] == tb["joints"]
+    assert np.abs(np.array(ta["positions"]) - np.array(tb["positions"])).max() <= 5e-5 + 1e-9
+    assert np.abs(np.array(ta["velocities"]) - np.array(tb["velocities"])).max() <= 5e-4 + 1e-9
+    assert np.abs(np.array(ta["tcp_speed"]) - np.array(tb["tcp_speed"])).max() < 0.05  # mm/s
+    la, lb = a["arm_timeline"], b["arm_timeline"]
+    assert [s["state"] for s in la] == [s["state"] for s in lb]
+    assert max(abs(x[k] - y[k]) for x, y in zip(la, lb) for k in ("start", "end")) < 0.004
+    assert a["scene"]["tool"] == b["scene"]["tool"] and a["scene"]["arm"] == b["scene"]["arm"]
+
+
+def test_a_motion_section_that_does_not_hold_together_is_refused(capsys):
+    report = _pickplace_json(capsys, "--duration", "4")
+    report["motion"]["trajectory"]["segments"][0]["positions"] = [[1, 2]]
+    with pytest.raises(ModelError, match="`motion` section does not hold together"):
+        model_from_sim_report(report)
+    report["motion"]["trajectory"]["period"] = 0.008
+    with pytest.raises(ModelError, match="period of 0.008 s"):
+        model_from_sim_report(report)
+
+
+def test_a_cell_outside_the_roots_is_not_read(capsys, tmp_path):
+    report = _pickplace_json(capsys, "--duration", "4")
+    outside = tmp_path / "cell.toml"
+    outside.write_text((ROOT / "fixtures/valid/PickPlace/val3check-cell.toml").read_text(encoding="utf-8"))
+    report["collision"]["cell"]["path"] = str(outside)
+    model = model_from_sim_report(report)
+    assert model["scene"]["obstacles"] == [] and any("outside the application's folder" in n
+                                                     for n in model["limitations"])
+    assert len(model_from_sim_report(report, roots=[str(tmp_path)])["scene"]["obstacles"]) == 7

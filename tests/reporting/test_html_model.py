@@ -16,10 +16,10 @@ from pathlib import Path
 import jsonschema
 import pytest
 
-from val3check.reporting.html import ModelError, check_model, render, synthetic_model
+from synthetic_run import CART_ACCEL, MDESC, _trapezoid, synthetic_model
+from val3check.reporting.html import ModelError, check_model, render
 from val3check.robot.chain import arm_chain, chain_fk
 from val3check.reporting.html.pack import FULL_RATE_MAX, PLOT_BUCKETS, page_data
-from val3check.reporting.html.synthetic import CART_ACCEL, MDESC, _trapezoid
 from val3check.robot import RobotError, load_robot, names
 from val3check.robot.urdf import mul
 
@@ -186,6 +186,14 @@ def test_synthetic_model_is_valid_deterministic_and_fails_on_request(model):
     (lambda m: m["scene"]["obstacles"][0].update(pose=[[1, 0, 0]]), r"scene.obstacles\[0\].pose: a 3x4 matrix"),
     (lambda m: m["scene"]["obstacles"][4]["triangles"].append([0, 1, 99]), r"scene.obstacles\[4\].triangles\[8\]"),
     (lambda m: m["scene"]["arm"]["joints"].reverse(), r"scene.arm.joints\[0\]: parent link"),
+    (lambda m: m["scene"]["obstacles"][0].update(track="fNone"), r"scene.obstacles\[0\].track: 'fNone' is not in"),
+    (lambda m: m["scene"].update(tracks={"f": {"times": [0, 1], "poses": [None]}}),
+     r"scene.tracks\['f'\]: one pose \(or null\) per time"),
+    (lambda m: m["scene"].update(tracks={"f": {"times": [1, 0], "poses": [None, None]}}),
+     r"scene.tracks\['f'\].times\[1\]: times must not decrease"),
+    (lambda m: m["scene"].update(parts=[{"name": "p", "solids": [], "spans": [
+        {"start": 2, "end": 1, "carried": True, "pose": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]]}]}]),
+     r"scene.parts\[0\].spans\[0\]: end is before start"),
     (lambda m: m["verdict"].update(simulated_duration=float("nan")), "verdict.simulated_duration: a finite number"),
     (lambda m: m.pop("verdict"), "key 'verdict' is missing"),
 ])
@@ -284,7 +292,8 @@ def test_demo_command_writes_a_page_and_refuses_a_bad_model(tmp_path, capsys):
     from val3check.reporting.html.__main__ import main
 
     out = tmp_path / "demo.html"
-    assert main(["--demo", "--duration", "5", "-o", str(out), "--model-out", str(tmp_path / "m.json")]) == 0
+    (tmp_path / "model.json").write_text(json.dumps(synthetic_model(duration=5.0)))
+    assert main([str(tmp_path / "model.json"), "-o", str(out), "--model-out", str(tmp_path / "m.json")]) == 0
     assert out.read_text(encoding="utf-8").startswith("<!DOCTYPE html>")
     assert main([str(tmp_path / "m.json"), "-o", str(tmp_path / "again.html")]) == 0
     assert (tmp_path / "again.html").read_bytes() == out.read_bytes()

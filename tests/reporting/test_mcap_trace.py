@@ -5,6 +5,7 @@ kinematics (here()) at the sampled times, the log, I/O and task channels, the UR
 from __future__ import annotations
 
 import json
+from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
@@ -12,7 +13,6 @@ import pytest
 from mcap.reader import make_reader
 
 from val3check.cli import main
-from val3check.collision.cellfile import read_cell
 from val3check.collision.records import MotionReport, MotionSpan
 from val3check.reporting.mcap_trace import SCHEMAS, TOPICS, write_trace
 from val3check.robot import load_robot
@@ -20,11 +20,43 @@ from val3check.robot import load_robot
 from .runhelp import APP, CELL, SCENARIO, pickplace
 
 FOXGLOVE = {"foxglove.FrameTransforms", "foxglove.PoseInFrame", "foxglove.SceneUpdate", "foxglove.Log"}
+# Foxglove's published JSON schemas (tests/data/foxglove/README.md says where they come from)
+PUBLISHED = Path(__file__).resolve().parents[1] / "data" / "foxglove"
+
+
+def _published() -> dict:
+    """{schema name: Foxglove's JSON schema} of the four Foxglove schemas the trace uses."""
+    out = {}
+    for f in sorted(PUBLISHED.glob("*.json")):
+        schema = json.loads(f.read_text(encoding="utf-8"))
+        out[schema["title"]] = schema
+    assert set(out) == FOXGLOVE
+    return out
+
+
+def _violations(path) -> tuple[dict, list]:
+    """Read a trace back: ({schema name: messages}, [(topic, error)]) of every message of a
+    Foxglove schema against Foxglove's published schema, and of every message against the schema
+    the file embeds."""
+    import jsonschema
+
+    published = {n: jsonschema.Draft7Validator(s) for n, s in _published().items()}
+    counts: dict = {}
+    bad = []
+    with open(path, "rb") as f:
+        for sc, ch, msg in make_reader(f).iter_messages():
+            message = json.loads(msg.data)
+            counts[sc.name] = counts.get(sc.name, 0) + 1
+            checks = [jsonschema.Draft7Validator(json.loads(sc.data))]
+            if sc.name in published:
+                checks.append(published[sc.name])
+            bad += [(ch.topic, e.message) for v in checks for e in v.iter_errors(message)]
+    return counts, bad
 
 
 @pytest.fixture(scope="module")
 def run():
-    return pickplace(20.0)
+    return pickplace(20.0, str(CELL))  # its collisions checked: the parts carried and left
 
 
 @pytest.fixture(scope="module")
@@ -34,13 +66,14 @@ def trace(run, tmp_path_factory):
     rec = next(r for r in result.motion.motions if r.id is not None and r.start is not None)
     checked = MotionReport(MotionSpan(rec.id), np.array([rec.start, rec.start + 0.004, rec.start + 0.008]),
                            np.array([80.0, 75.5, np.inf]), np.array([False, True, False]), margin_mm=10.0)
-    result.collision = SimpleNamespace(cell=read_cell(CELL), by_motion={result.motion.motions.index(rec): checked})
-    rec.clearance = checked  # the motion's clearances slot (simulation/arm_record.py)
+    kept = [r.clearance for r in result.motion.motions]
+    for r in result.motion.motions:  # one motion's clearances slot (simulation/arm_record.py), known values
+        r.clearance = checked if r is rec else None
     try:
         write_trace(report, str(path))
     finally:
-        del result.collision
-        rec.clearance = None
+        for r, c in zip(result.motion.motions, kept):
+            r.clearance = c
     with open(path, "rb") as f:
         reader = make_reader(f)
         summary = reader.get_summary()
@@ -165,7 +198,7 @@ def test_transforms_reproduce_here_at_the_sampled_times(trace, run):
 
 
 def test_frames_tools_scene_log_io_tasks_and_urdf(trace, run):
-    result, report = run
+    result, _ = run
     static = next(m[4] for m in _by(trace, "/tf") if m[2] == 0 and any(
         x["child_frame_id"] == "fPallet" for x in m[4]["transforms"]))
     by = {x["child_frame_id"]: x for x in static["transforms"]}
@@ -189,7 +222,7 @@ def test_frames_tools_scene_log_io_tasks_and_urdf(trace, run):
     (arrow,) = tcp["arrows"]  # +x turned onto the flange's z: the arrow points to the TCP
     q = arrow["pose"]["orientation"]
     x_axis = _matrix({"rotation": q, "translation": {"x": 0, "y": 0, "z": 0}})[:3, 0]
-    assert x_axis == pytest.approx([0, 0, 1]) and arrow["shaft_length"] + arrow["head_length"] == pytest.approx(0.12)
+    assert x_axis == pytest.approx([0, 0, 1], abs=1e-11) and arrow["shaft_length"] + arrow["head_length"] == pytest.approx(0.12)
     # the part rides on the flange from close(), and stays in the world where open() leaves it
     model = load_robot(result.motion.scene.name)
     tool = np.eye(4)
@@ -218,6 +251,143 @@ def test_frames_tools_scene_log_io_tasks_and_urdf(trace, run):
     (att,) = trace.attachments
     assert att.name == "tx2-60.urdf" and att.data.decode() == desc[4]["data"] and "<robot" in desc[4]["data"]
     assert trace.metadata[0].metadata["robot"] == "TX2-60"
+
+
+@pytest.fixture(scope="module")
+def readme_trace(tmp_path_factory):
+    """The README's run of the bundled example (its cell beside it, so that the scene has the
+    cell, the tool and the parts), 12 simulated seconds, through the command line."""
+    path = tmp_path_factory.mktemp("readme") / "run.mcap"
+    assert main(["sim", str(APP), "--robot", "tx2-60", "--scenario", str(SCENARIO), "--duration", "12",
+                 "--trace", str(path)]) == 0
+    return path
+
+
+def test_every_message_of_the_bundled_example_holds_to_foxglove_s_schemas(readme_trace, capsys):
+    """Read back, every message of a Foxglove schema validates against Foxglove's published JSON
+    schema (a SceneEntity needs all its primitive arrays, even empty)."""
+    capsys.readouterr()
+    counts, bad = _violations(readme_trace)
+    assert bad == []
+    assert counts["foxglove.SceneUpdate"] > 5 and counts["foxglove.FrameTransforms"] > 1000
+    assert FOXGLOVE <= set(counts)
+
+
+def _decimals(x: float) -> int:
+    r = repr(float(x))
+    if "e" in r:
+        mant, exp = r.split("e")
+        return (len(mant.split(".")[1]) if "." in mant else 0) - int(exp)
+    return len(r.split(".")[1]) if "." in r else 0
+
+
+def _too_precise(message, limit: int, out: list) -> list:
+    """Numbers of the poses, sizes and lengths written with more decimals than docs/trace.md says
+    (quaternion components 12, lengths in metres 10)."""
+    if isinstance(message, dict):
+        for k, v in message.items():
+            if k in ("rotation", "orientation"):
+                _too_precise(v, 12, out)
+            elif k not in ("color", "colors", "timestamp", "lifetime", "indices", "metadata"):
+                _too_precise(v, limit, out)
+    elif isinstance(message, list):
+        for v in message:
+            _too_precise(v, limit, out)
+    elif isinstance(message, float) and _decimals(message) > limit:
+        out.append(message)
+    return out
+
+
+def test_poses_are_written_to_the_precision_docs_trace_md_says(readme_trace):
+    """Positions and lengths to 1e-10 m, quaternion components to 1e-12: the arm's ticks, the
+    application's frames and tools, the cell, the tool and the parts (item 12: the static frames and
+    the scene were written to the last bit)."""
+    bad, n = [], 0
+    with open(readme_trace, "rb") as f:
+        for _, _, m in make_reader(f).iter_messages(topics=["/tf", "/tcp", "/scene"]):
+            _too_precise(json.loads(m.data), 10, bad)
+            n += 1
+    assert n > 2000 and bad == []
+
+
+def test_the_shipped_layout_is_the_bundled_example_s_one_row_per_task(readme_trace, tmp_path, capsys):
+    """docs/foxglove-layout.json is what `python -m val3check.reporting.foxglove_layout` makes of the
+    bundled example's trace: Foxglove's State Transitions panel draws one row per path, and each
+    task's path keeps that task's messages only (a message path filter on its name)."""
+    from val3check.reporting.foxglove_layout import main as layout_main
+
+    out = tmp_path / "layout.json"
+    assert layout_main([str(readme_trace), "-o", str(out)]) == 0
+    assert "3 task(s), 6 joint(s)" in capsys.readouterr().err
+    shipped = (Path(__file__).resolve().parents[2] / "docs" / "foxglove-layout.json").read_text(encoding="utf-8")
+    assert out.read_text(encoding="utf-8") == shipped
+    rows = json.loads(shipped)["configById"]["StateTransitions!tasks"]["paths"]
+    with open(readme_trace, "rb") as f:
+        tasks = [json.loads(m.data)["task"] for _, _, m in make_reader(f).iter_messages(topics=["/tasks"])]
+    assert [r["label"] for r in rows] == list(dict.fromkeys(tasks)) == ["PickPlace~", "robot", "~PickPlace"]
+    assert [r["value"] for r in rows] == [f'/tasks{{task=="{t}"}}.state' for t in ("PickPlace~", "robot", "~PickPlace")]
+
+
+def test_layout_of_a_scara_and_of_names_that_need_quoting():
+    from val3check.reporting.foxglove_layout import layout, task_path
+
+    lay = layout(["a\"b", "t"], axes=4)
+    assert [p["label"] for p in lay["configById"]["Plot!velocities"]["paths"]] == ["j1", "j2", "j3", "j4"]
+    assert task_path('a"b') == '/tasks{task=="a\\"b"}.state'
+
+
+def test_a_file_that_is_no_trace_is_refused_with_its_name(tmp_path, capsys):
+    from val3check.reporting.foxglove_layout import main as layout_main
+
+    bad = tmp_path / "x.mcap"
+    bad.write_text("not mcap")
+    assert layout_main([str(bad)]) == 2
+    assert layout_main([str(tmp_path / "none.mcap")]) == 2
+    err = capsys.readouterr().err
+    assert "x.mcap: not a trace" in err and "none.mcap: cannot read" in err
+
+
+def test_the_test_trace_holds_to_foxglove_s_schemas(trace):
+    """The module's trace (a cell, a clearance, the log): every message validates."""
+    counts, bad = _violations(trace.path)
+    assert bad == [] and FOXGLOVE <= set(counts)
+
+
+def test_a_mesh_obstacle_is_a_triangle_list_foxglove_accepts():
+    """A mesh of the cell (docs/cell.md) as a SceneEntity's triangle list (with its `colors`, empty)."""
+    import jsonschema
+
+    from val3check.reporting.mcap_trace import _entity
+
+    mesh = SimpleNamespace(vertices=[[0, 0, 0], [100, 0, 0], [0, 100, 0], [0, 0, 100]],
+                           faces=[[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+    e = _entity(0, "world", "obstacle/machine", "obstacle", [("machine", SimpleNamespace(kind="mesh", mesh=mesh),
+                                                                np.eye(4), None)])
+    (tri,) = e["triangles"]
+    assert len(tri["points"]) == 4 and tri["indices"][:3] == [0, 2, 1] and tri["points"][1]["x"] == 0.1
+    jsonschema.Draft7Validator(_published()["foxglove.SceneUpdate"]).validate({"deletions": [], "entities": [e]})
+
+
+def _required(ours: dict, theirs: dict, where: str = "") -> list[str]:
+    """Where the schema val3check embeds requires other fields than Foxglove's (walking the
+    properties both describe)."""
+    out = []
+    if "properties" in ours:
+        if set(ours.get("required", [])) != set(theirs.get("required", [])):
+            out.append(f"{where or '/'}: {sorted(ours.get('required', []))} != {sorted(theirs.get('required', []))}")
+        for k, sub in ours["properties"].items():
+            if k in theirs.get("properties", {}):
+                out += _required(sub, theirs["properties"][k], f"{where}/{k}")
+    if "items" in ours and "items" in theirs:
+        out += _required(ours["items"], theirs["items"], f"{where}[]")
+    return out
+
+
+def test_the_embedded_schemas_require_what_foxglove_s_require():
+    for name, theirs in _published().items():
+        ours = SCHEMAS[name]
+        assert _required(ours, theirs) == [], name
+        assert set(ours["properties"]) <= set(theirs["properties"])
 
 
 def test_schema_field_names_are_foxglove_s():
@@ -295,3 +465,33 @@ def test_quaternions_of_any_rotation():
     for Rk, qk in zip(R, q):
         back = _matrix({"rotation": dict(zip("xyzw", qk)), "translation": {"x": 0, "y": 0, "z": 0}})[:3, :3]
         assert np.abs(back - Rk).max() < 1e-12
+
+
+def test_obstacles_follow_their_frame_and_parts_their_spans(tmp_path):
+    """A run that moves fBlock between two motions and carries a part (runhelp.MOVING), read back:
+    the block is sent again, 800 mm further, when the checks read fBlock's new value, and fBlock's
+    transform with it; the brick rides on the flange from close() and is left where open() leaves it."""
+    from .runhelp import moving_run
+
+    result, report = moving_run(tmp_path)
+    path = tmp_path / "moving.mcap"
+    write_trace(report, str(path))
+    with open(path, "rb") as f:
+        messages = [(ch.topic, msg.log_time, json.loads(msg.data))
+                    for _, ch, msg in make_reader(f).iter_messages(log_time_order=True)]
+    moved = round(result.motion.motions[3].start * 1e9)
+    close, open_ = (e.time_us * 1000 for e in result.motion.tool_events)
+    ents = [(t, e) for topic, t, m in messages if topic == "/scene" for e in m["entities"]]
+    block = [(t, e["frame_id"], e["cubes"][0]["pose"]["position"]) for t, e in ents if e["id"] == "obstacle/block"]
+    assert [(t, frame, pytest.approx([p["x"], p["y"], p["z"]])) for t, frame, p in block] == [
+        (0, "world", [-0.4, 0.5, 0.1]), (moved, "world", [0.4, 0.5, 0.1])]
+    tf = [(t, x["translation"]["x"]) for topic, t, m in messages if topic == "/tf" for x in m["transforms"]
+          if x["child_frame_id"] == "fBlock"]
+    assert tf == [(0, pytest.approx(-0.4)), (moved, pytest.approx(0.4))]
+    brick = [(t, e["id"], e["frame_id"], e["cubes"][0]["pose"]["position"]) for t, e in ents
+             if e["id"].startswith("part/")]
+    assert [(t, i, f) for t, i, f, _ in brick] == [(close, "part/brick", "flange"), (open_, "part/brick/1", "world")]
+    assert brick[0][3]["z"] == pytest.approx(0.12)  # 100 mm (tGrip) + 20 mm (at) out of the flange
+    assert [brick[1][3][k] for k in "xyz"] == pytest.approx([0.4, 0.2, 0.02], abs=1e-9)  # on the table at pPlace
+    gone = [(t, d["id"]) for topic, t, m in messages if topic == "/scene" for d in m["deletions"]]
+    assert gone == [(open_, "part/brick")]

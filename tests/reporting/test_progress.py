@@ -77,3 +77,39 @@ def test_sim_into_a_pipe_or_a_file_shows_nothing(capsys, monkeypatch):
           "--duration", "90"])
     captured = capsys.readouterr()
     assert "motions done" not in captured.err and "motions done" not in captured.out
+
+
+def test_the_collision_checks_after_the_motions_show_their_phase(monkeypatch, capsys):
+    """Issue 28 item 3: the line does not freeze at the last simulated time while the motions'
+    collisions are checked: it says which motion of how many it checks."""
+    monkeypatch.chdir(ROOT)
+    out, t = FakeTTY(), [0.0]
+
+    def clock() -> float:  # a second per look: every call is shown
+        t[0] += 1.0
+        return t[0]
+
+    monkeypatch.setattr(Progress, "for_stream", classmethod(lambda cls, stream, total_s=None: cls(
+        out, clock=clock, total_s=total_s)))
+    assert main(["sim", "fixtures/valid/PickPlace", "--robot", "tx2-60", "--scenario",
+                 "fixtures/scenarios/pickplace.toml", "--duration", "30"]) == 0
+    capsys.readouterr()
+    shown = out.getvalue().split("\r")
+    phases = [i for i, s in enumerate(shown) if "checking collisions: motion " in s]
+    simulated = [i for i, s in enumerate(shown) if "s simulated" in s]
+    assert phases and simulated and phases[0] > simulated[-1]  # after the simulated time
+    total = shown[phases[0]].split(" of ")[1].split(",")[0]
+    assert int(total) > 20
+    assert [shown[i].split(",")[0] for i in phases] == [
+        f"val3check sim: checking collisions: motion {k} of {total}" for k in range(1, int(total) + 1)]
+    assert out.getvalue().endswith("\r\x1b[K")
+
+
+def test_a_phase_is_shown_no_more_than_ten_times_a_second():
+    t = [0.0]
+    out = FakeTTY()
+    p = Progress(out, clock=lambda: t[0])
+    t[0] = 2.0
+    p.phase("checking collisions: motion 1 of 3")
+    p.phase("checking collisions: motion 2 of 3")  # the same instant: not redrawn
+    assert out.getvalue() == "\rval3check sim: checking collisions: motion 1 of 3,    2.0 s wall\x1b[K"

@@ -53,10 +53,9 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
                     " writes one per case")
     if args.jobs is not None and args.jobs < 1:
         return _err("--jobs must be a positive number of processes")
-    if args.executor == "dask" and not args.scheduler:
-        return _err("--executor dask needs --scheduler ADDRESS (tcp://host:8786)")
-    if args.executor == "dask" and args.jobs is not None:
-        return _err("--jobs is for the local executor; with Dask, the workers' processes set the parallelism")
+    if args.executor == "dask" and args.jobs is not None and (args.scheduler or _dask_address()):
+        return _err("--jobs sizes the local executor or a local Dask cluster; with a scheduler, the workers' "
+                    "processes set the parallelism")
     if args.scheduler and args.executor != "dask":
         return _err("--scheduler goes with --executor dask")
     try:
@@ -115,9 +114,12 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
     start = time.monotonic()
     try:
         if args.executor == "dask":
-            run_dask(cases, args.scheduler, on_done, stop)
+            # no --scheduler: DASK_SCHEDULER_ADDRESS, else a local cluster, as Dask's Client() does
+            run_dask(cases, args.scheduler, on_done, stop, workers=min(args.jobs or _cores(), len(cases)),
+                     starting=progress.phase)
         else:
             jobs = min(args.jobs or _cores(), len(cases))
+            progress.phase(f"running on {jobs} process{'es' if jobs > 1 else ''}")
             if jobs <= 1:
                 run_serial(cases, on_done, stop)
             else:
@@ -148,6 +150,15 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
     if sys.stderr.isatty():
         print(f"val3check sim: {len(cases)} cases in {time.monotonic() - start:.1f} s", file=sys.stderr)
     return EXIT_FAILED if any(s.verdict in ("fail", "not-run", "crash", "over-budget") for s in summaries) else EXIT_OK
+
+
+def _dask_address() -> str | None:
+    """The scheduler Dask's own configuration names (DASK_SCHEDULER_ADDRESS, or its config files)."""
+    try:
+        import dask
+    except ImportError:
+        return None
+    return dask.config.get("scheduler-address", None) or None
 
 
 def _cores() -> int:

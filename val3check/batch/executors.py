@@ -118,15 +118,35 @@ def _alone(client, t: Ticket) -> CaseOutcome:  # noqa: ANN001 - a distributed.Cl
         return CaseOutcome(replace(t.blank, reason=f"Dask: {type(exc).__name__}: {exc}"))
 
 
-def run_dask(cases: list[Case], address: str, on_done: OnDone, stop: Stop, chunk: int | None = None) -> None:
+def run_dask(cases: list[Case], address: str | None, on_done: OnDone, stop: Stop, chunk: int | None = None,
+             workers: int = 1, starting: Callable[[str], None] | None = None) -> None:
+    """The cases on a Dask cluster: the scheduler at `address`; None: the one Dask's configuration
+    names (DASK_SCHEDULER_ADDRESS), else a local cluster of `workers` processes of one thread,
+    as Dask's own `Client()` starts one, closed at the end. `starting(what)`: told before the
+    cluster is reached or started (the progress line)."""
     try:
-        from distributed import Client, as_completed
+        import dask
+        from distributed import Client, LocalCluster, as_completed
     except ImportError:
         raise ExecutorError("--executor dask needs the dask extra: pip install 'val3check[dask]'") from None
+    address = address or dask.config.get("scheduler-address", None) or None
+    cluster = None
     try:
-        client = Client(address, timeout="20s")
+        if address is None:
+            if starting:
+                starting(f"starting a local Dask cluster of {workers} worker process(es)")
+            cluster = LocalCluster(n_workers=max(1, workers), threads_per_worker=1, processes=True,
+                                   dashboard_address=None)
+            client = Client(cluster)
+        else:
+            if starting:
+                starting(f"connecting to the Dask scheduler at {address}")
+            client = Client(address, timeout="20s")
     except (OSError, TimeoutError, ValueError) as exc:
-        raise ExecutorError(f"cannot reach the Dask scheduler at {address}: {exc}") from None
+        if cluster is not None:
+            cluster.close()
+        raise ExecutorError(f"cannot reach the Dask scheduler at {address}: {exc}" if address else
+                            f"cannot start a local Dask cluster: {exc}") from None
     try:
         threads = client.nthreads()
         if not threads:  # workers still starting (dask-jobqueue submits them as batch jobs)
@@ -142,6 +162,8 @@ def run_dask(cases: list[Case], address: str, on_done: OnDone, stop: Stop, chunk
             raise ExecutorError(f"Dask workers must run one thread each (dask worker --nthreads 1); "
                                 f"{len(many)} of {len(threads)} have more")
         size = chunk or chunk_size(len(cases), len(threads))
+        if starting:
+            starting(f"running on {len(threads)} Dask worker process{'es' if len(threads) > 1 else ''}")
         # each case runs in a child of the Dask worker, under the watchdog (runner.py): a case
         # stuck, too big or crashing ends that child, never the worker, so Dask has no task to
         # retry (its distributed.scheduler.allowed-failures, 3 by default, is left to workers
@@ -163,3 +185,5 @@ def run_dask(cases: list[Case], address: str, on_done: OnDone, stop: Stop, chunk
                 break
     finally:
         client.close()
+        if cluster is not None:
+            cluster.close()

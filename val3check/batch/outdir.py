@@ -73,7 +73,7 @@ def write_case(out_dir: str, outcome: CaseOutcome) -> list[str]:
 def write_summaries(out_dir: str, summaries: list[CaseSummary], reports: set[str], tool_version: str) -> None:
     """`reports`: the file names written under cases/ (write_case), that the index links to."""
     texts = (render_text(summaries), render_json(summaries, tool_version), render_junit(summaries),
-             render_html(summaries, reports, tool_version))
+             render_html(summaries, reports, tool_version, index_dir=out_dir))
     for name, text in zip(SUMMARY_FILES, texts, strict=True):
         _write(inside(out_dir, name), text.encode("utf-8"))
 

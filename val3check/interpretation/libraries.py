@@ -12,7 +12,8 @@ import os
 import re
 from typing import Any
 
-from ..loading.resolve import listdir, resolve_library
+from ..loading.libraries import find_library
+from ..loading.resolve import listdir
 from .system_io import SystemIO
 from .units import Unit
 from .values import Arr, copy_globals
@@ -76,17 +77,26 @@ def _roots(machine):
     return roots
 
 
-def _real_path(machine, owner, path: str) -> str | None:
+def _real_path(machine, owner, path: str, task=None, by_name: bool = True) -> str | None:
+    """The library a path leads to, found as lint finds a project's libraries (one resolution:
+    loading.libraries.find_library): the Disk:// folder, --disk-root, the controller tree, else
+    the only application of that name in the repository (said in the transcript: a guess)."""
     text = path.strip()
     if text.lower().startswith("disk://"):
         text = "Disk://" + text[7:]
-    found = resolve_library(text, owner.model.path, machine.disk_roots, _roots(machine))
-    if found is None:
-        # a library the loader found by name in the repository (issue 11 item 5)
-        for ref in (*owner.model.libraries.values(), *owner.model.types.values()):
-            if ref.resolved and ref.path.strip().replace("\\", "/").lower() == text.replace("\\", "/").lower():
-                return ref.resolved
-    return found
+    ws = machine.ws
+    for ref in (*owner.model.libraries.values(), *owner.model.types.values()):
+        # the path of a Library entry: where the loader resolved it (and said so: F016)
+        if ref.resolved and ref.path.strip().replace("\\", "/").lower() == text.replace("\\", "/").lower():
+            return ref.resolved
+    found = find_library(text, owner.model.path, machine.disk_roots, _roots(machine), ws.repos,
+                         ws.repository_index, by_name=by_name)
+    if found.guessed and task is not None:
+        shown = os.path.relpath(found.path, os.path.dirname(owner.model.folder)).replace(os.sep, "/")
+        machine.transcript_add(task, "disk", f"libLoad {path}: not at its Disk:// place; the application of "
+                                             f"that name in the repository is used, {shown} (a guess, as lint's F016)",
+                               None)
+    return found.path
 
 
 def _model_for(machine, resolved: str) -> tuple[Any, list]:
@@ -148,7 +158,7 @@ def load_library(machine, owner, alias: str, path: Any, task) -> int:
     previous library cannot be unloaded, 20-22 bad path, 39 not found. When the identifier
     is left without a library, why is kept for the error 80 of its uses, and a library whose
     own files are invalid is reported with its findings (R040)."""
-    code, display, findings = _load(machine, owner, alias, path)
+    code, display, findings = _load(machine, owner, alias, path, task)
     if owner.aliases.get(alias) is not None:
         owner.load_failures.pop(alias, None)
     elif code:
@@ -157,7 +167,7 @@ def load_library(machine, owner, alias: str, path: Any, task) -> int:
     return code
 
 
-def _load(machine, owner, alias: str, path: Any) -> tuple[int, str, list]:
+def _load(machine, owner, alias: str, path: Any, task=None) -> tuple[int, str, list]:
     """(libLoad's code, the library's display path, the findings that make it invalid)."""
     if not isinstance(path, str):
         return 22, "", []
@@ -181,7 +191,7 @@ def _load(machine, owner, alias: str, path: Any) -> tuple[int, str, list]:
             unit.build()
             machine.units["snap:" + key] = unit
     else:
-        resolved = _real_path(machine, owner, path if path.strip() else display)
+        resolved = _real_path(machine, owner, path if path.strip() else display, task)
         if resolved is None:
             return 39, display, []
         unit = machine.units.get(resolved)
@@ -217,7 +227,7 @@ def _exists(machine, owner, key: str, path: str) -> bool:
         return False
     if snap is not False:
         return True
-    return _real_path(machine, owner, path) is not None
+    return _real_path(machine, owner, path, by_name=False) is not None
 
 
 def lib_operation(machine, task, owner, alias: str | None, op: str, *args: Any) -> Any:
@@ -271,7 +281,7 @@ def _lib_list(machine, owner, path: str, arr: Arr) -> bool:
         if snap is not None and k.startswith(prefix):
             names.add(snap.display[len(display) - 1:].split("/")[0])
     folder = None
-    real = _real_path(machine, owner, (path.rstrip("/") + "/") if path.strip() else "Disk://")
+    real = _real_path(machine, owner, (path.rstrip("/") + "/") if path.strip() else "Disk://", by_name=False)
     if real is None:
         base = os.path.dirname(os.path.dirname(os.path.abspath(owner.model.path)))
         rest = path.split("://", 1)[-1].strip("/")

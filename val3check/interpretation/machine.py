@@ -15,6 +15,8 @@ integer microseconds: runs are deterministic.
 
 from __future__ import annotations
 
+from ..lengths import app_mm
+from ..rules import codes
 import os
 import time as _time
 from dataclasses import dataclass
@@ -26,18 +28,21 @@ from ..language.runtime_errors import RUNTIME_CODES, Val3RuntimeError
 from .cell import Cell, CellSubsystem
 from .clock import TICK_US, Clock
 from .compiler import Compiled
-from .controller import Controller
+from .compiler.legacy import array_parameters
+from .controller import Controller, default_versions
+from .deadlock import report_blocked
 from .libraries import autoload_libraries
 from .memory import TypeSpace
 from .memory_budget import MemoryBudget
-from .not_simulated import ARM_LIMIT, SimLimit, arm_message
+from .not_simulated import ARM_LIMIT, SimLimit, arm_message, limit_code
 from .recorder import IOEvent, Recorder, TranscriptEntry
 from .registry import Registry
-from .scheduler import ERROR, HELD, START_PRIORITY, SUSPENDED, WAIT, EndRun, Scheduler, Task
+from .scheduler import ERROR, HELD, START_PRIORITY, WAIT, EndRun, Scheduler, Task
 from .system_io import SystemIO
 from .units import Unit
 from .user_page import UserPage
 from .values import Arr, IOPoint, Screen
+from .virtual_disk import VirtualDisk
 
 
 @dataclass
@@ -80,6 +85,7 @@ class Machine:
         # joint and config values have the fields of the arm's family (9.7.2; RX/TX without a model)
         self.cell.arm_family = getattr(arm, "type_family", "Rx") or "Rx"
         self.controller = Controller()
+        self.controller.versions = default_versions(app.version, getattr(arm, "name", None))
         self.user_page = UserPage()
         self.recorder = Recorder(self.budgets.max_transcript, self.budgets.max_io_log, self._record_full)
         self.cell_subsystem = CellSubsystem(self.controller, self.log_io, self._cell_finding)
@@ -100,6 +106,10 @@ class Machine:
         self.stop_task: Task | None = None
         self.destroyed: list[str] = []
         self._libraries_reported: set[str] = set()
+        self._legacy_arrays: dict[str, dict[str, dict[str, int]]] = {}  # app path -> compiler/legacy.py
+        self.analysis_cache: dict[str, dict] = {}  # what the deadlock report computes from the code
+        self._outside_seen: set[tuple] = set()  # the lines already reported R041
+        self.files = VirtualDisk()  # the controller's disk of the system library's file instructions
         self.base_namespace = self._base_namespace()
 
     def add_subsystem(self, subsystem: Any) -> None:
@@ -134,6 +144,14 @@ class Machine:
     def library_model(self, app: Application, alias: str) -> Application | None:
         return self.ws.library(app, alias)
 
+    def legacy_arrays(self, app: Application) -> dict[str, dict[str, int]]:
+        """The s6 by-reference parameters an application's programs use as arrays
+        (compiler/legacy.py), computed once per application."""
+        found = self._legacy_arrays.get(app.path)
+        if found is None:
+            found = self._legacy_arrays[app.path] = array_parameters(app)
+        return found
+
     def load_main(self) -> Unit:
         unit = Unit(self, self.app, "Disk://" + self.app.name)
         unit.init_globals()
@@ -164,7 +182,7 @@ class Machine:
 
     def _record_full(self, message: str, task: Task | None) -> None:
         """A record budget is reached: said once (R006), the run goes on without recording."""
-        self.diags.append(Diagnostic("R006", message, self.app.path, 0, 0,
+        self.diags.append(Diagnostic(codes.BUDGET_EXCEEDED, message, self.app.path, 0, 0,
                                      time_us=self.clock.time_of(task) if task is not None else self.clock.now,
                                      task=task.name if task is not None else "", program=""))
 
@@ -184,7 +202,7 @@ class Machine:
         if len(self.recorder.tool_events) >= self.recorder.max_io_log:
             return
         x, y, z, rx, ry, rz = Trsf.from_pose(root_pose(tool)).as_tuple()
-        s = 1.0 if millimeter_unit else 25.4
+        s = app_mm(millimeter_unit)
         grip = getattr(tool.gripper, "link", "") or ""
         where = self.line_running()
         self.recorder.tool_events.append(ToolEvent(
@@ -226,7 +244,7 @@ class Machine:
         if isinstance(e, SimLimit):
             task.state = HELD
             task.limit = e.kind
-            code = "R002" if e.kind == ARM_LIMIT else "R004"
+            code = limit_code(e.kind)
             if e.message:
                 msg = e.message
             elif e.kind == ARM_LIMIT:
@@ -246,7 +264,11 @@ class Machine:
         if rule:  # a motion instruction's error has the rule of its cause (R017 mdesc, R015 movec...)
             self.add_diag(rule, f"error {code}: {detail}", task, pos, code)
         else:
-            self.add_diag("R001", f"error {code}: {text}{extra}", task, pos, code)
+            self.runtime_error(task, pos, code, f"{text}{extra}")
+
+    def runtime_error(self, task: Task | None, pos, code: int, message: str) -> None:
+        """A task stopped by the runtime error `code` of 12.1 (R001)."""
+        self.add_diag(codes.RUNTIME_ERROR, f"error {code}: {message}", task, pos, code)
 
     def library_failed(self, owner: Unit, alias: str, display: str, code: int, meaning: str, findings: list,
                        task: Task | None) -> None:
@@ -263,20 +285,49 @@ class Machine:
             return
         self._libraries_reported.add(display)
         more = f" (and {len(findings) - 1} more finding(s) in the library)" if len(findings) > 1 else ""
-        self.diags.append(Diagnostic(
-            "R040", f"library {display} (identifier {alias} of {owner.name}) cannot be loaded because of this "
-                    f"{first.code} finding: {first.message}{more}; libLoad returns {code} and the data and "
-                    f"programs of {alias}: are error 80 where they are used", first.path, first.line, first.col,
-            time_us=self.clock.time_of(task) if task is not None else self.clock.now,
-            task=task.name if task is not None else "", program=""))
+        self.diags.append(
+            Diagnostic(
+                codes.LIBRARY_NOT_LOADED,
+                f"library {display} (identifier {alias} of {owner.name}) cannot be loaded because of this "
+                f"{first.code} finding: {first.message}{more}; libLoad returns {code} and the data and "
+                f"programs of {alias}: are error 80 where they are used",
+                first.path,
+                first.line,
+                first.col,
+                time_us=self.clock.time_of(task) if task is not None else self.clock.now,
+                task=task.name if task is not None else "",
+                program="",
+            )
+        )
+
+    def note_outside(self, task: Task, message: str) -> None:
+        """R041 (info): the line running acts on something outside the simulation; said once per
+        line of code."""
+        where = self.line_running()
+        path, line, col, program = where or (self.app.path, 0, 0, task.program)
+        key = (path, line, col)
+        if key in self._outside_seen:
+            return
+        self._outside_seen.add(key)
+        self.diags.append(Diagnostic(codes.OUTSIDE_THE_SIMULATION, message, path, line, col, time_us=self.clock.time_of(task),
+                                     task=task.name, program=program))
 
     def report_overrun(self, task: Task) -> None:
         """R005: a synchronous task used more than its period (5.6)."""
         w = self.where(task)
         path, line, col = (self.app.path, 0, 0) if w is None else w[:3]
-        self.diags.append(Diagnostic("R005", f"synchronous task {task.name} overran its period of "
-                                             f"{task.period / 1e6:g} s", path, line, col,
-                                     time_us=self.clock.now, task=task.name, program=task.program))
+        self.diags.append(
+            Diagnostic(
+                codes.SYNC_OVERRUN,
+                f"synchronous task {task.name} overran its period of {task.period / 1e6:g} s",
+                path,
+                line,
+                col,
+                time_us=self.clock.now,
+                task=task.name,
+                program=task.program,
+            )
+        )
 
     # ---- where a task is ------------------------------------------------------------------------
 
@@ -403,7 +454,7 @@ class Machine:
             self.end_reason = reason = "duration"
             self._stop_did_not_end(f"still running at --duration {self.budgets.duration_us / 1e6:g} s")
         if reason == "deadlock":
-            self._report_blocked()
+            report_blocked(self)
         else:
             self._report_motion_waits()
         if reason not in ("ended", "wall-clock"):
@@ -417,39 +468,14 @@ class Machine:
             where = self.where(task) if not stopped else None
             if stopped and task.errpos:
                 where = task.errpos
-            task.final = FinalState(task.state.report_name, where,
-                                    self.blocked_on(task) if task.state is WAIT else None, self.loop_passes(task))
+            task.final = FinalState(
+                task.state.report_name,
+                where,
+                self.blocked_on(task) if task.state is WAIT else None,
+                self.loop_passes(task),
+            )
 
-    def _report_blocked(self) -> None:
-        """Deadlock: every task waits for something no scheduled event can change."""
-        for task in self.scheduler.tasks:
-            if task.state is ERROR or task.state is HELD:
-                continue
-            w = self.where(task)
-            path, line, col, prog = w if w else (self.app.path, 0, 0, task.program)
-            code = "R003"
-            if task.state is SUSPENDED:
-                msg = f"task {task.name} is suspended and no task can resume it"
-            else:
-                why = self._motion_reason(task)
-                if why is not None:
-                    code, text = why
-                    msg = f"task {task.name} waits in {self.blocked_on(task)} for a motion that cannot happen: {text}"
-                else:
-                    hint = getattr(task.cond, "hint", "")
-                    if hint:
-                        # the condition reads I/O: in the cell, the outside world can release it;
-                        # only the simulation has nobody to set it (R009, a warning)
-                        code = "R009"
-                        msg = (f"task {task.name} waits in {self.blocked_on(task)}, which only an input the "
-                               f"run does not drive can release ({hint})")
-                    else:
-                        msg = f"task {task.name} waits in {self.blocked_on(task)}, which nothing scheduled can change"
-            task.errpos = (path, line, col, prog)
-            self.diags.append(Diagnostic(code, msg, path, line, col, time_us=self.clock.now, task=task.name,
-                                         program=prog))
-
-    def _motion_reason(self, task: Task) -> tuple[str, str] | None:
+    def motion_reason(self, task: Task) -> tuple[str, str] | None:
         """(rule, why) when the task waits for the arm's motion and the arm cannot move."""
         if task.state is not WAIT or not getattr(task.cond, "motion", False):
             return None
@@ -459,14 +485,23 @@ class Machine:
         """At the end of a run that did not end in a deadlock: the tasks still waiting for a
         motion that power never allows (R018)."""
         for task in self.scheduler.tasks:
-            why = self._motion_reason(task)
-            if why is None or why[0] != "R018":
+            why = self.motion_reason(task)
+            if why is None or why[0] != codes.MOTION_WITHOUT_POWER:
                 continue
             w = self.where(task)
             path, line, col, prog = w if w else (self.app.path, 0, 0, task.program)
-            self.diags.append(Diagnostic("R018", f"task {task.name} waits in {self.blocked_on(task)} for a motion "
-                                                 f"that cannot happen: {why[1]}", path, line, col,
-                                         time_us=self.clock.now, task=task.name, program=prog))
+            self.diags.append(
+                Diagnostic(
+                    codes.MOTION_WITHOUT_POWER,
+                    f"task {task.name} waits in {self.blocked_on(task)} for a motion that cannot happen: {why[1]}",
+                    path,
+                    line,
+                    col,
+                    time_us=self.clock.now,
+                    task=task.name,
+                    program=prog,
+                )
+            )
 
     def _stop_after(self, reason: str) -> None:
         """As when the application is stopped from the pendant (2.1.3, 5.2): the start task is
@@ -487,8 +522,10 @@ class Machine:
         try:
             self.scheduler.loop(limit, stopping=True)
         except EndRun as extra:
-            what = {"stop-timeout": f"still running {self.budgets.stop_us / 1e6:g} s after the run was stopped",
-                    "deadlock": "blocked"}.get(extra.reason, extra.reason)
+            what = {
+                "stop-timeout": f"still running {self.budgets.stop_us / 1e6:g} s after the run was stopped",
+                "deadlock": "blocked",
+            }.get(extra.reason, extra.reason)
             self._stop_did_not_end(what)
 
     def _stop_did_not_end(self, what: str) -> None:
@@ -497,8 +534,18 @@ class Machine:
         if task is not None and task in self.scheduler.tasks and task.state is not ERROR and task.state is not HELD:
             w = self.where(task)
             path, line, col, prog = w if w else (self.app.path, 0, 0, "stop")
-            self.diags.append(Diagnostic("R006", f"stop() did not end: {what}", path, line, col,
-                                         time_us=self.clock.now, task=task.name, program=prog))
+            self.diags.append(
+                Diagnostic(
+                    codes.BUDGET_EXCEEDED,
+                    f"stop() did not end: {what}",
+                    path,
+                    line,
+                    col,
+                    time_us=self.clock.now,
+                    task=task.name,
+                    program=prog,
+                )
+            )
 
     def start_stop_program(self) -> None:
         stop = self.main.program("stop")

@@ -10,6 +10,8 @@ from __future__ import annotations
 
 from typing import Any
 
+from ..rules import codes
+
 ARM_LIMIT = "arm"  # R002
 OTHER_LIMIT = "notsim"  # R004
 
@@ -33,6 +35,11 @@ OPTIONS = {"movejf": "compliance", "movelf": "compliance", "iscompliant": "compl
            "alterstoptime": "alter", "resetturn": "continuous axis"}
 
 
+def limit_code(kind: str) -> str:
+    """The rule of a task the simulator cannot go on with: R002 (the arm) or R004 (anything else)."""
+    return codes.ARM_NOT_SIMULATED if kind == ARM_LIMIT else codes.NOT_SIMULATED
+
+
 def arm_message(what: str, arm_name: str | None) -> str:
     """R002: why the arm instruction stops the task, in a few words, and what would let it run."""
     low = what.lower()
@@ -53,5 +60,24 @@ def NOTSIM(what: str) -> Any:
     raise SimLimit(OTHER_LIMIT, what)
 
 
+# the value a `$` call the simulator does not run gives, by the type its value is used as
+SYSTEM_DEFAULTS = {"num": 0.0, "bool": False, "string": "", "": None}
+
+
+def SYSTEM(task, name: str, text: str, used: str, why: str = "") -> Any:
+    """A `$name()` instruction of the system library that the simulator does not run
+    (undocumented, or called with other arguments than the form it runs): the call is recorded
+    in the transcript (kind "system"), an info says so once per line (R041), and the line goes on;
+    a value used is the default of its type (0, false, "")."""
+    value = SYSTEM_DEFAULTS[used]
+    machine = task.machine
+    machine.transcript_add(task, "system", text, None)
+    shown = {"num": "0", "bool": "false", "string": '""'}.get(used)
+    machine.note_outside(task, f"{name}: an undocumented instruction of the system library that the simulator does "
+                               f"not run{' (' + why + ')' if why else ''}; the line goes on without it"
+                               + (f", and its value is {shown}" if shown else ""))
+    return value
+
+
 def register(registry) -> None:
-    registry.helpers(ARM=ARM, NOTSIM=NOTSIM)
+    registry.helpers(ARM=ARM, NOTSIM=NOTSIM, SYSTEM=SYSTEM)

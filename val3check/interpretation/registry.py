@@ -24,7 +24,7 @@ from dataclasses import dataclass
 from typing import Any, Callable
 
 from ..language import lookup
-from .not_simulated import ARM_LIMIT, OTHER_LIMIT
+from .not_simulated import ARM_LIMIT, OTHER_LIMIT, limit_code
 
 # Options of chapter 11 that drive the arm (compliance, alter, absolute robot, continuous
 # axis); the latch of 9.2.3 needs the arm's position capture hardware.
@@ -38,6 +38,24 @@ class Handler:
     func: Callable[..., Any]
     blocking: bool  # a generator: the generated code calls it with `yield from`
     chapter: str  # the module that registered it
+    # `raw`: the instruction's parameters are not public (an s8 instruction known from calls):
+    # the handler gets the call's text, `I(task, unit, text, used)`, and its arguments are not
+    # evaluated; `used` is the type its value is used as ("" when it is a statement)
+    raw: bool = False
+
+
+@dataclass(frozen=True, slots=True)
+class SystemHandler:
+    """A `$name()` instruction of the system library (undocumented: not in the manual) that the
+    simulator runs. `params` says how each argument is passed: "value", "ref" (a (container,
+    key) pair) or "array" (an `Arr`); `returns` the type of its value ("void": none)."""
+
+    name: str  # as written, with its `$`
+    func: Callable[..., Any]
+    params: tuple[str, ...]
+    returns: str
+    blocking: bool
+    chapter: str
 
 
 @dataclass(frozen=True, slots=True)
@@ -58,13 +76,24 @@ class Registry:
         self._builtins: dict[str, Any] = {}
         self._inline: dict[str, str] = {}
         self._helpers: dict[str, Any] = {}
+        self._system: dict[str, SystemHandler] = {}
 
     # ---- registration (chapter modules) ---------------------------------------------------------
 
-    def instruction(self, name: str, func: Callable[..., Any], *, blocking: bool = False, chapter: str = "") -> None:
+    def instruction(self, name: str, func: Callable[..., Any], *, blocking: bool = False, chapter: str = "",
+                    raw: bool = False) -> None:
         low = name.lower()
         self._claim(low, name)
-        self._handlers[low] = Handler(low, func, blocking, chapter or func.__module__)
+        self._handlers[low] = Handler(low, func, blocking, chapter or func.__module__, raw)
+
+    def system(self, name: str, func: Callable[..., Any], params: tuple[str, ...] = (), returns: str = "void", *,
+               blocking: bool = False, chapter: str = "") -> None:
+        """A `$name()` system instruction the simulator runs (SystemHandler). A `$` call nothing
+        registers goes on with an info (R041), not_simulated.SYSTEM."""
+        if not name.startswith("$") or name.lower() in self._system:
+            raise RegistryError(f"system instruction {name} is registered twice or has no $")
+        self._system[name.lower()] = SystemHandler(name, func, tuple(params), returns, blocking,
+                                                   chapter or func.__module__)
 
     def builtin(self, entry: Any) -> None:
         """A pure built-in (`builtins.Builtin`). The catalogue may give the same name to an
@@ -98,6 +127,13 @@ class Registry:
     def handler(self, name: str) -> Handler | None:
         return self._handlers.get(name.lower())
 
+    def system_handler(self, name: str) -> SystemHandler | None:
+        return self._system.get(name.lower())
+
+    def system_names(self) -> list[str]:
+        """The `$` instructions the simulator runs, as written (docs, tests)."""
+        return sorted((h.name for h in self._system.values()), key=str.lower)
+
     def builtin_of(self, name: str) -> Any | None:
         return self._builtins.get(name.lower())
 
@@ -128,14 +164,21 @@ class Registry:
             return Status(True, "inline")
         if low in self._builtins:
             return Status(True, "builtin")
-        return Status(False, "R002" if self.not_simulated_kind(low) == ARM_LIMIT else "R004")
+        return Status(False, limit_code(self.not_simulated_kind(low)))
 
     def namespace(self) -> dict[str, Any]:
         """The names the generated code finds: helpers, `I_<name>` handlers, `B_<name>` built-ins."""
         ns: dict[str, Any] = dict(self._helpers)
         for low, h in self._handlers.items():
             ns[f"I_{low}"] = h.func
+        for h in sorted(self._system):
+            ns[system_symbol(h)] = self._system[h].func
         for low, b in self._builtins.items():
             plain = not b.outputs and not any(p.endswith("[]") for p in b.params)
             ns[f"B_{low}"] = b.func if plain else b
         return ns
+
+
+def system_symbol(name: str) -> str:
+    """The name of a `$name()` handler in the generated code."""
+    return "S_" + "".join(c if c.isalnum() else "_" for c in name.lower().lstrip("$"))

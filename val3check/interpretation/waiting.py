@@ -38,17 +38,21 @@ def DELAY(task, s: float, what: str = "delay"):
     task.waiting_for = ""
 
 
-def WAIT(task, fn, tdep: bool, what: str = "wait", hint: str = ""):
+def WAIT(task, fn, tdep: bool, what: str = "wait", hint: str = "", reads: frozenset = frozenset()):
     """5.10 wait: the condition is evaluated again at each turn; no hand-over when it is
     already true. While it waits, the scheduler evaluates `task.cond` itself and resumes the
     task only when it is true (with True), or with None when it raised (evaluated again here,
     so that the error stops the task at its line). `tdep`: the condition changes with time
-    alone (clock()), so the clock steps cycle by cycle instead of jumping. `hint`: what would
-    make the condition true (the scenario key), for the deadlock report."""
+    alone (clock()), so the clock steps cycle by cycle instead of jumping. For the deadlock
+    report (deadlock.py): `hint` says which part of the cell would make the condition true and
+    the scenario entry that plays it (a wait only the cell can end); `reads` are the globals the
+    condition reads (`alias:name` for a library's)."""
     if fn():
         return
     if hint:
         fn.hint = hint
+    if reads:
+        fn.reads = reads
     task.tdep = tdep
     task.wake = None
     task.cond = fn
@@ -88,11 +92,11 @@ def WATCH(task, fn, s: float, tdep: bool, what: str = "watch"):
     return result
 
 
-def SETMUTEX(task, pair):
-    """5.10 setMutex: wait until the bool is false, then set it true."""
+def SETMUTEX(task, pair, name: str = ""):
+    """5.10 setMutex: wait until the bool is false, then set it true (`name`: the global)."""
     c, k = pair
     if c[k]:
-        yield from WAIT(task, lambda: not c[k], False, "setMutex")
+        yield from WAIT(task, lambda: not c[k], False, "setMutex", reads=frozenset((name,)) if name else frozenset())
     c[k] = True
 
 

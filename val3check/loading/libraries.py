@@ -12,6 +12,8 @@ import itertools
 import os
 
 from ..diagnostics import Diagnostic, Severity
+from ..records import dataclass, field
+from ..rules import codes
 from . import resolve as rs
 from .model import Application, LibraryRef, TypeRef
 
@@ -19,6 +21,48 @@ from .model import Application, LibraryRef, TypeRef
 def is_io(ref: LibraryRef | TypeRef) -> bool:
     """The controller's own I/O library (L003): never looked for by name."""
     return isinstance(ref, LibraryRef) and (ref.alias.lower() == "io" or rs.library_name(ref.path).lower() == "io")
+
+
+@dataclass(slots=True)
+class LibraryFound:
+    """Where a library path leads (`find_library`): `path` the library's .pjx or None; `guessed`
+    when it was found by name in the repository (F016); `candidates` the applications of that
+    name in the repository; `outside`: a candidate lies outside the roots (not opened)."""
+
+    path: str | None
+    guessed: bool = False
+    candidates: list[str] = field(default_factory=list)
+    outside: bool = False
+
+
+def find_library(path_text: str, app_path: str, disk_roots: list[str], roots, repos: list[str],
+                 index: rs.RepositoryIndex | None, by_name: bool = True) -> LibraryFound:
+    """The one resolution of a library or user type path, for lint (a project's Library and Type
+    entries) and for the simulator (libLoad, autoloaded libraries): the path as a controller
+    reads it (resolve.locate_library: the application's Disk:// folder, each --disk-root, the
+    controller tree's usr/usrapp), else, `by_name`, the only application of that name in the
+    repositories that hold the declaring project (issue 11 item 5: a guess, F016)."""
+    located = rs.locate_library(path_text, app_path, disk_roots, roots)
+    if located.path is not None:
+        return LibraryFound(located.path, outside=located.outside)
+    candidates = _in_repository(app_path, path_text, roots, repos, index) if by_name and index is not None else []
+    if len(candidates) == 1:
+        return LibraryFound(candidates[0], True, candidates, located.outside)
+    return LibraryFound(None, False, candidates, located.outside)
+
+
+def _in_repository(app_path: str, path_text: str, roots, repos: list[str], index: rs.RepositoryIndex) -> list[str]:
+    """Applications named like the library in the repositories that hold the declaring project
+    (issue 11 item 5), other than that project."""
+    name = rs.library_name(path_text)
+    out: list[str] = []
+    for repo in repos:
+        if not roots.holds(os.path.realpath(app_path)) or not rs.inside(app_path, repo):
+            continue
+        for cand in index.find(repo, name):
+            if rs.path_key(cand) != rs.path_key(app_path) and roots.allows(cand) and cand not in out:
+                out.append(cand)
+    return out
 
 
 class LibraryResolution:
@@ -45,46 +89,30 @@ class LibraryResolution:
         self.diags.extend(cycle_findings(self.ws.apps, "type"))
 
     def _resolve(self, app: Application, ref: LibraryRef | TypeRef, kind: str) -> Application | None:
-        found = rs.locate_library(ref.path, app.path, self.options.disk_roots, self.roots)
+        found = find_library(ref.path, app.path, self.options.disk_roots, self.roots, self.repos, self.index,
+                             by_name=not is_io(ref))
         resolved = found.path
-        candidates: list[str] = []
-        if resolved is None and not is_io(ref):
-            candidates = self._in_repository(app, ref)
-            if len(candidates) == 1:
-                resolved = candidates[0]
-                ref.guessed = self._shown(resolved)
-                o = ref.origin
-                what = f"library {ref.alias}" if isinstance(ref, LibraryRef) else f"user type {ref.name}"
-                self.diags.append(Diagnostic(
-                    "F016",
-                    f"{what}: '{ref.path}' is not at its Disk:// place; using the application found by name in"
-                    f" the repository: {ref.guessed} (a guess: the findings that depend on it are at most"
-                    " warnings)",
-                    o.path, o.line, o.col,
-                ))
+        if found.guessed:
+            ref.guessed = self._shown(resolved)
+            o = ref.origin
+            what = f"library {ref.alias}" if isinstance(ref, LibraryRef) else f"user type {ref.name}"
+            self.diags.append(Diagnostic(
+                codes.LIBRARY_FOUND_IN_REPOSITORY,
+                f"{what}: '{ref.path}' is not at its Disk:// place; using the application found by name in"
+                f" the repository: {ref.guessed} (a guess: the findings that depend on it are at most"
+                " warnings)",
+                o.path, o.line, o.col,
+            ))
         if resolved is None:
-            if found.outside and len(candidates) < 2:
+            if found.outside and len(found.candidates) < 2:
                 self.diags.append(self._outside_ref(ref))
             else:
-                self.diags.append(self._not_found(ref, kind, candidates))
+                self.diags.append(self._not_found(ref, kind, found.candidates))
             return None
         ref.resolved = resolved
         if resolved in self.ws.apps:
             return None
         return self.load_project(resolved)
-
-    def _in_repository(self, app: Application, ref: LibraryRef | TypeRef) -> list[str]:
-        """Applications named like the library in the repositories that hold the declaring
-        project (issue 11 item 5), other than that project."""
-        name = rs.library_name(ref.path)
-        out: list[str] = []
-        for repo in self.repos:
-            if not self.roots.holds(os.path.realpath(app.path)) or not rs.inside(app.path, repo):
-                continue
-            for cand in self.index.find(repo, name):
-                if rs.path_key(cand) != rs.path_key(app.path) and self.roots.allows(cand) and cand not in out:
-                    out.append(cand)
-        return out
 
     @staticmethod
     def _shown(path: str) -> str:
@@ -99,7 +127,7 @@ class LibraryResolution:
         else:
             what, tail = f"user type {ref.name}", "its fields are not checked"
         return Diagnostic(
-            "F014",
+            codes.PATH_OUTSIDE_ROOTS,
             f"{what}: the path '{ref.path}' leads outside the application and the configured roots (its"
             f" repository, --disk-root, disk-roots): not read; {tail}",
             o.path, o.line, o.col,
@@ -114,13 +142,16 @@ class LibraryResolution:
             else "in the folder that contains the application folder, in each --disk-root and in the controller's usr/usrapp"
         )
         if candidates:
-            where += (f"; {len(candidates)} applications named {stem} in the repository: "
-                      + ", ".join(self._shown(c) for c in candidates[:10])
-                      + (", ..." if len(candidates) > 10 else "") + " (name the right folder with --disk-root)")
+            where += (
+                f"; {len(candidates)} applications named {stem} in the repository: "
+                + ", ".join(self._shown(c) for c in candidates[:10])
+                + (", ..." if len(candidates) > 10 else "")
+                + " (name the right folder with --disk-root)"
+            )
         if isinstance(ref, LibraryRef):
             if ref.alias.lower() == "io" or stem.lower() == "io":
                 return Diagnostic(
-                    "L003",
+                    codes.IO_LIBRARY_NOT_CHECKED,
                     f"library {ref.alias} ('{ref.path}') is the controller's own I/O library: its"
                     f" contents come from the controller's configuration, so {ref.alias}: symbols are not checked",
                     o.path,
@@ -128,7 +159,7 @@ class LibraryResolution:
                     o.col,
                 )
             return Diagnostic(
-                "L001",
+                codes.LIBRARY_NOT_FOUND,
                 f"library {ref.alias} not found: '{ref.path}' (searched {where}); uses of"
                 f" {ref.alias}: symbols are not checked",
                 o.path,
@@ -136,7 +167,7 @@ class LibraryResolution:
                 o.col,
             )
         return Diagnostic(
-            "L002",
+            codes.USER_TYPE_NOT_FOUND,
             f"user type {ref.name} not found: '{ref.path}' (searched {where}); its fields are not checked",
             o.path,
             o.line,
@@ -147,6 +178,7 @@ class LibraryResolution:
 def _edges(apps: dict[str, Application], app: Application, kind: str) -> list[tuple[LibraryRef | TypeRef, str]]:
     refs = app.libraries.values() if kind == "library" else app.types.values()
     return [(r, r.resolved) for r in refs if r.resolved is not None and r.resolved in apps]
+
 
 def cycle_findings(apps: dict[str, Application], kind: str) -> list[Diagnostic]:
     """Manual 6.6: "Il ne peut pas y avoir de références circulaires entre les librairies."
@@ -218,10 +250,20 @@ def cycle_findings(apps: dict[str, Application], kind: str) -> list[Diagnostic]:
                 label = ref.name  # type: ignore[union-attr]
                 msg = f"circular user type: type {label} ends up containing itself ({names})"
             if guesses:  # a cycle through a library found by name may not exist on the controller
-                msg += (f" [found by guessing (F016): {', '.join(guesses)}; if that is not the right"
-                        " application, there is no cycle, so this is at most a warning]")
-            out.append(Diagnostic("L004" if kind == "library" else "L005", msg, o.path, o.line, o.col,
-                                         at_most=Severity.WARNING if guesses else None))
+                msg += (
+                    f" [found by guessing (F016): {', '.join(guesses)}; if that is not the right"
+                    " application, there is no cycle, so this is at most a warning]"
+                )
+            out.append(
+                Diagnostic(
+                    codes.CIRCULAR_LIBRARY if kind == "library" else codes.CIRCULAR_USER_TYPE,
+                    msg,
+                    o.path,
+                    o.line,
+                    o.col,
+                    at_most=Severity.WARNING if guesses else None,
+                )
+            )
     return out
 
 
@@ -233,6 +275,7 @@ def _guesses_on(apps: dict[str, Application], path: list[str], kind: str) -> lis
             if target == b and ref.guessed and ref.guessed not in out:
                 out.append(ref.guessed)
     return out
+
 
 def _cycle_path(apps: dict[str, Application], start: str, first: str, comp_of: dict[str, int], kind: str) -> list[str]:
     """Shortest path start -> first -> ... -> start inside the component (BFS)."""

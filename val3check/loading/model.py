@@ -181,6 +181,10 @@ class Workspace:
     # where paths written in files may lead (val3check.confine.Roots), set by the loader; the
     # simulator's libLoad resolves paths within the same roots
     roots: Any = None
+    # the repositories of the targets and their index of applications by name (resolve.py): the
+    # simulator's libLoad resolves a path as the loader does, the guess by name included
+    repos: list[str] = field(default_factory=list)
+    repository_index: Any = None
     # files read as VAL 3 (absolute paths): the only files a report may quote
     quotable: set[str] = field(default_factory=set)
     excluded: int = 0  # folders and files skipped because the configuration excludes them

@@ -28,19 +28,22 @@ class Target:
     config: tuple[str, ...] = ("ssame", "esame", "wsame")
     name: str = ""
     frame: str = ""  # the name of the point's reference frame (reports)
+    note: str = ""  # what a failure to reach it adds (a configuration of the other arm family)
 
     @classmethod
-    def joint(cls, joints, name: str = "") -> "Target":
+    def joint(cls, joints, name: str = "") -> Target:
         """A joint target (degrees; a SCARA's axis 3 in mm)."""
         return cls(joints=tuple(float(v) for v in joints), name=name)
 
     @classmethod
-    def point(cls, pose, config=("ssame", "esame", "wsame"), name: str = "", frame: str = "") -> "Target":
-        """A point target: the TCP pose in world (4x4 or 3x4, mm), its configuration, names for the reports."""
+    def point(cls, pose, config=("ssame", "esame", "wsame"), name: str = "", frame: str = "",
+              note: str = "") -> Target:
+        """A point target: the TCP pose in world (4x4 or 3x4, mm), its configuration, names and a
+        note for the reports."""
         p = np.asarray(pose, dtype=float)
         if p.shape == (3, 4):
             p = np.vstack([p, [0.0, 0.0, 0.0, 1.0]])
-        return cls(pose=p, config=tuple(config), name=name, frame=frame)
+        return cls(pose=p, config=tuple(config), name=name, frame=frame, note=note)
 
     @property
     def is_joint(self) -> bool:
@@ -58,7 +61,7 @@ class MoveCommand:
     mdesc: MDesc
     tool: np.ndarray | None = None
     via: Target | None = None
-    source: Source = Source()
+    source: Source = Source()  # noqa: RUF009 - frozen: one shared empty position is safe
     tool_name: str = ""
 
     def __post_init__(self) -> None:

@@ -90,6 +90,8 @@ def unreachable_finding(kin, kind: str, target, flange: np.ndarray, q_start: np.
                f"{'/'.join(target.config)} (same fields relative to the start {'/'.join(model.config_of(q_start))})")
     else:
         msg = f"{kind}: the point{named(target)} is out of the arm's reach"
+    if getattr(target, "note", ""):
+        msg += f"; {target.note}"
     return Finding(F.UNREACHABLE, msg, source, now, error=150,
                    data={"target_mm": rounded(flange[:3, 3]), "reason": reason, "config": list(target.config)})
 

@@ -28,17 +28,18 @@ from ..geometry import rotation as R
 from ..geometry.frames import Frame, Tool
 from ..geometry.points import Point
 from ..geometry.trsf import Trsf
+from ..lengths import INCH_MM
 from ..loading.reader import parse_father
-from ..loading.types import base_type
+from ..loading.types import arm_family, base_type
 from .checks import LIMIT_MARGIN, THRESHOLDS, UNITS, WHAT
 from .kin import ArmKin
 
-INCH_MM = 25.4
-ORDER = {"unreachable": 0, "limits": 1, "config": 2, "unresolved": 3, "near-singularity": 4, "near-limit": 5, "ok": 6}
+ORDER = {"family": 0, "unreachable": 1, "limits": 2, "config": 3, "unresolved": 4, "near-singularity": 5,
+         "near-limit": 6, "ok": 7}
 # A point may be used with only some of the declared tools, or not at all: a static "unreachable"
 # is not certain to be a defect, so nothing here is an error (`sim` reports what a run does).
-SEVERITY = {"unreachable": "warning", "limits": "warning", "config": "warning", "unresolved": "warning",
-            "near-singularity": "info", "near-limit": "info", "ok": "info"}
+SEVERITY = {"family": "warning", "unreachable": "warning", "limits": "warning", "config": "warning",
+            "unresolved": "warning", "near-singularity": "info", "near-limit": "info", "ok": "info"}
 
 
 @dataclass
@@ -113,6 +114,7 @@ class _Space:
         scale = 1.0 if getattr(app, "millimeter_unit", True) else INCH_MM
         self.nodes: dict[tuple[str, str], object] = {}
         self.items: list[tuple[str, str, object, object]] = []  # (kind, label, value, origin)
+        self.families: dict[str, tuple[str | None, dict]] = {}  # label -> (Rx | Rs | None, config written)
         pending = []
         for name, data in app.data.items():
             b = base_type(data.type)
@@ -127,6 +129,8 @@ class _Space:
                 elif b == "point":
                     cfg = tuple(str(v.fields.get(k, "ssame")) for k in ("shoulder", "elbow", "wrist"))
                     node = Point(_trsf(v.fields, scale), cfg, None, name=label)
+                    self.families[label] = (arm_family(data.type), {k: str(v.fields[k]) for k in CONFIG_FIELDS
+                                                                    if k in v.fields})
                 else:
                     keys = sorted((k for k in v.fields if k[:1] == "j" and k[1:].isdigit()), key=lambda s: int(s[1:]))
                     node = tuple(float(v.fields[k]) for k in keys)
@@ -173,7 +177,7 @@ def check_reach(ws, app, model) -> ReachReport:
                 continue
             try:
                 tools.append((label, _pose4(GF.root_pose(node))))
-            except Exception as exc:
+            except Exception as exc:  # noqa: BLE001 - any failure of the geometry is the entry's reason
                 entries.append(ReachEntry(label, "tool", "", "unresolved", f"tool {label}: {_why(exc)}",
                                           origin.path, origin.line, origin.col))
     if not tools:
@@ -185,18 +189,48 @@ def check_reach(ws, app, model) -> ReachReport:
                 report.points += 1
                 try:
                     target = _pose4(GP.world_pose(node))
-                except Exception as exc:
+                except Exception as exc:  # noqa: BLE001 - any failure of the geometry is the entry's reason
                     entries.append(ReachEntry(label, "point", "", "unresolved", f"point {label}: {_why(exc)}",
                                               origin.path, origin.line, origin.col))
                     continue
+                other = _other_family(model, label, *sp.families[label])
                 for tname, tool in tools:
-                    entries.append(_check_point(kin, label, node.config, target, tname, tool, origin))
+                    e = _check_point(kin, label, node.config, target, tname, tool, origin)
+                    if other:  # the cause first, then what the check finds with the shoulder alone
+                        e = ReachEntry(label, e.kind, e.tool, "family", f"{other}; {e.message}", e.path, e.line,
+                                       e.col, {**e.data, "found": e.status})
+                    entries.append(e)
             elif kind == "joint":
                 report.joints += 1
                 entries.append(_check_joint(kin, label, node, origin))
     entries.sort(key=lambda e: (ORDER[e.status], e.path, e.line, e.name, e.tool))
     report.entries = entries
     return report
+
+
+CONFIG_FIELDS = ("shoulder", "elbow", "wrist")
+SIX_AXIS_ONLY = {"elbow", "wrist"}  # a SCARA's configuration is its shoulder (9.7.2)
+
+
+def _other_family(model, label: str, family: str | None, written: dict) -> str:
+    """Why the point `label` is of the other arm family than `model`'s (9.7.2: RX/TX points have a
+    shoulder, an elbow and a wrist; RS/TS points a shoulder only), or "" when it is not: a
+    `pointRx` on a SCARA or a `pointRs` on a six-axis arm (the controller stops with error 81 when
+    an instruction uses it), or a `point` whose data imposes an elbow or a wrist on a SCARA."""
+    scara = tuple(getattr(model, "config_fields", CONFIG_FIELDS)) == ("shoulder",)
+    if scara and family == "Rx":
+        return (f"point {label} is a pointRx, of a six-axis arm (shoulder, elbow, wrist), not of the {model.name}, a "
+                "SCARA whose points have a shoulder only (9.7.2): a motion instruction that uses it stops with "
+                "error 81")
+    if not scara and family == "Rs":
+        return (f"point {label} is a pointRs, of a SCARA (shoulder only), not of the {model.name}, a six-axis arm "
+                "(9.7.2): a motion instruction that uses it stops with error 81")
+    imposed = {k: v for k, v in written.items() if k in SIX_AXIS_ONLY and not v.lower().endswith(("same", "free"))}
+    if scara and family is None and imposed:
+        said = ", ".join(f"{k} {v}" for k, v in imposed.items())
+        return (f"point {label} has the configuration of a six-axis arm ({said}), not of the {model.name}, a SCARA "
+                "whose points have a shoulder only (9.7.2): written for another arm family?")
+    return ""
 
 
 def _why(exc: Exception) -> str:
@@ -229,14 +263,14 @@ def _check_point(kin, label, config, T, tname, tool, origin) -> ReachEntry:
     """The entry of one point (its TCP pose T in world) with one tool."""
     flange_T = T if tool is None else T @ np.linalg.inv(tool)
     sols, codes = kin.solutions(flange_T)
-    base = dict(kind="point", tool=tname, path=origin.path, line=origin.line, col=origin.col)
+    base = {"kind": "point", "tool": tname, "path": origin.path, "line": origin.line, "col": origin.col}
     where = f"point {label} with tool {tname}"
     if not len(sols):
         return ReachEntry(label, status="unreachable", message=f"{where} is out of the arm's reach"
                           + ("" if not kin.generic else " (or outside the joint limits)"),
                           data={"target_mm": _r(T[:3, 3])}, **base)
     want = [c.lower() for c in config]
-    keep = np.array([all(w.endswith("same") or w.endswith("free") or w == v
+    keep = np.array([all(w.endswith(("same", "free")) or w == v
                          for w, v in zip(want, kin.config_name(int(cd)))) for cd in codes])
     if not keep.any():
         return ReachEntry(label, status="config", message=f"{where} is reachable, but not in configuration "
@@ -294,9 +328,14 @@ def _near(kin, Q, where, label, base) -> ReachEntry:
 
 def _check_joint(kin, label, j, origin) -> ReachEntry:
     """The entry of one joint value."""
-    base = dict(kind="joint", tool="", path=origin.path, line=origin.line, col=origin.col)
+    base = {"kind": "joint", "tool": "", "path": origin.path, "line": origin.line, "col": origin.col}
     Q = np.asarray(j, dtype=float)
     if len(Q) != len(kin.lo):
+        if {len(Q), len(kin.lo)} == {4, 6}:  # jointRx on a SCARA, jointRs on a six-axis arm (9.2.1)
+            other = "a six-axis arm's" if len(Q) == 6 else "a SCARA's"
+            return ReachEntry(label, status="family", message=f"joint {label} has {len(Q)} axes, {other} (9.2.1): "
+                              f"not of this {len(kin.lo)}-axis arm (a motion instruction that uses it stops with "
+                              "error 81)", **base)
         return ReachEntry(label, status="unresolved", message=f"joint {label} has {len(Q)} axes for a "
                           f"{len(kin.lo)}-axis arm", **base)
     excess = np.maximum(kin.lo - Q, Q - kin.hi)

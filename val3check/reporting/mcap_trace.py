@@ -18,53 +18,66 @@ from __future__ import annotations
 
 import heapq
 import json
+import math
 from typing import Any
 
+from ..lengths import MM_M as MM  # Foxglove works in metres
+
 TICK_S = 0.004
-MM = 0.001  # Foxglove works in metres
 CHUNK_SIZE = 1 << 20
 BLOCK = 2048  # ticks whose poses are computed at once
 LIBRARY = "val3check"
 
-# JSON Schemas of the messages: the field names and types of Foxglove's schemas (docs.foxglove.dev,
-# "Schemas"), written out for the fields we fill.
-_TIME = {"type": "object", "properties": {"sec": {"type": "integer"}, "nsec": {"type": "integer"}}}
-_VEC3 = {"type": "object", "properties": {k: {"type": "number"} for k in "xyz"}}
-_QUAT = {"type": "object", "properties": {k: {"type": "number"} for k in "xyzw"}}
-_POSE = {"type": "object", "properties": {"position": _VEC3, "orientation": _QUAT}}
-_COLOR = {"type": "object", "properties": {k: {"type": "number"} for k in "rgba"}}
-_FRAME_TRANSFORM = {"type": "object", "properties": {
-    "timestamp": _TIME, "parent_frame_id": {"type": "string"}, "child_frame_id": {"type": "string"},
-    "translation": _VEC3, "rotation": _QUAT}}
-_SOLID = {"type": "object", "properties": {"pose": _POSE, "size": _VEC3, "color": _COLOR}}
+# JSON Schemas of the messages: the field names, types and required fields of Foxglove's published
+# schemas (foxglove-sdk, schemas/jsonschema; the tests hold every message of a trace against them,
+# tests/data/foxglove/), written out for the fields we fill.
+def _obj(props: dict, required=None) -> dict:
+    """An object schema; every property required unless `required` says which."""
+    return {"type": "object", "properties": props, "required": list(props) if required is None else required}
+
+
+def _array(items: dict | None = None) -> dict:
+    """An array schema (of `items`)."""
+    return {"type": "array", "items": items} if items is not None else {"type": "array"}
+
+
+_TIME = _obj({"sec": {"type": "integer"}, "nsec": {"type": "integer"}}, [])
+_VEC3 = _obj({k: {"type": "number"} for k in "xyz"})
+_QUAT = _obj({k: {"type": "number"} for k in "xyzw"})
+_POSE = _obj({"position": _VEC3, "orientation": _QUAT})
+_COLOR = _obj({k: {"type": "number"} for k in "rgba"})
+_FRAME_TRANSFORM = _obj({"timestamp": _TIME, "parent_frame_id": {"type": "string"},
+                         "child_frame_id": {"type": "string"}, "translation": _VEC3, "rotation": _QUAT})
+_SOLID = _obj({"pose": _POSE, "size": _VEC3, "color": _COLOR})
+# a SceneEntity's primitive arrays: Foxglove requires every one, empty or not
+PRIMITIVES = ("arrows", "cubes", "spheres", "cylinders", "lines", "triangles", "texts", "models")
 SCHEMAS: dict[str, dict] = {
-    "foxglove.FrameTransforms": {"type": "object", "properties": {
-        "transforms": {"type": "array", "items": _FRAME_TRANSFORM}}},
-    "foxglove.PoseInFrame": {"type": "object", "properties": {
-        "timestamp": _TIME, "frame_id": {"type": "string"}, "pose": _POSE}},
-    "foxglove.SceneUpdate": {"type": "object", "properties": {
-        "deletions": {"type": "array", "items": {"type": "object", "properties": {
-            "timestamp": _TIME, "type": {"type": "integer"}, "id": {"type": "string"}}}},
-        "entities": {"type": "array", "items": {"type": "object", "properties": {
+    "foxglove.FrameTransforms": _obj({"transforms": _array(_FRAME_TRANSFORM)}),
+    "foxglove.PoseInFrame": _obj({"timestamp": _TIME, "frame_id": {"type": "string"}, "pose": _POSE}),
+    "foxglove.SceneUpdate": _obj({
+        "deletions": _array(_obj({"timestamp": _TIME, "type": {"type": "integer"}, "id": {"type": "string"}})),
+        "entities": _array(_obj({
             "timestamp": _TIME, "frame_id": {"type": "string"}, "id": {"type": "string"},
             "lifetime": _TIME, "frame_locked": {"type": "boolean"},
-            "metadata": {"type": "array", "items": {"type": "object", "properties": {
-                "key": {"type": "string"}, "value": {"type": "string"}}}},
-            "arrows": {"type": "array", "items": {"type": "object", "properties": {
+            "metadata": _array(_obj({"key": {"type": "string"}, "value": {"type": "string"}})),
+            "arrows": _array(_obj({
                 "pose": _POSE, "shaft_length": {"type": "number"}, "shaft_diameter": {"type": "number"},
-                "head_length": {"type": "number"}, "head_diameter": {"type": "number"}, "color": _COLOR}}},
-            "cubes": {"type": "array", "items": _SOLID},
-            "spheres": {"type": "array", "items": _SOLID},
-            "cylinders": {"type": "array", "items": {"type": "object", "properties": {
+                "head_length": {"type": "number"}, "head_diameter": {"type": "number"}, "color": _COLOR})),
+            "cubes": _array(_SOLID),
+            "spheres": _array(_SOLID),
+            "cylinders": _array(_obj({
                 "pose": _POSE, "size": _VEC3, "bottom_scale": {"type": "number"}, "top_scale": {"type": "number"},
-                "color": _COLOR}}},
-            "triangles": {"type": "array", "items": {"type": "object", "properties": {
-                "pose": _POSE, "points": {"type": "array", "items": _VEC3}, "color": _COLOR,
-                "indices": {"type": "array", "items": {"type": "integer"}}}}},
-        }}}}},
-    "foxglove.Log": {"type": "object", "properties": {
+                "color": _COLOR})),
+            "lines": _array(),  # never filled
+            "triangles": _array(_obj({
+                "pose": _POSE, "points": _array(_VEC3), "color": _COLOR, "colors": _array(_COLOR),
+                "indices": _array({"type": "integer"})})),
+            "texts": _array(),  # never filled
+            "models": _array(),  # never filled
+        }))}),
+    "foxglove.Log": _obj({
         "timestamp": _TIME, "level": {"type": "integer"}, "message": {"type": "string"}, "name": {"type": "string"},
-        "file": {"type": "string"}, "line": {"type": "integer"}}},
+        "file": {"type": "string"}, "line": {"type": "integer"}}),
     "std_msgs/String": {"type": "object", "properties": {"data": {"type": "string"}}},
     "val3check.JointState": {"type": "object", "properties": {
         "timestamp": _TIME, "name": {"type": "array", "items": {"type": "string"}},
@@ -102,7 +115,7 @@ COLORS = {"obstacle": {"r": 0.45, "g": 0.55, "b": 0.65, "a": 0.8}, "tool": {"r":
 
 def _ns(t: float) -> int:
     """Simulated seconds as nanoseconds (the trace's stamps)."""
-    return int(round(t * 1e9))
+    return round(t * 1e9)
 
 
 def _stamp(ns: int) -> dict:
@@ -144,16 +157,19 @@ def quaternions(R):
 
 
 def _pose(M) -> dict:
-    """A 4x4 (mm) as a foxglove.Pose (m)."""
-    x, y, z, w = quaternions(M[:3, :3])[0].tolist()
-    return {"position": {"x": float(M[0, 3]) * MM, "y": float(M[1, 3]) * MM, "z": float(M[2, 3]) * MM},
-            "orientation": {"x": x, "y": y, "z": z, "w": w}}
+    """A 4x4 (mm) as a foxglove.Pose (m; rounded as every pose of the trace, _m and _q)."""
+    import numpy as np
+
+    M = np.asarray(M, dtype=float)
+    (x, y, z, w), = _q(M[None, :3, :3])
+    (px, py, pz), = _m(M[None, :3, 3])
+    return {"position": {"x": px, "y": py, "z": pz}, "orientation": {"x": x, "y": y, "z": z, "w": w}}
 
 
 def _transforms(ns: int, parent: str, names: list[str], mats) -> list[dict]:
     """FrameTransform entries for frames `names` with poses `mats` (K, 4, 4, mm) in `parent`."""
-    q = quaternions(mats[:, :3, :3]).tolist()
-    p = (mats[:, :3, 3] * MM).tolist()
+    q = _q(mats[:, :3, :3])
+    p = _m(mats[:, :3, 3])
     st = _stamp(ns)
     return [_tf(st, parent, n, a, b) for n, a, b in zip(names, p, q)]
 
@@ -170,15 +186,25 @@ def _solid(kind: str, size, pose) -> tuple[str, dict]:
 
     M = np.asarray(pose, dtype=float)
     if kind == "box":
-        return "cubes", {"pose": _pose(M), "size": dict(zip("xyz", (float(v) * MM for v in size)))}
+        return "cubes", {"pose": _pose(M), "size": dict(zip("xyz", (_len(v) for v in size)))}
     if kind == "sphere":
-        d = 2 * float(size[0]) * MM
+        d = _len(2 * float(size[0]))
         return "spheres", {"pose": _pose(M), "size": {"x": d, "y": d, "z": d}}
     if kind == "cylinder":
-        d = 2 * float(size[0]) * MM
-        return "cylinders", {"pose": _pose(M), "size": {"x": d, "y": d, "z": float(size[1]) * MM},
+        d = _len(2 * float(size[0]))
+        return "cylinders", {"pose": _pose(M), "size": {"x": d, "y": d, "z": _len(size[1])},
                              "bottom_scale": 1.0, "top_scale": 1.0}
     raise ValueError(kind)
+
+
+def _scene_entity(ns: int, frame: str, ident: str, metadata: dict[str, str]) -> dict:
+    """An empty foxglove.SceneEntity in `frame` (kept there when it is not the world), every
+    primitive array present: Foxglove's schema requires them all."""
+    e: dict[str, Any] = {"timestamp": _stamp(ns), "frame_id": frame, "id": ident, "lifetime": {"sec": 0, "nsec": 0},
+                         "frame_locked": frame != "world",
+                         "metadata": [{"key": k, "value": v} for k, v in metadata.items()]}
+    e.update((k, []) for k in PRIMITIVES)
+    return e
 
 
 def _tcp_marker(ns: int, flange: str, name: str, tool) -> dict:
@@ -189,9 +215,7 @@ def _tcp_marker(ns: int, flange: str, name: str, tool) -> dict:
     T = np.asarray(tool, dtype=float)
     d = T[:3, 3]
     L = float(np.linalg.norm(d))
-    e: dict[str, Any] = {"timestamp": _stamp(ns), "frame_id": flange, "id": "tcp", "lifetime": {"sec": 0, "nsec": 0},
-                         "frame_locked": True, "metadata": [{"key": "tool", "value": name}],
-                         "arrows": [], "cubes": [], "spheres": [], "cylinders": [], "triangles": []}
+    e = _scene_entity(ns, flange, "tcp", {"tool": name})
     ball = np.eye(4)
     ball[:3, 3] = d
     e["spheres"].append({"pose": _pose(ball), "size": {"x": 0.012, "y": 0.012, "z": 0.012}, "color": COLORS["tcp"]})
@@ -203,8 +227,8 @@ def _tcp_marker(ns: int, flange: str, name: str, tool) -> dict:
         R = np.eye(4)
         R[:3, :3] = np.column_stack([x, y, np.cross(x, y)])
         head = min(0.2 * L, 20.0)
-        e["arrows"].append({"pose": _pose(R), "shaft_length": (L - head) * MM, "shaft_diameter": 0.006,
-                            "head_length": head * MM, "head_diameter": 0.014, "color": COLORS["tcp"]})
+        e["arrows"].append({"pose": _pose(R), "shaft_length": _len(L - head), "shaft_diameter": 0.006,
+                            "head_length": _len(head), "head_diameter": 0.014, "color": COLORS["tcp"]})
     return e
 
 
@@ -212,16 +236,14 @@ def _entity(ns: int, frame: str, ident: str, what: str, solids: list[tuple[str, 
     """A foxglove.SceneEntity of the cell's or the tool's solids (mm in, m out)."""
     import numpy as np
 
-    e: dict[str, Any] = {"timestamp": _stamp(ns), "frame_id": frame, "id": ident, "lifetime": {"sec": 0, "nsec": 0},
-                         "frame_locked": frame != "world", "metadata": [{"key": "kind", "value": what}],
-                         "cubes": [], "spheres": [], "cylinders": [], "triangles": []}
+    e = _scene_entity(ns, frame, ident, {"kind": what})
     for name, shape, pose, _ in solids:
         if shape.kind == "mesh":
-            v = np.asarray(shape.mesh.vertices, dtype=float) * MM
+            v = _m(np.asarray(shape.mesh.vertices, dtype=float))
             f = np.asarray(shape.mesh.faces, dtype=int)
             e["triangles"].append({"pose": _pose(np.asarray(pose, dtype=float)),
-                                   "points": [{"x": a, "y": b, "z": c} for a, b, c in v.tolist()],
-                                   "indices": f.reshape(-1).tolist(), "color": COLORS[what]})
+                                   "points": [{"x": a, "y": b, "z": c} for a, b, c in v],
+                                   "indices": f.reshape(-1).tolist(), "color": COLORS[what], "colors": []})
             continue
         key, prim = _solid(shape.kind, shape.size, pose)
         prim["color"] = COLORS[what]
@@ -298,6 +320,11 @@ def _arm_ticks(scene, edges, tools, times, Q, V, idx):
                 "position": dict(zip("xyz", tcp_p[i])), "orientation": dict(zip("xyzw", tcp_q[i]))}})
 
 
+def _len(x) -> float:
+    """A length (mm) in metres, to 1e-10 m as every position (_m)."""
+    return round(float(x) * MM, 10) + 0.0
+
+
 def _m(P):
     """Positions (mm) in metres, to 1e-10 m (1e-7 mm): shorter JSON, far below what is drawn."""
     import numpy as np
@@ -357,17 +384,29 @@ def trace_messages(report: Any, cell: Any = None):
         times = K * TICK_S
         idx = np.searchsorted(np.asarray(starts), times, side="right") - 1 if starts else np.full(len(K), -1)
         arm = _arm_ticks(scene, edges, tools, times, Q, V, idx)
-        # the application's frames (world) and tools (flange), as the run left them
+        # the application's frames (world) and tools (flange): those the cell hangs solids on as the
+        # collision checks read them (at each change), the others as the run left them
+        timeline = m.cell_timeline
+        tracks = {**timeline.frames, **timeline.tools} if timeline is not None else {}
         shown = {n: f for n, f in scene.frames.items() if "[" not in n or f.array_size > 1}  # fPallet, not fPallet[0] too
-        fr = sorted((n, f.matrix) for n, f in shown.items() if f.kind != "tool")
-        tl = sorted((n, f.matrix) for n, f in shown.items() if f.kind == "tool")
-        static = []
-        if fr:
-            static += _transforms(0, world, [n for n, _ in fr], np.stack([M for _, M in fr]))
-        if tl:
-            static += _transforms(0, flange, [n for n, _ in tl], np.stack([M for _, M in tl]))
-        if static:
-            out.add("/tf", 0, {"transforms": static})
+        at0 = {n: (f.kind, f.matrix) for n, f in shown.items() if n not in tracks}
+        changes: dict[int, dict] = {}
+        for n, track in tracks.items():
+            kind = "frame" if n in timeline.frames else "tool"
+            for k, c in enumerate(track):
+                if c.matrix is not None:
+                    changes.setdefault(0 if k == 0 else _ns(c.time), {})[n] = (kind, c.matrix)
+        if at0:
+            changes.setdefault(0, {}).update(at0)
+        for ns in sorted(changes):
+            fr = sorted((n, M) for n, (kind, M) in changes[ns].items() if kind != "tool")
+            tl = sorted((n, M) for n, (kind, M) in changes[ns].items() if kind == "tool")
+            tfs = []
+            if fr:
+                tfs += _transforms(ns, world, [n for n, _ in fr], np.stack([M for _, M in fr]))
+            if tl:
+                tfs += _transforms(ns, flange, [n for n, _ in tl], np.stack([M for _, M in tl]))
+            out.add("/tf", ns, {"transforms": tfs})
         # the TCP marker, at each change of tool (from the start of the motion that uses it)
         last = None
         for t0, tool, name in zip(starts, tools, tool_names):
@@ -377,21 +416,7 @@ def trace_messages(report: Any, cell: Any = None):
                 out.add("/scene", ns, {"deletions": [], "entities": [_tcp_marker(ns, flange, name, tool)]})
                 last = key
         if cell is not None:
-            ents = []
-            for ob in cell.obstacles:
-                base = np.eye(4) if ob.frame == "world" else frames.get(ob.frame.replace(" ", ""))
-                if base is None:
-                    continue
-                ents.append(_entity(0, world, f"obstacle/{ob.name}", "obstacle", [(ob.name, ob.shape, base @ ob.pose, None)]))
-            for ts in cell.tools:
-                base = np.eye(4) if ts.tool == "flange" else frames.get(ts.tool)
-                if base is None:
-                    continue
-                ents.append(_entity(0, flange, f"tool/{ts.name}", "tool", [(ts.name, ts.shape, base @ ts.pose, None)]))
-            if ents:
-                out.add("/scene", 0, {"deletions": [], "entities": ents})
-            if cell.parts:
-                _parts(out, cell, m, flange, world)
+            _cell(out, cell, m, frames, tracks)
     for e in result.transcript:
         ns = _ns(e.time_us / 1e6)
         out.add("/log", ns, {"timestamp": _stamp(ns), "level": 2, "message": f"[{e.kind}] {e.text}",
@@ -417,7 +442,7 @@ def trace_messages(report: Any, cell: Any = None):
             continue
         for t, c, ex in zip(np.asarray(times, dtype=float).tolist(), np.asarray(mr.clearance, dtype=float).tolist(),
                             np.asarray(mr.exact, dtype=bool).tolist()):
-            if c != c or c in (float("inf"), float("-inf")):
+            if not math.isfinite(c):
                 continue  # nothing measured at that sample
             ns = _ns(round(t, 6))
             out.add("/clearance", ns, {"timestamp": _stamp(ns), "motion": int(mid),
@@ -434,33 +459,54 @@ def trace_messages(report: Any, cell: Any = None):
     return ((topics[o], ns, data) for ns, o, _, data in merged), extra
 
 
-def _parts(out: "_Messages", cell: Any, m: Any, flange: str, world: str) -> None:
-    """The cell's parts (docs/cell.md): a part appears on its tool when the program takes it (its
-    `grasp` instruction, open or close), rides with the flange, and stays in the world where it
-    was left (the other instruction): one entity per part left."""
-    names = list(dict.fromkeys(p.name for p in cell.parts))
-    carried: dict[str, Any] = {}
+def _placed(ns_of, base, track) -> list[tuple[int, Any]]:
+    """(time ns, pose of the base or None) at each change: a track of the cell timeline, else `base`
+    from t = 0."""
+    if not track:
+        return [(0, base)]
+    return [(0 if k == 0 else ns_of(c.time), c.matrix) for k, c in enumerate(track)]
+
+
+def _cell(out: "_Messages", cell: Any, m: Any, frames: dict, tracks: dict) -> None:
+    """The cell's solids (docs/trace.md): obstacles in the world, tool solids on the flange, each
+    sent again when the frame or tool it hangs on changes (deleted while it has no value), and the
+    parts: on the flange while carried, in the world where they were left (`m.cell_timeline`)."""
+    import numpy as np
+
+    world, flange = m.scene.world_frame, m.scene.flange_frame
+    updates: dict[int, dict] = {}
+
+    def put(ns: int, frame: str, ident: str, what: str, solids: list) -> None:
+        updates.setdefault(ns, {"deletions": [], "entities": []})["entities"].append(
+            _entity(ns, frame, ident, what, solids))
+
+    def delete(ns: int, ident: str) -> None:
+        updates.setdefault(ns, {"deletions": [], "entities": []})["deletions"].append(
+            {"timestamp": _stamp(ns), "type": 0, "id": ident})
+
+    solids = [(world, f"obstacle/{o.name}", "obstacle", o, o.frame.replace(" ", "")) for o in cell.obstacles]
+    solids += [(flange, f"tool/{t.name}", "tool", t, t.tool.replace(" ", "")) for t in cell.tools]
+    for frame, ident, what, solid, on in solids:
+        fixed = on in ("world", "flange")
+        for k, (ns, base) in enumerate(_placed(_ns, np.eye(4) if fixed else frames.get(on),
+                                               None if fixed else tracks.get(on))):
+            if base is not None:
+                put(ns, frame, ident, what, [(solid.name, solid.shape, base @ solid.pose, None)])
+            elif k:
+                delete(ns, ident)
+    timeline = m.cell_timeline
     left = 0
-    for ev in m.tool_events:
-        ns = _ns(ev.time_us / 1e6)
-        T_tool = ev.tcp_matrix
-        for name in names:
-            solids = [p for p in cell.parts if p.name == name and p.tool == ev.tool]
-            if not solids:
-                continue
-            shown = [(p.name, p.shape, T_tool @ p.pose, None) for p in solids]
-            if ev.action == solids[0].grasp and name not in carried:
-                carried[name] = T_tool
-                e = _entity(ns, flange, f"part/{name}", "part", shown)
-                out.add("/scene", ns, {"deletions": [], "entities": [e]})
-            elif ev.action != solids[0].grasp and name in carried:
-                del carried[name]
-                F = m.scene.kinematics.link_poses(m.trajectory.position(ev.time_us / 1e6))[flange]
-                left += 1
-                e = _entity(ns, world, f"part/{name}/{left}", "part",
-                            [(n, shape, F @ pose, None) for n, shape, pose, _ in shown])
-                out.add("/scene", ns, {"deletions": [{"timestamp": _stamp(ns), "type": 0, "id": f"part/{name}"}],
-                                       "entities": [e]})
+    for span in timeline.parts if timeline is not None else ():
+        shown = [(p.name, p.shape, span.pose @ p.pose, None) for p in cell.parts if p.name == span.name]
+        ident = f"part/{span.name}"
+        if not span.carried:
+            left += 1
+            ident = f"{ident}/{left}"
+        put(_ns(span.start), flange if span.carried else world, ident, "part", shown)
+        if span.end is not None:
+            delete(_ns(span.end), ident)
+    for ns in sorted(updates):
+        out.add("/scene", ns, updates[ns])
 
 
 def write_trace(report: Any, path: str, cell: Any = None) -> None:

@@ -6,7 +6,8 @@
 
 Shown only when the stream is a terminal and the run has lasted more than a second of wall time
 (a short run prints nothing), redrawn at most ten times a second on one line (carriage return),
-cleared at the end. Never written to a file or a pipe: reports stay byte-for-byte the same.
+cleared at the end. After the simulated time, each phase that takes time says what it does
+(`checking collisions: motion 12 of 111`). Never written to a file or a pipe: reports stay byte-for-byte the same.
 """
 
 from __future__ import annotations
@@ -45,6 +46,17 @@ class Progress:
         line = (f"val3check sim: {sim_s:9.3f}{of} s simulated, {now - self.start:6.1f} s wall, "
                 f"{motions_done()} motions done")
         self.stream.write("\r" + line + "\x1b[K")
+        self.stream.flush()
+
+    def phase(self, text: str) -> None:
+        """A phase of the run after its simulated time (the collision checks of its motions), shown
+        in place of the simulated time so that the line never freezes on it."""
+        now = self.clock()
+        if now < self.next:
+            return
+        self.next = now + EVERY_S
+        self.shown = True
+        self.stream.write(f"\rval3check sim: {text}, {now - self.start:6.1f} s wall\x1b[K")
         self.stream.flush()
 
     def close(self) -> None:

@@ -20,5 +20,6 @@ def render_sim(fmt: str, report: Any, *, fail_on: str = "error", scenario: str |
 
         return render_junit(report, fail_on=fail_on, scenario=scenario)
     from .sim_text import render as render_text
+    from .sim_verdict import closing_line
 
-    return render_text(report)
+    return render_text(report) + closing_line(report, fail_on) + "\n"

@@ -8,6 +8,7 @@
     main_cycle(m.cycles)               # the one the verdict quotes (most complete cycles)
     m.trajectory                       # JointTrajectory: the joints at any simulated time
     m.tcp_speed(times, joints, speeds) # the TCP's speed at samples of the trajectory
+    m.cell_timeline                    # CellTimeline | None: the cell as the collision checks placed it
 
 Times are simulated seconds, joints degrees (a SCARA's axis 3 millimetres), lengths
 millimetres, poses 4x4 matrices in millimetres. Everything is plain data but the two ports,
@@ -147,6 +148,44 @@ class ToolUse:
 
 
 @dataclass(frozen=True)
+class PoseChange:
+    """A frame or tool variable the cell file names took a new value at `time` (s): its pose, 4x4
+    mm (a frame in world, a tool in the flange), or None while the program has none."""
+
+    time: float
+    matrix: np.ndarray | None
+
+
+@dataclass(frozen=True)
+class PartSpan:
+    """A part of the cell file (docs/cell.md) over [start, end) (end None: to the end of the run):
+    `carried` on the flange from its tool's grasp instruction, or left in the cell until taken
+    again or away (`cleared_by`). `pose` (4x4 mm): the part's frame, its tool's frame when it was
+    taken (its solids are at their `at` in it), in the flange while carried, else in world."""
+
+    name: str
+    tool: str
+    carried: bool
+    start: float
+    end: float | None
+    pose: np.ndarray
+
+
+@dataclass(frozen=True)
+class CellTimeline:
+    """The cell as the collision checks placed it over the run, as changes (a long run grows it by
+    what changes, not by its length): `frames` {name as the cell writes it, spaces left out:
+    (PoseChange, ...)} of the frames obstacles hang on, `tools` the same for the tool variables
+    tool solids hang on, each value from the time the checks read it (a motion's start, an
+    open()/close(); the first one holds from the start of the run); `parts` (PartSpan, ...) by
+    start."""
+
+    frames: dict[str, tuple[PoseChange, ...]]
+    tools: dict[str, tuple[PoseChange, ...]]
+    parts: tuple[PartSpan, ...]
+
+
+@dataclass(frozen=True)
 class CycleEntry:
     """The cycle of a task that records motions (docs/motion.md, "Cycle time"): the loop that
     moves the arm once per part. `marker` (path, line, col), `program` and `kind` (while, do,
@@ -215,7 +254,8 @@ class ArmRun:
     """What the arm did in a run (see the module docstring): `busy_s`, `idle_s` its moving and
     standing time, `end_s` the end of the run; `tool_events` every open()/close() (ToolUse);
     `acceleration_range` the cycles if the assumed accelerations are off (None when they were
-    measured: a robot file's values)."""
+    measured: a robot file's values); `cell_timeline` the cell as the collision checks placed it
+    (None: not checked)."""
 
     scene: ArmScene
     motions: list[MotionEntry]
@@ -226,6 +266,7 @@ class ArmRun:
     idle_s: float = 0.0
     end_s: float = 0.0
     acceleration_range: AccelerationRange | None = None
+    cell_timeline: CellTimeline | None = None
 
     def sample(self, t0: float = 0.0, t1: float | None = None, dt: float = 0.004):
         """(times (N,), joint positions (N, axes), joint velocities (N, axes)) every `dt` s."""
@@ -233,27 +274,32 @@ class ArmRun:
 
     def tcp_speed(self, times, positions, velocities) -> np.ndarray:
         """The TCP's Cartesian speed (mm/s) at samples of the trajectory (times (N,), joints and
-        joint velocities (N, axes)), for the tool of the motion under way (the last motion started,
-        connection moves aside; before any, the first motion's): the TCP moved along the joint
-        velocity over a small step (no spike when the tool changes)."""
-        flange = self.scene.flange_frame
-        h = TCP_STEP_S
-        poses = self.scene.kinematics.link_poses_many
-        P0 = poses(positions)[flange]
-        P1 = poses(positions + h * velocities)[flange]
-        starts, tools = [], []
-        for motion in self.motions:
-            if motion.start is not None and motion.kind != "connection":
-                starts.append(motion.start)
-                tools.append(motion.tool_in_flange)
-        idx = np.array([max(bisect.bisect_right(starts, t) - 1, 0) for t in times]) if starts \
-            else np.zeros(len(times), int)
-        out = np.zeros(len(times))
-        for k in sorted(set(idx.tolist())):
-            sel = idx == k
-            tool = tools[k] if tools else None
-            p = np.array([0.0, 0.0, 0.0, 1.0]) if tool is None else np.asarray(tool, dtype=float)[:, 3]
-            a = P0[sel] @ p
-            b = P1[sel] @ p
-            out[sel] = np.linalg.norm((b - a)[:, :3], axis=1) / h
-        return out
+        joint velocities (N, axes)), for the tool of the motion under way (`tcp_speed` below)."""
+        uses = [(motion.start, motion.tool_in_flange) for motion in self.motions
+                if motion.start is not None and motion.kind != "connection"]
+        return tcp_speed(self.scene.kinematics, self.scene.flange_frame, uses, times, positions, velocities)
+
+
+def tcp_speed(kinematics: ArmKinematics, flange: str, tool_uses, times, positions, velocities) -> np.ndarray:
+    """The TCP's Cartesian speed (mm/s) at samples of a trajectory (times (N,), joints and joint
+    velocities (N, axes)), for the tool of the motion under way: `tool_uses` (start, tool in the
+    flange 4x4 or None) of each motion in order of start, connection moves aside; before any, the
+    first motion's tool. The TCP moved along the joint velocity over a small step (no spike when
+    the tool changes)."""
+    h = TCP_STEP_S
+    positions, velocities = np.asarray(positions, dtype=float), np.asarray(velocities, dtype=float)
+    P0 = kinematics.link_poses_many(positions)[flange]
+    P1 = kinematics.link_poses_many(positions + h * velocities)[flange]
+    starts = [t for t, _ in tool_uses]
+    tools = [tool for _, tool in tool_uses]
+    idx = np.array([max(bisect.bisect_right(starts, t) - 1, 0) for t in times]) if starts \
+        else np.zeros(len(times), int)
+    out = np.zeros(len(times))
+    for k in sorted(set(idx.tolist())):
+        sel = idx == k
+        tool = tools[k] if tools else None
+        p = np.array([0.0, 0.0, 0.0, 1.0]) if tool is None else np.asarray(tool, dtype=float)[:, 3]
+        a = P0[sel] @ p
+        b = P1[sel] @ p
+        out[sel] = np.linalg.norm((b - a)[:, :3], axis=1) / h
+    return out

@@ -24,6 +24,8 @@ stop the task with R002, saying how to name the arm.
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 
 from ..geometry import frames as geo_frames
@@ -34,10 +36,11 @@ from ..interpretation.chapters.ch09_geometry import ct, jd, jt, millimeter_unit,
 from ..interpretation.not_simulated import ARM_LIMIT, NO_ARM, SimLimit
 from ..interpretation.waiting import WAIT
 from ..language.runtime_errors import Val3RuntimeError
+from ..lengths import INCH_MM
+from ..loading.types import arm_family
 from ..motion.commands import Target
 from ..motion.findings import MotionError, Source
 from ..motion.queue import QueueFull
-from .model_arm import INCH_MM
 
 E = Val3RuntimeError
 US = 1_000_000
@@ -92,7 +95,31 @@ def _point(task, p: Point, what: str) -> Target:
     geo_points.check_defined(p)
     ref = p.ref
     frame = getattr(ref, "name", "") or ("world" if ref is not None and ref.is_root else "")
-    return Target.point(_matrix(geo_points.world_pose(p)), ct(p.config), p.name or "", frame)
+    return Target.point(_matrix(geo_points.world_pose(p)), ct(p.config), p.name or "", frame,
+                        note=_other_family_note(task, p))
+
+
+_ELEMENT = re.compile(r"^(\w+)(?:\[([^\]]*)\])?$")  # pPick (a one-element array), pSlot[2]
+
+
+def _other_family_note(task, p: Point) -> str:
+    """What a failure at point `p` adds when its data imposes an elbow or a wrist (a six-axis
+    arm's configuration) and the arm is a SCARA, whose points have a shoulder only (9.7.2): a
+    `point` of the data file written for another arm (a `pointRx` stops with 81 before)."""
+    arm = task.machine.arm
+    m = _ELEMENT.match(p.name or "")
+    if m is None or tuple(getattr(arm.model, "config_fields", ())) != ("shoulder",):
+        return ""
+    data = task.machine.app.data.get(m.group(1))
+    if data is None or arm_family(data.type) is not None:
+        return ""
+    value = next((v for v in data.values if v.key == (m.group(2) or "0")), None)
+    imposed = [f"{k} {value.fields[k]}" for k in ("elbow", "wrist") if value is not None and k in value.fields
+               and not str(value.fields[k]).lower().endswith(("same", "free"))]
+    if not imposed:
+        return ""
+    return (f"its data gives it a six-axis arm's configuration ({', '.join(imposed)}), not a SCARA's: the "
+            f"{arm.name}'s points have a shoulder only (9.7.2); written for another arm family?")
 
 
 def _tool(tool: Tool) -> np.ndarray | None:
@@ -119,7 +146,7 @@ def _record(task, unit, kind: str, target: Target, via: Target | None, tool: Too
             raise E(exc.code, exc.message, rule=rule) from None
         if not isinstance(r, QueueFull):
             return float(r)
-        room = lambda: arm.has_room(clock.now)  # noqa: E731
+        room = lambda: arm.has_room(clock.now)
         room.motion = True
         yield from WAIT(task, room, False, f"{kind} (the motion queue is full)")
 

@@ -37,7 +37,8 @@ def collect(machine: Machine) -> SimResult:
     diags = list(machine.diags)
     if reason == "deadlock" and any(d.code == "R009" for d in diags) and not any(d.code == "R003" for d in diags):
         # no task waits only for variables: the cell, not the program, would go on (R009)
-        message = "every task waits, for inputs that nothing in the run sets (a scenario can: docs/scenario.md)"
+        message = ("every task waits for the cell (inputs, serial or socket peers, keys, the controller's state), "
+                   "which nothing in the run plays (a scenario can: docs/scenario.md)")
     if reason == "duration":
         running = [t.name for t in machine.scheduler.history if t.final is not None]
         diags.append(Diagnostic("R007", f"run stopped at --duration {machine.end_time / 1e6:g} s; tasks still alive: "

@@ -4,7 +4,8 @@ the grippers' open/close, and the findings R030-R037 at the lines that commanded
 
     cell, diags = load_cell(path, app)                        # R030 for a cell file that cannot be used
     watch = ValueWatch(cell, machine)                         # arm.watch(watch): frames/tools as the run goes
-    run, diags = check_run(arm_run, cell, watch, model, ...)  # -> CollisionRun, runtime diagnostics
+    run, diags = check_run(arm_run, cell, watch, model, ...)  # -> CollisionRun, runtime diagnostics;
+                                                              # arm_run.cell_timeline: the cell as placed
 
 Frames and tools: the interpreter keeps only the current value of a variable. The watch reads the
 frames and tools the cell names each time a motion instruction records a command (ch10_motion)
@@ -18,6 +19,7 @@ from __future__ import annotations
 import math
 import re
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -31,6 +33,7 @@ from ..collision.records import Contact, MotionReport, PartDrop
 from ..diagnostics import Diagnostic
 from ..geometry import frames as geo_frames
 from ..interpretation.clock import TICK_US
+from .cell_timeline import TimelineLog
 
 US = 1_000_000
 _NAME = re.compile(r"^(?:([A-Za-z_][A-Za-z0-9_]*):)?([A-Za-z_][A-Za-z0-9_]*)(?:\[\s*(\d+)\s*\])?$")
@@ -90,7 +93,7 @@ def choose_cell(option: str | None, app_path: str) -> tuple[str | None, str]:
     return (str(found), "found") if found is not None else (None, "none")
 
 
-def load_cell(path: str, app, found: bool = False, budget=None,  # noqa: ANN001
+def load_cell(path: str, app, found: bool = False, budget=None,
               out_of_time=None) -> tuple[Cell | None, list[Diagnostic]]:
     """Read a cell file for the application `app` (loading.model.Application): (cell, []) or
     (None, R030 diagnostics at every problem's line and column). `found`: beside the application
@@ -194,14 +197,16 @@ def _read(machine: Any, name: str, kind: type) -> np.ndarray | None:
 def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, cell_path: str | None = None,
               cell_found: str = "none", app_unit_mm: float = 1.0, io_log=(),
               link_names: dict | None = None, app_path: str = "",
-              max_wall: float = math.inf, geometries=()) -> tuple[CollisionRun | None, list[Diagnostic]]:
+              max_wall: float = math.inf, geometries=(),
+              on_motion: Callable[[int, int], None] | None = None) -> tuple[CollisionRun | None, list[Diagnostic]]:
     """Check every motion of `motion` (the run's arm_record.ArmRun, on the arm `model`, a
     robot.RobotModel) in `cell` (None: the arm against itself only), with the grippers' events and the parts taken away (`cleared_by`, from
     the run's `io_log`; `link_names`: (kind, link) -> the globals linked to it); (CollisionRun,
     diagnostics R031-R036), or (None, [R037]) when there is nothing to check the motions with or
     the arm's solids cannot be read. The checks stop (R037) after `max_wall` seconds of wall clock.
     `geometries`: (from time, model) of each setDH (11.4): a motion is checked with the geometry in
-    force when it starts (setDH waits for the motion to be empty)."""
+    force when it starts (setDH waits for the motion to be empty). `on_motion(done, total)` is told
+    before each motion is checked (the progress display)."""
     from ..robot import RobotError
 
     name = motion.scene.name
@@ -216,8 +221,10 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
     if not arm.bodies and (cell is None or not (cell.tools or cell.parts)):
         return None, [_not_checked(f"collisions not checked: the arm model {name} has no collision solids, and no "
                                    "cell gives tool solids or parts", motion.end_s, app_path)]
-    checker = CollisionChecker(arm, cell if cell is not None else Cell(path=""), frames=watch.frame,
-                               tools=watch.tool, app_unit_mm=app_unit_mm)
+    log = TimelineLog(cell, watch, motion, app_unit_mm) if cell is not None else None  # what the reports draw
+    checker = CollisionChecker(arm, cell if cell is not None else Cell(path=""),
+                               frames=log.frame if log else watch.frame, tools=log.tool if log else watch.tool,
+                               app_unit_mm=app_unit_mm)
     run = CollisionRun(cell, cell_path, cell_found, margin_mm=checker.margin)
     diags: list[Diagnostic] = []
     traj = motion.trajectory
@@ -229,13 +236,20 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
     ongoing: set[tuple[str, str]] = set()  # pairs in contact since the last motion free of contact
 
     def event(e) -> list[Diagnostic]:
+        t, e = e[0] / US, e[2]
         if isinstance(e, str):
             checker.clear_parts(e)
-            return []
-        return _gripper(checker, e, names, traj, run)
+            found = []
+        else:
+            found = _gripper(checker, e, names, traj, run)
+        if log is not None:
+            log.after(checker, t)
+        return found
 
     deadline = time.monotonic() + max_wall
     for done, (index, start, end) in enumerate(spans):
+        if on_motion is not None:
+            on_motion(done, len(spans))
         if time.monotonic() > deadline:
             diags.append(_not_checked(f"collision checks cut short by the wall-clock budget (--max-wall "
                                       f"{max_wall:g} s): {done} of {len(spans)} motions checked, up to {start:.3f} s",
@@ -243,7 +257,7 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
             events = events[:ev]
             break
         while ev < len(events) and events[ev][0] / US <= start + 1e-9:
-            diags.extend(event(events[ev][2]))
+            diags.extend(event(events[ev]))
             ev += 1
         rec = motion.motions[index]
         if epochs is not None:
@@ -258,7 +272,7 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
             now.add((report.starts_in_collision.body_a, report.starts_in_collision.body_b))
         ongoing = ongoing | now if now else set()
     while ev < len(events):
-        diags.extend(event(events[ev][2]))
+        diags.extend(event(events[ev]))
         ev += 1
     for p in checker.problems:
         w = p.where
@@ -266,6 +280,8 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
         diags.append(Diagnostic("R036", p.message, path, line, col, time_us=int(round(p.time * US)), task="",
                                 program=""))
     run.checks = checker.measurements
+    if log is not None:
+        motion.cell_timeline = log.timeline()
     return run, diags
 
 

@@ -17,6 +17,6 @@ def missing_sim_packages() -> list[str]:
     return [dist for module, dist in SIM_MODULES.items() if find_spec(module) is None]
 
 
-def install_hint(missing: list[str]) -> str:
-    return (f"val3check sim needs the robotics stack of the `{EXTRA}` extra, which is not installed "
+def install_hint(missing: list[str], command: str = "sim") -> str:
+    return (f"val3check {command} needs the robotics stack of the `{EXTRA}` extra, which is not installed "
             f"(missing: {', '.join(missing)}): pip install 'val3check[{EXTRA}]'")

@@ -28,10 +28,10 @@ from ..interpretation.chapters import (
 from ..interpretation.machine import Budgets, Machine
 from ..interpretation.registry import Registry
 from ..interpretation.scheduler import EndRun
+from ..lengths import INCH_MM
 from ..loading.model import Application, Workspace
 from . import ch09_latch, ch10_motion, ch11_absolute, ch11_alter, ch11_compliance, ch11_continuous, ch11_licences
 from .collect import collect
-from .model_arm import INCH_MM
 from .moving_arm import MovingArm
 from .result import SimResult
 from .scenario import Scenario, apply_scenario
@@ -155,6 +155,14 @@ def _collision_setup(app: Application, options: SimOptions, machine: Machine):
     return cell, diags, watch, arm.model, arm
 
 
+def _phase(progress: Any):
+    """The collision checks' `on_motion` for a progress display that shows phases, else None."""
+    phase = getattr(progress, "phase", None)
+    if phase is None:
+        return None
+    return lambda done, total: phase(f"checking collisions: motion {done + 1} of {total}")
+
+
 def _collisions(result: SimResult, app: Application, options: SimOptions, checks) -> SimResult:
     """Check the motions of the run (SimResult.collision) and add the findings."""
     if checks is None:
@@ -175,7 +183,8 @@ def _collisions(result: SimResult, app: Application, options: SimOptions, checks
         run, more = collision_run.check_run(result.motion, cell, watch, model, cell_path=options.cell, cell_found=how,
                                             app_unit_mm=unit_mm, io_log=result.io_log,
                                             link_names=result.link_names, app_path=app.path,
-                                            max_wall=options.max_wall, geometries=getattr(arm, "geometries", ()))
+                                            max_wall=options.max_wall, geometries=getattr(arm, "geometries", ()),
+                                            on_motion=_phase(options.progress))
         result.collision = run
         if run is not None:
             for index, report in run.by_motion.items():  # each motion's clearances slot

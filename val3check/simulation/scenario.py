@@ -18,6 +18,7 @@ from ..interpretation.cell import Reaction, SerialReply
 from ..interpretation.events import ControllerChange, InputsChange, KeyPress, SerialData
 from ..interpretation.user_page import Key
 from ..interpretation.values import Arr, FaultyIOPoint, IOPoint
+from ..interpretation.virtual_disk import disk_key
 from .scenario_numbers import MAX_SECONDS
 from .scenario_numbers import finite as _finite
 from .scenario_numbers import seconds as _seconds
@@ -156,7 +157,7 @@ class Applier:
         d = self.sc.data
         self.machine.cell_subsystem.scenario_path = self.sc.path
         known = {"version", "description", "inputs", "events", "reactions", "keys", "serial", "controller", "io", "robot",
-                 *OPTION_TABLES, "explore"}
+                 "files", *OPTION_TABLES, "explore"}
         for k in d:
             if k not in known:
                 self.fail((k,), f"unknown table or key {shown(k)}")
@@ -230,6 +231,8 @@ class Applier:
                 if at is None:
                     self.fail(here + ("at",), "[[serial]] at = seconds (a finite number from 0 to 1e7)")
                 cell.schedule(at, SerialData(io, data))
+        for i, f in enumerate(_list(d, "files", self)):
+            self._file(f, ("files", i))
         if "controller" in d:
             self._controller(d["controller"])
         if "io" in d:
@@ -317,6 +320,27 @@ class Applier:
             return bytes(b)
         self.fail(here, "[[serial]] needs send = \"text\" or bytes = [...]")
         return b""
+
+    def _file(self, f: Any, here: tuple) -> None:
+        """[[files]]: a file of the controller's disk for the system library's $file... instructions
+        (interpretation/virtual_disk.py); never the user's disk."""
+        self._keys(f, {"path", "text", "bytes"}, here, "[[files]]")
+        path = f.get("path")
+        if not isinstance(path, str) or disk_key(path) is None:
+            self.fail(here + ("path",), '[[files]] needs path = "Disk://folder/name.txt"')
+        if ("text" in f) == ("bytes" in f):
+            self.fail(here, '[[files]] needs text = "..." or bytes = [...]')
+        if "text" in f:
+            if not isinstance(f["text"], str):
+                self.fail(here + ("text",), '[[files]] text = "the content"')
+            data = f["text"].encode("utf-8")
+        else:
+            b = f["bytes"]
+            if not isinstance(b, list) or not all(isinstance(x, int) and not isinstance(x, bool) and 0 <= x <= 255 for x in b):
+                self.fail(here + ("bytes",), "bytes = [numbers from 0 to 255]")
+            data = bytes(b)
+        if not self.machine.files.put(path, data):
+            self.fail(here, "[[files]]: the controller's disk is full")
 
     def _keys(self, table: Any, allowed: set[str], here: tuple, what: str) -> None:
         if not isinstance(table, dict):

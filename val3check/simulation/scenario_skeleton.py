@@ -18,7 +18,8 @@ import datetime
 import json
 from dataclasses import dataclass, field
 
-from ..interpretation.controller import Controller
+from ..interpretation.controller import Controller, default_versions
+from ..interpretation.virtual_disk import disk_key
 from ..loading.model import Application, Workspace
 from ..parsing import ast as A
 
@@ -61,6 +62,9 @@ class _Use:
     to_library: dict[str, str] = field(default_factory=dict)  # name -> the library call it is handed to
     keys: list[tuple[str, str, int | None]] = field(default_factory=list)  # instruction, where, key code
     controller: dict[str, list[str]] = field(default_factory=dict)  # key -> where
+    versions: list[str] = field(default_factory=list)  # the getVersion() components asked for by name
+    files: list[tuple[str, str]] = field(default_factory=list)  # ($fileOpen path, where)
+    state_waits: list[tuple[str, str]] = field(default_factory=list)  # ([controller] key, where) of wait()s
 
 
 def _base(expr) -> tuple[str | None, int | None]:  # noqa: ANN001
@@ -138,6 +142,11 @@ class _Reader:
                 self.expr(a)
             return
         if not isinstance(func, A.Name):
+            if (isinstance(func, A.SystemName) and func.name.lower() == "$fileopen" and args
+                    and isinstance(args[0], A.String) and not (len(args) > 1 and isinstance(args[1], A.String)
+                                                               and args[1].value.strip().lower() in ("w", "a"))):
+                # a file of the controller's disk it reads ("w" and "a" create theirs)
+                self.use.files.append((args[0].value, self.where(node)))
             for a in args:
                 self.expr(a)
             return
@@ -150,6 +159,13 @@ class _Reader:
             self.use.keys.append((kind, self.where(node), code))
         for key in CONTROLLER_READS.get(low, ()):
             self.use.controller.setdefault(key, []).append(self.where(node))
+        if low == "getversion" and args and isinstance(args[0], A.String) and args[0].value not in self.use.versions:
+            self.use.versions.append(args[0].value)
+        if low in ("wait", "watch") and args:  # a wait only the controller's state can end (R009)
+            for n in A.walk(args[0]):
+                if isinstance(n, A.CallExpr) and isinstance(n.func, A.Name):
+                    for key in CONTROLLER_READS.get(n.func.name.lower(), ())[:1]:
+                        self.use.state_waits.append((key, self.where(node)))
         for k, a in enumerate(args):
             if k == 0 and low in WRITES_FIRST:
                 self.write(a)
@@ -374,15 +390,30 @@ def skeleton(workspace: Workspace, app: Application, app_label: str) -> str:
         else:
             out.append(f"# key = {code if code is not None else 271}")
         out.append("")
+    opened: dict[str, tuple[str, list[str]]] = {}  # one entry per file of the disk, however it is spelt
+    for use, _p, _l in uses.values():
+        for path, where in use.files:
+            key = disk_key(path)
+            if key is not None:
+                opened.setdefault(key, (path, []))[1].append(where)
+    for key in sorted(opened):
+        path, where = opened[key]
+        note = f"{', '.join(where)}: $fileOpen of the controller's disk (docs/sim.md)"
+        out += [f"# [[files]]                        # {note}", f"# path = {_toml(path)}", '# text = ""', ""]
     for what in serial:
         out += [f"# [[serial]]                       # {what}", f"# sio = {_toml(what.split(' ')[0])}",
                 "# at = 1.0", '# send = ""', ""]
     reads_ctl: dict[str, list[str]] = {}
+    asked: list[str] = []
+    waits: list[tuple[str, str]] = []
     for use, _p, _l in uses.values():
         for k, where in use.controller.items():
             reads_ctl.setdefault(k, []).extend(where)
+        asked += [v for v in use.versions if v not in asked]
+        waits += use.state_waits
     if reads_ctl:
         defaults = Controller()
+        known = default_versions(app.version, None)
         values = {
             "working_mode": defaults.working_mode, "working_state": defaults.working_state,
             "es_status": defaults.es_status, "powered": defaults.powered,
@@ -390,11 +421,15 @@ def skeleton(workspace: Workspace, app: Application, app_label: str) -> str:
             "monitor_speed": defaults.monitor_speed, "operator_speed": defaults.operator_speed,
             "safety_fault": defaults.safety_fault, "profile": defaults.profile, "profiles": defaults.profiles,
             "language": defaults.language, "languages": list(defaults.languages), "date": defaults.date,
-            "versions": defaults.versions,
+            # the components the application asks for by name, as getVersion answers them (8.1)
+            "versions": {v: known.get(v, "") for v in asked} if asked else known,
         }
         out.append("[controller]                       # chapter 8 state the application reads (defaults)")
         for key in CONTROLLER_ORDER:
             if key in reads_ctl:
                 out.append(f"{key + ' = ' + _toml(values[key]):<34} # {_places(reads_ctl[key])}")
+        for key, where in sorted(set(waits), key=lambda kw: (kw[1].rsplit(":", 1)[0], int(kw[1].rsplit(":", 1)[1]))):
+            out.append(f"# changes = [ {{ at = 1.0, {key} = {_toml(values[key])} }} ]   # {where}: a wait() only a "
+                       f"change of {key} ends")
         out.append("")
     return "\n".join(out).rstrip("\n") + "\n"

@@ -148,10 +148,11 @@ def _check(args: Any) -> None:
         raise ExploreError("--explore goes without --init-scenario, --trace and --fail-fast")
     if args.jobs is not None and args.jobs < 1:
         raise ExploreError("--jobs must be a positive number of processes")
-    if args.executor == "dask" and not args.scheduler:
-        raise ExploreError("--executor dask needs --scheduler ADDRESS (tcp://host:8786)")
-    if args.executor == "dask" and args.jobs is not None:
-        raise ExploreError("--jobs is for the local executor; with Dask, the workers' processes set the parallelism")
+    from ..command import _dask_address
+
+    if args.executor == "dask" and args.jobs is not None and (args.scheduler or _dask_address()):
+        raise ExploreError("--jobs sizes the local executor or a local Dask cluster; with a scheduler, the"
+                           " workers' processes set the parallelism")
     if args.scheduler and args.executor != "dask":
         raise ExploreError("--scheduler goes with --executor dask")
 
@@ -280,7 +281,9 @@ class _Runs:
 
         try:
             if self.args.executor == "dask":
-                run_dask(cases, self.args.scheduler, on_done, lambda: False)
+                # no --scheduler: DASK_SCHEDULER_ADDRESS, else a local cluster, as `sim -j` does
+                run_dask(cases, self.args.scheduler, on_done, lambda: False,
+                         workers=min(self.args.jobs or _cores(), len(cases)))
             else:
                 run_pool(cases, min(self.args.jobs or _cores(), len(cases)), on_done, lambda: False)
         except ExecutorError as exc:

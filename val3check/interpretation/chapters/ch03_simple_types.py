@@ -84,13 +84,21 @@ def _sio(io: Any) -> IOPoint:
     return io
 
 
+def peer_hint(machine, io: IOPoint) -> str:
+    """What ends a wait for data on a sio: its peer (a serial device, a socket client or
+    server), played by the scenario's [[serial]] entries (the deadlock report's R009)."""
+    names = machine.link_names.get(("sio", io.link)) or [io.link]
+    return (f"data from the peer of {', '.join(names)} ({io.link}): the scenario's [[serial]] entry with "
+            f'sio = "{names[0]}" (docs/scenario.md)')
+
+
 def _sio_wait(task, io: IOPoint, ready, what: str):
     """Wait for received data; returns False on the sio timeout (sioCtrl "timeout")."""
     if ready():
         return True
     if io.timeout > 0:
         return (yield from WATCH(task, ready, io.timeout, False, what))
-    yield from WAIT(task, ready, False, what)
+    yield from WAIT(task, ready, False, what, peer_hint(task.machine, io))
     return True
 
 
@@ -236,10 +244,15 @@ def I_sioget(task, unit, io, arr: Arr):
     return float(n)
 
 
-def I_sioset(task, unit, io, arr: Arr):
-    """3.7.3 sioSet: write the array's values (nearest integer modulo 256)."""
+def I_sioset(task, unit, io, arr: Arr, count: float | None = None):
+    """3.7.3 sioSet: write the array's values (nearest integer modulo 256). s8 calls it with a
+    third argument whose meaning is not public (language/s8.toml); the simulator reads it as the
+    number of values to send (docs/sim.md)."""
     io = _sio(io)
-    data = bytes(int(math.floor(v + 0.5)) % 256 for v in arr.data[arr.off:])
+    values = arr.data[arr.off:]
+    if count is not None:
+        values = values[:max(0, _int(count)) if math.isfinite(count) else 0]
+    data = bytes(int(math.floor(v + 0.5)) % 256 for v in values)
     task.machine.sio_sent(task, io, data)
     yield from YIELD(task)
     return float(len(data))
@@ -255,7 +268,12 @@ _SIO_VALUES = {"parity": ("none", "even", "odd"), "bits": (5, 6, 7, 8), "stopBit
 
 
 def I_sioctrl(task, unit, io, name: str, value: Any) -> float:
-    """3.7.3 sioCtrl: 0 changed, -1 unknown parameter, -2 wrong type, -3 value not supported."""
+    """3.7.3 sioCtrl: 0 changed, -1 unknown parameter, -2 wrong type, -3 value not supported.
+
+    "timeout": "0 signifie : pas de limite de délai"; a negative timeout is what the pendant's
+    socket configuration and public code that runs on controllers write for no time limit (the
+    ROS-Industrial driver's sioCtrl(siSocket, "timeout", -1), "Timeout: -1" in its README): no
+    limit too. "port" is a TCP port (0 to 65535)."""
     io = _sio(io)
     want = _SIO_PARAMS.get(name)
     if want is None:
@@ -267,11 +285,10 @@ def I_sioctrl(task, unit, io, name: str, value: Any) -> float:
             return -3.0
         io.eos = _int(value)
     elif name == "timeout":
-        if value < 0:
-            return -3.0
-        io.timeout = float(value)
+        io.timeout = float(value) if value > 0 else 0.0
     elif (name in _SIO_VALUES and (_int(value) if want is float else value) not in _SIO_VALUES[name]
-          or name in ("port", "clients", "baudRate") and (value < 0 or value != _int(value))):
+          or name in ("port", "clients", "baudRate") and (value < 0 or value != _int(value))
+          or name == "port" and value > 65535):
         return -3.0
     io.params[name] = value
     return 0.0

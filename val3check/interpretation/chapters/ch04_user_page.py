@@ -55,7 +55,11 @@ def GET(task, *args: Any):
     page = machine.user_page
     clock = machine.clock
     # 4.2.3: only the screen displayed on the pendant is told of the keys pressed
-    yield from WAIT(task, (lambda: page.displayed is scr and page.key_available(clock.now)), False, "get")
+    # 4.2: the operator may also show another screen (User-Up/User-Down); the scenario's keys
+    # reach the screen displayed
+    shown = "" if page.displayed is scr else f" (once {scr.name or 'the default page'} is displayed: userPage)"
+    yield from WAIT(task, (lambda: page.displayed is scr and page.key_available(clock.now)), False, "get",
+                    f"an operator's key press{shown}: the scenario's [[keys]] (docs/scenario.md)")
     key = page.take_key()
     code = float(key.code)
     if pair is not None and key.code != 255 and key.text is not None:  # Esc leaves it unchanged
@@ -72,9 +76,16 @@ def GET(task, *args: Any):
     return code
 
 
-def I_userpage(task, unit, *args) -> None:
+def I_userpage(task, unit, *args) -> float | None:
+    """4.3 userPage(), userPage(screen), userPage(bool); s8 userPage(string sPage): shows the web
+    user page of that name (language/s8.toml), which the simulator records (R041) and answers 0."""
     machine = task.machine
     page = machine.user_page
+    if args and type(args[0]) is str:
+        machine.transcript_add(task, "userPage", args[0], None)
+        machine.note_outside(task, f'userPage("{args[0]}"): a web user page of the CS9 (s8), not simulated: '
+                                   "recorded in the transcript; its value is 0")
+        return 0.0
     if args and type(args[0]) is Screen:
         page.displayed = args[0]
         machine.transcript_add(task, "userPage", args[0].name, args[0])
@@ -126,8 +137,9 @@ def I_popupmsg(task, unit, text: str) -> None:
     task.machine.transcript_add(task, "popUpMsg", text, None)
 
 
-def I_logmsg(task, unit, text: str) -> bool:
-    """4.3 logMsg: "USR" is added before the text in the system log."""
+def I_logmsg(task, unit, text: str, level: float | None = None) -> bool:
+    """4.3 logMsg: "USR" is added before the text in the system log (s8: a level follows, as
+    language/s8.toml says; the log keeps the text)."""
     task.machine.transcript_add(task, "logMsg", "USR " + text, None)
     return True
 
@@ -174,7 +186,46 @@ def I_getdate(task, unit, fmt: str) -> str:
     return clip_string(re.sub(r"%[yYmdHIpMS]", lambda m: rep[m.group(0)], fmt))
 
 
+# ---- the web user pages of s8 (CS9 controllers, language/s8.toml) --------------------------------
+# The page itself is a web page of the controller, outside the simulation: each call goes to the
+# transcript (its kind is the instruction's name); an operator's answer the scenario cannot give
+# is the one that lets the application go on (confirmed; the text left as it is), said by R041.
+
+
+def I_userpagealert(task, unit, text: str) -> None:
+    """userPageAlert(sMessage): shows a message to the operator, as popUpMsg does."""
+    task.machine.transcript_add(task, "userPageAlert", text, None)
+
+
+def I_userpageconfirm(task, unit, text: str) -> bool:
+    """bool userPageConfirm(sMessage): the operator confirms (true)."""
+    task.machine.transcript_add(task, "userPageConfirm", text, None)
+    task.machine.note_outside(task, "userPageConfirm: the operator's answer on the web user page is not simulated: "
+                                    "true (confirmed)")
+    return True
+
+
+def I_userpageprompt(task, unit, prompt: str, pair) -> bool:
+    """bool userPagePrompt(sPrompt, string& sInput): the operator validates the text as it is (true)."""
+    task.machine.transcript_add(task, "userPagePrompt", prompt, None)
+    task.machine.note_outside(task, "userPagePrompt: the operator's text on the web user page is not simulated: the "
+                                    "text is left as it is and the value is true (validated)")
+    return True
+
+
+def I_userpageset(task, unit, text: str, used: str):
+    """userPageSet(...): its parameters are not public; the call is recorded."""
+    task.machine.transcript_add(task, "userPageSet", text, None)
+    task.machine.note_outside(task, "userPageSet: a web user page of the CS9 (s8), not simulated: recorded in the "
+                                    "transcript" + (", its value is 0" if used else ""))
+    return 0.0 if used == "num" else (False if used == "bool" else ("" if used == "string" else None))
+
+
 def register(registry) -> None:
+    for name, func in (("userPageAlert", I_userpagealert), ("userPageConfirm", I_userpageconfirm),
+                       ("userPagePrompt", I_userpageprompt)):
+        registry.instruction(name, func)
+    registry.instruction("userPageSet", I_userpageset, raw=True)
     for entry in builtins.PURE.values():  # getDisplayLen
         if entry.section.startswith("4."):
             registry.builtin(entry)

@@ -41,11 +41,15 @@ def TASKCREATE(task, unit, name: Any, prio: float, func, args: tuple, pname: str
 
 
 def TASKCREATESYNC(task, unit, name: Any, period: float, overrun, func, args: tuple, pname: str) -> None:
-    """5.10 taskCreateSync: the period is rounded down to a multiple of 4 ms; at most two
-    different periods (32)."""
-    ticks = int(period * 1_000_000 + 1e-6) // TICK_US
-    if ticks < 1:
-        raise E(70, f"period {period!r} is less than 4 ms")
+    """5.10 taskCreateSync, nPériode: "La valeur indiquée est arrondie au multiple de 4 ms
+    immédiatement inférieur (0.004 seconde). Le système accepte toutes les durées positives, mais
+    pas plus de deux durées différentes de tâches synchrones à la fois." A positive period below
+    4 ms is accepted: nothing runs more often than the 4 ms cycle, so the task runs once per
+    cycle (5.5: "séquencée exactement une fois pour chaque période"). A period that is not
+    positive is an invalid parameter (70); a third period is 32."""
+    if not period > 0:
+        raise E(70, f"period {period!r}: the period of a synchronous task must be positive")
+    ticks = max(1, int(period * 1_000_000 + 1e-6) // TICK_US)
     period_us = ticks * TICK_US
     scheduler = task.machine.scheduler
     live = {t.period for t in scheduler.tasks if t.period}

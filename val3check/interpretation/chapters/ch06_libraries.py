@@ -91,7 +91,128 @@ def I_libpath(task, unit) -> str:
     return unit.disk_path
 
 
+# ---- files of the controller's disk: the system library's `$file...` instructions ---------------
+# (virtual_disk.py: a disk in memory that the scenario fills; a public description of the CS8
+# "Expansion" add-on gives their signatures, quoted in docs/sim.md). The disk is the one chapter
+# 6 names (6.6 "Chemin d'accès": `Disk://...`); an access to it hands over to the next task (5.4:
+# "Les instructions accédant au contenu du disque"), as libLoad does.
+
+
+def _disk_said(task, what: str) -> None:
+    task.machine.transcript_add(task, "file", what, None)
+
+
+def _shown(v) -> str:
+    return f"{v:g}" if isinstance(v, float) else str(v)
+
+
+def _count(n: float, room: int) -> int:
+    return max(0, min(room, int(n) if abs(n) < 1e9 else 0))
+
+
+def S_fileopen(task, unit, path: str, mode: str):
+    """num $fileOpen(string sPath, string sMode): a handle from 0, -1 when it cannot be opened."""
+    disk = task.machine.files
+    handle = disk.open(path, mode)
+    _disk_said(task, f"$fileOpen {path} {mode} -> {handle}")
+    if handle < 0 and isinstance(mode, str) and mode.strip().lower() == "r" and not disk.exists(path):
+        # the controller's disk is the cell's: the scenario gives its files (as R009 names the entry)
+        task.machine.note_outside(task, f"$fileOpen: {path} is not on the simulated controller's disk (the scenario's "
+                                        f'[[files]] entry with path = "{path}" gives it): -1')
+    yield from YIELD(task)
+    return float(handle)
+
+
+def S_fileget(task, unit, handle: float, arr, count: float):
+    """num $fileGet(num nHandle, string& sLine[], num nNbLines) / (num nHandle, num& nBytes[], num
+    nNbBytes): reads lines (or bytes) into the array from its start; the number read: 0 at the
+    end of the file, and 0 when the handle is not open for reading (nothing read: what public
+    code that reads until 0 expects)."""
+    disk = task.machine.files
+    room = _count(count, arr.size())
+    got = disk.read_lines(handle, room) if arr.t == "string" else disk.read_bytes(handle, room)
+    yield from YIELD(task)
+    if got is None:
+        return 0.0
+    for i, v in enumerate(got):
+        arr.data[arr.off + i] = v if arr.t == "string" else float(v)
+    return float(len(got))
+
+
+def S_fileset(task, unit, handle: float, arr, count: float):
+    """num $fileSet(num nHandle, string sLines[], num nNbLines) / (num nHandle, num nBytes[], num
+    nNbBytes): writes lines (each followed by "\n") or bytes (nearest integer modulo 256); the
+    number written, -1 when the handle is not open for writing."""
+    n = _count(count, arr.size())
+    values = arr.data[arr.off:arr.off + n]
+    if arr.t == "string":
+        data = "".join(f"{v}\n" for v in values).encode("utf-8")
+    else:
+        data = bytes(int(v + 0.5) % 256 if abs(v) < 1e15 else 0 for v in values)
+    ok = task.machine.files.write(handle, data)
+    yield from YIELD(task)
+    return float(n) if ok else -1.0
+
+
+def S_fileclose(task, unit, handle: float):
+    """bool $fileClose(num nHandle): true when the handle was open."""
+    done = task.machine.files.close(handle)
+    _disk_said(task, f"$fileClose {_shown(handle)} -> {'true' if done else 'false'}")
+    yield from YIELD(task)
+    return done
+
+
+def S_fileexists(task, unit, path: str):
+    """bool $fileExists(string sPath): a file (or a folder) of the disk."""
+    yield from YIELD(task)
+    return task.machine.files.exists(path)
+
+
+def S_delete(task, unit, path: str):
+    """bool $delete(string sPath): removes a file or a folder; false when there is none, or it is
+    open."""
+    done = task.machine.files.delete(path)
+    _disk_said(task, f"$delete {path} -> {'true' if done else 'false'}")
+    yield from YIELD(task)
+    return done
+
+
+def S_ddel(task, unit, path: str):
+    """bool $ddel(string sPath): met in real code, not described: read as the deletion of a folder
+    and what it holds (R041 says so)."""
+    task.machine.note_outside(task, "$ddel: not described in public material; the simulator deletes the folder (or "
+                                    "file) of the disk it names and returns whether something was deleted")
+    return (yield from S_delete(task, unit, path))
+
+
+def S_copy(task, unit, src: str, dst: str):
+    """bool $copy(string sFrom, string sTo)."""
+    done = task.machine.files.copy(src, dst)
+    _disk_said(task, f"$copy {src} {dst} -> {'true' if done else 'false'}")
+    yield from YIELD(task)
+    return done
+
+
+def S_rename(task, unit, src: str, dst: str):
+    """bool $rename(string sFrom, string sTo): moves the file."""
+    done = task.machine.files.copy(src, dst, move=True)
+    _disk_said(task, f"$rename {src} {dst} -> {'true' if done else 'false'}")
+    yield from YIELD(task)
+    return done
+
+
+SYSTEM_FILES = (
+    ("$fileOpen", S_fileopen, ("value", "value"), "num"), ("$fileGet", S_fileget, ("value", "array", "value"), "num"),
+    ("$fileSet", S_fileset, ("value", "array", "value"), "num"), ("$fileClose", S_fileclose, ("value",), "bool"),
+    ("$fileExists", S_fileexists, ("value",), "bool"), ("$delete", S_delete, ("value",), "bool"),
+    ("$ddel", S_ddel, ("value",), "bool"), ("$copy", S_copy, ("value", "value"), "bool"),
+    ("$rename", S_rename, ("value", "value"), "bool"),
+)
+
+
 def register(registry) -> None:
+    for name, func, params, returns in SYSTEM_FILES:
+        registry.system(name, func, params, returns, blocking=True)
     # alias:libLoad(), alias:libExist() and the alias forms of the others: compiler/calls.py
     registry.inline("libLoad", "libExist", chapter=__name__)
     registry.helpers(LG=LG, LP=LP, LIBDEF=LIBDEF, I_lib=I_lib, I_lib_now=I_lib_now)

@@ -93,10 +93,87 @@ def I_setmonitorspeed(task, unit, speed: float) -> float:
 
 
 def I_getversion(task, unit, component: str) -> str:
+    """8.1 getVersion: the version of a component of the controller (controller.default_versions,
+    the scenario's [controller] versions); "" for a component it does not know, as for a licence
+    that is not installed."""
     return task.machine.controller.versions.get(component, "")
 
 
+# ---- what s8 (CS9) adds, language/s8.toml ---------------------------------------------------------
+
+
+def I_opcuaexport(task, unit, text: str, used: str):
+    """opcuaExport(...): exports data to the controller's OPC UA server; its parameters are not
+    public. The server and its clients are outside the simulation: the call is recorded."""
+    task.machine.transcript_add(task, "opcuaExport", text, None)
+    task.machine.note_outside(task, "opcuaExport: the controller's OPC UA server is not simulated: recorded in the "
+                                    "transcript")
+    return 0.0 if used == "num" else None
+
+
+def I_setsafetyrestart(task, unit) -> bool:
+    """bool setSafetyRestart(): after a safety fault (esStatus() 1: to acknowledge), restarts the
+    safety (esStatus() 0) and returns true; true when there is nothing to restart, false while the
+    emergency stop is open (2)."""
+    ctl = task.machine.controller
+    if ctl.es_status == 2:
+        return False
+    ctl.es_status = 0
+    return True
+
+
+def I_hascpuextpowersupply(task, unit) -> bool:
+    """bool hasCpuExtPowerSupply(): the CPU's external 24 V supply is there (a cell that works)."""
+    return True
+
+
+def I_wakeuprobot(task, unit) -> float:
+    """num wakeUpRobot(): 0, done (the simulated arm never loses its supply)."""
+    return 0.0
+
+
+def I_getsaferefstatus(task, unit) -> float:
+    """num getSafeRefStatus(): the safe referencing of the arm is not simulated: 0, with R041."""
+    task.machine.note_outside(task, "getSafeRefStatus: the safe referencing of the arm is not simulated: its value "
+                                    "is 0")
+    return 0.0
+
+
+# ---- the controller's recorder, system library ($rec..., a public description of the CS8
+# "Expansion" add-on): the recorder samples data to a file for analysis; outside the simulation,
+# each call is recorded in the transcript (kind "recorder") and said once per line (R041).
+
+
+def _recorder(name: str):
+    def S_rec(task, unit, *args):
+        task.machine.transcript_add(task, "recorder", f"{name}({', '.join(_shown(a) for a in args)})", None)
+        task.machine.note_outside(task, f"{name}: the controller's recorder is not simulated: recorded in the "
+                                        "transcript")
+    S_rec.__name__ = "S_" + name[1:].lower()
+    return S_rec
+
+
+def _shown(v) -> str:
+    return f'"{v}"' if isinstance(v, str) else f"{v:g}" if isinstance(v, float) else str(v)
+
+
+RECORDER = (("$recClean", ("value",)), ("$recAdd", ("value", "value")), ("$recSize", ("value", "value")),
+            ("$recStart", ("value", "value", "value")), ("$recStop", ("value",)), ("$recStore", ("value", "value")))
+
+
+def S_getcycletime(task, unit) -> float:
+    """num $getCycleTime(): the period of the controller's cycle, 0.004 s (the 4 ms of 5.4-5.5)."""
+    return 0.004
+
+
 def register(registry) -> None:
+    for name, params in RECORDER:
+        registry.system(name, _recorder(name), params, "void")
+    registry.system("$getCycleTime", S_getcycletime, (), "num")
+    registry.instruction("opcuaExport", I_opcuaexport, raw=True)
+    for name, func in (("setSafetyRestart", I_setsafetyrestart), ("hasCpuExtPowerSupply", I_hascpuextpowersupply),
+                       ("wakeUpRobot", I_wakeuprobot), ("getSafeRefStatus", I_getsaferefstatus)):
+        registry.instruction(name, func)
     for name, func in (("enablePower", I_enablepower), ("isPowered", I_ispowered), ("isCalibrated", I_iscalibrated),
                        ("workingMode", I_workingmode), ("esStatus", I_esstatus), ("safetyFault", I_safetyfault),
                        ("ioBusStatus", I_iobusstatus), ("getMonitorSpeed", I_getmonitorspeed),

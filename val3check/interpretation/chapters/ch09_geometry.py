@@ -329,7 +329,31 @@ def I_close(task, unit, tool: Tool):
     yield from _tool_action(task, unit, tool, "close", False, tool.ctime)
 
 
+# ---- what s8 (CS9) adds, language/s8.toml ---------------------------------------------------------
+
+
+def I_getjntref(task, unit, name: str) -> dict:
+    """joint getJntRef(sName): a joint reference of the arm's configuration (arm.cfx
+    <JntReferences>), which the simulator does not read: the arm's position at the start of the
+    run (the scenario's [robot] joints), with R041."""
+    arm = task.machine.arm
+    task.machine.note_outside(task, f'getJntRef("{name}"): the arm configuration\'s joint references are not read: '
+                                    "the value is the arm's position at the start of the run")
+    j = tuple(arm.initial_joints) if arm.has_model else (0.0,) * 6
+    return jd(j)
+
+
+def I_setpayload(task, unit, tool, mass: float, center, inertia) -> None:
+    """setPayload(tool, nMass, trCenter, nInertia[]): the payload carried by a tool; the
+    simulated motion does not depend on masses (docs/motion.md): recorded, with R041."""
+    task.machine.transcript_add(task, "setPayload", f"{getattr(tool, 'name', '') or 'tool'}: {mass:g} kg", None)
+    task.machine.note_outside(task, "setPayload: the simulated motion does not depend on the payload: recorded in the "
+                                    "transcript")
+
+
 def register(registry) -> None:
+    registry.instruction("getJntRef", I_getjntref)
+    registry.instruction("setPayload", I_setpayload)
     registry.helpers(TRSF=TRSF, FRAMELIT=FRAMELIT, TOOLLIT=TOOLLIT, POINTLIT=POINTLIT, NASG=NASG, NSET=NSET,
                      TINV=TINV, CPL=copy_local, JADD=JADD, JSUB=JSUB, JGT=JGT, JLT=JLT, JEQ=JEQ, JNE=JNE, JABS=JABS)
     for name, func in (("herej", I_herej), ("isInRange", I_isinrange), ("distance", I_distance),

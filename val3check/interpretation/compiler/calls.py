@@ -13,7 +13,9 @@ from __future__ import annotations
 from ...language import lookup
 from ...parsing import ast
 from ..not_simulated import ARM_LIMIT
+from ..registry import system_symbol
 from ..values import ENUM_CONSTANTS
+from .overloads import overloads_with_arity
 from .structures import UNKNOWN, Code, CompileError, VariableArg
 
 # Functions whose value changes with time alone: a wait on them cannot be skipped over by
@@ -21,6 +23,14 @@ from .structures import UNKNOWN, Code, CompileError, VariableArg
 # The arm's position and progress change continuously while it moves (chapter 10): a wait on
 # `getMoveId() >= 15.8` is evaluated every cycle, as on the controller.
 TIME_DEPENDENT = frozenset({"clock", "getdate", "watch", "getmoveid", "herej", "here", "getspeed", "issettled"})
+
+# What a wait condition may read of the cell besides inputs (the deadlock report's R009, which
+# names the scenario entry): the operator's keys (4.3), the controller's state (chapter 8, 4.3)
+# by the [controller] key that sets it.
+KEY_READS = frozenset({"getkey", "iskeypressed"})
+STATE_READS = {"esstatus": "es_status", "ispowered": "powered", "workingmode": "working_mode",
+               "getmonitorspeed": "monitor_speed", "iscalibrated": "calibrated", "safetyfault": "safety_fault",
+               "getprofile": "profile", "getlanguage": "language"}
 
 # Instructions the compiler writes itself (registered as inline by their chapter module).
 INLINE_FORMS = {
@@ -38,15 +48,17 @@ INLINE_FORMS = {
 class CallCompiler:
     """The calls part of `ProgramCompiler` (program.py)."""
 
-    def call_expr(self, node: ast.CallExpr) -> Code:
+    def call_expr(self, node: ast.CallExpr, want: str | None = None) -> Code:
         """A call of an instruction, as the registry says it is simulated: an inline form the
         compiler writes itself, a handler, a pure built-in, or (a catalogue instruction nothing
         simulates) the not-simulated stop, whose arguments are not evaluated (they could
-        block)."""
+        block). `want`: the type the value is used as (a `$` call's value)."""
         func = node.func
         if type(func) is ast.SystemName:
-            return Code(f"NOTSIM({func.name!r})", UNKNOWN)
+            return self.system_call(node, func.name, want)
         if type(func) is ast.LibraryName:
+            if func.name.startswith("$"):  # `lib:$name()`: a system instruction reached through a library
+                return self.system_call(node, f"{func.alias}:{func.name}", want)
             return self.lib_instruction(node)
         name = func.name
         low = name.lower()
@@ -77,8 +89,7 @@ class CallCompiler:
         return rets.pop() if len(rets) == 1 else UNKNOWN
 
     def _overload(self, name: str, node):
-        ins = lookup(name)
-        ovs = ins.overloads_with_arity(len(node.args)) if ins else []
+        ovs = overloads_with_arity(name, len(node.args))
         if not ovs:
             raise self.err(f"{name}: no form takes {len(node.args)} argument(s)", node)
         if len(ovs) == 1:
@@ -144,7 +155,13 @@ class CallCompiler:
         return c
 
     def handler_call(self, node, handler) -> Code:
-        """`I_name(T, A, args...)`, with `yield from` for a blocking handler."""
+        """`I_name(T, A, args...)`, with `yield from` for a blocking handler. A `raw` handler (an
+        s8 instruction whose parameters are not public) gets the call's text instead, its
+        arguments not evaluated, and the type its value is used as."""
+        if handler.raw:
+            used = "" if node is self.statement_call else (self.semantic_type(node) or "num")
+            call = f"I_{handler.name}(T, A, {self.source_line(node)!r}, {used!r})"
+            return Code(f"(yield from {call})" if handler.blocking else call, used or "void")
         ov = self._overload(handler.name, node)
         args = self.args_for(node, ov.params)
         call = f"I_{handler.name}(T, A{''.join(', ' + x for x in args)})"
@@ -168,6 +185,42 @@ class CallCompiler:
         if not b.outputs and not any(p.endswith("[]") for p in b.params):
             return Code(f"B_{low}({', '.join(args)})", b.returns)
         return Code(f"BREF(B_{low}{''.join(', ' + x for x in args)})", b.returns)
+
+    def system_call(self, node: ast.CallExpr, name: str, want: str | None) -> Code:
+        """A `$name()` instruction of the system library: its handler with the arguments compiled
+        as it says (registry.SystemHandler); one nothing runs goes on with an info (R041) and,
+        when its value is used, the default value of the type it is used as."""
+        h = self.registry.system_handler(name)
+        value_unknown = h is not None and h.returns == "void" and node is not self.statement_call
+        if h is not None and len(node.args) == len(h.params) and not value_unknown:
+            args = []
+            for a, how in zip(node.args, h.params):
+                if how == "array":
+                    args.append(self.container_arg(a))
+                elif how == "ref":
+                    args.append(self.ref_arg(a))
+                else:
+                    args.append(self.expr(a).text)
+            call = f"{system_symbol(h.name)}(T, A{''.join(', ' + x for x in args)})"
+            return Code(f"(yield from {call})" if h.blocking else call, h.returns)
+        used = "" if node is self.statement_call else (want if want and want != UNKNOWN else "num")
+        if used not in ("", "num", "bool", "string"):
+            raise self.err(f"system instruction {name}: its value cannot be a {used} here (not simulated)", node)
+        why = "" if h is None else ("its value, here used, is not known" if value_unknown
+                                    else f"the simulator runs its form of {len(h.params)} argument(s)")
+        return Code(f"SYSTEM(T, {name!r}, {self.source_line(node)!r}, {used!r}, {why!r})", used or "void")
+
+    def source_line(self, node) -> str:
+        """The program line of `node`, as written (at most 80 characters): what the reports say
+        a task waits in, or an instruction the transcript records."""
+        code = self.program.code or ""
+        cmap = self.program.code_map
+        text = ""
+        for k, line in enumerate(code.split("\n"), 1):
+            if cmap.to_file(k, 1).line == node.line:
+                text = line.strip()
+                break
+        return text if len(text) <= 80 else text[:77] + "..."
 
     def lib_instruction(self, node: ast.CallExpr) -> tuple[str, str]:
         alias, name = node.func.alias, node.func.name
@@ -291,34 +344,53 @@ class CallCompiler:
 
     def i_wait(self, node):
         fn, tdep = self._cond_lambda(node.args[0])
-        what, hint = self._wait_words(node)
-        return Code(f"(yield from WAIT(T, {fn}, {tdep}, {what!r}, {hint!r}))", "void")
+        what, hint, reads = self._wait_words(node)
+        return Code(f"(yield from WAIT(T, {fn}, {tdep}, {what!r}, {hint!r}, frozenset({sorted(reads)!r})))", "void")
 
-    def _wait_words(self, node) -> tuple[str, str]:
-        """What a wait waits for, in the program's words (its line, for the deadlock report,
-        R003), and which inputs of the condition a scenario could set."""
-        code = self.program.code or ""
-        text = "wait"
-        cmap = self.program.code_map
-        for k, line in enumerate(code.split("\n"), 1):
-            if cmap.to_file(k, 1).line == node.line:
-                text = line.strip()
-                break
-        if len(text) > 80:
-            text = text[:77] + "..."
-        names = []
+    def _wait_words(self, node) -> tuple[str, str, set[str]]:
+        """What a wait waits for, in the program's words (its line, for the deadlock report),
+        which part of the cell could make its condition true, with the scenario entry that plays
+        it (inputs, keys, the controller's state: docs/scenario.md), and the globals it reads
+        (interpretation/deadlock.py)."""
+        text = self.source_line(node) or "wait"
+        inputs: list[str] = []
+        reads: set[str] = set()
+        keys: list[str] = []
+        state: dict[str, str] = {}
         for n in ast.walk(node.args[0]):
-            if type(n) in (ast.Name, ast.LibraryName):
-                try:
-                    v = self.var_of(n)
-                except CompileError:
-                    v = None
-                if v is not None and v.t in ("dio", "aio") and v.store in ("g", "lib") and n.name not in names:
-                    names.append(n.name if type(n) is ast.Name else f"{n.alias}:{n.name}")
-        hint = ""
-        if names:
-            hint = f"the scenario can set {', '.join(names)}: [inputs] or [[events]] (docs/scenario.md)"
-        return text, hint
+            tn = type(n)
+            if tn is ast.CallExpr and type(n.func) is ast.Name:
+                low = n.func.name.lower()
+                if low in KEY_READS and n.func.name not in keys:
+                    keys.append(n.func.name)
+                elif low in STATE_READS:
+                    state.setdefault(STATE_READS[low], n.func.name)
+            if tn not in (ast.Name, ast.LibraryName):
+                continue
+            try:
+                v = self.var_of(n)
+            except CompileError:
+                v = None
+            if v is None or v.store in ("py", "box"):
+                continue  # a local: only this task changes it
+            if v.store not in ("g", "lib"):
+                reads.add("?")  # a parameter by reference: whose global is not known here
+                continue
+            label = n.name if tn is ast.Name else f"{n.alias}:{n.name}"
+            reads.add(label)
+            if v.t in ("dio", "aio") and label not in inputs:
+                inputs.append(label)
+        hints = []
+        if inputs:
+            hints.append(f"the scenario can set {', '.join(inputs)}: [inputs] or [[events]] (docs/scenario.md)")
+        if keys:
+            hints.append(f"{', '.join(k + '()' for k in keys)} reads the operator's keys: the scenario's [[keys]] "
+                         "(docs/scenario.md)")
+        if state:
+            fields = ", ".join(f"{k} ({f}())" for k, f in state.items())
+            hints.append(f"the controller's state, {fields}: the scenario's [controller] table or its changes = "
+                         f"[{{ at = ..., {next(iter(state))} = ... }}] (docs/scenario.md)")
+        return text, "; ".join(hints), reads
 
     def i_watch(self, node):
         fn, tdep = self._cond_lambda(node.args[0])
@@ -326,7 +398,17 @@ class CallCompiler:
         return Code(f"(yield from WATCH(T, {fn}, {secs}, {tdep}))", "bool")
 
     def i_setmutex(self, node):
-        return Code(f"(yield from SETMUTEX(T, {self.ref_arg(node.args[0])}))", "void")
+        a = node.args[0]
+        base = a.base if type(a) is ast.Index else a
+        name = ""
+        if type(base) in (ast.Name, ast.LibraryName):
+            try:
+                v = self.var_of(base)
+            except CompileError:
+                v = None
+            if v is not None and v.store in ("g", "lib"):
+                name = base.name if type(base) is ast.Name else f"{base.alias}:{base.name}"
+        return Code(f"(yield from SETMUTEX(T, {self.ref_arg(a)}, {name!r}))", "void")
 
     def i_put(self, node):
         return self._page(node, "put")

@@ -88,7 +88,7 @@ class ExpressionCompiler:
         if tn is ast.Field:
             return self.field_expr(node)
         if tn is ast.CallExpr:
-            return self.call_expr(node)
+            return self.call_expr(node, want)
         if tn is ast.Unary:
             code, t = self.expr(node.operand)
             if t == "aio":  # an aio read as a num (3.6.2)

@@ -19,6 +19,7 @@ from ...loading.types import base_type
 from ..memory import TypeSpace
 from .calls import CallCompiler
 from .expressions import ExpressionCompiler
+from .legacy import effective_parameters
 from .statements import StatementCompiler
 from .structures import Compiled, CompileError, VarInfo
 from .variables import CALL_BYTES, VariableCompiler
@@ -53,6 +54,7 @@ class ProgramCompiler(StatementCompiler, CallCompiler, ExpressionCompiler, Varia
         self.ctx: tuple[int, int, int] | None = None
         self.bpos: dict[int, tuple[int, int, int] | None] = {}
         self.sw_flags: list[str] = []
+        self.statement_call = None  # the call of the statement being compiled, when it is one
         self.loops: list = []  # structures.LoopSite (statements.py: loop_start, loop_end)
 
     # ---- output -------------------------------------------------------------------------------
@@ -198,7 +200,7 @@ def compile_program(unit, program: Program, namespace: dict) -> Compiled:
 
 def _failing(unit, program: Program, exc: CompileError, namespace: dict) -> Compiled:
     params = []
-    for p in program.parameters:
+    for p in effective_parameters(unit.model, program, unit.machine.legacy_arrays(unit.model)):
         if p.container is Container.ELEMENT and p.by_reference:
             params += [f"c_{p.name}", f"k_{p.name}"]
         else:

@@ -155,7 +155,11 @@ class StatementCompiler:
                 self.guarded(code.split("\n"), True)
             elif ts is ast.ExprStatement:
                 self.line()
-                code, _ = self.expr(s.call)
+                self.statement_call = s.call  # its value is not used (a `$` call, a raw handler)
+                try:
+                    code, _ = self.expr(s.call)
+                finally:
+                    self.statement_call = None
                 self.guarded([code], True)
             elif ts is ast.Call:
                 self.line()

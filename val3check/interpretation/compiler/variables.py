@@ -12,12 +12,13 @@ or addresses it.
 
 from __future__ import annotations
 
-from ...language import lookup
 from ...loading.model import Application, Container, Program
 from ...loading.types import base_type
 from ...parsing import ast
 from ..memory import TypeSpace
 from ..values import FIELD_NAMES, STRUCT_FIELDS
+from .legacy import effective_parameters
+from .overloads import overloads_with_arity
 from .structures import FieldInfo, VarInfo
 
 # Estimated execution memory (2.1.4.2: 5000 bytes per task by default). The manual gives no
@@ -69,13 +70,18 @@ class VariableCompiler:
                     boxed.add(node.overrun.name)
             elif isinstance(node, ast.CallExpr) and isinstance(node.func, ast.Name):
                 args = node.args
-                ins = lookup(node.func.name)
-                if ins is not None:
-                    ov = [o for o in ins.overloads if o.accepts_arity(len(args))]
+                ov = overloads_with_arity(node.func.name, len(args))
+                if ov:
                     ref_flags = [any(i < len(o.params) and (o.params[i].ref or o.params[i].variable) for o in ov)
                                  for i in range(len(args))]
                     arrayed.update(a.name for i, a in enumerate(args) if isinstance(a, ast.Name) and any(
                         i < len(o.params) and o.params[i].container == "array" for o in ov))
+            elif isinstance(node, ast.CallExpr) and isinstance(node.func, ast.SystemName):
+                args = node.args
+                h = self.registry.system_handler(node.func.name)
+                if h is not None and len(h.params) == len(args):
+                    ref_flags = [how == "ref" for how in h.params]
+                    arrayed.update(a.name for a, how in zip(args, h.params) if isinstance(a, ast.Name) and how == "array")
             elif isinstance(node, (ast.For,)):
                 continue
             if args:
@@ -85,16 +91,21 @@ class VariableCompiler:
         return boxed
 
     def _callee_params(self, target) -> list | None:
+        """The parameters of a called program as the simulator binds them (an s6 reference
+        parameter used as an array is an array reference: legacy.py)."""
         if isinstance(target, ast.Name):
             prog = self._program(target.name)
-            return prog.parameters if prog else None
+            return self._params_of(self.app, prog) if prog else None
         if isinstance(target, ast.LibraryName):
             lib = self._lib_model(target.alias)
             if lib is None:
                 return None
             prog = lib.programs.get(target.name)
-            return prog.parameters if prog else None
+            return self._params_of(lib, prog) if prog else None
         return None
+
+    def _params_of(self, app: Application, prog: Program) -> list:
+        return effective_parameters(app, prog, self.unit.machine.legacy_arrays(app))
 
     def _program(self, name: str) -> Program | None:
         p = self.app.programs.get(name)
@@ -112,7 +123,7 @@ class VariableCompiler:
         indexed = {n.base.name for n in ast.walk(prog.body) if isinstance(n, ast.Index) and isinstance(n.base, ast.Name)} if prog.body else set()
         indexed |= self.arrayed
         slot = 0
-        for p in prog.parameters:
+        for p in self._params_of(self.app, prog):
             t = base_type(p.type)
             if p.container is Container.ELEMENT:
                 if p.by_reference:

@@ -19,6 +19,7 @@ The cell and the per-motion clearance come from the collision checks when the ru
 from __future__ import annotations
 
 import statistics
+from itertools import pairwise
 from pathlib import Path
 from typing import Any
 
@@ -95,32 +96,51 @@ def _obstacle_of(a: str, b: str) -> str:
 
 
 def _cycles(report: Any, m: Any, end: float) -> tuple[list[dict], dict | None]:
-    """Each looping task's iterations, and the cycle time of the verdict (the task with the most
-    complete cycles)."""
-    cycles = []
+    """Each looping task's iterations, and the cycle time of the verdict (cycles_model)."""
+    loops = []
     for task in sorted(m.cycles):
         st = m.cycles[task]
         if st.marker is None or not st.starts:
             continue
         where = report.display((st.marker[0], st.marker[1], st.marker[2], ""))
-        its = [{"start": _r(a), "duration": _r(b - a), "complete": True} for a, b in zip(st.starts, st.starts[1:])]
-        if st.starts[-1] < end:
-            its.append({"start": _r(st.starts[-1]), "duration": _r(end - st.starts[-1]), "complete": False})
-        cycles.append({"task": task, "path": where[0], "line": st.marker[1],
-                       "label": f"{st.kind} loop at line {st.marker[1]} of {Path(where[0]).name}", "iterations": its})
-    from ...simulation.arm_record import main_cycle
-
-    cycle_time = None
-    st = main_cycle(m.cycles)
-    if st is not None:
-        where = report.display((st.marker[0], st.marker[1], st.marker[2], ""))
-        cycle_time = {"seconds": _r(statistics.median(st.times)), "task": st.task,
-                      "basis": f"median of {st.count} complete cycles of task {st.task} (the {st.kind} loop at line "
-                               f"{st.marker[1]} of {Path(where[0]).name})"}
-        spread = m.acceleration_range.cycle_time(st.task) if m.acceleration_range is not None else None
+        loops.append({"task": task, "loop": st.kind, "path": where[0], "line": st.marker[1],
+                      "starts": list(st.starts)})
+    cycles, cycle_time = cycles_model(loops, end)
+    if cycle_time is not None and m.acceleration_range is not None:
+        spread = m.acceleration_range.cycle_time(cycle_time["task"])
         if spread is not None:  # issue 23: the model assumes the accelerations
             cycle_time["range"] = [_r(spread[0]), _r(spread[1])]
             cycle_time["off_by"] = m.acceleration_range.off_by
+    return cycles, cycle_time
+
+
+def cycles_model(loops: list[dict], end: float) -> tuple[list[dict], dict | None]:
+    """The page's cycles and the verdict's cycle time, from each looping task's `task`, `loop`
+    (while, do, for), `path` and `line` of its cycle's loop statement and `starts` (when the arm
+    started each pass; and `times` between them, when given): the iterations (the last one cut by
+    the end of the run), and the median of the task with the most complete cycles (ties: the
+    first task by name, as simulation.arm_record.main_cycle)."""
+    cycles, best = [], None
+    for loop in sorted(loops, key=lambda c: c["task"]):
+        starts = loop["starts"]
+        if not starts or loop.get("path") is None or loop.get("line") is None:
+            continue
+        name = Path(loop["path"]).name
+        times = loop.get("times") or [b - a for a, b in pairwise(starts)]
+        its = [{"start": _r(a), "duration": _r(d), "complete": True} for a, d in zip(starts, times)]
+        if starts[-1] < end:
+            its.append({"start": _r(starts[-1]), "duration": _r(end - starts[-1]), "complete": False})
+        what = f"{loop['loop']} loop" if loop.get("loop") else "loop"
+        cycles.append({"task": loop["task"], "path": loop["path"], "line": loop["line"],
+                       "label": f"{what} at line {loop['line']} of {name}", "iterations": its})
+        if times and (best is None or len(times) > len(best[1])):
+            best = (loop, times, what, name)
+    cycle_time = None
+    if best is not None:
+        loop, times, what, name = best
+        cycle_time = {"seconds": _r(statistics.median(times)), "task": loop["task"],
+                      "basis": f"median of {len(times)} complete cycles of task {loop['task']} (the {what} at "
+                               f"line {loop['line']} of {name})"}
     return cycles, cycle_time
 
 
@@ -219,53 +239,134 @@ def _shape_solid(name: str, shape: Any, pose, limits: list[str]) -> dict:
     return s
 
 
+def _track(changes) -> dict:
+    """A frame or tool variable over the run, as changes: {"times", "poses"} (null: no value)."""
+    return {"times": [_r(c.time) for c in changes],
+            "poses": [None if c.matrix is None else _m34(c.matrix) for c in changes]}
+
+
+def _tracks(m: Any, cell: Any, limits: list[str]) -> dict:
+    """The frames obstacles hang on and the tools tool solids hang on, over the run: as the
+    collision checks placed them (`m.cell_timeline`), else as the run left them (said)."""
+    timeline = m.cell_timeline
+    wanted = {o.frame.replace(" ", ""): "frame" for o in cell.obstacles if o.frame != "world"}
+    wanted.update({t.tool.replace(" ", ""): "tool" for t in cell.tools if t.tool != "flange"})
+    out = {}
+    end_of_run = []
+    for name, kind in sorted(wanted.items()):
+        changes = None if timeline is None else (timeline.frames if kind == "frame" else timeline.tools).get(name)
+        if changes:
+            out[name] = _track(changes)
+            continue
+        if timeline is None and kind == "frame":
+            end_of_run.append(name)
+        f = m.scene.frames.get(name)
+        out[name] = {"times": [0.0], "poses": [None if f is None else _m34(f.matrix)]}
+    if end_of_run:
+        limits.append("The collision checks did not run: obstacles placed in application frames are drawn where "
+                      "those frames are at the end of the run.")
+    return out
+
+
+def _parts(m: Any, cell: Any, limits: list[str]) -> list[dict]:
+    """The cell's parts, each with its solids (in the part's frame) and its spans: carried on the
+    flange or left in the cell, from the collision checks (`m.cell_timeline`)."""
+    if not cell.parts:
+        return []
+    if m.cell_timeline is None:
+        limits.append("The collision checks did not run: the parts of the cell file (what the tool carries) are "
+                      "not drawn.")
+        return []
+    out: dict[str, dict] = {}
+    for p in cell.parts:
+        part = out.setdefault(p.name, {"name": p.name, "solids": [], "spans": []})
+        part["solids"].append(_shape_solid(p.name, p.shape, p.pose, limits))
+    for span in m.cell_timeline.parts:
+        out[span.name]["spans"].append({"start": _r(span.start), "end": _r(span.end), "carried": span.carried,
+                                        "pose": _m34(span.pose)})
+    return [p for p in out.values() if p["spans"]]
+
+
 def _scene(result: Any, m: Any, cell: Any, limits: list[str]) -> dict:
-    """The 3D view: the arm's chain at its initial joints, the tool most motions use (its TCP, its
-    solids from the cell file), the cell's obstacles."""
+    """The 3D view of a run (scene_model), with the frames and tools the cell hangs on, and the
+    parts, over the run."""
+    uses = [(motion.tool, motion.tool_in_flange) for motion in m.motions
+            if motion.kind != "connection" and motion.tool_in_flange is not None and motion.tool]
+    tracks = _tracks(m, cell, limits) if cell is not None else None
+    parts = _parts(m, cell, limits) if cell is not None else None
+    return scene_model(m.scene.kinematics.chain(), m.scene.initial_joints or [0.0] * m.scene.axes,
+                       {name: f.matrix for name, f in m.scene.frames.items()}, uses, cell, limits,
+                       tracks=tracks, parts=parts)
+
+
+UNDEFINED_FRAME = "which the run did not define"
+
+
+def _static_tracks(cell: Any, frames: dict, tool_uses: list) -> dict:
+    """Tracks for a report that records one value per frame or tool (a JSON sim report): each at
+    that value from the start (null when it has none)."""
     import numpy as np
 
-    scene: dict[str, Any] = {"arm": None, "tool": None, "obstacles": []}
-    frames = {name: f.matrix for name, f in m.scene.frames.items()}
-    scene["arm"] = m.scene.kinematics.chain()
-    scene["joints"] = [_r(x) for x in m.scene.initial_joints or [0.0] * m.scene.axes]
+    tcp = dict(tool_uses)
+    wanted = {o.frame.replace(" ", ""): "frame" for o in cell.obstacles if o.frame != "world"}
+    wanted.update({t.tool.replace(" ", ""): "tool" for t in cell.tools if t.tool != "flange"})
+    out = {}
+    for name, kind in sorted(wanted.items()):
+        M = frames.get(name)
+        if M is None and kind == "tool":
+            M = tcp.get(name)
+        out[name] = {"times": [0.0], "poses": [None if M is None else _m34(np.asarray(M, dtype=float))]}
+    return out
+
+
+def scene_model(chain: dict, joints, frames: dict, tool_uses: list, cell: Any, limits: list[str],
+                undefined: str = UNDEFINED_FRAME, tracks: dict | None = None, parts: list | None = None) -> dict:
+    """The 3D view: the arm's `chain` at `joints`, the tool most motions use (`tool_uses`: (tool
+    name, its TCP in the flange, 4x4) per motion; its solids from the cell file), the cell's
+    obstacles and parts. `tracks`: the frames and tools the cell's solids hang on over the run
+    (from_run._tracks); None: their one value in `frames` (application frames and tools by name,
+    4x4). A solid placed in a frame without a value is not drawn, and `limits` says why
+    (`undefined`). `parts`: the parts' spans (from_run._parts); None: not known, not drawn (said)."""
+    import numpy as np
+
+    scene: dict[str, Any] = {"arm": chain, "tool": None, "obstacles": [], "joints": [_r(x) for x in joints]}
+    if cell is not None and tracks is None:
+        tracks = _static_tracks(cell, frames, tool_uses)
     # the tool: the one the motions use most (the page draws one tool)
     counts: dict[str, int] = {}
     tcp: dict[str, Any] = {}
-    for motion in m.motions:
-        if motion.kind != "connection" and motion.tool_in_flange is not None and motion.tool:
-            counts[motion.tool] = counts.get(motion.tool, 0) + 1
-            tcp.setdefault(motion.tool, motion.tool_in_flange)
+    for name, matrix in tool_uses:
+        counts[name] = counts.get(name, 0) + 1
+        tcp.setdefault(name, matrix)
     if counts:
         name = max(sorted(counts), key=counts.get)
         solids = []
-        if cell is not None:  # a tool solid sits in its tool variable's frame; the page's in the flange
+        if cell is not None:  # a tool solid sits in its tool variable's frame (a track in the flange)
             for ts in cell.tools:
-                base = np.eye(4) if ts.tool == "flange" else frames.get(ts.tool)
-                if base is None and ts.tool == name:
-                    base = np.asarray(tcp[name], dtype=float)
-                if base is None:
-                    limits.append(f"The tool solid {ts.name!r} hangs on {ts.tool}, which the run did not define: "
-                                  "not drawn.")
-                    continue
-                solids.append(_shape_solid(ts.name, ts.shape, base @ ts.pose, limits))
-            if cell.parts:
-                limits.append("The parts of the cell file (what the tool carries) are not drawn.")
+                solid = _shape_solid(ts.name, ts.shape, ts.pose, limits)
+                if ts.tool != "flange":
+                    key = ts.tool.replace(" ", "")
+                    if all(p is None for p in tracks[key]["poses"]):
+                        limits.append(f"The tool solid {ts.name!r} hangs on {ts.tool}, {undefined}: not drawn.")
+                        continue
+                    solid["track"] = key
+                solids.append(solid)
         scene["tool"] = {"name": name, "tcp": _m34(np.asarray(tcp[name], dtype=float)), "solids": solids}
     if cell is not None:
         for ob in cell.obstacles:
-            if ob.frame == "world":
-                place = np.eye(4)
-            else:
+            solid = _shape_solid(ob.name, ob.shape, ob.pose, limits)
+            if ob.frame != "world":
                 key = ob.frame.replace(" ", "")
-                place = frames.get(key)
-                if place is None:
-                    limits.append(f"The obstacle {ob.name!r} is placed in {ob.frame}, which the run did not define: "
-                                  "not drawn.")
+                if all(p is None for p in tracks[key]["poses"]):
+                    limits.append(f"The obstacle {ob.name!r} is placed in {ob.frame}, {undefined}: not drawn.")
                     continue
-            scene["obstacles"].append(_shape_solid(ob.name, ob.shape, place @ ob.pose, limits))
-        if cell.frames():
-            limits.append("Obstacles placed in application frames are drawn where those frames are at the end of "
-                          "the run.")
+                solid["track"] = key
+            scene["obstacles"].append(solid)
+        if parts is None and cell.parts:
+            limits.append("The parts of the cell file (what the tool carries) are not drawn: the report does not "
+                          "record when they are taken and left.")
+        scene["parts"] = parts or []
+        scene["tracks"] = tracks
     return scene
 
 

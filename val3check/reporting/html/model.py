@@ -1,7 +1,7 @@
 """The report model: everything the HTML page shows, as one plain JSON-able dict.
 
 Documented in docs/html-report.md (with a JSON Schema, docs/html-report.schema.json). It is
-built from a run (later: the sim's JSON report plus the arm model), or by `synthetic.py` for
+built from a run (later: the sim's JSON report plus the arm model), or by `tests/synthetic_run.py` for
 tests and the demo; `page.render` turns it into the page. `check_model` gives a clear message
 for a model that the page could not show, instead of a broken page.
 """
@@ -124,6 +124,47 @@ def _check_arm(arm: Any, where: str, njoints: int | None) -> None:
             _solid(s, f"{where}.links[{i}].solids[{k}]")
 
 
+def _check_tracks(scene: dict) -> None:
+    """`scene.tracks` ({name: {"times", "poses"}}) and the solids that hang on them."""
+    tracks = _dict(scene.get("tracks") or {}, "scene.tracks")
+    for name, tr in tracks.items():
+        w = f"scene.tracks[{name!r}]"
+        _dict(tr, w, ("times", "poses"))
+        times, poses = _list(tr["times"], f"{w}.times"), _list(tr["poses"], f"{w}.poses")
+        if not times or len(poses) != len(times):
+            _fail(w, "one pose (or null) per time is expected, at least one")
+        for k, t in enumerate(times):
+            _num(t, f"{w}.times[{k}]")
+            if k and t < times[k - 1]:
+                _fail(f"{w}.times[{k}]", "times must not decrease")
+        for k, p in enumerate(poses):
+            if p is not None:
+                _matrix(p, f"{w}.poses[{k}]")
+    solids = [(f"scene.obstacles[{k}]", s) for k, s in enumerate(scene.get("obstacles") or [])]
+    if scene.get("tool") is not None:
+        solids += [(f"scene.tool.solids[{k}]", s) for k, s in enumerate(scene["tool"]["solids"])]
+    for where, s in solids:
+        if s.get("track") is not None and s["track"] not in tracks:
+            _fail(f"{where}.track", f"{s['track']!r} is not in scene.tracks")
+
+
+def _check_part(part: Any, where: str) -> None:
+    """A part of the cell: its solids (in the part's frame) and its spans (carried or left)."""
+    _dict(part, where, ("name", "solids", "spans"))
+    for k, s in enumerate(_list(part["solids"], f"{where}.solids")):
+        _solid(s, f"{where}.solids[{k}]")
+    for k, span in enumerate(_list(part["spans"], f"{where}.spans")):
+        w = f"{where}.spans[{k}]"
+        _dict(span, w, ("start", "end", "carried", "pose"))
+        _num(span["start"], f"{w}.start")
+        _num(span["end"], f"{w}.end", null=True)
+        if span["end"] is not None and span["end"] < span["start"]:
+            _fail(w, "end is before start")
+        if not isinstance(span["carried"], bool):
+            _fail(f"{w}.carried", "true or false is expected")
+        _matrix(span["pose"], f"{w}.pose")
+
+
 def check_model(model: Any) -> None:
     """Raise ModelError if `model` is not a report model the page can show (docs/html-report.md)."""
     m = _dict(model, "model", ("version", "application", "verdict"))
@@ -223,6 +264,9 @@ def check_model(model: Any) -> None:
                 _solid(s, f"scene.tool.solids[{k}]")
         for k, s in enumerate(_list(scene.get("obstacles") or [], "scene.obstacles")):
             _solid(s, f"scene.obstacles[{k}]")
+        _check_tracks(scene)
+        for i, part in enumerate(_list(scene.get("parts") or [], "scene.parts")):
+            _check_part(part, f"scene.parts[{i}]")
         if scene.get("joints") is not None:
             for k, x in enumerate(_list(scene["joints"], "scene.joints")):
                 _num(x, f"scene.joints[{k}]")

@@ -201,7 +201,7 @@ def _motions(m: dict) -> str:
                 clearance += f' <span class="muted">{_e(mo["clearance_to"])}</span>'
             rows.append(
                 f'<tr><td class="n">{_time_button(mo["start"], mo["end"], str(mo["id"]), True)}</td>'
-                f'<td class="n">{_e(mo.get("line") or "–")}</td><td>{_e(mo.get("task") or "")}</td>'
+                f'<td class="nw">{_source(mo)}</td><td>{_e(mo.get("task") or "")}</td>'
                 f'<td><code>{_e(mo["kind"])}</code></td><td>{_e(mo.get("target") or "")}</td>'
                 f'<td class="n">{mo["start"]:.3f}</td><td class="n">{mo["end"]:.3f}</td>'
                 f'<td class="n">{(mo["end"] - mo["start"]) if mo.get("duration") is None else mo["duration"]:.3f}</td>'
@@ -209,11 +209,21 @@ def _motions(m: dict) -> str:
                 f'<td class="n">{clearance}</td></tr>')
         body = (f'<p>{summary}. The number zooms the timelines on the motion.</p>'
                 '<div class="scroll tall"><table class="data motions"><thead><tr>'
-                '<th scope="col">#</th><th scope="col">line</th><th scope="col">task</th><th scope="col">kind</th>'
+                '<th scope="col">#</th><th scope="col">program:line</th><th scope="col">task</th><th scope="col">kind</th>'
                 '<th scope="col">target</th><th scope="col">start (s)</th><th scope="col">end (s)</th>'
                 '<th scope="col">duration (s)</th><th scope="col">dominant limit</th><th scope="col">speed</th>'
                 f'<th scope="col">clearance (mm)</th></tr></thead><tbody>{"".join(rows)}</tbody></table></div>')
     return f'<section id="motions" aria-labelledby="motions-h"><h2 id="motions-h">Motions</h2>{body}</section>'
+
+
+def _source(mo: dict) -> str:
+    """Where a motion instruction is written, as the motion table shows it: its program file and
+    line (`pick.pgx:8`), the whole position in the tooltip."""
+    path, line = mo.get("path"), mo.get("line")
+    if not path:
+        return _e(line or "–")
+    name = path.replace("\\", "/").rsplit("/", 1)[-1]
+    return f'<span title="{_e(_where(path, line, mo.get("column")))}">{_e(f"{name}:{line}" if line else name)}</span>'
 
 
 def _cycles(m: dict) -> str:
@@ -335,6 +345,8 @@ def _key3d(scene: dict, moving: bool) -> str:
         key += ["dark grey: the tool", "orange dot: the TCP"]
     if scene.get("obstacles"):
         key.append("blue-grey: the cell")
+    if scene.get("parts"):
+        key.append("green: the parts, carried or left in the cell")
     if moving and scene.get("arm"):
         key.append(f"blue line: the path of the {'TCP' if scene.get('tool') else 'flange'} (darker where already travelled)")
     return "; ".join(key).capitalize() + "." if key else ""

@@ -1,7 +1,7 @@
 /* val3check HTML report: the 3D view (Canvas 2D). The page computes the forward kinematics of
    the arm's chain (docs/html-report.md, scene.arm) from the joint samples, places the link
-   solids, the tool and the cell's obstacles, and paints their faces far to near with flat
-   shading. Orbit with the mouse or the keyboard; play, pause and scrub along the run. */
+   solids, the tool, the cell's obstacles (on their frames' values at the time shown) and the
+   parts (carried or left), and paints their faces far to near with flat shading. Orbit with the mouse or the keyboard; play, pause and scrub along the run. */
 (function (V3) {
   const DEG = Math.PI / 180;
 
@@ -117,7 +117,7 @@
   }
 
   function rgb(hex) { return [parseInt(hex.slice(1, 3), 16), parseInt(hex.slice(3, 5), 16), parseInt(hex.slice(5, 7), 16)]; }
-  const COLORS = { arm: rgb("#F2B51C"), flange: rgb("#5d6670"), tool: rgb("#3d4650"), obstacle: rgb("#8ea6bf") };
+  const COLORS = { arm: rgb("#F2B51C"), flange: rgb("#5d6670"), tool: rgb("#3d4650"), obstacle: rgb("#8ea6bf"), part: rgb("#009E73") };
 
   class View3D {
     constructor(canvas, scene, anim, joints) {
@@ -134,12 +134,25 @@
           frame: l.name, pose: M(s.pose), g: geometry(s), color: l.name === arm.flange_frame ? COLORS.flange : COLORS.arm, alpha: 1,
           name: "arm: " + l.name + (s.name ? " (" + s.name + ")" : "") })));
         if (scene.tool) scene.tool.solids.forEach((s) => this.parts.push({
-          frame: arm.flange_frame, pose: M(s.pose), g: geometry(s), color: COLORS.tool, alpha: 1,
+          frame: arm.flange_frame, pose: M(s.pose), track: s.track, g: geometry(s), color: COLORS.tool, alpha: 1,
           name: "tool " + scene.tool.name + (s.name ? ": " + s.name : "") }));
       }
       (scene.obstacles || []).forEach((s) => this.parts.push({
-        frame: null, pose: M(s.pose), g: geometry(s), color: s.color ? rgb(s.color) : COLORS.obstacle, alpha: 0.88, walls: 0.3,
-        name: "cell: " + (s.name || s.shape) }));
+        frame: null, pose: M(s.pose), track: s.track, g: geometry(s), color: s.color ? rgb(s.color) : COLORS.obstacle,
+        alpha: 0.88, walls: 0.3, name: "cell: " + (s.name || s.shape) }));
+      // frames and tools over the run (changes: a pose holds until the next one), and the parts,
+      // carried on the flange or left in the cell over each of their spans
+      this.tracks = {};
+      Object.keys(scene.tracks || {}).forEach((k) => {
+        const tr = scene.tracks[k];
+        this.tracks[k] = { t: tr.times, P: tr.poses.map((p) => (p ? M(p) : null)) };
+      });
+      (scene.parts || []).forEach((p) => {
+        const gs = p.solids.map((s) => ({ pose: M(s.pose), g: geometry(s) }));
+        p.spans.forEach((sp) => gs.forEach((s) => this.parts.push({
+          frame: sp.carried ? (arm ? arm.flange_frame : "") : null, pose: mul(M(sp.pose), s.pose), g: s.g,
+          when: [sp.start, sp.end === null ? Infinity : sp.end], color: COLORS.part, alpha: 1, name: "part: " + p.name })));
+      });
       this.tcpOffset = scene.tool ? M(scene.tool.tcp) : I;
       this.t = 0;
       this.q = this.jointsAt(0);
@@ -147,6 +160,22 @@
       this.resetView();
       this.trail = this.makeTrail();
       this.bind();
+    }
+
+    /* a track's pose at time t (the last change at or before t; before the first, the first) */
+    trackAt(name, t) {
+      const tr = this.tracks[name];
+      if (!tr) return null;
+      const k = Math.max(V3.lowerBound(tr.t, t + 1e-9) - 1, 0);
+      return tr.P[k];
+    }
+
+    /* a solid's pose in its frame at time t, or null when it is not in the scene then */
+    placed(part, t) {
+      if (part.when && (t < part.when[0] || t >= part.when[1])) return null;
+      if (!part.track) return part.pose;
+      const B = this.trackAt(part.track, t);
+      return B ? mul(B, part.pose) : null;
     }
 
     /* joint values at time t: linear between the samples */
@@ -194,9 +223,14 @@
         }
       }
       this.parts.filter((p) => p.frame === null).forEach((p) => {
-        for (let k = 0; k < p.g.v.length; k += 3) {
-          const x = p.g.v[k], y = p.g.v[k + 1], z = p.g.v[k + 2], P = p.pose;
-          add(P[0] * x + P[1] * y + P[2] * z + P[3], P[4] * x + P[5] * y + P[6] * z + P[7], P[8] * x + P[9] * y + P[10] * z + P[11]);
+        // a solid on a track: where it is at up to 20 of its changes
+        const tr = p.track ? this.tracks[p.track] : null, n = tr ? tr.t.length : 1, stride = Math.max(1, Math.ceil(n / 20));
+        for (let i = 0; i < n; i += stride) {
+          const P = tr ? (tr.P[i] ? mul(tr.P[i], p.pose) : null) : p.pose;
+          for (let k = 0; P && k < p.g.v.length; k += 3) {
+            const x = p.g.v[k], y = p.g.v[k + 1], z = p.g.v[k + 2];
+            add(P[0] * x + P[1] * y + P[2] * z + P[3], P[4] * x + P[5] * y + P[6] * z + P[7], P[8] * x + P[9] * y + P[10] * z + P[11]);
+          }
         }
       });
       if (!isFinite(lo[0])) { lo = [-500, -500, -500]; hi = [500, 500, 500]; }
@@ -260,9 +294,9 @@
       const ln = Math.hypot(light[0], light[1], light[2]);
       const prims = [];
       this.parts.forEach((part) => {
-        const F = part.frame === null ? I : poses[part.frame];
-        if (!F) return;
-        const T = mul(F, part.pose), v = part.g.v, n = v.length / 3;
+        const F = part.frame === null ? I : poses[part.frame], P = this.placed(part, this.t);
+        if (!F || !P) return;
+        const T = mul(F, P), v = part.g.v, n = v.length / 3;
         const wv = new Float64Array(v.length), sv = new Array(n);
         for (let k = 0; k < n; k++) {
           const x = v[3 * k], y = v[3 * k + 1], z = v[3 * k + 2];
