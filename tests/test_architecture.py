@@ -67,7 +67,7 @@ LINT_PATH = ALLOWED["lint"] | {"lint"}
 # other, never robot/, geometry/, motion/, collision/ or the interpreter.
 RUN_REPORTS = {f"val3check.reporting.{m}" for m in (
     "sim_report", "sim_text", "sim_json", "sim_junit", "sim_collision", "sim_render", "sim_verdict", "mcap_trace",
-    "progress",
+    "progress", "thinning",
     "html.from_run", "html.page", "html.pack", "html.model", "html.excerpts")}
 RECORDS = {"val3check.simulation", "val3check.simulation.result", "val3check.simulation.arm_record"}
 REPORT_HELPERS = {"val3check.reporting", "val3check.reporting._common", "val3check.reporting.junit",

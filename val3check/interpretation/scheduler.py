@@ -244,7 +244,7 @@ class Scheduler:
         machine = self.machine
         clock = self.clock
         budgets = machine.budgets
-        wall_deadline = machine.wall_start + budgets.wall_s
+        wall_deadline = budgets.run_deadline(machine.wall_start)
         wall_clock = budgets.wall_clock
         memory = machine.cell.budget
         cycles = 0
