@@ -1,7 +1,7 @@
 """The HTML report: size and build time of the page for a one-minute and a ten-minute run.
 
 Goal (issue 15): a self-contained page under 5 MB for a one-minute run at 4 ms (15,001 samples
-x 6 joints). First the synthetic pick-and-place cell (val3check/reporting/html/synthetic.py; the
+x 6 joints). First the synthetic pick-and-place cell (tests/synthetic_run.py; the
 ten-minute one repeats its trajectory ten times, 150,001 samples, which the page keeps as min/max
 buckets, pack.py), then real runs of fixtures/valid/PickPlace on a TX2-60 with its scenario for
 one and ten simulated minutes, as `val3check sim --report html` builds them (from_run.py).
@@ -21,7 +21,8 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "tests"))
 
-from val3check.reporting.html import render, synthetic_model  # noqa: E402
+from synthetic_run import synthetic_model  # noqa: E402
+from val3check.reporting.html import render  # noqa: E402
 from val3check.reporting.html.pack import page_data  # noqa: E402
 
 

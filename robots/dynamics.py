@@ -3,8 +3,11 @@ family (robots/README.md and docs/motion.md, "Accelerations"). Used by generate.
 each URDF with its reason) and by bench/bench_cycle.py (which fits and checks the SCARA rule).
 
 Six-axis arms: no public figure constrains their accelerations (no cycle time is published for
-the TX2/TX/RX arms; their data sheets give joint speeds, which the models use). Rule: each joint
-reaches its nominal speed from rest in SIX_AXIS_RAMP_S.
+the TX2/TX/RX arms; their data sheets give joint speeds, which the models use). Rule, an
+assumption and nothing more: each joint reaches its nominal speed from rest in SIX_AXIS_RAMP_S.
+Its range: the reports give every cycle time for accelerations ½ to 2 times these (ramps of 0.5
+to 0.125 s; val3check.robot.models.ASSUMED_ACCELERATION_RANGE), and a measured cycle fits them
+(val3check robots fit).
 
 SCARA arms: Stäubli publishes the standard cycle of the TS2 range (PUBLISHED_CYCLES). No joint
 speed of any Stäubli SCARA is public, so speeds and accelerations are both assumed, by one rule for
@@ -16,13 +19,16 @@ every SCARA of reach R (mm), with R0 = SCARA_REACH_REF:
 so that a fixed motion (the 300 mm standard cycle) takes longer on a longer arm, as the published
 cycles do (they grow as R^0.45 from the TS2-40 to the TS2-100). The exponents are chosen on the
 four figures (speed ∝ 1/R and acceleration ∝ R^-3/2 leave a spread of ±4 %; acceleration ∝ R^-2,
-±10 %; the same limits for every size give the trend backwards). The cycle fixes only a
+±10 %, measured with the reference before its fix; the same limits for every size give the trend
+backwards). The cycle fixes only a
 combination of speed and acceleration, not each: SCARA_SPEEDS_REF is an assumption (the flange's
 top speed 8.7 m/s, axis 1 alone with the arm stretched; the round values 400/600/1000/1500 the
 models had before cannot give the TS2-40's figure with any acceleration), and SCARA_RAMP_REF_S is
 then fitted so that the optimum of the standard cycle matches the four figures in the
-least-squares sense of log(optimum / published): within ±4.3 %, and within 5.8 % for each arm
-when fitted on the other three (python bench/bench_cycle.py --fit).
+least-squares sense of log(optimum / published): within 3.7 % of each figure, and within 5.0 % for
+each arm when fitted on the other three (python bench/bench_cycle.py --fit; refitted to 0.040 s from
+0.044 s once tests/motion/reference.py's end-derivative bug was fixed, which had made the first half
+of the cycle 8 % short).
 """
 
 from __future__ import annotations
@@ -42,7 +48,7 @@ CYCLE_SOURCE = ("Stäubli TS2 range leaflet and product-range brochure (standard
 
 SCARA_REACH_REF = 620.0  # mm: the TS2-60's reach, where SCARA_SPEEDS_REF apply
 SCARA_SPEEDS_REF = (800.0, 1200.0, 2000.0, 3000.0)  # deg/s, deg/s, mm/s, deg/s (assumed)
-SCARA_RAMP_REF_S = 0.044  # s, fitted: bench/bench_cycle.py --fit
+SCARA_RAMP_REF_S = 0.040  # s, fitted: bench/bench_cycle.py --fit (0.0400)
 
 
 def six_axis_ramp() -> float:
@@ -74,7 +80,7 @@ def scara_accel_text(name: str, reach: float, ramp: float) -> str:
     return (f"Stäubli publishes no joint accelerations. SCARA rule (robots/dynamics.py): every axis reaches its nominal "
             f"speed from rest in {SCARA_RAMP_REF_S:g} s × √(reach / {SCARA_REACH_REF:g} mm), {ramp:g} s at this arm's "
             f"{reach:g} mm; the reference ramp is fitted so that the optimum of the TS2 standard cycle matches "
-            f"Stäubli's figures for the TS2-40/-60/-80/-100 within ±5 % ({grounded}); decelerations equal. Set "
+            f"Stäubli's figures for the TS2-40/-60/-80/-100 within 4 % ({grounded}); decelerations equal. Set "
             "ramp_s or accelerations (measured values remove the uncertainty range)")
 
 

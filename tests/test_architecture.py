@@ -23,7 +23,7 @@ LAYER_OF = {
     "loading": "loading",
     "parsing": "parsing",
     "semantics": "semantics",
-    "records": "base", "confine": "base", "tomlfile": "base", "tomlpos": "base", "excerpt": "base",
+    "records": "base", "confine": "base", "tomlfile": "base", "tomlpos": "base", "excerpt": "base", "lengths": "base",
     "lint": "lint", "config": "lint", "suppression": "lint", "result": "lint", "exclusion": "lint", "baseline": "lint", "fixes": "lint",
     "geometry": "geometry",
     "robot": "robot",
@@ -67,16 +67,14 @@ LINT_PATH = ALLOWED["lint"] | {"lint"}
 # other, never robot/, geometry/, motion/, collision/ or the interpreter.
 RUN_REPORTS = {f"val3check.reporting.{m}" for m in (
     "sim_report", "sim_text", "sim_json", "sim_junit", "sim_collision", "sim_render", "sim_verdict", "mcap_trace",
-    "progress",
+    "progress", "thinning",
     "html.from_run", "html.page", "html.pack", "html.model", "html.excerpts")}
 RECORDS = {"val3check.simulation", "val3check.simulation.result", "val3check.simulation.arm_record"}
 REPORT_HELPERS = {"val3check.reporting", "val3check.reporting._common", "val3check.reporting.junit",
                   "val3check.reporting.html"}
 # Import cycles other engineers remove (issue 22); any other cycle fails.
 KNOWN_CYCLES = {
-    "parsing": [["val3check.parsing.build_parser", "val3check.parsing.parser"]],
-    "robot": [["val3check.robot.catalog", "val3check.robot.identify", "val3check.robot.models",
-               "val3check.robot.overrides"]],
+    "robot": [["val3check.robot.identify", "val3check.robot.models", "val3check.robot.overrides"]],
     "semantics": [["val3check.semantics.calls", "val3check.semantics.expressions"]],
 }
 
@@ -183,7 +181,9 @@ def _doc_table() -> dict[str, tuple[set[str], str]]:
     """docs/architecture.md's layer table: row name -> (names in backquotes of its packages and
     modules, `dir/` or `file.py` without the suffix; what it may also import)."""
     rows = {}
-    for line in ARCHITECTURE.read_text(encoding="utf-8").splitlines():
+    text = ARCHITECTURE.read_text(encoding="utf-8")
+    layers = text[text.index("\n## Layers\n"):text.index("\n## ", text.index("\n## Layers\n") + 1)]
+    for line in layers.splitlines():
         m = re.match(r"^\| ([a-z ]+) \| (.+) \| (.+) \|$", line)
         if m and m.group(1) != "layer":
             rows[m.group(1)] = (set(re.findall(r"`((?:html/)?[a-z_]+)(?:/|\.py)`", m.group(2))), m.group(3))
@@ -317,3 +317,38 @@ def test_nothing_registers_on_import():
         assert callable(module.register)
         assert not any(isinstance(v, Registry) for v in vars(module).values()), module.__name__
     assert registry.handler("movej") is not None and registry.handler("taskStatus") is not None
+
+
+def test_one_junit_writer():
+    """Every JUnit XML document (lint, sim, the batch summary) is written by reporting/junit.py."""
+    writers = sorted(str(p.relative_to(PACKAGE)) for p in PACKAGE.rglob("*.py")
+                     if re.search(r"""["'<]testsuites?\b|["']testcase["']""", p.read_text(encoding="utf-8")))
+    # batch/explore/report.py: merged from main after this test, left to its own work (issue 22)
+    assert writers == ["batch/explore/report.py", "reporting/junit.py"]
+
+
+# Reporting modules that still read the arm's packages: the page of a JSON report rebuilds the arm
+# and the cell the report names (html/from_sim.py), and its command line names that reader's error.
+ARM_READERS_IN_REPORTING = {"val3check.reporting.html.from_sim", "val3check.reporting.html.__main__"}
+
+
+def test_reporting_reads_the_run_s_record_not_the_arm_s_packages():
+    """Every module of reporting/, not only the run reports: nothing of robot/, geometry/,
+    motion/, collision/ or the interpreter, and of simulation/ only the run's records (but the
+    modules listed above, for robot/)."""
+    modules = _modules()
+    bad, readers = [], set()
+    for module, path in sorted(modules.items()):
+        if _top(module) != "reporting":
+            continue
+        for target, name, line in _imports(path):
+            t = _resolve(target, name, modules)
+            layer = LAYER_OF.get(_top(t))
+            if module in ARM_READERS_IN_REPORTING and (layer in ("robot", "geometry", "collision")
+                                                       or layer == "simulation"):
+                readers.add(module)
+            elif layer in ("robot", "geometry", "motion", "collision", "interpretation") or \
+                    layer == "simulation" and t not in RECORDS:
+                bad.append(f"{module}:{line}: {t}")
+    assert bad == []
+    assert readers == ARM_READERS_IN_REPORTING

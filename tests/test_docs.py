@@ -479,3 +479,35 @@ def test_example(block, tmp_path):
 
 def test_skipped_blocks_say_why():
     assert all(b.args for b in BLOCKS if b.kind == "skip")
+
+
+ARCHITECTURE = ROOT / "docs" / "architecture.md"
+
+
+def _defines(module: str, name: str) -> bool:
+    base = ROOT / "val3check" / Path(*module.split("."))
+    path = base / "__init__.py" if base.is_dir() else base.with_suffix(".py")
+    if not path.is_file():
+        return False
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    return any(isinstance(n, ast.ClassDef) and n.name == name
+               or isinstance(n, (ast.Assign, ast.AnnAssign)) and name in {t.id for t in
+                   (n.targets if isinstance(n, ast.Assign) else [n.target]) if isinstance(t, ast.Name)}
+               for n in tree.body)
+
+
+def test_the_glossary_names_real_classes():
+    """docs/architecture.md, "Words": every class it names (`package.module.Class`) exists."""
+    text = ARCHITECTURE.read_text(encoding="utf-8")
+    words = text[text.index("\n## Words\n"):text.index("\n## ", text.index("\n## Words\n") + 1)]
+    named = re.findall(r"`([a-z_]+(?:\.[a-z_]+)+)\.([A-Z][A-Za-z]+)`", words)
+    assert len(named) >= 40
+    assert [f"{m}.{c}" for m, c in named if not _defines(m, c)] == []
+
+
+def test_the_architecture_names_only_files_that_exist():
+    """docs/architecture.md's map of the packages: every `file.py` and `folder/` it names exists."""
+    files = {p.relative_to(ROOT).as_posix() for top in ("val3check", "tests") for p in (ROOT / top).rglob("*")}
+    names = set(re.findall(r"`([a-z_0-9/]+(?:\.py|/))`", ARCHITECTURE.read_text(encoding="utf-8")))
+    missing = [n for n in sorted(names) if not any(f == n.rstrip("/") or f.endswith("/" + n.rstrip("/")) for f in files)]
+    assert missing == []

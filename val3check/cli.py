@@ -578,8 +578,8 @@ def _reach(args: argparse.Namespace) -> int:
 
 def _robots(args: argparse.Namespace) -> int:
     """`val3check robots`: the catalogue, or one model in detail (val3check/robot); `robots fit`."""
-    from .reporting.robot_text import render_detail, render_list
     from .robot import RobotError, load_robot, names
+    from .robot.listing import render_detail, render_list
     from .robot.catalog import known_without_model
 
     if args.robot[:1] == ["fit"]:

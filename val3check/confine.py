@@ -20,6 +20,8 @@ import errno
 import os
 import stat
 
+from .rules import codes
+
 # Pseudo file systems: sizes are wrong (0), content is endless or secret (/proc/self/environ).
 _SPECIAL_TREES = ("/proc", "/sys", "/dev")
 _OPEN_FLAGS = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0) | getattr(os, "O_CLOEXEC", 0)
@@ -110,24 +112,24 @@ def human_size(n: int) -> str:
 def check(path: str, roots: Roots) -> str:
     """The real path of a file that may be read, or `Refused` (nothing is opened)."""
     if "\x00" in str(path):
-        raise Refused("F001", "cannot be read: the path holds a NUL character")
+        raise Refused(codes.FILE_NOT_FOUND, "cannot be read: the path holds a NUL character")
     real = os.path.realpath(path)
     if is_special(real):
-        raise Refused("F001", "a special file (under /proc, /sys or /dev): not read")
+        raise Refused(codes.FILE_NOT_FOUND, "a special file (under /proc, /sys or /dev): not read")
     if not roots.allows(real):
-        raise Refused("F014", "outside the application and the configured roots: not read")
+        raise Refused(codes.PATH_OUTSIDE_ROOTS, "outside the application and the configured roots: not read")
     try:
         st = os.stat(real)
     except FileNotFoundError:
         if os.path.lexists(path):
-            raise Refused("F001", "cannot be read: a broken symbolic link") from None
-        raise Refused("F001", "file not found") from None
+            raise Refused(codes.FILE_NOT_FOUND, "cannot be read: a broken symbolic link") from None
+        raise Refused(codes.FILE_NOT_FOUND, "file not found") from None
     except (OSError, ValueError) as exc:
-        raise Refused("F001", f"cannot be read: {_reason(exc) if isinstance(exc, OSError) else exc}") from None
+        raise Refused(codes.FILE_NOT_FOUND, f"cannot be read: {_reason(exc) if isinstance(exc, OSError) else exc}") from None
     if stat.S_ISDIR(st.st_mode):
-        raise Refused("F001", "expected a file but this is a folder")
+        raise Refused(codes.FILE_NOT_FOUND, "expected a file but this is a folder")
     if not stat.S_ISREG(st.st_mode):
-        raise Refused("F001", f"{kind_of(st.st_mode)}, not a regular file: not read")
+        raise Refused(codes.FILE_NOT_FOUND, f"{kind_of(st.st_mode)}, not a regular file: not read")
     return real
 
 
@@ -154,23 +156,31 @@ def read_bytes(path: str, roots: Roots, max_size: int, overlay: dict[str, bytes]
             text = overlay.get(real)
         if text is not None:
             if len(text) > max_size:
-                raise Refused("F002", f"file too large ({human_size(len(text))}, limit {human_size(max_size)}): not read")
+                raise Refused(
+                    codes.FILE_TOO_LARGE,
+                    f"file too large ({human_size(len(text))}, limit {human_size(max_size)}): not read",
+                )
             return bytes(text)
     try:
         st = os.stat(real)
         if st.st_size > max_size:
-            raise Refused("F002", f"file too large ({human_size(st.st_size)}, limit {human_size(max_size)}): not read")
+            raise Refused(
+                codes.FILE_TOO_LARGE,
+                f"file too large ({human_size(st.st_size)}, limit {human_size(max_size)}): not read",
+            )
         # O_NONBLOCK: a FIFO swapped in after the check cannot block the open; O_NOFOLLOW: nor
         # can a symbolic link swapped in for the last component.
         fd = os.open(real, _OPEN_FLAGS | getattr(os, "O_NOFOLLOW", 0))
     except Refused:
         raise
     except (OSError, ValueError) as exc:
-        raise Refused("F001", f"cannot be read: {_reason(exc) if isinstance(exc, OSError) else exc}") from None
+        raise Refused(
+            codes.FILE_NOT_FOUND, f"cannot be read: {_reason(exc) if isinstance(exc, OSError) else exc}"
+        ) from None
     try:
         fst = os.fstat(fd)
         if not stat.S_ISREG(fst.st_mode) or (fst.st_dev, fst.st_ino) != (st.st_dev, st.st_ino):
-            raise Refused("F001", "cannot be read: the file changed while it was opened")
+            raise Refused(codes.FILE_NOT_FOUND, "cannot be read: the file changed while it was opened")
         chunks, left = [], max_size + 1
         while left > 0:
             chunk = os.read(fd, min(left, 1 << 20))
@@ -179,12 +189,12 @@ def read_bytes(path: str, roots: Roots, max_size: int, overlay: dict[str, bytes]
             chunks.append(chunk)
             left -= len(chunk)
     except OSError as exc:
-        raise Refused("F001", f"cannot be read: {_reason(exc)}") from None
+        raise Refused(codes.FILE_NOT_FOUND, f"cannot be read: {_reason(exc)}") from None
     finally:
         os.close(fd)
     data = b"".join(chunks)
     if len(data) > max_size:  # grew while reading
-        raise Refused("F002", f"file too large (more than {human_size(max_size)}): not read")
+        raise Refused(codes.FILE_TOO_LARGE, f"file too large (more than {human_size(max_size)}): not read")
     return data
 
 

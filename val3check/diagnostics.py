@@ -57,6 +57,10 @@ class Diagnostic:
     # the most severe it may be shown, whatever its rule's severity: a finding that depends on a
     # guess (a library found by name, F016) is at most a warning
     at_most: Severity | None = None
+    # a runtime finding repeated at one place (simulation/folding.py): how many times, and the
+    # simulated time of the last one (`time_us` is the first)
+    count: int = 1
+    last_time_us: int | None = None
 
     @property
     def runtime(self) -> bool:

@@ -21,6 +21,7 @@ import re
 from .diagnostics import Diagnostic
 from .loading.model import Application
 from .records import dataclass, field
+from .rules import codes
 
 _DIRECTIVE = re.compile(r"//\s*val3check\s*:\s*ignore\b(?:\s*\[([^\]]*)\])?", re.IGNORECASE)
 ALL = "*"
@@ -67,7 +68,8 @@ class Suppressions:
             unknown = [c for c in d.codes if c != ALL and not any(k.startswith(c) for k in known)]
             for code in unknown:
                 out.append(Diagnostic(
-                    "S020", f"'{code}' in this suppression is no rule code or prefix of val3check (see `val3check rules`)",
+                    codes.UNKNOWN_SUPPRESSION_CODE,
+                    f"'{code}' in this suppression is no rule code or prefix of val3check (see `val3check rules`)",
                     d.path, d.line, d.col, d.line, d.end_col))
             if d.path in unparsed:
                 continue
@@ -80,7 +82,7 @@ class Suppressions:
                 message = f"unused suppression: no finding of {what} on line {lines}; remove the comment"
             else:
                 message = f"unused suppression code(s): {', '.join(unused)} suppress nothing here; remove them"
-            out.append(Diagnostic("S021", message, d.path, d.line, d.col, d.line, d.end_col))
+            out.append(Diagnostic(codes.UNUSED_SUPPRESSION, message, d.path, d.line, d.col, d.line, d.end_col))
         return out
 
 
@@ -96,7 +98,8 @@ def collect(app: Application, into: Suppressions | None = None) -> Suppressions:
             m = _DIRECTIVE.search(text)
             if not m:
                 continue
-            codes = tuple(dict.fromkeys(c.strip().upper() for c in (m.group(1) or "").split(",") if c.strip())) or (ALL,)
+            listed = tuple(dict.fromkeys(c.strip().upper() for c in (m.group(1) or "").split(",") if c.strip()))
+            listed = listed or (ALL,)
             targets = [k]
             if text[: m.start()].strip() == "":  # comment alone on its line: also the next code line
                 nxt = k + 1
@@ -107,5 +110,5 @@ def collect(app: Application, into: Suppressions | None = None) -> Suppressions:
             start = program.code_map.to_file(k, m.start() + 1)
             end = program.code_map.to_file(k, m.end())
             covers = tuple(dict.fromkeys(program.code_map.to_file(t, 1).line for t in targets))
-            found.add(Directive(path, start.line, start.col, end.col + 1, codes, covers))
+            found.add(Directive(path, start.line, start.col, end.col + 1, listed, covers))
     return found

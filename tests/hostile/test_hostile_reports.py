@@ -82,10 +82,10 @@ def test_render_command_refuses_bad_models(tmp_path, capsys, content, fragment):
 
 
 def test_render_command_refuses_models_of_the_wrong_types(tmp_path, capsys):
+    from synthetic_run import synthetic_model
     from val3check.reporting.html.__main__ import main
 
-    assert main(["--demo", "--duration", "2", "--model-out", str(tmp_path / "m.json"), "-o", str(tmp_path / "a.html")]) == 0
-    model = json.loads((tmp_path / "m.json").read_text())
+    model = synthetic_model(duration=2.0)
     model["io"] = [{"link": {"a": 1}, "kind": "dio", "time": 0, "value": True, "names": 5}]
     (tmp_path / "m.json").write_text(json.dumps(model))
     assert main([str(tmp_path / "m.json"), "-o", str(tmp_path / "b.html")]) == 2

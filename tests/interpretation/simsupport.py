@@ -66,11 +66,13 @@ def out(result: SimResult) -> list[str]:
 
 
 def codes(result: SimResult) -> list[str]:
-    return [d.code for d in result.diagnostics]
+    """The rule of every finding, a repeated one (simulation/folding.py) as many times as it occurred."""
+    return [d.code for d in result.diagnostics for _ in range(d.count)]
 
 
 def errors(result: SimResult) -> list[int]:
-    return [d.error for d in result.diagnostics if d.code == "R001"]
+    """The error code of every R001, a repeated one as many times as it occurred."""
+    return [d.error for d in result.diagnostics if d.code == "R001" for _ in range(d.count)]
 
 
 def code_pos(result: SimResult, line: int, col: int, program: str = "start") -> tuple[int, int]:

@@ -16,7 +16,8 @@ import browser_client
 import pytest
 
 from val3check.cli import main
-from val3check.reporting.html import model_from_sim_report, render, synthetic_model
+from synthetic_run import synthetic_model
+from val3check.reporting.html import model_from_sim_report, render
 from val3check.robot import load_robot
 from val3check.robot.chain import chain_fk
 

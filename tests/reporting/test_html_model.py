@@ -16,10 +16,10 @@ from pathlib import Path
 import jsonschema
 import pytest
 
-from val3check.reporting.html import ModelError, check_model, render, synthetic_model
+from synthetic_run import CART_ACCEL, MDESC, _trapezoid, synthetic_model
+from val3check.reporting.html import ModelError, check_model, render
 from val3check.robot.chain import arm_chain, chain_fk
 from val3check.reporting.html.pack import FULL_RATE_MAX, PLOT_BUCKETS, page_data
-from val3check.reporting.html.synthetic import CART_ACCEL, MDESC, _trapezoid
 from val3check.robot import RobotError, load_robot, names
 from val3check.robot.urdf import mul
 
@@ -292,7 +292,8 @@ def test_demo_command_writes_a_page_and_refuses_a_bad_model(tmp_path, capsys):
     from val3check.reporting.html.__main__ import main
 
     out = tmp_path / "demo.html"
-    assert main(["--demo", "--duration", "5", "-o", str(out), "--model-out", str(tmp_path / "m.json")]) == 0
+    (tmp_path / "model.json").write_text(json.dumps(synthetic_model(duration=5.0)))
+    assert main([str(tmp_path / "model.json"), "-o", str(out), "--model-out", str(tmp_path / "m.json")]) == 0
     assert out.read_text(encoding="utf-8").startswith("<!DOCTYPE html>")
     assert main([str(tmp_path / "m.json"), "-o", str(tmp_path / "again.html")]) == 0
     assert (tmp_path / "again.html").read_bytes() == out.read_bytes()

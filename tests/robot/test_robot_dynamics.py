@@ -13,7 +13,7 @@ from val3check.robot.models import ASSUMED_ACCELERATION_RANGE
 
 # robots/dynamics.py, as documented in docs/motion.md ("Accelerations")
 SIX_AXIS_RAMP = 0.25
-SCARA_REACH_REF, SCARA_SPEEDS_REF, SCARA_RAMP_REF = 620.0, (800.0, 1200.0, 2000.0, 3000.0), 0.044
+SCARA_REACH_REF, SCARA_SPEEDS_REF, SCARA_RAMP_REF = 620.0, (800.0, 1200.0, 2000.0, 3000.0), 0.040
 PUBLISHED = {"TS2-40": 240, "TS2-60": 220, "TS2-80": 200, "TS2-100": 170}
 
 

@@ -86,7 +86,7 @@ def test_robots_detail_shows_facts_assumptions_and_alternatives(capsys):
     assert "limits.j3: -152.5..152.5 (kept), -142.5..142.5 (other)" in out
     assert main(["robots", "TS2-60"]) == 0
     out = capsys.readouterr().out
-    for key in ("world_z_mm = 0", "axis4_sign = -1", "nominal_speeds = 800 1200 2000 3000", "ramp_s = 0.044"):
+    for key in ("world_z_mm = 0", "axis4_sign = -1", "nominal_speeds = 800 1200 2000 3000", "ramp_s = 0.04:"):
         assert key in out
     assert "not public" in out and "max_torques" in out
     assert "j3      mm    -0.1  200.1     2000*" in out

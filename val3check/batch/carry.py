@@ -17,6 +17,7 @@ import os
 from dataclasses import dataclass, field
 
 from ..confine import Refused, Roots, read_bytes
+from ..rules import codes
 
 MAX_LINKS = 40  # as the kernel's own limit: more is a loop
 
@@ -36,8 +37,8 @@ class Bundle:
         try:
             data = read_bytes(path, roots, max_size)
         except Refused as exc:
-            if exc.code in ("F002", "F014") and os.path.isfile(path):
-                self.stubs[path] = os.path.getsize(path) if exc.code == "F002" else 0
+            if exc.code in (codes.FILE_TOO_LARGE, codes.PATH_OUTSIDE_ROOTS) and os.path.isfile(path):
+                self.stubs[path] = os.path.getsize(path) if exc.code == codes.FILE_TOO_LARGE else 0
             return None
         self.files[path] = data
         return data

@@ -53,7 +53,9 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
                     " writes one per case")
     if args.jobs is not None and args.jobs < 1:
         return _err("--jobs must be a positive number of processes")
-    if args.executor == "dask" and args.jobs is not None and (args.scheduler or _dask_address()):
+    from .executors import dask_address
+
+    if args.executor == "dask" and args.jobs is not None and (args.scheduler or dask_address()):
         return _err("--jobs sizes the local executor or a local Dask cluster; with a scheduler, the workers' "
                     "processes set the parallelism")
     if args.scheduler and args.executor != "dask":
@@ -150,15 +152,6 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
     if sys.stderr.isatty():
         print(f"val3check sim: {len(cases)} cases in {time.monotonic() - start:.1f} s", file=sys.stderr)
     return EXIT_FAILED if any(s.verdict in ("fail", "not-run", "crash", "over-budget") for s in summaries) else EXIT_OK
-
-
-def _dask_address() -> str | None:
-    """The scheduler Dask's own configuration names (DASK_SCHEDULER_ADDRESS, or its config files)."""
-    try:
-        import dask
-    except ImportError:
-        return None
-    return dask.config.get("scheduler-address", None) or None
 
 
 def _cores() -> int:

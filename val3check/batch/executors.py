@@ -118,6 +118,15 @@ def _alone(client, t: Ticket) -> CaseOutcome:  # noqa: ANN001 - a distributed.Cl
         return CaseOutcome(replace(t.blank, reason=f"Dask: {type(exc).__name__}: {exc}"))
 
 
+def dask_address() -> str | None:
+    """The scheduler Dask's own configuration names (DASK_SCHEDULER_ADDRESS, or its config files)."""
+    try:
+        import dask
+    except ImportError:
+        return None
+    return dask.config.get("scheduler-address", None) or None
+
+
 def run_dask(cases: list[Case], address: str | None, on_done: OnDone, stop: Stop, chunk: int | None = None,
              workers: int = 1, starting: Callable[[str], None] | None = None) -> None:
     """The cases on a Dask cluster: the scheduler at `address`; None: the one Dask's configuration

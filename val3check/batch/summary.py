@@ -8,11 +8,12 @@ import html
 import json
 import os
 import re
+import xml.etree.ElementTree as ET
 from collections import Counter
 from urllib.parse import quote
-from xml.sax.saxutils import escape, quoteattr
 
 from ..reporting._common import printable, visible
+from ..reporting.junit import document, testcase, xml_text
 from .worker import VERDICTS, CaseSummary
 
 SUMMARY_VERSION = 1
@@ -92,31 +93,28 @@ def render_json(summaries: list[CaseSummary], tool_version: str) -> str:
 def render_junit(summaries: list[CaseSummary]) -> str:
     """One <testcase> per case: classname the application, name the arm, scenario, cell and
     overrides; a failing run is a <failure>, a case not run, crashed or stopped by the watchdog
-    an <error>, a case left by --fail-fast <skipped>."""
+    an <error>, a case left by --fail-fast <skipped>. Written by reporting/junit.py."""
     c = counts(summaries)
     errors = c.get("not-run", 0) + c.get("crash", 0) + c.get("over-budget", 0)
-    out = ['<?xml version="1.0" encoding="UTF-8"?>',
-           f'<testsuites name="val3check sim" tests="{len(summaries)}" failures="{c.get("fail", 0)}"'
-           f' errors="{errors}" skipped="{c.get("skipped", 0)}">',
-           f'  <testsuite name="val3check sim" tests="{len(summaries)}" failures="{c.get("fail", 0)}"'
-           f' errors="{errors}" skipped="{c.get("skipped", 0)}">']
+    cases = []
     for s in ordered(summaries):
         name = " | ".join(x for x in (s.arm or f"({s.model})", s.scenario or "no scenario", s.cell, _overrides(s)) if x)
-        out.append(f"    <testcase classname={quoteattr(s.app)} name={quoteattr(name)}>")
-        reason = s.reason or s.verdict
+        case = testcase(s.app, name, time=False)
+        reason = xml_text(s.reason or s.verdict)
         if s.verdict == "fail":
-            out.append(f"      <failure type=\"fail\" message={quoteattr(reason)}>{escape(reason)}</failure>")
+            ET.SubElement(case, "failure", {"type": "fail", "message": reason}).text = reason
         elif s.verdict in ("not-run", "crash", "over-budget"):
-            out.append(f"      <error type={quoteattr(s.verdict)} message={quoteattr(reason)}>{escape(reason)}</error>")
+            ET.SubElement(case, "error", {"type": s.verdict, "message": reason}).text = reason
         elif s.verdict == "skipped":
-            out.append(f"      <skipped message={quoteattr(reason)} />")
+            ET.SubElement(case, "skipped", {"message": reason})
         props = f"errors {s.errors}, cycle time {_cycle(s)}, model {s.model}"
         if s.verdict in ("pass", "fail"):  # a run, so a report (under --out-dir)
             props += f", report {CASES_DIR}/{s.name}.json"
-        out.append(f"      <system-out>{escape(props)}</system-out>")
-        out.append("    </testcase>")
-    out += ["  </testsuite>", "</testsuites>"]
-    return visible("\n".join(out)) + "\n"  # XML 1.0 cannot hold control characters
+        ET.SubElement(case, "system-out").text = xml_text(props)
+        cases.append(case)
+    total = {"tests": str(len(summaries)), "failures": str(c.get("fail", 0)), "errors": str(errors),
+             "skipped": str(c.get("skipped", 0))}
+    return document("val3check sim", cases, total, ascii_only=False)
 
 
 _STYLE = """body{font:14px system-ui,sans-serif;margin:1.5em;color:#222}

@@ -13,10 +13,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..lengths import INCH_MM
 from .errors import CellError
 
 SHAPES = ("box", "cylinder", "sphere", "mesh")
-INCH_MM = 25.4
 
 
 @dataclass(frozen=True)

@@ -21,9 +21,10 @@ import numpy as np
 
 from .. import tomlfile
 from ..excerpt import shown
+from ..lengths import INCH_MM
 from ..tomlpos import positions
 from . import meshes
-from .cell import INCH_MM, SHAPES, Cell, MeshData, Obstacle, Part, Shape, ToolSolid, Where
+from .cell import SHAPES, Cell, MeshData, Obstacle, Part, Shape, ToolSolid, Where
 from .errors import CellError
 
 CELL_FILE_NAME = "val3check-cell.toml"  # found beside the application (find_cell)

@@ -114,16 +114,6 @@ def new_flange(gripper: Any = None) -> Tool:
     return Tool(Trsf(), None, gripper=gripper, name="flange", is_root=True)
 
 
-def new_frame(ref: Frame | None = None, trsf: Trsf | None = None, *, name: str = "", local: bool = False) -> Frame:
-    return Frame(trsf.copy() if trsf is not None else Trsf(), ref, name=name, local=local)
-
-
-def new_tool(ref: Tool | None = None, trsf: Trsf | None = None, *, gripper: Any = None, otime: float = 0.0,
-             ctime: float = 0.0, name: str = "", local: bool = False) -> Tool:
-    return Tool(trsf.copy() if trsf is not None else Trsf(), ref, gripper=gripper, otime=otime, ctime=ctime,
-                name=name, local=local)
-
-
 def reference_of(node: Frame) -> Frame | None:
     """The reference of a node as `=` and `==` see it: a root is its own reference."""
     return node if node.is_root else node.ref

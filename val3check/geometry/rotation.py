@@ -246,21 +246,6 @@ def mat_of_quat(q: Quat) -> Mat:
     )
 
 
-def quat_mul(a: Quat, b: Quat) -> Quat:
-    aw, ax, ay, az = a
-    bw, bx, by, bz = b
-    return (
-        aw * bw - ax * bx - ay * by - az * bz,
-        aw * bx + ax * bw + ay * bz - az * by,
-        aw * by - ax * bz + ay * bw + az * bx,
-        aw * bz + ax * by - ay * bx + az * bw,
-    )
-
-
-def quat_conj(q: Quat) -> Quat:
-    return (q[0], -q[1], -q[2], -q[3])
-
-
 def rotation_between(m1: Mat, m2: Mat) -> tuple[float, Vec]:
     """The smallest rotation taking orientation m1 to m2, in m1's axes: (angle in degrees in
     [0, 180], unit axis). At exactly 180 degrees both senses are equally short; the axis then

@@ -17,6 +17,7 @@ from typing import Any, Callable
 from ..diagnostics import Diagnostic
 from ..geometry.frames import new_flange, new_world
 from ..language.runtime_errors import Val3RuntimeError
+from ..rules import codes
 from .events import ControllerChange, Event, InputsChange, KeyPress, PowerChange, SerialData, Timeline
 from .recorder import sio_text
 from .scheduler import EndRun
@@ -151,11 +152,19 @@ class CellSubsystem:
         lines = [self.reactions[k].line for k in looping]
         names = sorted({self.reactions[k].output.link for k in looping})
         where = ", ".join(f"line {n}" for n in lines if n) or "see [[reactions]]"
-        self.report(Diagnostic(
-            "R008", f"the scenario's reactions to {', '.join(names)} set each other's inputs again and again at"
-            f" {at / 1e6:g} s ({MAX_REACTIONS_PER_CYCLE} times within one 4 ms cycle; {where}): time cannot move on",
-            self.scenario_path, min((n for n in lines if n), default=0), 1 if any(lines) else 0,
-            time_us=at, task="", program=""))
+        self.report(
+            Diagnostic(
+                codes.SCENARIO_REACTION_LOOP,
+                f"the scenario's reactions to {', '.join(names)} set each other's inputs again and again at"
+                f" {at / 1e6:g} s ({MAX_REACTIONS_PER_CYCLE} times within one 4 ms cycle; {where}): time cannot move on",
+                self.scenario_path,
+                min((n for n in lines if n), default=0),
+                1 if any(lines) else 0,
+                time_us=at,
+                task="",
+                program="",
+            )
+        )
         raise EndRun(f"budget:the scenario's reactions loop at {at / 1e6:g} s (R008)")
 
     def output_changed(self, io: IOPoint, at: int, source: str) -> None:

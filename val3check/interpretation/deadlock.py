@@ -24,6 +24,7 @@ from ..diagnostics import Diagnostic
 from ..language import lookup
 from ..loading.model import Application, Container
 from ..parsing import ast
+from ..rules import codes
 from .scheduler import ERROR, HELD, SUSPENDED, WAIT
 
 
@@ -48,9 +49,9 @@ def _finding(machine, task, on_cell: dict) -> tuple[str, str]:
     if task.state is SUSPENDED:
         resumers = [t.name for t, (_w, resumes) in on_cell.items() if resumes]
         if resumers:
-            return "R009", (f"task {task.name} is suspended; only a task that waits on the cell "
+            return codes.INPUT_NEVER_DRIVEN, (f"task {task.name} is suspended; only a task that waits on the cell "
                             f"({', '.join(resumers)}) may resume it once released")
-        return "R003", f"task {task.name} is suspended and no task can resume it"
+        return codes.DEADLOCK, f"task {task.name} is suspended and no task can resume it"
     why = machine.motion_reason(task)
     if why is not None:
         code, text = why
@@ -58,19 +59,19 @@ def _finding(machine, task, on_cell: dict) -> tuple[str, str]:
     if task in on_cell:
         # the condition reads the cell: on the controller the outside world can release it; only
         # the simulation has nobody to (R009, a warning)
-        return "R009", f"task {task.name} waits in {blocked}, which only the cell can end ({task.cond.hint})"
+        return codes.INPUT_NEVER_DRIVEN, f"task {task.name} waits in {blocked}, which only the cell can end ({task.cond.hint})"
     reads = getattr(task.cond, "reads", None) if task.state is WAIT else None
     writers = [t.name for t, (writes, _r) in on_cell.items() if reads and _may_change(reads, writes)]
     if writers:
-        return "R009", (f"task {task.name} waits in {blocked}, which only a task that waits on the cell "
+        return codes.INPUT_NEVER_DRIVEN, (f"task {task.name} waits in {blocked}, which only a task that waits on the cell "
                         f"({', '.join(writers)}) may change once released")
     if reads and _may_change(reads, _web_page_writes(machine, task)):
         # a CS9 web user page binds the application's data and calls its programs (its
         # *.bindings.json): the operator's clicks are the cell's, which the scenario cannot play
-        return "R009", (f"task {task.name} waits in {blocked}, which only the operator can end through the web user "
+        return codes.INPUT_NEVER_DRIVEN, (f"task {task.name} waits in {blocked}, which only the operator can end through the web user "
                         "page (its bindings write that data or call a program that does); the simulation has no "
                         "web page")
-    return "R003", f"task {task.name} waits in {blocked}, which nothing scheduled can change"
+    return codes.DEADLOCK, f"task {task.name} waits in {blocked}, which nothing scheduled can change"
 
 
 def _web_page_writes(machine, task) -> set[str]:

@@ -15,6 +15,8 @@ integer microseconds: runs are deterministic.
 
 from __future__ import annotations
 
+from ..lengths import app_mm
+from ..rules import codes
 import os
 import time as _time
 from dataclasses import dataclass
@@ -32,7 +34,7 @@ from .deadlock import report_blocked
 from .libraries import autoload_libraries
 from .memory import TypeSpace
 from .memory_budget import MemoryBudget
-from .not_simulated import ARM_LIMIT, SimLimit, arm_message
+from .not_simulated import ARM_LIMIT, SimLimit, arm_message, limit_code
 from .recorder import IOEvent, Recorder, TranscriptEntry
 from .registry import Registry
 from .scheduler import ERROR, HELD, START_PRIORITY, WAIT, EndRun, Scheduler, Task
@@ -55,6 +57,13 @@ class Budgets:
     # the clock the wall budget reads, in seconds: tests give one of their own (a clock that
     # advances with each reading), so that what they check does not depend on the machine's speed
     wall_clock: Callable[[], float] = _time.monotonic
+    # the share of wall_s the simulation itself may take: the rest is kept for what follows it (the
+    # collision checks, the run's record, the reports: simulation/budget.py)
+    run_share: float = 1.0
+
+    def run_deadline(self, start: float) -> float:
+        """When the simulation of a run that started at `start` (wall clock) must end."""
+        return start + self.wall_s * self.run_share
 
 
 class FinalState(NamedTuple):
@@ -180,7 +189,7 @@ class Machine:
 
     def _record_full(self, message: str, task: Task | None) -> None:
         """A record budget is reached: said once (R006), the run goes on without recording."""
-        self.diags.append(Diagnostic("R006", message, self.app.path, 0, 0,
+        self.diags.append(Diagnostic(codes.BUDGET_EXCEEDED, message, self.app.path, 0, 0,
                                      time_us=self.clock.time_of(task) if task is not None else self.clock.now,
                                      task=task.name if task is not None else "", program=""))
 
@@ -200,7 +209,7 @@ class Machine:
         if len(self.recorder.tool_events) >= self.recorder.max_io_log:
             return
         x, y, z, rx, ry, rz = Trsf.from_pose(root_pose(tool)).as_tuple()
-        s = 1.0 if millimeter_unit else 25.4
+        s = app_mm(millimeter_unit)
         grip = getattr(tool.gripper, "link", "") or ""
         where = self.line_running()
         self.recorder.tool_events.append(ToolEvent(
@@ -242,7 +251,7 @@ class Machine:
         if isinstance(e, SimLimit):
             task.state = HELD
             task.limit = e.kind
-            code = "R002" if e.kind == ARM_LIMIT else "R004"
+            code = limit_code(e.kind)
             if e.message:
                 msg = e.message
             elif e.kind == ARM_LIMIT:
@@ -262,7 +271,11 @@ class Machine:
         if rule:  # a motion instruction's error has the rule of its cause (R017 mdesc, R015 movec...)
             self.add_diag(rule, f"error {code}: {detail}", task, pos, code)
         else:
-            self.add_diag("R001", f"error {code}: {text}{extra}", task, pos, code)
+            self.runtime_error(task, pos, code, f"{text}{extra}")
+
+    def runtime_error(self, task: Task | None, pos, code: int, message: str) -> None:
+        """A task stopped by the runtime error `code` of 12.1 (R001)."""
+        self.add_diag(codes.RUNTIME_ERROR, f"error {code}: {message}", task, pos, code)
 
     def library_failed(self, owner: Unit, alias: str, display: str, code: int, meaning: str, findings: list,
                        task: Task | None) -> None:
@@ -279,12 +292,20 @@ class Machine:
             return
         self._libraries_reported.add(display)
         more = f" (and {len(findings) - 1} more finding(s) in the library)" if len(findings) > 1 else ""
-        self.diags.append(Diagnostic(
-            "R040", f"library {display} (identifier {alias} of {owner.name}) cannot be loaded because of this "
-                    f"{first.code} finding: {first.message}{more}; libLoad returns {code} and the data and "
-                    f"programs of {alias}: are error 80 where they are used", first.path, first.line, first.col,
-            time_us=self.clock.time_of(task) if task is not None else self.clock.now,
-            task=task.name if task is not None else "", program=""))
+        self.diags.append(
+            Diagnostic(
+                codes.LIBRARY_NOT_LOADED,
+                f"library {display} (identifier {alias} of {owner.name}) cannot be loaded because of this "
+                f"{first.code} finding: {first.message}{more}; libLoad returns {code} and the data and "
+                f"programs of {alias}: are error 80 where they are used",
+                first.path,
+                first.line,
+                first.col,
+                time_us=self.clock.time_of(task) if task is not None else self.clock.now,
+                task=task.name if task is not None else "",
+                program="",
+            )
+        )
 
     def note_outside(self, task: Task, message: str) -> None:
         """R041 (info): the line running acts on something outside the simulation; said once per
@@ -295,16 +316,25 @@ class Machine:
         if key in self._outside_seen:
             return
         self._outside_seen.add(key)
-        self.diags.append(Diagnostic("R041", message, path, line, col, time_us=self.clock.time_of(task),
+        self.diags.append(Diagnostic(codes.OUTSIDE_THE_SIMULATION, message, path, line, col, time_us=self.clock.time_of(task),
                                      task=task.name, program=program))
 
     def report_overrun(self, task: Task) -> None:
         """R005: a synchronous task used more than its period (5.6)."""
         w = self.where(task)
         path, line, col = (self.app.path, 0, 0) if w is None else w[:3]
-        self.diags.append(Diagnostic("R005", f"synchronous task {task.name} overran its period of "
-                                             f"{task.period / 1e6:g} s", path, line, col,
-                                     time_us=self.clock.now, task=task.name, program=task.program))
+        self.diags.append(
+            Diagnostic(
+                codes.SYNC_OVERRUN,
+                f"synchronous task {task.name} overran its period of {task.period / 1e6:g} s",
+                path,
+                line,
+                col,
+                time_us=self.clock.now,
+                task=task.name,
+                program=task.program,
+            )
+        )
 
     # ---- where a task is ------------------------------------------------------------------------
 
@@ -404,7 +434,7 @@ class Machine:
         self.scheduler.add(task)
 
     def _wall_check(self) -> None:
-        if self.budgets.wall_clock() > self.wall_start + self.budgets.wall_s:
+        if self.budgets.wall_clock() > self.budgets.run_deadline(self.wall_start):
             raise EndRun("wall-clock")
 
     def check_load_budgets(self) -> None:
@@ -445,8 +475,12 @@ class Machine:
             where = self.where(task) if not stopped else None
             if stopped and task.errpos:
                 where = task.errpos
-            task.final = FinalState(task.state.report_name, where,
-                                    self.blocked_on(task) if task.state is WAIT else None, self.loop_passes(task))
+            task.final = FinalState(
+                task.state.report_name,
+                where,
+                self.blocked_on(task) if task.state is WAIT else None,
+                self.loop_passes(task),
+            )
 
     def motion_reason(self, task: Task) -> tuple[str, str] | None:
         """(rule, why) when the task waits for the arm's motion and the arm cannot move."""
@@ -459,13 +493,22 @@ class Machine:
         motion that power never allows (R018)."""
         for task in self.scheduler.tasks:
             why = self.motion_reason(task)
-            if why is None or why[0] != "R018":
+            if why is None or why[0] != codes.MOTION_WITHOUT_POWER:
                 continue
             w = self.where(task)
             path, line, col, prog = w if w else (self.app.path, 0, 0, task.program)
-            self.diags.append(Diagnostic("R018", f"task {task.name} waits in {self.blocked_on(task)} for a motion "
-                                                 f"that cannot happen: {why[1]}", path, line, col,
-                                         time_us=self.clock.now, task=task.name, program=prog))
+            self.diags.append(
+                Diagnostic(
+                    codes.MOTION_WITHOUT_POWER,
+                    f"task {task.name} waits in {self.blocked_on(task)} for a motion that cannot happen: {why[1]}",
+                    path,
+                    line,
+                    col,
+                    time_us=self.clock.now,
+                    task=task.name,
+                    program=prog,
+                )
+            )
 
     def _stop_after(self, reason: str) -> None:
         """As when the application is stopped from the pendant (2.1.3, 5.2): the start task is
@@ -486,8 +529,10 @@ class Machine:
         try:
             self.scheduler.loop(limit, stopping=True)
         except EndRun as extra:
-            what = {"stop-timeout": f"still running {self.budgets.stop_us / 1e6:g} s after the run was stopped",
-                    "deadlock": "blocked"}.get(extra.reason, extra.reason)
+            what = {
+                "stop-timeout": f"still running {self.budgets.stop_us / 1e6:g} s after the run was stopped",
+                "deadlock": "blocked",
+            }.get(extra.reason, extra.reason)
             self._stop_did_not_end(what)
 
     def _stop_did_not_end(self, what: str) -> None:
@@ -496,8 +541,18 @@ class Machine:
         if task is not None and task in self.scheduler.tasks and task.state is not ERROR and task.state is not HELD:
             w = self.where(task)
             path, line, col, prog = w if w else (self.app.path, 0, 0, "stop")
-            self.diags.append(Diagnostic("R006", f"stop() did not end: {what}", path, line, col,
-                                         time_us=self.clock.now, task=task.name, program=prog))
+            self.diags.append(
+                Diagnostic(
+                    codes.BUDGET_EXCEEDED,
+                    f"stop() did not end: {what}",
+                    path,
+                    line,
+                    col,
+                    time_us=self.clock.now,
+                    task=task.name,
+                    program=prog,
+                )
+            )
 
     def start_stop_program(self) -> None:
         stop = self.main.program("stop")

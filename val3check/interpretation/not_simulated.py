@@ -10,6 +10,8 @@ from __future__ import annotations
 
 from typing import Any
 
+from ..rules import codes
+
 ARM_LIMIT = "arm"  # R002
 OTHER_LIMIT = "notsim"  # R004
 
@@ -31,6 +33,11 @@ HARDWARE = frozenset({"setlatch", "getlatch", "getdh", "getdefaultdh", "setdh"})
 OPTIONS = {"movejf": "compliance", "movelf": "compliance", "iscompliant": "compliance", "altermovej": "alter",
            "altermovel": "alter", "altermovec": "alter", "alterbegin": "alter", "alterend": "alter", "alter": "alter",
            "alterstoptime": "alter", "resetturn": "continuous axis"}
+
+
+def limit_code(kind: str) -> str:
+    """The rule of a task the simulator cannot go on with: R002 (the arm) or R004 (anything else)."""
+    return codes.ARM_NOT_SIMULATED if kind == ARM_LIMIT else codes.NOT_SIMULATED
 
 
 def arm_message(what: str, arm_name: str | None) -> str:

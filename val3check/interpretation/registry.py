@@ -24,7 +24,7 @@ from dataclasses import dataclass
 from typing import Any, Callable
 
 from ..language import lookup
-from .not_simulated import ARM_LIMIT, OTHER_LIMIT
+from .not_simulated import ARM_LIMIT, OTHER_LIMIT, limit_code
 
 # Options of chapter 11 that drive the arm (compliance, alter, absolute robot, continuous
 # axis); the latch of 9.2.3 needs the arm's position capture hardware.
@@ -164,7 +164,7 @@ class Registry:
             return Status(True, "inline")
         if low in self._builtins:
             return Status(True, "builtin")
-        return Status(False, "R002" if self.not_simulated_kind(low) == ARM_LIMIT else "R004")
+        return Status(False, limit_code(self.not_simulated_kind(low)))
 
     def namespace(self) -> dict[str, Any]:
         """The names the generated code finds: helpers, `I_<name>` handlers, `B_<name>` built-ins."""

@@ -244,7 +244,7 @@ class Scheduler:
         machine = self.machine
         clock = self.clock
         budgets = machine.budgets
-        wall_deadline = machine.wall_start + budgets.wall_s
+        wall_deadline = budgets.run_deadline(machine.wall_start)
         wall_clock = budgets.wall_clock
         memory = machine.cell.budget
         cycles = 0
@@ -422,8 +422,7 @@ class Scheduler:
             clock.current = None
             task.state = ERROR
             task.error = 61
-            self.machine.add_diag("R001", f"error 61: {RUNTIME_CODES[61]} ({exc.__class__.__name__}: {exc})", task,
-                                  None, 61)
+            self.machine.runtime_error(task, None, 61, f"{RUNTIME_CODES[61]} ({exc.__class__.__name__}: {exc})")
         ran = quantum - max(task.q, 0)
         clock.cycle_lines += ran
         task.lines += ran

@@ -13,6 +13,7 @@ import os
 
 from ..diagnostics import Diagnostic, Severity
 from ..records import dataclass, field
+from ..rules import codes
 from . import resolve as rs
 from .model import Application, LibraryRef, TypeRef
 
@@ -96,7 +97,7 @@ class LibraryResolution:
             o = ref.origin
             what = f"library {ref.alias}" if isinstance(ref, LibraryRef) else f"user type {ref.name}"
             self.diags.append(Diagnostic(
-                "F016",
+                codes.LIBRARY_FOUND_IN_REPOSITORY,
                 f"{what}: '{ref.path}' is not at its Disk:// place; using the application found by name in"
                 f" the repository: {ref.guessed} (a guess: the findings that depend on it are at most"
                 " warnings)",
@@ -126,7 +127,7 @@ class LibraryResolution:
         else:
             what, tail = f"user type {ref.name}", "its fields are not checked"
         return Diagnostic(
-            "F014",
+            codes.PATH_OUTSIDE_ROOTS,
             f"{what}: the path '{ref.path}' leads outside the application and the configured roots (its"
             f" repository, --disk-root, disk-roots): not read; {tail}",
             o.path, o.line, o.col,
@@ -141,13 +142,16 @@ class LibraryResolution:
             else "in the folder that contains the application folder, in each --disk-root and in the controller's usr/usrapp"
         )
         if candidates:
-            where += (f"; {len(candidates)} applications named {stem} in the repository: "
-                      + ", ".join(self._shown(c) for c in candidates[:10])
-                      + (", ..." if len(candidates) > 10 else "") + " (name the right folder with --disk-root)")
+            where += (
+                f"; {len(candidates)} applications named {stem} in the repository: "
+                + ", ".join(self._shown(c) for c in candidates[:10])
+                + (", ..." if len(candidates) > 10 else "")
+                + " (name the right folder with --disk-root)"
+            )
         if isinstance(ref, LibraryRef):
             if ref.alias.lower() == "io" or stem.lower() == "io":
                 return Diagnostic(
-                    "L003",
+                    codes.IO_LIBRARY_NOT_CHECKED,
                     f"library {ref.alias} ('{ref.path}') is the controller's own I/O library: its"
                     f" contents come from the controller's configuration, so {ref.alias}: symbols are not checked",
                     o.path,
@@ -155,7 +159,7 @@ class LibraryResolution:
                     o.col,
                 )
             return Diagnostic(
-                "L001",
+                codes.LIBRARY_NOT_FOUND,
                 f"library {ref.alias} not found: '{ref.path}' (searched {where}); uses of"
                 f" {ref.alias}: symbols are not checked",
                 o.path,
@@ -163,7 +167,7 @@ class LibraryResolution:
                 o.col,
             )
         return Diagnostic(
-            "L002",
+            codes.USER_TYPE_NOT_FOUND,
             f"user type {ref.name} not found: '{ref.path}' (searched {where}); its fields are not checked",
             o.path,
             o.line,
@@ -174,6 +178,7 @@ class LibraryResolution:
 def _edges(apps: dict[str, Application], app: Application, kind: str) -> list[tuple[LibraryRef | TypeRef, str]]:
     refs = app.libraries.values() if kind == "library" else app.types.values()
     return [(r, r.resolved) for r in refs if r.resolved is not None and r.resolved in apps]
+
 
 def cycle_findings(apps: dict[str, Application], kind: str) -> list[Diagnostic]:
     """Manual 6.6: "Il ne peut pas y avoir de références circulaires entre les librairies."
@@ -245,10 +250,20 @@ def cycle_findings(apps: dict[str, Application], kind: str) -> list[Diagnostic]:
                 label = ref.name  # type: ignore[union-attr]
                 msg = f"circular user type: type {label} ends up containing itself ({names})"
             if guesses:  # a cycle through a library found by name may not exist on the controller
-                msg += (f" [found by guessing (F016): {', '.join(guesses)}; if that is not the right"
-                        " application, there is no cycle, so this is at most a warning]")
-            out.append(Diagnostic("L004" if kind == "library" else "L005", msg, o.path, o.line, o.col,
-                                         at_most=Severity.WARNING if guesses else None))
+                msg += (
+                    f" [found by guessing (F016): {', '.join(guesses)}; if that is not the right"
+                    " application, there is no cycle, so this is at most a warning]"
+                )
+            out.append(
+                Diagnostic(
+                    codes.CIRCULAR_LIBRARY if kind == "library" else codes.CIRCULAR_USER_TYPE,
+                    msg,
+                    o.path,
+                    o.line,
+                    o.col,
+                    at_most=Severity.WARNING if guesses else None,
+                )
+            )
     return out
 
 
@@ -260,6 +275,7 @@ def _guesses_on(apps: dict[str, Application], path: list[str], kind: str) -> lis
             if target == b and ref.guessed and ref.guessed not in out:
                 out.append(ref.guessed)
     return out
+
 
 def _cycle_path(apps: dict[str, Application], start: str, first: str, comp_of: dict[str, int], kind: str) -> list[str]:
     """Shortest path start -> first -> ... -> start inside the component (BFS)."""

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from ..rules import codes
 import errno
 import os
 from collections.abc import Callable
@@ -50,7 +51,7 @@ def _keep_first(app: Application, table: dict, item, kind: str, sink: rd.Sink) -
         table[item.name] = item
         return
     sink.diagnostics.append(Diagnostic(
-        "F011",
+        codes.DUPLICATE_FILE_DECLARATION,
         f"{kind} {item.name} is declared twice in application {app.name} (first in"
         f" {os.path.basename(first.origin.path)} line {first.origin.line}); the first one is used",
         item.origin.path, item.origin.line, item.origin.col,
@@ -172,7 +173,7 @@ class Loader(LibraryResolution):
             for rel, node in entries:
                 first = seen_text.setdefault((kind, rel.replace("\\", "/")), node)
                 if first is not node:
-                    sink.add("F011", node, f"{kind} file '{rel}' is listed twice (first on line {first.line}); read once")
+                    sink.add(codes.DUPLICATE_FILE_DECLARATION, node, f"{kind} file '{rel}' is listed twice (first on line {first.line}); read once")
                     continue
                 path = self._listed_file(rel, node, folder, kind, sink)
                 if path is None:
@@ -183,7 +184,9 @@ class Loader(LibraryResolution):
                 k = _key(path)
                 if k in seen:
                     sink.add(
-                        "F011", node, f"{kind} file '{rel}' is listed twice (first on line {seen[k].line}); read once"
+                        codes.DUPLICATE_FILE_DECLARATION,
+                        node,
+                        f"{kind} file '{rel}' is listed twice (first on line {seen[k].line}); read once",
                     )
                     continue
                 seen[k] = node
@@ -202,7 +205,7 @@ class Loader(LibraryResolution):
             if alias in app.libraries:
                 first = app.libraries[alias].origin
                 sink.add(
-                    "F011",
+                    codes.DUPLICATE_FILE_DECLARATION,
                     node,
                     f"library alias {alias} is declared twice (first on line {first.line}); the first is used",
                 )
@@ -212,7 +215,9 @@ class Loader(LibraryResolution):
             if name in app.types:
                 first = app.types[name].origin
                 sink.add(
-                    "F011", node, f"user type {name} is declared twice (first on line {first.line}); the first is used"
+                    codes.DUPLICATE_FILE_DECLARATION,
+                    node,
+                    f"user type {name} is declared twice (first on line {first.line}); the first is used",
                 )
                 continue
             app.types[name] = TypeRef(name, path, Origin(pjx, node.line, node.col))
@@ -227,21 +232,25 @@ class Loader(LibraryResolution):
             if not _inside(path, folder, top):
                 # A project lists its own files; reading (and quoting) a file elsewhere on the
                 # machine because a project names it would leak it into reports.
-                sink.add("F013", node, f"{kind} file '{rel}' listed here is outside the application folder: not read")
+                sink.add(
+                    codes.LISTED_FILE_OUTSIDE_APPLICATION,
+                    node,
+                    f"{kind} file '{rel}' listed here is outside the application folder: not read",
+                )
                 self.claimed.add(_key(path))  # listed, so not "unlisted" (F012) either
                 return None
             return path
         if path is not None and os.path.isdir(path):
-            sink.add("F001", node, f"{kind} file '{rel}' listed here is a folder, not a file")
+            sink.add(codes.FILE_NOT_FOUND, node, f"{kind} file '{rel}' listed here is a folder, not a file")
         elif path is not None and os.path.lexists(path):
             try:
                 check(path, Roots.user_given())
                 why = "cannot be read"
             except Refused as exc:
                 why = exc.reason
-            sink.add("F001", node, f"{kind} file '{rel}' listed here: {why}")
+            sink.add(codes.FILE_NOT_FOUND, node, f"{kind} file '{rel}' listed here: {why}")
         else:
-            sink.add("F001", node, f"{kind} file '{rel}' listed here was not found")
+            sink.add(codes.FILE_NOT_FOUND, node, f"{kind} file '{rel}' listed here was not found")
         return None
 
     def _read_member(self, app: Application, path: str, kind: str) -> tuple[Node, str] | None:
@@ -296,7 +305,7 @@ class Loader(LibraryResolution):
             self.ws.apps[folder] = app
             self.diags.append(
                 Diagnostic(
-                    "F009",
+                    codes.NO_PROJECT_FILE,
                     (
                         "the project file (.pjx) could not be read, so the programs are checked without it"
                         if unreadable_project
@@ -333,22 +342,20 @@ class Loader(LibraryResolution):
 
     def add_path(self, raw: str) -> None:
         if not raw:
-            self.diags.append(Diagnostic("F001", "an empty path was given: name a file or folder", "."))
+            self.diags.append(Diagnostic(codes.FILE_NOT_FOUND, "an empty path was given: name a file or folder", "."))
             return
         path = os.path.abspath(raw)
         self._allow_target(path)
         if not os.path.lexists(path):
-            self.diags.append(Diagnostic("F001", "file or folder not found", path))
+            self.diags.append(Diagnostic(codes.FILE_NOT_FOUND, "file or folder not found", path))
             return
         try:
             os.stat(path)
         except OSError as exc:
             reason = (
-                "too many levels of symbolic links"
-                if exc.errno == errno.ELOOP
-                else (exc.strerror or str(exc)).lower()
+                "too many levels of symbolic links" if exc.errno == errno.ELOOP else (exc.strerror or str(exc)).lower()
             )
-            self.diags.append(Diagnostic("F001", f"cannot open: {reason}", path))
+            self.diags.append(Diagnostic(codes.FILE_NOT_FOUND, f"cannot open: {reason}", path))
             return
         if os.path.isdir(path):
             self._add_folder(path)
@@ -368,17 +375,22 @@ class Loader(LibraryResolution):
         # Any other name: look at the content.
         res = read_xml(path, self.options.max_file_size, self.roots, self.options.overlay)
         if res.root is None:
-            if any(d.code in ("F001", "F002", "F014") for d in res.diagnostics):
+            if any(
+                d.code in (codes.FILE_NOT_FOUND, codes.FILE_TOO_LARGE, codes.PATH_OUTSIDE_ROOTS)
+                for d in res.diagnostics
+            ):
                 self.diags.extend(res.diagnostics)  # not read at all: say why
                 return
             # A file named on the command line that is not even XML (a README, a script...):
             # what it is not matters, not where its XML would break (issue 16 item 10).
-            self.diags.append(Diagnostic(
-                "F006",
-                "not a VAL 3 file (it is not XML); expected a .pjx project, a .pgx program file, a .dtx data file"
-                " or an application folder",
-                path,
-            ))
+            self.diags.append(
+                Diagnostic(
+                    codes.UNEXPECTED_DOCUMENT,
+                    "not a VAL 3 file (it is not XML); expected a .pjx project, a .pgx program file, a .dtx data file"
+                    " or an application folder",
+                    path,
+                )
+            )
             return
         got = rd.classify(res.root)
         if got is not None and got[0] == "project":
@@ -390,7 +402,7 @@ class Loader(LibraryResolution):
         else:
             self.diags.append(
                 Diagnostic(
-                    "F006",
+                    codes.UNEXPECTED_DOCUMENT,
                     f"unexpected document: not a VAL 3 file (root <{res.root.tag}>); expected a .pjx"
                     " project, a .pgx program file or an application folder",
                     path,
@@ -422,7 +434,7 @@ class Loader(LibraryResolution):
         if ext == _EXT_DATA:
             self.diags.append(
                 Diagnostic(
-                    "F008",
+                    codes.NO_APPLICATION_FOUND,
                     "no VAL 3 application found for this data file: no .pjx in its folder lists it;"
                     " give the application folder or its .pjx",
                     path,
@@ -450,7 +462,7 @@ class Loader(LibraryResolution):
                 names = sorted(os.listdir(folder))
             except OSError as exc:
                 reason = "permission denied" if isinstance(exc, PermissionError) else (exc.strerror or str(exc)).lower()
-                self.diags.append(Diagnostic("F001", f"cannot list the folder: {reason}", folder))
+                self.diags.append(Diagnostic(codes.FILE_NOT_FOUND, f"cannot list the folder: {reason}", folder))
                 continue
             projects, programs, subdirs = [], [], []
             skip = self.options.skip
@@ -480,10 +492,13 @@ class Loader(LibraryResolution):
         return out
 
     def _outside(self, path: str, what: str) -> None:
-        self.diags.append(Diagnostic(
-            "F014", f"symbolic link to a {what} outside the folders being checked and the configured roots: not followed",
-            path,
-        ))
+        self.diags.append(
+            Diagnostic(
+                codes.PATH_OUTSIDE_ROOTS,
+                f"symbolic link to a {what} outside the folders being checked and the configured roots: not followed",
+                path,
+            )
+        )
 
     def _add_folder(self, top: str) -> None:
         before = self.excluded
@@ -492,7 +507,11 @@ class Loader(LibraryResolution):
             if self.excluded > before:
                 return  # everything here is excluded: nothing to check, nothing wrong
             self.diags.append(
-                Diagnostic("F008", "no VAL 3 application (.pjx project or .pgx program file) found in this folder", top)
+                Diagnostic(
+                    codes.NO_APPLICATION_FOUND,
+                    "no VAL 3 application (.pjx project or .pgx program file) found in this folder",
+                    top,
+                )
             )
             return
         loaded: dict[str, list[str]] = {}
@@ -519,14 +538,16 @@ class Loader(LibraryResolution):
                     self._add_target(k)
                 for p in free:
                     rel = os.path.relpath(p, os.path.dirname(owner)).replace(os.sep, "/")
-                    self.diags.append(Diagnostic(
-                        "F012",
-                        f"program file not listed in {os.path.basename(owner)}: it is not part of the"
-                        " application and is not checked; if it belongs to the application, add"
-                        f" <Program file=\"{rel}\" /> to <Programs> in {os.path.basename(owner)} (never done by"
-                        " --fix: it would change what the controller loads), else delete it",
-                        p,
-                    ))
+                    self.diags.append(
+                        Diagnostic(
+                            codes.PROGRAM_FILE_NOT_LISTED,
+                            f"program file not listed in {os.path.basename(owner)}: it is not part of the"
+                            " application and is not checked; if it belongs to the application, add"
+                            f' <Program file="{rel}" /> to <Programs> in {os.path.basename(owner)} (never done by'
+                            " --fix: it would change what the controller loads), else delete it",
+                            p,
+                        )
+                    )
                 continue
             # No project here or above, or none could be read: the programs alone.
             if free:
@@ -545,6 +566,7 @@ class Loader(LibraryResolution):
 
     # -- libraries and user types -------------------------------------------------------------
 
+
 def load_paths(paths: list[str], options: LoadOptions) -> tuple[Workspace, list[Diagnostic], Loader]:
     loader = Loader(options)
     for p in paths:
@@ -552,7 +574,7 @@ def load_paths(paths: list[str], options: LoadOptions) -> tuple[Workspace, list[
             loader.add_path(p)
         except (OSError, ValueError) as exc:  # pragma: no cover - a race with the file system
             reason = getattr(exc, "strerror", None) or str(exc)
-            loader.diags.append(Diagnostic("F001", f"cannot read: {reason}", os.path.abspath(p)))
+            loader.diags.append(Diagnostic(codes.FILE_NOT_FOUND, f"cannot read: {reason}", os.path.abspath(p)))
     loader.resolve_all()
     loader.ws.excluded = loader.excluded
     return loader.ws, loader.diags, loader

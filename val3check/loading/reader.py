@@ -8,6 +8,7 @@ file is still read.
 
 from __future__ import annotations
 
+from ..rules import codes
 import math
 import re
 from ..records import dataclass, field
@@ -79,7 +80,7 @@ def check_root(root: Node, expected: str, path: str) -> tuple[str | None, list[D
         msg = f"expected {_WHAT[expected]} but this is {_WHAT[got[0]]} (root {found})"
     else:
         msg = f"expected {_WHAT[expected]} (root {_S7_NAMES[expected]}, or its s6 form) but the root element is {found}"
-    return None, [Diagnostic("F006", f"unexpected document: {msg}", path, root.line, root.col)]
+    return None, [Diagnostic(codes.UNEXPECTED_DOCUMENT, f"unexpected document: {msg}", path, root.line, root.col)]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -167,7 +168,7 @@ class Sink:
     diagnostics: list[Diagnostic] = field(default_factory=list)
 
     def f007(self, node: Node, message: str) -> None:
-        self.diagnostics.append(Diagnostic("F007", message, self.path, node.line, node.col))
+        self.diagnostics.append(Diagnostic(codes.INVALID_DECLARATION, message, self.path, node.line, node.col))
 
     def add(self, code: str, node: Node, message: str) -> None:
         self.diagnostics.append(Diagnostic(code, message, self.path, node.line, node.col))
@@ -255,23 +256,31 @@ def read_program(node: Node, sink: Sink) -> Program | None:
                 loc = _read_local(ln, sink, what)
                 if loc is not None:
                     locals_.append(loc)
-    codes = node.findall("code")
-    code_node = codes[0] if codes else None
+    code_nodes = node.findall("code")
+    code_node = code_nodes[0] if code_nodes else None
     if code_node is None:
         src = node.find("source")
         if src is not None:
-            codes = src.findall("code")
-            code_node = codes[0] if codes else None
-    for extra in codes[1:]:
-        sink.add("F015", extra, f"program {name} has a second <{extra.tag}> element (the first is on line"
-                 f" {code_node.line}): it is not read")
+            code_nodes = src.findall("code")
+            code_node = code_nodes[0] if code_nodes else None
+    for extra in code_nodes[1:]:
+        sink.add(
+            codes.CODE_ELEMENT_IGNORED,
+            extra,
+            f"program {name} has a second <{extra.tag}> element (the first is on line"
+            f" {code_node.line}): it is not read",
+        )
     for child in code_node.children if code_node is not None else ():
-        sink.add("F015", child, f"program {name}: the element <{child.tag}> inside <{code_node.tag}> is not VAL 3"
-                 " code (a '<' that should be written &lt;, or code outside its CDATA section?): its content is"
-                 " not read")
+        sink.add(
+            codes.CODE_ELEMENT_IGNORED,
+            child,
+            f"program {name}: the element <{child.tag}> inside <{code_node.tag}> is not VAL 3"
+            " code (a '<' that should be written &lt;, or code outside its CDATA section?): its content is"
+            " not read",
+        )
     if code_node is None:
         sink.add(
-            "F010",
+            codes.PROGRAM_WITHOUT_CODE,
             node,
             f"program {name} has no <Code> element (s6: <source><code>): its instructions are unknown",
         )
@@ -440,8 +449,9 @@ def _check_key(node: Node, sink: Sink, key: str, container: Container, sizes: tu
 _SKIP_ATTRS = frozenset({"key", "index", "fatherid", "xsi:type", "name"})
 
 
-def read_value(node: Node, sink: Sink, typ: str, container: Container, sizes: tuple[int, ...], owner: str,
-               depth: int = 0) -> Value:
+def read_value(
+    node: Node, sink: Sink, typ: str, container: Container, sizes: tuple[int, ...], owner: str, depth: int = 0
+) -> Value:
     key = node.get("key")
     if key is None:
         key = node.get("index", "0") or "0"
@@ -464,7 +474,11 @@ def read_value(node: Node, sink: Sink, typ: str, container: Container, sizes: tu
             d = read_data_node(fn, sink, "public", f"{owner}[{key}].", depth + 1)
             if d is not None:
                 if d.name in members:
-                    sink.add("F011", fn, f"{what}: field {d.name} is written twice; the first one is kept")
+                    sink.add(
+                        codes.DUPLICATE_FILE_DECLARATION,
+                        fn,
+                        f"{what}: field {d.name} is written twice; the first one is kept",
+                    )
                 else:
                     members[d.name] = d
     return Value(key, fields, given, _origin(sink, node), members, father)
@@ -493,8 +507,11 @@ def convert_fields(
                 continue
             if not math.isfinite(v):
                 # 3.2.1: a num is a double (about 14 significant digits): 1e400 is none
-                sink.f007(node, f'{what}: {attr}="{_short(raw)}" is beyond the range of a num (about ±1.8e308,'
-                          " manual 3.2.1); the default is used")
+                sink.f007(
+                    node,
+                    f'{what}: {attr}="{_short(raw)}" is beyond the range of a num (about ±1.8e308,'
+                    " manual 3.2.1); the default is used",
+                )
                 continue
             fields[k] = v
         elif kind == "bool":

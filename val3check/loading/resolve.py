@@ -74,12 +74,6 @@ def find_path(base: str, rel: str) -> str | None:
     return os.path.abspath(cur)
 
 
-def find_file(base: str, rel: str) -> str | None:
-    """A listed file (`<Program file=...>`): like find_path, but only regular files."""
-    p = find_path(base, rel)
-    return p if p is not None and os.path.isfile(p) else None
-
-
 def project_in_folder(folder: str) -> str | None:
     """The application in a folder: `<folder>.pjx` (any case), else the only .pjx there."""
     names = [n for n in listdir(folder) if n.lower().endswith(".pjx") and os.path.isfile(os.path.join(folder, n))]

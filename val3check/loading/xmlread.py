@@ -14,6 +14,7 @@ CDATA or from escaped text (`&gt;` is one character of code but four columns of 
 
 from __future__ import annotations
 
+from ..rules import codes
 from ..records import dataclass, field
 from xml.parsers import expat
 
@@ -276,14 +277,18 @@ def decode(data: bytes, path: str) -> tuple[bytes | None, list[Diagnostic]]:
             return data.decode("utf-32").encode("utf-8"), []
         except UnicodeDecodeError:
             return None, [
-                Diagnostic("F003", "the file starts with a UTF-32 byte-order mark but is not valid UTF-32", path)
+                Diagnostic(
+                    codes.INVALID_UTF8, "the file starts with a UTF-32 byte-order mark but is not valid UTF-32", path
+                )
             ]
     elif data.startswith((b"\xff\xfe", b"\xfe\xff")):
         try:
             return data.decode("utf-16").encode("utf-8"), []
         except UnicodeDecodeError:
             return None, [
-                Diagnostic("F003", "the file starts with a UTF-16 byte-order mark but is not valid UTF-16", path)
+                Diagnostic(
+                    codes.INVALID_UTF8, "the file starts with a UTF-16 byte-order mark but is not valid UTF-16", path
+                )
             ]
     try:
         data.decode("utf-8")
@@ -293,7 +298,7 @@ def decode(data: bytes, path: str) -> tuple[bytes | None, list[Diagnostic]]:
         bad = data[exc.start : exc.start + 1].hex().upper()
         return None, [
             Diagnostic(
-                "F003",
+                codes.INVALID_UTF8,
                 f"invalid UTF-8 (byte 0x{bad}); VAL 3 files are UTF-8: re-save the file as UTF-8",
                 path,
                 line,
@@ -467,15 +472,15 @@ def parse(data: bytes, path: str) -> tuple[Node | None, list[Diagnostic]]:
     try:
         parser.Parse(data, True)
     except _Forbidden as exc:
-        return None, [Diagnostic("F005", exc.message, path, exc.line, exc.col)]
+        return None, [Diagnostic(codes.FORBIDDEN_ENTITY, exc.message, path, exc.line, exc.col)]
     except (EntitiesForbidden, ExternalReferenceForbidden, DTDForbidden) as exc:  # pragma: no cover
-        return None, [Diagnostic("F005", str(exc), path, 0, 0)]
+        return None, [Diagnostic(codes.FORBIDDEN_ENTITY, str(exc), path, 0, 0)]
     except expat.ExpatError as exc:
         return None, [_expat_diagnostic(exc, parser, data, path, stack)]
     except RecursionError:  # pragma: no cover - expat does not recurse in Python
-        return None, [Diagnostic("F004", "malformed XML: elements nested too deeply", path)]
+        return None, [Diagnostic(codes.MALFORMED_XML, "malformed XML: elements nested too deeply", path)]
     if not root_holder:  # pragma: no cover - expat reports "no element found" first
-        return None, [Diagnostic("F004", "malformed XML: no root element", path)]
+        return None, [Diagnostic(codes.MALFORMED_XML, "malformed XML: no root element", path)]
     return root_holder[0], []
 
 
@@ -491,7 +496,7 @@ def _expat_diagnostic(exc: expat.ExpatError, parser, data: bytes, path: str, sta
                 name = data[bi + 1 : semi].decode("utf-8", "replace")
         what = f"'&{name};'" if name else "an entity"
         return Diagnostic(
-            "F005",
+            codes.FORBIDDEN_ENTITY,
             f"reference to {what}, which is not one of the predefined entities: only &lt; &gt;"
             " &amp; &quot; &apos; and character references (&#...;) are allowed",
             path,
@@ -502,14 +507,14 @@ def _expat_diagnostic(exc: expat.ExpatError, parser, data: bytes, path: str, sta
         start = data.rfind(b"<![CDATA[", 0, max(parser.ErrorByteIndex, 0) + 1)
         if start >= 0:
             line, col = _line_col_of_offset(data[:start].decode("utf-8", "replace"))
-        return Diagnostic("F004", "malformed XML: " + _PLAIN[code], path, line, col)
+        return Diagnostic(codes.MALFORMED_XML, "malformed XML: " + _PLAIN[code], path, line, col)
     if code == _CODE_INVALID_TOKEN:
         better = _invalid_token(parser.ErrorByteIndex, data, path)
         if better is not None:
             return better
     if code == _CODE_NO_ELEMENTS:
         if not data.strip():
-            return Diagnostic("F004", "malformed XML: the file is empty", path, 0, 0)
+            return Diagnostic(codes.MALFORMED_XML, "malformed XML: the file is empty", path, 0, 0)
         if stack:
             msg = (
                 f"the file ends before the element <{stack[-1].tag}> opened on line"
@@ -517,13 +522,13 @@ def _expat_diagnostic(exc: expat.ExpatError, parser, data: bytes, path: str, sta
             )
         else:
             msg = "the file contains no XML element"
-        return Diagnostic("F004", f"malformed XML: {msg}", path, line, col)
+        return Diagnostic(codes.MALFORMED_XML, f"malformed XML: {msg}", path, line, col)
     if code == _CODE_TAG_MISMATCH and stack:
         open_el = stack[-1]
         msg = f"this closing tag does not match the open element <{open_el.tag}> (opened on line {open_el.line})"
-        return Diagnostic("F004", f"malformed XML: {msg}", path, line, col)
+        return Diagnostic(codes.MALFORMED_XML, f"malformed XML: {msg}", path, line, col)
     msg = _PLAIN.get(code) or expat.ErrorString(code)
-    return Diagnostic("F004", f"malformed XML: {msg}", path, line, col)
+    return Diagnostic(codes.MALFORMED_XML, f"malformed XML: {msg}", path, line, col)
 
 
 def _invalid_token(bi: int, data: bytes, path: str) -> Diagnostic | None:
@@ -535,10 +540,12 @@ def _invalid_token(bi: int, data: bytes, path: str) -> Diagnostic | None:
     if byte < 0x20 and byte not in (0x09, 0x0A, 0x0D):
         line, col = _line_col_of_offset(data[:bi].decode("utf-8", "replace"))
         return Diagnostic(
-            "F004",
+            codes.MALFORMED_XML,
             f"malformed XML: the control character U+{byte:04X} is not allowed in an XML file, even in a CDATA"
             " section; remove it (in a string, build it with chr())",
-            path, line, col,
+            path,
+            line,
+            col,
         )
     here = data.find(b"]]>", max(0, bi - 2), bi + 3)  # expat points at one of its characters
     if here >= 0:
@@ -548,10 +555,12 @@ def _invalid_token(bi: int, data: bytes, path: str) -> Diagnostic | None:
         if early >= 0:
             line, col = _line_col_of_offset(data[:early].decode("utf-8", "replace"))
             return Diagnostic(
-                "F004",
+                codes.MALFORMED_XML,
                 "malformed XML: this ']]>' ends the CDATA section of the code early (a string holding ']]>'?),"
-                " so the code after it is read as XML; write the string as \"]]\" + \">\"",
-                path, line, col,
+                ' so the code after it is read as XML; write the string as "]]" + ">"',
+                path,
+                line,
+                col,
             )
     return None
 

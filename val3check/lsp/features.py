@@ -19,6 +19,7 @@ from ..confine import Roots
 from ..diagnostics import Diagnostic, Severity
 from ..lint import LintRun, run
 from ..loading.model import Application, Container, Data, Local, Parameter, Program, Workspace
+from ..rules import codes
 from .documents import VAL3_EXTENSIONS, Buffers, Recent, locate
 
 # what is kept for files the editor has not opened: their checks, weighed by the bytes of the
@@ -27,7 +28,7 @@ UNOPENED_BUDGET = 16 * 1024 * 1024
 READ_BUDGET = 32 * 1024 * 1024
 MAX_READ = 16 * 1024 * 1024  # as `max-file-size` by default
 # findings about the files an untitled buffer names (it has no folder to find them in)
-BUFFER_CONTEXT_CODES = frozenset({"F001", "F008"})
+BUFFER_CONTEXT_CODES = frozenset({codes.FILE_NOT_FOUND, codes.NO_APPLICATION_FOUND})
 _WORD = re.compile(r"\$?[A-Za-z_][A-Za-z0-9_]*(?::[A-Za-z_][A-Za-z0-9_]*)?")
 SEVERITY = {Severity.ERROR: 1, Severity.WARNING: 2, Severity.INFO: 3}  # LSP DiagnosticSeverity
 
@@ -405,15 +406,21 @@ class Session:
             d: Data = obj
             decl = f"{d.access} {d.type} {d.name}{_declared(d.container, d.sizes)}"
             extra = f"; linked to {d.link}" if d.link else ""
-            return (f"```val3\n{decl}\n```\n\nglobal of {app.name} ({_at(d.origin.path, d.origin.line)}, "
-                    f"{len(d.values)} value{'s' if len(d.values) != 1 else ''} written{extra})")
+            return (
+                f"```val3\n{decl}\n```\n\nglobal of {app.name} ({_at(d.origin.path, d.origin.line)}, "
+                f"{len(d.values)} value{'s' if len(d.values) != 1 else ''} written{extra})"
+            )
         if kind == "program":
             p: Program = obj
-            params = ", ".join(f"{x.type}{'&' if x.by_reference else ''} {x.name}{_declared(x.container, (), x.dimensions)}"
-                               for x in p.parameters)
+            params = ", ".join(
+                f"{x.type}{'&' if x.by_reference else ''} {x.name}{_declared(x.container, (), x.dimensions)}"
+                for x in p.parameters
+            )
             desc = f"\n\n{p.description.strip()}" if p.description.strip() else ""
-            return (f"```val3\n{p.access} program {p.name}({params})\n```\n\nprogram of {app.name} "
-                    f"({_at(p.origin.path, p.origin.line)}){desc}")
+            return (
+                f"```val3\n{p.access} program {p.name}({params})\n```\n\nprogram of {app.name} "
+                f"({_at(p.origin.path, p.origin.line)}){desc}"
+            )
         return None
 
     def definition(self, uri: str, line0: int, character: int) -> list[Place]:
@@ -449,23 +456,37 @@ class Session:
             last = p.code_map.line_starts[-1].line if p.code_map.line_starts else p.origin.line
             sym = Symbol(p.name, "program", f"{p.access} program", p.origin.line - 1, p.origin.col - 1, last - 1)
             for x in p.parameters:
-                sym.children.append(Symbol(x.name, "parameter", f"{x.type}{'&' if x.by_reference else ''}",
-                                           x.origin.line - 1, x.origin.col - 1, x.origin.line - 1))
+                sym.children.append(
+                    Symbol(
+                        x.name,
+                        "parameter",
+                        f"{x.type}{'&' if x.by_reference else ''}",
+                        x.origin.line - 1,
+                        x.origin.col - 1,
+                        x.origin.line - 1,
+                    )
+                )
             for x in p.locals:
-                sym.children.append(Symbol(x.name, "local", x.type, x.origin.line - 1, x.origin.col - 1,
-                                           x.origin.line - 1))
+                sym.children.append(
+                    Symbol(x.name, "local", x.type, x.origin.line - 1, x.origin.col - 1, x.origin.line - 1)
+                )
             out.append(sym)
         for d in app.data.values():
             if os.path.abspath(d.origin.path) == path:
-                out.append(Symbol(d.name, "global", f"{d.access} {d.type}", d.origin.line - 1, d.origin.col - 1,
-                                  d.origin.line - 1))
+                out.append(
+                    Symbol(
+                        d.name, "global", f"{d.access} {d.type}", d.origin.line - 1, d.origin.col - 1, d.origin.line - 1
+                    )
+                )
         if os.path.abspath(app.path) == path:
             for ref in app.libraries.values():
-                out.append(Symbol(ref.alias, "library", ref.path, ref.origin.line - 1, ref.origin.col - 1,
-                                  ref.origin.line - 1))
+                out.append(
+                    Symbol(ref.alias, "library", ref.path, ref.origin.line - 1, ref.origin.col - 1, ref.origin.line - 1)
+                )
             for ref in app.types.values():
-                out.append(Symbol(ref.name, "type", ref.path, ref.origin.line - 1, ref.origin.col - 1,
-                                  ref.origin.line - 1))
+                out.append(
+                    Symbol(ref.name, "type", ref.path, ref.origin.line - 1, ref.origin.col - 1, ref.origin.line - 1)
+                )
         return out
 
 

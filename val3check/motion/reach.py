@@ -28,12 +28,12 @@ from ..geometry import rotation as R
 from ..geometry.frames import Frame, Tool
 from ..geometry.points import Point
 from ..geometry.trsf import Trsf
+from ..lengths import INCH_MM
 from ..loading.reader import parse_father
 from ..loading.types import arm_family, base_type
 from .checks import LIMIT_MARGIN, THRESHOLDS, UNITS, WHAT
 from .kin import ArmKin
 
-INCH_MM = 25.4
 ORDER = {"family": 0, "unreachable": 1, "limits": 2, "config": 3, "unresolved": 4, "near-singularity": 5,
          "near-limit": 6, "ok": 7}
 # A point may be used with only some of the declared tools, or not at all: a static "unreachable"

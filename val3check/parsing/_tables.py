@@ -1,5 +1,5 @@
 """Pre-built LALR tables of grammars/val3.lark. GENERATED: do not edit; run
-`python -m val3check.parsing.build_parser` after changing the grammar (format: build_parser.compile_tables)."""
+`python -m val3check.parsing.build_parser` after changing the grammar (format: tables.compile_tables)."""
 # fmt: off
 GRAMMAR_SHA256 = '3a4e07bb2bae2f81481742a49780ce9fe8d790922d5a58d45cf08698e3f3d39b'
 LARK_VERSION = '1.3.1'

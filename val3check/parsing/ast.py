@@ -15,8 +15,9 @@ a body returned by `parse_code`).
 
 from __future__ import annotations
 
-from ..records import dataclass, field
 from typing import Union
+
+from ..records import dataclass, field
 
 # ---------------------------------------------------------------- expressions
 

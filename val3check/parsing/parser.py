@@ -29,6 +29,7 @@ from typing import Any
 
 from ..diagnostics import Diagnostic
 from ..positions import SourceMap
+from ..rules import codes
 from . import ast as A
 
 __all__ = ["parse_code", "parse_program", "scan_comments", "MAX_BLOCK_DEPTH", "MAX_EXPR_DEPTH"]
@@ -424,7 +425,7 @@ def build_from_grammar(text: str, transformer: Any = None):
 
 
 def load_tables() -> dict:
-    """The parse tables (build_parser.compile_tables): the shipped ones when they match the
+    """The parse tables (tables.compile_tables): the shipped ones when they match the
     grammar file, else computed from the grammar file itself with Lark (while editing it)."""
     text = grammar_text()
     try:
@@ -435,9 +436,9 @@ def load_tables() -> dict:
     except Exception:  # missing or incompatible tables: fall back on the grammar
         if text is None:
             raise
-    from .build_parser import compile_tables
+    from .tables import compile_tables
 
-    return compile_tables(build_from_grammar(text))  # type: ignore[arg-type]
+    return compile_tables(build_from_grammar(text), frozenset(dir(_Builder)))  # type: ignore[arg-type]
 
 
 # ---------------------------------------------------------------- the engine
@@ -452,7 +453,7 @@ def _lone(children: list) -> Any:
 def _reducer(builder: "_Builder", plan: tuple):
     """The function of one rule: children as the LALR driver pops them -> the node.
 
-    It does what Lark's tree builder does (build_parser.compile_tables), written out as straight
+    It does what Lark's tree builder does (tables.compile_tables), written out as straight
     code: e.g. `call: callee _LPAR [args] _RPAR` without args becomes
     `lambda c: builder.call([c[0], None])`."""
     callback, expand1, include, nones = plan
@@ -534,7 +535,7 @@ class _Engine:
                     p += 1
                 ch = text[p]
                 col = p - line_start + 1
-                ctx.report("F102", _char_message(ch), line, col, line, col + 1)
+                ctx.report(codes.INVALID_CHARACTER, _char_message(ch), line, col, line, col + 1)
                 pos = self._recover(ctx, None, line, col, p)
                 state = state_stack[-1]
                 continue
@@ -567,10 +568,10 @@ class _Engine:
                 col = start - line_start + 1
                 tok = (ttype, value, line, col)
                 if ttype == "BADSTRING":
-                    ctx.report("F101", "unterminated string: a string ends with '\"' on the same line",
+                    ctx.report(codes.SYNTAX_ERROR, "unterminated string: a string ends with '\"' on the same line",
                                line, col, line, col + len(value))
                 elif ttype == "BADNUMBER":
-                    ctx.report("F103", _number_message(value), line, col, line, col + len(value))
+                    ctx.report(codes.INVALID_NUMBER, _number_message(value), line, col, line, col + len(value))
 
             # feed the token to the LALR automaton
             while True:
@@ -688,9 +689,9 @@ class _Engine:
             if msg.structural and ctx.recovered:
                 raise _Stop  # probably a consequence of an earlier error and its recovery
             if bad.type in ("_NL", "$END"):
-                ctx.report("F101", msg.text, line, col)
+                ctx.report(codes.SYNTAX_ERROR, msg.text, line, col)
             else:
-                ctx.report("F101", msg.text, line, col, line, col + len(bad.value))
+                ctx.report(codes.SYNTAX_ERROR, msg.text, line, col, line, col + len(bad.value))
             if msg.structural or bad.type == "$END":
                 raise _Stop
         if len(ctx.diags) >= MAX_ERRORS:
@@ -1013,8 +1014,24 @@ def _number_message(text: str) -> str:
 
 def _expr_too_deep(body: A.ProgramBody):
     """The first statement with an expression nested more than MAX_EXPR_DEPTH levels."""
-    stmt_types = (A.Assign, A.ExprStatement, A.Call, A.TaskCreate, A.TaskCreateSync, A.Print, A.Return, A.Break, A.If, A.While,
-                  A.DoUntil, A.For, A.Switch, A.Branch, A.Case, A.Default)
+    stmt_types = (
+        A.Assign,
+        A.ExprStatement,
+        A.Call,
+        A.TaskCreate,
+        A.TaskCreateSync,
+        A.Print,
+        A.Return,
+        A.Break,
+        A.If,
+        A.While,
+        A.DoUntil,
+        A.For,
+        A.Switch,
+        A.Branch,
+        A.Case,
+        A.Default,
+    )
     stack: list[tuple[Any, int, Any]] = [(s, 0, s) for s in reversed(body.statements)]
     while stack:
         node, depth, stmt = stack.pop()
@@ -1039,8 +1056,15 @@ def parse_code(code: str, source_map: SourceMap, path: str) -> tuple[A.ProgramBo
         with _lock:
             return _parse_locked(code, source_map, path)
     except Exception as exc:  # noqa: BLE001 - never raise
-        return None, [Diagnostic("F101", f"could not parse this program (internal error: "
-                                 f"{exc.__class__.__name__}: {_clip(str(exc), 80)})", path, 1, 1)]
+        return None, [
+            Diagnostic(
+                codes.SYNTAX_ERROR,
+                f"could not parse this program (internal error: {exc.__class__.__name__}: {_clip(str(exc), 80)})",
+                path,
+                1,
+                1,
+            )
+        ]
 
 
 def _parse_locked(code: str, source_map: SourceMap, path: str) -> tuple[A.ProgramBody | None, list[Diagnostic]]:
@@ -1064,26 +1088,42 @@ def _parse_nogc(code: str, source_map: SourceMap, path: str) -> tuple[A.ProgramB
     except _Stop:
         pass
     except RecursionError:
-        ctx.diags.append(Diagnostic("F104", "the program is nested too deeply to be analysed", path,
-                                    *builder.fpos(1, 1)))
+        ctx.diags.append(
+            Diagnostic(
+                codes.TOO_DEEPLY_NESTED, "the program is nested too deeply to be analysed", path, *builder.fpos(1, 1)
+            )
+        )
     except MemoryError:
-        ctx.diags.append(Diagnostic("F104", "the program is too large to be analysed", path, *builder.fpos(1, 1)))
+        ctx.diags.append(
+            Diagnostic(codes.TOO_DEEPLY_NESTED, "the program is too large to be analysed", path, *builder.fpos(1, 1))
+        )
     finally:
         ctx.state_stack = ctx.value_stack = []
     if ctx.diags or not isinstance(body, A.ProgramBody):
         if not ctx.diags:
-            ctx.diags.append(Diagnostic("F101", "could not parse this program", path, *builder.fpos(1, 1)))
+            ctx.diags.append(Diagnostic(codes.SYNTAX_ERROR, "could not parse this program", path, *builder.fpos(1, 1)))
         return None, sorted(ctx.diags, key=Diagnostic.sort_key)
     if ctx.deep_token is not None:
         t = ctx.deep_token
-        ctx.report("F104", f"blocks nested more than {MAX_BLOCK_DEPTH} deep: "
-                   "split the program into sub-programs", t.line, t.column)
+        ctx.report(
+            codes.TOO_DEEPLY_NESTED,
+            f"blocks nested more than {MAX_BLOCK_DEPTH} deep: split the program into sub-programs",
+            t.line,
+            t.column,
+        )
         return None, ctx.diags
     if len(code) > MAX_EXPR_DEPTH and max(map(len, code.split("\n"))) > MAX_EXPR_DEPTH:
         node = _expr_too_deep(body)
         if node is not None:
-            ctx.diags.append(Diagnostic("F104", f"expression nested more than {MAX_EXPR_DEPTH} deep: "
-                                        "split it with intermediate variables", path, node.line, node.col))
+            ctx.diags.append(
+                Diagnostic(
+                    codes.TOO_DEEPLY_NESTED,
+                    f"expression nested more than {MAX_EXPR_DEPTH} deep: split it with intermediate variables",
+                    path,
+                    node.line,
+                    node.col,
+                )
+            )
             return None, ctx.diags
     body.comments = scan_comments(code, source_map)
     return body, []

@@ -15,6 +15,9 @@ test case. So `tests` = passing files + failing findings, `failures` = failing f
 Escaping is done by ElementTree; characters that XML 1.0 cannot hold are written as escapes
 ("\\x00", "\\x1b": reporting._common.visible) and non-ASCII characters become character
 references, so the output is pure ASCII.
+
+This module is also the one JUnit XML writer of val3check (`testcase`, `document`): `sim --report
+junit` (sim_junit.py) and the batch summary (batch/summary.py) write through it.
 """
 
 from __future__ import annotations
@@ -29,10 +32,38 @@ if TYPE_CHECKING:
     from ..result import LintResult
 
 
-def _xml(text: str) -> str:
+def xml_text(value: str) -> str:
     """Text XML 1.0 can hold: controls other than tab and newline, lone surrogates and
     non-characters written as escapes ("\\x1b", reporting._common.visible)."""
-    return visible(text)
+    return visible(value)
+
+
+
+def testcase(classname: str, name: str, *, file: str | None = None, line: int = 0, time: bool = True) -> ET.Element:
+    """A `<testcase>`: its class name and name, the file and line it is about, `time="0"` (no
+    wall-clock value: the output is deterministic)."""
+    attrs = {"classname": xml_text(classname), "name": xml_text(name)}
+    if file is not None:
+        attrs["file"] = xml_text(file)
+    if line > 0:
+        attrs["line"] = str(line)
+    if time:
+        attrs["time"] = "0"
+    return ET.Element("testcase", attrs)
+
+
+def document(name: str, cases: list[ET.Element], counts: dict[str, str], *, ascii_only: bool = True) -> str:
+    """The JUnit XML document: `<testsuites>` holding one `<testsuite>`, both named `name` with
+    the `counts` (tests, failures, errors, skipped...), indented; non-ASCII characters as
+    character references unless `ascii_only` is false."""
+    root = ET.Element("testsuites", {"name": xml_text(name), **counts})
+    suite = ET.SubElement(root, "testsuite", {"name": xml_text(name), **counts})
+    suite.extend(cases)
+    ET.indent(root, space="  ")
+    body = ET.tostring(root, encoding="unicode")
+    if ascii_only:
+        body = body.encode("ascii", "xmlcharrefreplace").decode("ascii")
+    return '<?xml version="1.0" encoding="UTF-8"?>\n' + body + "\n"
 
 
 def _position(diag: Diagnostic) -> str:
@@ -62,11 +93,7 @@ def _fails(severity: Severity, fail_on: str) -> bool:
 
 
 def _case(path: str, name: str, line: int = 0) -> ET.Element:
-    attrs = {"classname": _xml(path), "name": _xml(name), "file": _xml(path)}
-    if line > 0:
-        attrs["line"] = str(line)
-    attrs["time"] = "0"
-    return ET.Element("testcase", attrs)
+    return testcase(path, name, file=path, line=line)
 
 
 def render(result: "LintResult") -> str:
@@ -85,11 +112,11 @@ def render(result: "LintResult") -> str:
         for diag, severity in failing[path]:
             case = _case(path, _case_name(diag, result), diag.line)
             failure = ET.SubElement(
-                case, "failure", {"message": _xml(f"{diag.code}: {diag.message}"), "type": _xml(diag.code)}
+                case, "failure", {"message": xml_text(f"{diag.code}: {diag.message}"), "type": xml_text(diag.code)}
             )
             text = _finding_line(diag, severity)
             summary = result.rules[diag.code].summary if diag.code in result.rules else ""
-            failure.text = _xml(f"{text}\n{summary}" if summary else text)
+            failure.text = xml_text(f"{text}\n{summary}" if summary else text)
             cases.append(case)
             first = first if first is not None else case
             n_failures += 1
@@ -98,13 +125,7 @@ def render(result: "LintResult") -> str:
             cases.append(first)
         if lower[path]:
             out = ET.SubElement(first, "system-out")
-            out.text = _xml("\n".join(_finding_line(d, s) for d, s in lower[path]))
+            out.text = xml_text("\n".join(_finding_line(d, s) for d, s in lower[path]))
 
     counts = {"tests": str(len(cases)), "failures": str(n_failures), "errors": "0", "skipped": "0", "time": "0"}
-    root = ET.Element("testsuites", {"name": TOOL_NAME, **counts})
-    suite = ET.SubElement(root, "testsuite", {"name": TOOL_NAME, **counts})
-    suite.extend(cases)
-    ET.indent(root, space="  ")
-    body = ET.tostring(root, encoding="unicode")
-    body = body.encode("ascii", "xmlcharrefreplace").decode("ascii")
-    return '<?xml version="1.0" encoding="UTF-8"?>\n' + body + "\n"
+    return document(TOOL_NAME, cases, counts)

@@ -11,7 +11,9 @@ on the run only: same run, same file (no wall-clock time, fixed chunking and com
 Everything comes from the run's record (simulation/arm_record.py): the arm's links are placed with
 the forward kinematics the record of the scene gives (`result.motion.scene.kinematics`) at every
 4 ms tick where the arm moves (and once at the start; Foxglove keeps a frame's last transform
-while the arm stands still); the URDF travels with the trace as the record gives it.
+while the arm stands still); the URDF travels with the trace as the record gives it. A long run
+is written at a multiple of 4 ms (at most about TRACE_TICKS ticks of the arm, thinning.py), which
+the file's metadata states (`arm_period_s`, `thinned`).
 """
 
 from __future__ import annotations
@@ -21,8 +23,10 @@ import json
 import math
 from typing import Any
 
+from ..lengths import MM_M as MM  # Foxglove works in metres
+from .thinning import TRACE_TICKS, left_out, thinned_note, tick_multiple
+
 TICK_S = 0.004
-MM = 0.001  # Foxglove works in metres
 CHUNK_SIZE = 1 << 20
 BLOCK = 2048  # ticks whose poses are computed at once
 LIBRARY = "val3check"
@@ -351,7 +355,7 @@ def trace_messages(report: Any, cell: Any = None):
     if cell is None and collision is not None:
         cell = getattr(collision, "cell", None)
     end_ns = _ns(result.sim_time_us / 1e6)
-    extra: dict[str, Any] = {"urdf": None}
+    extra: dict[str, Any] = {"urdf": None, "every": 1, "omitted": None}
     if m is not None:
         scene = m.scene
         frames = {name: f.matrix for name, f in scene.frames.items()}
@@ -372,7 +376,10 @@ def trace_messages(report: Any, cell: Any = None):
         ks = [np.array([0])]
         qs = [np.asarray(m.trajectory.position(0.0), dtype=float)[None, :]]
         vs = [np.zeros_like(qs[0])]
-        for k0, q, v in m.trajectory.segments(m.end_s, TICK_S):
+        every = tick_multiple(m, TRACE_TICKS)  # a long run: a multiple of 4 ms (thinning.py)
+        extra["every"] = every
+        extra["omitted"] = left_out(result, "the arm's motion")  # the run's budgets spent: t = 0 only
+        for k0, q, v in m.trajectory.segments(m.end_s, TICK_S * every) if extra["omitted"] is None else ():
             q, v = np.asarray(q, dtype=float), np.asarray(v, dtype=float)
             k = k0 + np.arange(len(q))
             keep = k > 0
@@ -380,7 +387,7 @@ def trace_messages(report: Any, cell: Any = None):
             qs.append(q[keep])
             vs.append(v[keep])
         K, Q, V = np.concatenate(ks), np.concatenate(qs), np.concatenate(vs)
-        times = K * TICK_S
+        times = K * (TICK_S * every)
         idx = np.searchsorted(np.asarray(starts), times, side="right") - 1 if starts else np.full(len(K), -1)
         arm = _arm_ticks(scene, edges, tools, times, Q, V, idx)
         # the application's frames (world) and tools (flange): those the cell hangs solids on as the
@@ -439,8 +446,10 @@ def trace_messages(report: Any, cell: Any = None):
         times = getattr(mr, "times", None)
         if times is None:
             continue
-        for t, c, ex in zip(np.asarray(times, dtype=float).tolist(), np.asarray(mr.clearance, dtype=float).tolist(),
-                            np.asarray(mr.exact, dtype=bool).tolist()):
+        step = extra["every"]  # thinned as the arm's ticks
+        for t, c, ex in zip(np.asarray(times, dtype=float)[::step].tolist(),
+                            np.asarray(mr.clearance, dtype=float)[::step].tolist(),
+                            np.asarray(mr.exact, dtype=bool)[::step].tolist()):
             if not math.isfinite(c):
                 continue  # nothing measured at that sample
             ns = _ns(round(t, 6))
@@ -534,8 +543,13 @@ def write_trace(report: Any, path: str, cell: Any = None) -> None:
             w.add_attachment(create_time=0, log_time=0, name=name, media_type="application/xml",
                              data=text.encode("utf-8"))
         r = report.result
-        w.add_metadata("val3check", {"application": r.application, "app_path": report.app_path,
-                                     "robot": (r.robot or {}).get("name", ""), "end_reason": r.end_reason,
-                                     "simulated_duration_s": f"{r.sim_time_us / 1e6:.6f}",
-                                     "tool_version": report.tool_version})
+        meta = {"application": r.application, "app_path": report.app_path,
+                "robot": (r.robot or {}).get("name", ""), "end_reason": r.end_reason,
+                "simulated_duration_s": f"{r.sim_time_us / 1e6:.6f}", "tool_version": report.tool_version}
+        if extra["omitted"] is not None:
+            meta["omitted"] = extra["omitted"]
+        if extra["every"] > 1:
+            meta["arm_period_s"] = f"{TICK_S * extra['every']:.6f}"
+            meta["thinned"] = thinned_note(extra["every"], TRACE_TICKS)
+        w.add_metadata("val3check", meta)
         w.finish()

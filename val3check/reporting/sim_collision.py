@@ -7,6 +7,8 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from .thinning import MOTION_ROWS
+
 CODES = {f"R0{n}" for n in range(30, 40)}
 MAX_LINES = 30  # instructions listed in the text summary
 
@@ -121,8 +123,15 @@ def section(run: Any) -> dict | None:
     with_cell = c.cell is not None and bool(c.cell.obstacles or c.cell.parts)
     recs = run.result.motion.motions
     motions = []
+    found = omitted = 0
     for i in sorted(c.by_motion):
         r = c.by_motion[i]
+        # a long run (thinning.py): the first rows, and later the motions with a finding (as many)
+        finding = bool(r.contacts or r.too_close or r.starts_in_collision is not None)
+        if i >= MOTION_ROWS and not (finding and found < MOTION_ROWS):
+            omitted += 1
+            continue
+        found += i >= MOTION_ROWS
         s = recs[i].source
         where = run.display((s.path, s.line, s.col, ""))
         m = r.min_clearance
@@ -142,7 +151,7 @@ def section(run: Any) -> dict | None:
                                   "mm": [_num(x) for x in r.clearance.tolist()]}
         motions.append(entry)
     mins = [r.min_clearance.mm for r in c.by_motion.values() if r.min_clearance is not None]
-    return {
+    out = {
         "cell": cell,
         "summary": {
             "motions": len(c.by_motion),
@@ -158,3 +167,7 @@ def section(run: Any) -> dict | None:
         "drops": [{"time": _num(d.time, 6), "part": d.part, "obstacle": d.obstacle, "point": _point(d.point),
                    "depth_mm": _num(d.depth_mm)} for d in c.drops],
     }
+    if omitted:
+        out["motions_omitted"] = {"count": omitted, "why": f"a long run: the rows of the first {MOTION_ROWS} motions, "
+                                                          "then of the motions with a contact or a near miss"}
+    return out

@@ -17,6 +17,7 @@ from typing import Any
 from ..diagnostics import Severity
 from . import sim_collision
 from ._common import TOOL_NAME
+from .thinning import JSON_TICKS, MOTION_ROWS, left_out, thinned_note, tick_multiple
 
 VERSION = 2
 TICK_S = 0.004
@@ -41,10 +42,13 @@ def _pos(pos) -> dict | None:
 
 
 def _diagnostic(run: Any, d) -> dict[str, Any]:
-    """A kept diagnostic in the report."""
-    return {"code": d.code, "name": run.rule_name(d.code), "severity": d.severity.label, "message": d.message,
+    """A kept diagnostic in the report (a repeated one with its `count` and `last_time`)."""
+    out = {"code": d.code, "name": run.rule_name(d.code), "severity": d.severity.label, "message": d.message,
             "path": d.path, "line": d.line or None, "column": d.col or None, "time": _t(d.time_us),
             "task": d.task or None, "program": d.program or None, "error": d.error}
+    if d.count > 1:
+        out.update(count=d.count, last_time=_t(d.last_time_us))
+    return out
 
 
 def _pose(v) -> list[float] | None:
@@ -71,7 +75,7 @@ def _motion(run: Any) -> dict | None:
     if m is None:
         return None
     motions = []
-    for motion in m.motions:
+    for motion in m.motions[:MOTION_ROWS]:  # a long run: its first rows (thinning.py)
         src = motion.source
         where = run.display((src.path, src.line, src.col, ""))
         motions.append({
@@ -98,12 +102,21 @@ def _motion(run: Any) -> dict | None:
                        "min": _s(min(times)) if times else None, "max": _s(max(times)) if times else None,
                        "median": _s(statistics.median(times)) if times else None,
                        "median_range": None if spread is None else [_s(spread[0]), _s(spread[1])]})
+    every = tick_multiple(m, JSON_TICKS)
+    period = TICK_S * every
     segments = []
-    for k0, q, v in m.trajectory.segments(m.end_s, TICK_S):
-        segments.append({"start": round(k0 * TICK_S, 6), "first_tick": k0,
+    omitted = left_out(run.result, "the trajectory")
+    for k0, q, v in m.trajectory.segments(m.end_s, period) if omitted is None else ():
+        segments.append({"start": round(k0 * period, 6), "first_tick": k0,
                          "positions": _rows(q, 4), "velocities": _rows(v, 3)})
-    scene = m.scene
-    return {
+    trajectory: dict[str, Any] = {"period": round(period, 6), "axes": m.scene.axes,
+                                  "units": list(m.scene.joint_units), "segments": segments}
+    if omitted is not None:
+        trajectory["omitted"] = omitted
+    if every > 1:
+        trajectory["thinned"] = {"every_ticks": every, "max_samples": JSON_TICKS,
+                                 "why": thinned_note(every, JSON_TICKS)}
+    out = {
         "summary": {
             "commands": sum(1 for r in m.motions if r.id is not None),
             "done": sum(1 for r in m.motions if r.state == "done"),
@@ -122,13 +135,13 @@ def _motion(run: Any) -> dict | None:
              **{k: v for k, v in (_pos(run.display(e.position)) or {}).items() if k != "program"}}
             for e in m.tool_events
         ],
-        "trajectory": {
-            "period": TICK_S,
-            "axes": scene.axes,
-            "units": list(scene.joint_units),
-            "segments": segments,
-        },
+        "trajectory": trajectory,
     }
+    if len(m.motions) > MOTION_ROWS:
+        out["motions_omitted"] = {"count": len(m.motions) - MOTION_ROWS, "kept": MOTION_ROWS,
+                                  "why": f"a long run: the table keeps its first {MOTION_ROWS} motions; the "
+                                         "summary, the cycles and the diagnostics cover the whole run"}
+    return out
 
 
 def report(run: Any) -> dict[str, Any]:

@@ -16,7 +16,7 @@ from typing import Any
 
 from ..diagnostics import Severity
 from ._common import TOOL_NAME
-from .junit import _xml
+from .junit import document, testcase, xml_text
 
 
 def _line(d) -> str:
@@ -41,28 +41,27 @@ def case(report: Any, fail_on: str, scenario: str | None = None) -> tuple[ET.Ele
     """The test case of one run (`report`: a SimReport) and whether it failed."""
     r = report.result
     name = f"sim {r.application}" + (f" with {scenario}" if scenario else "")
-    el = ET.Element("testcase", {"classname": _xml(report.app_path), "name": _xml(name), "file": _xml(report.app_path),
-                                 "time": "0"})
+    el = testcase(report.app_path, name, file=report.app_path)
     props = ET.SubElement(el, "properties")
     values = [("end_reason", r.end_reason), ("simulated_duration_s", f"{r.sim_time_us / 1e6:.6f}"),
               ("robot", (r.robot or {}).get("name", "none")), ("cycle_time_s", _cycle_time(r)),
               ("scenario", scenario)]
     for k, v in values:
         if v is not None:
-            ET.SubElement(props, "property", {"name": k, "value": _xml(str(v))})
+            ET.SubElement(props, "property", {"name": k, "value": xml_text(str(v))})
     threshold = None if fail_on == "never" else Severity.parse(fail_on)
     failing = [d for d in report.diagnostics if threshold is not None and d.severity >= threshold]
     ids = {id(d) for d in failing}
     lower = [d for d in report.diagnostics if id(d) not in ids]
     if failing:
         f = ET.SubElement(el, "failure", {
-            "message": _xml(f"{len(failing)} runtime diagnostic(s) at or above {fail_on}: "
+            "message": xml_text(f"{len(failing)} runtime diagnostic(s) at or above {fail_on}: "
                             f"{failing[0].code} {failing[0].message}"),
-            "type": _xml(failing[0].code)})
-        f.text = _xml("\n".join(_line(d) for d in failing))
+            "type": xml_text(failing[0].code)})
+        f.text = xml_text("\n".join(_line(d) for d in failing))
     if lower:
         out = ET.SubElement(el, "system-out")
-        out.text = _xml("\n".join(_line(d) for d in lower))
+        out.text = xml_text("\n".join(_line(d) for d in lower))
     return el, bool(failing)
 
 
@@ -74,12 +73,7 @@ def render_runs(runs: list[tuple[Any, str | None]], fail_on: str = "error") -> s
         cases.append(el)
         failures += failed
     counts = {"tests": str(len(cases)), "failures": str(failures), "errors": "0", "skipped": "0", "time": "0"}
-    root = ET.Element("testsuites", {"name": f"{TOOL_NAME} sim", **counts})
-    suite = ET.SubElement(root, "testsuite", {"name": f"{TOOL_NAME} sim", **counts})
-    suite.extend(cases)
-    ET.indent(root, space="  ")
-    body = ET.tostring(root, encoding="unicode").encode("ascii", "xmlcharrefreplace").decode("ascii")
-    return '<?xml version="1.0" encoding="UTF-8"?>\n' + body + "\n"
+    return document(f"{TOOL_NAME} sim", cases, counts)
 
 
 def render(report: Any, *, fail_on: str = "error", scenario: str | None = None) -> str:

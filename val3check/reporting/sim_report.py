@@ -47,6 +47,6 @@ def build_report(result: SimResult, settings, rules: dict, tool_version: str) ->
         rule = rules.get(d.code)
         sev = (settings.severity.get(d.code) if settings is not None else None) or (rule.severity if rule else Severity.ERROR)
         kept.append(Diagnostic(d.code, d.message, display_path(d.path), d.line, d.col, d.end_line, d.end_col, sev,
-                               d.time_us, d.task, d.program, d.error))
+                               d.time_us, d.task, d.program, d.error, count=d.count, last_time_us=d.last_time_us))
     kept.sort(key=_sort_key)
     return SimReport(result, display_path(result.app_path), tool_version, kept, rules, link_names=result.link_names)

@@ -105,21 +105,6 @@ def find(name: str) -> str:
     raise RobotError(f"unknown robot {shown(name)}; known arms: {', '.join(names())} (or a path to a URDF)")
 
 
-def find_srs(arm_id: str) -> str:
-    """The catalogue name for an arm.cfx value such as 'tx2-60-S1' (identify.match_id, without a
-    stroke or mount)."""
-    from .identify import match_id
-
-    return match_id(arm_id).name
-
-
-def read_arm_cfx(path: str | os.PathLike) -> str:
-    """The arm id written in a controller's usr/configs/arm.cfx (<String name="arm" value="tx60-S1"/>)."""
-    from .identify import read_arm_config
-
-    return read_arm_config(path).arm
-
-
 def find_arm_cfx(app_path: str | os.PathLike) -> Path | None:
     """usr/configs/arm.cfx of the controller tree that holds app_path (searching upwards).
 

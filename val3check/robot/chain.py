@@ -19,6 +19,7 @@ import math
 from pathlib import Path
 from typing import Sequence
 
+from ..lengths import M_MM
 from .errors import RobotError
 from .urdf import IDENTITY, Mat, axis_angle, inverse, mul, read_urdf, transform
 
@@ -32,7 +33,7 @@ def _r(x: float) -> float:
 
 def _mm(M: Mat) -> list[list[float]]:
     """A 3x4 transform (metres) as rows in millimetres."""
-    return [[_r(M[i][0]), _r(M[i][1]), _r(M[i][2]), _r(M[i][3] * 1000.0)] for i in range(3)]
+    return [[_r(M[i][0]), _r(M[i][1]), _r(M[i][2]), _r(M[i][3] * M_MM)] for i in range(3)]
 
 
 def arm_chain(urdf: str | Path, world_frame: str | None = None, flange_frame: str | None = None,
@@ -90,7 +91,7 @@ def arm_chain(urdf: str | Path, world_frame: str | None = None, flange_frame: st
     for j in ordered:
         kind = j.kind if j.kind in MOVING or j.kind == "fixed" else "fixed"
         n = math.sqrt(sum(a * a for a in j.axis)) or 1.0
-        scale = 1000.0 if kind == "prismatic" else 180.0 / math.pi  # mm, degrees: the trajectory's units
+        scale = M_MM if kind == "prismatic" else 180.0 / math.pi  # mm, degrees: the trajectory's units
         limited = kind in ("revolute", "prismatic") and j.lower is not None and j.upper is not None
         joints.append({
             "name": j.name,
@@ -139,7 +140,7 @@ def arm_chain(urdf: str | Path, world_frame: str | None = None, flange_frame: st
         "world_frame": world,
         "flange_frame": flange,
         "joint_names": list(joint_names),
-        "root_in_world": [[_r(M[i][0]), _r(M[i][1]), _r(M[i][2]), _r(M[i][3] * 1000.0)] for M in [inverse(W)] for i in range(3)],
+        "root_in_world": [[_r(M[i][0]), _r(M[i][1]), _r(M[i][2]), _r(M[i][3] * M_MM)] for M in [inverse(W)] for i in range(3)],
         "joints": joints,
         "links": links,
         "notes": notes,

@@ -24,6 +24,7 @@ import random
 from dataclasses import dataclass
 
 from ..geometry import rotation as _rot
+from ..lengths import M_MM
 from .errors import RobotError
 from .urdf import IDENTITY, Mat, UrdfInfo, axis_angle, inverse, mul, transform
 
@@ -129,7 +130,7 @@ class Chain:
             if not j.velocity or j.velocity <= 0:
                 raise RobotError(f"{path}: joint {j.name!r} has no <limit velocity>: the nominal joint speed is needed")
             if j.kind == "prismatic":  # URDF metres -> millimetres
-                joints.append(ChainJoint(j.name, acc, j.axis, j.lower * 1000.0, j.upper * 1000.0, j.velocity * 1000.0,
+                joints.append(ChainJoint(j.name, acc, j.axis, j.lower * M_MM, j.upper * M_MM, j.velocity * M_MM,
                                          j.effort, "prismatic"))
             else:
                 lo, hi = (j.lower, j.upper) if j.kind == "revolute" else (-2 * math.pi, 2 * math.pi)
@@ -173,7 +174,7 @@ class Chain:
         return out
 
 def _mm(xyz) -> tuple[float, float, float]:
-    return (xyz[0] * 1000.0, xyz[1] * 1000.0, xyz[2] * 1000.0)
+    return (xyz[0] * M_MM, xyz[1] * M_MM, xyz[2] * M_MM)
 
 
 # ---- ortho-parallel arm with a spherical wrist ---------------------------------------------------

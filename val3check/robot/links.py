@@ -20,6 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from ..excerpt import shown
+from ..lengths import M_MM
 from .errors import RobotError
 from .urdf import UrdfInfo, read_urdf
 
@@ -241,13 +242,13 @@ def read_collision_solids(path: str | os.PathLike, resolve_meshes: bool = True) 
             tag = shape.tag
             where = f"{path}: link {shown(lname)}, collision {shown(name)}"
             if tag == "box":
-                size = tuple(v * 1000.0 for v in _floats(shape.get("size"), 3, None, path, lname))
+                size = tuple(v * M_MM for v in _floats(shape.get("size"), 3, None, path, lname))
             elif tag == "cylinder":
-                size = (_num(shape.get("radius"), where, "radius") * 1000.0, _num(shape.get("length"), where, "length") * 1000.0)
+                size = (_num(shape.get("radius"), where, "radius") * M_MM, _num(shape.get("length"), where, "length") * M_MM)
             elif tag == "sphere":
-                size = (_num(shape.get("radius"), where, "radius") * 1000.0,)
+                size = (_num(shape.get("radius"), where, "radius") * M_MM,)
             elif tag == "mesh":
-                size = tuple(v * 1000.0 for v in _floats(shape.get("scale"), 3, (1.0, 1.0, 1.0), path, lname))
+                size = tuple(v * M_MM for v in _floats(shape.get("scale"), 3, (1.0, 1.0, 1.0), path, lname))
                 mesh = _mesh_path(shape.get("filename", ""), base, where) if resolve_meshes else shape.get("filename", "")
                 out.append(Solid(lname, name, "mesh", size, origin, mesh))
                 continue
@@ -313,7 +314,7 @@ def _transform(xyz, rpy) -> np.ndarray:
         (sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr),
         (-sp, cp * sr, cp * cr),
     )
-    T[:3, 3] = [v * 1000.0 for v in xyz]
+    T[:3, 3] = [v * M_MM for v in xyz]
     return T
 
 

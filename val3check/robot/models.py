@@ -10,6 +10,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Sequence
 
+from ..lengths import M_MM
 from ..excerpt import shown
 from . import catalog as _catalog
 from . import scara as _scara
@@ -217,7 +218,7 @@ class RobotModel:
         q = pin.neutral(model)
         for (idx, nq), v, kind in zip(ids[0], self._internal(joints), self.joint_kinds):
             if kind == "prismatic":
-                q[idx] = v / 1000.0  # pinocchio works in metres
+                q[idx] = v / M_MM  # pinocchio works in metres
             elif nq == 1:
                 q[idx] = v
             else:  # continuous joint: (cos, sin)
@@ -225,7 +226,7 @@ class RobotModel:
         pin.forwardKinematics(model, data, q)
         pin.updateFramePlacement(model, data, ids[2])
         M = ids[3].actInv(data.oMf[ids[2]])  # world^-1 · flange
-        R, p = M.rotation, M.translation * 1000.0
+        R, p = M.rotation, M.translation * M_MM
         T = tuple((float(R[i, 0]), float(R[i, 1]), float(R[i, 2]), float(p[i])) for i in range(3))
         return T if self.world_shift is None else mul(inverse(self.world_shift), T)  # type: ignore[return-value,arg-type]
 

@@ -7,6 +7,7 @@ metadata and the example tests all come from the same text.
 """
 
 from __future__ import annotations
+from . import codes
 
 import os
 from collections.abc import Iterator, Mapping
@@ -20,7 +21,7 @@ from ..resources import resource_path
 # of its defaults: they run only when `select` or `extend-select` names their full code. Listed
 # here so that deciding needs no rule file read (a test checks it against the files): style rules
 # that fire on code the vendor itself writes.
-OPT_IN = frozenset({"T025"})
+OPT_IN = frozenset({codes.BARE_MULTI_VALUE_ARRAY})
 
 # Code scheme: a family letter, then three digits (rules/README.md).
 FAMILIES: dict[str, str] = {
@@ -47,7 +48,7 @@ class Example:
     duration: float = 10.0  # runtime (R) examples: simulated seconds
     scenario: str | None = None  # runtime (R) examples: the text of an I/O scenario file
     links: dict[str, str] = field(default_factory=dict)  # runtime (R) examples: dio/aio/sio global -> physical link
-    robot: str | None = None  # runtime (R) examples: the arm model of the run (`--robot`), e.g. "TX2-60", or a URDF of the repository
+    robot: str | None = None
     cell: str | None = None  # runtime (R) examples: the text of a cell file (`--cell`, docs/cell.md)
     config: str | None = None  # a val3check.toml written at the example root and used
     byte_escapes: bool = False  # `\xHH` in `files` stands for the byte HH (for encoding rules)

@@ -9,6 +9,7 @@ checks its arguments against the program's parameters as the project declares th
 
 from __future__ import annotations
 
+from ..rules import codes
 from functools import cache, lru_cache
 
 from ..language.instructions import (
@@ -104,19 +105,22 @@ def check_call_expr(typer: ExprTyper, node: A.CallExpr, statement: bool) -> vt.V
             return UNKNOWN_VAL  # `alias:$name()`: an undocumented system instruction, like `$name()`
         prog, _ = lib.program(func.name)
         if prog is not None:
-            ctx.report_at("T018", M.program_without_call(f"{func.alias}:{func.name}"), func)
+            ctx.report_at(codes.PROGRAM_INSTRUCTION_MISUSE, M.program_without_call(f"{func.alias}:{func.name}"), func)
             return UNKNOWN_VAL
         sym, _ = lib.data_symbol(func.name)
         if sym is not None:
-            ctx.report_at("L012", M.library_symbol_not_program(func.alias, func.name), func)
+            ctx.report_at(codes.LIBRARY_SYMBOL_KIND, M.library_symbol_not_program(func.alias, func.name), func)
             return UNKNOWN_VAL
         if ins is not None:
-            ctx.report_at("T018", M.library_prefix_unexpected(func.alias, func.name), func)
+            ctx.report_at(codes.PROGRAM_INSTRUCTION_MISUSE, M.library_prefix_unexpected(func.alias, func.name), func)
             return UNKNOWN_VAL
         if ctx.names_complete("data", lib.app) and not ctx.program_may_exist(func.name, lib.app):
             publics = [n for n, p in lib.app.programs.items() if p.access == "public"]
-            ctx.report_at("L010", M.undefined_library_symbol(func.alias, func.name, lib.app.name,
-                                                             suggest(func.name, publics)), func)
+            ctx.report_at(
+                codes.UNDEFINED_LIBRARY_SYMBOL,
+                M.undefined_library_symbol(func.alias, func.name, lib.app.name, suggest(func.name, publics)),
+                func,
+            )
         return UNKNOWN_VAL
     # A plain name.
     name = func.name
@@ -124,7 +128,7 @@ def check_call_expr(typer: ExprTyper, node: A.CallExpr, statement: bool) -> vt.V
     if ins is not None:
         if ins.library_prefix == "required":
             _type_args(typer, node.args)
-            ctx.report_at("T018", M.library_prefix_needed(ins.name), func)
+            ctx.report_at(codes.PROGRAM_INSTRUCTION_MISUSE, M.library_prefix_needed(ins.name), func)
             return UNKNOWN_VAL
         return _instruction(typer, node, ins, statement)
     table = ctx.table
@@ -137,23 +141,28 @@ def check_call_expr(typer: ExprTyper, node: A.CallExpr, statement: bool) -> vt.V
         return UNKNOWN_VAL
     _type_args(typer, node.args)
     if table.program(name) is not None or table.program_ci(name) is not None:
-        ctx.report_at("T018", M.program_without_call(name), func)
+        ctx.report_at(codes.PROGRAM_INSTRUCTION_MISUSE, M.program_without_call(name), func)
         return UNKNOWN_VAL
     sym = ctx.scope.lookup(name) or ctx.scope.lookup_ci(name)  # type: ignore[union-attr]
     if sym is not None:
-        ctx.report_at("N003", M.variable_called(name), func)
+        ctx.report_at(codes.UNDEFINED_INSTRUCTION, M.variable_called(name), func)
         return UNKNOWN_VAL
     if ctx.globals_known and ctx.program_may_exist(name):
         return UNKNOWN_VAL  # maybe the program of a file that could not be read, called without call
     erratum = load_errata().get(name.lower())
     close = erratum.canonical if erratum is not None else _close_instruction(name)
     if ctx.strict_version and close is not None:
-        ctx.s7_only("N003", M.undefined_instruction(name, close), func, "N004",
-                    M.unknown_instruction_s8(name, ctx.app.version))
+        ctx.s7_only(
+            codes.UNDEFINED_INSTRUCTION,
+            M.undefined_instruction(name, close),
+            func,
+            codes.UNKNOWN_INSTRUCTION,
+            M.unknown_instruction_s8(name, ctx.app.version),
+        )
     elif ctx.strict_version:
-        ctx.report_at("N004", M.unknown_instruction_s7(name), func)
+        ctx.report_at(codes.UNKNOWN_INSTRUCTION, M.unknown_instruction_s7(name), func)
     else:
-        ctx.report_at("N004", M.unknown_instruction_s8(name, ctx.app.version), func)
+        ctx.report_at(codes.UNKNOWN_INSTRUCTION, M.unknown_instruction_s8(name, ctx.app.version), func)
     return UNKNOWN_VAL
 
 
@@ -242,7 +251,7 @@ def _instruction(typer: ExprTyper, node: A.CallExpr, ins: Instruction, statement
         sigs = [o.signature(ins.name) for o in ins.overloads]
         counts = sorted({c for o in ins.overloads for c in range(o.min_arity, o.max_arity + 1)})
         msg = M.arity(label, _count_words(counts), n, sigs)
-        _signature_finding(ctx, "T005", msg, s7, func)
+        _signature_finding(ctx, codes.WRONG_ARGUMENT_COUNT, msg, s7, func)
         return _common_return(ins.overloads, statement)
     if not full:
         best = max(cands, key=lambda o: sum(1 for p, v in zip(o.params, vals) if _type_ok(p, v)))
@@ -256,7 +265,7 @@ def _instruction(typer: ExprTyper, node: A.CallExpr, ins: Instruction, statement
             msg = M.argument_type(i + 1, label, p.name, expected, got)
         else:
             msg = M.argument_type_overloads(i + 1, label, got, [o.signature(ins.name) for o in cands])
-        _signature_finding(ctx, "T006", msg, s7, args[i])
+        _signature_finding(ctx, codes.ARGUMENT_TYPE_MISMATCH, msg, s7, args[i])
         return _common_return(cands, statement)
     chosen = full[0] if form is not None and not form.params_known else None  # its arguments are not known
     first_errors: list[_Pending] = []
@@ -272,7 +281,7 @@ def _instruction(typer: ExprTyper, node: A.CallExpr, ins: Instruction, statement
             if certain:
                 ctx.report_at(e.code, e.message, e.node)
             else:
-                ctx.report_at("T024", M.s8_reading(e.message), e.node)
+                ctx.report_at(codes.S8_SIGNATURE_UNVERIFIED, M.s8_reading(e.message), e.node)
         chosen = full[0]
     for p, a in zip(chosen.params, args):
         if type(a) is A.Struct:
@@ -282,9 +291,9 @@ def _instruction(typer: ExprTyper, node: A.CallExpr, ins: Instruction, statement
     returns = {o.returns for o in full}
     if not statement and returns == {"void"}:
         if certain:
-            ctx.report_at("T019", M.no_value(ins.name), func)
+            ctx.report_at(codes.NO_RETURN_VALUE, M.no_value(ins.name), func)
         else:
-            ctx.report_at("T024", M.s8_reading(M.no_value(ins.name)), func)
+            ctx.report_at(codes.S8_SIGNATURE_UNVERIFIED, M.s8_reading(M.no_value(ins.name)), func)
         return UNKNOWN_VAL
     if len(returns) == 1:
         ret = next(iter(returns))
@@ -309,8 +318,9 @@ def _common_return(overloads, statement: bool) -> vt.Val:
     return UNKNOWN_VAL
 
 
-def _instruction_arg_errors(typer: ExprTyper, ins: Instruction, o: Overload, vals: list[vt.Val],
-                            args: list) -> list[_Pending]:
+def _instruction_arg_errors(
+    typer: ExprTyper, ins: Instruction, o: Overload, vals: list[vt.Val], args: list
+) -> list[_Pending]:
     out: list[_Pending] = []
     label = f"{ins.name}()"
     for i, (p, v, a) in enumerate(zip(o.params, vals, args)):
@@ -323,7 +333,7 @@ def _instruction_arg_errors(typer: ExprTyper, ins: Instruction, o: Overload, val
             continue  # an undefined name (reported), an unknowable value, an s6 variable
         if not v.var:
             word = {"array": "array", "collection": "collection"}.get(p.container, "")
-            out.append(_Pending("T007", M.needs_variable(idx, label, p.name, word), a))
+            out.append(_Pending(codes.REFERENCE_NEEDS_VARIABLE, M.needs_variable(idx, label, p.name, word), a))
             continue
         cont = p.container
         if cont == "element":  # by reference or a variable the instruction changes
@@ -342,25 +352,33 @@ def _instruction_arg_errors(typer: ExprTyper, ins: Instruction, o: Overload, val
         if cont == "collection":
             if v.c == COLLECTION:
                 if p.index == "required":
-                    out.append(_Pending("T011", M.missing_index(node_text(a), "collection"), a))
+                    out.append(_Pending(codes.MISSING_INDEX, M.missing_index(node_text(a), "collection"), a))
             elif v.indexed == FROM_COLLECTION:
                 if p.index != "required":
-                    out.append(_Pending("T020", M.unexpected_index(idx, label, p.name, "key"), a))
+                    out.append(_Pending(codes.UNEXPECTED_INDEX, M.unexpected_index(idx, label, p.name, "key"), a))
             else:
-                out.append(_Pending("T008", M.container_mismatch(idx, label, p.name, "collection",
-                                                                 vt.describe(v)), a))
+                out.append(
+                    _Pending(
+                        codes.CONTAINER_MISMATCH,
+                        M.container_mismatch(idx, label, p.name, "collection", vt.describe(v)),
+                        a,
+                    )
+                )
             continue
         # container "any": size(*), isDefined(*), insert(*), delete(*), getData(..., *)
         rule = p.index or "any"
         if rule == "start":
             if v.indexed and not v.start:
                 kind = "key" if v.indexed == FROM_COLLECTION else "indices"
-                out.append(_Pending("T020", M.unexpected_index(idx, label, p.name, kind), a))
+                out.append(_Pending(codes.UNEXPECTED_INDEX, M.unexpected_index(idx, label, p.name, kind), a))
         elif rule == "required":
             if not v.indexed:
-                what = "collection" if v.c == COLLECTION else (
-                    f"a {v.dims}-D array" if v.c == ARRAY and v.dims > 1 else "an array")
-                out.append(_Pending("T011", M.missing_index(node_text(a), what), a))
+                what = (
+                    "collection"
+                    if v.c == COLLECTION
+                    else (f"a {v.dims}-D array" if v.c == ARRAY and v.dims > 1 else "an array")
+                )
+                out.append(_Pending(codes.MISSING_INDEX, M.missing_index(node_text(a), what), a))
             elif ins.name.lower() in _RESIZERS:
                 e = _resize_error(ins.name, v, a)
                 if e is not None:
@@ -368,29 +386,32 @@ def _instruction_arg_errors(typer: ExprTyper, ins: Instruction, o: Overload, val
     return out
 
 
-def _array_arg(idx: int, label: str, p: Param | Parameter, v: vt.Val, a: object, dims: int | None,
-               bare_only: bool) -> _Pending | None:
+def _array_arg(
+    idx: int, label: str, p: Param | Parameter, v: vt.Val, a: object, dims: int | None, bare_only: bool
+) -> _Pending | None:
     """An argument for an array parameter (2.6.3). `dims`: the dimensions required (None: any);
     `bare_only`: the variable must be given without index (size(*, n), append, resize)."""
     pname = p.name
     want = "array" if dims is None else ("1-D array" if dims == 1 else f"{dims}-D array")
     if v.c == COLLECTION or v.indexed == FROM_COLLECTION:
-        return _Pending("T008", M.container_mismatch(idx, label, pname, want, vt.describe(v)), a)
+        return _Pending(codes.CONTAINER_MISMATCH, M.container_mismatch(idx, label, pname, want, vt.describe(v)), a)
     if v.c == ARRAY:
         if dims is not None and (v.dims or 1) != dims:
-            return _Pending("T008", M.container_mismatch(idx, label, pname, want, vt.describe(v)), a)
+            return _Pending(codes.CONTAINER_MISMATCH, M.container_mismatch(idx, label, pname, want, vt.describe(v)), a)
         return None
     # An element: a[i], a2[i, j], or an element variable.
     if v.indexed == FROM_ARRAY or v.indexed == 1:
         if bare_only:
-            return _Pending("T020", M.unexpected_index(idx, label, pname, "indices" if v.dims > 1 else "index"), a)
+            return _Pending(
+                codes.UNEXPECTED_INDEX, M.unexpected_index(idx, label, pname, "indices" if v.dims > 1 else "index"), a
+            )
         if v.start:
             return None  # 2.6.3: a 1-D array from index i
         if dims is None or v.dims == dims:
-            return _Pending("T020", M.unexpected_index(idx, label, pname, "indices"), a)
-        return _Pending("T008", M.container_mismatch(idx, label, pname, want, vt.describe(v)), a)
+            return _Pending(codes.UNEXPECTED_INDEX, M.unexpected_index(idx, label, pname, "indices"), a)
+        return _Pending(codes.CONTAINER_MISMATCH, M.container_mismatch(idx, label, pname, want, vt.describe(v)), a)
     if dims is not None and dims > 1:
-        return _Pending("T008", M.container_mismatch(idx, label, pname, want, vt.describe(v)), a)
+        return _Pending(codes.CONTAINER_MISMATCH, M.container_mismatch(idx, label, pname, want, vt.describe(v)), a)
     return None  # an element variable: a 1-value array (2.3.4)
 
 
@@ -398,10 +419,16 @@ def _resize_error(name: str, v: vt.Val, a: object) -> _Pending | None:
     low = name.lower()
     dims = v.dims if (v.c == ARRAY or v.indexed == FROM_ARRAY) else 0
     if _RESIZERS[low] and dims > 1:
-        return _Pending("T021", M.resize_not_allowed(node_text(a), name, f"it is a {dims}-D array (use resize)"), a)
+        return _Pending(
+            codes.ARRAY_RESIZE_NOT_ALLOWED,
+            M.resize_not_allowed(node_text(a), name, f"it is a {dims}-D array (use resize)"),
+            a,
+        )
     root = v.root
     if root is not None and root.kind == S.LOCAL and not v.field and v.indexed != FROM_COLLECTION and v.c != COLLECTION:
-        return _Pending("T021", M.resize_not_allowed(node_text(a), name, "it is a local array"), a)
+        return _Pending(
+            codes.ARRAY_RESIZE_NOT_ALLOWED, M.resize_not_allowed(node_text(a), name, "it is a local array"), a
+        )
     return None
 
 
@@ -420,12 +447,14 @@ class ProgramSignature:
         self.s6 = s6  # declared in s6 files: element parameters may be arrays
 
 
-def signature(registry: S.TypeRegistry, owner: Application, program: Program,
-              cache: dict[int, ProgramSignature]) -> ProgramSignature:
+def signature(
+    registry: S.TypeRegistry, owner: Application, program: Program, cache: dict[int, ProgramSignature]
+) -> ProgramSignature:
     sig = cache.get(id(program))
     if sig is None:
-        sig = ProgramSignature(program, [registry.resolve_type(owner, p.type) for p in program.parameters],
-                               owner.layout == "s6")
+        sig = ProgramSignature(
+            program, [registry.resolve_type(owner, p.type) for p in program.parameters], owner.layout == "s6"
+        )
         cache[id(program)] = sig
     return sig
 
@@ -446,20 +475,23 @@ def _signature_finding(ctx, code: str, message: str, s7: bool, node: object) -> 
     sure error; so in code saved as s7 that uses s8 forms (Context.settle). So is a call of an
     s8 instruction whose signature does not match what is known."""
     if ctx.strict_version and s7:
-        ctx.s7_only(code, message, node, "T024", M.s8_signature(message))
+        ctx.s7_only(code, message, node, codes.S8_SIGNATURE_UNVERIFIED, M.s8_signature(message))
     else:
-        ctx.report_at("T024", M.s8_signature(message), node)
+        ctx.report_at(codes.S8_SIGNATURE_UNVERIFIED, M.s8_signature(message), node)
 
 
-def check_program_args(typer: ExprTyper, target: object, label: str, sig: ProgramSignature, args: list,
-                       vals: list[vt.Val], task: bool) -> None:
+def check_program_args(
+    typer: ExprTyper, target: object, label: str, sig: ProgramSignature, args: list, vals: list[vt.Val], task: bool
+) -> None:
     """Arguments of `call prog(...)` or of the program of taskCreate (2.6, 5.10)."""
     ctx = typer.ctx
     params = sig.params
     if len(args) != len(params):
         sigs = [f"{label[:-2]}({', '.join(_param_text(p) for p in params)})"]
         n = len(params)
-        ctx.report_at("T005", M.arity(label, f"{n} argument{'s' if n != 1 else ''}", len(args), sigs), target)
+        ctx.report_at(
+            codes.WRONG_ARGUMENT_COUNT, M.arity(label, f"{n} argument{'s' if n != 1 else ''}", len(args), sigs), target
+        )
         return
     s6 = sig.s6
     for i, (p, ptype, v, a) in enumerate(zip(params, sig.types, vals, args)):
@@ -475,22 +507,30 @@ def check_program_args(typer: ExprTyper, target: object, label: str, sig: Progra
             if s6:
                 # s6 files may declare an array parameter without container: only the type
                 if v.t.known and ptype.known and v.t is not ptype and vt.assignable(ptype, v.t) is False:
-                    ctx.report_at("T006", M.argument_type(idx, label, p.name, ptype.name, _describe_arg(v)), a)
+                    ctx.report_at(
+                        codes.ARGUMENT_TYPE_MISMATCH,
+                        M.argument_type(idx, label, p.name, ptype.name, _describe_arg(v)),
+                        a,
+                    )
                 continue
             if v.elem is False:
                 ctx.report_at(missing_index_code(v), missing_index_message(a, v), a)
                 continue
             if vt.assignable(ptype, v.t) is False:
-                ctx.report_at("T006", M.argument_type(idx, label, p.name, ptype.name, _describe_arg(v)), a)
+                ctx.report_at(
+                    codes.ARGUMENT_TYPE_MISMATCH, M.argument_type(idx, label, p.name, ptype.name, _describe_arg(v)), a
+                )
             continue
         if v is UNKNOWN_VAL:
             continue
         if not v.var:
             word = {Container.ARRAY: "array", Container.COLLECTION: "collection"}.get(cont, "")
-            ctx.report_at("T007", M.needs_variable(idx, label, p.name, word), a)
+            ctx.report_at(codes.REFERENCE_NEEDS_VARIABLE, M.needs_variable(idx, label, p.name, word), a)
             continue
         if not vt.same_type(v.t, ptype):
-            ctx.report_at("T006", M.argument_type(idx, label, p.name, ptype.name + "&", vt.describe(v)), a)
+            ctx.report_at(
+                codes.ARGUMENT_TYPE_MISMATCH, M.argument_type(idx, label, p.name, ptype.name + "&", vt.describe(v)), a
+            )
             continue
         if cont is Container.ELEMENT:
             if v.elem is False and not s6:  # s6: maybe an array parameter declared by dimensions
@@ -504,9 +544,13 @@ def check_program_args(typer: ExprTyper, target: object, label: str, sig: Progra
         else:
             if v.c != COLLECTION:
                 if v.indexed == FROM_COLLECTION:
-                    ctx.report_at("T020", M.unexpected_index(idx, label, p.name, "key"), a)
+                    ctx.report_at(codes.UNEXPECTED_INDEX, M.unexpected_index(idx, label, p.name, "key"), a)
                 else:
-                    ctx.report_at("T008", M.container_mismatch(idx, label, p.name, "collection", vt.describe(v)), a)
+                    ctx.report_at(
+                        codes.CONTAINER_MISMATCH,
+                        M.container_mismatch(idx, label, p.name, "collection", vt.describe(v)),
+                        a,
+                    )
                 continue
         if task and v.root is not None and v.root.kind == S.LOCAL:
-            ctx.report_at("T022", M.task_local_reference(node_text(a), p.name), a)
+            ctx.report_at(codes.TASK_REFERENCE_TO_LOCAL, M.task_local_reference(node_text(a), p.name), a)

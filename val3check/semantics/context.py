@@ -6,6 +6,7 @@ from __future__ import annotations
 from ..diagnostics import Diagnostic, Severity
 from ..language.target import Target, target_for
 from ..loading.model import Application, Program, Workspace
+from ..rules import codes
 from . import messages as M
 from .symbols import AppSymbols, Scope
 
@@ -105,10 +106,10 @@ class Context:
         if t.s8 or t.cs9:
             return
         if t.explicit:
-            self.report_at("T031", M.s8_on_s7_target(what, t.label), node)
+            self.report_at(codes.S8_ON_S7_TARGET, M.s8_on_s7_target(what, t.label), node)
         else:
             self.s8_evidence = True
-            self.report_at("T030", M.s8_only(what, t.label), node)
+            self.report_at(codes.S8_ONLY, M.s8_only(what, t.label), node)
 
     def s7_only(self, code: str, message: str, node: object, s8_code: str, s8_message: str) -> None:
         """A finding that is sure on s7 but not on s8 (a call matching no s7 signature may be an

@@ -12,6 +12,7 @@ import re
 from ..diagnostics import Diagnostic
 from ..language.target import Target, target_for
 from ..loading.model import Application, Origin, Program
+from ..rules import codes
 from . import messages as M
 from . import vtypes as vt
 from .symbols import AppSymbols
@@ -31,18 +32,18 @@ def name_problem(name: str, max_len: int | None = 15, pattern: re.Pattern = _NAM
     a sure compile error. Bad characters are N008."""
     if pattern.match(name):
         if max_len is not None and len(name) > max_len:
-            return "N012", f"{len(name)} characters, more than {max_len}"
+            return codes.NAME_TOO_LONG, f"{len(name)} characters, more than {max_len}"
         return None
     if not name:
-        return "N008", "empty"
+        return codes.INVALID_NAME, "empty"
     if _PROGRAM_NAME.match(name):
         # Starts with '_': 2.5.1 wants a letter, but files saved by Stäubli's editor carry such
         # locals and load; a warning, not an error.
-        return "N013", "it starts with '_' instead of a letter"
+        return codes.NAME_STARTS_WITH_UNDERSCORE, "it starts with '_' instead of a letter"
     if not _CHARS.match(name):
         bad = next(c for c in name if not (c.isascii() and (c.isalnum() or c == "_")))
-        return "N008", f"the character {bad!r} is not allowed"
-    return "N008", "it must start with a letter"
+        return codes.INVALID_NAME, f"the character {bad!r} is not allowed"
+    return codes.INVALID_NAME, "it must start with a letter"
 
 
 def _diag(code: str, message: str, origin: Origin) -> Diagnostic:
@@ -68,15 +69,20 @@ def check_declarations(table: AppSymbols, target: Target | None = None) -> list[
         if problem:
             out.append(_diag(problem[0], M.invalid_name("program", prog.name, problem[1]), prog.origin))
         if prog.name in ("start", "stop") and prog.parameters:
-            out.append(_diag("N009", M.start_stop_params(prog.name, len(prog.parameters)), prog.origin))
+            out.append(
+                _diag(
+                    codes.START_STOP_WITH_PARAMETERS, M.start_stop_params(prog.name, len(prog.parameters)), prog.origin
+                )
+            )
         _program_declarations(table, target, prog, max_len, out, families)
 
     out.extend(_families(families, target))
     return out
 
 
-def _program_declarations(table: AppSymbols, target: Target, prog: Program, max_len: int | None,
-                          out: list[Diagnostic], families: list) -> None:
+def _program_declarations(
+    table: AppSymbols, target: Target, prog: Program, max_len: int | None, out: list[Diagnostic], families: list
+) -> None:
     seen: dict[str, tuple[str, int]] = {}
     for kind, decls in (("parameter", prog.parameters), ("local", prog.locals)):
         for d in decls:
@@ -85,20 +91,28 @@ def _program_declarations(table: AppSymbols, target: Target, prog: Program, max_
                 out.append(_diag(problem[0], M.invalid_name(kind, d.name, problem[1]), d.origin))
             first = seen.get(d.name)
             if first is not None:
-                out.append(_diag("N007", M.duplicate_local(kind, d.name, first[0], first[1]), d.origin))
+                out.append(_diag(codes.DUPLICATE_LOCAL, M.duplicate_local(kind, d.name, first[0], first[1]), d.origin))
             else:
                 seen[d.name] = (kind, d.origin.line)
             _type_check(table, target, kind, d.name, d.type, d.origin, out, families)
 
 
-def _type_check(table: AppSymbols, target: Target, kind: str, name: str, type_name: str, origin: Origin,
-                out: list[Diagnostic], families: list) -> None:
+def _type_check(
+    table: AppSymbols,
+    target: Target,
+    kind: str,
+    name: str,
+    type_name: str,
+    origin: Origin,
+    out: list[Diagnostic],
+    families: list,
+) -> None:
     app: Application = table.app
     if vt.builtin(type_name) is None:
         low = type_name.lower()
         declared = any(n.lower() == low for n in app.types)
         if not declared and app.globals_known and not target.s8:  # s8 may have types s7 lacks
-            out.append(_diag("N010", M.undefined_type(kind, name, type_name), origin))
+            out.append(_diag(codes.UNDEFINED_TYPE, M.undefined_type(kind, name, type_name), origin))
         return
     fam = vt.family_of(type_name)
     if fam is not None:
@@ -118,8 +132,15 @@ def _families(families: list, target: Target) -> list[Diagnostic]:
     arm = target.family
     if arm is not None:
         where = f"{target.arm} in {target.arm_source}" if target.arm_source else str(target.arm)
-        return [_diag("N011", M.wrong_arm_family(kind, name, type_name, fam, arm, _ARM_KIND[arm], where), origin)
-                for fam, kind, name, type_name, origin in families if fam != arm]
+        return [
+            _diag(
+                codes.WRONG_ARM_FAMILY,
+                M.wrong_arm_family(kind, name, type_name, fam, arm, _ARM_KIND[arm], where),
+                origin,
+            )
+            for fam, kind, name, type_name, origin in families
+            if fam != arm
+        ]
     counts: dict[str, int] = {}
     for f in families:
         counts[f[0]] = counts.get(f[0], 0) + 1
@@ -128,4 +149,6 @@ def _families(families: list, target: Target) -> list[Diagnostic]:
     order = [f[0] for f in families]
     main = max(counts, key=lambda k: (counts[k], -order.index(k)))
     fam, kind, name, type_name, origin = next(f for f in families if f[0] != main)
-    return [_diag("N016", M.mixed_families_unknown_arm(kind, name, type_name, counts), origin)]
+    return [
+        _diag(codes.MIXED_ARM_FAMILIES_UNKNOWN_ARM, M.mixed_families_unknown_arm(kind, name, type_name, counts), origin)
+    ]

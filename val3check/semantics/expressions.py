@@ -17,6 +17,7 @@ import difflib
 from ..language.instructions import lookup as lookup_instruction
 from ..loading.model import Container
 from ..parsing import ast as A
+from ..rules import codes
 from . import messages as M
 from . import symbols as S
 from . import vtypes as vt
@@ -55,7 +56,7 @@ def missing_index_code(v: vt.Val) -> str:
     """T011 (error) for a collection or a 2-D/3-D array used where one value is needed; T025
     (warning) for a 1-D array of several values: 2.3.4 makes only a one-value array an element,
     but real s7 applications use such arrays bare (reading their first value) and run."""
-    return "T011" if v.c == COLLECTION or (v.c == ARRAY and v.dims > 1) else "T025"
+    return codes.MISSING_INDEX if v.c == COLLECTION or (v.c == ARRAY and v.dims > 1) else codes.BARE_MULTI_VALUE_ARRAY
 
 
 def missing_index_message(node: object, v: vt.Val) -> str:
@@ -158,19 +159,19 @@ class ExprTyper:
         sym = ctx.scope.lookup_ci(name)  # type: ignore[union-attr]
         if sym is not None:
             kind = "parameter" if sym.kind == S.PARAM else sym.kind
-            ctx.report_at("N006", M.case_mismatch(kind, name, sym.name), node,
+            ctx.report_at(codes.NAME_CASE_MISMATCH, M.case_mismatch(kind, name, sym.name), node,
                 fix=("rename", name, sym.name))
             return sym.val
         if not ctx.globals_known or not ctx.names_complete("data"):
             return UNKNOWN_VAL  # maybe a global that could not be read
         table = ctx.table
         if table.program(name) is not None or table.program_ci(name) is not None:
-            ctx.report_at("T018", M.program_as_value(name), node)
+            ctx.report_at(codes.PROGRAM_INSTRUCTION_MISUSE, M.program_as_value(name), node)
         elif lookup_instruction(name) is not None:
-            ctx.report_at("T018", M.instruction_as_value(name), node)
+            ctx.report_at(codes.PROGRAM_INSTRUCTION_MISUSE, M.instruction_as_value(name), node)
         else:
             names = list(ctx.scope.own) + list(table.globals)  # type: ignore[union-attr]
-            ctx.report_at("N001", M.undefined_variable(name, suggest(name, names)), node)
+            ctx.report_at(codes.UNDEFINED_VARIABLE, M.undefined_variable(name, suggest(name, names)), node)
         return UNKNOWN_VAL
 
     def library(self, node: A.LibraryName | A.Name, alias: str):
@@ -183,7 +184,7 @@ class ExprTyper:
         if lib is None:
             other = ctx.table.library_alias_ci(alias)
             if other is not None:
-                ctx.report_at("N006", M.case_mismatch("library identifier", alias, other), node,
+                ctx.report_at(codes.NAME_CASE_MISMATCH, M.case_mismatch("library identifier", alias, other), node,
                     fix=("rename", alias, other, "", ":"))
                 lib = ctx.table.library(other)
                 if lib is S.MISSING:
@@ -191,7 +192,7 @@ class ExprTyper:
                 ctx.consulted_library(other)
                 return lib
             if ctx.globals_known and alias.lower() != "io":
-                ctx.report_at("N005", M.undefined_alias(alias, suggest(alias, ctx.app.libraries)), node)
+                ctx.report_at(codes.UNDEFINED_LIBRARY_ALIAS, M.undefined_alias(alias, suggest(alias, ctx.app.libraries)), node)
             return None
         ctx.consulted_library(alias)
         return lib
@@ -205,24 +206,35 @@ class ExprTyper:
         sym, why = lib.data_symbol(name)
         if sym is not None:
             if why and not self.probe:
-                ctx.report_at("L011", M.private_library_symbol(node.alias, name, lib.app.name, "global"), node)
+                ctx.report_at(
+                    codes.PRIVATE_LIBRARY_SYMBOL,
+                    M.private_library_symbol(node.alias, name, lib.app.name, "global"),
+                    node,
+                )
             return sym.val
         if self.probe:
             return UNKNOWN_VAL
         prog, _ = lib.program(name)
         if prog is not None:
-            ctx.report_at("L012", M.library_symbol_not_data(node.alias, name), node)
+            ctx.report_at(codes.LIBRARY_SYMBOL_KIND, M.library_symbol_not_data(node.alias, name), node)
             return UNKNOWN_VAL
         other = lib.lookup_ci(name)
         if other is not None:
-            ctx.report_at("N006", M.case_mismatch("library symbol", name, other), node,
-                fix=("rename", name, other, ":", ""))
+            ctx.report_at(
+                codes.NAME_CASE_MISMATCH,
+                M.case_mismatch("library symbol", name, other),
+                node,
+                fix=("rename", name, other, ":", ""),
+            )
             sym, _ = lib.data_symbol(other)
             return sym.val if sym is not None else UNKNOWN_VAL
         if ctx.names_complete("data", lib.app) and not ctx.program_may_exist(name, lib.app):
             publics = [n for n, d in lib.app.data.items() if d.access == "public"]
-            ctx.report_at("L010", M.undefined_library_symbol(node.alias, name, lib.app.name, suggest(name, publics)),
-                          node)
+            ctx.report_at(
+                codes.UNDEFINED_LIBRARY_SYMBOL,
+                M.undefined_library_symbol(node.alias, name, lib.app.name, suggest(name, publics)),
+                node,
+            )
         return UNKNOWN_VAL
 
     # -- containers and fields -------------------------------------------------------------
@@ -237,35 +249,45 @@ class ExprTyper:
         t = base.t
         if base.c == COLLECTION:
             if n != 1:
-                ctx.report("T009", f"{node_text(node.base)} is a collection: it takes one string key, not {n} (2.5.3)",
-                           node.indices[1].line, node.indices[1].col)  # type: ignore[union-attr]
+                ctx.report(
+                    codes.WRONG_INDEX_COUNT,
+                    f"{node_text(node.base)} is a collection: it takes one string key, not {n} (2.5.3)",
+                    node.indices[1].line,
+                    node.indices[1].col,
+                )  # type: ignore[union-attr]
             else:
                 kt = idx[0].t
                 if kt.known and kt is not vt.STRING and kt.kind != vt.LITERAL:
-                    ctx.report_at("T010", M.key_not_string(node_text(node.base), kt.name), node.indices[0])
+                    ctx.report_at(
+                        codes.WRONG_INDEX_TYPE, M.key_not_string(node_text(node.base), kt.name), node.indices[0]
+                    )
             return vt.Val(t, ELEMENT, 0, True, base.var, base.root, False, FROM_COLLECTION, base.field)
         if base.c == ARRAY:
             dims = base.dims or 1
             if n != dims:
                 at = node.indices[dims] if n > dims else node.base
-                ctx.report("T009", M.index_count(node_text(node.base), dims, n), at.line, at.col)  # type: ignore[union-attr]
+                ctx.report(codes.WRONG_INDEX_COUNT, M.index_count(node_text(node.base), dims, n), at.line, at.col)  # type: ignore[union-attr]
             else:
                 self._numeric_indices(node, idx)
             return vt.Val(t, ELEMENT, dims, True, base.var, base.root, dims == 1 and n == 1, FROM_ARRAY, base.field)
         if base.dims < 0:  # container not known (s6 parameter or global)
             root = base.root
-            if root is not None and root.kind != S.PARAM and not base.field \
-                    and getattr(root.decl, "container", None) is Container.ARRAY:
+            if (
+                root is not None
+                and root.kind != S.PARAM
+                and not base.field
+                and getattr(root.decl, "container", None) is Container.ARRAY
+            ):
                 self._numeric_indices(node, idx)  # an s6 global is an array: its indices are numbers
             return vt.Val(t, ELEMENT, 0, True, base.var, base.root, True, FROM_ELEMENT, base.field)
         # An element: a single [0]-like index is accepted (a 1-value array is an element, 2.3.4).
         if not base.var:
             if t.known:
-                ctx.report_at("T009", M.not_indexable(node_text(node.base)), node)
+                ctx.report_at(codes.WRONG_INDEX_COUNT, M.not_indexable(node_text(node.base)), node)
             return vt.value(t)
         if n != 1:
             at = node.indices[1]
-            ctx.report("T009", M.index_count(node_text(node.base), 0, n), at.line, at.col)  # type: ignore[union-attr]
+            ctx.report(codes.WRONG_INDEX_COUNT, M.index_count(node_text(node.base), 0, n), at.line, at.col)  # type: ignore[union-attr]
         else:
             self._numeric_indices(node, idx)
         return vt.Val(t, ELEMENT, 1, True, base.var, base.root, True, FROM_ELEMENT, base.field)
@@ -274,7 +296,7 @@ class ExprTyper:
         for v, i in zip(idx, node.indices):
             it = v.t
             if it.known and it is not vt.NUM and it is not vt.AIO:
-                self.ctx.report_at("T010", M.index_not_num(node_text(node.base), it.name), i)
+                self.ctx.report_at(codes.WRONG_INDEX_TYPE, M.index_not_num(node_text(node.base), it.name), i)
                 return
 
     def _field(self, node: A.Field) -> vt.Val:
@@ -292,14 +314,30 @@ class ExprTyper:
                 low = name.lower()
                 sym = next((s for n, s in fields.items() if n.lower() == low), None)
                 if sym is not None:
-                    ctx.report("N006", M.case_mismatch("field", name, sym.name), node.name_line, node.name_col,
-                        fix=("rename", name, sym.name))
+                    ctx.report(
+                        codes.NAME_CASE_MISMATCH,
+                        M.case_mismatch("field", name, sym.name),
+                        node.name_line,
+                        node.name_col,
+                        fix=("rename", name, sym.name),
+                    )
             if sym is None and t.app is not None and not ctx.names_complete("data", t.app):
                 return vt.Val(UNKNOWN, var=base.var, root=base.root, field=True) if base.var else UNKNOWN_VAL
             if sym is None or sym.decl.access != "public":
                 publics = [n for n, s in fields.items() if s.decl.access == "public"]
-                msg = M.private_user_field(t.name, name) if sym is not None else M.undefined_user_field(t.name, name, publics)
-                ctx.report("L013", msg, node.name_line, node.name_col, node.name_line, node.name_col + len(name))
+                msg = (
+                    M.private_user_field(t.name, name)
+                    if sym is not None
+                    else M.undefined_user_field(t.name, name, publics)
+                )
+                ctx.report(
+                    codes.UNDEFINED_USER_TYPE_FIELD,
+                    msg,
+                    node.name_line,
+                    node.name_col,
+                    node.name_line,
+                    node.name_col + len(name),
+                )
                 if sym is None:
                     return vt.Val(UNKNOWN, var=base.var, root=base.root, field=True) if base.var else UNKNOWN_VAL
             fv = sym.val
@@ -308,16 +346,33 @@ class ExprTyper:
             hit = vt.field_of(t, name)
             if hit is None:
                 known = [f.name for f in _builtin_type(t.name).fields] if t is not vt.JOINT else ["j1", "j2", "..."]
-                ctx.report("T012", M.no_field(t.name, name, known), node.name_line, node.name_col,
-                           node.name_line, node.name_col + len(name))
+                ctx.report(
+                    codes.UNKNOWN_FIELD,
+                    M.no_field(t.name, name, known),
+                    node.name_line,
+                    node.name_col,
+                    node.name_line,
+                    node.name_col + len(name),
+                )
                 return vt.Val(UNKNOWN, var=base.var, root=base.root, field=True) if base.var else UNKNOWN_VAL
             canon, ft, exact = hit
             if not exact:
-                ctx.report("N006", M.case_mismatch("field", name, canon), node.name_line, node.name_col,
-                    fix=("rename", name, canon))
+                ctx.report(
+                    codes.NAME_CASE_MISMATCH,
+                    M.case_mismatch("field", name, canon),
+                    node.name_line,
+                    node.name_col,
+                    fix=("rename", name, canon),
+                )
             return vt.Val(ft, ELEMENT, 0, True, base.var, base.root, False, 0, True)
-        ctx.report("T012", M.no_field(t.name, name), node.name_line, node.name_col,
-                   node.name_line, node.name_col + len(name))
+        ctx.report(
+            codes.UNKNOWN_FIELD,
+            M.no_field(t.name, name),
+            node.name_line,
+            node.name_col,
+            node.name_line,
+            node.name_col + len(name),
+        )
         return UNKNOWN_VAL
 
     # -- operators -------------------------------------------------------------------------
@@ -333,7 +388,7 @@ class ExprTyper:
                 return vt.value(vt.BOOL)
             if node.op == "-" and t is vt.AIO:
                 return vt.value(vt.NUM)
-            self.ctx.report("T001", M.operator_undefined(node.op, t.name), node.line, node.col)
+            self.ctx.report(codes.OPERATOR_NOT_DEFINED, M.operator_undefined(node.op, t.name), node.line, node.col)
             return UNKNOWN_VAL
         return vt.value(res)
 
@@ -369,8 +424,14 @@ class ExprTyper:
                 return UNKNOWN_VAL  # one root cause, one finding
             if vt.is_num_like(lt_) and vt.is_num_like(rt):
                 return vt.value(vt.NUM)  # aio read as a num
-        self.ctx.report("T001", M.operator_undefined(op, lt_.name, rt.name), node.op_line, node.op_col,
-                        node.op_line, node.op_col + len(op))
+        self.ctx.report(
+            codes.OPERATOR_NOT_DEFINED,
+            M.operator_undefined(op, lt_.name, rt.name),
+            node.op_line,
+            node.op_col,
+            node.op_line,
+            node.op_col + len(op),
+        )
         return UNKNOWN_VAL
 
     # -- structured values -----------------------------------------------------------------
@@ -388,12 +449,12 @@ class ExprTyper:
             return
         ctx = self.ctx
         if not t.structured:
-            ctx.report_at("T017", M.literal_not_structured(t.name), node)
+            ctx.report_at(codes.BAD_STRUCTURED_LITERAL, M.literal_not_structured(t.name), node)
             return
         n = len(node.fields)
         bounds = vt.literal_arity(t)
         if bounds is not None and not bounds[0] <= n <= bounds[1]:
-            ctx.report_at("T017", M.literal_arity(t.name, bounds[0], bounds[1], n), node)
+            ctx.report_at(codes.BAD_STRUCTURED_LITERAL, M.literal_arity(t.name, bounds[0], bounds[1], n), node)
             return
         vals = self.literal_vals.get(id(node))
         if vals is None:
@@ -408,7 +469,7 @@ class ExprTyper:
                 self.check_literal(f, ft)
                 continue
             if v is not None and vt.assignable(ft, v.t) is False:
-                ctx.report_at("T017", M.literal_field(t.name, i + 1, ft.name, v.t.name), f)
+                ctx.report_at(codes.BAD_STRUCTURED_LITERAL, M.literal_field(t.name, i + 1, ft.name, v.t.name), f)
 
     # -- calls and misplaced assignments ---------------------------------------------------
 
@@ -418,7 +479,14 @@ class ExprTyper:
     def _assign_expr(self, node: A.AssignExpr) -> vt.Val:
         # 3.1.2, 3.2.2, 3.4.2: '=' is not allowed in an expression given as a parameter or a
         # condition; if(b1=b2) assigns b2 to b1 then tests b1.
-        self.ctx.report("T004", M.assign_in_expression(), node.op_line, node.op_col, node.op_line, node.op_col + 1)
+        self.ctx.report(
+            codes.ASSIGNMENT_IN_EXPRESSION,
+            M.assign_in_expression(),
+            node.op_line,
+            node.op_col,
+            node.op_line,
+            node.op_col + 1,
+        )
         return self.assignment(node.target, node.value, None)
 
     def assignment(self, target: object, value: object, op_pos: tuple[int, int] | None) -> vt.Val:
@@ -434,7 +502,7 @@ class ExprTyper:
             return tv
         if not tv.var:
             if tv.t.known:
-                ctx.report_at("T013", M.not_assignable(node_text(target)), target)
+                ctx.report_at(codes.NOT_ASSIGNABLE, M.not_assignable(node_text(target)), target)
             return tv
         if tv.elem is False:
             self._report_missing_index(target, tv)
@@ -448,10 +516,10 @@ class ExprTyper:
         t, v = tv.t, vv.t
         if t is vt.DIO and v is vt.DIO and ctx.dio_assign_removed:
             line, col = op_pos or (value.line, value.col)  # type: ignore[attr-defined]
-            ctx.report("T016", M.dio_assign(), line, col)
+            ctx.report(codes.DIO_ASSIGNMENT_REMOVED, M.dio_assign(), line, col)
             return tv
         if vt.assignable(t, v) is False:
-            ctx.report_at("T003", M.assign_mismatch(t.name, v.name), value)
+            ctx.report_at(codes.ASSIGNMENT_TYPE_MISMATCH, M.assign_mismatch(t.name, v.name), value)
         return tv
 
     def _report_missing_index(self, node: object, v: vt.Val) -> None:

@@ -23,6 +23,7 @@ from ..loading.model import Application, Container, Data, Value, Workspace
 from ..loading.reader import HUGE, parse_father
 from ..loading.types import base_type
 from ..parsing import ast as A
+from ..rules import codes
 
 # What a fatherId may look like: `name` or `name[index]` (2-D: "i j" or "i,j"; a collection: "key"):
 # loading.reader.parse_father.
@@ -60,7 +61,7 @@ def _sizes(out: list[Diagnostic], what: str, sizes: tuple[int, ...], origin, maj
         p = over("values", big[0], major, f"{_shown(big[0])} values")
         sure = "a variable holds at most 9999 values (manual 2.5.4)" if p.certain else "the s8 limit is not known"
         out.append(Diagnostic(
-            "T026", f"{what}: a dimension of {p.why}; {sure}",
+            codes.ARRAY_DIMENSION_OVER_LIMIT, f"{what}: a dimension of {p.why}; {sure}",
             origin.path, origin.line, origin.col, at_most=None if p.certain else Severity.WARNING,
         ))
         return
@@ -68,7 +69,7 @@ def _sizes(out: list[Diagnostic], what: str, sizes: tuple[int, ...], origin, maj
     p = over("values", total, major, f"{' x '.join(map(str, sizes))} = {total} values")
     if p is not None:
         out.append(Diagnostic(
-            "T027",
+            codes.ARRAY_VALUES_OVER_LIMIT,
             f"{what}: {p.why}; the manual limits the size of a variable (2.5.4) and does not say whether an"
             " array of 2 or 3 dimensions counts its values in all",
             origin.path, origin.line, origin.col,
@@ -80,7 +81,7 @@ def _numbers(out: list[Diagnostic], body, path: str) -> None:  # noqa: ANN001
         if type(node) is A.Number and math.isinf(node.value):
             text = node.text if len(node.text) <= 40 else f"{node.text[:20]}... ({len(node.text)} characters)"
             out.append(Diagnostic(
-                "F017",
+                codes.NUMBER_OUT_OF_RANGE,
                 f"numeric constant {text} is beyond the range of a num (a double: about ±1.8e308, 14 significant"
                 " digits, manual 3.2.1): the program does not compile",
                 path, node.line, node.col, node.end_line, node.end_col,
@@ -106,7 +107,7 @@ def _fathers(out: list[Diagnostic], app: Application) -> None:
 def _father_diag(d: Data, v: Value, problem: str) -> Diagnostic:
     shown = v.father if len(v.father or "") <= 60 else (v.father or "")[:60] + "..."
     return Diagnostic(
-        "N014",
+        codes.FATHER_NOT_FOUND,
         f"{d.name}[{v.key}]: fatherId '{shown}' {problem}; the value has no reference"
         f" {'tool' if base_type(d.type) == 'tool' else 'frame'} (a use of it stops the task, manual 9.4.1)",
         v.origin.path, v.origin.line, v.origin.col,

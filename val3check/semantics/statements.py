@@ -9,6 +9,7 @@ from __future__ import annotations
 from ..language.instructions import lookup as lookup_instruction
 from ..language.version_facts import task_name_problem
 from ..parsing import ast as A
+from ..rules import codes
 from . import messages as M
 from . import symbols as S
 from . import vtypes as vt
@@ -68,8 +69,11 @@ class StatementChecker(ExprTyper):
         if type(cond) is A.AssignExpr:
             return  # `if x = y`: the misplaced `=` is the one error reported (T004)
         if not vt.condition_ok(v.t):
-            self.ctx.report_at("T002", M.condition_not_bool(keyword, v.t.name if v.t.kind != vt.LITERAL else "{...} value"),
-                               cond)
+            self.ctx.report_at(
+                codes.CONDITION_NOT_BOOL,
+                M.condition_not_bool(keyword, v.t.name if v.t.kind != vt.LITERAL else "{...} value"),
+                cond,
+            )
 
     # -- control structures ----------------------------------------------------------------
 
@@ -95,17 +99,19 @@ class StatementChecker(ExprTyper):
             v = self.typeof(counter)
             if v is not UNKNOWN_VAL:
                 if not v.var and v.t.known:
-                    ctx.report_at("T015", M.for_counter(node_text(counter)), counter)
+                    ctx.report_at(codes.BAD_FOR_HEADER, M.for_counter(node_text(counter)), counter)
                 elif v.elem is False:
                     self._report_missing_index(counter, v)
                 elif v.t.known and v.t is not vt.NUM:
-                    ctx.report_at("T015", M.for_counter(f"a {v.t.name}"), counter)
+                    ctx.report_at(codes.BAD_FOR_HEADER, M.for_counter(f"a {v.t.name}"), counter)
         for which, e in (("start value", st.start), ("end value", st.stop), ("step", st.step)):
             if e is None or type(e) is A.ErrorExpr:
                 continue
             b = self.elem(e)
             if not vt.is_num_like(b.t):
-                ctx.report_at("T015", M.for_bound(which, b.t.name if b.t.kind != vt.LITERAL else "{...} value"), e)
+                ctx.report_at(
+                    codes.BAD_FOR_HEADER, M.for_bound(which, b.t.name if b.t.kind != vt.LITERAL else "{...} value"), e
+                )
         self.block(st.body)
 
     def _switch(self, st: A.Switch) -> None:
@@ -114,7 +120,7 @@ class StatementChecker(ExprTyper):
             for value in case.values:
                 c = self.elem(value)
                 if vt.comparable(s.t, c.t) is False:
-                    self.ctx.report_at("T014", M.case_type(c.t.name, s.t.name), value)
+                    self.ctx.report_at(codes.CASE_TYPE_MISMATCH, M.case_type(c.t.name, s.t.name), value)
             self.block(case.body)
         if st.default is not None:
             self.block(st.default.body)
@@ -135,22 +141,36 @@ class StatementChecker(ExprTyper):
             if prog is None:
                 sym, _ = lib.data_symbol(target.name)
                 if sym is not None:
-                    ctx.report_at("L012", M.library_symbol_not_program(target.alias, target.name), target)
+                    ctx.report_at(
+                        codes.LIBRARY_SYMBOL_KIND, M.library_symbol_not_program(target.alias, target.name), target
+                    )
                     return None, label, vals
                 other = lib.lookup_ci(target.name)
                 if other is not None and lib.app.programs.get(other) is not None:
-                    ctx.report_at("N006", M.case_mismatch("library program", target.name, other), target,
-                        fix=("rename", target.name, other, ":", ""))
+                    ctx.report_at(
+                        codes.NAME_CASE_MISMATCH,
+                        M.case_mismatch("library program", target.name, other),
+                        target,
+                        fix=("rename", target.name, other, ":", ""),
+                    )
                     prog, why = lib.program(other)
                 else:
                     if not ctx.program_may_exist(target.name, lib.app) and ctx.names_complete("data", lib.app):
                         publics = [n for n, p in lib.app.programs.items() if p.access == "public"]
-                        ctx.report_at("L010", M.undefined_library_symbol(target.alias, target.name, lib.app.name,
-                                                                         suggest(target.name, publics)), target)
+                        ctx.report_at(
+                            codes.UNDEFINED_LIBRARY_SYMBOL,
+                            M.undefined_library_symbol(
+                                target.alias, target.name, lib.app.name, suggest(target.name, publics)
+                            ),
+                            target,
+                        )
                     return None, label, vals
             if why:
-                ctx.report_at("L011", M.private_library_symbol(target.alias, target.name, lib.app.name, "program"),
-                              target)
+                ctx.report_at(
+                    codes.PRIVATE_LIBRARY_SYMBOL,
+                    M.private_library_symbol(target.alias, target.name, lib.app.name, "program"),
+                    target,
+                )
             return signature(ctx.table.registry, lib.app, prog, self.signatures), label, vals
         name = target.name  # type: ignore[attr-defined]
         label = f"{name}()"
@@ -159,14 +179,20 @@ class StatementChecker(ExprTyper):
         if prog is None:
             prog = table.program_ci(name)
             if prog is not None:
-                ctx.report_at("N006", M.case_mismatch("program", name, prog.name), target,
-                    fix=("rename", name, prog.name))
+                ctx.report_at(
+                    codes.NAME_CASE_MISMATCH,
+                    M.case_mismatch("program", name, prog.name),
+                    target,
+                    fix=("rename", name, prog.name),
+                )
         if prog is None:
             ins = lookup_instruction(name)
             if ins is not None:
-                ctx.report_at("T018", M.call_of_instruction(ins.name), target)
+                ctx.report_at(codes.PROGRAM_INSTRUCTION_MISUSE, M.call_of_instruction(ins.name), target)
             elif ctx.globals_known and not ctx.program_may_exist(name):
-                ctx.report_at("N002", M.undefined_program(name, suggest(name, table.app.programs)), target)
+                ctx.report_at(
+                    codes.UNDEFINED_PROGRAM, M.undefined_program(name, suggest(name, table.app.programs)), target
+                )
             return None, label, vals
         return signature(table.registry, ctx.app, prog, self.signatures), label, vals
 
@@ -178,13 +204,17 @@ class StatementChecker(ExprTyper):
     def _task_common(self, keyword: str, name: object, target: object, args: list) -> None:
         v = self.elem(name)
         if vt.assignable(vt.STRING, v.t) is False:
-            self.ctx.report_at("T006", M.argument_type(1, keyword, "sNom", "string", vt.describe(v)), name)
+            self.ctx.report_at(
+                codes.ARGUMENT_TYPE_MISMATCH, M.argument_type(1, keyword, "sNom", "string", vt.describe(v)), name
+            )
         elif type(name) is A.String:
             # 5.10: "sNom doit avoir 1 à 15 caractères parmi a..zA..Z0..9_" (runtime error 29); s8
             # code uses longer names: the rule of the version, shared with the simulator
             problem = task_name_problem(name.value, self.ctx.major)
             if problem is not None:
-                self.ctx.report_at("T023", M.task_name(keyword, name.value, problem.why, problem.certain), name)
+                self.ctx.report_at(
+                    codes.INVALID_TASK_CONSTANT, M.task_name(keyword, name.value, problem.why, problem.certain), name
+                )
         sig, label, vals = self._program_target(target, args)
         if sig is not None:
             check_program_args(self, target, label, sig, args, vals, task=True)
@@ -192,27 +222,39 @@ class StatementChecker(ExprTyper):
     def _task_create(self, st: A.TaskCreate) -> None:
         p = self.elem(st.priority)
         if not vt.is_num_like(p.t):
-            self.ctx.report_at("T006", M.argument_type(2, "taskCreate", "nPriorité", "num", vt.describe(p)), st.priority)
+            self.ctx.report_at(
+                codes.ARGUMENT_TYPE_MISMATCH,
+                M.argument_type(2, "taskCreate", "nPriorité", "num", vt.describe(p)),
+                st.priority,
+            )
         elif type(st.priority) is A.Number and not 1 <= st.priority.value <= 100:
             # 5.10: "nPriorité doit être compris entre 1 et 100" (runtime error 70)
-            self.ctx.report_at("T023", M.task_priority(st.priority.text), st.priority)
+            self.ctx.report_at(codes.INVALID_TASK_CONSTANT, M.task_priority(st.priority.text), st.priority)
         self._task_common("taskCreate", st.task, st.target, st.args)
 
     def _task_create_sync(self, st: A.TaskCreateSync) -> None:
         ctx = self.ctx
         p = self.elem(st.period)
         if not vt.is_num_like(p.t):
-            ctx.report_at("T006", M.argument_type(2, "taskCreateSync", "nPériode", "num", vt.describe(p)), st.period)
+            ctx.report_at(
+                codes.ARGUMENT_TYPE_MISMATCH,
+                M.argument_type(2, "taskCreateSync", "nPériode", "num", vt.describe(p)),
+                st.period,
+            )
         o = self.typeof(st.overrun)
         if o is not UNKNOWN_VAL:
             if not o.var:
-                ctx.report_at("T007", M.needs_variable(3, "taskCreateSync", "bOverrun"), st.overrun)
+                ctx.report_at(
+                    codes.REFERENCE_NEEDS_VARIABLE, M.needs_variable(3, "taskCreateSync", "bOverrun"), st.overrun
+                )
             elif o.t.known and o.t is not vt.BOOL:
-                ctx.report_at("T006", M.argument_type(3, "taskCreateSync", "bOverrun", "bool&", vt.describe(o)),
-                              st.overrun)
+                ctx.report_at(
+                    codes.ARGUMENT_TYPE_MISMATCH,
+                    M.argument_type(3, "taskCreateSync", "bOverrun", "bool&", vt.describe(o)),
+                    st.overrun,
+                )
             elif o.elem is False:
                 self._report_missing_index(st.overrun, o)
             elif o.root is not None and o.root.kind == S.LOCAL:
-                ctx.report_at("T022", M.task_overrun_local(node_text(st.overrun)), st.overrun)
+                ctx.report_at(codes.TASK_REFERENCE_TO_LOCAL, M.task_overrun_local(node_text(st.overrun)), st.overrun)
         self._task_common("taskCreateSync", st.task, st.target, st.args)
-

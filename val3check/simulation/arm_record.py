@@ -25,6 +25,7 @@ from typing import Any, Protocol
 import numpy as np
 
 TCP_STEP_S = 1e-4  # the TCP speed: the TCP moved along the joint velocity over this step
+BLOCK = 4096  # samples whose link poses are computed at once (memory bounded on long runs)
 
 
 class JointTrajectory(Protocol):
@@ -287,8 +288,12 @@ def tcp_speed(kinematics: ArmKinematics, flange: str, tool_uses, times, position
     the tool changes)."""
     h = TCP_STEP_S
     positions, velocities = np.asarray(positions, dtype=float), np.asarray(velocities, dtype=float)
-    P0 = kinematics.link_poses_many(positions)[flange]
-    P1 = kinematics.link_poses_many(positions + h * velocities)[flange]
+    poses = kinematics.link_poses_many
+    # a block of samples at a time: every link's poses at once take 1 KB a sample
+    P0 = np.concatenate([poses(positions[b:b + BLOCK])[flange] for b in range(0, len(positions), BLOCK)]) \
+        if len(positions) else np.zeros((0, 4, 4))
+    P1 = np.concatenate([poses(positions[b:b + BLOCK] + h * velocities[b:b + BLOCK])[flange]
+                         for b in range(0, len(positions), BLOCK)]) if len(positions) else np.zeros((0, 4, 4))
     starts = [t for t, _ in tool_uses]
     tools = [tool for _, tool in tool_uses]
     times = np.asarray(times, dtype=float)

@@ -14,6 +14,7 @@ layer): the outcome says which step refused the case and with what.
 from __future__ import annotations
 
 import os
+import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
@@ -91,6 +92,7 @@ def run_case(spec: CaseSpec, say: Say | None = None) -> CaseOutcome:
     from .run import SimOptions, simulate
     from .scenario import Scenario, ScenarioError, load_scenario
 
+    started = time.monotonic()  # --max-wall covers the lint, the arm and the cell too
     case = lint_case(spec, say)
     if case.refused is not None:
         return case
@@ -117,7 +119,7 @@ def run_case(spec: CaseSpec, say: Say | None = None) -> CaseOutcome:
         options = SimOptions(duration=spec.duration, max_wall=spec.max_wall, max_lines=spec.max_lines,
                              max_memory_mb=spec.max_memory_mb, disk_roots=list(spec.settings.disk_roots),
                              robot=robot, cycles=spec.cycles, progress=progress, collisions=True, cell=cell,
-                             cell_found=cell_found)
+                             cell_found=cell_found, started=started, reports_in_budget=True)
         try:
             case.result = simulate(case.lint.workspace, app, options, scenario)
         finally:

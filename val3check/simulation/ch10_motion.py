@@ -36,11 +36,11 @@ from ..interpretation.chapters.ch09_geometry import ct, jd, jt, millimeter_unit,
 from ..interpretation.not_simulated import ARM_LIMIT, NO_ARM, SimLimit
 from ..interpretation.waiting import WAIT
 from ..language.runtime_errors import Val3RuntimeError
+from ..lengths import INCH_MM
 from ..loading.types import arm_family
 from ..motion.commands import Target
 from ..motion.findings import MotionError, Source
 from ..motion.queue import QueueFull
-from .model_arm import INCH_MM
 
 E = Val3RuntimeError
 US = 1_000_000

@@ -17,11 +17,11 @@ from ..geometry import frames as geo_frames
 from ..geometry.frames import Tool
 from ..interpretation.chapters.ch09_geometry import millimeter_unit
 from ..language.runtime_errors import Val3RuntimeError
+from ..lengths import INCH_MM
 from ..motion.mdesc import MDesc
 from .alteration import AlterMode, trsf4
 from .ch10_motion import I_movec, I_movej, I_movel, _arm, _matrix, _source
 from .ch11_licences import licensed, require
-from .model_arm import INCH_MM
 
 E = Val3RuntimeError
 US = 1_000_000

@@ -27,11 +27,11 @@ import numpy as np
 from ..geometry import frames as geo_frames
 from ..interpretation.chapters.ch09_geometry import jt
 from ..language.runtime_errors import Val3RuntimeError
+from ..lengths import INCH_MM
 from ..motion.commands import Target
 from .ch10_motion import _arm, _check_family, _point, _record, _tool
 from .ch11_licences import require
 from .compliance import CompliantMove, meets_surface, pose_between
-from .model_arm import INCH_MM
 from .runtime_notes import note
 
 E = Val3RuntimeError

@@ -33,6 +33,7 @@ from ..collision.records import Contact, MotionReport, PartDrop
 from ..diagnostics import Diagnostic
 from ..geometry import frames as geo_frames
 from ..interpretation.clock import TICK_US
+from .budget import WALL
 from .cell_timeline import TimelineLog
 
 US = 1_000_000
@@ -198,12 +199,14 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
               cell_found: str = "none", app_unit_mm: float = 1.0, io_log=(),
               link_names: dict | None = None, app_path: str = "",
               max_wall: float = math.inf, geometries=(),
-              on_motion: Callable[[int, int], None] | None = None) -> tuple[CollisionRun | None, list[Diagnostic]]:
+              on_motion: Callable[[int, int], None] | None = None,
+              out_of_budget: Any = None) -> tuple[CollisionRun | None, list[Diagnostic]]:
     """Check every motion of `motion` (the run's arm_record.ArmRun, on the arm `model`, a
     robot.RobotModel) in `cell` (None: the arm against itself only), with the grippers' events and the parts taken away (`cleared_by`, from
     the run's `io_log`; `link_names`: (kind, link) -> the globals linked to it); (CollisionRun,
     diagnostics R031-R036), or (None, [R037]) when there is nothing to check the motions with or
-    the arm's solids cannot be read. The checks stop (R037) after `max_wall` seconds of wall clock.
+    the arm's solids cannot be read. The checks stop (R037) after `max_wall` seconds of wall clock,
+    or when `out_of_budget()` says what the run's budgets have spent (simulation/budget.py).
     `geometries`: (from time, model) of each setDH (11.4): a motion is checked with the geometry in
     force when it starts (setDH waits for the motion to be empty). `on_motion(done, total)` is told
     before each motion is checked (the progress display)."""
@@ -211,6 +214,11 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
 
     name = motion.scene.name
     epochs = None
+    spent = out_of_budget() if out_of_budget is not None else None
+    if spent is not None and motion.motions:  # not even the arm's solids are read
+        why = (f"by the wall-clock budget (--max-wall {max_wall:g} s)" if spent.startswith(WALL) else f"({spent})")
+        return None, [_not_checked(f"collision checks cut short {why}: 0 of {len(motion.motions)} motions checked",
+                                   0.0, app_path)]
     try:
         arm = arm_model(model)
         if geometries:
@@ -250,10 +258,12 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
     for done, (index, start, end) in enumerate(spans):
         if on_motion is not None:
             on_motion(done, len(spans))
-        if time.monotonic() > deadline:
-            diags.append(_not_checked(f"collision checks cut short by the wall-clock budget (--max-wall "
-                                      f"{max_wall:g} s): {done} of {len(spans)} motions checked, up to {start:.3f} s",
-                                      start, app_path))
+        spent = out_of_budget() if out_of_budget is not None else None
+        if spent is not None or time.monotonic() > deadline:
+            why = (f"by the wall-clock budget (--max-wall {max_wall:g} s)" if spent is None or spent.startswith(WALL)
+                   else f"({spent})")
+            diags.append(_not_checked(f"collision checks cut short {why}: {done} of {len(spans)} motions checked, "
+                                      f"up to {start:.3f} s", start, app_path))
             events = events[:ev]
             break
         while ev < len(events) and events[ev][0] / US <= start + 1e-9:

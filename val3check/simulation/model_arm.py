@@ -16,9 +16,8 @@ from collections.abc import Sequence
 from typing import Any
 
 from ..interpretation.arm_port import Joints, KinematicsUnsupported, Pose6, TargetUnreachable
+from ..lengths import INCH_MM
 from ..robot.errors import IKUnsupported, Unreachable
-
-INCH_MM = 25.4
 
 
 class UnitKinematics:

@@ -40,6 +40,7 @@ import numpy as np
 from ..interpretation.arm_port import Joints
 from ..interpretation.scheduler import EndRun
 from ..language.runtime_errors import Val3RuntimeError
+from ..lengths import INCH_MM
 from ..motion.commands import MoveCommand, Target
 from ..motion.cycle import Context, CycleCounter, Loop, Pass
 from ..motion.failures import failure_text
@@ -50,7 +51,7 @@ from ..motion.records import time_leaving
 from .alteration import Alteration
 from .arm_layers import Layers, QueueView
 from .compliance import Compliance
-from .model_arm import INCH_MM, ModelArm
+from .model_arm import ModelArm
 
 US = 1_000_000
 TICK_US = 4000  # the controller's setpoints (ALTER's samples, 11.2.3)

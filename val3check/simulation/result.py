@@ -77,3 +77,6 @@ class SimResult:
     # every task's state over time (running, waiting, blocked, stopped, ended), sampled per 4 ms
     # cycle (interpretation/recorder.py): the task timelines of the HTML report and the traces
     task_states: list[TaskStateChange] = field(default_factory=list)
+    # the run's budgets, which also cover the reports (simulation/budget.py RunBudget): a writer
+    # leaves out what grows with the run once they are spent
+    budget: Any = field(default=None, repr=False, compare=False)

@@ -28,10 +28,12 @@ from ..interpretation.chapters import (
 from ..interpretation.machine import Budgets, Machine
 from ..interpretation.registry import Registry
 from ..interpretation.scheduler import EndRun
+from ..lengths import INCH_MM
 from ..loading.model import Application, Workspace
 from . import ch09_latch, ch10_motion, ch11_absolute, ch11_alter, ch11_compliance, ch11_continuous, ch11_licences
+from .budget import RUN_SHARE, RunBudget
 from .collect import collect
-from .model_arm import INCH_MM
+from .folding import fold
 from .moving_arm import MovingArm
 from .result import SimResult
 from .scenario import Scenario, apply_scenario
@@ -52,6 +54,16 @@ class SimOptions:
     max_transcript: int = 10_000
     max_memory_mb: float = 512.0  # growth of the process, loading included (interpretation/memory_budget.py)
     wall_clock: Any = time.monotonic  # what max_wall is measured with (tests: a clock of their own)
+    # the share of max_wall the simulation may take; the collision checks and reports have the rest
+    # (budget.py: the budgets cover every phase)
+    run_share: float = RUN_SHARE
+    # when the command started, on wall_clock (None: when the machine is made): --max-wall then
+    # covers the lint and the arm's loading too
+    started: float | None = None
+    # the budgets also cover the reports written from the result (SimResult.budget): the `sim`
+    # command and a batch's case write them at once; a caller of the API who writes them later
+    # leaves this off
+    reports_in_budget: bool = False
     disk_roots: list[str] = field(default_factory=list)
     # the arm model (val3check.robot.RobotModel) or None: see robot_choice.choose_sim_robot
     robot: Any = None
@@ -81,11 +93,14 @@ def build_machine(ws: Workspace, app: Application, options: SimOptions, *, regis
     a `Subsystem`) replace the standard ones (tests, tools)."""
     budgets = Budgets(duration_us=int(round(options.duration * 1_000_000)), wall_s=options.max_wall,
                       max_lines=options.max_lines, max_transcript=options.max_transcript,
-                      max_memory_mb=options.max_memory_mb, wall_clock=options.wall_clock)
+                      max_memory_mb=options.max_memory_mb, wall_clock=options.wall_clock,
+                      run_share=options.run_share)
     arm = arm if arm is not None else MovingArm(options.robot, cycles=options.cycles)
     if isinstance(arm, MovingArm) and arm.has_model and ch11_continuous.uses_reset_turn(ws, app):
         ch11_continuous.set_continuous(arm, True)  # the continuous axis option is in use (11.5)
     machine = Machine(ws, app, registry or build_registry(), arm, budgets=budgets, disk_roots=options.disk_roots)
+    if options.started is not None:
+        machine.wall_start = options.started
     if hasattr(arm, "bind"):
         arm.bind(machine.controller)  # its power and monitor speed (chapter 8)
     machine.add_subsystem(arm)  # after the cell: inputs are refreshed before the arm moves
@@ -126,9 +141,19 @@ def run_machine(ws: Workspace, app: Application, options: SimOptions | None = No
         machine.end_reason = (stop.reason if isinstance(stop, EndRun) else f"budget:{stop}"
                               if isinstance(stop, MemoryError)
                               else "budget:the application's values are nested too deeply for the simulator")
-        return machine, _collisions(collect(machine), app, options, checks)
+        return machine, _finish(machine, app, options, checks)
     machine.run()
-    return machine, _collisions(collect(machine), app, options, checks)
+    return machine, _finish(machine, app, options, checks)
+
+
+def _finish(machine: Machine, app: Application, options: SimOptions, checks) -> SimResult:
+    """The run's record, its collision checks within what is left of its budgets, its findings
+    folded (folding.py)."""
+    budget = RunBudget.of(machine)
+    result = _collisions(collect(machine), app, options, checks, budget)
+    result.diagnostics = fold(result.diagnostics, app.path, result.sim_time_us)
+    result.budget = budget if options.reports_in_budget else None
+    return result
 
 
 def _collision_setup(app: Application, options: SimOptions, machine: Machine):
@@ -163,7 +188,7 @@ def _phase(progress: Any):
     return lambda done, total: phase(f"checking collisions: motion {done + 1} of {total}")
 
 
-def _collisions(result: SimResult, app: Application, options: SimOptions, checks) -> SimResult:
+def _collisions(result: SimResult, app: Application, options: SimOptions, checks, budget: RunBudget) -> SimResult:
     """Check the motions of the run (SimResult.collision) and add the findings."""
     if checks is None:
         if options.cell and result.motion is None:  # said, not silently ignored
@@ -184,7 +209,8 @@ def _collisions(result: SimResult, app: Application, options: SimOptions, checks
                                             app_unit_mm=unit_mm, io_log=result.io_log,
                                             link_names=result.link_names, app_path=app.path,
                                             max_wall=options.max_wall, geometries=getattr(arm, "geometries", ()),
-                                            on_motion=_phase(options.progress))
+                                            on_motion=_phase(options.progress),
+                                            out_of_budget=budget.spent)
         result.collision = run
         if run is not None:
             for index, report in run.by_motion.items():  # each motion's clearances slot

@@ -148,9 +148,9 @@ def _check(args: Any) -> None:
         raise ExploreError("--explore goes without --init-scenario, --trace and --fail-fast")
     if args.jobs is not None and args.jobs < 1:
         raise ExploreError("--jobs must be a positive number of processes")
-    from ..command import _dask_address
+    from ..executors import dask_address
 
-    if args.executor == "dask" and args.jobs is not None and (args.scheduler or _dask_address()):
+    if args.executor == "dask" and args.jobs is not None and (args.scheduler or dask_address()):
         raise ExploreError("--jobs sizes the local executor or a local Dask cluster; with a scheduler, the"
                            " workers' processes set the parallelism")
     if args.scheduler and args.executor != "dask":

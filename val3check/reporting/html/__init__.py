@@ -1,14 +1,13 @@
 """The HTML report of a simulation run (docs/html-report.md).
 
-    from val3check.reporting.html import render, synthetic_model, check_model
+    from val3check.reporting.html import render, check_model
 
-    model = synthetic_model(duration=60.0)       # or a model built from a run (from_run.py)
+    model = model_from_run(report)              # the model of a run (from_run.py)
     html = render(model)                         # one self-contained page
 
 `render(model) -> str` checks the model (`check_model`, ModelError with the key at fault) and
-returns the page; `synthetic_model(...)` gives a scripted pick-and-place run for tests and the
-demo (`python -m val3check.reporting.html --demo -o demo.html`); `model_from_sim_report` builds
-a model from the JSON report of a run. The arm's chain of the 3D view is read by
+returns the page (a scripted pick-and-place model for the tests is `tests/synthetic_run.py`);
+`model_from_sim_report` builds a model from the JSON report of a run. The arm's chain of the 3D view is read by
 `val3check.robot.chain.arm_chain` (a run publishes it in its record of the scene). The names are
 imported when first used, so that the page of a run (from_run.py) loads nothing else.
 """
@@ -19,9 +18,9 @@ from importlib import import_module
 from typing import Any
 
 _EXPORTS = {"VERSION": "model", "ModelError": "model", "check_model": "model", "render": "page",
-            "model_from_sim_report": "from_sim", "synthetic_model": "synthetic"}
+            "model_from_sim_report": "from_sim"}
 
-__all__ = ["ModelError", "VERSION", "check_model", "model_from_sim_report", "render", "synthetic_model"]
+__all__ = ["ModelError", "VERSION", "check_model", "model_from_sim_report", "render"]
 
 
 def __getattr__(name: str) -> Any:

@@ -24,6 +24,7 @@ from pathlib import Path
 from typing import Any
 
 from .._common import SourceCache
+from ..thinning import MOTION_ROWS, left_out
 from .excerpts import SEVERITY_ORDER, excerpt
 from .model import VERSION
 
@@ -62,6 +63,8 @@ def _motions(report: Any, m: Any, end: float, clearances: dict) -> list[dict]:
     for k, motion in enumerate(m.motions):
         if motion.start is None or motion.start > end:
             continue  # failed before it moved (its diagnostic says why), or not started within the run
+        if len(out) == MOTION_ROWS:
+            break  # a long run: its first rows (reporting/thinning.py), said in the limitations
         stop = end if motion.end is None else min(motion.end, end)  # None: under way when the run ended
         src = motion.source
         where = report.display((src.path, src.line, src.col, ""))
@@ -151,11 +154,15 @@ def sample_period(end_s: float) -> float:
     return TICK_S * max(1, -(-ticks // (MAX_SAMPLES - 1)))
 
 
-def _trajectory(m: Any, limits: list[str]) -> dict | None:
+def _trajectory(report: Any, m: Any, limits: list[str]) -> dict | None:
     """The joints and the TCP speed over the run, every 4 ms (or a multiple of it)."""
     import numpy as np
 
     if not m.trajectory.moving(m.end_s):
+        return None
+    omitted = left_out(report.result, "The plots and the 3D view's motion are")
+    if omitted is not None:
+        limits.append(omitted + ".")
         return None
     dt = sample_period(m.end_s)
     if dt > TICK_S:
@@ -393,8 +400,11 @@ def model_from_run(report: Any, *, fail_on: str = "error", cell: Any = None, cle
     motions, cycles, cycle_time, trajectory, arm_timeline = [], [], None, None, []
     if m is not None:
         motions = _motions(report, m, end, clearances)
+        if len(motions) == MOTION_ROWS and len(m.motions) > MOTION_ROWS:
+            limits.append(f"A long run: the motion table lists the first {MOTION_ROWS} of {len(m.motions)} motions; "
+                          "the cycles, the findings and the plots cover the whole run.")
         cycles, cycle_time = _cycles(report, m, end)
-        trajectory = _trajectory(m, limits)
+        trajectory = _trajectory(report, m, limits)
         arm_timeline = _arm_timeline(m, end)
         if cell is None:
             limits.append("No cell file: the 3D view has no obstacles and the motions no clearance (docs/cell.md).")

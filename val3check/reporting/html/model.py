@@ -1,7 +1,7 @@
 """The report model: everything the HTML page shows, as one plain JSON-able dict.
 
 Documented in docs/html-report.md (with a JSON Schema, docs/html-report.schema.json). It is
-built from a run (later: the sim's JSON report plus the arm model), or by `synthetic.py` for
+built from a run (later: the sim's JSON report plus the arm model), or by `tests/synthetic_run.py` for
 tests and the demo; `page.render` turns it into the page. `check_model` gives a clear message
 for a model that the page could not show, instead of a broken page.
 """

@@ -1,4 +1,5 @@
-"""A synthetic report model: a pick-and-place cell run on a real arm model, for tests and the demo.
+"""A synthetic report model, test data for the HTML report's tests and benchmark (not shipped in
+the package): a pick-and-place cell run on a real arm model.
 
     model = synthetic_model(duration=60.0)             # TX2-60, 4 ms samples, a warning
     model = synthetic_model(duration=20.0, failing=True)  # the robot task stops on error 154
@@ -19,8 +20,8 @@ import math
 import random
 from pathlib import Path
 
-from ...robot.chain import arm_chain
-from .model import VERSION
+from val3check.robot.chain import arm_chain
+from val3check.reporting.html.model import VERSION
 
 PROGRAMS = {
     "Cell/robotCycle.pgx": """<?xml version="1.0" encoding="utf-8"?>
@@ -92,7 +93,7 @@ MONITOR_PERIOD = 0.1
 
 
 def _pose(x, y, z, rx=0.0, ry=0.0, rz=0.0):
-    from ...robot.kinematics import trsf_matrix
+    from val3check.robot.kinematics import trsf_matrix
 
     return [list(r) for r in trsf_matrix((x, y, z, rx, ry, rz))]
 
@@ -240,7 +241,7 @@ class _Run:
                 s = _travel(t - start, 1.0, v, ta, T)
                 return tuple(a + (b - a) * s for a, b in zip(q0, q1))
         else:
-            from ...robot.kinematics import trsf_matrix
+            from val3check.robot.kinematics import trsf_matrix
 
             p0 = self.robot.fk_matrix(q0, self.tool)
             p1 = trsf_matrix(TARGETS[target])
@@ -439,8 +440,8 @@ def synthetic_model(duration: float = 60.0, dt: float = 0.004, robot: str = "tx2
     """A report model (docs/html-report.md) of a scripted pick-and-place run of `duration` simulated
     seconds sampled every `dt` seconds. `failing`: the robot task stops on error 154 in its 8th
     cycle (an error, a stopped task, a failed verdict)."""
-    from ...robot import load_robot
-    from ... import __version__
+    from val3check.robot import load_robot
+    from val3check import __version__
 
     arm_model = load_robot(robot)
     run = _Run(arm_model, duration, dt, seed, failing)

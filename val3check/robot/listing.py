@@ -1,8 +1,8 @@
-"""Text output of `val3check robots`: the catalogue by family, or one model with its provenance."""
+"""What `val3check robots` prints: the catalogue by family, or one model with its provenance."""
 
 from __future__ import annotations
 
-from ..robot.models import RobotModel
+from .models import RobotModel
 
 SERIES_TITLES = {
     "TX": "TX six-axis arms (CS8)",
