@@ -195,6 +195,12 @@ def test_synthetic_model_is_valid_deterministic_and_fails_on_request(model):
         {"start": 2, "end": 1, "carried": True, "pose": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]]}]}]),
      r"scene.parts\[0\].spans\[0\]: end is before start"),
     (lambda m: m["verdict"].update(simulated_duration=float("nan")), "verdict.simulated_duration: a finite number"),
+    # the long rows are checked at once (issue 29), the message still names the value at fault
+    (lambda m: m["trajectory"]["positions"][1].__setitem__(7, True), r"trajectory.positions\[1\]\[7\]: a finite"),
+    (lambda m: m["trajectory"]["velocities"][0].__setitem__(3, float("nan")), r"trajectory.velocities\[0\]\[3\]: a fin"),
+    (lambda m: m["trajectory"]["positions"][2].__setitem__(1, 10 ** 400), r"trajectory.positions\[2\]\[1\]: a finite"),
+    (lambda m: m["trajectory"].update(tcp_speed=[1.0] * (len(m["trajectory"]["times"]) - 1) + ["x"]),
+     r"trajectory.tcp_speed\[\d+\]: a finite number is expected, not 'x'"),
     (lambda m: m.pop("verdict"), "key 'verdict' is missing"),
 ])
 def test_check_model_names_the_key(model, edit, message):

@@ -31,8 +31,15 @@ def _fail(where: str, what: str) -> None:
 def _num(v: Any, where: str, *, null: bool = False) -> None:
     if v is None and null:
         return
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not _finite(v):
         _fail(where, f"a finite number is expected, not {v!r}")
+
+
+def _finite(v: int | float) -> bool:
+    try:
+        return math.isfinite(v)
+    except OverflowError:  # an int beyond any float
+        return False
 
 
 def _nums(values: list, where: str) -> None:
