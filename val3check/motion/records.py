@@ -62,6 +62,9 @@ def _speeds_at(profile, s: np.ndarray) -> np.ndarray:
     return np.sqrt(np.maximum(np.interp(s, S[keep], X[keep]), 0.0))
 
 
+RECORD_BLOCK = 128  # commands whose path is evaluated in one pass (`motion_records`)
+
+
 def motion_records(queue, end_s: float | None = None) -> list[MotionRecord]:
     """One record per command recorded (in recording order), connection moves included, as the
     arm did it by `end_s` (the end of the run; None: as planned). A command the arm had not
@@ -105,9 +108,11 @@ def motion_records(queue, end_s: float | None = None) -> list[MotionRecord]:
         out.append(None)
     groups: dict = {}
     for item in todo:
-        tool = item[1].tool  # the same TCP (by value: each command holds its own copy) in one evaluation
+        tool = item[1].tool  # the same TCP (by value: each command holds its own copy) evaluated together
         groups.setdefault(None if tool is None else np.asarray(tool, dtype=float).tobytes(), []).append(item)
-    for items in groups.values():
+    # in blocks of commands: the memory of an evaluation does not grow with the run
+    blocks = [items[k:k + RECORD_BLOCK] for items in groups.values() for k in range(0, len(items), RECORD_BLOCK)]
+    for items in blocks:
         allp = np.concatenate([np.concatenate([it[6], it[7]]) for it in items])
         q = queue.path.q(allp)
         q1 = queue.path.q(allp, 1)

@@ -146,13 +146,16 @@ def _sample_spans(path, a: float, b: float, kin, limits, points: np.ndarray | No
             tol = 1e-12 * max(1.0, abs(a))
             k = int(np.searchsorted(sig, lo - tol))
             start = k if k < len(sig) and abs(sig[k] - lo) <= tol else None
+        # (a re-timing from a position off the grid, lo, is not kept: it does not come back)
         memo = smp.setdefault("rows", {})
         key = (lo, hi, first, start, tuple(st for _, st in sp.owners))
         hit = memo.get(key)
         if hit is None:
-            if len(memo) > 32:
-                memo.clear()
-            hit = memo[key] = _span_rows(sp, smp, kin, lo, hi, first, start)
+            hit = _span_rows(sp, smp, kin, lo, hi, first, start)
+            if not first or start is not None:
+                if len(memo) >= 8:
+                    memo.pop(next(iter(memo)))
+                memo[key] = hit
         pts, q1, q2, pt, rt, which = hit
         own = np.full(len(pts), sp.owners[0][0]) if which is None else np.array([k for k, _ in sp.owners])[which]
         parts.append((pts + off, q1, q2, pt, rt, own))
