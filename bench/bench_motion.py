@@ -37,8 +37,8 @@ from val3check.motion.commands import MoveCommand, Target  # noqa: E402
 from val3check.motion.findings import MotionError, Source  # noqa: E402
 from val3check.motion.kin import ArmKin  # noqa: E402
 from val3check.motion.mdesc import MDesc  # noqa: E402
+from val3check.motion.motion_records import motion_records  # noqa: E402
 from val3check.motion.queue import MotionQueue  # noqa: E402
-from val3check.motion.records import motion_records  # noqa: E402
 from val3check.robot import load_robot  # noqa: E402
 
 SRC = Source("bench.pgx", 1, 1, "start", "robot")

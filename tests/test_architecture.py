@@ -23,7 +23,7 @@ LAYER_OF = {
     "loading": "loading",
     "parsing": "parsing",
     "semantics": "semantics",
-    "records": "base", "confine": "base", "tomlfile": "base", "tomlpos": "base", "excerpt": "base", "lengths": "base",
+    "light_dataclass": "base", "confine": "base", "tomlfile": "base", "tomlpos": "base", "excerpt": "base", "lengths": "base",
     "lint": "lint", "config": "lint", "suppression": "lint", "result": "lint", "exclusion": "lint", "baseline": "lint", "fixes": "lint",
     "geometry": "geometry",
     "robot": "robot",

@@ -24,14 +24,13 @@ from __future__ import annotations
 import fnmatch
 import os
 import re
-from .records import dataclass, field
-
-from .exclusion import DEFAULT_EXCLUDE, Exclusion
 
 from .diagnostics import Severity
 from .excerpt import excerpt
-from .rules.catalogue import OPT_IN
+from .exclusion import DEFAULT_EXCLUDE, Exclusion
 from .language.target import TargetError, TargetSpec, parse_target
+from .light_dataclass import dataclass, field
+from .rules.catalogue import OPT_IN
 
 CONFIG_NAMES = ("val3check.toml", "pyproject.toml")
 # `[tool.val3check]`, `[tool.val3check.severity]`, `tool.val3check.x = `, or a `[tool]` table

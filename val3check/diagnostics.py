@@ -5,8 +5,9 @@ has the simulated time, the task and the program (manual 12.1 code in `error` fo
 
 from __future__ import annotations
 
-from .records import dataclass
 from enum import IntEnum
+
+from .light_dataclass import dataclass
 
 
 class Severity(IntEnum):

@@ -28,7 +28,7 @@ import os
 import re
 
 from .diagnostics import Diagnostic
-from .records import dataclass, field
+from .light_dataclass import dataclass, field
 
 MAX_SIZE = 64 * 1024 * 1024
 _IDENT = re.compile(r"[A-Za-z0-9_]")

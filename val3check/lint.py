@@ -10,12 +10,11 @@ import gc
 import os
 import re
 
-from .records import dataclass
-
 from . import __version__, suppression
 from .config import Settings
 from .diagnostics import Diagnostic, Severity
 from .language.target import Target, arm_family, target_for
+from .light_dataclass import dataclass
 from .loading import LoadOptions, load
 from .loading.controller import controller_arm
 from .loading.model import Application, Workspace

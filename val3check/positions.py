@@ -7,7 +7,7 @@ extracted `<Code>` block. A `SourceMap` converts (line, column) of the extracted
 
 from __future__ import annotations
 
-from .records import dataclass, field
+from .light_dataclass import dataclass, field
 
 
 @dataclass(frozen=True, slots=True)

@@ -2,9 +2,8 @@
 
 from __future__ import annotations
 
-from .records import dataclass, field
-
 from .diagnostics import Diagnostic
+from .light_dataclass import dataclass, field
 from .rules.catalogue import Rule
 
 

@@ -19,8 +19,8 @@ from __future__ import annotations
 import re
 
 from .diagnostics import Diagnostic
+from .light_dataclass import dataclass, field
 from .loading.model import Application
-from .records import dataclass, field
 from .rules import codes
 
 _DIRECTIVE = re.compile(r"//\s*val3check\s*:\s*ignore\b(?:\s*\[([^\]]*)\])?", re.IGNORECASE)

@@ -373,7 +373,7 @@ def test_an_over_budget_case_fails_the_batch_in_every_summary():
     assert json.loads(render_json([s], "0"))["counts"] == {"over-budget": 1}
     suite = ET.fromstring(render_junit([s]))
     assert suite.get("errors") == "1" and suite.find(".//error").get("type") == "over-budget"
-    assert "over-budget: a.pjx" in render_text([s]) and 'class="over-budget crash"' in render_html([s], set(), "0")
+    assert "over-budget: a.pjx" in render_text([s]) and 'class="over-budget crash nw"' in render_html([s], set(), "0")
 
 
 @pytest.mark.dask

@@ -8,7 +8,7 @@ import pytest
 from val3check.motion.cycle import CycleCounter, Loop, Pass, cycle_stats
 from val3check.motion.findings import Source
 from val3check.motion.mdesc import MDesc
-from val3check.motion.records import busy_time, motion_records
+from val3check.motion.motion_records import busy_time, motion_records
 
 from .motionhelp import HOME, movej, movel, point, queue, run
 

@@ -12,12 +12,13 @@ import jsonschema
 import numpy as np
 import pytest
 
-from .runhelp import CELL, moving_run, pickplace
 from val3check.collision.cellfile import read_cell
-from val3check.collision.records import Clearance, MotionReport, MotionSpan
+from val3check.collision.results import Clearance, MotionReport, MotionSpan
 from val3check.reporting.html import check_model, render
 from val3check.reporting.html.from_run import model_from_run
 from val3check.robot import load_robot
+
+from .runhelp import CELL, moving_run, pickplace
 
 SCHEMA = json.loads((Path(__file__).resolve().parents[2] / "docs" / "html-report.schema.json").read_text(encoding="utf-8"))
 
@@ -204,6 +205,7 @@ def test_same_run_same_page(run):
 
 def test_a_scara_run_joint_3_in_mm_and_its_tcp_speed(tmp_path):
     from interpretation.simsupport import sim
+
     from val3check.config import Settings
     from val3check.reporting.sim_report import build_report
     from val3check.robot import load_robot

@@ -13,7 +13,7 @@ import pytest
 from mcap.reader import make_reader
 
 from val3check.cli import main
-from val3check.collision.records import MotionReport, MotionSpan
+from val3check.collision.results import MotionReport, MotionSpan
 from val3check.reporting.mcap_trace import SCHEMAS, TOPICS, write_trace
 from val3check.robot import load_robot
 

@@ -59,7 +59,7 @@ from .cell import Cell, MeshData, Obstacle, Part, Shape, ToolSolid, Where
 from .cellfile import CELL_FILE_NAME, find_cell, read_cell
 from .checker import CollisionChecker
 from .errors import CellError
-from .records import CellProblem, Clearance, Contact, MotionReport, MotionSpan, PartDrop
+from .results import CellProblem, Clearance, Contact, MotionReport, MotionSpan, PartDrop
 
 __all__ = [
     "ACM",

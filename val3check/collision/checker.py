@@ -35,7 +35,7 @@ from .fcl_backend import FclBackend
 from .groups import Group
 from .path import ArmPath
 from .poses import PoseSource
-from .records import CellProblem, MotionReport, MotionSpan, PartDrop
+from .results import CellProblem, MotionReport, MotionSpan, PartDrop
 from .sweep import Sweep
 from .world import World
 

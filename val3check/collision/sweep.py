@@ -25,7 +25,7 @@ from .bounds import Track, prepare, scene_layout
 from .fcl_backend import FclBackend
 from .measure import Nearest, Probe
 from .path import ArmPath
-from .records import Clearance, Contact, MotionReport
+from .results import Clearance, Contact, MotionReport
 from .world import World
 
 GRID = 16  # below one sample, checks are aligned down to 1/GRID of a sample

@@ -21,7 +21,7 @@ from .cell import Cell, Obstacle, ToolSolid
 from .fcl_backend import FclBackend
 from .groups import Group, Watch, link_group, make_watches
 from .poses import PoseSource, as_matrix, same_poses
-from .records import CellProblem, PartDrop
+from .results import CellProblem, PartDrop
 
 
 @dataclass(slots=True)

@@ -9,7 +9,7 @@ Where things are:
 - the arm's position comes through `arm_port.py` (implemented by `val3check.simulation` over
   the motion queue of `val3check.motion`);
 - what changes with time besides the tasks is a `Subsystem` (`subsystem.py`): the cell and
-  its scenario (`cell.py`, `events.py`; the scenario file is read by `val3check.simulation`),
+  its scenario (`io_cell.py`, `events.py`; the scenario file is read by `val3check.simulation`),
   the arm's motion;
 - `compiler/` turns each program into a Python generator function, once; `code_support.py`
   holds the helpers the generated code calls;

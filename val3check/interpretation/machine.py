@@ -2,7 +2,7 @@
 
 A `Machine` holds the loaded units (the application and its libraries, units.py), the clock
 (clock.py), the scheduler and its tasks (scheduler.py), the subsystems the scheduler asks
-for the next moment anything changes (the cell and its scenario, cell.py; the arm's motion,
+for the next moment anything changes (the cell and its scenario, io_cell.py; the arm's motion,
 `val3check.motion`), the user page (user_page.py), the controller's state (controller.py),
 the arm port (arm_port.py) and what the run records: diagnostics, the user page transcript
 and the I/O log (recorder.py).
@@ -15,22 +15,22 @@ integer microseconds: runs are deterministic.
 
 from __future__ import annotations
 
-from ..lengths import app_mm
-from ..rules import codes
 import os
 import time as _time
 from dataclasses import dataclass
 from typing import Any, Callable, NamedTuple
 
 from ..diagnostics import Diagnostic
-from ..loading.model import Application, Workspace
 from ..language.runtime_errors import RUNTIME_CODES, Val3RuntimeError
-from .cell import Cell, CellSubsystem
+from ..lengths import app_mm
+from ..loading.model import Application, Workspace
+from ..rules import codes
 from .clock import TICK_US, Clock
 from .compiler import Compiled
 from .compiler.legacy import array_parameters
 from .controller import Controller, default_versions
 from .deadlock import report_blocked
+from .io_cell import Cell, CellSubsystem
 from .libraries import autoload_libraries
 from .memory import TypeSpace
 from .memory_budget import MemoryBudget

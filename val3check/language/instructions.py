@@ -6,10 +6,11 @@ and cached. The returned objects are frozen; do not mutate the returned dictiona
 
 from __future__ import annotations
 
-from ..records import dataclass, field
-from functools import lru_cache
 import os
+from functools import lru_cache
 from typing import Any, Iterable, Mapping, Sequence
+
+from ..light_dataclass import dataclass, field
 
 CATALOGUE_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "instructions.toml")
 

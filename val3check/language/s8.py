@@ -10,11 +10,11 @@ Read on first use and cached, like instructions.toml.
 
 from __future__ import annotations
 
-from ..records import dataclass
-from functools import lru_cache
 import os
+from functools import lru_cache
 from typing import Any
 
+from ..light_dataclass import dataclass
 from .instructions import CatalogueError, Instruction, Overload, Param, _instruction, _param
 
 CATALOGUE_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "s8.toml")

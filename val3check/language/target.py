@@ -14,7 +14,8 @@ the target is an s7 controller (then T031, an error) or an s8 one (then it is fi
 from __future__ import annotations
 
 import re
-from ..records import dataclass
+
+from ..light_dataclass import dataclass
 
 # Controllers and the VAL 3 majors they run: CS8/CS8C controllers run s5 to s7, CS9 ones s8
 # (the s8 reference manual is written for CS9; s7 is the last version for CS8C).

@@ -5,10 +5,11 @@ Importing this module is cheap: the TOML is read on first use and cached.
 
 from __future__ import annotations
 
-from ..records import dataclass
-from functools import lru_cache
 import os
+from functools import lru_cache
 from typing import Any, Mapping
+
+from ..light_dataclass import dataclass
 
 TYPES_PATH = os.path.join(os.path.dirname(os.path.abspath(__file__)), "types.toml")
 

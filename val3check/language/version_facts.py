@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from functools import cache
 
-from ..records import dataclass
+from ..light_dataclass import dataclass
 
 
 @dataclass(frozen=True, slots=True)

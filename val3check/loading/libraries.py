@@ -12,7 +12,7 @@ import itertools
 import os
 
 from ..diagnostics import Diagnostic, Severity
-from ..records import dataclass, field
+from ..light_dataclass import dataclass, field
 from ..rules import codes
 from . import resolve as rs
 from .model import Application, LibraryRef, TypeRef

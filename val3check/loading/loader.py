@@ -2,14 +2,14 @@
 
 from __future__ import annotations
 
-from ..rules import codes
 import errno
 import os
 from collections.abc import Callable
-from ..records import dataclass, field
 
 from ..confine import Refused, Roots, check, repository_root
 from ..diagnostics import Diagnostic
+from ..light_dataclass import dataclass, field
+from ..rules import codes
 from . import reader as rd
 from . import resolve as rs
 from .bindings import bound_names

@@ -6,10 +6,10 @@ that a diagnostic about a declaration points at the line the user would edit.
 
 from __future__ import annotations
 
-from ..records import dataclass, field
 from enum import Enum
 from typing import Any
 
+from ..light_dataclass import dataclass, field
 from ..positions import SourceMap
 
 

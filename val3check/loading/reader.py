@@ -8,14 +8,14 @@ file is still read.
 
 from __future__ import annotations
 
-from ..rules import codes
 import math
 import re
-from ..records import dataclass, field
 from typing import Any
 
 from ..diagnostics import Diagnostic
+from ..light_dataclass import dataclass, field
 from ..positions import SourceMap
+from ..rules import codes
 from . import types as t
 from .model import Container, Data, Local, Origin, Parameter, Program, Value
 from .xmlread import Node

@@ -22,9 +22,9 @@ from __future__ import annotations
 
 import os
 import re
-from ..records import dataclass
 
 from ..confine import Roots
+from ..light_dataclass import dataclass
 
 _ROOT = re.compile(r"^([A-Za-z][A-Za-z0-9_\-]*):/+(.*)$")
 

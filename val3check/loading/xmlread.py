@@ -14,8 +14,6 @@ CDATA or from escaped text (`&gt;` is one character of code but four columns of 
 
 from __future__ import annotations
 
-from ..rules import codes
-from ..records import dataclass, field
 from xml.parsers import expat
 
 from defusedxml.common import (
@@ -27,7 +25,9 @@ from defusedxml.common import (
 from .. import confine
 from ..confine import Roots
 from ..diagnostics import Diagnostic
+from ..light_dataclass import dataclass, field
 from ..positions import Position, SourceMap
+from ..rules import codes
 
 XSI_NS = "http://www.w3.org/2001/XMLSchema-instance"
 _SEP = " "  # namespace separator given to expat: "uri local"

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 from typing import Union
 
-from ..records import dataclass, field
+from ..light_dataclass import dataclass, field
 
 # ---------------------------------------------------------------- expressions
 

@@ -439,7 +439,7 @@ def trace_messages(report: Any, cell: Any = None):
                             "names": list(report.link_names.get((e.kind, e.link), [])), "value": value,
                             "source": e.source})
     # per-sample clearance to the cell, when the run checked collisions (each motion's clearance, a
-    # collision.records.MotionReport): a lower bound, exact where `exact`
+    # collision.results.MotionReport): a lower bound, exact where `exact`
     motions = m.motions if m is not None else []
     for mid, motion in enumerate(motions):
         mr = motion.clearance

@@ -7,15 +7,15 @@ metadata and the example tests all come from the same text.
 """
 
 from __future__ import annotations
-from . import codes
 
 import os
 from collections.abc import Iterator, Mapping
-from ..records import dataclass, field
 from functools import cache
 
 from ..diagnostics import Severity
+from ..light_dataclass import dataclass, field
 from ..resources import resource_path
+from . import codes
 
 # Rules outside the default rule set (`opt-in = true` in their file), as ruff keeps some rules out
 # of its defaults: they run only when `select` or `extend-select` names their full code. Listed

@@ -16,12 +16,12 @@ Rules here:
 from __future__ import annotations
 
 import re
-from ..records import dataclass, field
 from functools import cache
 
 from ..diagnostics import Diagnostic
 from ..language.instructions import load_instructions
 from ..language.types import load_aliases, load_types
+from ..light_dataclass import dataclass, field
 from ..loading.model import Application, Container, Program, Workspace
 from ..parsing import ast as A
 from . import patterns_messages as M

@@ -39,7 +39,7 @@ import numpy as np
 from ..diagnostics import Diagnostic
 from ..motion.findings import NO_OP, Finding, MotionError, Source
 from ..motion.kin import wrap_near
-from ..motion.records import time_leaving
+from ..motion.motion_records import time_leaving
 from ..robot.kinematics import trsf_matrix
 
 US = 1_000_000

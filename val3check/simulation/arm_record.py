@@ -101,7 +101,7 @@ class MotionEntry:
     connection moves) and the same as a VAL 3 trsf `tool_trsf` (x, y, z mm, rx, ry, rz degrees,
     9.3.2); the joints it goes from and to (`joints_end` None when it failed); `limits`
     (None for a connection move, at reduced speed, 10.1.3); `clearance`: the collision checks'
-    report of this motion (a collision.records.MotionReport), None when they did not check it."""
+    report of this motion (a collision.results.MotionReport), None when they did not check it."""
 
     id: int | float | None
     kind: str

@@ -17,7 +17,7 @@ from ..geometry.frames import Frame, root_pose
 from ..geometry.rotation import angles_of, matrix
 from ..interpretation.machine import Machine
 from ..motion.cycle import cycle_stats
-from ..motion.records import busy_time, motion_records
+from ..motion.motion_records import busy_time, motion_records
 from ..motion.retime import retimed
 from ..robot.models import ASSUMED_ACCELERATION_RANGE
 from .arm_layers import ActualTrajectory
@@ -147,7 +147,7 @@ def task_cycles(machine: Machine, records) -> dict:
 
 
 def _entry(rec, command, layers=None) -> MotionEntry:
-    """A row of the motion table: the motion record (motion/records.py) and what its command
+    """A row of the motion table: the motion record (motion/motion_records.py) and what its command
     (motion/queued.py) asked; its joints with the turns resetTurn took off (`layers`)."""
     req = command.request
     connection = req.kind == "connection"

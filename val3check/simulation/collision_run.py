@@ -29,7 +29,7 @@ import numpy as np
 from ..collision import CellError, CollisionChecker, MotionSpan, arm_model, find_cell, read_cell
 from ..collision.cell import Cell
 from ..collision.poses import same_poses
-from ..collision.records import Contact, MotionReport, PartDrop
+from ..collision.results import Contact, MotionReport, PartDrop
 from ..diagnostics import Diagnostic
 from ..geometry import frames as geo_frames
 from ..interpretation.clock import TICK_US
@@ -48,7 +48,7 @@ class CollisionRun:
     cell_path   the cell file (as given or found), or None
     cell_found  how it was chosen: "option" (--cell), "found" (val3check-cell.toml beside the
                 application), "none" (no file there) or "disabled" (--cell none)
-    by_motion   {index in result.motion.motions: collision.records.MotionReport} for every motion
+    by_motion   {index in result.motion.motions: collision.results.MotionReport} for every motion
                 the arm ran (min_clearance, first_contact, starts_in_collision, too_close,
                 per-sample clearance)
     contacts    [(record index, Contact)] every contact, by time (kind "contact", "inside" or "self")

@@ -39,7 +39,7 @@ from typing import Any
 import numpy as np
 
 from ..diagnostics import Diagnostic
-from ..motion.records import time_leaving
+from ..motion.motion_records import time_leaving
 
 US = 1_000_000
 EPS = 1e-9

@@ -23,7 +23,7 @@ import statistics
 import sys
 from dataclasses import dataclass
 
-from ..motion.records import motion_records
+from ..motion.motion_records import motion_records
 from ..motion.retime import retimed
 from .collect import task_cycles
 from .moving_arm import MovingArm

@@ -46,8 +46,8 @@ from ..motion.cycle import Context, CycleCounter, Loop, Pass
 from ..motion.failures import failure_text
 from ..motion.findings import MDESC, Finding, MotionError, Source
 from ..motion.mdesc import MDesc
+from ..motion.motion_records import time_leaving
 from ..motion.queue import MotionQueue, QueueFull
-from ..motion.records import time_leaving
 from .alteration import Alteration
 from .arm_layers import Layers, QueueView
 from .compliance import Compliance

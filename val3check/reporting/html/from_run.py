@@ -12,7 +12,7 @@ frames; the tool; the cell's obstacles).
 
 The cell and the per-motion clearance come from the collision checks when the run has them
 (`result.collision.cell`, a `collision.cell.Cell`, and each motion's `clearance`, a
-`collision.records.MotionReport`), or are given (`cell=`, `clearances=`: position in
+`collision.results.MotionReport`), or are given (`cell=`, `clearances=`: position in
 `result.motion.motions` -> MotionReport).
 """
 

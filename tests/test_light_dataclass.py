@@ -1,4 +1,4 @@
-"""records.dataclass: the subset of dataclasses the lint path uses behaves as dataclasses does."""
+"""light_dataclass.dataclass: the subset of dataclasses the lint path uses behaves as dataclasses does."""
 
 from __future__ import annotations
 
@@ -6,7 +6,7 @@ import dataclasses
 
 import pytest
 
-from val3check import records
+from val3check import light_dataclass as records
 
 
 def _pair(**opts):
