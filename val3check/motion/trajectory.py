@@ -20,6 +20,13 @@ import numpy as np
 TICK = 0.004  # the controller's motion cycle (s)
 
 
+def tick_times(t0: float, t1: float, dt: float = TICK) -> np.ndarray:
+    """The instants of the 4 ms clock from t0 to t1, both included (to rounding)."""
+    k0 = math.ceil(t0 / dt - 1e-9)
+    k1 = math.floor(t1 / dt + 1e-9)
+    return np.arange(k0, k1 + 1) * dt
+
+
 
 class Profile:
     """s(t) as breakpoints; before the first breakpoint the arm rests at s0."""
@@ -206,9 +213,7 @@ class Trajectory:
     def sample(self, t0: float, t1: float, dt: float = TICK) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(times, joint positions (N, axes), joint velocities (N, axes)) on the 4 ms clock from
         t0 to t1."""
-        k0 = math.ceil(t0 / dt - 1e-9)
-        k1 = math.floor(t1 / dt + 1e-9)
-        times = np.arange(k0, k1 + 1) * dt
+        times = tick_times(t0, t1, dt)
         if len(times) == 0:
             n = len(self.path.q_rest)
             return times, np.zeros((0, n)), np.zeros((0, n))

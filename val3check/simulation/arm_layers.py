@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from ..motion.trajectory import Trajectory
+from ..motion.trajectory import Trajectory, tick_times
 
 US = 1_000_000
 
@@ -286,9 +286,7 @@ class ActualTrajectory(Trajectory):
         return v
 
     def sample(self, t0: float, t1: float, dt: float = 0.004):
-        k0 = math.ceil(t0 / dt - 1e-9)
-        k1 = math.floor(t1 / dt + 1e-9)
-        times = np.arange(k0, k1 + 1) * dt
+        times = tick_times(t0, t1, dt)
         if len(times) == 0:
             n = len(self.path.q_rest)
             return times, np.zeros((0, n)), np.zeros((0, n))
