@@ -51,15 +51,11 @@ def run(args: Any, settings: Any, tool_version: str, write: Any) -> int:
     if getattr(args, "trace", None):
         return _err("--trace writes the trace of one run; in a batch, --out-dir DIR --case-reports json,trace"
                     " writes one per case")
-    if args.jobs is not None and args.jobs < 1:
-        return _err("--jobs must be a positive number of processes")
-    from .executors import dask_address
+    from .executors import executor_problem
 
-    if args.executor == "dask" and args.jobs is not None and (args.scheduler or dask_address()):
-        return _err("--jobs sizes the local executor or a local Dask cluster; with a scheduler, the workers' "
-                    "processes set the parallelism")
-    if args.scheduler and args.executor != "dask":
-        return _err("--scheduler goes with --executor dask")
+    problem = executor_problem(args)
+    if problem:
+        return _err(problem)
     try:
         axes, sweep = _axes(args)
     except SweepError as exc:

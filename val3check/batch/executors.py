@@ -118,6 +118,19 @@ def _alone(client, t: Ticket) -> CaseOutcome:  # noqa: ANN001 - a distributed.Cl
         return CaseOutcome(replace(t.blank, reason=f"Dask: {type(exc).__name__}: {exc}"))
 
 
+def executor_problem(args) -> str | None:  # noqa: ANN001
+    """What is wrong with the executor options of a batch or an exploration (-j, --executor,
+    --scheduler), None when nothing."""
+    if args.jobs is not None and args.jobs < 1:
+        return "--jobs must be a positive number of processes"
+    if args.executor == "dask" and args.jobs is not None and (args.scheduler or dask_address()):
+        return ("--jobs sizes the local executor or a local Dask cluster; with a scheduler, the workers' "
+                "processes set the parallelism")
+    if args.scheduler and args.executor != "dask":
+        return "--scheduler goes with --executor dask"
+    return None
+
+
 def dask_address() -> str | None:
     """The scheduler Dask's own configuration names (DASK_SCHEDULER_ADDRESS, or its config files)."""
     try:

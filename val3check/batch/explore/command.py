@@ -146,15 +146,11 @@ def _check(args: Any) -> None:
                            " has every format (summary.json, junit.xml, index.html) and the reproducers")
     if args.init_scenario or args.trace or args.fail_fast:
         raise ExploreError("--explore goes without --init-scenario, --trace and --fail-fast")
-    if args.jobs is not None and args.jobs < 1:
-        raise ExploreError("--jobs must be a positive number of processes")
-    from ..executors import dask_address
+    from ..executors import executor_problem
 
-    if args.executor == "dask" and args.jobs is not None and (args.scheduler or dask_address()):
-        raise ExploreError("--jobs sizes the local executor or a local Dask cluster; with a scheduler, the"
-                           " workers' processes set the parallelism")
-    if args.scheduler and args.executor != "dask":
-        raise ExploreError("--scheduler goes with --executor dask")
+    problem = executor_problem(args)
+    if problem:
+        raise ExploreError(problem)
 
 
 def _prepare(out_dir: str) -> None:
