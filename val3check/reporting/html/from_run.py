@@ -252,12 +252,19 @@ def _track(changes) -> dict:
             "poses": [None if c.matrix is None else _m34(c.matrix) for c in changes]}
 
 
+def _hung_on(cell: Any) -> dict[str, str]:
+    """The application frames the cell's obstacles are placed in ("frame") and the tool variables
+    its tool solids hang on ("tool"), by name as the program writes it without spaces."""
+    wanted = {o.frame.replace(" ", ""): "frame" for o in cell.obstacles if o.frame != "world"}
+    wanted.update({t.tool.replace(" ", ""): "tool" for t in cell.tools if t.tool != "flange"})
+    return wanted
+
+
 def _tracks(m: Any, cell: Any, limits: list[str]) -> dict:
     """The frames obstacles hang on and the tools tool solids hang on, over the run: as the
     collision checks placed them (`m.cell_timeline`), else as the run left them (said)."""
     timeline = m.cell_timeline
-    wanted = {o.frame.replace(" ", ""): "frame" for o in cell.obstacles if o.frame != "world"}
-    wanted.update({t.tool.replace(" ", ""): "tool" for t in cell.tools if t.tool != "flange"})
+    wanted = _hung_on(cell)
     out = {}
     end_of_run = []
     for name, kind in sorted(wanted.items()):
@@ -315,8 +322,7 @@ def _static_tracks(cell: Any, frames: dict, tool_uses: list) -> dict:
     import numpy as np
 
     tcp = dict(tool_uses)
-    wanted = {o.frame.replace(" ", ""): "frame" for o in cell.obstacles if o.frame != "world"}
-    wanted.update({t.tool.replace(" ", ""): "tool" for t in cell.tools if t.tool != "flange"})
+    wanted = _hung_on(cell)
     out = {}
     for name, kind in sorted(wanted.items()):
         M = frames.get(name)
