@@ -21,7 +21,7 @@ import math
 import fcl
 import numpy as np
 
-from .mesh_shape import MeshShape
+from .mesh_shape import MeshShape, median_cuts
 
 PIECE = 128  # triangles per piece of a non-convex mesh
 RIM = 64  # points around each rim of a cylinder for depth estimates (`local_samples`)
@@ -256,20 +256,7 @@ def _pieces(v: np.ndarray, f: np.ndarray, solid: bool, hull_solid: bool) -> tupl
 
 def _split(v: np.ndarray, f: np.ndarray) -> list[np.ndarray]:
     """Indices of the faces of each piece: median cuts of the face centres along the longest side."""
-    centres = v[f].mean(axis=1)
-    todo = [np.arange(len(f))]
-    out = []
-    while todo:
-        idx = todo.pop()
-        if len(idx) <= PIECE:
-            out.append(idx)
-            continue
-        c = centres[idx]
-        axis = int(np.argmax(c.max(axis=0) - c.min(axis=0)))
-        order = idx[np.argsort(c[:, axis], kind="stable")]
-        half = len(order) // 2
-        todo.extend((order[half:], order[:half]))
-    return out
+    return median_cuts(v[f].mean(axis=1), PIECE)
 
 
 def _hull(v: np.ndarray, f: np.ndarray):

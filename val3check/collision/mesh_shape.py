@@ -162,21 +162,27 @@ class MeshShape:
         return np.concatenate([self._members[g] for g in crossed])
 
 
-def _groups(centres: np.ndarray) -> np.ndarray:
-    """An order of the triangles in which every GROUP consecutive ones are close together: median
-    cuts of their centres along the longest side."""
+def median_cuts(centres: np.ndarray, size: int, whole: bool = False) -> list[np.ndarray]:
+    """Indices of the triangles in pieces of at most `size` close together: median cuts of their
+    centres along the longest side, in order. `whole`: every piece but the last has `size` exactly."""
     todo = [np.arange(len(centres))]
     out = []
     while todo:
         idx = todo.pop()
-        if len(idx) <= GROUP:
+        if len(idx) <= size:
             out.append(idx)
             continue
         c = centres[idx]
         axis = int(np.argmax(c.max(axis=0) - c.min(axis=0)))
         order = idx[np.argsort(c[:, axis], kind="stable")]
-        half = (len(order) // 2 + GROUP - 1) // GROUP * GROUP  # whole groups on the first side
+        half = (len(order) // 2 + size - 1) // size * size if whole else len(order) // 2
         todo.extend((order[half:], order[:half]))
+    return out
+
+
+def _groups(centres: np.ndarray) -> np.ndarray:
+    """An order of the triangles in which every GROUP consecutive ones are close together."""
+    out = median_cuts(centres, GROUP, whole=True)
     return np.concatenate(out) if out else np.zeros(0, dtype=np.int64)
 
 
