@@ -27,8 +27,8 @@ LITERALS_LEFT = {
 # any other code has exactly one emitting module.
 KNOWN_SHARED = {
     "F001": {"confine.py", "loading/loader.py"},
-    "F006": {"loading/loader.py", "loading/reader.py"},
-    "F011": {"loading/loader.py", "loading/reader.py"},
+    "F006": {"loading/document_kind.py", "loading/loader.py"},
+    "F011": {"loading/data_file.py", "loading/loader.py"},
     "F014": {"confine.py", "loading/libraries.py", "loading/loader.py"},
     "L010": {"semantics/calls.py", "semantics/expressions.py", "semantics/statements.py"},
     "L011": {"semantics/expressions.py", "semantics/statements.py"},
