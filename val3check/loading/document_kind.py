@@ -1,7 +1,7 @@
 """Which VAL 3 document an XML root is (project, program or data file) and in which layout (s7 or s6).
 
 Element names are compared case-insensitively; a document of another kind than the one listed
-is an F006 at its root.
+(or a file named on the command line that is no VAL 3 document) is an F006, here.
 """
 
 from __future__ import annotations
@@ -70,3 +70,13 @@ def check_root(root: Node, expected: str, path: str) -> tuple[str | None, list[D
     else:
         msg = f"expected {_WHAT[expected]} (root {_S7_NAMES[expected]}, or its s6 form) but the root element is {found}"
     return None, [Diagnostic(codes.UNEXPECTED_DOCUMENT, f"unexpected document: {msg}", path, root.line, root.col)]
+
+
+def not_val3(path: str, root: Node | None) -> Diagnostic:
+    """F006 for a file named on the command line that is no VAL 3 document: not XML (`root` None),
+    or XML of another kind."""
+    if root is None:
+        return Diagnostic(codes.UNEXPECTED_DOCUMENT, "not a VAL 3 file (it is not XML); expected a .pjx project, a .pgx "
+                          "program file, a .dtx data file or an application folder", path)
+    return Diagnostic(codes.UNEXPECTED_DOCUMENT, f"unexpected document: not a VAL 3 file (root <{root.tag}>); expected "
+                      "a .pjx project, a .pgx program file or an application folder", path, root.line, root.col)

@@ -14,7 +14,7 @@ from . import resolve as rs
 from .bindings import bound_names
 from .data_file import read_data_s6, read_data_s7
 from .declaration import Sink
-from .document_kind import check_root, classify
+from .document_kind import check_root, classify, not_val3
 from .libraries import LibraryResolution
 from .model import Application, LibraryRef, Origin, Program, TypeRef, Workspace
 from .program_file import read_programs
@@ -387,14 +387,7 @@ class Loader(LibraryResolution):
                 return
             # A file named on the command line that is not even XML (a README, a script...):
             # what it is not matters, not where its XML would break (issue 16 item 10).
-            self.diags.append(
-                Diagnostic(
-                    codes.UNEXPECTED_DOCUMENT,
-                    "not a VAL 3 file (it is not XML); expected a .pjx project, a .pgx program file, a .dtx data file"
-                    " or an application folder",
-                    path,
-                )
-            )
+            self.diags.append(not_val3(path, None))
             return
         got = classify(res.root)
         if got is not None and got[0] == "project":
@@ -404,16 +397,7 @@ class Loader(LibraryResolution):
         elif got is not None:
             self._add_member_file(path, _EXT_PROGRAM if got[0] == "programs" else _EXT_DATA)
         else:
-            self.diags.append(
-                Diagnostic(
-                    codes.UNEXPECTED_DOCUMENT,
-                    f"unexpected document: not a VAL 3 file (root <{res.root.tag}>); expected a .pjx"
-                    " project, a .pgx program file or an application folder",
-                    path,
-                    res.root.line,
-                    res.root.col,
-                )
-            )
+            self.diags.append(not_val3(path, res.root))
 
     def _add_member_file(self, path: str, ext: str) -> None:
         """A .pgx (or .dtx) given directly.
