@@ -24,6 +24,7 @@ from .patterns_usage import (
     instruction_name,
     root_name,
 )
+from .program_nodes import ProgramNodes
 
 STRING_MAX_BYTES = 128  # manual 3.4.1 (types.toml: string_max_bytes)
 
@@ -334,11 +335,11 @@ def _statements(statements: list):
                 stack.extend(reversed(case.body))
 
 
-def _loop_is_busy(loop: object, scope: Scope) -> bool:
+def _loop_is_busy(loop: object, scope: Scope, nodes: ProgramNodes) -> bool:
     """Nothing in the loop can wait or yield, and the loop does not change its own condition."""
     written: set[str] = set()
     yielding, instructions, constants = _yielding(), load_instructions(), _constants()
-    for node in A.walk(loop):
+    for node in nodes.under(loop):
         t = type(node)
         if t is A.Return or t is A.Call or t is A.TaskCreate or t is A.TaskCreateSync:
             return False  # leaves the loop, or runs a program that may wait
@@ -370,7 +371,7 @@ def _loop_is_busy(loop: object, scope: Scope) -> bool:
                     return False  # unknown name: maybe a sio global of an application without data
             elif builtin_type(typ) == "sio":
                 return False  # reading or writing a sio waits (5.4)
-    for node in A.walk(loop.cond):
+    for node in nodes.under(loop.cond):
         if type(node) is A.Name and node.name.lower() in written:
             return False  # the loop changes its own condition: a computation, not a wait
     return True
@@ -380,7 +381,7 @@ def check_loops(program: Program, scope: Scope, facts: ProgramFacts) -> list[Dia
     """S014: a while/do loop that polls without ever yielding (5.4, delay() example of 5.10)."""
     out = []
     for loop in facts.loops:
-        if _loop_is_busy(loop, scope):
+        if _loop_is_busy(loop, scope, facts.nodes):
             keyword = "while" if type(loop) is A.While else "do"
             out.append(_diag(M.BUSY_WAIT_LOOP, M.busy_wait_loop(keyword), program, loop))
     return out
