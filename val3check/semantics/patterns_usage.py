@@ -147,6 +147,13 @@ class Scope:
         self.resolver = resolver
         self.locals = {v.name: v for v in program.locals}
         self.params = {p.name: p for p in program.parameters}
+        # without case: the first local, the first parameter of each lower-case name
+        self._locals_ci: dict = {}
+        for n, v in self.locals.items():
+            self._locals_ci.setdefault(n.lower(), v)
+        self._params_ci: dict = {}
+        for n, v in self.params.items():
+            self._params_ci.setdefault(n.lower(), v)
 
     def kind(self, name: str) -> str:
         """"local", "param", "global" or "other" for a name as written."""
@@ -164,9 +171,7 @@ class Scope:
         v = self.locals.get(name) or self.params.get(name) or self.resolver.app.data.get(name)
         if v is None and ci:
             key = name.lower()
-            v = (next((x for n, x in self.locals.items() if n.lower() == key), None)
-                 or next((x for n, x in self.params.items() if n.lower() == key), None)
-                 or self.resolver.globals.get(key))
+            v = self._locals_ci.get(key) or self._params_ci.get(key) or self.resolver.globals.get(key)
         return v.type if v is not None else None
 
 

@@ -21,7 +21,7 @@ from ..parsing import ast as A
 class ProgramNodes:
     """The nodes of one program body, in the order of `parsing.ast.nodes`, and by kind."""
 
-    __slots__ = ("order", "_kinds", "_ids")
+    __slots__ = ("order", "_kinds", "_ids", "_from")
 
     def __init__(self, body: A.ProgramBody) -> None:
         order = A.nodes(body)
@@ -31,6 +31,7 @@ class ProgramNodes:
         self.order = order
         self._kinds = kinds
         self._ids: list[int] | None = None  # id() of each node of `order`, made when `under` first needs it
+        self._from = 0
 
     def of(self, kind: type) -> list | tuple:
         """The nodes of class `kind`, in source order (depth first). Shared: read, do not modify."""
@@ -43,7 +44,11 @@ class ProgramNodes:
         ids = self._ids
         if ids is None:
             ids = self._ids = list(map(id, self.order))
-        start = ids.index(id(node))
+        try:  # from where the last search started: callers that go in source order make one pass
+            start = ids.index(id(node), self._from)
+        except ValueError:
+            start = ids.index(id(node))
+        self._from = start
         last = node
         while True:
             children = A.children(last)
