@@ -37,25 +37,30 @@ class ProgramNodes:
         """The nodes of class `kind`, in source order (depth first). Shared: read, do not modify."""
         return self._kinds.get(kind, ())
 
-    def under(self, node: object) -> list:
+    def under(self, node: object, within: list | None = None) -> list:
         """`node` and every node under it, in source order: what `parsing.ast.nodes(node)` gives,
-        as a slice of the program's walk (a subtree is contiguous in a depth-first order; it ends
-        with its last child's last child...)."""
-        ids = self._ids
-        if ids is None:
-            ids = self._ids = list(map(id, self.order))
-        try:  # from where the last search started: callers that go in source order make one pass
-            start = ids.index(id(node), self._from)
-        except ValueError:
+        as a slice of the program's walk (a subtree is contiguous in a depth-first order and ends
+        with its last child's last child...). `within`: a slice known to hold `node` (a loop's,
+        for its condition), searched instead of the program's walk."""
+        if within is not None:
+            ids = list(map(id, within))
             start = ids.index(id(node))
-        self._from = start
+        else:
+            within, ids = self.order, self._ids
+            if ids is None:
+                ids = self._ids = list(map(id, within))
+            try:  # from where the last search started: callers that go in source order make one pass
+                start = ids.index(id(node), self._from)
+            except ValueError:
+                start = ids.index(id(node), 0, self._from)
+            self._from = start
         last = node
         while True:
             children = A.children(last)
             if not children:
                 break
             last = children[-1]
-        return self.order[start:ids.index(id(last), start) + 1]
+        return within[start:ids.index(id(last), start) + 1]
 
 
 def program_walks(app: Application) -> dict[str, ProgramNodes]:
