@@ -22,7 +22,32 @@ from ..reporting import FORMATS, SIM_FORMATS
 from .common import EXIT_OK, EXIT_USAGE
 
 
+def _terminal_columns() -> int:
+    """shutil.get_terminal_size().columns without importing shutil (and bz2 and lzma with it):
+    argparse asks for it at every option added, help printed or not."""
+    try:
+        columns = int(os.environ["COLUMNS"])
+    except (KeyError, ValueError):
+        columns = 0
+    if columns <= 0:
+        try:
+            columns = os.get_terminal_size(sys.__stdout__.fileno()).columns
+        except (AttributeError, ValueError, OSError):
+            columns = 0
+        columns = columns or 80
+    return columns
+
+
+class _Formatter(argparse.HelpFormatter):
+    def __init__(self, prog: str, indent_increment: int = 2, max_help_position: int = 24, width: int | None = None):
+        super().__init__(prog, indent_increment, max_help_position,
+                         _terminal_columns() - 2 if width is None else width)
+
+
 class _Parser(argparse.ArgumentParser):
+    def __init__(self, *args, formatter_class: type = _Formatter, **kwargs) -> None:  # noqa: ANN002, ANN003
+        super().__init__(*args, formatter_class=formatter_class, **kwargs)
+
     def error(self, message: str) -> None:  # argparse exits 2 too; keep its wording short
         self.print_usage(sys.stderr)
         print(f"val3check: error: {message}", file=sys.stderr)
