@@ -97,7 +97,7 @@ def check_application(workspace: Workspace, app: Application, target: Target | N
         _run(out, style.check_comparisons, program, f)
         _run(out, style.check_comments, program)
         _run(out, style.check_strings, program, f)
-        _run(out, style.check_waits, program, scope)
+        _run(out, style.check_waits, program, scope, f)
         _run(out, style.check_loops, program, scope, f)
         _run(out, style.check_self_assignments, program, scope, f)
 

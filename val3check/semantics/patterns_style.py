@@ -293,7 +293,7 @@ def _frozen_names(e: object, scope: Scope) -> list[str] | None:
     return names
 
 
-def check_waits(program: Program, scope: Scope) -> list[Diagnostic]:
+def check_waits(program: Program, scope: Scope, facts: ProgramFacts) -> list[Diagnostic]:
     """S012: wait(cond) where cond only reads locals and by-value parameters (5.8, 5.10, 2.2.2).
 
     Locals and by-value parameters belong to this call of the program alone (2.2.2, 2.6.1) and
@@ -302,9 +302,7 @@ def check_waits(program: Program, scope: Scope) -> list[Diagnostic]:
     on purpose.
     """
     out = []
-    for s in _statements(program.body.statements):
-        if type(s) is not A.ExprStatement:
-            continue
+    for s in facts.nodes.of(A.ExprStatement):
         call = s.call
         if type(call.func) is not A.Name or call.func.name.lower() != "wait" or len(call.args) != 1:
             continue
@@ -312,27 +310,6 @@ def check_waits(program: Program, scope: Scope) -> list[Diagnostic]:
         if names:
             out.append(_diag(M.WAIT_NEVER_CHANGES, M.wait_never_changes(names), program, s))
     return out
-
-
-def _statements(statements: list):
-    """Every statement, nested ones included."""
-    stack = list(reversed(statements))
-    while stack:
-        s = stack.pop()
-        yield s
-        t = type(s)
-        if t is A.If:
-            if s.orelse:
-                stack.extend(reversed(s.orelse))
-            for branch in reversed(s.branches):
-                stack.extend(reversed(branch.body))
-        elif t is A.While or t is A.DoUntil or t is A.For:
-            stack.extend(reversed(s.body))
-        elif t is A.Switch:
-            if s.default is not None:
-                stack.extend(reversed(s.default.body))
-            for case in reversed(s.cases):
-                stack.extend(reversed(case.body))
 
 
 def _loop_is_busy(loop: object, scope: Scope, nodes: ProgramNodes, stops: dict[str, bool]) -> bool:
