@@ -77,3 +77,21 @@ def test_program_walks_skip_the_programs_that_did_not_parse(tmp_path):
     app.programs[first].body = None
     walks = program_walks(app)
     assert set(walks) == set(app.programs) - {first} and walks
+
+
+def test_scope_without_case_answers_the_first_local_then_the_first_parameter(tmp_path):
+    """patterns_usage.Scope.type_of(ci=True), from maps made once per program: the first local
+    whose name differs only by case, else the first such parameter, else the global."""
+    from val3check.testing import write_app
+
+    folder = write_app(tmp_path, "begin\nend\n", globals_=["bool bFlag"], locals_=["num nCount", "string NCOUNT"],
+                       programs={"sub": {"params": ["num x_nPar", "string X_NPAR"], "locals": ["num nCount"]}})
+    ws, _ = load([str(folder)])
+    app = ws.apps[ws.targets[0]]
+    resolver = patterns_usage.Resolver(ws, app)
+    start = patterns_usage.Scope(resolver, app.programs["start"])
+    assert start.type_of("ncount") is None  # exact spelling only by default
+    assert start.type_of("ncount", ci=True) == "num" and start.type_of("NCOUNT", ci=True) == "string"
+    assert start.type_of("bflag", ci=True) == "bool" and start.type_of("nothing", ci=True) is None
+    sub = patterns_usage.Scope(resolver, app.programs["sub"])
+    assert sub.type_of("x_npar", ci=True) == "num" and sub.type_of("NCOUNT", ci=True) == "num"
