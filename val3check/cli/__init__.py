@@ -201,11 +201,13 @@ def main(argv: list[str] | None = None) -> int:
         if args.command in ("lint", "rules", "rule"):
             from . import lint_command
 
-            return getattr(lint_command, args.command)(args)
+            commands = {"lint": lint_command.lint, "rules": lint_command.rules, "rule": lint_command.rule}
+            return commands[args.command](args)
         if args.command in ("sim", "robots", "reach"):
             from . import sim_command
 
-            return getattr(sim_command, args.command)(args)
+            commands = {"sim": sim_command.sim, "robots": sim_command.robots, "reach": sim_command.reach}
+            return commands[args.command](args)
         if args.command == "server":
             return _server()
     except BrokenPipeError:  # `val3check rules | head`
