@@ -3,8 +3,9 @@ val3check uses, without its cost.
 
 `val3check lint` must start fast (a pre-commit hook): `dataclasses` imports `inspect` (and
 through it `ast`, `dis`, `tokenize`...) and spends over a millisecond per class; the lint path
-declares some seventy record classes, which made up a third of the start-up. This module makes
-the same classes with one `exec` each and imports nothing.
+declares some eighty record classes, which made up a third of the start-up. This module makes
+the same classes with one small `exec` each, for `__init__`; `__repr__`, `__eq__` and `__hash__`
+are closures over the field names (compiled like `__init__`, they cost as much again).
 
 Supported, with the standard meaning: `@dataclass`, `@dataclass(slots=True, frozen=True,
 eq=False)`, fields from the class annotations in order, defaults, `field(default=...)` and
@@ -16,6 +17,8 @@ ordering, `kw_only`; the robotics and simulation code keeps the standard module.
 """
 
 from __future__ import annotations
+
+from operator import attrgetter
 
 __all__ = ["FrozenInstanceError", "dataclass", "field"]
 
@@ -82,16 +85,13 @@ def _process(cls: type, slots: bool, frozen: bool, eq: bool) -> type:
         body.append(f"__object_setattr(self, {name!r}, {value})" if frozen else f"self.{name} = {value}")
     src = [f"def __init__(self, {', '.join(params)}):" if params else "def __init__(self):"]
     src += [f"    {line}" for line in body or ["pass"]]
-    fields_repr = ", ".join(f"{n}={{self.{n}!r}}" for n in names)
-    src += ["def __repr__(self):", f"    return f'{{self.__class__.__qualname__}}({fields_repr})'"]
-    as_tuple = "(" + "".join(f"self.{n}, " for n in names) + ")"
-    if eq:
-        other = as_tuple.replace("self.", "other.")
-        src += ["def __eq__(self, other):", "    if other.__class__ is self.__class__:",
-                f"        return {as_tuple} == {other}", "    return NotImplemented"]
-        if frozen:
-            src += ["def __hash__(self):", f"    return hash({as_tuple})"]
     exec("\n".join(src), scope)  # noqa: S102 - source built above from the class's field names
+    scope["__repr__"] = _repr(tuple(names))
+    if eq:
+        values = _values(tuple(names))
+        scope["__eq__"] = _eq(values)
+        if frozen:
+            scope["__hash__"] = _hash(values)
 
     body_dict = dict(cls.__dict__)
     for method in ("__init__", "__repr__", "__eq__", "__hash__"):
@@ -124,6 +124,39 @@ def _process(cls: type, slots: bool, frozen: bool, eq: bool) -> type:
         if key in ("__init__", "__repr__", "__eq__", "__hash__", "__match_args__", "__setattr__", "__delattr__"):
             setattr(cls, key, value)
     return cls
+
+
+def _values(names: tuple[str, ...]):  # noqa: ANN202
+    """The fields of a record as a tuple, as the standard module compares and hashes them."""
+    if len(names) > 1:
+        return attrgetter(*names)
+    if names:
+        one = attrgetter(names[0])
+        return lambda o: (one(o),)
+    return lambda o: ()
+
+
+def _repr(names: tuple[str, ...]):  # noqa: ANN202
+    def __repr__(self) -> str:  # noqa: N807
+        return f"{self.__class__.__qualname__}({', '.join(f'{n}={getattr(self, n)!r}' for n in names)})"
+
+    return __repr__
+
+
+def _eq(values):  # noqa: ANN001, ANN202
+    def __eq__(self, other: object) -> bool:  # noqa: N807
+        if other.__class__ is self.__class__:
+            return values(self) == values(other)
+        return NotImplemented
+
+    return __eq__
+
+
+def _hash(values):  # noqa: ANN001, ANN202
+    def __hash__(self) -> int:  # noqa: N807
+        return hash(values(self))
+
+    return __hash__
 
 
 def dataclass(cls: type | None = None, *, slots: bool = False, frozen: bool = False, eq: bool = True):

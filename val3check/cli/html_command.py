@@ -5,7 +5,6 @@ and cell are rebuilt here (simulation/report_scene.py: the page writer reads pla
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 
 MAX_MODEL_BYTES = 512 * 1024 * 1024  # a report model of a long run with its trajectories
@@ -26,6 +25,8 @@ def add_arguments(ap: argparse.ArgumentParser) -> None:
 
 def html(args: argparse.Namespace) -> int:
     """Render the page; 2 (a message, never a traceback) for a file that is not a model or report."""
+    import json  # here: `val3check lint` imports this module's parser options, not json
+
     from ..reporting.html import ModelError, render
 
     source = args.model or args.sim_report

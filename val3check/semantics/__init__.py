@@ -20,8 +20,10 @@ def analyse(workspace: Workspace, app: Application, target: Target | None = None
     """`target`: the controller/version/arm `app` is checked for (language/target.py); by
     default the version its project file writes, arm unknown."""
     from . import checker, limits, patterns
+    from .program_nodes import program_walks
 
+    walks = program_walks(app)  # one walk of each program's tree, read by both families
     found = checker.check_application(workspace, app, target)
-    found.extend(patterns.check_application(workspace, app, target))
-    found.extend(limits.check_application(workspace, app, target))
+    found.extend(patterns.check_application(workspace, app, target, walks))
+    found.extend(limits.check_application(workspace, app, target, walks))
     return found

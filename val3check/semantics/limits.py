@@ -24,25 +24,29 @@ from ..loading.attribute_text import HUGE, parse_father
 from ..loading.types import base_type
 from ..parsing import ast as A
 from ..rules import codes
+from .program_nodes import ProgramNodes, program_walks
 
 # What a fatherId may look like: `name` or `name[index]` (2-D: "i j" or "i,j"; a collection: "key"):
 # loading.attribute_text.parse_father.
 
 
-def check_application(workspace: Workspace, app: Application, target: Target | None = None) -> list[Diagnostic]:
+def check_application(workspace: Workspace, app: Application, target: Target | None = None,
+                      walks: dict[str, ProgramNodes] | None = None) -> list[Diagnostic]:
     """`target`: what `app` is checked for (its project file's version by default): the limit on
-    sizes is the s7 manual's, certain up to s7 (language/version_facts.py)."""
+    sizes is the s7 manual's, certain up to s7 (language/version_facts.py). `walks`: the walk of
+    each parsed program (program_nodes.program_walks), shared with the other checks."""
     major = (target if target is not None else target_for(app.version, None)).major
+    walks = walks if walks is not None else program_walks(app)
     out: list[Diagnostic] = []
     for d in app.data.values():
         if d.container is Container.ARRAY:
             _sizes(out, f"global {d.name}", d.sizes, d.origin, major)
-    for prog in app.programs.values():
+    for name, prog in app.programs.items():
         for loc in prog.locals:
             if loc.container is not Container.COLLECTION:
                 _sizes(out, f"local {loc.name} of {prog.name}()", loc.sizes, loc.origin, major)
         if prog.body is not None:
-            _numbers(out, prog.body, prog.origin.path)
+            _numbers(out, walks[name], prog.origin.path)
     if app.globals_known:
         _fathers(out, app)
     return out
@@ -76,9 +80,9 @@ def _sizes(out: list[Diagnostic], what: str, sizes: tuple[int, ...], origin, maj
         ))
 
 
-def _numbers(out: list[Diagnostic], body, path: str) -> None:  # noqa: ANN001
-    for node in A.walk(body):
-        if type(node) is A.Number and math.isinf(node.value):
+def _numbers(out: list[Diagnostic], nodes: ProgramNodes, path: str) -> None:
+    for node in nodes.of(A.Number):
+        if math.isinf(node.value):
             text = node.text if len(node.text) <= 40 else f"{node.text[:20]}... ({len(node.text)} characters)"
             out.append(Diagnostic(
                 codes.NUMBER_OUT_OF_RANGE,

@@ -34,6 +34,7 @@ from ..language.target import Target, target_for
 from ..loading.model import Application, Workspace
 from . import patterns_style as style
 from . import patterns_usage as usage
+from .program_nodes import ProgramNodes, program_walks
 
 # Tests set this to see exceptions; in use, a check that fails on an unexpected tree is skipped
 # for that program (the other checks and programs still run).
@@ -48,8 +49,10 @@ def _run(out: list[Diagnostic], check, *args) -> None:
             raise
 
 
-def check_application(workspace: Workspace, app: Application, target: Target | None = None) -> list[Diagnostic]:
-    """`target`: what `app` is checked for (its project file's version by default)."""
+def check_application(workspace: Workspace, app: Application, target: Target | None = None,
+                      walks: dict[str, ProgramNodes] | None = None) -> list[Diagnostic]:
+    """`target`: what `app` is checked for (its project file's version by default); `walks`: the
+    walk of each parsed program (program_nodes.program_walks), shared with the other checks."""
     target = target if target is not None else target_for(app.version, None)
     out: list[Diagnostic] = []
     try:
@@ -61,11 +64,17 @@ def check_application(workspace: Workspace, app: Application, target: Target | N
         return out
 
     facts: dict[str, usage.ProgramFacts] = {}
+    try:
+        walks = walks if walks is not None else program_walks(app)
+    except Exception:
+        if STRICT:
+            raise
+        return out
     for name, program in app.programs.items():
         if program.body is None:
             continue
         try:
-            facts[name] = usage.gather(program.body)
+            facts[name] = usage.gather(walks[name])
         except Exception:
             if STRICT:
                 raise
@@ -88,7 +97,7 @@ def check_application(workspace: Workspace, app: Application, target: Target | N
         _run(out, style.check_comparisons, program, f)
         _run(out, style.check_comments, program)
         _run(out, style.check_strings, program, f)
-        _run(out, style.check_waits, program, scope)
+        _run(out, style.check_waits, program, scope, f)
         _run(out, style.check_loops, program, scope, f)
         _run(out, style.check_self_assignments, program, scope, f)
 

@@ -24,6 +24,7 @@ from .patterns_usage import (
     instruction_name,
     root_name,
 )
+from .program_nodes import ProgramNodes
 
 STRING_MAX_BYTES = 128  # manual 3.4.1 (types.toml: string_max_bytes)
 
@@ -292,7 +293,7 @@ def _frozen_names(e: object, scope: Scope) -> list[str] | None:
     return names
 
 
-def check_waits(program: Program, scope: Scope) -> list[Diagnostic]:
+def check_waits(program: Program, scope: Scope, facts: ProgramFacts) -> list[Diagnostic]:
     """S012: wait(cond) where cond only reads locals and by-value parameters (5.8, 5.10, 2.2.2).
 
     Locals and by-value parameters belong to this call of the program alone (2.2.2, 2.6.1) and
@@ -301,9 +302,7 @@ def check_waits(program: Program, scope: Scope) -> list[Diagnostic]:
     on purpose.
     """
     out = []
-    for s in _statements(program.body.statements):
-        if type(s) is not A.ExprStatement:
-            continue
+    for s in facts.nodes.of(A.ExprStatement):
         call = s.call
         if type(call.func) is not A.Name or call.func.name.lower() != "wait" or len(call.args) != 1:
             continue
@@ -313,32 +312,14 @@ def check_waits(program: Program, scope: Scope) -> list[Diagnostic]:
     return out
 
 
-def _statements(statements: list):
-    """Every statement, nested ones included."""
-    stack = list(reversed(statements))
-    while stack:
-        s = stack.pop()
-        yield s
-        t = type(s)
-        if t is A.If:
-            if s.orelse:
-                stack.extend(reversed(s.orelse))
-            for branch in reversed(s.branches):
-                stack.extend(reversed(branch.body))
-        elif t is A.While or t is A.DoUntil or t is A.For:
-            stack.extend(reversed(s.body))
-        elif t is A.Switch:
-            if s.default is not None:
-                stack.extend(reversed(s.default.body))
-            for case in reversed(s.cases):
-                stack.extend(reversed(case.body))
-
-
-def _loop_is_busy(loop: object, scope: Scope) -> bool:
-    """Nothing in the loop can wait or yield, and the loop does not change its own condition."""
-    written: set[str] = set()
-    yielding, instructions, constants = _yielding(), load_instructions(), _constants()
-    for node in A.walk(loop):
+def _loop_is_busy(loop: object, scope: Scope, nodes: ProgramNodes, stops: dict[str, bool]) -> bool:
+    """Nothing in the loop can wait or yield, and the loop does not change its own condition.
+    Each thing found is a reason for no, whatever the order: the walk ends at the first.
+    `stops`: per name as written, whether it may wait or is unknown (shared by a program's loops)."""
+    inside = nodes.under(loop)
+    in_cond = {n.name.lower() for n in nodes.under(loop.cond, inside) if type(n) is A.Name}
+    yielding, instructions = _yielding(), load_instructions()
+    for node in inside:
         t = type(node)
         if t is A.Return or t is A.Call or t is A.TaskCreate or t is A.TaskCreateSync:
             return False  # leaves the loop, or runs a program that may wait
@@ -351,36 +332,41 @@ def _loop_is_busy(loop: object, scope: Scope) -> bool:
             for arg, w in zip(node.args, Resolver.call_writes(node)):
                 if w:
                     root = root_name(arg)
-                    if root is not None:
-                        written.add(root.name.lower())
+                    if root is not None and root.name.lower() in in_cond:
+                        return False  # the loop changes its own condition: a computation, not a wait
         elif t is A.Assign or t is A.AssignExpr:
             root = root_name(node.target)
-            if root is None:
+            if root is None or root.name.lower() in in_cond:
                 return False
-            written.add(root.name.lower())
         elif t is A.For:
             root = root_name(node.counter)
-            if root is not None:
-                written.add(root.name.lower())
+            if root is not None and root.name.lower() in in_cond:
+                return False
         elif t is A.Name:
-            key = node.name.lower()
-            typ = scope.type_of(node.name, ci=True)
-            if typ is None:
-                if key not in constants and key not in instructions:
-                    return False  # unknown name: maybe a sio global of an application without data
-            elif builtin_type(typ) == "sio":
-                return False  # reading or writing a sio waits (5.4)
-    for node in A.walk(loop.cond):
-        if type(node) is A.Name and node.name.lower() in written:
-            return False  # the loop changes its own condition: a computation, not a wait
+            stop = stops.get(node.name)
+            if stop is None:
+                stop = stops[node.name] = _name_stops(node.name, scope, instructions)
+            if stop:
+                return False
     return True
+
+
+def _name_stops(name: str, scope: Scope, instructions: dict) -> bool:
+    """A name a busy loop may not read: a sio (reading or writing one waits, 5.4), or an unknown
+    name (maybe a sio global of an application without data)."""
+    typ = scope.type_of(name, ci=True)
+    if typ is None:
+        key = name.lower()
+        return key not in _constants() and key not in instructions
+    return builtin_type(typ) == "sio"
 
 
 def check_loops(program: Program, scope: Scope, facts: ProgramFacts) -> list[Diagnostic]:
     """S014: a while/do loop that polls without ever yielding (5.4, delay() example of 5.10)."""
     out = []
+    stops: dict[str, bool] = {}
     for loop in facts.loops:
-        if _loop_is_busy(loop, scope):
+        if _loop_is_busy(loop, scope, facts.nodes, stops):
             keyword = "while" if type(loop) is A.While else "do"
             out.append(_diag(M.BUSY_WAIT_LOOP, M.busy_wait_loop(keyword), program, loop))
     return out

@@ -25,6 +25,7 @@ from ..light_dataclass import dataclass, field
 from ..loading.model import Application, Container, Program, Workspace
 from ..parsing import ast as A
 from . import patterns_messages as M
+from .program_nodes import ProgramNodes
 
 # Types whose variables are linked to hardware or to the user interface (3.5-3.7, 4).
 IO_TYPES = frozenset({"dio", "aio", "sio", "screen"})
@@ -146,6 +147,13 @@ class Scope:
         self.resolver = resolver
         self.locals = {v.name: v for v in program.locals}
         self.params = {p.name: p for p in program.parameters}
+        # without case: the first local, the first parameter of each lower-case name
+        self._locals_ci: dict = {}
+        for n, v in self.locals.items():
+            self._locals_ci.setdefault(n.lower(), v)
+        self._params_ci: dict = {}
+        for n, v in self.params.items():
+            self._params_ci.setdefault(n.lower(), v)
 
     def kind(self, name: str) -> str:
         """"local", "param", "global" or "other" for a name as written."""
@@ -163,9 +171,7 @@ class Scope:
         v = self.locals.get(name) or self.params.get(name) or self.resolver.app.data.get(name)
         if v is None and ci:
             key = name.lower()
-            v = (next((x for n, x in self.locals.items() if n.lower() == key), None)
-                 or next((x for n, x in self.params.items() if n.lower() == key), None)
-                 or self.resolver.globals.get(key))
+            v = self._locals_ci.get(key) or self._params_ci.get(key) or self.resolver.globals.get(key)
         return v.type if v is not None else None
 
 
@@ -174,16 +180,18 @@ class Scope:
 
 @dataclass(slots=True)
 class ProgramFacts:
-    """Everything the S rules read from one parsed program, gathered in one walk of its tree."""
+    """Everything the S rules read from one parsed program, from the walk of its tree the checks
+    share (program_nodes.ProgramNodes, kept in `nodes` for the rules that need a loop's nodes)."""
 
     names: set[str] = field(default_factory=set)  # names mentioned anywhere, as written
     called: set[str] = field(default_factory=set)  # programs named by call/taskCreate(Sync)
     task_targets: set[str] = field(default_factory=set)  # programs named by taskCreate(Sync)
-    strings: list = field(default_factory=list)  # String nodes
-    binaries: list = field(default_factory=list)  # Binary nodes, in pre-order
-    assigns: list = field(default_factory=list)  # Assign statements
-    loops: list = field(default_factory=list)  # While and DoUntil nodes
+    strings: list | tuple = field(default_factory=list)  # String nodes
+    binaries: list | tuple = field(default_factory=list)  # Binary nodes, in pre-order
+    assigns: list | tuple = field(default_factory=list)  # Assign statements
+    loops: list = field(default_factory=list)  # While and DoUntil nodes, in pre-order
     dynamic_data: bool = False  # getData() with a name that is not a constant string
+    nodes: ProgramNodes | None = None
 
     def lower_names(self) -> set[str]:
         return {n.lower() for n in self.names}
@@ -195,32 +203,28 @@ class ProgramFacts:
         return tokens
 
 
-def gather(body: A.ProgramBody) -> ProgramFacts:
-    facts = ProgramFacts()
-    names = facts.names
-    for node in A.walk(body):
-        t = type(node)
-        if t is A.Name:
-            names.add(node.name)
-        elif t is A.Binary:
-            facts.binaries.append(node)
-        elif t is A.String:
-            facts.strings.append(node)
-        elif t is A.CallExpr:
-            if (type(node.func) is A.Name and node.func.name.lower() == "getdata"
-                    and (not node.args or type(node.args[0]) is not A.String)):
-                facts.dynamic_data = True
-        elif t is A.Assign:
-            facts.assigns.append(node)
-        elif t is A.Call or t is A.TaskCreate or t is A.TaskCreateSync:
+def gather(nodes: ProgramNodes) -> ProgramFacts:
+    """The facts of one program, read from the walk of its tree that the checks share."""
+    called: set[str] = set()
+    task_targets: set[str] = set()
+    for kind in (A.Call, A.TaskCreate, A.TaskCreateSync):
+        for node in nodes.of(kind):
             if type(node.target) is A.Name:
                 target = node.target.name.lower()
-                facts.called.add(target)
-                if t is not A.Call:
-                    facts.task_targets.add(target)
-        elif t is A.While or t is A.DoUntil:
-            facts.loops.append(node)
-    return facts
+                called.add(target)
+                if kind is not A.Call:
+                    task_targets.add(target)
+    dynamic_data = any(type(c.func) is A.Name and c.func.name.lower() == "getdata"
+                       and (not c.args or type(c.args[0]) is not A.String) for c in nodes.of(A.CallExpr))
+    # while and do loops in source order (outer first): no two start at the same place
+    loops = sorted([*nodes.of(A.While), *nodes.of(A.DoUntil)], key=_start)
+    return ProgramFacts(names={n.name for n in nodes.of(A.Name)}, called=called, task_targets=task_targets,
+                        strings=nodes.of(A.String), binaries=nodes.of(A.Binary), assigns=nodes.of(A.Assign),
+                        loops=loops, dynamic_data=dynamic_data, nodes=nodes)
+
+
+def _start(node: object) -> tuple[int, int]:
+    return node.line, node.col
 
 
 # ------------------------------------------------------------------ unused (S001-S004)
