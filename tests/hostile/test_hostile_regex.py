@@ -98,7 +98,7 @@ def test_arm_ids_are_normalised_as_before_and_in_linear_time():
 
 def test_a_180_kb_arm_id_is_refused_and_quoted_short(tmp_path):
     from val3check.robot import RobotError
-    from val3check.robot.identify import from_arm_cfx
+    from val3check.robot.load import from_arm_cfx
 
     cfx = tmp_path / "arm.cfx"
     cfx.write_text('<?xml version="1.0"?><Configuration><Arm><String name="arm" value="' + "-s1" * 60_000

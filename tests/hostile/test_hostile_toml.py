@@ -103,7 +103,7 @@ def test_configuration_file(tmp_path, text, where):
 
 def test_robot_file(tmp_path):
     from val3check.robot import RobotError
-    from val3check.robot.overrides import load_robot_file
+    from val3check.robot.load import load_robot_file
 
     (tmp_path / "arm.toml").write_text('arm = "TX2-60"\n[assume]\nx = ' + "7" * 5000 + "\n")
     with pytest.raises(RobotError, match=r"arm\.toml:3:5: .*more than 4300 digits"):

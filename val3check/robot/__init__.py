@@ -9,7 +9,7 @@ API (joints in degrees, and in millimetres for a SCARA's prismatic axis 3; lengt
 millimetres; poses as VAL 3 trsf {x, y, z, rx, ry, rz} with R = Rx(rx)·Ry(ry)·Rz(rz), manual
 9.3.2, or 3x4/4x4 matrices in mm):
 
-    load_robot(spec, app_path=None) -> RobotModel
+    load_robot(spec, app_path=None) -> RobotModel               (load.py)
         spec: a catalogue name ('TX2-60', 'tx2_60', 'ts2-60', 'rx160l'…, case-insensitive; 'TS60-L200'
         for a SCARA with another stroke), a URDF path, an arm.cfx path, a robot file (.toml: a model
         plus the user's values for its assumptions, overrides.py), or None: then the usr/configs/arm.cfx
@@ -69,7 +69,7 @@ six-axis arm; bench/bench_kinematics.py); fk_pinocchio() computes the same pose 
 URDF with pinocchio, and the tests hold the two (and the URDF chain multiplied out) equal to
 1e-9 mm on every arm, SCARA included (prismatic joint in metres for pinocchio).
 
-A URDF of another arm loads through the same path (from_urdf(path, world_frame=...,
+A URDF of another arm loads through the same path (urdf_model.from_urdf(path, world_frame=...,
 flange_frame=...)): six revolute joints, or a SCARA's revolute-revolute-prismatic-revolute chain.
 Its forward kinematics works whatever its geometry; ik() raises IKUnsupported unless it is
 ortho-parallel with a spherical wrist, or a SCARA with four vertical axes (detected and verified
@@ -81,8 +81,10 @@ from __future__ import annotations
 from .catalog import names
 from .configuration import Config
 from .errors import IKUnsupported, RobotError, Unreachable
-from .models import RobotModel, from_urdf, load_robot
+from .load import load_robot
+from .models import RobotModel
 from .select import choose_robot
+from .urdf_model import from_urdf
 
 __all__ = [
     "Config",

@@ -5,24 +5,19 @@ from __future__ import annotations
 import functools
 import itertools
 import math
-import os
 from dataclasses import dataclass, field, replace
-from pathlib import Path
 from typing import Sequence
 
 from ..lengths import M_MM
-from ..excerpt import shown
-from . import catalog as _catalog
+from . import overrides
 from . import scara as _scara
 from .configuration import Config, classify, resolve
 from .errors import IKUnsupported, RobotError, Unreachable
 from .ik import opw_ik
-from .kinematics import DEG, RAD, OPW, Chain, extract_opw, matrix_trsf, trsf_matrix
+from .kinematics import DEG, RAD, OPW, Chain, matrix_trsf, trsf_matrix
 from .provenance import Provenance
-from .urdf import IDENTITY, Mat, inverse, mul, read_urdf
+from .urdf import IDENTITY, Mat, inverse, mul
 
-# Acceleration assumed when a URDF gives none (robots/README.md): nominal speed reached in this time.
-DEFAULT_RAMP_S = 0.25
 # Where accelerations are assumed (no measured values), cycle times are to be given with the range
 # they take for accelerations this many times the assumption (issue 23: half and twice).
 ASSUMED_ACCELERATION_RANGE = (0.5, 2.0)
@@ -40,7 +35,6 @@ _MOUNT_ROTATION = {
     ("scara", "wall"): IDENTITY,  # Stäubli's "WA" SCARA: a console on a wall, axes still vertical
     ("scara", "ceiling"): ((1.0, 0.0, 0.0, 0.0), (0.0, -1.0, 0.0, 0.0), (0.0, 0.0, -1.0, 0.0)),
 }
-MOUNTS = ("floor", "wall", "ceiling")
 
 
 def _as_matrix(pose) -> Mat:
@@ -166,9 +160,7 @@ class RobotModel:
     def with_assumptions(self, values: dict) -> "RobotModel":
         """A copy with the user's values in place of assumptions (overrides.KEYS: nominal_speeds,
         accelerations, ramp_s, limits, max_torques, mount, world_z_mm, axis3_sign, axis4_sign)."""
-        from .overrides import apply
-
-        return apply(self, values, by="user")
+        return overrides.apply(self, values, by="user")
 
     # ---- joint values <-> the kinematics' internal values ------------------------------------------
 
@@ -477,147 +469,6 @@ class RobotModel:
             "missing": [{"key": m.key, "why": m.text} for m in pv.missing],
             "notes": list(self.notes),
         }
-
-
-# ---- loading --------------------------------------------------------------------------------------
-
-
-def _clean(x: float) -> float:
-    r = round(x, 9)
-    return r if abs(r - x) < 1e-9 else x
-
-
-def from_urdf(path: str | os.PathLike, world_frame: str | None = None, flange_frame: str | None = None,
-              name: str | None = None, world_shift: Mat | None = None) -> RobotModel:
-    """A RobotModel from a URDF. The URDF must say which links are the VAL 3 world and flange frames
-    (<val3check world_frame=".." flange_frame=".."/>), unless world_frame/flange_frame are given.
-    `world_shift` moves the world frame relative to that link (an override of its position)."""
-    info = read_urdf(path)
-    meta = info.meta or {}
-    world = world_frame or meta.get("world_frame")
-    flange = flange_frame or meta.get("flange_frame")
-    missing = [a for a, v in (("world_frame", world), ("flange_frame", flange)) if not v]
-    if missing:
-        if info.meta is None:
-            raise RobotError(
-                f"{info.path}: no <val3check> element: a URDF must name the links that are the VAL 3 world "
-                'and flange frames, e.g. <val3check arm="MyArm" world_frame="base" flange_frame="tool0"/> '
-                "inside <robot> (robots/README.md)"
-            )
-        raise RobotError(f"{info.path}: <val3check> lacks {' and '.join(missing)} (the links of the VAL 3 world and flange frames)")
-    chain = Chain(info, world, flange, world_shift)
-    joints = chain.joints
-    speeds = tuple(_clean(j.velocity if j.kind == "prismatic" else j.velocity * RAD) for j in joints)
-    accs, notes = [], set()
-    for j, v in zip(joints, speeds):
-        attrs = info.meta_joints.get(j.name, {})
-        key, other = ("acceleration_mm_s2", "acceleration_deg_s2") if j.kind == "prismatic" else ("acceleration_deg_s2", "acceleration_mm_s2")
-        if attrs.get(other) is not None:
-            raise RobotError(f"{info.path}: joint {shown(j.name)} is {j.kind}: its acceleration is {key}, not {other}")
-        given = attrs.get(key)
-        if given is not None:
-            try:
-                a = float(given)
-            except ValueError:
-                raise RobotError(f"{info.path}: joint {shown(j.name)}: {key}={shown(given)} is not a number") from None
-            if not a > 0:
-                raise RobotError(f"{info.path}: joint {shown(j.name)}: {key} must be positive")
-            accs.append(a)
-        else:
-            accs.append(v / DEFAULT_RAMP_S)
-            notes.add("default")
-    rule = meta.get("acceleration_rule", "")
-    if notes:
-        note = f"assumed (not in the URDF): nominal speed reached in {DEFAULT_RAMP_S:g} s from rest"
-    else:
-        note = f"from the URDF: {rule}" if rule else "from the URDF"
-    opw, why = extract_opw(chain)
-    sc = None
-    if chain.kind == "scara":
-        sc, why = _scara.extract_scara(chain)
-    if opw is not None:
-        reach = opw.a1 + opw.c2 + math.hypot(opw.c3, opw.a2) + opw.c4
-    elif sc is not None:
-        reach = sc.l1 + sc.l2 + math.hypot(*sc.offset)
-    else:  # upper bound: the lengths of the links after axis 1, end to end
-        reach = sum(math.sqrt(sum(j.before[i][3] ** 2 for i in range(3))) for j in joints[1:])
-        reach += math.sqrt(sum(chain.tip[i][3] ** 2 for i in range(3)))
-    provenance = Provenance.from_meta(info.meta_items)
-    stroke = meta.get("stroke_mm")
-    native = meta.get("native_mount", "floor")
-    if native not in MOUNTS:
-        raise RobotError(f"{info.path}: <val3check native_mount={shown(native)}>: one of {', '.join(MOUNTS)}")
-    return RobotModel(
-        name=name or meta.get("arm") or info.robot_name or Path(info.path).stem,
-        source=info.path,
-        srs_arm_id=meta.get("srs_arm_id", ""),
-        srs_arm_id_hint=meta.get("srs_arm_id_hint", ""),
-        joint_names=tuple(j.name for j in joints),
-        joint_limits=tuple((_clean(j.lower if j.kind == "prismatic" else j.lower * RAD),
-                            _clean(j.upper if j.kind == "prismatic" else j.upper * RAD)) for j in joints),
-        nominal_speeds=speeds,
-        accelerations=tuple(accs),
-        acceleration_note=note,
-        max_torques=tuple(j.effort if j.effort else None for j in joints),
-        reach_mm=reach,
-        chain=chain,
-        opw=opw,
-        opw_reason=why,
-        world_frame=world,
-        flange_frame=flange,
-        family=chain.kind,
-        scara=sc,
-        stroke_mm=float(stroke) if stroke else None,
-        series=meta.get("series", ""),
-        provenance=provenance,
-        mount=native,
-        native_mount=native,
-        world_shift=world_shift,
-        # given per joint without an <assumption> about them: the URDF's author measured them
-        accelerations_assumed=bool(notes) or bool(provenance.assumed() & {"ramp_s", "accelerations"}),
-    )
-
-
-@functools.lru_cache(maxsize=None)
-def _catalog_model(name: str) -> RobotModel:
-    return from_urdf(_catalog.catalog()[name]["path"])
-
-
-def catalog_model(name: str) -> RobotModel:
-    """A catalogue model by its exact catalogue name (shared, unchanged: copy with replace())."""
-    return _catalog_model(name)
-
-
-def load_robot(spec: str | os.PathLike | None, app_path: str | os.PathLike | None = None) -> RobotModel:
-    """A robot by catalogue name (case-insensitive: 'tx2-60', 'TX2_60'; 'TS60-L200' for another
-    stroke of a SCARA), by URDF path, by arm.cfx path, by robot file (.toml: a model plus the
-    user's values for its assumptions, overrides.py), or — spec None — from the
-    usr/configs/arm.cfx of the controller tree holding app_path."""
-    from . import identify
-
-    if spec is None or str(spec) == "":
-        if app_path is None:
-            raise RobotError("no robot named and no application to find a controller tree (arm.cfx) from")
-        cfx = _catalog.find_arm_cfx(app_path)
-        if cfx is None:
-            raise RobotError(
-                f"no usr/configs/arm.cfx above {app_path}: name the arm with --robot "
-                f"(one of {', '.join(_catalog.names())}, or a URDF)"
-            )
-        return identify.from_arm_cfx(cfx)
-    text = os.fspath(spec)
-    low = text.lower()
-    if low.endswith(".cfx"):
-        return identify.from_arm_cfx(text)
-    if low.endswith(".toml"):
-        from .overrides import load_robot_file
-
-        return load_robot_file(text, app_path)
-    if low.endswith((".urdf", ".xml")) or os.path.sep in text or os.path.isfile(text):
-        if not os.path.isfile(text):
-            raise RobotError(f"{text}: no such URDF file")
-        return from_urdf(text)
-    return identify.by_name(text)
 
 
 # ---- pinocchio, loaded lazily -------------------------------------------------------------------

@@ -1,8 +1,8 @@
 """The user's values in place of a model's assumptions: a robot file, or RobotModel.with_assumptions.
 
-A robot file (`--robot cell3.toml` wherever a robot is named) is a catalogue arm, a URDF or an
-arm.cfx plus the values the user knows better than the model's assumptions (robots/README.md,
-"Your values"):
+A robot file (`--robot cell3.toml` wherever a robot is named; read by load.load_robot_file) is a
+catalogue arm, a URDF or an arm.cfx plus the values the user knows better than the model's
+assumptions (robots/README.md, "Your values"):
 
     arm = "TS2-60"                     # catalogue name, URDF or arm.cfx (relative to this file)
     name = "Cell 3 SCARA"              # optional: the name shown
@@ -25,13 +25,12 @@ user; everything else keeps the model's provenance.
 from __future__ import annotations
 
 import math
-import os
 from dataclasses import replace
-from pathlib import Path
 
 from ..excerpt import shown
 from .errors import RobotError
 from .provenance import Assumption
+from .variants import with_mount, with_stroke
 
 KEYS = ("nominal_speeds", "accelerations", "ramp_s", "limits", "max_torques", "mount", "world_z_mm", "axis3_sign",
         "axis4_sign", "stroke_mm")
@@ -68,8 +67,6 @@ def _fmt(vals) -> str:
 
 def apply(model, values: dict, by: str = "user"):
     """A copy of `model` with `values` (KEYS) in place of its assumptions."""
-    from .identify import with_mount, with_stroke
-
     unknown = [k for k in values if k not in KEYS]
     if unknown:
         raise RobotError(f"unknown assumption {', '.join(map(repr, unknown))}: one of {', '.join(KEYS)}")
@@ -159,51 +156,4 @@ def _world_z(model, w: float):
     return replace(model, chain=chain, scara=sc, world_shift=total)
 
 
-def load_robot_file(path: str | os.PathLike, app_path=None):
-    """A robot file (module docstring): its arm with the user's values."""
-    from .. import tomlfile
-    from ..confine import Refused, Roots, read_bytes, repository_root
-    from .models import load_robot
-
-    p = Path(path)
-    try:  # val3check.confine: a regular file (not a FIFO or /dev/zero), 1 MB at most
-        data = tomlfile.load_bytes(read_bytes(str(p), Roots.user_given(), 1 << 20))[0]
-    except Refused as exc:
-        raise RobotError(f"{p}: cannot read the robot file: {exc.reason}") from None
-    except tomlfile.TomlError as exc:
-        where = f"{p}:{exc.line}:{exc.col}" if exc.line else str(p)
-        raise RobotError(f"{where}: not a valid TOML robot file: {exc.message}") from None
-    extra = [k for k in data if k not in ("arm", "name", "assume")]
-    if extra:
-        raise RobotError(f"{p}: unknown key {', '.join(map(repr, extra))}: a robot file has arm, name and [assume]")
-    arm = data.get("arm")
-    if not isinstance(arm, str) or not arm.strip():
-        raise RobotError(f'{p}: arm = "TX2-60" (a catalogue name, a URDF or an arm.cfx) is needed')
-    if arm.lower().endswith(".toml"):
-        raise RobotError(f"{p}: arm = {shown(arm)}: a robot file cannot name another robot file")
-    if arm.lower().endswith((".urdf", ".xml", ".cfx")) and not os.path.isabs(arm):
-        arm = str(p.parent / arm)
-    if "\x00" in arm:
-        raise RobotError(f"{p}: arm = {shown(data['arm'])}: a path cannot hold a NUL character")
-    if arm.lower().endswith((".urdf", ".xml", ".cfx")) or os.path.sep in arm or os.path.isfile(arm):
-        # a path written in a file: it stays in the robot file's repository (val3check/confine.py)
-        if not Roots([repository_root(str(p))]).allows(arm):
-            raise RobotError(f"{p}: arm = {shown(data['arm'])}: leads outside the robot file's repository (or its"
-                             " folder, outside any repository): not read")
-    model = load_robot(arm, app_path)
-    assume = data.get("assume", {})
-    if not isinstance(assume, dict):
-        raise RobotError(f"{p}: [assume] must be a table")
-    try:
-        model = apply(model, assume, by="user")
-    except RobotError as exc:
-        raise RobotError(f"{p}: [assume] {exc}") from None
-    name = data.get("name")
-    if name is not None:
-        if not isinstance(name, str):
-            raise RobotError(f"{p}: name must be a string")
-        model = replace(model, name=name)
-    return replace(model, notes=model.notes + (f"robot file {p}",))
-
-
-__all__ = ["KEYS", "apply", "load_robot_file"]
+__all__ = ["KEYS", "apply"]

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import os
 
-from .models import RobotModel, load_robot
+from .load import load_robot
+from .models import RobotModel
 
 
 def choose_robot(name_or_path: str | os.PathLike | None, app_path: str | os.PathLike | None = None) -> RobotModel:

@@ -18,6 +18,7 @@ from ..diagnostics import Diagnostic
 from ..language.target import Target
 from ..loading.model import Application, Program, Workspace
 from . import symbols
+from .calls import check_call_expr
 from .context import Context
 from .declarations import check_declarations
 from .expressions import ExprTyper
@@ -48,7 +49,7 @@ def program_typer(workspace: Workspace, app: Application, program: Program,
     """An expression typer for `program` (its diagnostics collect in `typer.ctx.diags`)."""
     ctx = Context(workspace, app, table or symbols.build(workspace, app), [], target)
     ctx.enter(program)
-    return ExprTyper(ctx)
+    return ExprTyper(ctx, check_call_expr)
 
 
 class _RecordingChecker(StatementChecker):

@@ -1,10 +1,12 @@
 """Typing of expressions (manual 2.5.3, operator tables of chapters 3, 9, 10).
 
-`ExprTyper(ctx).typeof(node)` gives the `Val` of an expression (vtypes.Val: type, container,
-variable or value) and reports what the compiler refuses inside it: undefined names, operators
-that do not exist for the operand types, wrong indices, unknown fields, `=` inside an
+`ExprTyper(ctx, check_call).typeof(node)` gives the `Val` of an expression (vtypes.Val: type,
+container, variable or value) and reports what the compiler refuses inside it: undefined names,
+operators that do not exist for the operand types, wrong indices, unknown fields, `=` inside an
 expression. `elem(node)` is the same for places that need one value (operands, conditions,
-assigned values): a container used without index there is reported.
+assigned values): a container used without index there is reported. A call inside an expression
+goes to `check_call` (calls.check_call_expr, given by whoever makes the typer: calls.py types
+its arguments with this typer, so neither module imports the other's entry point).
 
 Every function is total: an undefined name or an unknown type gives UNKNOWN, which every later
 check accepts (one diagnostic per root cause).
@@ -13,6 +15,7 @@ check accepts (one diagnostic per root cause).
 from __future__ import annotations
 
 import difflib
+from typing import Callable
 
 from ..language.instructions import lookup as lookup_instruction
 from ..loading.model import Container
@@ -27,6 +30,8 @@ ARRAY, COLLECTION, ELEMENT = vt.ARRAY, vt.COLLECTION, vt.ELEMENT
 UNKNOWN, UNKNOWN_VAL = vt.UNKNOWN, vt.UNKNOWN_VAL
 # Val.indexed: what [] was applied to (0: nothing)
 FROM_ELEMENT, FROM_ARRAY, FROM_COLLECTION = 1, 2, 3
+# How a call is typed (calls.check_call_expr): (typer, call, used as a statement) -> its Val
+CallChecker = Callable[["ExprTyper", A.CallExpr, bool], vt.Val]
 
 
 def node_text(node: object, limit: int = 40) -> str:
@@ -80,8 +85,9 @@ def suggest(name: str, candidates) -> str | None:
 class ExprTyper:
     """Types expressions of the program in `ctx` (see the module docstring)."""
 
-    def __init__(self, ctx: Context) -> None:
+    def __init__(self, ctx: Context, check_call: CallChecker) -> None:
         self.ctx = ctx
+        self.check_call = check_call
         self.literal_vals: dict[int, list] = {}  # id(Struct) -> Vals of its fields
         self.probe = False  # typing the argument of isDefined(): unknown alias:x is fine (2.5.4)
         self._dispatch = {
@@ -124,9 +130,7 @@ class ExprTyper:
 
     def call(self, node: A.CallExpr, statement: bool) -> vt.Val:
         """A call of an instruction (or a misused program); `statement`: its value is unused."""
-        from .calls import check_call_expr
-
-        return check_call_expr(self, node, statement)
+        return self.check_call(self, node, statement)
 
     # -- leaves ----------------------------------------------------------------------------
 

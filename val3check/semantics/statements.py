@@ -13,7 +13,7 @@ from ..rules import codes
 from . import messages as M
 from . import symbols as S
 from . import vtypes as vt
-from .calls import ProgramSignature, check_program_args, signature
+from .calls import ProgramSignature, check_call_expr, check_program_args, signature
 from .expressions import ExprTyper, node_text, suggest
 
 UNKNOWN_VAL = vt.UNKNOWN_VAL
@@ -21,7 +21,7 @@ UNKNOWN_VAL = vt.UNKNOWN_VAL
 
 class StatementChecker(ExprTyper):
     def __init__(self, ctx, signatures: dict[int, ProgramSignature]) -> None:
-        super().__init__(ctx)
+        super().__init__(ctx, check_call_expr)
         self.signatures = signatures
         self._stmt = {
             A.Assign: self._assign,
