@@ -220,6 +220,7 @@ class AccelerationRange:
 
     factors: tuple[float, ...]  # robot.models.ASSUMED_ACCELERATION_RANGE: (0.5, 2.0)
     cycles: tuple[dict[str, CycleEntry], ...]  # per factor, the re-timed run's cycles by task
+    partial: str | None = None  # why the re-timing stopped before the end of the run (its budget)
 
     @property
     def off_by(self) -> float:

@@ -22,6 +22,7 @@ from ..motion.retime import retimed
 from ..robot.models import ASSUMED_ACCELERATION_RANGE
 from .arm_layers import ActualTrajectory
 from .arm_record import AccelerationRange, ArmRun, ArmScene, CycleEntry, FramePose, MotionEntry, MotionLimits, ToolUse
+from .budget import WALL, RunBudget
 from .moving_arm import MovingArm
 from .result import END_REASONS, SimResult, TaskSummary
 
@@ -112,10 +113,28 @@ def arm_run(machine: Machine, diags: list[Diagnostic]) -> ArmRun | None:
     tools = [ToolUse(*e, tcp_matrix=_matrix(e.tcp_in_flange)) for e in machine.recorder.tool_events]
     spread = None
     if getattr(arm.model, "accelerations_assumed", False):  # issue 23: the range if they are off
-        spread = AccelerationRange(ASSUMED_ACCELERATION_RANGE,
-                                   tuple(_cycle_entries(machine, retimed(q, queue_records, f))
-                                         for f in ASSUMED_ACCELERATION_RANGE))
+        spread = acceleration_range(machine, q, queue_records, diags)
     return ArmRun(scene, motions, cycles, trajectory, tools, busy, idle, end_s, spread)
+
+
+def acceleration_range(machine: Machine, q, queue_records, diags: list[Diagnostic]) -> AccelerationRange:
+    """The cycles of the run re-timed with the accelerations × each factor of the assumed range
+    (issue 23), within the run's wall-clock budget (budget.py): when it is spent the re-timing stops
+    there, the range covers the run up to that time (`AccelerationRange.partial`) and an R006 says so."""
+    out_of_time = RunBudget.of(machine).out_of_time
+    cycles, cut = [], None
+    for f in ASSUMED_ACCELERATION_RANGE:
+        records, rt = retimed(q, queue_records, f, out_of_time)
+        cycles.append(_cycle_entries(machine, records))
+        if rt.cut is not None:
+            cut = rt.cut if cut is None else min(cut, rt.cut)
+    partial = None
+    if cut is not None:
+        partial = (f"the cycle time's range if the assumed accelerations are off covers the run up to {cut:.3f} s "
+                   f"only: {WALL} (--max-wall {machine.budgets.wall_s:g} s) was spent while re-timing it")
+        diags.append(Diagnostic("R006", partial, machine.app.path, 0, 0, time_us=machine.end_time, task="",
+                                program=""))
+    return AccelerationRange(ASSUMED_ACCELERATION_RANGE, tuple(cycles), partial)
 
 
 def actual_record(rec, arm):
