@@ -90,7 +90,7 @@ class MotionLimits:
     rvel: float | None
 
 
-@dataclass
+@dataclass(slots=True)  # one per command of the run
 class MotionEntry:
     """One command recorded (connection moves included). `id`: the identifier the instruction
     returned (10.6; None for a connection move); `source`: where the instruction is written (path,
