@@ -102,7 +102,8 @@ def arm_run(machine: Machine, diags: list[Diagnostic]) -> ArmRun | None:
     if layers is not None and not layers.trivial:  # chapter 11 moved the arm off the queue's trajectory
         trajectory = ActualTrajectory(trajectory, layers)
         records = [actual_record(rec, arm) for rec in records]
-    motions = [_entry(rec, command, layers) for rec, command in zip(records, q.history)]
+    same: dict = {}  # the limits and tool poses of the run's entries, one object each (a long run repeats them)
+    motions = [_entry(rec, command, layers, same) for rec, command in zip(records, q.history)]
     cycles = _cycle_entries(machine, records)
     if trajectory is q.trajectory:
         busy, idle = busy_time(q.trajectory.profile, end_s)
@@ -165,18 +166,31 @@ def task_cycles(machine: Machine, records) -> dict:
     return cycle_stats(records, contexts, inside)
 
 
-def _entry(rec, command, layers=None) -> MotionEntry:
+def _entry(rec, command, layers=None, same: dict | None = None) -> MotionEntry:
     """A row of the motion table: the motion record (motion/motion_records.py) and what its command
-    (motion/queued.py) asked; its joints with the turns resetTurn took off (`layers`)."""
+    (motion/queued.py) asked; its joints with the turns resetTurn took off (`layers`). `same`: the
+    limits and tool poses already made, reused when equal."""
     req = command.request
     connection = req.kind == "connection"
     md = req.mdesc
     limits = None if connection else MotionLimits(md.vel, md.accel, md.decel, md.tvel_limit, md.rvel_limit)
+    trsf = None
+    if not connection and req.tool is not None:
+        import numpy as np
+
+        key = ("trsf", np.asarray(req.tool, dtype=float).tobytes())  # (by the bytes: -0.0 is not 0.0 in a report)
+        trsf = same.get(key) if same is not None else None
+        if trsf is None:
+            trsf = _trsf(req.tool)
+            if same is not None:
+                same[key] = trsf
+    if same is not None:
+        limits = same.setdefault(("limits", repr(limits)), limits)
     return MotionEntry(
         rec.id, rec.kind, rec.source, rec.state, rec.recorded, rec.start, rec.end, rec.length_mm, rec.peak_tcp_mm_s,
         rec.dominant, rec.limit_share, rec.target, req.frame_name, rec.tool,
         tool_in_flange=None if connection else req.tool,
-        tool_trsf=None if connection or req.tool is None else _trsf(req.tool),
+        tool_trsf=trsf,
         joints_start=_turned(command.geometry.q_start, rec.start, layers),
         joints_end=_turned(command.geometry.q_end, rec.end, layers) if command.state != "failed" else None,
         limits=limits)
