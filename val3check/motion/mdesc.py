@@ -118,20 +118,24 @@ class CommandLimits:
         self.kin = kin
         self.monitor = float(monitor)
         self._asked: dict[int, tuple[MDesc, bool]] = {}
-        self._limits: dict[int, Limits] = {}
+        # by what was asked, not by command: a long run asks the same few mdescs again and again
+        self._same: dict[tuple[MDesc, bool], tuple[MDesc, bool]] = {}
+        self._limits: dict[tuple[MDesc, bool], Limits] = {}
 
     def register(self, key: int, mdesc: MDesc, reduced: bool) -> None:
         """A command's mdesc (`reduced`: a connection move, 10.1.3)."""
-        self._asked[key] = (mdesc, reduced)
+        asked = (mdesc, reduced)
+        self._asked[key] = self._same.setdefault(asked, asked)
 
     def of(self, key: int) -> Limits:
         """The limits of the command `key` at the current monitor speed."""
-        lim = self._limits.get(key)
+        asked = self._asked[key]
+        lim = self._limits.get(asked)
         if lim is None:
-            mdesc, reduced = self._asked[key]
+            mdesc, reduced = asked
             m = self.monitor / 100.0
             lim = Limits.reduced(self.kin, m) if reduced else Limits.of(self.kin, mdesc, m)
-            self._limits[key] = lim
+            self._limits[asked] = lim
         return lim
 
     def set_monitor(self, monitor: float) -> None:

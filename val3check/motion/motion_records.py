@@ -18,7 +18,7 @@ from .findings import Source
 from .paths import tcp_rates
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)  # one per command of the run
 class MotionRecord:
     """What the arm did with one command (module docstring)."""
     id: int | float | None  # the identifier the instruction returned (None: a connection move)

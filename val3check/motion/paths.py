@@ -223,7 +223,7 @@ def hermite(u: np.ndarray, p0, m0, p1, m1, order: int = 0) -> np.ndarray:
     return (12 * u - 6) * p0 + (6 * u - 4) * m0 + (-12 * u + 6) * p1 + (6 * u - 2) * m1
 
 
-@dataclass
+@dataclass(slots=True)  # about 1.7 spans per motion held for the whole run: no __dict__ each
 class Span:
     """The part λ ∈ [a, b] of a geometry. `owners`: (command key, σ from which it owns the span)
     — a blend belongs to the first command up to its nominal target, then to the next.

@@ -24,7 +24,7 @@ from .findings import Source
 from .mdesc import MDesc
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, slots=True)  # (kept for every command of the run: no __dict__ each)
 class Request:
     """What a motion instruction recorded (10.2.1): its kind (movej, movel, movec, or
     "connection" for the move to resetMotion's jStart, 10.1.3), where it is written, when it was
@@ -42,7 +42,7 @@ class Request:
     reduced: bool = False
 
 
-@dataclass
+@dataclass(slots=True)
 class Geometry:
     """The command's motion in joint space: from `q_start` to `q_end` (degrees; a SCARA's axis 3
     in mm) along `joint_curve` (paths.JointLine for movej, paths.JointSpline for movel and movec;
@@ -63,7 +63,7 @@ class Nominal(NamedTuple):
     lam_end: float
 
 
-@dataclass
+@dataclass(slots=True)
 class Placement:
     """Where the command lies on the arm's path. `blend`: off, joint or Cartesian (off once the
     command is closed: it goes to its target and stops); `lam_in`: λ of its reach point (where the
@@ -82,7 +82,7 @@ class Placement:
     spans: list = field(default_factory=list)
 
 
-@dataclass(eq=False)
+@dataclass(eq=False, slots=True)
 class QueuedCommand:
     """A command in the queue (see the module docstring). `key` is unique over the run (the
     identifier `id` is the program's, 10.6: it repeats after resetMotion, None for a connection

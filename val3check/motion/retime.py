@@ -4,11 +4,15 @@ cycle time would be if the accelerations the model assumes were off by that fact
 Stäubli publishes no joint accelerations: where the model assumes them (RobotModel.accelerations_
 assumed), the reports give the cycle time with the range it takes for accelerations half and twice
 the assumption (robot.models.ASSUMED_ACCELERATION_RANGE). The same geometric path is timed again,
-piece by piece between the arm's stops, with the scaled limits (cheap: the path is already
-sampled, and a cyclic program times the same pieces again and again); the arm's rests keep their
+piece by piece between the arm's stops, with the scaled limits; the arm's rests keep their
 length (the program waits as long for its inputs, grippers and delays); every time of the run
 moves with the motions before it. The motion records of the re-timed run are the run's with their
 start and end moved, so that the cycles are found exactly as in the run (cycle.cycle_stats).
+
+A cyclic program stops at the same places of the same motions again and again: a piece is timed
+once per distinct piece (`piece_key`: the same parts of the same geometries with the same tools,
+owners and limits), and the re-timing stops when `out_of_time()` says the run's wall-clock budget
+is spent (the range then covers the run up to `Retiming.cut`, simulation/collect.py says so).
 
     records_if = retimed(queue, records, 2.0)    # MotionRecords of the run with accelerations × 2
 """
@@ -22,11 +26,44 @@ from .mdesc import Limits
 from .trajectory import Profile
 
 
+def piece_key(path, a: float, b: float, limits) -> tuple | None:
+    """What determines the timing of the piece [a, b] of `path` (paths.Path) from rest to rest,
+    up to its position on the path: per span touched, its geometry (the same object for a repeated
+    motion, construction.py), its part, tool, junction and owners with their limits, and where a
+    and b fall in the first and last. None when the path has no span there."""
+    i0, _ = path.locate(a)
+    if i0 < 0:
+        return None
+    parts: list = [round(b - a, 9)]
+    i = i0
+    while i < len(path.spans):
+        off = path.offsets[i]
+        if off > b + 1e-12:
+            break
+        sp = path.spans[i]
+        lo, hi = max(a - off, 0.0), min(b - off, sp.length)
+        if hi < lo - 1e-12:
+            break
+        owners = tuple((round(k_start, 9), _limits_key(limits(key))) for key, k_start in sp.owners)
+        tool = None if sp.tool is None else sp.tool.tobytes()
+        # positions in the span to 1e-9 path units (1e-9 degrees of joint motion): the same stop of a
+        # repeated motion lies at another global position, found by sums that differ in the last bits
+        parts.append((id(sp.geom), sp.a, sp.b, tool, sp.smooth, owners, round(lo, 9), round(hi, 9)))
+        i += 1
+    return tuple(parts)
+
+
+def _limits_key(lim: Limits) -> tuple:
+    """A command's limits as a key (mdesc.Limits: arrays and two numbers)."""
+    return (lim.V.tobytes(), lim.A.tobytes(), lim.D.tobytes(), lim.tvel, lim.rvel)
+
+
 class Retiming:
     """The run's profile re-timed piece by piece (module docstring): `time(t)` maps a time of the
-    run to the same point of the re-timed run."""
+    run to the same point of the re-timed run, None past `cut` (the re-timing was stopped there:
+    `out_of_time()` became true; `cut` is None when the whole run was re-timed)."""
 
-    def __init__(self, queue, factor: float) -> None:
+    def __init__(self, queue, factor: float, out_of_time=None) -> None:
         """The moving stretches of `queue`'s profile (from a rest to the next), each timed again
         with accelerations and decelerations × `factor`."""
         planner = queue.planner
@@ -42,7 +79,12 @@ class Retiming:
         self.starts: list[float] = []  # run time at the start of each moving stretch
         self.ends: list[float] = []
         self.new_starts: list[float] = []
-        self.pieces: list[Profile] = []
+        self.pieces: list[Profile] = []  # each stretch re-timed, path positions from its start
+        self.bases: list[float] = []  # the path position of each stretch's start
+        self.cut: float | None = None
+        self.stretches = 0  # moving stretches in the run
+        self.timed = 0  # distinct pieces timed
+        done: dict = {}  # piece_key -> the re-timed piece (relative Profile)
         shift = 0.0
         T, S, SD = prof.T, prof.S, prof.SD
         i, n = 0, len(T)
@@ -53,20 +95,35 @@ class Retiming:
             j = i + 1
             while j < n - 1 and SD[j] > 0.0:
                 j += 1
-            piece = planner.timing.time(planner.path, S[i], S[j], 0.0, scaled)
-            p = Profile(S[i], 0.0)
-            p.append(0.0, piece.s, piece.sd)
+            self.stretches += 1
+            if self.cut is not None:
+                i = j
+                continue
+            key = piece_key(planner.path, S[i], S[j], limits)
+            p = done.get(key) if key is not None else None
+            if p is None:
+                if out_of_time is not None and out_of_time():  # before each piece timed
+                    self.cut = T[i]
+                    i = j
+                    continue
+                piece = planner.timing.time(planner.path, S[i], S[j], 0.0, scaled)
+                p = Profile(0.0, 0.0)
+                p.append(0.0, piece.s - S[i], piece.sd)
+                self.timed += 1
+                if key is not None:
+                    done[key] = p
             self.starts.append(T[i])
             self.ends.append(T[j])
             self.new_starts.append(T[i] + shift)
             self.pieces.append(p)
+            self.bases.append(S[i])
             shift += p.t_end - (T[j] - T[i])
             i = j
         self.shift_end = shift
 
     def time(self, t: float | None) -> float | None:
         """The time of the re-timed run at the point the run reached at time t."""
-        if t is None:
+        if t is None or (self.cut is not None and t >= self.cut):
             return None
         k = bisect.bisect_right(self.starts, t) - 1
         if k < 0:
@@ -74,12 +131,13 @@ class Retiming:
         if t >= self.ends[k]:  # at rest after stretch k
             return t + (self.new_starts[k] - self.starts[k]) + self.pieces[k].t_end - (self.ends[k] - self.starts[k])
         s, _, _ = self.profile.state(t)
-        at = self.pieces[k].time_at(s)
+        at = self.pieces[k].time_at(s - self.bases[k])
         return self.new_starts[k] + (at if at is not None else self.pieces[k].t_end)
 
 
-def retimed(queue, records: list, factor: float) -> list:
-    """The motion records (records.MotionRecord) of the run re-timed with accelerations × factor:
-    the same records, their start and end moved (module docstring)."""
-    rt = Retiming(queue, factor)
-    return [replace(r, start=rt.time(r.start), end=rt.time(r.end)) for r in records]
+def retimed(queue, records: list, factor: float, out_of_time=None) -> tuple[list, Retiming]:
+    """The motion records (records.MotionRecord) of the run re-timed with accelerations × factor
+    (the same records, their start and end moved: module docstring), and the Retiming (its `cut`:
+    where it stopped when `out_of_time()` became true; the records after it have no start)."""
+    rt = Retiming(queue, factor, out_of_time)
+    return [replace(r, start=rt.time(r.start), end=rt.time(r.end)) for r in records], rt

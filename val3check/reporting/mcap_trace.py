@@ -24,7 +24,7 @@ import math
 from typing import Any
 
 from ..lengths import MM_M as MM  # Foxglove works in metres
-from .thinning import TRACE_TICKS, left_out, thinned_note, tick_multiple
+from .thinning import TRACE_TICKS, left_out, task_changes, thinned_note, tick_multiple
 
 TICK_S = 0.004
 CHUNK_SIZE = 1 << 20
@@ -456,7 +456,8 @@ def trace_messages(report: Any, cell: Any = None):
             out.add("/clearance", ns, {"timestamp": _stamp(ns), "motion": int(mid),
                                        "motion_id": motion.id, "clearance_mm": round(c, 6),
                                        "exact": ex, "margin_mm": float(getattr(mr, "margin_mm", 0.0))})
-    for c in result.task_states:
+    changes, extra["tasks_thinned"] = task_changes(result)
+    for c in changes:
         ns = _ns(c.time_us / 1e6)
         if ns > end_ns:  # stop() after a run cut by --duration, as the HTML report's timelines
             continue
@@ -548,6 +549,8 @@ def write_trace(report: Any, path: str, cell: Any = None) -> None:
                 "simulated_duration_s": f"{r.sim_time_us / 1e6:.6f}", "tool_version": report.tool_version}
         if extra["omitted"] is not None:
             meta["omitted"] = extra["omitted"]
+        if extra.get("tasks_thinned"):
+            meta["tasks_thinned"] = extra["tasks_thinned"]
         if extra["every"] > 1:
             meta["arm_period_s"] = f"{TICK_S * extra['every']:.6f}"
             meta["thinned"] = thinned_note(extra["every"], TRACE_TICKS)

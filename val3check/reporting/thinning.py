@@ -19,6 +19,7 @@ TICK_S = 0.004  # the controller's clock (manual 5.x: the 4 ms cycle)
 JSON_TICKS = 75_000  # samples of the JSON trajectory: 5 minutes of motion at 4 ms (about 9 MB)
 TRACE_TICKS = 40_000  # ticks of the MCAP trace's arm messages: 160 s of motion at 4 ms (about 15 MB)
 MOTION_ROWS = 5_000  # rows of the motion tables (JSON, HTML): about 2.5 MB of JSON
+TASK_CHANGES = 20_000  # task state changes of the HTML timelines and the trace's /tasks (about 1.2 MB)
 
 
 def moving_ticks(m: Any) -> int:
@@ -44,3 +45,14 @@ def left_out(result: Any, what: str) -> str | None:
     budget = getattr(result, "budget", None)
     why = budget.spent() if budget is not None else None
     return None if why is None else f"{what} not written: {why}"
+
+
+def task_changes(result: Any) -> tuple[list, str | None]:
+    """The task state changes a report shows of the run `result` (a SimResult): the first
+    TASK_CHANGES, and what a report says when there were more (None: all of them)."""
+    changes = result.task_states
+    if len(changes) <= TASK_CHANGES:
+        return changes, None
+    until = changes[TASK_CHANGES].time_us / 1e6
+    return changes[:TASK_CHANGES], (f"a long run: the task timelines hold the first {TASK_CHANGES} of "
+                                    f"{len(changes)} task state changes (up to {until:g} s)")

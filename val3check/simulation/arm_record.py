@@ -90,7 +90,7 @@ class MotionLimits:
     rvel: float | None
 
 
-@dataclass
+@dataclass(slots=True)  # one per command of the run
 class MotionEntry:
     """One command recorded (connection moves included). `id`: the identifier the instruction
     returned (10.6; None for a connection move); `source`: where the instruction is written (path,
@@ -220,6 +220,7 @@ class AccelerationRange:
 
     factors: tuple[float, ...]  # robot.models.ASSUMED_ACCELERATION_RANGE: (0.5, 2.0)
     cycles: tuple[dict[str, CycleEntry], ...]  # per factor, the re-timed run's cycles by task
+    partial: str | None = None  # why the re-timing stopped before the end of the run (its budget)
 
     @property
     def off_by(self) -> float:

@@ -23,6 +23,7 @@ from ..robot.models import ASSUMED_ACCELERATION_RANGE
 from ..rules import codes
 from .arm_layers import ActualTrajectory
 from .arm_record import AccelerationRange, ArmRun, ArmScene, CycleEntry, FramePose, MotionEntry, MotionLimits, ToolUse
+from .budget import WALL, RunBudget
 from .moving_arm import MovingArm
 from .result import END_REASONS, SimResult, TaskSummary
 
@@ -102,7 +103,8 @@ def arm_run(machine: Machine, diags: list[Diagnostic]) -> ArmRun | None:
     if layers is not None and not layers.trivial:  # chapter 11 moved the arm off the queue's trajectory
         trajectory = ActualTrajectory(trajectory, layers)
         records = [actual_record(rec, arm) for rec in records]
-    motions = [_entry(rec, command, layers) for rec, command in zip(records, q.history)]
+    same: dict = {}  # the limits and tool poses of the run's entries, one object each (a long run repeats them)
+    motions = [_entry(rec, command, layers, same) for rec, command in zip(records, q.history)]
     cycles = _cycle_entries(machine, records)
     if trajectory is q.trajectory:
         busy, idle = busy_time(q.trajectory.profile, end_s)
@@ -113,10 +115,28 @@ def arm_run(machine: Machine, diags: list[Diagnostic]) -> ArmRun | None:
     tools = [ToolUse(*e, tcp_matrix=_matrix(e.tcp_in_flange)) for e in machine.recorder.tool_events]
     spread = None
     if getattr(arm.model, "accelerations_assumed", False):  # issue 23: the range if they are off
-        spread = AccelerationRange(ASSUMED_ACCELERATION_RANGE,
-                                   tuple(_cycle_entries(machine, retimed(q, queue_records, f))
-                                         for f in ASSUMED_ACCELERATION_RANGE))
+        spread = acceleration_range(machine, q, queue_records, diags)
     return ArmRun(scene, motions, cycles, trajectory, tools, busy, idle, end_s, spread)
+
+
+def acceleration_range(machine: Machine, q, queue_records, diags: list[Diagnostic]) -> AccelerationRange:
+    """The cycles of the run re-timed with the accelerations × each factor of the assumed range
+    (issue 23), within the run's wall-clock budget (budget.py): when it is spent the re-timing stops
+    there, the range covers the run up to that time (`AccelerationRange.partial`) and an R006 says so."""
+    out_of_time = RunBudget.of(machine).out_of_time
+    cycles, cut = [], None
+    for f in ASSUMED_ACCELERATION_RANGE:
+        records, rt = retimed(q, queue_records, f, out_of_time)
+        cycles.append(_cycle_entries(machine, records))
+        if rt.cut is not None:
+            cut = rt.cut if cut is None else min(cut, rt.cut)
+    partial = None
+    if cut is not None:
+        partial = (f"the cycle time's range if the assumed accelerations are off covers the run up to {cut:.3f} s "
+                   f"only: {WALL} (--max-wall {machine.budgets.wall_s:g} s) was spent while re-timing it")
+        diags.append(Diagnostic("R006", partial, machine.app.path, 0, 0, time_us=machine.end_time, task="",
+                                program=""))
+    return AccelerationRange(ASSUMED_ACCELERATION_RANGE, tuple(cycles), partial)
 
 
 def actual_record(rec, arm):
@@ -147,18 +167,31 @@ def task_cycles(machine: Machine, records) -> dict:
     return cycle_stats(records, contexts, inside)
 
 
-def _entry(rec, command, layers=None) -> MotionEntry:
+def _entry(rec, command, layers=None, same: dict | None = None) -> MotionEntry:
     """A row of the motion table: the motion record (motion/motion_records.py) and what its command
-    (motion/queued.py) asked; its joints with the turns resetTurn took off (`layers`)."""
+    (motion/queued.py) asked; its joints with the turns resetTurn took off (`layers`). `same`: the
+    limits and tool poses already made, reused when equal."""
     req = command.request
     connection = req.kind == "connection"
     md = req.mdesc
     limits = None if connection else MotionLimits(md.vel, md.accel, md.decel, md.tvel_limit, md.rvel_limit)
+    trsf = None
+    if not connection and req.tool is not None:
+        import numpy as np
+
+        key = ("trsf", np.asarray(req.tool, dtype=float).tobytes())  # (by the bytes: -0.0 is not 0.0 in a report)
+        trsf = same.get(key) if same is not None else None
+        if trsf is None:
+            trsf = _trsf(req.tool)
+            if same is not None:
+                same[key] = trsf
+    if same is not None:
+        limits = same.setdefault(("limits", repr(limits)), limits)
     return MotionEntry(
         rec.id, rec.kind, rec.source, rec.state, rec.recorded, rec.start, rec.end, rec.length_mm, rec.peak_tcp_mm_s,
         rec.dominant, rec.limit_share, rec.target, req.frame_name, rec.tool,
         tool_in_flange=None if connection else req.tool,
-        tool_trsf=None if connection or req.tool is None else _trsf(req.tool),
+        tool_trsf=trsf,
         joints_start=_turned(command.geometry.q_start, rec.start, layers),
         joints_end=_turned(command.geometry.q_end, rec.end, layers) if command.state != "failed" else None,
         limits=limits)

@@ -97,7 +97,7 @@ def fit_accelerations(ws, app, model, scenario, measured: float, options: SimOpt
 
     def g(log_f: float) -> float:
         """log(cycle time at accelerations × e^log_f) - log(measured), by re-timing the run."""
-        c = _cycle(machine, retimed(queue, records, math.exp(log_f)), task)
+        c = _cycle(machine, retimed(queue, records, math.exp(log_f))[0], task)
         if c is None:
             raise FitError("the re-timed run has no complete cycle")
         return math.log(c[2]) - log_m

@@ -24,7 +24,7 @@ from pathlib import Path
 from typing import Any
 
 from .._common import SourceCache
-from ..thinning import MOTION_ROWS, left_out
+from ..thinning import MOTION_ROWS, left_out, task_changes
 from .excerpts import SEVERITY_ORDER, excerpt
 from .model import VERSION
 
@@ -183,10 +183,15 @@ def _trajectory(report: Any, m: Any, limits: list[str]) -> dict | None:
     }
 
 
-def _task_segments(result: Any, end: float) -> list[dict]:
-    """Each task's states over the run, as segments of the timeline."""
+def _task_segments(result: Any, end: float, limits: list[str]) -> list[dict]:
+    """Each task's states over the run, as segments of the timeline: up to the first task state
+    change left out on a long run (reporting/thinning.py, said in `limits`)."""
     by_task: dict[str, list[dict]] = {}
-    for c in result.task_states:
+    changes, note = task_changes(result)
+    if note is not None:
+        end = min(end, _r(result.task_states[len(changes)].time_us / 1e6))
+        limits.append(note[0].upper() + note[1:] + ".")
+    for c in changes:
         t = min(c.time_us / 1e6, end)
         segs = by_task.setdefault(c.task, [])
         if segs and segs[-1]["end"] is None:
@@ -417,6 +422,7 @@ def model_from_run(report: Any, *, fail_on: str = "error", cell: Any = None, cle
     elif result.robot is None:
         limits.append("No arm model (--robot): no motion, trajectory or 3D view.")
     scene = _scene(result, m, cell, limits) if m is not None else None
+    tasks = _task_segments(result, end, limits)
     return {
         "version": VERSION,
         "title": title or result.application,
@@ -438,7 +444,7 @@ def model_from_run(report: Any, *, fail_on: str = "error", cell: Any = None, cle
         "motions": motions,
         "cycles": cycles,
         "trajectory": trajectory,
-        "tasks": _task_segments(result, end),
+        "tasks": tasks,
         "arm_timeline": arm_timeline,
         "io": [{"time": _r(e.time_us / 1e6), "kind": e.kind, "link": e.link,
                 "names": report.link_names.get((e.kind, e.link), []),

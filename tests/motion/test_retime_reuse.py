@@ -1,0 +1,115 @@
+"""The acceleration range's re-timing (motion/retime.py, issue 29): each distinct piece of path is
+timed once (a repeated piece reuses it, a piece that differs in any input is timed again), and the
+re-timing stops when the wall-clock budget is spent, the range then said to be partial."""
+
+from __future__ import annotations
+
+import pytest
+
+from interpretation.simsupport import sim
+from val3check.motion.motion_records import motion_records
+from val3check.motion.retime import Retiming, piece_key, retimed
+from val3check.robot import load_robot
+from val3check.simulation import collect as collect_module
+
+from .test_acceleration_range import GLOBALS, LOOP
+
+TX = load_robot("TX2-60")
+
+
+@pytest.fixture(scope="module")
+def machine_run(tmp_path_factory):
+    from val3check.simulation.run import run_machine
+    from interpretation.simsupport import build
+    from val3check.config import Settings
+    from val3check.lint import run as lint_run
+    from val3check.simulation import SimOptions
+
+    # twenty passes of the U cycle: the same pieces again and again
+    folder = build(tmp_path_factory.mktemp("u"), LOOP.replace("to 6", "to 20"), globals_=GLOBALS, locals_=["num l_i"])
+    ws = lint_run([str(folder)], Settings()).workspace
+    machine, result = run_machine(ws, ws.apps[ws.targets[0]], SimOptions(duration=600, robot=TX))
+    return machine, result
+
+
+def _fresh(queue, factor):
+    """The re-timing of every stretch with nothing reused (the reference)."""
+    from val3check.motion import retime
+
+    keep = retime.piece_key
+    retime.piece_key = lambda *a: None
+    try:
+        return Retiming(queue, factor)
+    finally:
+        retime.piece_key = keep
+
+
+def test_a_repeated_piece_is_timed_once_and_gives_the_same_times(machine_run):
+    machine, _ = machine_run
+    q = machine.arm.queue_in_use
+    records = motion_records(q)
+    for factor in (0.5, 2.0):
+        rt = Retiming(q, factor)
+        ref = _fresh(q, factor)
+        assert ref.timed == ref.stretches
+        # two stops per pass; the blends' curves repeat every third pass (blending.candidate's reuse)
+        assert rt.stretches == ref.stretches == 41 and rt.timed <= 8
+        for r in records:
+            for t in (r.start, r.end):
+                if t is not None:
+                    assert rt.time(t) == pytest.approx(ref.time(t), abs=1e-9)
+
+
+def test_a_piece_that_differs_in_any_input_has_another_key(machine_run):
+    machine, _ = machine_run
+    q = machine.arm.queue_in_use
+    path, limits = q.planner.path, q.limits.of
+    prof = q.planner.profile
+    moving = [(prof.S[i], prof.S[i + 1]) for i in range(len(prof.S) - 1) if prof.S[i + 1] > prof.S[i]]
+    a, b = moving[0][0], moving[-1][1]
+    a, b = path.offsets[1], path.offsets[3]
+    base = piece_key(path, a, b, limits)
+    assert piece_key(path, a, b, limits) == base
+    assert piece_key(path, a, b - 0.5, limits) != base  # where it ends
+    assert piece_key(path, path.offsets[2], b, limits) != base  # where it starts (other spans)
+
+    def other(key):
+        lim = limits(key)
+        from val3check.motion.mdesc import Limits
+        return Limits(lim.V, lim.A * 1.000001, lim.D, lim.tvel, lim.rvel)
+
+    assert piece_key(path, a, b, other) != base  # its limits
+    span = path.spans[1]
+    keep = span.tool
+    span.tool = None if keep is not None else __import__("numpy").eye(4)
+    try:
+        assert piece_key(path, a, b, limits) != base  # its tool
+    finally:
+        span.tool = keep
+
+
+def test_the_retiming_stops_when_the_budget_is_spent(machine_run):
+    machine, _ = machine_run
+    q = machine.arm.queue_in_use
+    records = motion_records(q)
+    calls = []
+
+    def out_of_time():
+        calls.append(1)
+        return len(calls) > 1  # spent after the first look
+
+    moved, rt = retimed(q, records, 2.0, out_of_time)
+    assert rt.cut is not None and 0.0 < rt.cut < records[-1].start
+    assert all(r.start is None for r, o in zip(moved, records) if o.start is not None and o.start >= rt.cut)
+    assert any(r.start is not None for r in moved)
+
+
+def test_a_partial_range_is_said(tmp_path, monkeypatch):
+    monkeypatch.setattr(collect_module.RunBudget, "out_of_time", lambda self: True)
+    r = sim(tmp_path, LOOP, globals_=GLOBALS, locals_=["num l_i"], robot=TX)
+    spread = r.motion.acceleration_range
+    assert spread.partial is not None and "covers the run up to" in spread.partial
+    (task,) = [t for t, s in r.motion.cycles.items() if s.times]
+    assert spread.cycle_time(task) is None  # nothing re-timed: no range given, not a wrong one
+    said = [d for d in r.diagnostics if d.code == "R006" and "re-timing" in d.message]
+    assert len(said) == 1 and said[0].message == spread.partial
