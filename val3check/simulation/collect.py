@@ -134,7 +134,7 @@ def acceleration_range(machine: Machine, q, queue_records, diags: list[Diagnosti
     if cut is not None:
         partial = (f"the cycle time's range if the assumed accelerations are off covers the run up to {cut:.3f} s "
                    f"only: {WALL} (--max-wall {machine.budgets.wall_s:g} s) was spent while re-timing it")
-        diags.append(Diagnostic("R006", partial, machine.app.path, 0, 0, time_us=machine.end_time, task="",
+        diags.append(Diagnostic(codes.BUDGET_EXCEEDED, partial, machine.app.path, 0, 0, time_us=machine.end_time, task="",
                                 program=""))
     return AccelerationRange(ASSUMED_ACCELERATION_RANGE, tuple(cycles), partial)
 
