@@ -87,6 +87,7 @@ def _lark_callback_engine():
     engine.start_state = table.start_states["start"]
     engine.end_state = table.end_states["start"]
     engine.unit_memo = {}
+    engine.descent = None  # the tables alone (the fast path is compared in test_descent.py)
     engine.expected = [frozenset(k for k in acts if k.isupper()) for acts in actions]
     return engine
 

@@ -10,10 +10,10 @@ from ..rules import codes
 from .builder import Builder
 from .grammar import load_tables
 from .messages import char_message, number_message, syntax_message
-from .tokens import CLOSERS, CONTEXT_KEYWORDS, KEYWORDS, OPENERS, Tok
+from .descent import Descent
+from .tokens import CLOSERS, CONTEXT_KEYWORDS, KEYWORDS, MAX_BLOCK_DEPTH, OPENERS, Tok
 
 MAX_ERRORS = 10  # diagnostics reported per program
-MAX_BLOCK_DEPTH = 64  # nested if/while/do/for/switch blocks
 
 
 def _lone(children: list) -> Any:
@@ -76,6 +76,8 @@ class Engine:
         self.unit_memo: dict[tuple[int, int, str], int] = {}
         self.expected = [frozenset(k for k in acts if k.isupper()) for acts in self.actions]
         self.regex = re.compile(tables["LEXER"])
+        # the fast path for code without errors (None: the tables alone, as tests compare them)
+        self.descent: Descent | None = Descent(self.builder, self.regex)
 
     # -------------------------------------------------------------- driver
 

@@ -27,8 +27,8 @@ from ..positions import SourceMap
 from ..rules import codes
 from . import ast as A
 from .comments import scan_comments
-from .engine import MAX_BLOCK_DEPTH, Context, Engine, Stop
-from .tokens import clip
+from .engine import Context, Engine, Stop
+from .tokens import MAX_BLOCK_DEPTH, clip
 
 __all__ = ["parse_code", "parse_program", "scan_comments", "MAX_BLOCK_DEPTH", "MAX_EXPR_DEPTH"]
 
@@ -119,6 +119,14 @@ def _parse_nogc(code: str, source_map: SourceMap, path: str) -> tuple[A.ProgramB
     engine = get_engine()
     builder = engine.builder
     builder.setup(code, source_map)
+    body = engine.descent.parse(code) if engine.descent is not None else None
+    if body is None:  # syntax errors, or code the fast path leaves to the engine
+        return _parse_lalr(engine, code, source_map, path)
+    return _checked(body, code, source_map, path)
+
+
+def _parse_lalr(engine: Engine, code: str, source_map: SourceMap, path: str) -> tuple[A.ProgramBody | None, list[Diagnostic]]:
+    builder = engine.builder
     ctx = Context(code, path, builder)
     body = None
     try:
@@ -150,19 +158,19 @@ def _parse_nogc(code: str, source_map: SourceMap, path: str) -> tuple[A.ProgramB
             t.column,
         )
         return None, ctx.diags
+    return _checked(body, code, source_map, path)
+
+
+def _checked(body: A.ProgramBody, code: str, source_map: SourceMap,
+             path: str) -> tuple[A.ProgramBody | None, list[Diagnostic]]:
+    """A parsed body, unless an expression is nested too deep; with its comments."""
     if len(code) > MAX_EXPR_DEPTH and max(map(len, code.split("\n"))) > MAX_EXPR_DEPTH:
         node = _expr_too_deep(body)
         if node is not None:
-            ctx.diags.append(
-                Diagnostic(
-                    codes.TOO_DEEPLY_NESTED,
-                    f"expression nested more than {MAX_EXPR_DEPTH} deep: split it with intermediate variables",
-                    path,
-                    node.line,
-                    node.col,
-                )
-            )
-            return None, ctx.diags
+            return None, [Diagnostic(
+                codes.TOO_DEEPLY_NESTED,
+                f"expression nested more than {MAX_EXPR_DEPTH} deep: split it with intermediate variables",
+                path, node.line, node.col)]
     body.comments = scan_comments(code, source_map)
     return body, []
 

@@ -6,6 +6,8 @@ from operator import itemgetter
 from typing import Any
 
 
+MAX_BLOCK_DEPTH = 64  # nested if/while/do/for/switch blocks (deeper: F104)
+
 # Reserved words (manual 2.2.5, 3.1), any case -> terminal name. `to` and `step` are not here:
 # they are keywords only inside `for` (see the grammar).
 KEYWORDS = {
