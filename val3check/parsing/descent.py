@@ -28,6 +28,7 @@ _SLOT_END = frozenset({"_COMMA", "_RBRACE"})  # an empty field of a structure `{
 _WORD_OPS = frozenset({"AND", "OR", "XOR"})
 # what may follow an operand that is one token (no call, index or field after it)
 _OPERAND_END = frozenset(_PRECEDENCE) | {"_NL", "_RPAR", "_RSQB", "_RBRACE", "_COMMA", "EQUAL", "NAME"}
+_EXPR_END = frozenset({"_NL", "_RPAR", "_RSQB", "_RBRACE", "_COMMA", "NAME"})  # ... of a whole expression
 
 
 class Fallback(Exception):
@@ -41,6 +42,7 @@ _FIXED = {
     "=": "EQUAL", "==": "EQOP", "!=": "EQOP", "<": "RELOP", ">": "RELOP", "<=": "RELOP", ">=": "RELOP",
     "!": "BANG", "?": "QMARK",
 }
+_KNOWN_MAX = 50_000  # texts remembered by tokenize (names, numbers, strings) before starting over
 _NAME_START = frozenset("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ_")
 
 
@@ -57,14 +59,18 @@ def pair_regex(lexer: str) -> Any:
     return regex
 
 
-def tokenize(code: str, regex: Any, master: Any) -> tuple[list[str], list[tuple]]:
+def tokenize(code: str, regex: Any, master: Any, known: dict[str, str]) -> tuple[list[str], list[tuple]]:
     """The tokens of `code` as the engine makes them, (type, value, line, column) tuples, and
     their types in a list of their own; `to`/`step` stay names, comments are dropped, the last
-    token is `$END`. `regex` is `pair_regex(...)`, `master` the engine's regex's `match`.
+    token is `$END`. `regex` is `pair_regex(...)`, `master` the engine's regex's `match`, `known`
+    the type of the texts of a fixed type seen so far (punctuation, names, numbers, strings).
     Fallback on anything the engine would report (invalid character, bad number or string)."""
     toks: list[tuple] = []
     add = toks.append
-    fixed = _FIXED
+    if len(known) > _KNOWN_MAX:
+        known.clear()
+    if not known:
+        known.update(_FIXED)
     name_start = _NAME_START
     keywords = KEYWORDS
     openers = OPENERS
@@ -76,7 +82,7 @@ def tokenize(code: str, regex: Any, master: Any) -> tuple[list[str], list[tuple]
     for blanks, value in regex.findall(code):
         start = p + len(blanks)
         p = start + len(value)
-        t = fixed.get(value)
+        t = known.get(value)
         if t is not None:
             add((t, value, line, start - line_start + 1))
             continue
@@ -98,6 +104,7 @@ def tokenize(code: str, regex: Any, master: Any) -> tuple[list[str], list[tuple]
                 add((kw, value, line, start - line_start + 1))
             else:
                 add(("NAME", value, line, start - line_start + 1))
+                known[value] = "NAME"
         elif "\n" in value:
             add(("_NL", value, line, start - line_start + 1))
             line += value.count("\n")
@@ -106,15 +113,18 @@ def tokenize(code: str, regex: Any, master: Any) -> tuple[list[str], list[tuple]
             if len(value) < 2 or value[-1] != '"':
                 raise Fallback  # BADSTRING
             add(("STRING", value, line, start - line_start + 1))
+            known[value] = "STRING"
         elif c == "/":
             continue  # a comment not followed by a line end
         elif c == "$":
             add(("SYSNAME", value, line, start - line_start + 1))
+            known[value] = "SYSNAME"
         else:  # NUMBER, or BADNUMBER when NUMBER does not match the text alone (tried first)
             m = master(value)
             if m.lastgroup != "NUMBER" or m.end() != len(value):
                 raise Fallback
             add(("NUMBER", value, line, start - line_start + 1))
+            known[value] = "NUMBER"
     raise Fallback  # pragma: no cover - the master regex always ends with EOF
 
 
@@ -125,11 +135,12 @@ class Descent:
         self.builder = builder
         self.regex = pair_regex(master.pattern)
         self.master = master.match
+        self.known: dict[str, str] = {}
 
     def parse(self, code: str) -> Any:
         """The body of the program `code`, or None: not for this parser (the engine's job)."""
         try:
-            types, toks = tokenize(code, self.regex, self.master)
+            types, toks = tokenize(code, self.regex, self.master, self.known)
             return _parse(types, toks, self.builder)
         except (Fallback, IndexError, RecursionError):
             return None
@@ -147,9 +158,10 @@ def _parse(types: list[str], toks: list[tuple], b: Builder) -> Any:  # noqa: C90
     # The hot leaves and operations are made here as the builder makes them (tests compare):
     # lines of code without a column map map with two list reads.
     lines, offs, col_maps = b.lines, b.offs, b.col_maps
-    Name, Number, Binary = A.Name, A.Number, A.Binary
+    Name, Number, Binary, Assign = A.Name, A.Number, A.Binary, A.Assign
     word_ops = _WORD_OPS
     operand_end = _OPERAND_END
+    expr_end = _EXPR_END
 
     def expect(ttype: str) -> tuple:
         nonlocal pos
@@ -171,6 +183,9 @@ def _parse(types: list[str], toks: list[tuple], b: Builder) -> Any:  # noqa: C90
     def expr() -> Any:
         # ?expr: or_expr | or_expr EQUAL expr -> assign_expr
         nonlocal pos, nesting
+        t = types[pos]
+        if (t == "NAME" or t == "NUMBER") and types[pos + 1] in expr_end:
+            return leaf()  # `f(a, 1)`, `x = 0`: the most common expressions
         nesting += 1
         if nesting > MAX_NESTING:
             raise Fallback
@@ -182,32 +197,27 @@ def _parse(types: list[str], toks: list[tuple], b: Builder) -> Any:  # noqa: C90
         nesting -= 1
         return left
 
+    def leaf() -> Any:
+        """The NAME or NUMBER token at `pos`, alone, as Builder.name or Builder.number makes it."""
+        nonlocal pos
+        tok = toks[pos]
+        pos += 1
+        k = tok[2] - 1
+        if k in col_maps:
+            return b_name([tok]) if tok[0] == "NAME" else b_number([tok])
+        v = tok[1]
+        ln = lines[k]
+        col = offs[k] + tok[3]
+        if tok[0] == "NAME":
+            return Name(v, ln, col, ln, col + len(v))
+        return Number(float(v), v, ln, col, ln, col + len(v))
+
     def operation(lowest: int) -> Any:
         # or_expr ... mul_expr: binary operators by precedence climbing, left-associative
         nonlocal pos
         t = types[pos]
-        if t == "NAME" and types[pos + 1] in operand_end:  # a lone name: Builder.name
-            tok = toks[pos]
-            pos += 1
-            k = tok[2] - 1
-            if k in col_maps:
-                left = b_name([tok])
-            else:
-                v = tok[1]
-                ln = lines[k]
-                col = offs[k] + tok[3]
-                left = Name(v, ln, col, ln, col + len(v))
-        elif t == "NUMBER" and types[pos + 1] in operand_end:  # Builder.number
-            tok = toks[pos]
-            pos += 1
-            k = tok[2] - 1
-            if k in col_maps:
-                left = b_number([tok])
-            else:
-                v = tok[1]
-                ln = lines[k]
-                col = offs[k] + tok[3]
-                left = Number(float(v), v, ln, col, ln, col + len(v))
+        if (t == "NAME" or t == "NUMBER") and types[pos + 1] in operand_end:
+            left = leaf()
         else:
             left = unary()
         while True:
@@ -216,7 +226,12 @@ def _parse(types: list[str], toks: list[tuple], b: Builder) -> Any:  # noqa: C90
                 return left
             t = toks[pos]
             pos += 1
-            right = operation(p + 1)
+            r = types[pos]
+            after = types[pos + 1]
+            if (r == "NAME" or r == "NUMBER") and after in operand_end and precedence.get(after, 0) <= p:
+                right = leaf()  # `a + 1 ...`: no operator binding tighter follows
+            else:
+                right = operation(p + 1)
             k = t[2] - 1
             if k in col_maps:  # Builder.binary
                 left = b_binary([left, t, right])
@@ -385,10 +400,25 @@ def _parse(types: list[str], toks: list[tuple], b: Builder) -> Any:  # noqa: C90
             if types[pos] == "_LPAR":
                 return b.expr_stmt([call(target)])
         else:
-            target = b_name([tok])
-        target = lvalue_tail(target)
-        eq = expect("EQUAL")
-        return b.assign([target, eq, expr()])
+            k = tok[2] - 1
+            if k in col_maps:
+                target = b_name([tok])
+            else:  # Builder.name
+                v = tok[1]
+                ln = lines[k]
+                col = offs[k] + tok[3]
+                target = Name(v, ln, col, ln, col + len(v))
+        t = types[pos]
+        if t == "_LSQB" or t == "_DOT":
+            target = lvalue_tail(target)
+        eq = toks[pos]
+        if eq[0] != "EQUAL":
+            raise Fallback
+        pos += 1
+        k = eq[2] - 1
+        if k in col_maps:
+            return b.assign([target, eq, expr()])
+        return Assign(target, expr(), target.line, target.col, lines[k], offs[k] + eq[3])  # Builder.assign
 
     def lvalue_tail(target: Any) -> Any:
         # ?lvalue: ... | lvalue _LSQB args _RSQB -> index | lvalue _DOT NAME -> field
