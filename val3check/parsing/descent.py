@@ -154,11 +154,12 @@ def _parse(types: list[str], toks: list[tuple], b: Builder) -> Any:  # noqa: C90
     slot_end = _SLOT_END
     b_name, b_lib_name, b_sys_name = b.name, b.lib_name, b.sys_name
     b_number, b_string, b_true, b_false = b.number, b.string, b.true, b.false
-    b_call, b_index, b_field, b_unary, b_binary = b.call, b.index, b.field, b.unary, b.binary
+    b_field, b_unary, b_binary = b.field, b.unary, b.binary
     # The hot leaves and operations are made here as the builder makes them (tests compare):
     # lines of code without a column map map with two list reads.
     lines, offs, col_maps = b.lines, b.offs, b.col_maps
     Name, Number, Binary, Assign = A.Name, A.Number, A.Binary, A.Assign
+    CallExpr, ExprStatement, Index = A.CallExpr, A.ExprStatement, A.Index
     word_ops = _WORD_OPS
     operand_end = _OPERAND_END
     expr_end = _EXPR_END
@@ -257,7 +258,7 @@ def _parse(types: list[str], toks: list[tuple], b: Builder) -> Any:  # noqa: C90
             t = types[pos]
             if t == "_LSQB":
                 pos += 1
-                node = b_index([node, args()])
+                node = Index(node, args(), node.line, node.col)  # Builder.index
                 expect("_RSQB")
             elif t == "_DOT":
                 pos += 1
@@ -268,15 +269,16 @@ def _parse(types: list[str], toks: list[tuple], b: Builder) -> Any:  # noqa: C90
     def primary() -> Any:
         nonlocal pos
         t = types[pos]
+        if t == "NAME":
+            t = types[pos + 1]
+            if t == "_LPAR":
+                return call(leaf())
+            if t == "_COLON":
+                pos += 1
+                return library(toks[pos - 1], True)
+            return leaf()
         tok = toks[pos]
         pos += 1
-        if t == "NAME":
-            t = types[pos]
-            if t == "_LPAR":
-                return call(b_name([tok]))
-            if t == "_COLON":
-                return library(tok, True)
-            return b_name([tok])
         if t == "NUMBER":
             return b_number([tok])
         if t == "STRING":
@@ -316,14 +318,16 @@ def _parse(types: list[str], toks: list[tuple], b: Builder) -> Any:  # noqa: C90
         raise Fallback
 
     def call(callee: Any) -> Any:
-        # call: callee _LPAR [args] _RPAR
+        # call: callee _LPAR [args] _RPAR (Builder.call)
         nonlocal pos
         pos += 1
         if types[pos] == "_RPAR":
             pos += 1
-            return b_call([callee, None])
-        node = b_call([callee, args()])
-        expect("_RPAR")
+            return CallExpr(callee, [], callee.line, callee.col)
+        node = CallExpr(callee, args(), callee.line, callee.col)
+        if types[pos] != "_RPAR":
+            raise Fallback
+        pos += 1
         return node
 
     def args() -> list:
@@ -387,7 +391,9 @@ def _parse(types: list[str], toks: list[tuple], b: Builder) -> Any:  # noqa: C90
         pos += 1
         t = types[pos]
         if t == "_LPAR":
-            return b.expr_stmt([call(b_name([tok]))])
+            pos -= 1
+            node = call(leaf())
+            return ExprStatement(node, node.line, node.col)  # Builder.expr_stmt
         if t == "_COLON":
             t = types[pos + 1]
             n = toks[pos + 1]
@@ -427,7 +433,7 @@ def _parse(types: list[str], toks: list[tuple], b: Builder) -> Any:  # noqa: C90
             t = types[pos]
             if t == "_LSQB":
                 pos += 1
-                target = b_index([target, args()])
+                target = Index(target, args(), target.line, target.col)  # Builder.index
                 expect("_RSQB")
             elif t == "_DOT":
                 pos += 1
