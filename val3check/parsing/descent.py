@@ -76,7 +76,7 @@ def tokenize(code: str, regex: Any, master: Any, known: dict[str, str]) -> tuple
     openers = OPENERS
     closers = CLOSERS
     line = 1
-    line_start = 0
+    base = -1  # the offset before the line's first character
     depth = 0
     p = 0
     for blanks, value in regex.findall(code):
@@ -84,12 +84,12 @@ def tokenize(code: str, regex: Any, master: Any, known: dict[str, str]) -> tuple
         p = start + len(value)
         t = known.get(value)
         if t is not None:
-            add((t, value, line, start - line_start + 1))
+            add((t, value, line, start - base))
             continue
         if not value:  # EOF; characters skipped by findall (invalid) make the offsets wrong
             if p != len(code):
                 raise Fallback
-            add(("$END", "", line, start - line_start + 1))
+            add(("$END", "", line, start - base))
             return [t[0] for t in toks], toks
         c = value[0]
         if c in name_start:
@@ -101,29 +101,31 @@ def tokenize(code: str, regex: Any, master: Any, known: dict[str, str]) -> tuple
                         raise Fallback
                 elif kw in closers:
                     depth -= 1
-                add((kw, value, line, start - line_start + 1))
+                else:
+                    known[value] = kw  # no block to count: `call`, `and`, `else`...
+                add((kw, value, line, start - base))
             else:
-                add(("NAME", value, line, start - line_start + 1))
+                add(("NAME", value, line, start - base))
                 known[value] = "NAME"
         elif "\n" in value:
-            add(("_NL", value, line, start - line_start + 1))
+            add(("_NL", value, line, start - base))
             line += value.count("\n")
-            line_start = start + value.rindex("\n") + 1
+            base = start + value.rindex("\n")
         elif c == '"':
             if len(value) < 2 or value[-1] != '"':
                 raise Fallback  # BADSTRING
-            add(("STRING", value, line, start - line_start + 1))
+            add(("STRING", value, line, start - base))
             known[value] = "STRING"
         elif c == "/":
             continue  # a comment not followed by a line end
         elif c == "$":
-            add(("SYSNAME", value, line, start - line_start + 1))
+            add(("SYSNAME", value, line, start - base))
             known[value] = "SYSNAME"
         else:  # NUMBER, or BADNUMBER when NUMBER does not match the text alone (tried first)
             m = master(value)
             if m.lastgroup != "NUMBER" or m.end() != len(value):
                 raise Fallback
-            add(("NUMBER", value, line, start - line_start + 1))
+            add(("NUMBER", value, line, start - base))
             known[value] = "NUMBER"
     raise Fallback  # pragma: no cover - the master regex always ends with EOF
 
@@ -186,7 +188,18 @@ def _parse(types: list[str], toks: list[tuple], b: Builder) -> Any:  # noqa: C90
         nonlocal pos, nesting
         t = types[pos]
         if (t == "NAME" or t == "NUMBER") and types[pos + 1] in expr_end:
-            return leaf()  # `f(a, 1)`, `x = 0`: the most common expressions
+            # `f(a, 1)`, `x = 0`: the most common expressions (leaf() written out)
+            tok = toks[pos]
+            k = tok[2] - 1
+            if k not in col_maps:
+                pos += 1
+                v = tok[1]
+                ln = lines[k]
+                col = offs[k] + tok[3]
+                if t == "NAME":
+                    return Name(v, ln, col, ln, col + len(v))
+                return Number(float(v), v, ln, col, ln, col + len(v))
+            return leaf()
         nesting += 1
         if nesting > MAX_NESTING:
             raise Fallback
