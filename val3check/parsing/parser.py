@@ -4,18 +4,22 @@ The grammar is `grammars/val3.lark`, compiled by Lark into LALR(1) tables (`gram
 pre-built in `_tables.py`, regenerated with `python -m val3check.parsing.build_parser`, built from
 the grammar while it is edited). Everything is built lazily, on the first parse. The modules:
 
-  tokens.py    reserved words, terminal names and spellings, `Tok`
-  builder.py   the tree-building callback of each rule (ast nodes with file positions)
-  engine.py    the LALR driver over the tables (our own: about 3x Lark's), with its contextual
-               lexer (`to` and `step` are keywords only inside `for`) and line-based recovery
-  messages.py  syntax error messages in words
-  comments.py  the `//` comments, with positions
+  tokens.py      reserved words, terminal names and spellings, `Tok`
+  builder.py     the tree-building callback of each rule (ast nodes with file positions)
+  descent.py     the fast path: a recursive descent for code without errors, the engine's trees
+  fast_lexer.py  its tokenizer (the engine's tokens, from one findall)
+  engine.py      the LALR driver over the tables (our own: about 3x Lark's), with its contextual
+                 lexer (`to` and `step` are keywords only inside `for`) and line-based recovery;
+                 it parses what the fast path leaves (syntax errors, very deep nesting)
+  messages.py    syntax error messages in words
+  comments.py    the `//` comments, with positions
 
 Syntax errors are diagnostics, never exceptions: F101 (syntax error, unterminated string), F102
 (invalid character), F103 (invalid number), F104 (nesting too deep to analyse). After an error the parser
 resynchronises on the next line and goes on, so that independent errors of other lines are
 reported too; errors that could be consequences of an earlier one are not reported.
 """
+
 from __future__ import annotations
 
 import gc
