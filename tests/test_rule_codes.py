@@ -30,6 +30,7 @@ KNOWN_SHARED = {
     "F006": {"loading/loader.py", "loading/reader.py"},
     "F011": {"loading/loader.py", "loading/reader.py"},
     "F014": {"confine.py", "loading/libraries.py", "loading/loader.py"},
+    "F101": {"parsing/engine.py", "parsing/parser.py"},  # the engine's syntax errors, the entry point's last resort
     "L010": {"semantics/calls.py", "semantics/expressions.py", "semantics/statements.py"},
     "L011": {"semantics/expressions.py", "semantics/statements.py"},
     "L012": {"semantics/calls.py", "semantics/expressions.py", "semantics/statements.py"},
