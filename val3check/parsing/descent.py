@@ -17,6 +17,7 @@ from typing import Any
 from . import ast as A
 from .builder import Builder
 from .fast_lexer import Fallback, pair_regex, tokenize
+from .tokens import MAX_BLOCK_DEPTH, OPENERS
 
 MAX_NESTING = 50  # nested expressions handled here (deeper: the engine, without recursion)
 
@@ -51,7 +52,9 @@ class Descent:
 def _parse(types: list[str], toks: list[tuple], b: Builder) -> Any:  # noqa: C901 - one grammar
     """The grammar, rule by rule; the builder callbacks get the children the engine gives them."""
     pos = 0
-    nesting = 0
+    nesting = 0  # expressions being read
+    depth = 0  # blocks open
+    openers = OPENERS
     precedence = _PRECEDENCE
     slot_end = _SLOT_END
     b_name, b_lib_name, b_sys_name = b.name, b.lib_name, b.sys_name
@@ -286,14 +289,21 @@ def _parse(types: list[str], toks: list[tuple], b: Builder) -> Any:  # noqa: C90
 
     def block() -> list:
         # block: (statement _NL)*
-        nonlocal pos
+        nonlocal pos, depth
         out: list = []
         while True:
             t = types[pos]
             s = statements.get(t)
             if s is None:
                 return out
-            out.append(s(toks[pos]))
+            if t in openers:  # the engine counts the blocks opened (F104 past MAX_BLOCK_DEPTH)
+                depth += 1
+                if depth > MAX_BLOCK_DEPTH:
+                    raise Fallback
+                out.append(s(toks[pos]))
+                depth -= 1
+            else:
+                out.append(s(toks[pos]))
             if types[pos] != "_NL":
                 raise Fallback
             pos += 1

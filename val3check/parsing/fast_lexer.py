@@ -5,7 +5,7 @@ from __future__ import annotations
 import re
 from typing import Any
 
-from .tokens import CLOSERS, KEYWORDS, MAX_BLOCK_DEPTH, OPENERS
+from .tokens import KEYWORDS
 
 
 class Fallback(Exception):
@@ -50,11 +50,8 @@ def tokenize(code: str, regex: Any, master: Any, known: dict[str, str]) -> tuple
         known.update(_FIXED)
     name_start = _NAME_START
     keywords = KEYWORDS
-    openers = OPENERS
-    closers = CLOSERS
     line = 1
     base = -1  # the offset before the line's first character
-    depth = 0
     p = 0
     for blanks, value in regex.findall(code):
         start = p + len(blanks)
@@ -70,20 +67,9 @@ def tokenize(code: str, regex: Any, master: Any, known: dict[str, str]) -> tuple
             return [t[0] for t in toks], toks
         c = value[0]
         if c in name_start:
-            kw = keywords.get(value.lower())
-            if kw is not None:
-                if kw in openers:
-                    depth += 1
-                    if depth > MAX_BLOCK_DEPTH:
-                        raise Fallback
-                elif kw in closers:
-                    depth -= 1
-                else:
-                    known[value] = kw  # no block to count: `call`, `and`, `else`...
-                add((kw, value, line, start - base))
-            else:
-                add(("NAME", value, line, start - base))
-                known[value] = "NAME"
+            t = keywords.get(value.lower(), "NAME")
+            add((t, value, line, start - base))
+            known[value] = t
         elif "\n" in value:
             add(("_NL", value, line, start - base))
             line += value.count("\n")
