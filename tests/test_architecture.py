@@ -352,3 +352,18 @@ def test_reporting_reads_the_run_s_record_not_the_arm_s_packages():
                 bad.append(f"{module}:{line}: {t}")
     assert bad == []
     assert readers == ARM_READERS_IN_REPORTING
+
+
+# Hand-written modules still over the bound, split by the work on issue 22; any other fails.
+LONG_LEFT = {"val3check/parsing/parser.py", "val3check/loading/reader.py", "val3check/robot/models.py"}
+
+
+def test_no_hand_written_module_is_over_600_lines():
+    root = PACKAGE.parent
+    long = set()
+    for path in PACKAGE.rglob("*.py"):
+        lines = path.read_text(encoding="utf-8").splitlines()
+        # generated tables say so in their first lines ("GENERATED: do not edit")
+        if len(lines) > 600 and not any("GENERATED: do not edit" in line for line in lines[:3]):
+            long.add(str(path.relative_to(root)))
+    assert long == LONG_LEFT
