@@ -47,7 +47,7 @@ _OLD_NUM = re.compile(r"^\s*[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?\s*$")
 
 
 def test_parse_father_and_parse_num_answer_as_the_patterns_they_replace():
-    from val3check.loading.reader import _NUM, parse_father
+    from val3check.loading.attribute_text import _NUM, parse_father
 
     rng = random.Random(21)
     alphabet = list("ab_1 [ ]\t\n,é\".-+eE0")

@@ -1,7 +1,7 @@
 """Issue 21 P and I (reports): strings a program builds with chr() (NUL, ESC, BEL, DEL) reach
 every report visibly and validly: escapes ("\\x00") in the HTML page and its data (a raw
 control character is a parse error in HTML) and in JUnit XML (XML 1.0 cannot hold them), Control
-Pictures in the text report (columns kept); `python -m val3check.reporting.html` on deep or
+Pictures in the text report (columns kept); `val3check html` on deep or
 malformed JSON says so (exit 2)."""
 
 from __future__ import annotations
@@ -66,7 +66,7 @@ def test_the_mappings():
     assert visible("\udcff\ud800\ufffe") == "\\xff\\ud800\\ufffe"  # an undecodable byte as itself
 
 
-# ---- python -m val3check.reporting.html -------------------------------------------------------------
+# ---- val3check html ------------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("content,fragment", [
     ("[" * 100_000 + "]" * 100_000, "nested too deeply"),
@@ -74,20 +74,20 @@ def test_the_mappings():
     ("\xff", "not JSON"),
 ])
 def test_render_command_refuses_bad_models(tmp_path, capsys, content, fragment):
-    from val3check.reporting.html.__main__ import main
+    from val3check.cli import main as cli_main
 
     (tmp_path / "m.json").write_bytes(content.encode("latin-1"))
-    assert main([str(tmp_path / "m.json"), "-o", str(tmp_path / "x.html")]) == 2
+    assert cli_main(["html", str(tmp_path / "m.json"), "-o", str(tmp_path / "x.html")]) == 2
     assert fragment in capsys.readouterr().err and not (tmp_path / "x.html").exists()
 
 
 def test_render_command_refuses_models_of_the_wrong_types(tmp_path, capsys):
     from synthetic_run import synthetic_model
-    from val3check.reporting.html.__main__ import main
+    from val3check.cli import main as cli_main
 
     model = synthetic_model(duration=2.0)
     model["io"] = [{"link": {"a": 1}, "kind": "dio", "time": 0, "value": True, "names": 5}]
     (tmp_path / "m.json").write_text(json.dumps(model))
-    assert main([str(tmp_path / "m.json"), "-o", str(tmp_path / "b.html")]) == 2
+    assert cli_main(["html", str(tmp_path / "m.json"), "-o", str(tmp_path / "b.html")]) == 2
     err = capsys.readouterr().err
     assert "not a report model the page can show" in err or "report model:" in err

@@ -20,6 +20,7 @@ from synthetic_run import synthetic_model
 from val3check.reporting.html import model_from_sim_report, render
 from val3check.robot import load_robot
 from val3check.robot.chain import chain_fk
+from val3check.simulation.report_scene import ReportScene
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -253,7 +254,7 @@ def test_report_of_a_real_application(chromium, app, options, capsys, tmp_path, 
     main(["sim", f"fixtures/valid/{app}", "--report", "json", "--duration", "20", *options])
     report = json.loads(capsys.readouterr().out)
     path = tmp_path / f"{app}.html"
-    path.write_text(render(model_from_sim_report(report)), encoding="utf-8")
+    path.write_text(render(model_from_sim_report(report, ReportScene())), encoding="utf-8")
     page = chromium.open(path)
     _clean(page)
     p = page.page
@@ -320,17 +321,15 @@ def test_sim_report_html_of_the_pick_and_place_cell(chromium, tmp_path, monkeypa
 
 
 def test_page_of_the_pick_and_place_cell_s_json_report(chromium, tmp_path, monkeypatch, capsys):
-    """`python -m val3check.reporting.html --sim-report run.json` on the bundled example's JSON
+    """`val3check html --sim-report run.json` on the bundled example's JSON
     report (issue 28 item 4): the motions, cycles, joint and TCP plots and the arm's timeline of the
     run, the arm and the cell in the 3D view; what the JSON lacks is said at the top."""
-    from val3check.reporting.html.__main__ import main as html_main
-
     monkeypatch.chdir(ROOT)
     run = tmp_path / "run.json"
     assert main(["sim", "fixtures/valid/PickPlace", "--robot", "tx2-60", "--scenario",
                  "fixtures/scenarios/pickplace.toml", "--report", "json", "-o", str(run)]) == 0
     out = tmp_path / "report.html"
-    assert html_main(["--sim-report", str(run), "-o", str(out)]) == 0
+    assert main(["html", "--sim-report", str(run), "-o", str(out)]) == 0
     capsys.readouterr()
     page = chromium.open(out)
     _clean(page)

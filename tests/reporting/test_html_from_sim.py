@@ -10,6 +10,7 @@ import pytest
 
 from val3check.cli import main
 from val3check.reporting.html import ModelError, check_model, model_from_sim_report, render
+from val3check.simulation.report_scene import ReportScene
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -26,7 +27,7 @@ def _in_root(monkeypatch):
 
 def test_model_of_a_run_with_an_arm_model(capsys):
     report = sim_json("Cell", capsys, "--robot", "tx2-60")
-    model = model_from_sim_report(report, fail_on="warning")  # the run's R009 (no scenario) fails it
+    model = model_from_sim_report(report, ReportScene(), fail_on="warning")  # the run's R009 (no scenario) fails it
     check_model(model)
     v = model["verdict"]
     assert v["counts"] == {s: report["summary"][s] for s in ("error", "warning", "info")}
@@ -44,14 +45,14 @@ def test_model_of_a_run_with_an_arm_model(capsys):
 
 def test_model_of_a_run_that_passes_and_the_fail_on_threshold(capsys):
     report = sim_json("Supervisor", capsys)
-    model = model_from_sim_report(report)
+    model = model_from_sim_report(report, ReportScene())
     assert model["verdict"]["passed"] and model["scene"] is None
     assert len(model["io"]) == report["summary"]["io_events"] and len(model["transcript"]) == 9
     warned = copy.deepcopy(report)
     warned["summary"]["warning"] = 1
-    assert model_from_sim_report(warned, fail_on="warning")["verdict"]["passed"] is False
-    assert model_from_sim_report(warned, fail_on="error")["verdict"]["passed"] is True
-    assert model_from_sim_report(warned, fail_on="never")["verdict"]["passed"] is True
+    assert model_from_sim_report(warned, ReportScene(), fail_on="warning")["verdict"]["passed"] is False
+    assert model_from_sim_report(warned, ReportScene(), fail_on="error")["verdict"]["passed"] is True
+    assert model_from_sim_report(warned, ReportScene(), fail_on="never")["verdict"]["passed"] is True
 
 
 def test_excerpts_quote_only_files_of_the_application(capsys, tmp_path):
@@ -62,26 +63,24 @@ def test_excerpts_quote_only_files_of_the_application(capsys, tmp_path):
         report["diagnostics"].append(dict(report["diagnostics"][0]))
     report["diagnostics"][0].update(path=str(secret), line=2)
     report["diagnostics"][1].update(path="fixtures/valid/Cell/../../../README.md", line=1)
-    model = model_from_sim_report(report)
+    model = model_from_sim_report(report, ReportScene())
     assert [d["excerpt"] for d in model["diagnostics"]] == [None, None]
-    assert model_from_sim_report(report, roots=[str(tmp_path)])["diagnostics"][0]["excerpt"]["lines"] == ["line 1", "the secret"]
+    assert model_from_sim_report(report, ReportScene(), roots=[str(tmp_path)])["diagnostics"][0]["excerpt"]["lines"] == ["line 1", "the secret"]
 
 
 def test_not_a_sim_report():
     for bad in ({}, {"version": 3, "end": {}, "summary": {}}, [], {"version": 1}):
         with pytest.raises(ModelError, match="not a version 1 or 2 report"):
-            model_from_sim_report(bad)
+            model_from_sim_report(bad, ReportScene())
 
 
 def test_command_renders_a_sim_report(capsys, tmp_path):
-    from val3check.reporting.html.__main__ import main as html_main
-
     report = sim_json("Supervisor", capsys)
     (tmp_path / "run.json").write_text(json.dumps(report), encoding="utf-8")
     out = tmp_path / "run.html"
-    assert html_main(["--sim-report", str(tmp_path / "run.json"), "-o", str(out)]) == 0
+    assert main(["html", "--sim-report", str(tmp_path / "run.json"), "-o", str(out)]) == 0
     assert "Supervisor" in out.read_text(encoding="utf-8")
-    assert html_main(["--sim-report", str(tmp_path / "missing.json"), "-o", str(out)]) == 2
+    assert main(["html", "--sim-report", str(tmp_path / "missing.json"), "-o", str(out)]) == 2
     assert "cannot read" in capsys.readouterr().err
 
 
@@ -96,7 +95,7 @@ def test_the_bundled_example_s_json_gives_its_motions_cycles_and_trajectory(caps
     """Issue 28 item 4: the page of a JSON report holding over a hundred motions, 18 or more
     cycles and the trajectory says so, not "No motion in this run" nor "the arm did not move"."""
     report = _pickplace_json(capsys)
-    model = model_from_sim_report(report)
+    model = model_from_sim_report(report, ReportScene())
     check_model(model)
     runs = [m for m in report["motion"]["motions"] if m["start"] is not None]
     assert len(model["motions"]) == len(runs) > 100
@@ -140,7 +139,7 @@ def test_the_page_of_the_json_is_the_page_of_the_run(capsys):
 
     _, run = pickplace(20.0)
     a = model_from_run(run)
-    b = model_from_sim_report(json.loads(sim_json.render(run)))
+    b = model_from_sim_report(json.loads(sim_json.render(run)), ReportScene())
     strip = [{k: v for k, v in m.items() if k not in ("vel", "tvel")} for m in a["motions"]]
     assert strip == [{k: v for k, v in m.items() if k not in ("vel", "tvel")} for m in b["motions"]]
     assert len(a["motions"]) > 30 and all(m["vel"] is None for m in b["motions"])
@@ -162,10 +161,10 @@ def test_a_motion_section_that_does_not_hold_together_is_refused(capsys):
     report = _pickplace_json(capsys, "--duration", "4")
     report["motion"]["trajectory"]["segments"][0]["positions"] = [[1, 2]]
     with pytest.raises(ModelError, match="`motion` section does not hold together"):
-        model_from_sim_report(report)
+        model_from_sim_report(report, ReportScene())
     report["motion"]["trajectory"]["period"] = 0.008
     with pytest.raises(ModelError, match="period of 0.008 s"):
-        model_from_sim_report(report)
+        model_from_sim_report(report, ReportScene())
 
 
 def test_a_cell_outside_the_roots_is_not_read(capsys, tmp_path):
@@ -173,7 +172,7 @@ def test_a_cell_outside_the_roots_is_not_read(capsys, tmp_path):
     outside = tmp_path / "cell.toml"
     outside.write_text((ROOT / "fixtures/valid/PickPlace/val3check-cell.toml").read_text(encoding="utf-8"))
     report["collision"]["cell"]["path"] = str(outside)
-    model = model_from_sim_report(report)
+    model = model_from_sim_report(report, ReportScene())
     assert model["scene"]["obstacles"] == [] and any("outside the application's folder" in n
                                                      for n in model["limitations"])
-    assert len(model_from_sim_report(report, roots=[str(tmp_path)])["scene"]["obstacles"]) == 7
+    assert len(model_from_sim_report(report, ReportScene(), roots=[str(tmp_path)])["scene"]["obstacles"]) == 7

@@ -295,16 +295,16 @@ def test_pack_keeps_full_rate_then_buckets_without_losing_peaks(model):
 
 
 def test_demo_command_writes_a_page_and_refuses_a_bad_model(tmp_path, capsys):
-    from val3check.reporting.html.__main__ import main
+    from val3check.cli import main as cli_main
 
     out = tmp_path / "demo.html"
     (tmp_path / "model.json").write_text(json.dumps(synthetic_model(duration=5.0)))
-    assert main([str(tmp_path / "model.json"), "-o", str(out), "--model-out", str(tmp_path / "m.json")]) == 0
+    assert cli_main(["html", str(tmp_path / "model.json"), "-o", str(out), "--model-out", str(tmp_path / "m.json")]) == 0
     assert out.read_text(encoding="utf-8").startswith("<!DOCTYPE html>")
-    assert main([str(tmp_path / "m.json"), "-o", str(tmp_path / "again.html")]) == 0
+    assert cli_main(["html", str(tmp_path / "m.json"), "-o", str(tmp_path / "again.html")]) == 0
     assert (tmp_path / "again.html").read_bytes() == out.read_bytes()
     (tmp_path / "bad.json").write_text('{"version": 1}')
-    assert main([str(tmp_path / "bad.json"), "-o", str(tmp_path / "x.html")]) == 2
+    assert cli_main(["html", str(tmp_path / "bad.json"), "-o", str(tmp_path / "x.html")]) == 2
     assert "key 'application' is missing" in capsys.readouterr().err
     assert not (tmp_path / "x.html").exists()
 

@@ -1,5 +1,5 @@
-"""Command line: `val3check lint`, `val3check sim`, `val3check reach`, `val3check robots`, `val3check rules`,
-`val3check rule CODE`, `val3check server` (the language server).
+"""Command line: `val3check lint`, `val3check sim`, `val3check reach`, `val3check robots`, `val3check html`,
+`val3check rules`, `val3check rule CODE`, `val3check server` (the language server).
 
 Exit codes (README): 0 nothing at or above --fail-on; 1 findings; 2 usage error, bad
 configuration, or input that could not be read at all. `sim` (docs/sim.md): 0 the run raised
@@ -7,7 +7,7 @@ no runtime diagnostic at or above --fail-on; 1 it did; 2 the application was not
 unreadable input, lint errors, bad scenario).
 
 Here: the parser and the dispatch; the commands in `lint_command.py` (lint, rules, rule) and
-`sim_command.py` (sim, reach, robots), what they share in `common.py`.
+`sim_command.py` (sim, reach, robots), `html_command.py` (html), what they share in `common.py`.
 """
 
 from __future__ import annotations
@@ -18,6 +18,7 @@ import sys
 
 from .. import __version__
 from ..reporting import FORMATS, SIM_FORMATS
+from . import html_command
 from .common import EXIT_OK, EXIT_USAGE
 
 
@@ -151,6 +152,10 @@ def build_parser() -> argparse.ArgumentParser:
     robots.add_argument("--cycles", type=int, metavar="N", help="fit: end each run after N cycles")
     robots.add_argument("-o", "--output", metavar="FILE", help="fit: write the robot file to FILE (default: standard output)")
 
+    html = sub.add_parser("html", help="the HTML report of a run's JSON report (--sim-report), or of a report model "
+                          "saved as JSON (docs/html-report.md)")
+    html_command.add_arguments(html)
+
     server = sub.add_parser("server", help="run the language server for editors, over stdio (docs/editors.md)")
     server.add_argument("--stdio", action="store_true", help="talk LSP over standard input and output (the default and only transport)")
 
@@ -176,6 +181,8 @@ def main(argv: list[str] | None = None) -> int:
             return sim_command.robots(args)
         if args.command == "reach":
             return sim_command.reach(args)
+        if args.command == "html":
+            return html_command.html(args)
         if args.command == "rules":
             return lint_command.rules(args)
         if args.command == "rule":

@@ -19,6 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..rules import codes
 from .cell import MeshData
 from .errors import MeshProblem
 from .meshsize import MAX_PIECES, MAX_TRIANGLES, MAX_VERTICES, Declared, declared
@@ -81,7 +82,7 @@ def load_mesh(path: Path, shown: str, scale: tuple[float, float, float], solid: 
     try:
         data = confine.read_bytes(os.fspath(path), gate, max_bytes)
     except confine.Refused as exc:
-        if exc.code == "F002":
+        if exc.code == codes.FILE_TOO_LARGE:
             raise MeshProblem(f"mesh file {shown!r} is larger than the {max_bytes} bytes read") from None
         raise MeshProblem(f"mesh file {shown!r}: cannot read: {exc.reason}") from None
     kind = FILE_TYPES[path.suffix.lower()]

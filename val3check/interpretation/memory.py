@@ -16,7 +16,7 @@ from ..geometry.frames import Frame, Tool
 from ..geometry.points import Point
 from ..geometry.trsf import Trsf
 from ..loading.model import Application, Container, Data, Value, Workspace
-from ..loading.reader import parse_father
+from ..loading.attribute_text import parse_father
 from ..loading.types import DEFAULTS, arm_family, base_type, is_builtin
 from .memory_budget import UNKNOWN_BYTES, VALUE_BYTES, MemoryBudgetExceeded
 

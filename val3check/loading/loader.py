@@ -10,11 +10,15 @@ from ..confine import Refused, Roots, check, repository_root
 from ..diagnostics import Diagnostic
 from ..light_dataclass import dataclass, field
 from ..rules import codes
-from . import reader as rd
 from . import resolve as rs
 from .bindings import bound_names
+from .data_file import read_data_s6, read_data_s7
+from .declaration import Sink
+from .document_kind import check_root, classify, not_val3
 from .libraries import LibraryResolution
 from .model import Application, LibraryRef, Origin, Program, TypeRef, Workspace
+from .program_file import read_programs
+from .project_file import read_project
 from .xmlread import Node, read_xml
 
 # Folders never searched for applications (besides hidden ones such as .git).
@@ -44,7 +48,7 @@ class LoadOptions:
 _key = rs.path_key
 
 
-def _keep_first(app: Application, table: dict, item, kind: str, sink: rd.Sink) -> None:
+def _keep_first(app: Application, table: dict, item, kind: str, sink: Sink) -> None:
     """Add a program or global to the application; one declared twice is F011, the first wins."""
     first = table.get(item.name)
     if first is None:
@@ -109,7 +113,7 @@ class Loader(LibraryResolution):
         self.diags.extend(res.diagnostics)
         self.lines_read += res.lines
         self.bytes_read += res.size
-        if res.size and (_ext(path) in _VAL3_EXTS or (res.root is not None and rd.classify(res.root) is not None)):
+        if res.size and (_ext(path) in _VAL3_EXTS or (res.root is not None and classify(res.root) is not None)):
             # only files read as VAL 3 are ever quoted in a report (source excerpts)
             self.ws.quotable.add(os.path.abspath(path))
         return res.root
@@ -148,13 +152,13 @@ class Loader(LibraryResolution):
         root = self._read(pjx)
         layout = None
         if root is not None:
-            layout, d = rd.check_root(root, "project", pjx)
+            layout, d = check_root(root, "project", pjx)
             self.diags.extend(d)
         if root is None or layout is None:
             self.failed.add(pjx)
             return None
-        sink = rd.Sink(pjx, self.diags)
-        pf = rd.read_project(root, sink)
+        sink = Sink(pjx, self.diags)
+        pf = read_project(root, sink)
         stem = os.path.basename(pjx)[: -len(_ext(pjx)) or None]
         app = Application(
             name=stem or os.path.basename(os.path.dirname(pjx)),  # `.pjx`: a project without a name
@@ -223,7 +227,7 @@ class Loader(LibraryResolution):
             app.types[name] = TypeRef(name, path, Origin(pjx, node.line, node.col))
         return app
 
-    def _listed_file(self, rel: str, node: Node, folder: str, kind: str, sink: rd.Sink) -> str | None:
+    def _listed_file(self, rel: str, node: Node, folder: str, kind: str, sink: Sink) -> str | None:
         path = rs.find_path(folder, rel)
         if path is not None and os.path.isfile(path):
             top = self._real_folders.get(folder)
@@ -259,7 +263,7 @@ class Loader(LibraryResolution):
         root = self._read(path)
         if root is None:
             return None
-        layout, d = rd.check_root(root, kind, path)
+        layout, d = check_root(root, kind, path)
         self.diags.extend(d)
         return None if layout is None else (root, layout)
 
@@ -269,12 +273,12 @@ class Loader(LibraryResolution):
         if read is None:
             return False
         root, _ = read
-        sink = rd.Sink(path, self.diags)
-        for prog in rd.read_programs(root, sink):
+        sink = Sink(path, self.diags)
+        for prog in read_programs(root, sink):
             self._add_program(app, prog, sink)
         return True
 
-    def _add_program(self, app: Application, prog: Program, sink: rd.Sink) -> None:
+    def _add_program(self, app: Application, prog: Program, sink: Sink) -> None:
         _keep_first(app, app.programs, prog, "program", sink)
 
     def _read_data_file(self, app: Application, path: str) -> bool:
@@ -283,8 +287,8 @@ class Loader(LibraryResolution):
         if read is None:
             return False
         root, layout = read
-        sink = rd.Sink(path, self.diags)
-        datas = rd.read_data_s6(root, sink) if layout == "s6" else rd.read_data_s7(root, sink)
+        sink = Sink(path, self.diags)
+        datas = read_data_s6(root, sink) if layout == "s6" else read_data_s7(root, sink)
         for data in datas:
             _keep_first(app, app.data, data, "global", sink)
         return True
@@ -327,9 +331,9 @@ class Loader(LibraryResolution):
     def _project_listing(self, pjx: str, target: str) -> bool:
         """Does this project list `target` among its programs or data? (no diagnostics)"""
         res = read_xml(pjx, self.options.max_file_size, self.roots, self.options.overlay)
-        if res.root is None or rd.classify(res.root) is None or rd.classify(res.root)[0] != "project":
+        if res.root is None or classify(res.root) is None or classify(res.root)[0] != "project":
             return False
-        pf = rd.read_project(res.root, rd.Sink(pjx))
+        pf = read_project(res.root, Sink(pjx))
         folder = os.path.dirname(pjx)
         want = _key(target)
         for rel, _node in pf.programs + pf.data:
@@ -383,16 +387,9 @@ class Loader(LibraryResolution):
                 return
             # A file named on the command line that is not even XML (a README, a script...):
             # what it is not matters, not where its XML would break (issue 16 item 10).
-            self.diags.append(
-                Diagnostic(
-                    codes.UNEXPECTED_DOCUMENT,
-                    "not a VAL 3 file (it is not XML); expected a .pjx project, a .pgx program file, a .dtx data file"
-                    " or an application folder",
-                    path,
-                )
-            )
+            self.diags.append(not_val3(path, None))
             return
-        got = rd.classify(res.root)
+        got = classify(res.root)
         if got is not None and got[0] == "project":
             app = self.load_project(path)
             if app is not None:
@@ -400,16 +397,7 @@ class Loader(LibraryResolution):
         elif got is not None:
             self._add_member_file(path, _EXT_PROGRAM if got[0] == "programs" else _EXT_DATA)
         else:
-            self.diags.append(
-                Diagnostic(
-                    codes.UNEXPECTED_DOCUMENT,
-                    f"unexpected document: not a VAL 3 file (root <{res.root.tag}>); expected a .pjx"
-                    " project, a .pgx program file or an application folder",
-                    path,
-                    res.root.line,
-                    res.root.col,
-                )
-            )
+            self.diags.append(not_val3(path, res.root))
 
     def _add_member_file(self, path: str, ext: str) -> None:
         """A .pgx (or .dtx) given directly.

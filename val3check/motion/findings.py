@@ -13,17 +13,19 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
+from ..rules import codes
+
 # The motion rules (rules/R0xx.toml describe them).
-UNREACHABLE = "R010"  # no joint position reaches a target (or a point of the path)
-JOINT_LIMIT = "R011"  # a joint target or a path outside the software joint limits
-CONFIG_CHANGE = "R012"  # a configuration change imposed in movel/movec (10.1.4.2)
-SINGULAR_STOP = "R013"  # a Cartesian path through a singularity: it cannot be followed
-SINGULAR_SLOW = "R014"  # a Cartesian path near a singularity: the TCP slows far below its speed
-CIRCLE = "R015"  # movec: arc undefined or orientation ambiguous (10.1.4.1)
-NO_OP = "R016"  # movej to the position it starts from
-MDESC = "R017"  # invalid motion descriptor field (12.1: 100-106)
-NO_POWER = "R018"  # a task waits for a motion that arm power never allows
-FALLBACK = "R019"  # the time-optimal parameterisation failed: a slower safe profile was used
+UNREACHABLE = codes.TARGET_OUT_OF_REACH  # no joint position reaches a target (or a point of the path)
+JOINT_LIMIT = codes.JOINT_LIMIT  # a joint target or a path outside the software joint limits
+CONFIG_CHANGE = codes.CONFIGURATION_CHANGE  # a configuration change imposed in movel/movec (10.1.4.2)
+SINGULAR_STOP = codes.PATH_THROUGH_SINGULARITY  # a Cartesian path through a singularity: it cannot be followed
+SINGULAR_SLOW = codes.NEAR_SINGULARITY  # a Cartesian path near a singularity: the TCP slows far below its speed
+CIRCLE = codes.CIRCLE_UNDEFINED  # movec: arc undefined or orientation ambiguous (10.1.4.1)
+NO_OP = codes.MOVEJ_NO_OP  # movej to the position it starts from
+MDESC = codes.INVALID_MDESC  # invalid motion descriptor field (12.1: 100-106)
+NO_POWER = codes.MOTION_WITHOUT_POWER  # a task waits for a motion that arm power never allows
+FALLBACK = codes.SLOW_SAFE_PROFILE  # the time-optimal parameterisation failed: a slower safe profile was used
 
 SEVERITY = {
     UNREACHABLE: "error", JOINT_LIMIT: "error", CONFIG_CHANGE: "error", SINGULAR_STOP: "error",

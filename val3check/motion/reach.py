@@ -29,7 +29,7 @@ from ..geometry.frames import Frame, Tool
 from ..geometry.points import Point
 from ..geometry.trsf import Trsf
 from ..lengths import INCH_MM
-from ..loading.reader import parse_father
+from ..loading.attribute_text import parse_father
 from ..loading.types import arm_family, base_type
 from .checks import LIMIT_MARGIN, THRESHOLDS, UNITS, WHAT
 from .kin import ArmKin

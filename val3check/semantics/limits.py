@@ -20,13 +20,13 @@ from ..diagnostics import Diagnostic, Severity
 from ..language.target import Target, target_for
 from ..language.version_facts import over
 from ..loading.model import Application, Container, Data, Value, Workspace
-from ..loading.reader import HUGE, parse_father
+from ..loading.attribute_text import HUGE, parse_father
 from ..loading.types import base_type
 from ..parsing import ast as A
 from ..rules import codes
 
 # What a fatherId may look like: `name` or `name[index]` (2-D: "i j" or "i,j"; a collection: "key"):
-# loading.reader.parse_father.
+# loading.attribute_text.parse_father.
 
 
 def check_application(workspace: Workspace, app: Application, target: Target | None = None) -> list[Diagnostic]:

@@ -37,10 +37,11 @@ from typing import Any
 import numpy as np
 
 from ..diagnostics import Diagnostic
-from ..motion.findings import NO_OP, Finding, MotionError, Source
+from ..motion.findings import NO_OP, UNREACHABLE, Finding, MotionError, Source
 from ..motion.kin import wrap_near
 from ..motion.motion_records import time_leaving
 from ..robot.kinematics import trsf_matrix
+from ..rules import codes
 
 US = 1_000_000
 TICK = 0.004
@@ -280,7 +281,7 @@ class Alteration:
                 q.record(move, now)
             except MotionError as exc:  # computed only now (11.2.3): the motion is in error, as a move
                 # the arm cannot execute (the next motion instruction: 150 until resetMotion)
-                f = exc.finding or Finding("R010", f"{move.kind}: {exc.message}", move.source, now, error=exc.code)
+                f = exc.finding or Finding(UNREACHABLE, f"{move.kind}: {exc.message}", move.source, now, error=exc.code)
                 q.findings.append(f)
                 q.failure = f
                 break
@@ -315,7 +316,7 @@ class Alteration:
         src = command.request.source
         self.carrier_said = True
         self.report(Diagnostic(
-            "R052", f"{command.kind}: its target is the nominal end of the alterable trajectory, where the arm is not: on "
+            codes.OPTION_EFFECT_NOT_SIMULATED, f"{command.kind}: its target is the nominal end of the alterable trajectory, where the arm is not: on "
             f"the controller it is computed from the altered position (11.2.3) and moves the arm back by the alteration "
             f"(up to {float(np.max(np.abs(delta))):.3g}° or mm on an axis); the simulation plans the nominal path, which "
             "does not move here: the offset vanishes in one step, a jump the controller does not make (said once)", src.path, src.line, src.col,
@@ -483,9 +484,9 @@ class Alteration:
         src = self.program[-1][2] if self.program else self.mode.source
         message = f"alter: {why} at {k * TICK:.3f} s: the arm stops at once on its last valid position, alter mode is " \
                   "in error until resetMotion() (11.2.4)"
-        q.failure = Finding("R055", message, src, k * TICK, error=150)
+        q.failure = Finding(codes.ALTERATION_INVALID, message, src, k * TICK, error=150)
         if self.report is not None:
-            self.report(Diagnostic("R055", message, src.path, src.line, src.col, time_us=k * TICK_US, task=src.task,
+            self.report(Diagnostic(codes.ALTERATION_INVALID, message, src.path, src.line, src.col, time_us=k * TICK_US, task=src.task,
                                    program=src.program))
 
     def _stop_condition(self, q: Any, t: float) -> None:

@@ -31,6 +31,7 @@ import numpy as np
 
 from ..interpretation.chapters.ch03_simple_types import linked
 from ..interpretation.chapters.ch09_geometry import arm_of, jd, millimeter_unit
+from ..rules import codes
 from .runtime_notes import note
 
 US = 1_000_000
@@ -106,7 +107,7 @@ def I_setlatch(task, unit, io) -> None:
     arm_of(task, "setLatch")
     io = linked(io, "dio")
     if not FAST_INPUT.search(io.link):
-        note(task, "R051", f"setLatch on {io.link!r}: only the CS8C's fast inputs (fIn0, fIn1) capture the arm's "
+        note(task, codes.LATCH_NOT_FAST_INPUT, f"setLatch on {io.link!r}: only the CS8C's fast inputs (fIn0, fIn1) capture the arm's "
                            "position (9.2.3); if this input is not one of them the controller stops the task with "
                            "error 70 here. The simulation captures on it all the same", once=f"latch:{io.link}")
     latch_of(task).arm_on(io, task.machine.clock.time_of(task))

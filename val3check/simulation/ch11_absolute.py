@@ -25,6 +25,7 @@ from ..language.runtime_errors import Val3RuntimeError
 from ..robot import dh as _dh
 from ..robot.absolute import with_dh
 from ..robot.errors import IKUnsupported
+from ..rules import codes
 from .ch11_licences import require
 from .runtime_notes import note
 
@@ -102,7 +103,7 @@ def I_setdh(task, unit, theta, d, a, b, alpha, beta):
     base = getattr(arm, "base_model", None) or arm.model
     model = base if new == nominal else with_dh(base, new)
     arm.set_geometry(model, clock.time_of(task) / US)
-    note(task, "R052", "setDH: the new geometry is used for the rest of the run; the arm's configuration file, where "
+    note(task, codes.OPTION_EFFECT_NOT_SIMULATED, "setDH: the new geometry is used for the rest of the run; the arm's configuration file, where "
                        "the controller also writes it for its next start (11.4.2), is not simulated", once="setDH")
     return True
 

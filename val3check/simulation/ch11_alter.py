@@ -18,6 +18,7 @@ from ..geometry.frames import Tool
 from ..interpretation.chapters.ch09_geometry import millimeter_unit
 from ..language.runtime_errors import Val3RuntimeError
 from ..lengths import INCH_MM
+from ..motion.findings import MDESC
 from ..motion.mdesc import MDesc
 from .alteration import AlterMode, trsf4
 from .ch10_motion import I_movec, I_movej, I_movel, _arm, _matrix, _source
@@ -73,7 +74,7 @@ def I_alterbegin(task, unit, reference, mdesc: dict) -> float:
     md = MDesc.from_fields(mdesc, s)
     bad = md.check()
     if bad is not None:
-        raise E(bad[0], f"alterBegin: {bad[1]}", rule="R017")
+        raise E(bad[0], f"alterBegin: {bad[1]}", rule=MDESC)
     ref = _matrix(geo_frames.root_pose(reference))
     ref[:3, 3] *= s
     mode = AlterMode(isinstance(reference, Tool), ref, md.vel, md.tvel, md.rvel, md.decel, _source(task))

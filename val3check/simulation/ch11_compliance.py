@@ -29,6 +29,7 @@ from ..interpretation.chapters.ch09_geometry import jt
 from ..language.runtime_errors import Val3RuntimeError
 from ..lengths import INCH_MM
 from ..motion.commands import Target
+from ..rules import codes
 from .ch10_motion import _arm, _check_family, _point, _record, _tool
 from .ch11_licences import require
 from .compliance import CompliantMove, meets_surface, pose_between
@@ -43,13 +44,13 @@ def _checks(task, arm, name: str, force: float) -> None:
     """The limitations of 11.1.4 the instruction enforces, before it records anything."""
     require(task, "compliance", name)
     if not isinstance(force, (int, float)) or not math.isfinite(force) or abs(force) > MAX_FORCE:
-        raise E(70, f"{name}: nForce = {force:g} is beyond ±{MAX_FORCE:g} % of the nominal load (11.1.4)", rule="R053")
+        raise E(70, f"{name}: nForce = {force:g} is beyond ±{MAX_FORCE:g} % of the nominal load (11.1.4)", rule=codes.COMPLIANT_MOVE_LIMITATION)
     q = arm.queue
     if q is not None and q.open is not None:
         prev = q.open.request
         raise E(154, f"{name}: the previous motion ({prev.kind}, line {prev.source.line}) asks for a blend "
                      f"(mdesc.blend = {prev.mdesc.blend}): a compliant move starts from rest (11.1.4); use blend = "
-                     "off or waitEndMove() before it", rule="R053")
+                     "off or waitEndMove() before it", rule=codes.COMPLIANT_MOVE_LIMITATION)
 
 
 def _start(arm) -> np.ndarray:
@@ -67,7 +68,7 @@ def _compliant(task, unit, kind: str, target, tool, mdesc: dict, force: float):
     geo_frames.check_defined(tool)
     _check_family(arm, target, name)
     _checks(task, arm, name, force)
-    note(task, "R052", f"{name}: the controller's memory for compliant moves is not known: the error for a compliant "
+    note(task, codes.OPTION_EFFECT_NOT_SIMULATED, f"{name}: the controller's memory for compliant moves is not known: the error for a compliant "
                        "move too long for it (11.1.4) is never raised", once="compliant-memory")
     mm = getattr(unit.model, "millimeter_unit", True)
     s = 1.0 if mm else INCH_MM

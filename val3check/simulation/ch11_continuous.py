@@ -31,6 +31,7 @@ import numpy as np
 
 from ..interpretation.chapters.ch09_geometry import arm_of, check_axes, jd, jt, millimeter_unit
 from ..interpretation.waiting import DELAY, WAIT
+from ..rules import codes
 from .ch11_licences import require
 from .runtime_notes import note
 
@@ -102,7 +103,7 @@ def I_resetturn(task, unit, reference: dict):
         delta = np.zeros(arm.axes)
         delta[k] = 360.0 * turns
         arm.layers.turns.add(now / US, delta)
-    note(task, "R052", "resetTurn: the continuous axis's value changes by whole turns as the manual says; the arm's "
+    note(task, codes.OPTION_EFFECT_NOT_SIMULATED, "resetTurn: the continuous axis's value changes by whole turns as the manual says; the arm's "
                        "calibration data the controller writes for its next start (11.5.2) are not simulated",
          once="resetTurn")
     return jd(arm.joints_at(now, mm))

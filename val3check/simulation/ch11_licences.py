@@ -18,6 +18,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from ..language.runtime_errors import Val3RuntimeError
+from ..rules import codes
 from .runtime_notes import note
 
 # The runtime options of chapter 11 (the catalogue's `option` names) and what needs them.
@@ -60,7 +61,7 @@ def licensed(task, option: str, what: str) -> bool:
     said = lic.installed(option)
     if said is None:
         where = "has no [options] table" if not lic.given else f"does not say `{option}` in [options]"
-        note(task, "R050", f"{what}: the scenario {where}: the {option} option ({OPTIONS[option]}) is taken as "
+        note(task, codes.OPTION_LICENCE_ASSUMED, f"{what}: the scenario {where}: the {option} option ({OPTIONS[option]}) is taken as "
                            f"licensed (docs/scenario.md, [options])", once=f"option:{option}")
         return True
     return said
@@ -80,7 +81,7 @@ def I_getlicence(task, unit, name: str, password: str) -> str:
         return "oemLicenceDisabled"
     if lic.oem is None:
         runtime = "" if lic.installed("oemLicence") else "the oemLicence option is taken as installed and "
-        note(task, "R050", f"getLicence: the scenario gives no OEM licences ([options] oem): {runtime}every OEM "
+        note(task, codes.OPTION_LICENCE_ASSUMED, f"getLicence: the scenario gives no OEM licences ([options] oem): {runtime}every OEM "
                            "licence is taken as \"enabled\" (docs/scenario.md)", once="oem")
         return "enabled"
     state, secret = lic.oem.get(name, ("", None))

@@ -20,6 +20,7 @@ from ..motion.cycle import cycle_stats
 from ..motion.motion_records import busy_time, motion_records
 from ..motion.retime import retimed
 from ..robot.models import ASSUMED_ACCELERATION_RANGE
+from ..rules import codes
 from .arm_layers import ActualTrajectory
 from .arm_record import AccelerationRange, ArmRun, ArmScene, CycleEntry, FramePose, MotionEntry, MotionLimits, ToolUse
 from .moving_arm import MovingArm
@@ -35,17 +36,17 @@ def collect(machine: Machine) -> SimResult:
         message = reason[len("budget:"):]
         reason = "budget"
     diags = list(machine.diags)
-    if reason == "deadlock" and any(d.code == "R009" for d in diags) and not any(d.code == "R003" for d in diags):
+    if reason == "deadlock" and any(d.code == codes.INPUT_NEVER_DRIVEN for d in diags) and not any(d.code == codes.DEADLOCK for d in diags):
         # no task waits only for variables: the cell, not the program, would go on (R009)
         message = ("every task waits for the cell (inputs, serial or socket peers, keys, the controller's state), "
                    "which nothing in the run plays (a scenario can: docs/scenario.md)")
     if reason == "duration":
         running = [t.name for t in machine.scheduler.history if t.final is not None]
-        diags.append(Diagnostic("R007", f"run stopped at --duration {machine.end_time / 1e6:g} s; tasks still alive: "
+        diags.append(Diagnostic(codes.DURATION_REACHED, f"run stopped at --duration {machine.end_time / 1e6:g} s; tasks still alive: "
                                 + (", ".join(running) or "none"), machine.app.path, 0, 0,
                                 time_us=machine.end_time, task="", program=""))
     elif reason in ("wall-clock", "steps", "budget"):
-        diags.append(Diagnostic("R006", f"run cut short: {message}", machine.app.path, 0, 0, time_us=machine.end_time,
+        diags.append(Diagnostic(codes.BUDGET_EXCEEDED, f"run cut short: {message}", machine.app.path, 0, 0, time_us=machine.end_time,
                                 task="", program=""))
     tasks = []
     for t in machine.scheduler.history:

@@ -33,6 +33,7 @@ from ..collision.results import Contact, MotionReport, PartDrop
 from ..diagnostics import Diagnostic
 from ..geometry import frames as geo_frames
 from ..interpretation.clock import TICK_US
+from ..rules import codes
 from .budget import WALL
 from .cell_timeline import TimelineLog
 
@@ -105,7 +106,7 @@ def load_cell(path: str, app, found: bool = False, budget=None,
         return read_cell(path, app_dir=str(Path(app.path).parent), app_unit=unit, found=found, budget=budget,
                          out_of_time=out_of_time), []
     except CellError as exc:
-        return None, [Diagnostic("R030", f"cell file: {msg}", p, line, col, time_us=0, task="", program="")
+        return None, [Diagnostic(codes.CELL_FILE_INVALID, f"cell file: {msg}", p, line, col, time_us=0, task="", program="")
                       for p, line, col, msg in exc.problems]
 
 
@@ -287,7 +288,7 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
     for p in checker.problems:
         w = p.where
         path, line, col = (w.path, w.line, w.column) if w is not None else (cell_path or "", 0, 0)
-        diags.append(Diagnostic("R036", p.message, path, line, col, time_us=int(round(p.time * US)), task="",
+        diags.append(Diagnostic(codes.CELL_FRAME_WITHOUT_VALUE, p.message, path, line, col, time_us=int(round(p.time * US)), task="",
                                 program=""))
     run.checks = checker.measurements
     if log is not None:
@@ -342,7 +343,7 @@ def _path_between_samples(traj: Any):
 
 
 def _not_checked(message: str, end_s: float, path: str) -> Diagnostic:
-    return Diagnostic("R037", message, path, 0, 0, time_us=int(round(end_s * US)), task="", program="")
+    return Diagnostic(codes.COLLISIONS_NOT_CHECKED, message, path, 0, 0, time_us=int(round(end_s * US)), task="", program="")
 
 
 def _events(tool_events, cell: Cell | None, io_log, link_names: dict) -> list[tuple[int, int, Any]]:
@@ -426,7 +427,7 @@ def _gripper(checker: CollisionChecker, e: Any, names: dict[str, str], traj: Any
     path, line, col, program = e.position
     for d in drops:
         depth = f", {d.depth_mm:.1f} mm deep" if d.depth_mm is not None else ", inside it"
-        out.append(Diagnostic("R035", f"{e.action}({e.tool}) leaves {d.part} in {d.obstacle}{depth}, at "
+        out.append(Diagnostic(codes.PART_LEFT_IN_COLLISION, f"{e.action}({e.tool}) leaves {d.part} in {d.obstacle}{depth}, at "
                               f"{_pt(d.point)}", path, line, col, time_us=e.time_us, task=e.task, program=program))
     return out
 
@@ -460,18 +461,18 @@ def _motion_findings(r: MotionReport, rec: Any, ongoing: set[tuple[str, str]], m
 
     s = r.starts_in_collision
     if s is not None and (s.body_a, s.body_b) not in ongoing:
-        code = "R034" if s.kind == "self" else "R032"
+        code = codes.SELF_COLLISION if s.kind == "self" else codes.MOTION_STARTS_IN_COLLISION
         diag(code, f"{rec.kind} starts in collision: {_contact_text(s)}", s.time)
     for c in r.contacts:
         if s is not None and (c.body_a, c.body_b) == (s.body_a, s.body_b):
             continue
         if c.kind == "self":
-            diag("R034", f"{rec.kind}: self-collision: {_contact_text(c)} (the arm's solids are envelopes: "
+            diag(codes.SELF_COLLISION, f"{rec.kind}: self-collision: {_contact_text(c)} (the arm's solids are envelopes: "
                  "check on the arm's own geometry)", c.time)
         else:
-            diag("R031", f"{rec.kind}: {_contact_text(c)}", c.time)
+            diag(codes.COLLISION_WITH_CELL, f"{rec.kind}: {_contact_text(c)}", c.time)
     if r.too_close and r.min_clearance is not None:
         m = r.min_clearance
-        diag("R033", f"{rec.kind} comes {m.mm:.1f} mm from a collision (margin {margin:g} mm): {m.body_a} "
+        diag(codes.NEAR_MISS, f"{rec.kind} comes {m.mm:.1f} mm from a collision (margin {margin:g} mm): {m.body_a} "
              f"and {m.body_b} at {m.time:.3f} s", m.time)
     return out

@@ -40,6 +40,7 @@ import numpy as np
 
 from ..diagnostics import Diagnostic
 from ..motion.motion_records import time_leaving
+from ..rules import codes
 
 US = 1_000_000
 EPS = 1e-9
@@ -228,7 +229,7 @@ class Compliance:
         src = move.command.request.source
         x, y, z = (float(v) for v in move.contact[2])
         self.report(Diagnostic(
-            "R054", f"{move.command.request.kind}f: the tool meets the surface '{move.contact[1]}' at "
+            codes.COMPLIANT_MOVE_ON_SURFACE, f"{move.command.request.kind}f: the tool meets the surface '{move.contact[1]}' at "
             f"({x:.1f}, {y:.1f}, {z:.1f}) mm and presses on it with {net:g} % of the arm's nominal load; the move "
             "stays there, short of its target, until the force changes or resetMotion()", src.path, src.line,
             src.col, time_us=math.ceil(t * US - 1e-6), task=src.task, program=src.program))

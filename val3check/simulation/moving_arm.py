@@ -48,6 +48,7 @@ from ..motion.findings import MDESC, Finding, MotionError, Source
 from ..motion.mdesc import MDesc
 from ..motion.motion_records import time_leaving
 from ..motion.queue import MotionQueue, QueueFull
+from ..rules import codes
 from .alteration import Alteration
 from .arm_layers import Layers, QueueView
 from .compliance import Compliance
@@ -215,18 +216,18 @@ class MovingArm(ModelArm):
         q = self._queue
         if q is not None and self.alteration.deferred:
             move = self.alteration.deferred[0][0]
-            return "R003", (f"the {move.kind} of line {move.source.line}, after an alterable trajectory, waits for "
+            return codes.DEADLOCK, (f"the {move.kind} of line {move.source.line}, after an alterable trajectory, waits for "
                             "alterEnd() (11.2.3: it can be computed only after alterEnd), and no task calls it")
         if q is None or (not q.pending and q.open is None):
             return None
         if self.alteration.state == "error":
-            return "R003", (f"the arm stopped on an invalid alteration ({q.failure.source.label()}, R055): the motion "
+            return codes.DEADLOCK, (f"the arm stopped on an invalid alteration ({q.failure.source.label()}, R055): the motion "
                             "goes on only after resetMotion() (11.2.4)")
         held = self.compliance.waiting_reason(q, self.layers, self.compliance.t_eval)
         if held is not None:
-            return "R003", held
+            return codes.DEADLOCK, held
         if q.monitor <= 0.0 and q.powered and not q.held:
-            return "R003", ("the monitor speed is 0 %: the arm holds until setMonitorSpeed() or the scenario "
+            return codes.DEADLOCK, ("the monitor speed is 0 %: the arm holds until setMonitorSpeed() or the scenario "
                             "([controller] changes = [{ at = ..., monitor_speed = ... }]) raises it")
         if not q.powered:
             ctl = self.controller
@@ -237,9 +238,9 @@ class MovingArm(ModelArm):
                 how = ("nothing powers it: the program can call enablePower() (remote mode), or the scenario "
                        "can start it powered ([controller] powered = true, the default) or power it later "
                        "([controller] changes = [{ at = ..., powered = true }])")
-            return "R018", f"the arm is not powered, {how}"
+            return codes.MOTION_WITHOUT_POWER, f"the arm is not powered, {how}"
         if q.held:
-            return "R003", "stopMove() holds the motion and no task calls restartMove() or resetMotion()"
+            return codes.DEADLOCK, "stopMove() holds the motion and no task calls restartMove() or resetMotion()"
         return None
 
     # ---- the Subsystem -----------------------------------------------------------------------------

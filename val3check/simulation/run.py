@@ -30,6 +30,7 @@ from ..interpretation.registry import Registry
 from ..interpretation.scheduler import EndRun
 from ..lengths import INCH_MM
 from ..loading.model import Application, Workspace
+from ..rules import codes
 from . import ch09_latch, ch10_motion, ch11_absolute, ch11_alter, ch11_compliance, ch11_continuous, ch11_licences
 from .budget import RUN_SHARE, RunBudget
 from .collect import collect
@@ -195,7 +196,7 @@ def _collisions(result: SimResult, app: Application, options: SimOptions, checks
             from ..diagnostics import Diagnostic
 
             result.diagnostics.append(Diagnostic(
-                "R037", f"the cell {options.cell} is not checked: the run has no arm model (--robot NAME)",
+                codes.COLLISIONS_NOT_CHECKED, f"the cell {options.cell} is not checked: the run has no arm model (--robot NAME)",
                 app.path, 0, 0, time_us=result.sim_time_us, task="", program=""))
         return result
     from . import collision_run

@@ -7,7 +7,8 @@
 
 `render(model) -> str` checks the model (`check_model`, ModelError with the key at fault) and
 returns the page (a scripted pick-and-place model for the tests is `tests/synthetic_run.py`);
-`model_from_sim_report` builds a model from the JSON report of a run. The arm's chain of the 3D view is read by
+`model_from_sim_report` builds a model from the JSON report of a run and the arm and cell it names, rebuilt
+by `simulation.report_scene.ReportScene` (`val3check html --sim-report`). The arm's chain of the 3D view is read by
 `val3check.robot.chain.arm_chain` (a run publishes it in its record of the scene). The names are
 imported when first used, so that the page of a run (from_run.py) loads nothing else.
 """

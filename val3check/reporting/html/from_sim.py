@@ -1,6 +1,6 @@
 """A report model from the sim's JSON report (docs/sim-report.md, versions 1 and 2) and the arm model.
 
-    model = model_from_sim_report(json.load(open("run.json")), fail_on="error")
+    model = model_from_sim_report(json.load(open("run.json")), ReportScene(), fail_on="error")
 
 What the JSON report holds goes in as it is: how the run ended, the diagnostics (with their
 source excerpt, read from the application's folder and the given roots only), the I/O log, the
@@ -8,8 +8,11 @@ transcript and the final user page; and from version 2's `motion` section, the m
 (with each motion's closest approach from the `collision` section), the cycles and the cycle time,
 the joint trajectory on the 4 ms clock (the arm stands where the last segment left it between
 segments) with the TCP speed of the tool in use, the arm moving or idle, and the 3D view that
-plays it: the arm model of the run (`robot.name`, a catalogue arm, or `arm_urdf`), the tool most
-motions use, and the cell file's obstacles when the file is inside the roots.
+plays it: the arm model of the run (`robot.name`, a catalogue arm, or the URDF given), the tool
+most motions use, and the cell file's obstacles when the file is inside the roots. The report names
+the arm and the cell without their geometry: `scene` rebuilds them (a
+`simulation.report_scene.ReportScene`), so that this module imports nothing of robot/, geometry/ or
+collision/.
 
 What the JSON report does not record is absent and said so in `limitations` (shown at the top of
 the page): the tasks' states over time, the motion descriptors' speeds, and the application's
@@ -27,14 +30,15 @@ from .from_run import TICK_S, _obstacle_of, _r, cycles_model, sample_period, sce
 from .model import VERSION, ModelError
 
 
-def model_from_sim_report(report: dict[str, Any], *, fail_on: str = "error", arm_urdf: str | None = None,
+def model_from_sim_report(report: dict[str, Any], scene: Any, *, fail_on: str = "error",
                           roots: list[str] | None = None, title: str | None = None) -> dict:
     """The report model of a run described by the sim's JSON report (a dict, version 1 or 2).
 
-    `roots`: folders whose files may be quoted in the excerpts or read as the run's cell (default:
-    the folder of the application's project file). `arm_urdf`: the arm's URDF when `robot.name` is
-    not a catalogue arm. Raises ModelError for a report that is not a version 1 or 2 sim report,
-    or whose motion section does not hold together."""
+    `scene`: what rebuilds the arm and the cell the report names (simulation.report_scene.ReportScene:
+    `arm(name)`, raising robot.RobotError when there is no such arm, `cell(path, roots)`,
+    `trsf_matrix(trsf)`). `roots`: folders whose files may be quoted in the excerpts or read as the
+    run's cell (default: the folder of the application's project file). Raises ModelError for a
+    report that is not a version 1 or 2 sim report, or whose motion section does not hold together."""
     if not isinstance(report, dict) or report.get("version") not in (1, 2) or "end" not in report \
             or "summary" not in report:
         raise ModelError("not a version 1 or 2 report of `val3check sim --report json` (docs/sim-report.md)")
@@ -56,16 +60,14 @@ def model_from_sim_report(report: dict[str, Any], *, fail_on: str = "error", arm
                     "(`val3check sim --report html` has it).")]
     robot = report.get("robot")
     motion = report.get("motion")
-    scene, motions, cycles, cycle_time, trajectory, arm_timeline = None, [], [], None, None, []
+    view, motions, cycles, cycle_time, trajectory, arm_timeline = None, [], [], None, None, []
     if robot:
-        from ...robot import load_robot
-
-        model = load_robot(arm_urdf or robot["name"])
+        arm = scene.arm(robot["name"])
         if motion:
             try:
                 motions = _motions(motion, report.get("collision"), end)
                 cycles, cycle_time = cycles_model(motion.get("cycles", []), end)
-                trajectory = _trajectory(motion, robot, model, end, limitations)
+                trajectory = _trajectory(motion, robot, arm, scene, end, limitations)
                 arm_timeline = _arm_timeline(motion, end)
             except (KeyError, TypeError, ValueError, IndexError) as exc:
                 raise ModelError(f"the `motion` section does not hold together ({type(exc).__name__}: {exc})") \
@@ -73,7 +75,7 @@ def model_from_sim_report(report: dict[str, Any], *, fail_on: str = "error", arm
             if any(m.get("kind") != "connection" for m in motion.get("motions", [])):
                 limitations.append("The JSON sim report does not record the motion descriptors: no vel or tvel "
                                    "in the motion table, no dashed speed limits on the plots.")
-        scene = _scene(robot, model, motion, report.get("collision"), roots, arm_urdf, limitations)
+        view = _scene(robot, arm, scene, motion, report.get("collision"), roots, limitations)
     elif report.get("version") == 2 and motion is None:
         limitations.append("No arm model (--robot): no motion, trajectory or 3D view.")
     return {
@@ -101,7 +103,7 @@ def model_from_sim_report(report: dict[str, Any], *, fail_on: str = "error", arm
         "io": list(report.get("io_log", [])),
         "transcript": list(report.get("transcript", [])),
         "screen": report.get("screen"),
-        "scene": scene,
+        "scene": view,
     }
 
 
@@ -154,13 +156,9 @@ def _joints_on_the_clock(motion: dict, robot: dict, end: float):
     return q, v
 
 
-def _trajectory(motion: dict, robot: dict, model: Any, end: float, limits: list[str]) -> dict | None:
+def _trajectory(motion: dict, robot: dict, arm: Any, scene: Any, end: float, limits: list[str]) -> dict | None:
     """The joints and the TCP speed over the run, every 4 ms (or a multiple of it, as from_run)."""
     import numpy as np
-
-    from ...geometry.rotation import matrix
-    from ...simulation.arm_record import tcp_speed
-    from ...simulation.collect import ModelKinematics
 
     if not motion["trajectory"].get("segments"):
         return None
@@ -172,32 +170,20 @@ def _trajectory(motion: dict, robot: dict, model: Any, end: float, limits: list[
                       f"(a multiple of the controller's 4 ms), at most {len(q[::step])} samples.")
     q, v = q[::step], v[::step]
     times = np.arange(len(q)) * dt
-    uses = [(mo["start"], _trsf_matrix(mo.get("tool_in_flange"), matrix)) for mo in motion.get("motions", [])
+    uses = [(mo["start"], scene.trsf_matrix(mo.get("tool_in_flange"))) for mo in motion.get("motions", [])
             if mo.get("start") is not None and mo.get("kind") != "connection"]
-    speed = tcp_speed(ModelKinematics(model), model.flange_frame, uses, times, q, v)
+    speed = arm.tcp_speed(uses, times, q, v)
     units = motion["trajectory"].get("units") or ["deg"] * q.shape[1]
     lims = robot.get("joint_limits") or [[None, None]] * q.shape[1]
     speeds = robot.get("nominal_speeds") or [None] * q.shape[1]
     return {
         "joints": [{"name": n, "unit": u, "min": lo, "max": hi, "speed": s}
-                   for n, u, (lo, hi), s in zip(model.joint_names, units, lims, speeds)],
+                   for n, u, (lo, hi), s in zip(arm.joint_names, units, lims, speeds)],
         "times": [_r(t) for t in times.tolist()],
         "positions": (np.round(q.T, 6) + 0.0).tolist(),
         "velocities": (np.round(v.T, 4) + 0.0).tolist(),
         "tcp_speed": (np.round(speed, 3) + 0.0).tolist(),
     }
-
-
-def _trsf_matrix(trsf, matrix) -> Any:
-    """A VAL 3 trsf (x, y, z mm, rx, ry, rz degrees, 9.3.2) as a 4x4 matrix; None stays None."""
-    import numpy as np
-
-    if trsf is None:
-        return None
-    M = np.eye(4)
-    M[:3, :3] = np.asarray(matrix(*trsf[3:6]), dtype=float).reshape(3, 3)  # row-major
-    M[:3, 3] = trsf[:3]
-    return M
 
 
 def _arm_timeline(motion: dict, end: float) -> list[dict]:
@@ -226,9 +212,9 @@ def _arm_timeline(motion: dict, end: float) -> list[dict]:
     return segs
 
 
-def _cell(collision: dict | None, roots: list[str], limits: list[str]) -> Any:
-    """The run's cell (collision.cell.Cell) read again from its file, when the report names one
-    inside the roots; None otherwise (and `limits` says why)."""
+def _cell(collision: dict | None, roots: list[str], scene: Any, limits: list[str]) -> Any:
+    """The run's cell (a collision.cell.Cell) read again from its file by `scene`, when the report
+    names one inside the roots; None otherwise (and `limits` says why)."""
     cell = (collision or {}).get("cell") or {}
     path = cell.get("path")
     if not path or not cell.get("usable"):
@@ -237,28 +223,20 @@ def _cell(collision: dict | None, roots: list[str], limits: list[str]) -> Any:
     if not any(p.is_relative_to(Path(r).resolve()) for r in roots):
         limits.append(f"The cell file {path} is outside the application's folder and the given roots: not drawn.")
         return None
-    from ...collision import CellError, read_cell
-
-    try:
-        return read_cell(str(p), roots=list(roots), found=True)  # meshes: beside it or in the roots
-    except (CellError, OSError) as exc:
-        limits.append(f"The cell file {path} cannot be read again: {exc}; the 3D view has no obstacles.")
-        return None
+    cell, problem = scene.cell(str(p), roots)  # meshes: beside it or in the roots
+    if problem is not None:
+        limits.append(f"The cell file {path} cannot be read again: {problem}; the 3D view has no obstacles.")
+    return cell
 
 
-def _scene(robot: dict, model: Any, motion: dict | None, collision: dict | None, roots: list[str],
-           arm_urdf: str | None, limits: list[str]) -> dict:
+def _scene(robot: dict, arm: Any, scene: Any, motion: dict | None, collision: dict | None, roots: list[str],
+           limits: list[str]) -> dict:
     """The 3D view: the arm at its initial joints, the tool most motions use, the cell's obstacles."""
-    from ...geometry.rotation import matrix
-    from ...robot.chain import arm_chain
-
-    chain = arm_chain(model.source, world_frame=model.world_frame, flange_frame=model.flange_frame,
-                      joint_names=model.joint_names, name=model.name,
-                      source=arm_urdf or f"robots/{Path(model.source).name}")
-    uses = [(mo["tool"], _trsf_matrix(mo["tool_in_flange"], matrix)) for mo in (motion or {}).get("motions", [])
+    chain = arm.chain()
+    uses = [(mo["tool"], scene.trsf_matrix(mo["tool_in_flange"])) for mo in (motion or {}).get("motions", [])
             if mo.get("kind") != "connection" and mo.get("tool_in_flange") is not None and mo.get("tool")]
-    joints = robot.get("initial_joints") or [0.0] * len(model.joint_names)
-    cell = _cell(collision, roots, limits) if motion else None
+    joints = robot.get("initial_joints") or [0.0] * len(arm.joint_names)
+    cell = _cell(collision, roots, scene, limits) if motion else None
     if motion is None:
         limits.append(f"The JSON report has no motion: the 3D view shows {robot['name']} at its initial joint "
                       "position.")

@@ -1,6 +1,6 @@
-"""`python -m val3check.reporting.html MODEL.json -o report.html`, or `--sim-report RUN.json`.
-
-For developers and integrators: renders a report model (docs/html-report.md) saved as JSON."""
+"""`val3check html MODEL.json -o report.html`, or `--sim-report RUN.json`: the HTML report
+(docs/html-report.md) of a report model saved as JSON, or of the JSON report of a run, whose arm
+and cell are rebuilt here (simulation/report_scene.py: the page writer reads plain data)."""
 
 from __future__ import annotations
 
@@ -11,9 +11,8 @@ import sys
 MAX_MODEL_BYTES = 512 * 1024 * 1024  # a report model of a long run with its trajectories
 
 
-def main(argv: list[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(prog="python -m val3check.reporting.html",
-                                 description="Render a report model (docs/html-report.md) as a self-contained HTML page.")
+def add_arguments(ap: argparse.ArgumentParser) -> None:
+    """The command's arguments."""
     src = ap.add_mutually_exclusive_group(required=True)
     src.add_argument("model", nargs="?", help="the report model, a JSON file")
     src.add_argument("--sim-report", metavar="RUN.json", help="the JSON report of `val3check sim --report json`")
@@ -23,13 +22,15 @@ def main(argv: list[str] | None = None) -> int:
                     help="--sim-report: a folder whose files the excerpts may quote (default: the application's)")
     ap.add_argument("--model-out", metavar="FILE", help="also write the model as JSON")
     ap.add_argument("-o", "--output", required=True, metavar="FILE", help="the HTML file to write")
-    args = ap.parse_args(argv)
 
-    from . import ModelError, render
+
+def html(args: argparse.Namespace) -> int:
+    """Render the page; 2 (a message, never a traceback) for a file that is not a model or report."""
+    from ..reporting.html import ModelError, render
 
     source = args.model or args.sim_report
     try:
-        from ...confine import Refused, Roots, read_bytes
+        from ..confine import Refused, Roots, read_bytes
 
         try:
             model = json.loads(read_bytes(source, Roots.user_given(), MAX_MODEL_BYTES).decode("utf-8"))
@@ -43,11 +44,12 @@ def main(argv: list[str] | None = None) -> int:
             print(f"{source}: not JSON: {str(exc)[:200]}", file=sys.stderr)
             return 2
         if args.sim_report:
-            from ...robot import RobotError
-            from .from_sim import model_from_sim_report
+            from ..reporting.html.from_sim import model_from_sim_report
+            from ..robot import RobotError
+            from ..simulation.report_scene import ReportScene
 
             try:
-                model = model_from_sim_report(model, fail_on=args.fail_on, roots=args.root)
+                model = model_from_sim_report(model, ReportScene(), fail_on=args.fail_on, roots=args.root)
             except RobotError as exc:
                 print(f"{source}: {exc}", file=sys.stderr)
                 return 2
@@ -61,7 +63,7 @@ def main(argv: list[str] | None = None) -> int:
     except (KeyError, IndexError, TypeError, AttributeError, ValueError) as exc:
         # check_model covers what the page needs, not every type of every key a hand-written
         # file may get wrong: such a file is refused, said so, never a traceback
-        from ...excerpt import excerpt
+        from ..excerpt import excerpt
 
         print(f"{source}: not a report model the page can show ({type(exc).__name__}: {excerpt(str(exc), 120)}); "
               "see docs/html-report.md and docs/html-report.schema.json", file=sys.stderr)
@@ -73,7 +75,3 @@ def main(argv: list[str] | None = None) -> int:
     with open(args.output, "w", encoding="utf-8", newline="\n") as fh:
         fh.write(page)
     return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())
