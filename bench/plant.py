@@ -45,7 +45,8 @@ from val3check.language import s8
 from val3check.language.instructions import lookup as lookup_instruction
 from val3check.loading.model import Application, Container, Program, Workspace
 from val3check.parsing import ast as A
-from val3check.parsing.parser import KEYWORDS, parse_code
+from val3check.parsing.parser import parse_code
+from val3check.parsing.tokens import KEYWORDS
 from val3check.positions import SourceMap
 from val3check.semantics import symbols as S
 from val3check.semantics import vtypes as vt

@@ -78,7 +78,8 @@ def test_lark_is_pinned_to_the_range_the_shipped_tables_are_made_with():
     import lark
 
     from val3check.parsing import _tables
-    from val3check.parsing.parser import _Builder, build_from_grammar, grammar_text
+    from val3check.parsing.builder import Builder
+    from val3check.parsing.grammar import build_from_grammar, grammar_text
     from val3check.parsing.tables import compile_tables
 
     (spec,) = [r for r in PYPROJECT["project"]["dependencies"] if _name(r) == "lark"]
@@ -87,10 +88,10 @@ def test_lark_is_pinned_to_the_range_the_shipped_tables_are_made_with():
     assert low <= _minor(_tables.LARK_VERSION) < high
     # the installed Lark builds the tables the parser runs (the fallback while editing the
     # grammar; tests/parsing/test_tables.py compares them byte for byte)
-    built = compile_tables(build_from_grammar(grammar_text()), frozenset(dir(_Builder)))
+    built = compile_tables(build_from_grammar(grammar_text()), frozenset(dir(Builder)))
     assert (len(built["STATES"]), len(built["RULES"])) == (len(_tables.STATES), len(_tables.RULES))
     # and linting runs on the shipped tables without importing Lark
-    code = ("import sys\nfrom val3check.parsing import parser as P\nP.load_tables()\n"
+    code = ("import sys\nfrom val3check.parsing import grammar\ngrammar.load_tables()\n"
             "print('LARK', 'lark' in sys.modules)\n")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, timeout=60).stdout
     assert "LARK False" in out

@@ -6,7 +6,8 @@ import subprocess
 import sys
 
 from val3check.parsing import _tables, build_parser
-from val3check.parsing.parser import build_from_grammar, grammar_hash, grammar_text
+from val3check.parsing.engine import Engine
+from val3check.parsing.grammar import build_from_grammar, grammar_hash, grammar_text
 
 
 def test_shipped_tables_match_the_grammar():
@@ -51,7 +52,7 @@ def test_engine_falls_back_on_the_grammar(monkeypatch):
     from val3check.positions import SourceMap
 
     monkeypatch.setattr(_tables, "GRAMMAR_SHA256", "stale")
-    engine = P._Engine()  # built from grammars/val3.lark
+    engine = Engine()  # built from grammars/val3.lark
     code = "begin\n  if a or b\n    x = {1,,2}\n  endIf\n  y = 1 +\nend"
     monkeypatch.setattr(P, "_engine", engine)
     body, diags = P.parse_code(code, SourceMap.identity(code), "t.pgx")
@@ -67,9 +68,8 @@ def test_engine_falls_back_on_the_grammar(monkeypatch):
 def _lark_callback_engine():
     """The engine as it was driven before the tables were compiled: Lark's own tree-building
     callbacks (child filters, placeholders, inlined repetitions) around the same builder."""
-    from val3check.parsing import parser as P
 
-    engine = P._Engine()
+    engine = Engine()
     lk = build_from_grammar(grammar_text(), engine.builder)
     lalr = lk.parser.parser
     table, callbacks = lalr._parse_table, lalr.parser.callbacks
@@ -87,6 +87,7 @@ def _lark_callback_engine():
     engine.start_state = table.start_states["start"]
     engine.end_state = table.end_states["start"]
     engine.unit_memo = {}
+    engine.descent = None  # the tables alone (the fast path is compared in test_descent.py)
     engine.expected = [frozenset(k for k in acts if k.isupper()) for acts in actions]
     return engine
 

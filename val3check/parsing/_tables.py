@@ -1,7 +1,7 @@
 """Pre-built LALR tables of grammars/val3.lark. GENERATED: do not edit; run
 `python -m val3check.parsing.build_parser` after changing the grammar (format: tables.compile_tables)."""
 # fmt: off
-GRAMMAR_SHA256 = '3a4e07bb2bae2f81481742a49780ce9fe8d790922d5a58d45cf08698e3f3d39b'
+GRAMMAR_SHA256 = 'eb589852c62fa6efbcc80a5cacb10582a0c630c9418ce82985b8a446874421fe'
 LARK_VERSION = '1.3.1'
 LEXER = ('[ \\t\\f\\r]*(?:(?P<_NL>(?:\\/\\/[^\n'
  ']*)?\n'

@@ -29,7 +29,8 @@ def render() -> str:
     import lark
     from lark import Lark
 
-    from .parser import LARK_OPTIONS, _Builder, grammar_hash, grammar_text
+    from .builder import Builder
+    from .grammar import LARK_OPTIONS, grammar_hash, grammar_text
     from .tables import compile_tables
 
     text = grammar_text()
@@ -37,7 +38,7 @@ def render() -> str:
         raise SystemExit("grammars/val3.lark not found")
     parser = Lark(text, **LARK_OPTIONS)
     _canonical_numbering(parser.parser.parser._parse_table)
-    tables = compile_tables(parser, frozenset(dir(_Builder)))
+    tables = compile_tables(parser, frozenset(dir(Builder)))
     out = [
         '"""Pre-built LALR tables of grammars/val3.lark. GENERATED: do not edit; run\n'
         '`python -m val3check.parsing.build_parser` after changing the grammar (format: tables.compile_tables)."""\n',
@@ -77,7 +78,7 @@ def _canonical_numbering(table) -> None:
 
 
 def is_current() -> bool:
-    from .parser import grammar_hash, grammar_text
+    from .grammar import grammar_hash, grammar_text
 
     text = grammar_text()
     try:

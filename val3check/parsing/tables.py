@@ -1,6 +1,6 @@
 """The parse tables of a Lark LALR parser as plain Python data (`compile_tables`), the form
-`_tables.py` ships and parser.py runs without Lark. `methods`: the names of the parser's tree
-builder (`parser._Builder`), the callbacks a rule may have."""
+`_tables.py` ships and engine.py runs without Lark. `methods`: the names of the parser's tree
+builder (`builder.Builder`), the callbacks a rule may have."""
 
 from __future__ import annotations
 
@@ -47,7 +47,7 @@ def compile_tables(parser, methods: frozenset[str]) -> dict:
     missing = {r[2][0] for r in rules if r[2] is not None and r[2][0] is not None and not r[2][1]}
     missing -= methods
     if missing:
-        raise SystemExit(f"no builder method for {sorted(missing)}: add them to parser._Builder")
+        raise SystemExit(f"no builder method for {sorted(missing)}: add them to builder.Builder")
     return {"LEXER": lexer, "STATES": states, "RULES": rules,
             "START": table.start_states["start"], "END": table.end_states["start"]}
 

@@ -23,9 +23,9 @@ PATH_OUTSIDE_ROOTS = "F014"               # confine.py, loading/libraries.py, lo
 CODE_ELEMENT_IGNORED = "F015"             # loading/program_file.py
 LIBRARY_FOUND_IN_REPOSITORY = "F016"      # loading/libraries.py
 NUMBER_OUT_OF_RANGE = "F017"              # semantics/limits.py
-SYNTAX_ERROR = "F101"                     # parsing/parser.py
-INVALID_CHARACTER = "F102"                # parsing/parser.py
-INVALID_NUMBER = "F103"                   # parsing/parser.py
+SYNTAX_ERROR = "F101"                     # parsing/engine.py, parsing/parser.py
+INVALID_CHARACTER = "F102"                # parsing/engine.py
+INVALID_NUMBER = "F103"                   # parsing/engine.py
 TOO_DEEPLY_NESTED = "F104"                # parsing/parser.py
 
 # names and declarations (N)

@@ -1,0 +1,93 @@
+"""The fast path's tokenizer: the engine's tokens of code without lexical errors, from one findall."""
+
+from __future__ import annotations
+
+import re
+from typing import Any
+
+from .tokens import KEYWORDS
+
+
+class Fallback(Exception):
+    """The code is not for this parser (it may have syntax errors): use the engine."""
+
+
+# the terminals of a fixed spelling
+_FIXED = {
+    "(": "_LPAR", ")": "_RPAR", ",": "_COMMA", "[": "_LSQB", "]": "_RSQB", "{": "LBRACE", "}": "_RBRACE",
+    ".": "_DOT", ":": "_COLON", "+": "PLUS", "-": "MINUS", "*": "MULOP", "/": "MULOP", "%": "MULOP",
+    "=": "EQUAL", "==": "EQOP", "!=": "EQOP", "<": "RELOP", ">": "RELOP", "<=": "RELOP", ">=": "RELOP",
+    "!": "BANG", "?": "QMARK",
+}
+_KNOWN_MAX = 50_000  # texts remembered by tokenize (names, numbers, strings) before starting over
+_NAME_START = frozenset("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ_")
+
+
+def pair_regex(lexer: str) -> Any:
+    """The engine's master regex (`[ \\t\\f\\r]*(?:(?P<T>...)|...)`) as one that finds (blanks,
+    token text) pairs: the same alternatives in the same order, so the same matches."""
+    prefix = "[ \\t\\f\\r]*(?:"
+    if not (lexer.startswith(prefix) and lexer.endswith(")")):
+        raise ValueError("unexpected form of the master regex")
+    inner = re.sub(r"\(\?P<[A-Za-z_0-9]+>", "(?:", lexer[len(prefix):-1])
+    regex = re.compile(f"([ \\t\\f\\r]*)({inner})")
+    if regex.groups != 2:
+        raise ValueError("a terminal of the grammar has a capturing group")
+    return regex
+
+
+def tokenize(code: str, regex: Any, master: Any, known: dict[str, str]) -> tuple[list[str], list[tuple]]:
+    """The tokens of `code` as the engine makes them, (type, value, line, column) tuples, and
+    their types in a list of their own; `to`/`step` stay names, comments are dropped, the last
+    token is `$END`. `regex` is `pair_regex(...)`, `master` the engine's regex's `match`, `known`
+    the type of the texts of a fixed type seen so far (punctuation, names, numbers, strings).
+    Fallback on anything the engine would report (invalid character, bad number or string)."""
+    toks: list[tuple] = []
+    add = toks.append
+    if len(known) > _KNOWN_MAX:
+        known.clear()
+    if not known:
+        known.update(_FIXED)
+    name_start = _NAME_START
+    keywords = KEYWORDS
+    line = 1
+    base = -1  # the offset before the line's first character
+    p = 0
+    for blanks, value in regex.findall(code):
+        start = p + len(blanks)
+        p = start + len(value)
+        t = known.get(value)
+        if t is not None:
+            add((t, value, line, start - base))
+            continue
+        if not value:  # EOF; characters skipped by findall (invalid) make the offsets wrong
+            if p != len(code):
+                raise Fallback
+            add(("$END", "", line, start - base))
+            return [t[0] for t in toks], toks
+        c = value[0]
+        if c in name_start:
+            t = keywords.get(value.lower(), "NAME")
+            add((t, value, line, start - base))
+            known[value] = t
+        elif "\n" in value:
+            add(("_NL", value, line, start - base))
+            line += value.count("\n")
+            base = start + value.rindex("\n")
+        elif c == '"':
+            if len(value) < 2 or value[-1] != '"':
+                raise Fallback  # BADSTRING
+            add(("STRING", value, line, start - base))
+            known[value] = "STRING"
+        elif c == "/":
+            continue  # a comment not followed by a line end
+        elif c == "$":
+            add(("SYSNAME", value, line, start - base))
+            known[value] = "SYSNAME"
+        else:  # NUMBER, or BADNUMBER when NUMBER does not match the text alone (tried first)
+            m = master(value)
+            if m.lastgroup != "NUMBER" or m.end() != len(value):
+                raise Fallback
+            add(("NUMBER", value, line, start - base))
+            known[value] = "NUMBER"
+    raise Fallback  # pragma: no cover - the master regex always ends with EOF
