@@ -321,6 +321,7 @@ def parse(data: bytes, path: str) -> tuple[Node | None, list[Diagnostic]]:
     stack: list[Node] = []
     state = {"cdata": False}
     cdata: list = []  # [line, col, chunks...] of the CDATA section being read in a code element
+    cdata_at = [0, 0]  # where the text of the CDATA section being read starts
     collectors: list[_CodeCollector | None] = []
     texts: list[list[str] | None] = []
 
@@ -387,7 +388,7 @@ def parse(data: bytes, path: str) -> tuple[Node | None, list[Diagnostic]]:
         if coll is not None:
             if state["cdata"]:  # gathered, handled in one piece at the end of the section
                 if not cdata:
-                    cdata.extend((parser.CurrentLineNumber, parser.CurrentColumnNumber + 1))
+                    cdata.extend(cdata_at)
                 cdata.append(text)
                 return
             line = parser.CurrentLineNumber
@@ -406,8 +407,15 @@ def parse(data: bytes, path: str) -> tuple[Node | None, list[Diagnostic]]:
 
     def cdata_start() -> None:
         state["cdata"] = True
+        # The section's text starts after `<![CDATA[` (9 columns, no line end). expat buffers
+        # it into a few callbacks rather than one a line (the callbacks were a third of the
+        # reading); a buffered callback comes late, with the position of the next event, so
+        # the position is taken here.
+        cdata_at[:] = (parser.CurrentLineNumber, parser.CurrentColumnNumber + 10)
+        parser.buffer_text = True
 
     def cdata_end() -> None:
+        parser.buffer_text = False  # expat has delivered the buffered text before this call
         flush_cdata()
         state["cdata"] = False
 
