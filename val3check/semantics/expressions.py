@@ -14,8 +14,7 @@ check accepts (one diagnostic per root cause).
 
 from __future__ import annotations
 
-import difflib
-from typing import Callable
+from collections.abc import Callable
 
 from ..language.instructions import lookup as lookup_instruction
 from ..loading.model import Container
@@ -78,6 +77,8 @@ def missing_index_message(node: object, v: vt.Val) -> str:
 
 
 def suggest(name: str, candidates) -> str | None:
+    import difflib  # only for a name not found: not at start-up (lint's import time)
+
     hits = difflib.get_close_matches(name, list(candidates), n=1, cutoff=0.75)
     return hits[0] if hits else None
 
