@@ -67,3 +67,31 @@ def test_lint_does_not_import_dataclasses():
             "print('dataclasses' in sys.modules, 'inspect' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.split() == ["False", "False"], "a module of the lint path imports dataclasses"
+
+
+@pytest.mark.parametrize("frozen", [False, True])
+def test_classes_of_one_shape_share_code_not_names(frozen):
+    """Records whose fields have the same kinds share one compiled `__init__` (renamed): each
+    keeps its own field names, keywords, defaults and factories."""
+
+    @records.dataclass(frozen=frozen, slots=True)
+    class A:
+        a: int
+        b: int = 5
+        c: list = records.field(default_factory=list)
+
+    @records.dataclass(frozen=frozen, slots=True)
+    class B:
+        u: str
+        v: str = "v"
+        w: dict = records.field(default_factory=dict)
+
+    a, b = A(1), B(u="x", w={1: 2})
+    assert (a.a, a.b, a.c) == (1, 5, []) and (b.u, b.v, b.w) == ("x", "v", {1: 2})
+    assert A(1, c=[3]).c == [3] and A(1).c is not A(1).c
+    assert A.__init__.__code__.co_varnames[:4] == ("self", "a", "b", "c")
+    assert A.__init__.__code__.co_code == B.__init__.__code__.co_code
+    with pytest.raises(TypeError, match="'a'"):
+        A()
+    with pytest.raises(TypeError, match="'z'"):
+        B("x", z=1)

@@ -19,6 +19,7 @@ ordering, `kw_only`; the robotics and simulation code keeps the standard module.
 from __future__ import annotations
 
 from operator import attrgetter
+from types import FunctionType
 
 __all__ = ["FrozenInstanceError", "dataclass", "field"]
 
@@ -60,10 +61,49 @@ def _frozen_delattr(self, name):  # noqa: ANN001
     raise FrozenInstanceError(f"cannot delete field {name!r}")
 
 
+def _init_code(frozen: bool, kinds: tuple[str, ...]):
+    """The code of an `__init__` for fields of these kinds ("value" or "factory"), with the
+    placeholder names `_p0_`, `_p1_`...: compiled once per shape (compiling is most of the cost
+    of a record class, and the lint path declares some eighty). A plain default is not in the
+    code: it is the function's `__defaults__`."""
+    code = _INIT_CODES.get((frozen, kinds))
+    if code is None:
+        params, body = [], []
+        for i, kind in enumerate(kinds):
+            name = f"_p{i}_"
+            params.append(name)
+            value = f"_factory{name}() if {name} is MISSING else {name}" if kind == "factory" else name
+            body.append(f"__object_setattr(self, {name!r}, {value})" if frozen else f"self.{name} = {value}")
+        src = [f"def __init__(self, {', '.join(params)}):" if params else "def __init__(self):"]
+        src += [f"    {line}" for line in body or ["pass"]]
+        scope: dict = {"MISSING": MISSING}
+        exec("\n".join(src), scope)  # noqa: S102 - source built above from placeholder names
+        code = _INIT_CODES[(frozen, kinds)] = scope["__init__"].__code__
+    return code
+
+
+_INIT_CODES: dict = {}
+
+
+def _make_init(names: list[str], kinds: tuple[str, ...], defaults: list, frozen: bool, scope: dict):
+    """The `__init__` of fields `names`: the shape's code with the placeholders renamed."""
+    code = _init_code(frozen, kinds)
+    rename = {}
+    for i, name in enumerate(names):
+        rename[f"_p{i}_"] = name
+        rename[f"_factory_p{i}_"] = f"_factory_{name}"
+    code = code.replace(
+        co_varnames=tuple(rename.get(n, n) for n in code.co_varnames),
+        co_names=tuple(rename.get(n, n) for n in code.co_names),
+        co_consts=tuple(rename.get(c, c) if type(c) is str else c for c in code.co_consts),
+    )
+    return FunctionType(code, scope, "__init__", tuple(defaults) or None)
+
+
 def _process(cls: type, slots: bool, frozen: bool, eq: bool) -> type:
     names = [n for n in cls.__dict__.get("__annotations__", {})]
     scope: dict = {"MISSING": MISSING, "__object_setattr": object.__setattr__}
-    params, body = [], []
+    kinds, defaults = [], []
     for name in names:
         default = cls.__dict__.get(name, MISSING)
         factory = MISSING
@@ -71,21 +111,16 @@ def _process(cls: type, slots: bool, frozen: bool, eq: bool) -> type:
             default, factory = default.default, default.default_factory
         if factory is not MISSING:
             scope[f"_factory_{name}"] = factory
-            params.append(f"{name}=MISSING")
-            value = f"_factory_{name}() if {name} is MISSING else {name}"
+            kinds.append("factory")
+            defaults.append(MISSING)
         elif default is not MISSING:
-            scope[f"_default_{name}"] = default
-            params.append(f"{name}=_default_{name}")
-            value = name
+            kinds.append("value")
+            defaults.append(default)
         else:
-            if any("=" in p for p in params):
+            if defaults:
                 raise TypeError(f"non-default argument {name!r} follows default argument")
-            params.append(name)
-            value = name
-        body.append(f"__object_setattr(self, {name!r}, {value})" if frozen else f"self.{name} = {value}")
-    src = [f"def __init__(self, {', '.join(params)}):" if params else "def __init__(self):"]
-    src += [f"    {line}" for line in body or ["pass"]]
-    exec("\n".join(src), scope)  # noqa: S102 - source built above from the class's field names
+            kinds.append("value")
+    scope["__init__"] = _make_init(names, tuple(kinds), defaults, frozen, scope)
     scope["__repr__"] = _repr(tuple(names))
     if eq:
         values = _values(tuple(names))
