@@ -16,6 +16,23 @@ class Position:
     col: int  # 1-based code point column; 0 means "the whole line"
 
 
+_LINE_STARTS: list[Position] = [Position(0, 1)]  # Position(k, 1) at index k, shared
+_LINE_STARTS_MAX = 100_000  # lines kept; later ones are made anew
+
+
+def line_starts(first: int, stop: int) -> list[Position]:
+    """[Position(k, 1) for k in range(first, stop)]: the starts of lines copied verbatim.
+    Positions are immutable, so the objects of lines seen before are reused (every code block
+    of an application starts its lines at the same few hundred line numbers)."""
+    have = len(_LINE_STARTS)
+    if stop > have and have <= _LINE_STARTS_MAX:
+        _LINE_STARTS.extend([Position(k, 1) for k in range(have, min(stop, _LINE_STARTS_MAX + 1))])
+    out = _LINE_STARTS[first:stop]
+    if len(out) < stop - first:
+        out.extend([Position(k, 1) for k in range(max(first, len(_LINE_STARTS)), stop)])
+    return out
+
+
 @dataclass(slots=True)
 class SourceMap:
     """Where each line of an extracted text starts in its file.

@@ -170,3 +170,15 @@ def test_cdata_sections_map_like_character_by_character():
         assert not diags and root.text == text
         assert [(p.line, p.col) for p in root.smap.line_starts] == starts
         assert root.smap.col_maps == maps
+
+
+def test_shared_line_starts_are_the_positions_of_those_lines(monkeypatch):
+    """`positions.line_starts` reuses the Position(k, 1) of lines seen before, and past its
+    cap makes them anew: the same list either way."""
+    from val3check import positions
+
+    monkeypatch.setattr(positions, "_LINE_STARTS", [positions.Position(0, 1)])
+    monkeypatch.setattr(positions, "_LINE_STARTS_MAX", 30)
+    for first, stop in ((5, 9), (1, 3), (7, 25), (20, 45), (40, 60), (3, 3), (31, 32)):
+        assert positions.line_starts(first, stop) == [positions.Position(k, 1) for k in range(first, stop)]
+    assert len(positions._LINE_STARTS) == 31

@@ -26,7 +26,7 @@ from .. import confine
 from ..confine import Roots
 from ..diagnostics import Diagnostic
 from ..light_dataclass import dataclass, field
-from ..positions import Position, SourceMap
+from ..positions import Position, SourceMap, line_starts
 from ..rules import codes
 
 XSI_NS = "http://www.w3.org/2001/XMLSchema-instance"
@@ -208,7 +208,7 @@ class _CodeCollector:
         first = text.find("\n")
         self._chars(text[:first], line, col, 1)
         self._close_line()
-        self.starts.extend([Position(line + k, 1) for k in range(1, nl)])
+        self.starts.extend(line_starts(line + 1, line + nl))
         last = text[text.rindex("\n") + 1:]
         self.parts.append(text[first:])
         self.cur_line, self.cur_start_col = line + nl, 1
