@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 import os
-from typing import TYPE_CHECKING
 
+TYPE_CHECKING = False  # not typing's: importing typing costs 3 ms at lint's start-up
 if TYPE_CHECKING:
     from pathlib import Path
 

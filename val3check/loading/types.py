@@ -6,9 +6,12 @@ manual use `point`, `joint`, `config`. `base_type` maps the first to the second.
 
 from __future__ import annotations
 
-from typing import Any
 
 from ..language.types import load_families, load_types
+
+TYPE_CHECKING = False  # not typing's: importing typing costs 3 ms at lint's start-up
+if TYPE_CHECKING:
+    from typing import Any
 
 # Manual 2.3.2 (types simples) and 2.3.3 (types structurés). `trsf` is spelled `trs` in one
 # place of the French manual; `trsf` everywhere else and in files.

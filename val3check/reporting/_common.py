@@ -2,10 +2,9 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 from ..diagnostics import Diagnostic, Severity
 
+TYPE_CHECKING = False  # not typing's: importing typing costs 3 ms at lint's start-up
 if TYPE_CHECKING:
     from ..result import LintResult
 

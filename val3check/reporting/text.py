@@ -18,11 +18,11 @@ editors' problem matchers); `quiet=True` leaves out the summary line.
 from __future__ import annotations
 
 from collections import Counter
-from typing import TYPE_CHECKING
 
 from ..diagnostics import Diagnostic, Severity
 from ._common import SourceCache, plural, printable, rule_name, severity_counts, severity_of
 
+TYPE_CHECKING = False  # not typing's: importing typing costs 3 ms at lint's start-up
 if TYPE_CHECKING:
     from ..result import LintResult
 
