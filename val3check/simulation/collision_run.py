@@ -35,6 +35,7 @@ from ..geometry import frames as geo_frames
 from ..interpretation.clock import TICK_US
 from .budget import WALL
 from .cell_timeline import TimelineLog
+from .own_clock import own_clock
 
 US = 1_000_000
 _NAME = re.compile(r"^(?:([A-Za-z_][A-Za-z0-9_]*):)?([A-Za-z_][A-Za-z0-9_]*)(?:\[\s*(\d+)\s*\])?$")
@@ -55,6 +56,8 @@ class CollisionRun:
     drops       [PartDrop] parts left inside an obstacle or another part
     margin_mm   the cell's safety margin
     checks      distance and collision queries made
+    reused      motions whose check was not made again: the same motion in the same scene before
+                (docs/cell.md, "How checks are sampled")
     """
 
     cell: Cell | None
@@ -65,6 +68,7 @@ class CollisionRun:
     drops: list[PartDrop] = field(default_factory=list)
     margin_mm: float = 0.0
     checks: int = 0
+    reused: int = 0
 
     def clearance_trace(self) -> tuple[np.ndarray, np.ndarray]:
         """(times (N,), clearance to the cell (N,) in mm) over the motions checked, in time order:
@@ -236,7 +240,6 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
     run = CollisionRun(cell, cell_path, cell_found, margin_mm=checker.margin)
     diags: list[Diagnostic] = []
     traj = motion.trajectory
-    q_at = _path_between_samples(traj)
     spans = _spans(motion)
     events = _events(motion.tool_events, cell, io_log, link_names or {})
     names = _tool_names(cell)
@@ -272,8 +275,9 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
         rec = motion.motions[index]
         if epochs is not None:
             epochs.at(start)
-        times, joints = _samples(q_at, start, end)
-        report = checker.check_motion(MotionSpan(index, rec.source, _label(rec)), times, joints, q_at=q_at)
+        own = own_clock(traj, start, end)  # sampled from the motion's start: a repeat is checked once
+        report = checker.check_own(MotionSpan(index, rec.source, _label(rec)), start, own.times, own.joints,
+                                   q_at=own.q_at, key=own.key)
         run.by_motion[index] = report
         diags.extend(_motion_findings(report, rec, ongoing, checker.margin))
         run.contacts.extend((index, c) for c in report.contacts)
@@ -290,6 +294,7 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
         diags.append(Diagnostic("R036", p.message, path, line, col, time_us=int(round(p.time * US)), task="",
                                 program=""))
     run.checks = checker.measurements
+    run.reused = checker.reused
     if log is not None:
         motion.cell_timeline = log.timeline()
     return run, diags
@@ -330,17 +335,6 @@ def _geometry_epochs(model: Any, geometries) -> tuple[Any, _GeometryEpochs]:
     return arm, epochs
 
 
-def _path_between_samples(traj: Any):
-    """The arm's position at any time (between the 4 ms samples too), for the checker's motion
-    bound: the trajectory itself, with `many(times)` for all the steps of a motion at once."""
-
-    def q_at(t: float):
-        return traj.position(t)
-
-    q_at.many = traj.positions
-    return q_at
-
-
 def _not_checked(message: str, end_s: float, path: str) -> Diagnostic:
     return Diagnostic("R037", message, path, 0, 0, time_us=int(round(end_s * US)), task="", program="")
 
@@ -379,21 +373,6 @@ def _spans(motion: Any) -> list[tuple[int, float, float]]:
             end = started[k + 1][0] if k + 1 < len(started) else max(motion.end_s, start)
         out.append((i, start, max(end, start)))
     return out
-
-
-def _samples(q_at: Any, start: float, end: float) -> tuple[np.ndarray, np.ndarray]:
-    """The motion on the controller's 4 ms clock (interpretation/clock.py), with its exact start and
-    end, positions computed in one call."""
-    tick = TICK_US / US
-    k0 = math.ceil(start / tick - 1e-9)
-    k1 = math.floor(end / tick + 1e-9)
-    grid = np.arange(k0, k1 + 1) * tick
-    times = grid
-    if not len(grid) or grid[0] > start + 1e-9:
-        times = np.concatenate(([start], times))
-    if times[-1] < end - 1e-9:
-        times = np.concatenate((times, [end]))
-    return times, np.asarray(q_at.many(times), dtype=float)
 
 
 def _label(rec: Any) -> str:
