@@ -121,12 +121,13 @@ class CollisionChecker:
         starts at `start` (s), `times` (N,) are from 0, `joints` and `q_at(t)` on that clock; the
         report is on the run's clock (start + its times). `key`: everything that determines times,
         joints and q_at (None: nothing is reused); the result of a motion with an equal key in an
-        equal scene (`World.key`) is computed once and reused, shifted to the new start."""
+        equal scene (`World.key`) with the same margin, touch and tolerance is computed once and
+        reused, shifted to the new start."""
         T, Q = self._samples(times, joints)
         self.world.refresh(start)
         full = None
         if key is not None:
-            full = (key, self.world.key())
+            full = (key, self.world.key(), self.margin, self.world.touch, self.tol)
             hit = self._results.get(full)
             if hit is not None:
                 own, apart = hit
