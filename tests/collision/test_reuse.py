@@ -218,7 +218,6 @@ def test_the_bundled_pick_and_place_reuses_checks_and_finds_what_fresh_checks_fi
     from pathlib import Path as FsPath
 
     from val3check.simulation import collision_run
-    from val3check.simulation.own_clock import Own
 
     root = FsPath(__file__).resolve().parents[2]
     sys.path.insert(0, str(root / "tests"))
@@ -236,7 +235,8 @@ def test_the_bundled_pick_and_place_reuses_checks_and_finds_what_fresh_checks_fi
 
     def unkeyed(*a):
         own = keyed(*a)
-        return Own(own.times, own.joints, own.q_at, None)
+        own.key = None
+        return own
 
     monkeypatch.setattr(collision_run, "own_clock", unkeyed)
     fresh = sim()

@@ -122,30 +122,42 @@ class CollisionChecker:
         report is on the run's clock (start + its times). `key`: everything that determines times,
         joints and q_at (None: nothing is reused); the result of a motion with an equal key in an
         equal scene (`World.key`) with the same margin, touch and tolerance is computed once and
-        reused, shifted to the new start."""
+        reused, shifted to the new start (`reuse` finds it without the samples)."""
         T, Q = self._samples(times, joints)
-        self.world.refresh(start)
-        full = None
-        if key is not None:
-            full = (key, self.world.key(), self.margin, self.world.touch, self.tol)
-            hit = self._results.get(full)
-            if hit is not None:
-                own, apart = hit
-                self.world.forget_allowed(apart)
-                self.reused += 1
-            else:
-                allowed = self.world.allowed_names()
-                own = self._sweep(motion, T, Q, q_at)
-                left = set(self.world.allowed_names())
-                apart = [p for p in allowed if p not in left]
-                if len(self._results) >= REUSE:
-                    self._results.clear()  # bounded: a cyclic program fills it again in a cycle
-                self._results[full] = (own, apart)
-        else:
-            own = self._sweep(motion, T, Q, q_at)
+        hit = self.reuse(motion, start, key)
+        if hit is not None:
+            return hit
+        full = self._full_key(key)
+        allowed = self.world.allowed_names()
+        own = self._sweep(motion, T, Q, q_at)
+        if full is not None:
+            left = set(self.world.allowed_names())
+            if len(self._results) >= REUSE:
+                self._results.clear()  # bounded: a cyclic program fills it again within a cycle or two
+            self._results[full] = (own, [p for p in allowed if p not in left], Q[-1].copy())
         self.world.last_q = Q[-1].copy()
         self.world.time = start + float(T[-1])
         return shifted(own, motion, start)
+
+    def reuse(self, motion: MotionSpan, start: float, key: Hashable) -> MotionReport | None:
+        """The check of a motion with this key in the scene at `start` when it was made before
+        (`check_own`), for `motion` starting at `start`; None when it was not (or key is None)."""
+        self.world.refresh(start)
+        full = self._full_key(key)
+        hit = None if full is None else self._results.get(full)
+        if hit is None:
+            return None
+        own, apart, last_q = hit
+        self.world.forget_allowed(apart)  # what the sweep ended in the scene
+        self.world.last_q = last_q.copy()
+        self.world.time = start + float(own.times[-1])
+        self.reused += 1
+        return shifted(own, motion, start)
+
+    def _full_key(self, key: Hashable):
+        if key is None:
+            return None
+        return key, self.world.key(), self.margin, self.world.touch, self.tol
 
     def _samples(self, times, joints) -> tuple[np.ndarray, np.ndarray]:
         T = np.asarray(times, dtype=float).reshape(-1)

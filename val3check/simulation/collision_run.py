@@ -276,8 +276,10 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
         if epochs is not None:
             epochs.at(start)
         own = own_clock(traj, start, end)  # sampled from the motion's start: a repeat is checked once
-        report = checker.check_own(MotionSpan(index, rec.source, _label(rec)), start, own.times, own.joints,
-                                   q_at=own.q_at, key=own.key)
+        span = MotionSpan(index, rec.source, _label(rec))
+        report = checker.reuse(span, start, own.key)
+        if report is None:
+            report = checker.check_own(span, start, own.times, own.joints, q_at=own.q_at, key=own.key)
         run.by_motion[index] = report
         diags.extend(_motion_findings(report, rec, ongoing, checker.margin))
         run.contacts.extend((index, c) for c in report.contacts)

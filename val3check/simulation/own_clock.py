@@ -27,7 +27,6 @@ from __future__ import annotations
 import bisect
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
 
 import numpy as np
 
@@ -41,16 +40,30 @@ Q_S = 1e-7  # path units (degrees of joint motion): positions along the motion's
 Q_SD = 1e-7  # path units per second: path speeds
 
 
-@dataclass
 class Own:
-    """A motion on its own clock: `times` (N,) from 0 every 4 ms, then its duration; `joints` (N,
-    axes) there; `q_at(t)` the joints at any time of it (`q_at.many(ts)` at many); `key` what
-    determines them (hashable), None when the trajectory gives none."""
+    """A motion on its own clock: `key` what determines it (hashable; None when the trajectory
+    gives none); `times` (N,) from 0 every 4 ms, then its duration; `joints` (N, axes) there;
+    `q_at(t)` the joints at any time of it (`q_at.many(ts)` at many). The samples are computed
+    when first asked for (a check found by its key needs none)."""
 
-    times: np.ndarray
-    joints: np.ndarray
-    q_at: Callable
-    key: tuple | None
+    def __init__(self, key: tuple | None, duration: float, q_at: Callable) -> None:
+        self.key = key
+        self.q_at = q_at
+        self._duration = duration
+        self._times: np.ndarray | None = None
+        self._joints: np.ndarray | None = None
+
+    @property
+    def times(self) -> np.ndarray:
+        if self._times is None:
+            self._times = own_times(self._duration)
+        return self._times
+
+    @property
+    def joints(self) -> np.ndarray:
+        if self._joints is None:
+            self._joints = np.asarray(self.q_at.many(self.times), dtype=float)
+        return self._joints
 
 
 def own_times(duration: float) -> np.ndarray:
@@ -68,13 +81,12 @@ def own_clock(traj, start: float, end: float) -> Own:
     """The motion of `traj` from `start` to `end` (s, on the run's clock) on its own clock."""
     if isinstance(traj, Trajectory) and traj.path.spans:
         return _keyed(traj, start, end)
-    times = own_times(max(end - start, 0.0))
 
     def q_at(t: float):
         return traj.position(start + t)
 
     q_at.many = lambda ts: traj.positions(start + np.asarray(ts, dtype=float))
-    return Own(times, np.asarray(q_at.many(times), dtype=float), q_at, None)
+    return Own(None, max(end - start, 0.0), q_at)
 
 
 def _keyed(traj: Trajectory, start: float, end: float) -> Own:
@@ -92,15 +104,18 @@ def _keyed(traj: Trajectory, start: float, end: float) -> Own:
     SD = np.concatenate(([sd0], prof.SD[lo:hi], [sd1]))
     kt, ks, ksd = (np.rint(x / q).astype(np.int64) for x, q in ((T, Q_T), (S, Q_S), (SD, Q_SD)))
     key = (tuple((sp.geom, sp.a, sp.b) for sp in spans), kt.tobytes(), ks.tobytes(), ksd.tobytes())
-    own = _trajectory(spans, kt * Q_T, ks * Q_S, ksd * Q_SD)
-    duration = float(kt[-1] * Q_T)
-    times = own_times(duration)
+    own: list[Trajectory] = []  # built from the key when first needed
+
+    def at(ts):
+        if not own:
+            own.append(_trajectory(spans, kt * Q_T, ks * Q_S, ksd * Q_SD))
+        return own[0].positions(ts)
 
     def q_at(t: float):
-        return own.position(t)
+        return at(np.array([t], dtype=float))[0]
 
-    q_at.many = own.positions
-    return Own(times, own.positions(times), q_at, key)
+    q_at.many = at
+    return Own(key, float(kt[-1] * Q_T), q_at)
 
 
 def _trajectory(spans, T: np.ndarray, S: np.ndarray, SD: np.ndarray) -> Trajectory:
