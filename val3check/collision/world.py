@@ -318,16 +318,17 @@ class World:
         return self.backend.distance(a, b).mm <= self.touch
 
     def _allow_touching(self, bodies: list[Body], others: list[Body]) -> None:
-        for a in bodies:
-            for b in others:
-                if b is a:
-                    continue
-                la, ha = a.aabb()
-                lb, hb = b.aabb()
-                if float(aabb_gap(la, ha, lb, hb)) > self.touch:
-                    continue
-                if self.backend.distance(a, b).mm <= self.touch:
-                    self.allowed[frozenset((id(a), id(b)))] = (a, b)
+        if not bodies or not others:
+            return
+        # the boxes of all pairs at once; fcl measures only the pairs whose boxes are that close
+        box_a, box_b = ([b.aabb() for b in group] for group in (bodies, others))
+        lo_a, hi_a = (np.array(x)[:, None, :] for x in zip(*box_a))
+        lo_b, hi_b = (np.array(x)[None, :, :] for x in zip(*box_b))
+        near = aabb_gap(lo_a, hi_a, lo_b, hi_b) <= self.touch
+        for i, j in zip(*np.nonzero(near)):
+            a, b = bodies[i], others[j]
+            if b is not a and self.backend.distance(a, b).mm <= self.touch:
+                self.allowed[frozenset((id(a), id(b)))] = (a, b)
 
     def _dropped_inside(self, bodies: list[Body], time: float, source: Any) -> list[PartDrop]:
         """The part's solids left overlapping an obstacle (deeper than the touch tolerance), or wholly
