@@ -16,6 +16,7 @@ last values read at or before its start (docs/cell.md).
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 import time
@@ -377,8 +378,13 @@ def _spans(motion: Any) -> list[tuple[int, float, float]]:
     return out
 
 
+@functools.lru_cache(maxsize=256)
+def _file_name(path: str) -> str:
+    return Path(path).name
+
+
 def _label(rec: Any) -> str:
-    where = f"{Path(rec.source.path).name}:{rec.source.line}"
+    where = f"{_file_name(rec.source.path)}:{rec.source.line}"
     return f"{rec.kind} {rec.target} ({where})" if rec.target else f"{rec.kind} ({where})"
 
 
