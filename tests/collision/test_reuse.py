@@ -196,6 +196,23 @@ def test_the_same_motion_at_another_time_and_path_position_has_the_same_key_and_
     assert mid.key != own[2].key
 
 
+def test_a_trajectory_the_layers_of_chapter_11_move_has_no_key_and_is_sampled_as_it_is():
+    line = JointLine([0, 0, 90, 0, 45, 0], [40, 10, 80, 5, 50, 30])
+    traj, spans = _run_of([(line, 100.0)], [0.3])
+
+    class Shifted(Trajectory):  # as arm_layers.ActualTrajectory: the nominal path and profile, moved
+        def position(self, t):
+            return super().position(t) + 1.0
+
+        def positions(self, times):
+            return super().positions(times) + 1.0
+
+    moved = Shifted(traj.path, traj.profile)
+    own = own_clock(moved, *spans[0])
+    assert own.key is None
+    assert np.array_equal(own.joints, moved.positions(spans[0][0] + own.times))
+
+
 def test_a_copy_of_a_curve_is_not_the_curve():
     line = JointLine([0, 0, 90, 0, 45, 0], [40, 10, 80, 5, 50, 30])
     copy = JointLine(line.q0, line.q1)

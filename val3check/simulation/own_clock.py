@@ -79,7 +79,8 @@ def own_times(duration: float) -> np.ndarray:
 
 def own_clock(traj, start: float, end: float) -> Own:
     """The motion of `traj` from `start` to `end` (s, on the run's clock) on its own clock."""
-    if isinstance(traj, Trajectory) and traj.path.spans:
+    # exactly the queue's trajectory: a subclass (arm_layers.ActualTrajectory) moves the arm off it
+    if type(traj) is Trajectory and traj.path.spans:
         return _keyed(traj, start, end)
 
     def q_at(t: float):
