@@ -17,6 +17,7 @@ from interpretation.simsupport import code_pos, run_folder, sim  # noqa: E402
 
 from val3check.motion.kin import ArmKin  # noqa: E402
 from val3check.robot import load_robot  # noqa: E402
+from val3check.simulation.own_clock import own_times  # noqa: E402
 
 ROBOT = load_robot("TX2-60")
 KIN = ArmKin(ROBOT)
@@ -619,7 +620,8 @@ end
     ball = TIP.replace("radius = 10", "radius = 2")
     free = _run(tmp_path / "a", code, ["tool tTool", "mdesc mD"], ball)
     rec = free.motion.motions[1]
-    times, Q, _ = free.motion.sample(rec.start, rec.end)
+    times = rec.start + own_times(rec.end - rec.start)  # the checks' samples: every 4 ms from the motion's start
+    Q = free.motion.trajectory.positions(times)
     speeds = np.abs(np.diff(Q[:, 0]))
     k = int(np.argmax(speeds))  # the fastest step
     mid = free.motion.trajectory.position(0.5 * (times[k] + times[k + 1]))

@@ -66,7 +66,7 @@ class Body:
     sample_points (points of the body for depth estimates), all in the body's frame."""
 
     __slots__ = ("axis", "center", "edge_directions", "exact", "geometry", "half", "kind", "label", "lb", "local",
-                 "name", "obj", "owner", "planes", "points", "pose", "radius", "sample_points", "size", "solid",
+                 "made_from", "name", "obj", "owner", "planes", "points", "pose", "radius", "sample_points", "size", "solid",
                  "support_points", "triangle_shape", "whole", "whole_box", "whole_shape")
 
     def __init__(self, kind: str, owner: str, name: str, label: str, shape_kind: str, size: tuple[float, ...],
@@ -75,6 +75,7 @@ class Body:
                  hull_solid: bool = True) -> None:
         self.kind = kind
         self.owner = owner
+        self.made_from: tuple | None = None  # what the scene's key names it by (World.key); None: the body itself
         self.name = name
         self.label = label
         self.local = np.asarray(local, dtype=float)

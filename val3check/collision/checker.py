@@ -24,7 +24,8 @@ Frame and tool poses come from the caller in the application's unit (`app_unit_m
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Hashable
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -38,6 +39,21 @@ from .poses import PoseSource
 from .results import CellProblem, MotionReport, MotionSpan, PartDrop
 from .sweep import Sweep
 from .world import World
+
+
+REUSE = 2048  # checks of motions kept for reuse (check_own); a motion's report holds its per-sample arrays
+
+
+def shifted(own: MotionReport, motion: MotionSpan, start: float) -> MotionReport:
+    """A report on a motion's own clock, for `motion` starting at `start` on the run's clock (the
+    per-sample clearances are shared, never changed)."""
+
+    def at(c):
+        return None if c is None else replace(c, time=start + c.time)
+
+    return MotionReport(motion, start + own.times, own.clearance, own.exact, at(own.starts_in_collision),
+                        at(own.first_contact), at(own.min_clearance), own.too_close, own.margin_mm, own.tolerance_mm,
+                        own.checks, [at(c) for c in own.contacts])
 
 
 class CollisionChecker:
@@ -64,6 +80,8 @@ class CollisionChecker:
                            touch_mm=self.touch)
         # radians (or mm) per joint unit
         self._per_unit = np.array([1.0 if p else math.pi / 180.0 for p in arm.links.prismatic])
+        self._results: dict = {}  # (motion key, scene key) -> (report on the motion's own clock, pairs found apart)
+        self.reused = 0  # motions whose check was reused (check_own)
 
     @property
     def problems(self) -> list[CellProblem]:
@@ -90,6 +108,58 @@ class CollisionChecker:
         Between samples the arm is on the straight joint-space segment, or at q_at(t) when given
         (then each step's bound also covers how far q_at bends away from the segment; `q_at.many(ts)`,
         when q_at has it, gives the positions at many times at once)."""
+        T, Q = self._samples(times, joints)
+        self.world.refresh(float(T[0]))
+        report = self._sweep(motion, T, Q, q_at)
+        self.world.last_q = Q[-1].copy()
+        self.world.time = float(T[-1])
+        return report
+
+    def check_own(self, motion: MotionSpan, start: float, times, joints, q_at: Callable[[float], Any] | None = None,
+                  key: Hashable = None) -> MotionReport:
+        """Check one motion given on its own clock (docs/cell.md, "How checks are sampled"): it
+        starts at `start` (s), `times` (N,) are from 0, `joints` and `q_at(t)` on that clock; the
+        report is on the run's clock (start + its times). `key`: everything that determines times,
+        joints and q_at (None: nothing is reused); the result of a motion with an equal key in an
+        equal scene (`World.key`) with the same margin, touch and tolerance is computed once and
+        reused, shifted to the new start (`reuse` finds it without the samples)."""
+        T, Q = self._samples(times, joints)
+        hit = self.reuse(motion, start, key)
+        if hit is not None:
+            return hit
+        full = self._full_key(key)
+        allowed = self.world.allowed_names()
+        own = self._sweep(motion, T, Q, q_at)
+        if full is not None:
+            left = set(self.world.allowed_names())
+            if len(self._results) >= REUSE:
+                self._results.clear()  # bounded: a cyclic program fills it again within a cycle or two
+            self._results[full] = (own, [p for p in allowed if p not in left], Q[-1].copy())
+        self.world.last_q = Q[-1].copy()
+        self.world.time = start + float(T[-1])
+        return shifted(own, motion, start)
+
+    def reuse(self, motion: MotionSpan, start: float, key: Hashable) -> MotionReport | None:
+        """The check of a motion with this key in the scene at `start` when it was made before
+        (`check_own`), for `motion` starting at `start`; None when it was not (or key is None)."""
+        self.world.refresh(start)
+        full = self._full_key(key)
+        hit = None if full is None else self._results.get(full)
+        if hit is None:
+            return None
+        own, apart, last_q = hit
+        self.world.forget_allowed(apart)  # what the sweep ended in the scene
+        self.world.last_q = last_q.copy()
+        self.world.time = start + float(own.times[-1])
+        self.reused += 1
+        return shifted(own, motion, start)
+
+    def _full_key(self, key: Hashable):
+        if key is None:
+            return None
+        return key, self.world.key(), self.margin, self.world.touch, self.tol
+
+    def _samples(self, times, joints) -> tuple[np.ndarray, np.ndarray]:
         T = np.asarray(times, dtype=float).reshape(-1)
         if len(T) == 0:
             raise ValueError("a motion needs at least one sample")
@@ -99,15 +169,15 @@ class CollisionChecker:
             raise ValueError(f"joints have {Q.shape[1]} values per sample, the arm has {n_joints} axes")
         if not (np.isfinite(T).all() and np.isfinite(Q).all()):
             raise ValueError("times and joints must be finite numbers")
+        return T, Q
+
+    def _sweep(self, motion: MotionSpan, T: np.ndarray, Q: np.ndarray, q_at) -> MotionReport:
         before = self.backend.measurements
-        self.world.refresh(float(T[0]))
         path = ArmPath(self.arm, T, Q, q_at)
         report = MotionReport(motion, T, np.zeros(len(T)), np.zeros(len(T), dtype=bool), margin_mm=self.margin,
                               tolerance_mm=self.tol)
         Sweep(self.world, self.backend, path, self.margin, self.tol).run(report, self._per_unit)
         report.checks = self.backend.measurements - before
-        self.world.last_q = Q[-1].copy()
-        self.world.time = float(T[-1])
         return report
 
     def gripper(self, tool: str, instruction: str, time: float, joints=None, source: Any = None) -> list[PartDrop]:

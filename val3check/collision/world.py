@@ -61,10 +61,11 @@ class World:
         self.link_groups: dict[str, Group] = {link: link_group(arm, link, bodies) for link, bodies in arm.bodies.items()}
         # tool solids, placed when the tool poses are read
         self.tool_bodies: list[ToolBody] = []
-        for t in cell.tools:
+        for i, t in enumerate(cell.tools):
             label = f"tool {t.tool} {t.name!r}" if t.name else f"tool {t.tool}"
-            for b in make_bodies("tool", t.tool, t.name, label, t.shape.kind, t.shape.size, np.eye(4),
-                                 *_mesh(t.shape), solid=_solid(t.shape)):
+            for k, b in enumerate(make_bodies("tool", t.tool, t.name, label, t.shape.kind, t.shape.size, np.eye(4),
+                                              *_mesh(t.shape), solid=_solid(t.shape))):
+                b.made_from = ("tool", i, k)
                 self.tool_bodies.append(ToolBody(t, b, b.local))
         self.tool_group: Group | None = None
         self.tool_in_flange: dict[str, np.ndarray | None] | None = None
@@ -72,9 +73,10 @@ class World:
         self.carried: dict[str, Group] = {}
         self.dropped: list[Body] = []
         self.obstacle_bodies: list[ObstacleBody] = []
-        for o in cell.obstacles:
-            for b in make_bodies("obstacle", o.name, o.name, f"obstacle {o.name!r}", o.shape.kind, o.shape.size,
-                                 np.eye(4), *_mesh(o.shape), solid=_solid(o.shape)):
+        for i, o in enumerate(cell.obstacles):
+            for k, b in enumerate(make_bodies("obstacle", o.name, o.name, f"obstacle {o.name!r}", o.shape.kind,
+                                              o.shape.size, np.eye(4), *_mesh(o.shape), solid=_solid(o.shape))):
+                b.made_from = ("obstacle", i, k)
                 self.obstacle_bodies.append(ObstacleBody(o, b))
         # the static set, and world-aligned boxes (S, 3) around its bodies
         self.static: list[Body] = []
@@ -191,6 +193,29 @@ class World:
             self._scene_cache[key] = (self.version, value)
         return value
 
+    def key(self) -> tuple:
+        """Everything of the scene a motion's check depends on, by content (the result of a motion
+        that repeats in an equal scene is reused: `CollisionChecker.check_own`): the arm's geometry
+        in force, the static set, the tool and the carried parts (each body by the solid of the cell
+        it was made from and its pose), and the pairs allowed to touch."""
+        links = getattr(self.arm.links, "current", self.arm.links)  # setDH (11.4): the geometry in force
+        return links, self.per_scene("key", self._scene_key), tuple(self.allowed_names())
+
+    def _scene_key(self) -> tuple:
+        static = tuple(_placed(b) for b in self.static)
+        tool = None if self.tool_group is None else tuple(_placed(b) for b in self.tool_group.bodies)
+        carried = tuple((name, tuple(_placed(b) for b in g.bodies)) for name, g in self.carried.items())
+        return static, tool, carried
+
+    def forget_allowed(self, pairs) -> None:
+        """The touch allowances of these pairs (by `key`'s names) end (a reused check found them apart)."""
+        gone = set(pairs)
+        self.allowed = {k: v for k, v in self.allowed.items() if (_named(v[0]), _named(v[1])) not in gone}
+
+    def allowed_names(self) -> list[tuple]:
+        """The pairs allowed to touch, by `key`'s names, in order."""
+        return [(_named(a), _named(b)) for a, b in self.allowed.values()]
+
     def watches(self) -> list[Watch]:
         """The pairs of groups checked in the scene as it is (`groups.make_watches`)."""
         return self.per_scene("watches", self._make_watches)
@@ -230,17 +255,18 @@ class World:
         drops: list[PartDrop] = []
         cache: dict = dict(self.tool_in_flange or {})
         for name in names:
-            solids = [p for p in self.cell.parts if p.name == name]
-            first = solids[0]
+            solids = [(i, p) for i, p in enumerate(self.cell.parts) if p.name == name]
+            first = solids[0][1]
             if instruction == first.grasp and name not in self.carried:
                 T = self.tool_pose(tool, time, cache, first.where)
                 if T is None:
                     continue
                 bodies = []
-                for p in solids:
-                    for b in make_bodies("part", name, name, f"part {name!r}", p.shape.kind, p.shape.size, np.eye(4),
-                                         *_mesh(p.shape), solid=_solid(p.shape)):
+                for i, p in solids:
+                    for k, b in enumerate(make_bodies("part", name, name, f"part {name!r}", p.shape.kind, p.shape.size,
+                                                      np.eye(4), *_mesh(p.shape), solid=_solid(p.shape))):
                         b.local = T @ p.pose @ b.local
+                        b.made_from = ("part", i, k)
                         bodies.append(b)
                 for b in bodies:
                     b.place(flange)
@@ -253,7 +279,8 @@ class World:
                 self.version += 1
                 for b in g.bodies:
                     b.place(flange)
-                    b.local = b.pose.copy()
+                    b.local = _on_grid(b.pose)
+                    b.place(np.eye(4))
                     b.kind = "obstacle"
                 drops.extend(self._dropped_inside(g.bodies, time, source))
                 self._allow_touching(g.bodies, [b for b in arm_bodies if b.owner != name])
@@ -291,16 +318,17 @@ class World:
         return self.backend.distance(a, b).mm <= self.touch
 
     def _allow_touching(self, bodies: list[Body], others: list[Body]) -> None:
-        for a in bodies:
-            for b in others:
-                if b is a:
-                    continue
-                la, ha = a.aabb()
-                lb, hb = b.aabb()
-                if float(aabb_gap(la, ha, lb, hb)) > self.touch:
-                    continue
-                if self.backend.distance(a, b).mm <= self.touch:
-                    self.allowed[frozenset((id(a), id(b)))] = (a, b)
+        if not bodies or not others:
+            return
+        # the boxes of all pairs at once; fcl measures only the pairs whose boxes are that close
+        box_a, box_b = ([b.aabb() for b in group] for group in (bodies, others))
+        lo_a, hi_a = (np.array(x)[:, None, :] for x in zip(*box_a))
+        lo_b, hi_b = (np.array(x)[None, :, :] for x in zip(*box_b))
+        near = aabb_gap(lo_a, hi_a, lo_b, hi_b) <= self.touch
+        for i, j in zip(*np.nonzero(near)):
+            a, b = bodies[i], others[j]
+            if b is not a and self.backend.distance(a, b).mm <= self.touch:
+                self.allowed[frozenset((id(a), id(b)))] = (a, b)
 
     def _dropped_inside(self, bodies: list[Body], time: float, source: Any) -> list[PartDrop]:
         """The part's solids left overlapping an obstacle (deeper than the touch tolerance), or wholly
@@ -329,6 +357,30 @@ class World:
                         break
         return out
 
+
+
+GRID_MM = 1e-6  # a part left in the cell is put on this grid (and its rotation on GRID_ROT): see _on_grid
+GRID_ROT = 1e-9
+
+
+def _on_grid(pose: np.ndarray) -> np.ndarray:
+    """The pose of a part left in the cell, rounded to GRID_MM (1e-6 mm) and its rotation to GRID_ROT: the arm lets it
+    go at joints computed on the run's absolute clock, whose last bits differ from one cycle to the
+    next; rounded, the part left in the same place is in the same place (`World.key`)."""
+    out = pose.copy()
+    out[:3, 3] = np.round(pose[:3, 3] / GRID_MM) * GRID_MM
+    out[:3, :3] = np.round(pose[:3, :3] / GRID_ROT) * GRID_ROT
+    return out
+
+
+def _named(b: Body):
+    """A body as the scene's key names it: the solid of the cell it was made from and its piece,
+    or the body itself (the arm's own solids, which live as long as the arm)."""
+    return b if b.made_from is None else b.made_from
+
+
+def _placed(b: Body) -> tuple:
+    return _named(b), b.local.tobytes()
 
 
 def _mesh(shape) -> tuple:

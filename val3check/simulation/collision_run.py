@@ -16,6 +16,7 @@ last values read at or before its start (docs/cell.md).
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 import time
@@ -36,6 +37,7 @@ from ..interpretation.clock import TICK_US
 from ..rules import codes
 from .budget import WALL
 from .cell_timeline import TimelineLog
+from .own_clock import own_clock
 
 US = 1_000_000
 _NAME = re.compile(r"^(?:([A-Za-z_][A-Za-z0-9_]*):)?([A-Za-z_][A-Za-z0-9_]*)(?:\[\s*(\d+)\s*\])?$")
@@ -56,6 +58,8 @@ class CollisionRun:
     drops       [PartDrop] parts left inside an obstacle or another part
     margin_mm   the cell's safety margin
     checks      distance and collision queries made
+    reused      motions whose check was not made again: the same motion in the same scene before
+                (docs/cell.md, "How checks are sampled")
     """
 
     cell: Cell | None
@@ -66,6 +70,7 @@ class CollisionRun:
     drops: list[PartDrop] = field(default_factory=list)
     margin_mm: float = 0.0
     checks: int = 0
+    reused: int = 0
 
     def clearance_trace(self) -> tuple[np.ndarray, np.ndarray]:
         """(times (N,), clearance to the cell (N,) in mm) over the motions checked, in time order:
@@ -237,7 +242,6 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
     run = CollisionRun(cell, cell_path, cell_found, margin_mm=checker.margin)
     diags: list[Diagnostic] = []
     traj = motion.trajectory
-    q_at = _path_between_samples(traj)
     spans = _spans(motion)
     events = _events(motion.tool_events, cell, io_log, link_names or {})
     names = _tool_names(cell)
@@ -273,8 +277,11 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
         rec = motion.motions[index]
         if epochs is not None:
             epochs.at(start)
-        times, joints = _samples(q_at, start, end)
-        report = checker.check_motion(MotionSpan(index, rec.source, _label(rec)), times, joints, q_at=q_at)
+        own = own_clock(traj, start, end)  # sampled from the motion's start: a repeat is checked once
+        span = MotionSpan(index, rec.source, _label(rec))
+        report = checker.reuse(span, start, own.key)
+        if report is None:
+            report = checker.check_own(span, start, own.times, own.joints, q_at=own.q_at, key=own.key)
         run.by_motion[index] = report
         diags.extend(_motion_findings(report, rec, ongoing, checker.margin))
         run.contacts.extend((index, c) for c in report.contacts)
@@ -291,6 +298,7 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
         diags.append(Diagnostic(codes.CELL_FRAME_WITHOUT_VALUE, p.message, path, line, col, time_us=int(round(p.time * US)), task="",
                                 program=""))
     run.checks = checker.measurements
+    run.reused = checker.reused
     if log is not None:
         motion.cell_timeline = log.timeline()
     return run, diags
@@ -329,17 +337,6 @@ def _geometry_epochs(model: Any, geometries) -> tuple[Any, _GeometryEpochs]:
     epochs = _GeometryEpochs([(-math.inf, arm.links), *((t, arm_links(m)) for t, m in geometries)])
     arm.links = epochs
     return arm, epochs
-
-
-def _path_between_samples(traj: Any):
-    """The arm's position at any time (between the 4 ms samples too), for the checker's motion
-    bound: the trajectory itself, with `many(times)` for all the steps of a motion at once."""
-
-    def q_at(t: float):
-        return traj.position(t)
-
-    q_at.many = traj.positions
-    return q_at
 
 
 def _not_checked(message: str, end_s: float, path: str) -> Diagnostic:
@@ -382,23 +379,13 @@ def _spans(motion: Any) -> list[tuple[int, float, float]]:
     return out
 
 
-def _samples(q_at: Any, start: float, end: float) -> tuple[np.ndarray, np.ndarray]:
-    """The motion on the controller's 4 ms clock (interpretation/clock.py), with its exact start and
-    end, positions computed in one call."""
-    tick = TICK_US / US
-    k0 = math.ceil(start / tick - 1e-9)
-    k1 = math.floor(end / tick + 1e-9)
-    grid = np.arange(k0, k1 + 1) * tick
-    times = grid
-    if not len(grid) or grid[0] > start + 1e-9:
-        times = np.concatenate(([start], times))
-    if times[-1] < end - 1e-9:
-        times = np.concatenate((times, [end]))
-    return times, np.asarray(q_at.many(times), dtype=float)
+@functools.lru_cache(maxsize=256)
+def _file_name(path: str) -> str:
+    return Path(path).name
 
 
 def _label(rec: Any) -> str:
-    where = f"{Path(rec.source.path).name}:{rec.source.line}"
+    where = f"{_file_name(rec.source.path)}:{rec.source.line}"
     return f"{rec.kind} {rec.target} ({where})" if rec.target else f"{rec.kind} ({where})"
 
 

@@ -1,0 +1,269 @@
+"""The checks of a motion that repeats exactly are computed once (issue 29; docs/cell.md, "How checks
+are sampled"), and only then: each input of the key changed in turn gives a new result, and a
+reused result is the one a fresh check gives."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from val3check.collision import Cell, Obstacle, Part, Shape, ToolSolid  # noqa: E402
+from val3check.collision.cellfile import trsf_matrix  # noqa: E402
+from val3check.motion.paths import JointLine, Path, Span
+from val3check.motion.trajectory import Profile, Trajectory
+from val3check.simulation.own_clock import Q_S, own_clock, own_times
+
+from .helpers import ARM, ROBOT, TOOL, MotionSpan, checker, line_motion
+
+TOP = -100.0  # the table's top
+BRICK = 40.0
+A = (300.0, -150.0, 50.0)  # the TCP passes 150 mm over the ball: its jaws 100 mm from it
+B = (300.0, 150.0, 50.0)
+BALL = (300.0, 0.0, -100.0, 0, 0, 0)
+
+
+def _cell() -> Cell:
+    c = Cell(path="test", margin_mm=5.0)
+    c.obstacles.append(Obstacle("table", Shape("box", (400.0, 800.0, 40.0)), "world",
+                                trsf_matrix((500.0, 0.0, TOP - 20.0, 0, 0, 0))))
+    c.obstacles.append(Obstacle("ball", Shape("sphere", (20.0,)), "fBall", np.eye(4)))
+    for side in (-1, 1):
+        c.tools.append(ToolSolid(f"jaw {side}", "tTool", Shape("box", (10.0, 30.0, 30.0)),
+                                 trsf_matrix((side * 25.0, 0.0, 15.0, 0, 0, 0))))
+    c.parts.append(Part("brick", "tTool", "close", Shape("box", (BRICK, BRICK, BRICK)), trsf_matrix((0, 0, 20, 0, 0, 0))))
+    return c
+
+
+def _own(a, b, v=200.0):
+    """A motion on its own clock: (times from 0, joints)."""
+    return line_motion(a, b, v)
+
+
+def _same(r1, r2, shift: float) -> None:
+    """Two reports of one motion, the second `shift` s later."""
+    assert np.allclose(r2.times, r1.times + shift, rtol=0.0, atol=1e-12)
+    assert np.array_equal(r2.clearance, r1.clearance) and np.array_equal(r2.exact, r1.exact)
+    m1, m2 = r1.min_clearance, r2.min_clearance
+    assert (m1 is None) == (m2 is None)
+    if m1 is not None:
+        assert (m2.mm, m2.body_a, m2.body_b, m2.point_a, m2.point_b) == (m1.mm, m1.body_a, m1.body_b, m1.point_a,
+                                                                         m1.point_b)
+        assert m2.time == pytest.approx(m1.time + shift, abs=1e-12)
+    assert [(c.body_a, c.body_b, c.point, c.depth_mm, c.kind) for c in r2.contacts] == \
+        [(c.body_a, c.body_b, c.point, c.depth_mm, c.kind) for c in r1.contacts]
+    assert r2.too_close == r1.too_close and r2.checks == r1.checks
+
+
+def test_a_repeated_motion_in_the_same_scene_is_checked_once_and_as_a_fresh_check_would():
+    frames = {"fBall": BALL}
+    chk = checker(_cell(), frames=frames)
+    T, Q = _own(A, B)
+    first = chk.check_own(MotionSpan(0), 1.0, T, Q, key="AB")
+    made = chk.measurements
+    again = chk.check_own(MotionSpan(5), 7.3, T, Q, key="AB")
+    assert chk.reused == 1 and chk.measurements == made  # nothing measured the second time
+    assert again.motion.id == 5 and again.start == pytest.approx(7.3)
+    _same(first, again, 6.3)
+    fresh = checker(_cell(), frames=frames).check_own(MotionSpan(5), 7.3, T, Q, key="AB")
+    _same(fresh, again, 0.0)
+    m = first.min_clearance
+    assert "ball" in m.body_b and 95.0 < m.mm < 110.0 and not first.too_close
+
+
+def _changed(chk, frames, tools, what: str) -> None:
+    """Change one input of the check between two runs of the motion AB."""
+    if what == "frame moved":
+        frames["fBall"] = (300.0, 0.0, -90.0, 0, 0, 0)
+    elif what == "tool pose":
+        tools["tTool"] = (0.0, 0.0, 130.0, 0.0, 0.0, 0.0)
+    elif what == "part carried":
+        chk.gripper("tTool", "close", 2.0, joints=_own(A, B)[1][-1])
+    elif what == "part left in the cell":
+        T, Q = _own((300.0, 60.0, TOP + BRICK + 60.0), (300.0, 60.0, TOP + BRICK))  # its top 80 mm under the jaws
+        chk.check_own(MotionSpan(1), 2.0, T, Q, key="down")
+        chk.gripper("tTool", "close", 2.5, joints=Q[-1])
+        chk.gripper("tTool", "open", 2.6, joints=Q[-1])
+    elif what == "margin":
+        chk.margin = 150.0
+
+
+@pytest.mark.parametrize("what", ["frame moved", "tool pose", "part carried", "part left in the cell", "margin"])
+def test_each_input_of_the_scene_changed_gives_a_new_result(what):
+    frames = {"fBall": BALL}
+    tools = {"tTool": TOOL}
+    chk = checker(_cell(), frames=frames, tools=tools)
+    T, Q = _own(A, B)
+    before = chk.check_own(MotionSpan(0), 1.0, T, Q, key="AB")
+    _changed(chk, frames, tools, what)
+    n = chk.reused
+    after = chk.check_own(MotionSpan(0), 3.0, T, Q, key="AB")
+    assert chk.reused == n, what
+    b, a = before.min_clearance, after.min_clearance
+    assert (a.mm, a.body_a, a.body_b, after.too_close) != (b.mm, b.body_a, b.body_b, before.too_close), what
+
+
+def test_the_touch_allowances_are_part_of_the_scene_and_end_as_in_a_fresh_check():
+    # a brick taken 1 mm into the table (a teaching error): allowed to touch until lifted apart
+    pick = (350.0, -150.0, TOP + BRICK - 1.0)
+    above = (pick[0], pick[1], pick[2] + 60.0)
+    chk = checker(_cell(), frames={"fBall": (0.0, 0.0, 2000.0, 0, 0, 0)})
+    down, up = _own(above, pick), _own(pick, above)
+
+    def cycle(t: float):
+        chk.check_own(MotionSpan(1), t, *down, key="down")
+        chk.gripper("tTool", "close", t + 1.0, joints=down[1][-1])
+        assert chk.world.allowed  # the brick and the table touch
+        r = chk.check_own(MotionSpan(2), t + 1.1, *up, key="up")
+        assert not chk.world.allowed  # apart at the end of the lift: checked from then on
+        chk.gripper("tTool", "open", t + 2.0, joints=up[1][-1])
+        chk.clear_parts("brick")  # taken away: the scene is the one the cycle started in
+        return r
+
+    first = cycle(0.0)
+    n = chk.reused
+    second = cycle(10.0)
+    assert chk.reused == n + 2 and first.first_contact is None
+    _same(first, second, 10.0)
+    # the same lift without the allowance (the brick put there, not grasped there): another result
+    chk.check_own(MotionSpan(3), 30.0, *down, key="down")
+    chk.gripper("tTool", "close", 31.0, joints=down[1][-1])
+    chk.world.allowed.clear()
+    n = chk.reused
+    third = chk.check_own(MotionSpan(2), 31.1, *up, key="up")
+    assert chk.reused == n and third.starts_in_collision is not None
+
+
+def test_another_arm_geometry_gives_a_new_result():
+    from dataclasses import replace
+
+    from val3check.robot import dh as _dh
+    from val3check.robot.absolute import with_dh
+    from val3check.simulation.collision_run import _geometry_epochs
+
+    nominal = _dh.nominal_dh(ROBOT)
+    longer = with_dh(ROBOT, replace(nominal, a=tuple(v + (20.0 if k == 2 else 0.0) for k, v in enumerate(nominal.a))))
+    arm, epochs = _geometry_epochs(ROBOT, [(10.0, longer)])
+    from val3check.collision import CollisionChecker
+
+    chk = CollisionChecker(arm, _cell(), frames={"fBall": BALL}, tools={"tTool": TOOL})
+    T, Q = _own(A, B)
+    epochs.at(1.0)
+    before = chk.check_own(MotionSpan(0), 1.0, T, Q, key="AB")
+    epochs.at(11.0)  # setDH (11.4): the same joints put the arm elsewhere
+    after = chk.check_own(MotionSpan(0), 11.0, T, Q, key="AB")
+    assert chk.reused == 0 and after.min_clearance.mm != before.min_clearance.mm
+    assert ARM is not arm
+
+
+# ---- the motion's own clock and its key --------------------------------------------------------------
+
+
+def _run_of(moves, starts):
+    """A trajectory of joint lines [(geometry, speed)] started at `starts` (s): a trapezoid-free
+    profile (constant acceleration up to half way, then down)."""
+    q0 = moves[0][0].q0
+    path, prof = Path(q0), Profile(0.0, 0.0)
+    out = []
+    for (geom, v), t0 in zip(moves, starts):
+        off = path.append(Span(geom, 0.0, 1.0))
+        ell = geom.ell
+        prof.append(t0, np.array([off, off + 0.5 * ell, off + ell]), np.array([0.0, v, 0.0]))
+        out.append((t0, prof.t_end))
+    return Trajectory(path, prof), out
+
+
+def test_the_same_motion_at_another_time_and_path_position_has_the_same_key_and_samples():
+    out_, back = JointLine([0, 0, 90, 0, 45, 0], [40, 10, 80, 5, 50, 30]), None
+    back = JointLine(out_.q1, out_.q0)
+    slow_back = back  # the same curve, timed slower
+    traj, spans = _run_of([(out_, 100.0), (back, 100.0), (out_, 100.0), (slow_back, 60.0)],
+                          [0.3, 2.1013, 3.7007, 5.55])
+    own = [own_clock(traj, a, b) for a, b in spans]
+    assert own[0].key == own[2].key and own[0].key is not None
+    assert np.array_equal(own[0].times, own[2].times) and np.array_equal(own[0].joints, own[2].joints)
+    assert own[0].joints[0] == pytest.approx(out_.q0) and own[0].joints[-1] == pytest.approx(out_.q1)
+    assert own[1].key != own[0].key  # another curve
+    assert own[3].key != own[1].key  # the same curve, another timing
+    assert not np.array_equal(own[3].joints[: len(own[1].joints)], own[1].joints)
+    # the samples are every 4 ms from the motion's start, then its end
+    a, b = spans[2]
+    assert own[2].times[1] == pytest.approx(0.004) and own[2].times[-1] == pytest.approx(b - a, abs=1e-9)
+    # what the checks sample is the trajectory, to the key's rounding
+    assert np.abs(own[2].joints - traj.positions(a + own[2].times)).max() < 1e3 * Q_S
+    mid = own_clock(traj, a + 0.1, b)  # from inside the motion: another part of it
+    assert mid.key != own[2].key
+
+
+def test_a_trajectory_the_layers_of_chapter_11_move_has_no_key_and_is_sampled_as_it_is():
+    line = JointLine([0, 0, 90, 0, 45, 0], [40, 10, 80, 5, 50, 30])
+    traj, spans = _run_of([(line, 100.0)], [0.3])
+
+    class Shifted(Trajectory):  # as arm_layers.ActualTrajectory: the nominal path and profile, moved
+        def position(self, t):
+            return super().position(t) + 1.0
+
+        def positions(self, times):
+            return super().positions(times) + 1.0
+
+    moved = Shifted(traj.path, traj.profile)
+    own = own_clock(moved, *spans[0])
+    assert own.key is None
+    assert np.array_equal(own.joints, moved.positions(spans[0][0] + own.times))
+
+
+def test_a_copy_of_a_curve_is_not_the_curve():
+    line = JointLine([0, 0, 90, 0, 45, 0], [40, 10, 80, 5, 50, 30])
+    copy = JointLine(line.q0, line.q1)
+    traj, spans = _run_of([(line, 100.0), (JointLine(line.q1, line.q0), 100.0), (copy, 100.0)], [0.0, 2.0, 4.0])
+    a, c = own_clock(traj, *spans[0]), own_clock(traj, *spans[2])
+    assert a.key != c.key and np.array_equal(a.joints, c.joints)  # a miss, never a wrong result
+
+
+def test_own_times():
+    assert own_times(0.0).tolist() == [0.0]
+    assert own_times(0.01) == pytest.approx([0.0, 0.004, 0.008, 0.01])
+    assert own_times(0.008) == pytest.approx([0.0, 0.004, 0.008]) and len(own_times(0.008 + 1e-12)) == 3
+    assert math.isclose(own_times(0.0105)[-1], 0.0105)
+
+
+def test_the_bundled_pick_and_place_reuses_checks_and_finds_what_fresh_checks_find(monkeypatch):
+    # 70 s: the pallet of 9 cubes is filled and changed about 3 times; every check is then made
+    # again without reuse and compared, motion by motion
+    import sys
+    from pathlib import Path as FsPath
+
+    from val3check.simulation import collision_run
+
+    root = FsPath(__file__).resolve().parents[2]
+    sys.path.insert(0, str(root / "tests"))
+    from interpretation.simsupport import run_folder
+
+    app = root / "fixtures" / "valid" / "PickPlace"
+    scenario = (root / "fixtures" / "scenarios" / "pickplace.toml").read_text(encoding="utf-8")
+
+    def sim():
+        return run_folder(app, scenario=scenario, duration=70.0, robot=ROBOT, collisions=True,
+                          cell=str(app / "val3check-cell.toml"), tmp_path=FsPath(__import__("tempfile").mkdtemp()))
+
+    reused = sim()
+    keyed = collision_run.own_clock
+
+    def unkeyed(*a):
+        own = keyed(*a)
+        own.key = None
+        return own
+
+    monkeypatch.setattr(collision_run, "own_clock", unkeyed)
+    fresh = sim()
+    a, b = reused.collision, fresh.collision
+    assert b.reused == 0 and a.reused > 0.5 * len(a.by_motion) and len(a.by_motion) > 100
+    assert a.checks < 0.5 * b.checks
+    assert sorted(a.by_motion) == sorted(b.by_motion)
+    for i, r in a.by_motion.items():
+        f = b.by_motion[i]
+        _same(f, r, 0.0)
+        assert r.motion.id == i
+    assert [(i, c) for i, c in a.contacts] == [(i, c) for i, c in b.contacts]
+    assert [d.message for d in reused.diagnostics] == [d.message for d in fresh.diagnostics]
