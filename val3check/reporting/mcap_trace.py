@@ -24,7 +24,7 @@ import math
 from typing import Any
 
 from ..lengths import MM_M as MM  # Foxglove works in metres
-from .thinning import TRACE_TICKS, left_out, task_changes, thinned_note, tick_multiple
+from .thinning import TRACE_TICKS, io_events, left_out, part_spans, task_changes, thinned_note, tick_multiple
 
 TICK_S = 0.004
 CHUNK_SIZE = 1 << 20
@@ -422,7 +422,7 @@ def trace_messages(report: Any, cell: Any = None):
                 out.add("/scene", ns, {"deletions": [], "entities": [_tcp_marker(ns, flange, name, tool)]})
                 last = key
         if cell is not None:
-            _cell(out, cell, m, frames, tracks)
+            extra["parts_thinned"] = _cell(out, cell, m, frames, tracks)
     for e in result.transcript:
         ns = _ns(e.time_us / 1e6)
         out.add("/log", ns, {"timestamp": _stamp(ns), "level": 2, "message": f"[{e.kind}] {e.text}",
@@ -432,7 +432,8 @@ def trace_messages(report: Any, cell: Any = None):
         out.add("/log", ns, {"timestamp": _stamp(ns), "level": LOG_LEVEL.get(d.severity.label, 2),
                              "message": f"{d.code} {d.message}", "name": d.task or "val3check",
                              "file": d.path or "", "line": int(d.line or 0)})
-    for e in result.io_log:
+    io, extra["io_thinned"] = io_events(result)  # the first changes on a long run (thinning.py)
+    for e in io:
         ns = _ns(e.time_us / 1e6)
         value = e.value if not isinstance(e.value, float) or e.value == e.value else None
         out.add("/io", ns, {"timestamp": _stamp(ns), "kind": e.kind, "link": e.link,
@@ -476,10 +477,11 @@ def _placed(ns_of, base, track) -> list[tuple[int, Any]]:
     return [(0 if k == 0 else ns_of(c.time), c.matrix) for k, c in enumerate(track)]
 
 
-def _cell(out: "_Messages", cell: Any, m: Any, frames: dict, tracks: dict) -> None:
+def _cell(out: "_Messages", cell: Any, m: Any, frames: dict, tracks: dict) -> str | None:
     """The cell's solids (docs/trace.md): obstacles in the world, tool solids on the flange, each
     sent again when the frame or tool it hangs on changes (deleted while it has no value), and the
-    parts: on the flange while carried, in the world where they were left (`m.cell_timeline`)."""
+    parts: on the flange while carried, in the world where they were left (`m.cell_timeline`; its
+    first spans on a long run: what the metadata says then, returned)."""
     import numpy as np
 
     world, flange = m.scene.world_frame, m.scene.flange_frame
@@ -505,7 +507,8 @@ def _cell(out: "_Messages", cell: Any, m: Any, frames: dict, tracks: dict) -> No
                 delete(ns, ident)
     timeline = m.cell_timeline
     left = 0
-    for span in timeline.parts if timeline is not None else ():
+    spans, note = part_spans(timeline.parts if timeline is not None else ())
+    for span in spans:
         shown = [(p.name, p.shape, span.pose @ p.pose, None) for p in cell.parts if p.name == span.name]
         ident = f"part/{span.name}"
         if not span.carried:
@@ -516,6 +519,7 @@ def _cell(out: "_Messages", cell: Any, m: Any, frames: dict, tracks: dict) -> No
             delete(_ns(span.end), ident)
     for ns in sorted(updates):
         out.add("/scene", ns, updates[ns])
+    return note
 
 
 def write_trace(report: Any, path: str, cell: Any = None) -> None:
@@ -549,8 +553,9 @@ def write_trace(report: Any, path: str, cell: Any = None) -> None:
                 "simulated_duration_s": f"{r.sim_time_us / 1e6:.6f}", "tool_version": report.tool_version}
         if extra["omitted"] is not None:
             meta["omitted"] = extra["omitted"]
-        if extra.get("tasks_thinned"):
-            meta["tasks_thinned"] = extra["tasks_thinned"]
+        for key in ("tasks_thinned", "io_thinned", "parts_thinned"):
+            if extra.get(key):
+                meta[key] = extra[key]
         if extra["every"] > 1:
             meta["arm_period_s"] = f"{TICK_S * extra['every']:.6f}"
             meta["thinned"] = thinned_note(extra["every"], TRACE_TICKS)

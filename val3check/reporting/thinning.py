@@ -20,6 +20,9 @@ JSON_TICKS = 75_000  # samples of the JSON trajectory: 5 minutes of motion at 4 
 TRACE_TICKS = 40_000  # ticks of the MCAP trace's arm messages: 160 s of motion at 4 ms (about 15 MB)
 MOTION_ROWS = 5_000  # rows of the motion tables (JSON, HTML): about 2.5 MB of JSON
 TASK_CHANGES = 20_000  # task state changes of the HTML timelines and the trace's /tasks (about 1.2 MB)
+ARM_SPANS = 10_000  # moving and idle spans of the HTML arm timeline (about 0.3 MB; 6,828 in the 1-hour cell)
+IO_EVENTS = 10_000  # I/O changes of the HTML I/O lanes and the trace's /io (about 0.3 MB; 7,335 in 1 hour)
+PART_SPANS = 3_000  # part spans of the HTML 3D view and the trace's /scene (about 0.4 MB; 2,276 in 1 hour)
 
 
 def moving_ticks(m: Any) -> int:
@@ -47,12 +50,34 @@ def left_out(result: Any, what: str) -> str | None:
     return None if why is None else f"{what} not written: {why}"
 
 
+def first(items, bound: int, where: str, what: str, time_of) -> tuple[list, str | None]:
+    """The first `bound` of `items` (in time order), and what a report says when there were more
+    (None: all of them): "a long run: {where} the first N of M {what} (up to the time of the
+    first one left out)"."""
+    items = list(items)
+    if len(items) <= bound:
+        return items, None
+    return items[:bound], (f"a long run: {where} the first {bound} of {len(items)} {what} "
+                           f"(up to {time_of(items[bound]):g} s)")
+
+
 def task_changes(result: Any) -> tuple[list, str | None]:
     """The task state changes a report shows of the run `result` (a SimResult): the first
     TASK_CHANGES, and what a report says when there were more (None: all of them)."""
-    changes = result.task_states
-    if len(changes) <= TASK_CHANGES:
-        return changes, None
-    until = changes[TASK_CHANGES].time_us / 1e6
-    return changes[:TASK_CHANGES], (f"a long run: the task timelines hold the first {TASK_CHANGES} of "
-                                    f"{len(changes)} task state changes (up to {until:g} s)")
+    return first(result.task_states, TASK_CHANGES, "the task timelines hold", "task state changes",
+                 lambda c: c.time_us / 1e6)
+
+
+def arm_spans(segments: list[dict]) -> tuple[list[dict], str | None]:
+    """The first ARM_SPANS of the arm timeline's moving and idle `segments` ({"start", ...})."""
+    return first(segments, ARM_SPANS, "the arm timeline holds", "moving and idle spans", lambda s: s["start"])
+
+
+def io_events(result: Any) -> tuple[list, str | None]:
+    """The first IO_EVENTS of the I/O changes of the run `result` (its `io_log`)."""
+    return first(result.io_log, IO_EVENTS, "the I/O log holds", "I/O changes", lambda e: e.time_us / 1e6)
+
+
+def part_spans(spans) -> tuple[list, str | None]:
+    """The first PART_SPANS of the parts' spans (simulation.arm_record.PartSpan, by start)."""
+    return first(spans, PART_SPANS, "the parts drawn are", "part spans", lambda s: s.start)

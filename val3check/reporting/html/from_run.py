@@ -24,7 +24,7 @@ from pathlib import Path
 from typing import Any
 
 from .._common import SourceCache
-from ..thinning import MOTION_ROWS, left_out, task_changes
+from ..thinning import MOTION_ROWS, arm_spans, io_events, left_out, part_spans, task_changes
 from .excerpts import SEVERITY_ORDER, excerpt
 from .model import VERSION
 
@@ -190,7 +190,7 @@ def _task_segments(result: Any, end: float, limits: list[str]) -> list[dict]:
     changes, note = task_changes(result)
     if note is not None:
         end = min(end, _r(result.task_states[len(changes)].time_us / 1e6))
-        limits.append(note[0].upper() + note[1:] + ".")
+        _note(note, limits)
     for c in changes:
         t = min(c.time_us / 1e6, end)
         segs = by_task.setdefault(c.task, [])
@@ -210,8 +210,14 @@ def _task_segments(result: Any, end: float, limits: list[str]) -> list[dict]:
     return out
 
 
-def _arm_timeline(m: Any, end: float) -> list[dict]:
-    """The arm moving or idle over the run."""
+def _note(note: str | None, limits: list[str]) -> None:
+    """A bound reached on a long run (reporting/thinning.py), said in `limits` as a sentence."""
+    if note is not None:
+        limits.append(note[0].upper() + note[1:] + ".")
+
+
+def _arm_timeline(m: Any, end: float, limits: list[str]) -> list[dict]:
+    """The arm moving or idle over the run: its first spans on a long run (thinning.py, said)."""
     segs, t = [], 0.0
     for a, b in m.trajectory.moving(m.end_s):
         a, b = min(a, end), min(b, end)
@@ -222,6 +228,8 @@ def _arm_timeline(m: Any, end: float) -> list[dict]:
         t = max(t, b)
     if t < end:
         segs.append({"start": _r(t), "end": _r(end), "state": "idle"})
+    segs, note = arm_spans(segs)
+    _note(note, limits)
     return segs
 
 
@@ -297,10 +305,12 @@ def _parts(m: Any, cell: Any, limits: list[str]) -> list[dict]:
                       "not drawn.")
         return []
     out: dict[str, dict] = {}
+    spans, note = part_spans(m.cell_timeline.parts)  # the first spans on a long run (thinning.py)
+    _note(note, limits)
     for p in cell.parts:
         part = out.setdefault(p.name, {"name": p.name, "solids": [], "spans": []})
         part["solids"].append(_shape_solid(p.name, p.shape, p.pose, limits))
-    for span in m.cell_timeline.parts:
+    for span in spans:
         out[span.name]["spans"].append({"start": _r(span.start), "end": _r(span.end), "carried": span.carried,
                                         "pose": _m34(span.pose)})
     return [p for p in out.values() if p["spans"]]
@@ -416,13 +426,15 @@ def model_from_run(report: Any, *, fail_on: str = "error", cell: Any = None, cle
                           "the cycles, the findings and the plots cover the whole run.")
         cycles, cycle_time = _cycles(report, m, end)
         trajectory = _trajectory(report, m, limits)
-        arm_timeline = _arm_timeline(m, end)
+        arm_timeline = _arm_timeline(m, end, limits)
         if cell is None:
             limits.append("No cell file: the 3D view has no obstacles and the motions no clearance (docs/cell.md).")
     elif result.robot is None:
         limits.append("No arm model (--robot): no motion, trajectory or 3D view.")
     scene = _scene(result, m, cell, limits) if m is not None else None
     tasks = _task_segments(result, end, limits)
+    io, note = io_events(result)  # the first changes on a long run (thinning.py)
+    _note(note, limits)
     return {
         "version": VERSION,
         "title": title or result.application,
@@ -449,7 +461,7 @@ def model_from_run(report: Any, *, fail_on: str = "error", cell: Any = None, cle
         "io": [{"time": _r(e.time_us / 1e6), "kind": e.kind, "link": e.link,
                 "names": report.link_names.get((e.kind, e.link), []),
                 "value": e.value if not isinstance(e.value, float) or e.value == e.value else None,
-                "source": e.source} for e in result.io_log],
+                "source": e.source} for e in io],
         "transcript": [{"time": _r(e.time_us / 1e6), "task": e.task, "kind": e.kind, "text": e.text,
                         "screen": e.screen} for e in result.transcript],
         "screen": result.screen,
