@@ -381,6 +381,16 @@ def _parse(types: list[str], toks: list[tuple], b: Builder) -> Any:  # noqa: C90
         target = prog_ref()
         return b.call_stmt([tok, target, call_args()])
 
+    def last_clause(keyword: str, make: Any) -> Any:
+        # [else_clause] / [default_clause]: KEYWORD _NL block, or None when absent
+        nonlocal pos
+        if types[pos] != keyword:
+            return None
+        t = toks[pos]
+        pos += 1
+        expect("_NL")
+        return make([t, block()])
+
     def if_statement(tok: tuple) -> Any:
         # if_stmt: IF expr _NL block elseif_clause* [else_clause] ENDIF
         nonlocal pos
@@ -394,13 +404,7 @@ def _parse(types: list[str], toks: list[tuple], b: Builder) -> Any:  # noqa: C90
             cond = expr()
             expect("_NL")
             c.append(b.elseif_clause([t, cond, block()]))
-        if types[pos] == "ELSE":
-            t = toks[pos]
-            pos += 1
-            expect("_NL")
-            c.append(b.else_clause([t, block()]))
-        else:
-            c.append(None)
+        c.append(last_clause("ELSE", b.else_clause))
         c.append(expect("ENDIF"))
         return b.if_stmt(c)
 
@@ -461,13 +465,7 @@ def _parse(types: list[str], toks: list[tuple], b: Builder) -> Any:  # noqa: C90
             expect("_NL")
             case.append(block())
             c.append(b.case_clause(case))
-        if types[pos] == "DEFAULT":
-            t = toks[pos]
-            pos += 1
-            expect("_NL")
-            c.append(b.default_clause([t, block()]))
-        else:
-            c.append(None)
+        c.append(last_clause("DEFAULT", b.default_clause))
         c.append(expect("ENDSWITCH"))
         return b.switch_stmt(c)
 
