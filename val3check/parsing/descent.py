@@ -172,18 +172,8 @@ def _parse(types: list[str], toks: list[tuple], b: Builder) -> Any:  # noqa: C90
             node = b_unary([tok, unary()])
             nesting -= 1
             return node
-        node = primary()
-        while True:  # ?postfix: primary | postfix _LSQB args _RSQB | postfix _DOT NAME
-            t = types[pos]
-            if t == "_LSQB":
-                pos += 1
-                node = Index(node, args(), node.line, node.col)  # Builder.index
-                expect("_RSQB")
-            elif t == "_DOT":
-                pos += 1
-                node = b_field([node, expect("NAME")])
-            else:
-                return node
+        # ?postfix: primary | postfix _LSQB args _RSQB | postfix _DOT NAME: the lvalue's tail
+        return lvalue_tail(primary())
 
     def primary() -> Any:
         nonlocal pos
@@ -353,7 +343,7 @@ def _parse(types: list[str], toks: list[tuple], b: Builder) -> Any:  # noqa: C90
         return Assign(target, expr(), target.line, target.col, lines[k], offs[k] + eq[3])  # Builder.assign
 
     def lvalue_tail(target: Any) -> Any:
-        # ?lvalue: ... | lvalue _LSQB args _RSQB -> index | lvalue _DOT NAME -> field
+        # ?lvalue: ... | lvalue _LSQB args _RSQB -> index | lvalue _DOT NAME -> field (and postfix's)
         nonlocal pos
         while True:
             t = types[pos]
