@@ -46,7 +46,7 @@ class ArmKinematics(Protocol):
     def urdf(self) -> tuple[str, str]: ...  # (file name, text) of the arm's URDF
     def link_edges(self) -> list[tuple[str, str, bool]]: ...  # (parent, child, moves) below the root
     def link_poses(self, joints) -> dict[str, np.ndarray]: ...  # {link: 4x4 in world} at one position
-    def link_poses_many(self, joints) -> dict[str, np.ndarray]: ...  # {link: (N, 4, 4)} at N positions
+    def link_poses_many(self, joints, links=None) -> dict[str, np.ndarray]: ...  # {link: (N, 4, 4)} at N positions
 
 
 @dataclass(frozen=True)
@@ -289,12 +289,13 @@ def tcp_speed(kinematics: ArmKinematics, flange: str, tool_uses, times, position
     the tool changes)."""
     h = TCP_STEP_S
     positions, velocities = np.asarray(positions, dtype=float), np.asarray(velocities, dtype=float)
-    poses = kinematics.link_poses_many
-    # a block of samples at a time: every link's poses at once take 1 KB a sample
-    P0 = np.concatenate([poses(positions[b:b + BLOCK])[flange] for b in range(0, len(positions), BLOCK)]) \
-        if len(positions) else np.zeros((0, 4, 4))
-    P1 = np.concatenate([poses(positions[b:b + BLOCK] + h * velocities[b:b + BLOCK])[flange]
-                         for b in range(0, len(positions), BLOCK)]) if len(positions) else np.zeros((0, 4, 4))
+    # a block of samples at a time, the flange alone (the links below it only), at the samples and
+    # a step along the joint velocity in one evaluation
+    P0, P1 = np.zeros((len(positions), 4, 4)), np.zeros((len(positions), 4, 4))
+    for b in range(0, len(positions), BLOCK):
+        q = positions[b:b + BLOCK]
+        P = kinematics.link_poses_many(np.concatenate([q, q + h * velocities[b:b + BLOCK]]), (flange,))[flange]
+        P0[b:b + len(q)], P1[b:b + len(q)] = P[:len(q)], P[len(q):]
     starts = [t for t, _ in tool_uses]
     tools = [tool for _, tool in tool_uses]
     times = np.asarray(times, dtype=float)
