@@ -1,19 +1,19 @@
 """The motion records of commands that repeat an earlier one (issue 29): a cyclic program goes over
 the same spans of the same geometries again and again, with the same tool, the same limits and the
-same timing relative to its start; the record's figures (TCP length, peak speed, limit shares and
-dominant limit, motion_records.py) are then the same, and are computed once.
+same timing relative to its start. Such a command takes the earlier one's TCP length, peak speed
+and the limit each of its intervals is on (motion_records.py); its seconds under each limit are
+summed from its own durations.
 
 The key is what `motion_records` reads for a command over [s0, s1]: exactly, the spans of path its
 evaluation reaches (geometry object, part), its tool and limits, the number of profile breakpoints
 and how each of them, s0 and s1 fall against the others and the spans' offsets (which span a point
 is evaluated on, which intervals count); then, within tolerances, the breakpoints' positions and
-the spans' offsets relative to s0, the durations between breakpoints and the path speeds. A
-repeated motion's global positions and times differ from the earlier one's in their last bits
-(sums over the whole run): the tolerances are a few hundred times that rounding (POS_TOL, TIME_TOL
-relative to the run's positions and times, SPEED_TOL to the path speeds), and a command whose
-figures hinge on a decision closer than that (which limit an interval is on, `decisive` in
-motion_records._limit_share) is computed for every repetition, so that reused figures differ from
-fresh ones only by that rounding, never by a choice (docs/performance.md, "The run's record").
+the spans' offsets relative to s0, the durations of the intervals that count and the path speeds.
+A repeated motion's global positions and times differ from the earlier one's in their last bits
+(sums over the whole run): the tolerances are a few hundred times that rounding. An interval whose
+limit was a near tie (closer than the tolerances can move it: motion_records._limits_on) is decided
+again on each repetition's own path, so that a reused record differs from a fresh one only in its
+length and peak, by that rounding (docs/performance.md, "The run's record").
 """
 
 from __future__ import annotations
@@ -57,9 +57,12 @@ class Repeats:
                  None if tool is None else np.asarray(tool, dtype=float).tobytes(), held[1], len(S),
                  order.astype(np.int8).tobytes())
         pos = np.concatenate([S - s0, offs - s0, [s1 - s0]])
+        # the durations of the intervals that count only (a rest before the command, waiting for
+        # the program, is as long as it is)
+        dT = np.where((np.diff(S) > 0) & (S[1:] > s0) & (S[:-1] < s1), np.diff(T), 0.0)
         tol = (POS_TOL * max(1.0, abs(S[-1]), abs(s1)), TIME_TOL * max(1.0, abs(T[-1])),
                SPEED_TOL * max(1.0, float(SD.max())))
-        return exact, (pos, np.diff(T), SD), tol
+        return exact, (pos, dT, SD), tol
 
     def find(self, inputs) -> tuple[list | None, list | None]:
         """(the list of the commands that repeat an earlier one with these inputs, None), or
