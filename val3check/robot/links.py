@@ -25,6 +25,7 @@ from .errors import RobotError
 from .urdf import UrdfInfo, read_urdf
 
 _MOVING = ("revolute", "continuous", "prismatic")
+ROWS = 8192  # rows × 4 × 4 under OpenBLAS's threshold for threads (65,536 × 4)
 
 
 @dataclass(frozen=True)
@@ -158,8 +159,7 @@ class ArmLinks:
         M = _motions_many(self._axes, self._kinds_prismatic, Q[:, self._qindex])
         out = {self.root: np.broadcast_to(self.root_in_world, (n, 4, 4))}
         for link, parent, origin, m in plan:
-            P = out[parent]
-            T = (np.ascontiguousarray(P).reshape(-1, 4) @ origin).reshape(n, 4, 4)
+            T = _times(out[parent], origin)
             out[link] = T if m < 0 else T @ M[m]
         return out
 
@@ -346,6 +346,17 @@ def _motions_one(axes: np.ndarray, prismatic: np.ndarray, values: np.ndarray) ->
     T[:, :3, 3] = np.where(prismatic, values, 0.0)[:, None] * axes
     T[:, 3, 3] = 1.0
     return T
+
+
+def _times(P: np.ndarray, origin: np.ndarray) -> np.ndarray:
+    """P @ origin for poses P (N, 4, 4) and one 4x4: the rows of all poses times origin, a block of
+    rows at a time (small enough that BLAS keeps to one thread: no threads spinning on a busy
+    machine)."""
+    rows = np.ascontiguousarray(P).reshape(-1, 4)
+    out = np.empty_like(rows)
+    for a in range(0, len(rows), ROWS):
+        np.matmul(rows[a:a + ROWS], origin, out=out[a:a + ROWS])
+    return out.reshape(P.shape)
 
 
 def _motions_many(axes: np.ndarray, prismatic: np.ndarray, values: np.ndarray) -> np.ndarray:
