@@ -178,10 +178,7 @@ def _repeat(queue, prof, out: list, again: list) -> None:
         doubt.setdefault(None if tool is None else np.asarray(tool, dtype=float).tobytes(), []).append(
             (item, rows, codes.copy(), j, 0.5 * (S[rows[5][j]] + S[rows[5][j] + 1]), length, peak))
     for items in doubt.values():
-        allp = np.concatenate([it[4] for it in items])
-        q = queue.path.q(allp)
-        q1 = queue.path.q(allp, 1)
-        q2 = queue.path.q(allp, 2)
+        q, q1, q2 = _path_at(queue.path, np.concatenate([it[4] for it in items]))
         pt, rt = tcp_rates(queue.kin, q, q1, items[0][0][1].tool)
         at = 0
         for (idx, command, s0, s1, start, end, k0, k1, lim), rows, codes, j, mids, length, peak in items:
@@ -190,6 +187,27 @@ def _repeat(queue, prof, out: list, again: list) -> None:
             sub = tuple(r[j] if k >= 1 else r for k, r in enumerate(rows))  # the rows in doubt
             codes[j] = _limits_on(lim, sub, q1[sl], q2[sl], pt[sl], rt[sl], prof, max(k0 - 1, 0), k1, s1)[0]
             out[idx] = _record(command, start, end, length, peak, _seconds(rows, codes, len(lim.V)))
+
+
+def _path_at(path, s: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The path's joints and their first two derivatives at positions s, as `Path.q` gives them
+    (the span at or before each, its σ clipped to it), one evaluation per piece of geometry: the
+    spans of a repeated motion are the same part of the same geometry."""
+    groups: dict = {}
+    for k, x in enumerate(s.tolist()):
+        i = min(max(bisect.bisect_right(path.offsets, x) - 1, 0), len(path.spans) - 1)
+        sp = path.spans[i]
+        g = groups.get((id(sp.geom), sp.a, sp.b))
+        if g is None:
+            g = groups[(id(sp.geom), sp.a, sp.b)] = (sp, [], [])
+        g[1].append(k)
+        g[2].append(path.offsets[i])
+    out = [np.empty((len(s), len(path.q_rest))) for _ in range(3)]
+    for sp, rows, offsets in groups.values():
+        sigma = np.clip(s[rows] - np.asarray(offsets), 0.0, sp.length)
+        for order in range(3):
+            out[order][rows] = sp.q(sigma, order)
+    return out[0], out[1], out[2]
 
 
 def _record(command, start, end, length: float, peak: float, share: dict) -> MotionRecord:

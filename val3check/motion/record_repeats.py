@@ -18,6 +18,8 @@ length and peak, by that rounding (docs/performance.md, "The run's record").
 
 from __future__ import annotations
 
+import bisect
+
 import numpy as np
 
 POS_TOL = 1e-13  # × the magnitude of the run's path positions (their rounding: ~1e-16 per operation)
@@ -46,23 +48,30 @@ class Repeats:
         SD = np.asarray(prof.SD[lo:hi + 1])
         i0 = path.locate(min(S[0], s0))[0]
         i1 = path.locate(max(S[-1], s1))[0]
-        offs = np.asarray(path.offsets[i0:i1 + 1])
+        offsets = path.offsets[i0:i1 + 1]
+        offs = np.asarray(offsets)
         held = self._limits.get(id(lim))
         if held is None or held[0] is not lim:
             held = self._limits[id(lim)] = (lim, (lim.V.tobytes(), lim.A.tobytes(), lim.D.tobytes(), lim.tvel, lim.rvel))
-        ends = np.array([s0, s1])
-        order = np.concatenate([np.sign(np.diff(S)), np.sign(S[:, None] - ends[None, :]).ravel(),
-                                np.sign(np.concatenate([S, ends])[:, None] - offs[None, :]).ravel()])
+        # how the breakpoints, s0 and s1 fall against each other (which intervals count, which
+        # breakpoints are points of the length) and against the spans' offsets (the span each
+        # point is evaluated on: the one at or before it)
+        Sa, end = prof.S, hi + 1
+        where = (bisect.bisect_left(Sa, s0, lo, end) - lo, bisect.bisect_right(Sa, s0, lo, end) - lo,
+                 bisect.bisect_left(Sa, s1, lo, end) - lo, bisect.bisect_right(Sa, s1, lo, end) - lo,
+                 bisect.bisect_right(offsets, s0), bisect.bisect_right(offsets, s1))
+        dS = np.diff(S)
+        moves = dS > 0
         exact = (tuple((id(sp.geom), sp.a, sp.b) for sp in path.spans[i0:i1 + 1]),
-                 None if tool is None else np.asarray(tool, dtype=float).tobytes(), held[1], len(S),
-                 order.astype(np.int8).tobytes())
-        pos = np.concatenate([S - s0, offs - s0, [s1 - s0]])
+                 None if tool is None else np.asarray(tool, dtype=float).tobytes(), held[1], len(S), where,
+                 moves.tobytes(), np.searchsorted(offs, S, side="right").tobytes())
         # the durations of the intervals that count only (a rest before the command, waiting for
         # the program, is as long as it is)
-        dT = np.where((np.diff(S) > 0) & (S[1:] > s0) & (S[:-1] < s1), np.diff(T), 0.0)
-        tol = (POS_TOL * max(1.0, abs(S[-1]), abs(s1)), TIME_TOL * max(1.0, abs(T[-1])),
-               SPEED_TOL * max(1.0, float(SD.max())))
-        return exact, (pos, dT, SD), tol
+        counts = moves & (S[1:] > s0) & (S[:-1] < s1)
+        got = np.concatenate([S - s0, offs - s0, [s1 - s0], np.where(counts, np.diff(T), 0.0), SD])
+        tol = np.repeat([POS_TOL * max(1.0, abs(S[-1]), abs(s1)), TIME_TOL * max(1.0, abs(T[-1])),
+                         SPEED_TOL * max(1.0, float(SD.max()))], [len(S) + len(offs) + 1, len(S) - 1, len(S)])
+        return exact, got, tol
 
     def find(self, inputs) -> tuple[list | None, list | None]:
         """(the list of the commands that repeat an earlier one with these inputs, None), or
@@ -71,7 +80,7 @@ class Repeats:
         exact, got, tol = inputs
         kept = self.seen.setdefault(exact, [])
         for earlier, repeats in kept:
-            if all(bool(np.all(np.abs(a - b) <= t)) for a, b, t in zip(got, earlier, tol)):
+            if np.all(np.abs(got - earlier) <= tol):
                 self.hits += 1
                 return repeats, None
         repeats: list = []
