@@ -200,3 +200,27 @@ def test_the_seconds_under_each_limit_are_the_interval_loops(pick_place):
             assert r.dominant == (max(r.limit_share, key=r.limit_share.get) if r.limit_share else "")
             checked += 1
     assert checked > 300
+
+
+def test_the_tcp_speed_skips_the_samples_at_rest_and_gives_every_sample_s_speed(pick_place):
+    """arm_record.tcp_speed: the forward kinematics only where the arm moves (at rest the pose is
+    the same twice: 0), the same values as every sample through the flange's poses."""
+    from val3check.simulation.arm_record import TCP_STEP_S, tcp_speed
+    from val3check.simulation.collect import ModelKinematics
+
+    q, end = pick_place
+    kin = ModelKinematics(TX)
+    times, Q, V = q.trajectory.sample(0.0, 40.0, 0.004)
+    records = motion_records(q, end)
+    uses = [(r.start, c.tool) for r, c in zip(records, q.history) if r.start is not None and r.kind != "connection"]
+    got = tcp_speed(kin, TX.flange_frame, uses, times, Q, V)
+    at_rest = np.all(V == 0.0, axis=1)
+    assert 0 < at_rest.sum() < len(times)
+    assert np.all(got[at_rest] == 0.0)
+    P0 = kin.link_poses_many(Q)[TX.flange_frame]
+    P1 = kin.link_poses_many(Q + TCP_STEP_S * V)[TX.flange_frame]
+    starts = np.array([t for t, _ in uses])
+    for k in np.linspace(0, len(times) - 1, 400).astype(int).tolist():
+        tool = uses[max(int(np.searchsorted(starts, times[k], side="right")) - 1, 0)][1]
+        p = np.array([0.0, 0.0, 0.0, 1.0]) if tool is None else np.asarray(tool)[:, 3]
+        assert got[k] == pytest.approx(np.linalg.norm((P1[k] @ p - P0[k] @ p)[:3]) / TCP_STEP_S, rel=1e-9, abs=1e-6)
