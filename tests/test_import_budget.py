@@ -68,7 +68,7 @@ def _sim_modules(tmp_path, *extra: str) -> str:
         "roots = sorted({m.split('.')[0] for m in sys.modules})\n"
         "print('ROOTS', roots, file=sys.stderr)\n"
         "print('BATCH', sorted(m for m in sys.modules if m.startswith('val3check.batch')), file=sys.stderr)\n"
-        "print('FROZEN', gc.get_freeze_count() > 0, file=sys.stderr)\n"
+        "print('FROZEN', gc.get_freeze_count() > 0, gc.get_threshold(), file=sys.stderr)\n"
     )
     r = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=300)
     assert (tmp_path / "r.json").is_file(), r.stderr
@@ -78,14 +78,15 @@ def _sim_modules(tmp_path, *extra: str) -> str:
 def test_sim_imports_only_what_its_run_uses(tmp_path):
     """One application: none of the batch's modules (cli.sim_command.wants_batch); no trace: not
     mcap; a cell without meshes: not trimesh; no pinocchio (the arm's kinematics are our own),
-    no Dask. The process freezes its collector once linted (cli.sim_command.freeze_before_run)."""
+    no Dask. The process freezes its collector once linted and collects its young generation less
+often (cli.sim_command.freeze_before_run)."""
     err = _sim_modules(tmp_path)
     roots = err.split("ROOTS ")[1].splitlines()[0]
     for name in ("mcap", "trimesh", "pinocchio", "dask", "distributed", "example_robot_data"):
         assert f"'{name}'" not in roots, (name, roots)
     assert "'numpy'" in roots and "'fcl'" in roots, roots  # what the run does use: the check sees imports
     assert "BATCH []" in err, err
-    assert "FROZEN True" in err, err
+    assert "FROZEN True (10000, 10, 10)" in err, err
 
 
 def test_sim_imports_mcap_when_it_writes_a_trace(tmp_path):
@@ -95,12 +96,13 @@ def test_sim_imports_mcap_when_it_writes_a_trace(tmp_path):
 
 
 def test_sim_called_as_a_function_leaves_the_collector_alone(tmp_path):
-    """`main(argv)` from another program (tests, tools): no freeze (their collector is theirs)."""
+    """`main(argv)` from another program (tests, tools): no freeze, thresholds left as they were
+    (their collector is theirs)."""
     code = (
         "import gc, sys\n"
         "from val3check.cli import main\n"
         f"main(['sim', 'fixtures/valid/Supervisor', '--duration', '1', '--report', 'json', '-o', {str(tmp_path / 'r.json')!r}])\n"
-        "print('FROZEN', gc.get_freeze_count() > 0, file=sys.stderr)\n"
+        "print('FROZEN', gc.get_freeze_count() > 0, gc.get_threshold(), file=sys.stderr)\n"
     )
     r = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=300)
-    assert "FROZEN False" in r.stderr, r.stderr
+    assert "FROZEN False (700, 10, 10)" in r.stderr, r.stderr
