@@ -5,6 +5,11 @@ kind, when it started and ended, the TCP path length and peak speed, and the lim
 active most of the time ("j2 speed", "j3 accel", "j1 decel", "tvel", "rvel"). Computed after the
 fact from the path and its time parameterisation (nothing is recorded on the 4 ms clock while
 the run goes).
+
+A cyclic program repeats its motions: a command that repeats an earlier one (the same pieces of
+path, tool, limits and timing: record_repeats.py) takes its length, peak speed and the limit of
+each interval from it; its seconds under each limit are summed from its own durations, as for any
+command, and an interval whose limit was a near tie is decided again on its own path.
 """
 
 from __future__ import annotations
@@ -16,6 +21,7 @@ import numpy as np
 
 from .findings import Source
 from .paths import tcp_rates
+from .record_repeats import Repeats, noise
 
 
 @dataclass(frozen=True, slots=True)  # one per command of the run
@@ -65,16 +71,18 @@ def _speeds_at(profile, s: np.ndarray) -> np.ndarray:
 RECORD_BLOCK = 128  # commands whose path is evaluated in one pass (`motion_records`)
 
 
-def motion_records(queue, end_s: float | None = None) -> list[MotionRecord]:
+def motion_records(queue, end_s: float | None = None, reuse: bool = True) -> list[MotionRecord]:
     """One record per command recorded (in recording order), connection moves included, as the
     arm did it by `end_s` (the end of the run; None: as planned). A command the arm had not
     started by then has no start and no end, one it had not finished no end, and both only the
     part of the path it ran (docs/sim-report.md: "null when it never ran"). The path is evaluated
-    once for all commands (grouped by tool)."""
+    once for all commands (grouped by tool) but those that repeat an earlier one (`reuse`: the
+    module docstring)."""
     prof = queue.trajectory.profile
+    repeats = Repeats(queue.path, prof) if reuse else None
     reached = prof.s_end if end_s is None else prof.state(end_s)[0]  # how far the arm got
     out: list[MotionRecord | None] = []
-    todo = []  # (index in out, command, s0, s1, start, end, points, mids)
+    todo = []  # (what _evaluate needs of a command, the commands that repeat it)
     for command in queue.history:
         req = command.request
         place = command.placement
@@ -100,77 +108,197 @@ def motion_records(queue, end_s: float | None = None) -> list[MotionRecord]:
             continue
         k0 = bisect.bisect_left(prof.S, s0)
         k1 = bisect.bisect_right(prof.S, s1)
-        pts = np.unique(np.concatenate([np.linspace(s0, s1, 33), np.asarray(prof.S[k0:k1])]))
-        lo = max(k0 - 1, 0)
-        S = np.asarray(prof.S[lo:k1 + 1])
-        mids = 0.5 * (S[1:] + S[:-1])
-        todo.append((len(out), command, s0, s1, start, end, pts, mids, lo, k1))
+        item = (len(out), command, s0, s1, start, end, k0, k1, queue.limits_of(command))
         out.append(None)
+        slot = None
+        if repeats is not None:
+            earlier, slot = repeats.find(repeats.inputs(command.tool, item[8], s0, s1, max(k0 - 1, 0), k1))
+            if earlier is not None:  # given the figures of the first (`_evaluate`)
+                earlier.append(item)
+                continue
+        todo.append((item, slot))
+    again = _evaluate(queue, prof, out, todo)
+    _repeat(queue, prof, out, again)
+    return out  # type: ignore[return-value]
+
+
+def _evaluate(queue, prof, out: list, todo: list) -> list:
+    """Fill `out` with the records of the commands of `todo` ((index in out, command, s0, s1, start,
+    end, k0, k1, limits), the commands that repeat it); returns [(a repeat, the figures of the
+    command it repeats)] for `_repeat`."""
     groups: dict = {}
-    for item in todo:
+    for item, slot in todo:
         tool = item[1].tool  # the same TCP (by value: each command holds its own copy) evaluated together
-        groups.setdefault(None if tool is None else np.asarray(tool, dtype=float).tobytes(), []).append(item)
+        groups.setdefault(None if tool is None else np.asarray(tool, dtype=float).tobytes(), []).append((item, slot))
     # in blocks of commands: the memory of an evaluation does not grow with the run
     blocks = [items[k:k + RECORD_BLOCK] for items in groups.values() for k in range(0, len(items), RECORD_BLOCK)]
+    again: list = []
     for items in blocks:
-        allp = np.concatenate([np.concatenate([it[6], it[7]]) for it in items])
+        where = []
+        for (_, _, s0, s1, _, _, k0, k1, _), _ in items:
+            pts = np.unique(np.concatenate([np.linspace(s0, s1, 33), np.asarray(prof.S[k0:k1])]))
+            lo = max(k0 - 1, 0)
+            S = np.asarray(prof.S[lo:k1 + 1])
+            where.append((pts, 0.5 * (S[1:] + S[:-1]), lo))
+        allp = np.concatenate([np.concatenate([pts, mids]) for pts, mids, _ in where])
         q = queue.path.q(allp)
         q1 = queue.path.q(allp, 1)
         q2 = queue.path.q(allp, 2)
-        pt, rt = tcp_rates(queue.kin, q, q1, items[0][1].tool)
+        pt, rt = tcp_rates(queue.kin, q, q1, items[0][0][1].tool)
         at = 0
-        for idx, command, s0, s1, start, end, pts, mids, lo, k1 in items:
+        for ((idx, command, s0, s1, start, end, _, k1, lim), slot), (pts, mids, lo) in zip(items, where):
             n, m = len(pts), len(mids)
             sl, sm = slice(at, at + n), slice(at + n, at + n + m)
             at += n + m
             length = float(np.sum(0.5 * (pt[sl][1:] + pt[sl][:-1]) * np.diff(pts)))
             peak = float(np.max(pt[sl] * _speeds_at(prof, pts)))
-            share = _limit_share(queue.limits_of(command), prof, lo, k1, s0, s1, q1[sm], q2[sm], pt[sm], rt[sm])
-            dominant = max(share, key=share.get) if share else ""
-            req = command.request
-            out[idx] = MotionRecord(command.id, req.kind, req.source, command.state, req.recorded, start, end, length,
-                                    peak, dominant, share, target=req.target_name, tool=req.tool_name)
-    return out  # type: ignore[return-value]
+            rows = _intervals(prof, lo, k1, s0, s1)
+            i = rows[5]
+            codes, clear = _limits_on(lim, rows, q1[sm][i], q2[sm][i], pt[sm][i], rt[sm][i], prof, lo, k1, s1)
+            share = _seconds(rows, codes, len(lim.V))
+            out[idx] = _record(command, start, end, length, peak, share)
+            again.extend((item, (length, peak, codes, clear)) for item in slot or ())
+    return again
 
 
-def _limit_share(lim, prof, lo: int, k1: int, s0: float, s1: float, q1, q2, pt, rt) -> dict:
-    """Seconds under each limit: per breakpoint interval, the limit the profile is on (the
-    acceleration or deceleration of the axis nearest its limit when the path speed changes, the
-    speed limit nearest when it is held). q1..rt: the path at the intervals' midpoints."""
+def _repeat(queue, prof, out: list, again: list) -> None:
+    """The records of the commands that repeat an earlier one (`again`: (command's item, figures of
+    the earlier)): its length and peak, its limits per interval but where they were a near tie
+    (decided again on its own path, all of them in one evaluation per tool)."""
+    doubt: dict = {}  # tool -> [(item, rows, codes, unclear rows, their midpoints)]
+    for item, (length, peak, codes, clear) in again:
+        idx, command, s0, s1, start, end, k0, k1, lim = item
+        rows = _intervals(prof, max(k0 - 1, 0), k1, s0, s1)
+        if clear.all():
+            out[idx] = _record(command, start, end, length, peak, _seconds(rows, codes, len(lim.V)))
+            continue
+        j = np.nonzero(~clear)[0]
+        S = rows[0]
+        tool = command.tool
+        doubt.setdefault(None if tool is None else np.asarray(tool, dtype=float).tobytes(), []).append(
+            (item, rows, codes.copy(), j, 0.5 * (S[rows[5][j]] + S[rows[5][j] + 1]), length, peak))
+    for items in doubt.values():
+        q, q1, q2 = _path_at(queue.path, np.concatenate([it[4] for it in items]))
+        pt, rt = tcp_rates(queue.kin, q, q1, items[0][0][1].tool)
+        at = 0
+        for (idx, command, s0, s1, start, end, k0, k1, lim), rows, codes, j, mids, length, peak in items:
+            sl = slice(at, at + len(j))
+            at += len(j)
+            sub = tuple(r[j] if k >= 1 else r for k, r in enumerate(rows))  # the rows in doubt
+            codes[j] = _limits_on(lim, sub, q1[sl], q2[sl], pt[sl], rt[sl], prof, max(k0 - 1, 0), k1, s1)[0]
+            out[idx] = _record(command, start, end, length, peak, _seconds(rows, codes, len(lim.V)))
+
+
+def _path_at(path, s: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The path's joints and their first two derivatives at positions s, as `Path.q` gives them
+    (the span at or before each, its σ clipped to it), one evaluation per piece of geometry: the
+    spans of a repeated motion are the same part of the same geometry."""
+    groups: dict = {}
+    for k, x in enumerate(s.tolist()):
+        i = min(max(bisect.bisect_right(path.offsets, x) - 1, 0), len(path.spans) - 1)
+        sp = path.spans[i]
+        g = groups.get((id(sp.geom), sp.a, sp.b))
+        if g is None:
+            g = groups[(id(sp.geom), sp.a, sp.b)] = (sp, [], [])
+        g[1].append(k)
+        g[2].append(path.offsets[i])
+    out = [np.empty((len(s), len(path.q_rest))) for _ in range(3)]
+    for sp, rows, offsets in groups.values():
+        sigma = np.clip(s[rows] - np.asarray(offsets), 0.0, sp.length)
+        for order in range(3):
+            out[order][rows] = sp.q(sigma, order)
+    return out[0], out[1], out[2]
+
+
+def _record(command, start, end, length: float, peak: float, share: dict) -> MotionRecord:
+    """The record of a command that ran: its figures, and the limit it spent the most time on."""
+    req = command.request
+    dominant = max(share, key=share.get) if share else ""
+    return MotionRecord(command.id, req.kind, req.source, command.state, req.recorded, start, end, length, peak,
+                        dominant, share, target=req.target_name, tool=req.tool_name)
+
+
+def _intervals(prof, lo: int, k1: int, s0: float, s1: float) -> tuple:
+    """The breakpoint intervals of the profile that lie in (s0, s1), from breakpoint lo: (S of the
+    slice lo..k1, ṡ² at each interval's start and end, its duration, the share of it in (s0, s1),
+    its index in the slice); the ones with no length left out."""
     S = np.asarray(prof.S[lo:k1 + 1])
     T = np.asarray(prof.T[lo:k1 + 1])
     SD = np.asarray(prof.SD[lo:k1 + 1])
-    if len(S) < 2:
-        return {}
     ds_all = np.diff(S)
-    m = (ds_all > 0) & (S[1:] > s0) & (S[:-1] < s1)
-    if not m.any():
-        return {}
-    i = np.nonzero(m)[0]
+    i = np.nonzero((ds_all > 0) & (S[1:] > s0) & (S[:-1] < s1))[0]
     ds = ds_all[i]
-    dt = T[i + 1] - T[i]
-    x0, x1 = SD[i] ** 2, SD[i + 1] ** 2
+    frac = np.clip((np.minimum(S[i + 1], s1) - np.maximum(S[i], s0)) / ds, 0.0, 1.0)
+    return S, SD[i] ** 2, SD[i + 1] ** 2, T[i + 1] - T[i], frac, i
+
+
+def _seconds(rows, codes: np.ndarray, n: int) -> dict:
+    """Seconds under each limit: each interval's duration × its share, summed per limit in the order
+    of the intervals (as a running sum would: bincount adds in that order)."""
+    dt, frac = rows[3], rows[4]
+    if not len(codes):
+        return {}
+    total = np.bincount(codes, weights=dt * frac)
+    first = np.unique(codes, return_index=True)[1]
+    return {_label(int(codes[k]), n): float(total[codes[k]]) for k in np.sort(first)}
+
+
+def _label(code: int, n: int) -> str:
+    """The name of a limit code (`_limits_on`) of an arm of n axes."""
+    if code < 2 * n:
+        return f"j{code // 2 + 1} {'accel' if code % 2 == 0 else 'decel'}"
+    k = code - 2 * n
+    return f"j{k + 1} speed" if k < n else ("tvel" if k == n else "rvel")
+
+
+def _limits_on(lim, rows, q1, q2, pt, rt, prof, lo: int, k1: int, s1: float) -> tuple[np.ndarray, np.ndarray]:
+    """The limit the profile is on in each interval of `rows` (`_intervals`) as a code (`_label`):
+    the acceleration or deceleration of the axis nearest its limit when the path speed changes,
+    the speed limit nearest when it is held. q1..rt: the path at the intervals' midpoints. With
+    it, whether each choice is clear by more than a repetition's rounding (record_repeats.noise),
+    else a repetition could choose another."""
+    S, x0, x1, _, _, i = rows
+    n = len(lim.V)
+    if not len(i):
+        return np.zeros(0, dtype=np.intp), np.ones(0, dtype=bool)
+    ds = S[i + 1] - S[i]
     x = 0.5 * (x0 + x1)
     u = (x1 - x0) / (2.0 * ds)
-    q1, q2, pt, rt = q1[i], q2[i], pt[i], rt[i]
     acc = np.abs(q1 * u[:, None] + q2 * x[:, None])
     up = u > 0
-    ka = np.argmax(acc / np.where(up[:, None], lim.A, lim.D), axis=1)
+    lim_a = np.where(up[:, None], lim.A, lim.D)
+    ratio = acc / lim_a
+    ka = np.argmax(ratio, axis=1)
     sd = np.sqrt(x)
     speed = np.hstack([np.abs(q1) * sd[:, None] / lim.V, (pt * sd / lim.tvel)[:, None], (rt * sd / lim.rvel)[:, None]])
     kv = np.argmax(speed, axis=1)
-    changing = np.abs(u) > 1e-6 * np.maximum(1.0, x)
-    frac = np.clip((np.minimum(S[i + 1], s1) - np.maximum(S[i], s0)) / ds, 0.0, 1.0)
-    n = len(lim.V)
-    out: dict[str, float] = {}
-    for j in range(len(i)):
-        if changing[j]:
-            label = f"j{ka[j] + 1} {'accel' if up[j] else 'decel'}"
-        else:
-            k = int(kv[j])
-            label = f"j{k + 1} speed" if k < n else ("tvel" if k == n else "rvel")
-        out[label] = out.get(label, 0.0) + float(dt[j] * frac[j])
-    return out
+    thr = 1e-6 * np.maximum(1.0, x)
+    changing = np.abs(u) > thr
+    codes = np.where(changing, 2 * ka + np.where(up, 0, 1), 2 * n + kv)
+    # how far a repetition's inputs may move each choice (record_repeats.noise): positions by e_s,
+    # path speeds by e_v, so ṡ² by dx, its slope u by du
+    e_s, e_v = noise(prof, lo, k1, max(abs(S[-1]), abs(s1)))
+    dx = 2.0 * np.sqrt(np.maximum(x0, x1)) * e_v + e_v * e_v
+    du = dx / ds + np.abs(u) * 2.0 * e_s / ds
+    clear = np.abs(np.abs(u) - thr) > du + 1e-6 * dx + 1e-9 * thr
+    clear &= ~changing | _apart(ratio, (np.abs(q1) * du[:, None] + np.abs(q2) * dx[:, None]) / lim_a)
+    rel = dx / (2.0 * np.maximum(x, 1e-300))  # relative change of ṡ
+    clear &= changing | _apart(speed, speed * rel[:, None])
+    return codes.astype(np.intp), clear
+
+
+def _apart(values, slack) -> np.ndarray:
+    """Per row, whether the largest value exceeds every other by more than both slacks and 1e-9
+    of itself (its argmax cannot change by the slacks)."""
+    if values.shape[1] < 2:
+        return np.ones(len(values), dtype=bool)
+    k = np.argmax(values, axis=1)
+    rows = np.arange(len(values))
+    top = values[rows, k]
+    others = values.copy()
+    others[rows, k] = -np.inf
+    reach = np.max(others + slack, axis=1)
+    return top - slack[rows, k] > reach + 1e-9 * np.abs(top)
 
 
 def busy_time(profile, t_end: float) -> tuple[float, float]:

@@ -72,9 +72,9 @@ class DHLinks:
                 P[link] = C[k] @ P[link]
         return P
 
-    def poses_many(self, Q) -> dict[str, np.ndarray]:
-        """{link: (N, 4, 4)} at N joint positions."""
-        P = self.base.poses_many(Q)
+    def poses_many(self, Q, links=None) -> dict[str, np.ndarray]:
+        """{link: (N, 4, 4)} at N joint positions (`links`: as ArmLinks.poses_many)."""
+        P = self.base.poses_many(Q, links)
         C = self._corrections(Q)
         out = {}
         for link, T in P.items():

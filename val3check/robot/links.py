@@ -25,6 +25,7 @@ from .errors import RobotError
 from .urdf import UrdfInfo, read_urdf
 
 _MOVING = ("revolute", "continuous", "prismatic")
+ROWS = 8192  # rows × 4 × 4 under OpenBLAS's threshold for threads (65,536 × 4)
 
 
 @dataclass(frozen=True)
@@ -147,18 +148,33 @@ class ArmLinks:
             out[link] = T if m < 0 else T @ M[m]
         return out
 
-    def poses_many(self, Q) -> dict[str, np.ndarray]:
-        """`poses` for many joint positions at once: Q is (N, joints); each pose (N, 4, 4)."""
+    def poses_many(self, Q, links=None) -> dict[str, np.ndarray]:
+        """`poses` for many joint positions at once: Q is (N, joints); each pose (N, 4, 4). `links`:
+        only those and the links between them and the root (all when None). Every joint's motion
+        at once, and a fixed origin applied to all N poses in one product: the same values as one
+        product per pose (a 4x4 product is the same whatever the rows around it)."""
         Q = np.asarray(Q, dtype=float)
         n = len(Q)
+        plan = self._plan if links is None else self._plan_to(tuple(links))
+        M = _motions_many(self._axes, self._kinds_prismatic, Q[:, self._qindex])
         out = {self.root: np.broadcast_to(self.root_in_world, (n, 4, 4))}
-        for link in self.links[1:]:
-            e = self.edges[link]
-            T = out[e.parent] @ e.origin
-            if e.kind != "fixed" and e.index >= 0:
-                T = T @ _motions(e.kind, e.axis, Q[:, e.index])
-            out[link] = T
+        for link, parent, origin, m in plan:
+            T = _times(out[parent], origin)
+            out[link] = T if m < 0 else T @ M[m]
         return out
+
+    def _plan_to(self, links: tuple) -> list:
+        """The FK plan's steps that reach `links` (parents first)."""
+        plans = self.__dict__.setdefault("_plans", {})
+        plan = plans.get(links)
+        if plan is None:
+            need: set = set()
+            for link in links:
+                while link != self.root and link not in need:
+                    need.add(link)
+                    link = self.edges[link].parent
+            plan = plans[links] = [step for step in self._plan if step[0] in need]
+        return plan
 
     def movers(self, link: str) -> tuple[int, ...]:
         """Indices (in the joint values) of the joints that move `link`, from the base outwards."""
@@ -332,17 +348,32 @@ def _motions_one(axes: np.ndarray, prismatic: np.ndarray, values: np.ndarray) ->
     return T
 
 
-def _motions(kind: str, axis: np.ndarray, values: np.ndarray) -> np.ndarray:
-    """The motion of one joint for an array of values: (N, 4, 4)."""
-    n = len(values)
-    T = np.tile(np.eye(4), (n, 1, 1))
-    if kind == "prismatic":
-        T[:, :3, 3] = values[:, None] * axis[None, :]
-        return T
-    a = np.radians(values)
+def _times(P: np.ndarray, origin: np.ndarray) -> np.ndarray:
+    """P @ origin for poses P (N, 4, 4) and one 4x4: the rows of all poses times origin, a block of
+    rows at a time (small enough that BLAS keeps to one thread: no threads spinning on a busy
+    machine)."""
+    rows = np.ascontiguousarray(P).reshape(-1, 4)
+    out = np.empty_like(rows)
+    for a in range(0, len(rows), ROWS):
+        np.matmul(rows[a:a + ROWS], origin, out=out[a:a + ROWS])
+    return out.reshape(P.shape)
+
+
+def _motions_many(axes: np.ndarray, prismatic: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """The motions of J joints at N positions (values (N, J)): (J, N, 4, 4), as `_motions_one`
+    for each row (joint by joint: each product reads one contiguous block)."""
+    n, j = values.shape
+    T = np.zeros((j, n, 4, 4))
+    T[:, :, 3, 3] = 1.0
+    a = np.radians(values.T)
     c, s = np.cos(a), np.sin(a)
-    x, y, z = axis
-    _rodrigues(T, c, s, x, y, z)
+    for k in range(j):
+        if prismatic[k]:
+            T[k, :, 0, 0] = T[k, :, 1, 1] = T[k, :, 2, 2] = 1.0
+            T[k, :, :3, 3] = values[:, k, None] * axes[k][None, :]
+        else:
+            x, y, z = axes[k]
+            _rodrigues(T[k], c[k], s[k], x, y, z)
     return T
 
 

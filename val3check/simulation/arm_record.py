@@ -46,7 +46,7 @@ class ArmKinematics(Protocol):
     def urdf(self) -> tuple[str, str]: ...  # (file name, text) of the arm's URDF
     def link_edges(self) -> list[tuple[str, str, bool]]: ...  # (parent, child, moves) below the root
     def link_poses(self, joints) -> dict[str, np.ndarray]: ...  # {link: 4x4 in world} at one position
-    def link_poses_many(self, joints) -> dict[str, np.ndarray]: ...  # {link: (N, 4, 4)} at N positions
+    def link_poses_many(self, joints, links=None) -> dict[str, np.ndarray]: ...  # {link: (N, 4, 4)} at N positions
 
 
 @dataclass(frozen=True)
@@ -289,26 +289,25 @@ def tcp_speed(kinematics: ArmKinematics, flange: str, tool_uses, times, position
     the tool changes)."""
     h = TCP_STEP_S
     positions, velocities = np.asarray(positions, dtype=float), np.asarray(velocities, dtype=float)
-    poses = kinematics.link_poses_many
-    # a block of samples at a time: every link's poses at once take 1 KB a sample
-    P0 = np.concatenate([poses(positions[b:b + BLOCK])[flange] for b in range(0, len(positions), BLOCK)]) \
-        if len(positions) else np.zeros((0, 4, 4))
-    P1 = np.concatenate([poses(positions[b:b + BLOCK] + h * velocities[b:b + BLOCK])[flange]
-                         for b in range(0, len(positions), BLOCK)]) if len(positions) else np.zeros((0, 4, 4))
+    ahead = positions + h * velocities
     starts = [t for t, _ in tool_uses]
     tools = [tool for _, tool in tool_uses]
     times = np.asarray(times, dtype=float)
     idx = np.maximum(np.searchsorted(np.asarray(starts, dtype=float), times, side="right") - 1, 0) if starts \
         else np.zeros(len(times), int)
     out = np.zeros(len(times))
-    # each run of samples under one motion (all of its samples, in time order): one product
-    cuts = np.flatnonzero(np.diff(idx)) + 1
-    for lo, hi in zip(np.concatenate([[0], cuts]).tolist(), np.concatenate([cuts, [len(idx)]]).tolist()):
-        if hi <= lo:
-            continue
-        tool = tools[int(idx[lo])] if tools else None
-        p = np.array([0.0, 0.0, 0.0, 1.0]) if tool is None else np.asarray(tool, dtype=float)[:, 3]
-        a = P0[lo:hi] @ p
-        b = P1[lo:hi] @ p
-        out[lo:hi] = np.linalg.norm((b - a)[:, :3], axis=1) / h
+    # a sample at rest has the same pose twice (speed 0, as the product would give): the moving
+    # ones only, a block at a time, the flange alone, both poses in one evaluation
+    moving = np.flatnonzero(~np.all(ahead == positions, axis=1)) if len(times) else np.zeros(0, int)
+    for b in range(0, len(moving), BLOCK):
+        rows = moving[b:b + BLOCK]
+        P = kinematics.link_poses_many(np.concatenate([positions[rows], ahead[rows]]), (flange,))[flange]
+        P0, P1 = P[:len(rows)], P[len(rows):]
+        # each run of samples under one motion: one product
+        at = idx[rows]
+        cuts = np.flatnonzero(np.diff(at)) + 1
+        for lo, hi in zip([0, *cuts.tolist()], [*cuts.tolist(), len(rows)]):
+            tool = tools[int(at[lo])] if tools else None
+            p = np.array([0.0, 0.0, 0.0, 1.0]) if tool is None else np.asarray(tool, dtype=float)[:, 3]
+            out[rows[lo:hi]] = np.linalg.norm((P1[lo:hi] @ p - P0[lo:hi] @ p)[:, :3], axis=1) / h
     return out

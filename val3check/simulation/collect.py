@@ -303,6 +303,6 @@ class ModelKinematics:
         """{link: 4x4 pose in world (mm)} at one joint position."""
         return self._arm_links().poses(joints)
 
-    def link_poses_many(self, joints) -> dict:
-        """{link: (N, 4, 4) poses in world (mm)} at N joint positions."""
-        return self._arm_links().poses_many(joints)
+    def link_poses_many(self, joints, links=None) -> dict:
+        """{link: (N, 4, 4) poses in world (mm)} at N joint positions (`links`: only those)."""
+        return self._arm_links().poses_many(joints, links)

@@ -1,0 +1,226 @@
+"""The motion records of repeated motions (motion/record_repeats.py, issue 29): a command that
+repeats an earlier one takes its length, peak and per-interval limits; its limit seconds are its
+own; an input that differs in anything makes it a new command; and a long run's records are those
+computed afresh for every command."""
+
+from __future__ import annotations
+
+from array import array
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from val3check.motion import motion_records as records_module
+from val3check.motion.mdesc import Limits
+from val3check.motion.motion_records import motion_records
+from val3check.motion.record_repeats import Repeats
+from val3check.motion.trajectory import Profile
+from val3check.robot import load_robot
+
+ROOT = Path(__file__).resolve().parents[2]
+TX = load_robot("TX2-60")
+
+
+@pytest.fixture(scope="module")
+def pick_place():
+    """Two minutes of the bundled pick-and-place (its scenario): about forty cycles' commands."""
+    from val3check.config import Settings
+    from val3check.lint import run as lint_run
+    from val3check.simulation import SimOptions
+    from val3check.simulation.run import run_machine
+    from val3check.simulation.scenario import load_scenario
+
+    ws = lint_run([str(ROOT / "fixtures/valid/PickPlace")], Settings()).workspace
+    scenario = load_scenario(str(ROOT / "fixtures/scenarios/pickplace.toml"))
+    machine, _ = run_machine(ws, ws.apps[ws.targets[0]], SimOptions(duration=120, max_wall=900, robot=TX), scenario)
+    q = machine.arm.queue_in_use
+    return q, machine.end_time / 1e6
+
+
+def _spy(monkeypatch) -> list:
+    """Whether each look-up of a command found an earlier one."""
+    found = []
+    find = Repeats.find
+
+    def spy(self, inputs):
+        out = find(self, inputs)
+        found.append(out[0] is not None)
+        return out
+
+    monkeypatch.setattr(Repeats, "find", spy)
+    return found
+
+
+def test_a_long_run_reusing_its_records_gives_the_fresh_records(pick_place, monkeypatch):
+    q, end = pick_place
+    fresh = motion_records(q, end, reuse=False)
+    found = _spy(monkeypatch)
+    doubts = []
+    limits_on = records_module._limits_on
+
+    def counted(lim, rows, *a):
+        doubts.append(len(rows[5]))
+        return limits_on(lim, rows, *a)
+
+    monkeypatch.setattr(records_module, "_limits_on", counted)
+    reused = motion_records(q, end)
+    assert len(fresh) == len(reused) > 200
+    assert sum(found) > 0.5 * len(found)  # most commands repeat an earlier one (the first cycles are new)
+    # the limit of an interval was a near tie in some commands: decided again for each repetition
+    assert len(doubts) > len(found) - sum(found) and min(doubts) <= 2
+    for a, b in zip(fresh, reused):
+        # all but length and peak exactly the fresh ones (the seconds under each limit included)
+        assert (a.id, a.kind, a.source, a.state, a.recorded, a.start, a.end, a.dominant, a.limit_share, a.target,
+                a.tool) == (b.id, b.kind, b.source, b.state, b.recorded, b.start, b.end, b.dominant, b.limit_share,
+                            b.target, b.tool)
+        # length and peak: an earlier repetition's, which differ from this one's by the rounding of
+        # the run's positions (record_repeats.py), and print the same
+        assert b.length_mm == pytest.approx(a.length_mm, rel=1e-9, abs=1e-9)
+        assert b.peak_tcp_mm_s == pytest.approx(a.peak_tcp_mm_s, rel=1e-9, abs=1e-9)
+        assert (round(a.length_mm, 3), round(a.peak_tcp_mm_s, 3)) == (round(b.length_mm, 3), round(b.peak_tcp_mm_s, 3))
+
+
+def _first_repeat(q, repeats: Repeats):
+    """(inputs of a command, the arguments that gave them) for the first command that repeats an
+    earlier one, with the earlier one's inputs already seen."""
+    import bisect
+
+    prof = q.trajectory.profile
+    for command in q.history:
+        place = command.placement
+        if place.s_begin is None or place.s_end is None or place.s_end - place.s_begin < 1e-6:
+            continue
+        s0, s1 = place.s_begin, place.s_end
+        k0, k1 = bisect.bisect_left(prof.S, s0), bisect.bisect_right(prof.S, s1)
+        args = (command.tool, q.limits_of(command), s0, s1, max(k0 - 1, 0), k1)
+        if repeats.find(repeats.inputs(*args))[0] is not None:
+            return args
+    raise AssertionError("no command repeats another")
+
+
+def _profile(prof, which: str, k: int, delta: float) -> Profile:
+    """A copy of `prof` with breakpoint k's time, position or path speed moved by delta."""
+    out = Profile()
+    out.T, out.S, out.SD = array("d", prof.T), array("d", prof.S), array("d", prof.SD)
+    getattr(out, which)[k] += delta
+    return out
+
+
+def test_a_command_that_differs_in_any_input_is_not_a_repeat(pick_place):
+    q, _ = pick_place
+    prof = q.trajectory.profile
+    seen = Repeats(q.path, prof)
+    args = _first_repeat(q, seen)
+    tool, lim, s0, s1, lo, k1 = args
+
+    def found(repeats=seen, **change) -> bool:
+        a = dict(zip(("tool", "lim", "s0", "s1", "lo", "k1"), args))
+        a.update(change)
+        return repeats.find(repeats.inputs(*a.values()))[0] is not None
+
+    assert found()  # itself again
+    assert not found(tool=np.eye(4) if tool is None else np.asarray(tool) + 1e-6)  # its tool
+    assert not found(lim=Limits(lim.V, lim.A * 1.000001, lim.D, lim.tvel, lim.rvel))  # its limits
+    assert not found(lim=Limits(lim.V, lim.A, lim.D * 1.000001, lim.tvel, lim.rvel))
+    assert not found(lim=Limits(lim.V * 1.000001, lim.A, lim.D, lim.tvel, lim.rvel))
+    assert not found(lim=Limits(lim.V, lim.A, lim.D, lim.tvel * 0.5, lim.rvel))
+    assert not found(lim=Limits(lim.V, lim.A, lim.D, lim.tvel, lim.rvel * 0.5))
+    assert not found(s1=s1 - 1e-6)  # where it ends
+    assert not found(s0=s0 + 1e-6)  # where it starts
+    assert not found(lo=lo + 1)  # the breakpoints it reads
+    # the profile: a breakpoint's position, time or path speed
+    k = lo + (k1 - lo) // 2
+    for which, delta in (("S", 1e-7), ("T", 1e-7), ("SD", 1e-5)):
+        moved = Repeats(q.path, _profile(prof, which, k, delta))
+        moved.seen = seen.seen
+        assert not found(moved), which
+    # the path: another geometry over the same positions
+    i = q.path.locate(0.5 * (s0 + s1))[0]
+    span = q.path.spans[i]
+    keep = span.geom
+    span.geom = type(keep).__new__(type(keep))
+    span.geom.__dict__.update(keep.__dict__)
+    try:
+        assert not found()
+    finally:
+        span.geom = keep
+    # its own rounding is not a difference: positions, times, speeds moved by a few units in the last place
+    for which in ("S", "T", "SD"):
+        moved = Repeats(q.path, _profile(prof, which, k, 4 * np.spacing(getattr(prof, which)[k])))
+        moved.seen = seen.seen
+        assert found(moved), which
+
+
+def _reference_share(q, command, s0: float, s1: float) -> dict:
+    """The seconds under each limit as the interval loop computed them before issue 29's reuse."""
+    import bisect
+
+    from val3check.motion.paths import tcp_rates
+
+    prof, lim = q.trajectory.profile, q.limits_of(command)
+    k0, k1 = bisect.bisect_left(prof.S, s0), bisect.bisect_right(prof.S, s1)
+    lo = max(k0 - 1, 0)
+    S, T, SD = (np.asarray(a[lo:k1 + 1]) for a in (prof.S, prof.T, prof.SD))
+    mids = 0.5 * (S[1:] + S[:-1])
+    q1, q2 = q.path.q(mids, 1), q.path.q(mids, 2)
+    pt, rt = tcp_rates(q.kin, q.path.q(mids), q1, command.tool)
+    out: dict = {}
+    n = len(lim.V)
+    for j in range(len(S) - 1):
+        ds = S[j + 1] - S[j]
+        if not (ds > 0 and S[j + 1] > s0 and S[j] < s1):
+            continue
+        x0, x1 = SD[j] ** 2, SD[j + 1] ** 2
+        x, u = 0.5 * (x0 + x1), (x1 - x0) / (2.0 * ds)
+        if abs(u) > 1e-6 * max(1.0, x):
+            acc = np.abs(q1[j] * u + q2[j] * x) / (lim.A if u > 0 else lim.D)
+            label = f"j{int(np.argmax(acc)) + 1} {'accel' if u > 0 else 'decel'}"
+        else:
+            sd = np.sqrt(x)
+            speed = np.concatenate([np.abs(q1[j]) * sd / lim.V, [pt[j] * sd / lim.tvel, rt[j] * sd / lim.rvel]])
+            k = int(np.argmax(speed))
+            label = f"j{k + 1} speed" if k < n else ("tvel" if k == n else "rvel")
+        frac = min(max((min(S[j + 1], s1) - max(S[j], s0)) / ds, 0.0), 1.0)
+        out[label] = out.get(label, 0.0) + float((T[j + 1] - T[j]) * frac)
+    return out
+
+
+def test_the_seconds_under_each_limit_are_the_interval_loops(pick_place):
+    """With and without reuse, the seconds under each limit are those of the loop over intervals
+    the records were first computed with (its labels and its sums, bit for bit)."""
+    q, end = pick_place
+    checked = 0
+    for reuse in (False, True):
+        for r, command in zip(motion_records(q, end, reuse=reuse), q.history):
+            place = command.placement
+            if r.end is None or command.state != "done" or place.s_end is None:
+                continue
+            assert r.limit_share == _reference_share(q, command, place.s_begin, place.s_end)
+            assert r.dominant == (max(r.limit_share, key=r.limit_share.get) if r.limit_share else "")
+            checked += 1
+    assert checked > 300
+
+
+def test_the_tcp_speed_skips_the_samples_at_rest_and_gives_every_sample_s_speed(pick_place):
+    """arm_record.tcp_speed: the forward kinematics only where the arm moves (at rest the pose is
+    the same twice: 0), the same values as every sample through the flange's poses."""
+    from val3check.simulation.arm_record import TCP_STEP_S, tcp_speed
+    from val3check.simulation.collect import ModelKinematics
+
+    q, end = pick_place
+    kin = ModelKinematics(TX)
+    times, Q, V = q.trajectory.sample(0.0, 40.0, 0.004)
+    records = motion_records(q, end)
+    uses = [(r.start, c.tool) for r, c in zip(records, q.history) if r.start is not None and r.kind != "connection"]
+    got = tcp_speed(kin, TX.flange_frame, uses, times, Q, V)
+    at_rest = np.all(V == 0.0, axis=1)
+    assert 0 < at_rest.sum() < len(times)
+    assert np.all(got[at_rest] == 0.0)
+    P0 = kin.link_poses_many(Q)[TX.flange_frame]
+    P1 = kin.link_poses_many(Q + TCP_STEP_S * V)[TX.flange_frame]
+    starts = np.array([t for t, _ in uses])
+    for k in np.linspace(0, len(times) - 1, 400).astype(int).tolist():
+        tool = uses[max(int(np.searchsorted(starts, times[k], side="right")) - 1, 0)][1]
+        p = np.array([0.0, 0.0, 0.0, 1.0]) if tool is None else np.asarray(tool)[:, 3]
+        assert got[k] == pytest.approx(np.linalg.norm((P1[k] @ p - P0[k] @ p)[:3]) / TCP_STEP_S, rel=1e-9, abs=1e-6)

@@ -1,0 +1,95 @@
+"""The motion records of commands that repeat an earlier one (issue 29): a cyclic program goes over
+the same spans of the same geometries again and again, with the same tool, the same limits and the
+same timing relative to its start. Such a command takes the earlier one's TCP length, peak speed
+and the limit each of its intervals is on (motion_records.py); its seconds under each limit are
+summed from its own durations.
+
+The key is what `motion_records` reads for a command over [s0, s1]: exactly, the spans of path its
+evaluation reaches (geometry object, part), its tool and limits, the number of profile breakpoints
+and how each of them, s0 and s1 fall against the others and the spans' offsets (which span a point
+is evaluated on, which intervals count); then, within tolerances, the breakpoints' positions and
+the spans' offsets relative to s0, the durations of the intervals that count and the path speeds.
+A repeated motion's global positions and times differ from the earlier one's in their last bits
+(sums over the whole run): the tolerances are a few hundred times that rounding. An interval whose
+limit was a near tie (closer than the tolerances can move it: motion_records._limits_on) is decided
+again on each repetition's own path, so that a reused record differs from a fresh one only in its
+length and peak, by that rounding (docs/performance.md, "The run's record").
+"""
+
+from __future__ import annotations
+
+import bisect
+
+import numpy as np
+
+POS_TOL = 1e-13  # × the magnitude of the run's path positions (their rounding: ~1e-16 per operation)
+TIME_TOL = 1e-13  # × the magnitude of the run's times
+SPEED_TOL = 1e-10  # × the largest path speed of the command (the timing's own rounding reaches 1e-11)
+KEPT = 8  # distinct timings kept per piece of path (a cyclic program has one or two)
+
+
+class Repeats:
+    """The commands already met, by what determines their figures (module docstring)."""
+
+    def __init__(self, path, prof) -> None:
+        """Nothing met yet, on `path` (paths.Path) timed by `prof` (trajectory.Profile)."""
+        self.path, self.prof = path, prof
+        self.seen: dict = {}  # exact part -> [(compared part, the commands that repeat it)]
+        self._limits: dict = {}  # id(Limits) -> (Limits, its key)
+        self.hits = 0
+
+    def inputs(self, tool, lim, s0: float, s1: float, lo: int, k1: int) -> tuple:
+        """(exact part, compared part, tolerances) of the command over [s0, s1] whose breakpoints
+        are lo..k1 (what motion_records reads of the profile)."""
+        prof, path = self.prof, self.path
+        hi = min(k1, len(prof.S) - 1)
+        S = np.asarray(prof.S[lo:hi + 1])
+        T = np.asarray(prof.T[lo:hi + 1])
+        SD = np.asarray(prof.SD[lo:hi + 1])
+        i0 = path.locate(min(S[0], s0))[0]
+        i1 = path.locate(max(S[-1], s1))[0]
+        offsets = path.offsets[i0:i1 + 1]
+        offs = np.asarray(offsets)
+        held = self._limits.get(id(lim))
+        if held is None or held[0] is not lim:
+            held = self._limits[id(lim)] = (lim, (lim.V.tobytes(), lim.A.tobytes(), lim.D.tobytes(), lim.tvel, lim.rvel))
+        # how the breakpoints, s0 and s1 fall against each other (which intervals count, which
+        # breakpoints are points of the length) and against the spans' offsets (the span each
+        # point is evaluated on: the one at or before it)
+        Sa, end = prof.S, hi + 1
+        where = (bisect.bisect_left(Sa, s0, lo, end) - lo, bisect.bisect_right(Sa, s0, lo, end) - lo,
+                 bisect.bisect_left(Sa, s1, lo, end) - lo, bisect.bisect_right(Sa, s1, lo, end) - lo,
+                 bisect.bisect_right(offsets, s0), bisect.bisect_right(offsets, s1))
+        dS = np.diff(S)
+        moves = dS > 0
+        exact = (tuple((id(sp.geom), sp.a, sp.b) for sp in path.spans[i0:i1 + 1]),
+                 None if tool is None else np.asarray(tool, dtype=float).tobytes(), held[1], len(S), where,
+                 moves.tobytes(), np.searchsorted(offs, S, side="right").tobytes())
+        # the durations of the intervals that count only (a rest before the command, waiting for
+        # the program, is as long as it is)
+        counts = moves & (S[1:] > s0) & (S[:-1] < s1)
+        got = np.concatenate([S - s0, offs - s0, [s1 - s0], np.where(counts, np.diff(T), 0.0), SD])
+        tol = np.repeat([POS_TOL * max(1.0, abs(S[-1]), abs(s1)), TIME_TOL * max(1.0, abs(T[-1])),
+                         SPEED_TOL * max(1.0, float(SD.max()))], [len(S) + len(offs) + 1, len(S) - 1, len(S)])
+        return exact, got, tol
+
+    def find(self, inputs) -> tuple[list | None, list | None]:
+        """(the list of the commands that repeat an earlier one with these inputs, None), or
+        (None, a new such list) when none has them: the first command with them is computed and
+        its figures given to those it lists."""
+        exact, got, tol = inputs
+        kept = self.seen.setdefault(exact, [])
+        for earlier, repeats in kept:
+            if np.all(np.abs(got - earlier) <= tol):
+                self.hits += 1
+                return repeats, None
+        repeats: list = []
+        if len(kept) < KEPT:
+            kept.append((got, repeats))
+        return None, repeats
+
+
+def noise(prof, lo: int, k1: int, s_max: float) -> tuple[float, float]:
+    """(positions, path speeds): how far a repetition's inputs may lie from these (`Repeats`)."""
+    hi = min(k1, len(prof.S) - 1)
+    return POS_TOL * max(1.0, abs(s_max)), SPEED_TOL * max(1.0, max(prof.SD[lo:hi + 1]))
