@@ -4,6 +4,8 @@ of the machine), the finished run's commands released before the reports, and th
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import numpy as np
 import pytest
 
@@ -84,6 +86,21 @@ def test_releasing_the_finished_run_drops_its_commands_and_keeps_the_reports(tmp
     q = machine.arm.queue_in_use
     assert q.history == [] and q.pending == [] and machine.arm.contexts == {}
     assert sim_json.render(_report(result)) == before
+
+
+class _Queue:
+    released = False
+
+    def release_history(self):
+        self.released = True
+
+
+def test_the_history_stays_when_a_layer_of_chapter_11_reads_it():
+    for trivial in (True, False):
+        q = _Queue()
+        arm = SimpleNamespace(queue_in_use=q, layers=SimpleNamespace(trivial=trivial), contexts={1: ()})
+        retention.release(SimpleNamespace(arm=arm))
+        assert q.released is trivial and arm.contexts == {}
 
 
 def test_the_reports_budget_does_not_keep_the_machine(long_loop):

@@ -82,10 +82,13 @@ def _keep(table: dict, key: Any, value: Any) -> Any:
 def release(machine: Any) -> None:
     """Drop what the finished run of `machine` kept per command once collect.py took its record:
     the motion queue's history (every QueuedCommand), the loops of each command, the interning
-    tables. The arm's trajectory stays (the record's `trajectory` is it)."""
+    tables. The arm's trajectory stays (the record's `trajectory` is it), and the history too when
+    a layer of chapter 11 moved the arm (the record's trajectory then reads it)."""
     arm = getattr(machine, "arm", None)
     q = getattr(arm, "queue_in_use", None)
-    if q is not None:
+    layers = getattr(arm, "layers", None)
+    # chapter 11's layers read the history while the reports sample the arm (arm_layers.Residuals)
+    if q is not None and (layers is None or layers.trivial):
         q.release_history()
     if hasattr(arm, "contexts"):
         arm.contexts = {}
