@@ -481,3 +481,9 @@ class MotionQueue:
         T = self.kin.tcp(np.vstack([q + h * qd, q - h * qd]), None if tool is None else np.asarray(tool, float))
         return float(np.linalg.norm(T[0, :3, 3] - T[1, :3, 3]) / (2 * h))
 
+
+    def release_history(self) -> None:
+        """The run is over and its record taken (simulation/retention.py): drop the commands kept
+        for it (the trajectory stays)."""
+        self.history, self.pending, self.open, self._by_key = [], [], None, {}
+        self.limits._asked.clear()

@@ -14,6 +14,7 @@ so the command overshoots --max-wall by at most that: writing tables of bounded 
 from __future__ import annotations
 
 from collections.abc import Callable
+from copy import copy
 from dataclasses import dataclass
 from typing import Any
 
@@ -32,7 +33,11 @@ class RunBudget:
     def of(cls, machine: Any) -> RunBudget:
         """The budgets of the run of `machine` (interpretation.machine.Machine)."""
         b = machine.budgets
-        return cls(b.wall_clock, machine.wall_start + b.wall_s, b.wall_s, machine.cell.budget)
+        memory = machine.cell.budget
+        if memory is not None:  # without its clock, a method of the machine: the reports must not
+            memory = copy(memory)  # keep the finished run's machine (its queue, every command) alive
+            memory.clock = None
+        return cls(b.wall_clock, machine.wall_start + b.wall_s, b.wall_s, memory)
 
     def out_of_time(self) -> bool:
         """--max-wall is spent."""

@@ -52,6 +52,7 @@ from ..rules import codes
 from .alteration import Alteration
 from .arm_layers import Layers, QueueView
 from .compliance import Compliance
+from .retention import Shared
 from .model_arm import ModelArm
 
 US = 1_000_000
@@ -84,6 +85,7 @@ class MovingArm(ModelArm):
         if self.layers is not None:
             self.layers.hooks.append(_Hook(self))
         self.geometries: list[tuple[float, Any]] = []  # (from time s, model) after each setDH
+        self.shared = Shared()  # what every command keeps, one object per value (retention.py)
 
     def bind(self, controller: Any) -> None:
         """The controller whose power and monitor speed the arm follows (chapter 8)."""
@@ -315,8 +317,9 @@ class MovingArm(ModelArm):
         if tool_in_flange is not None:
             tool = np.array(tool_in_flange, dtype=float)
             tool[:3, 3] *= s
-        move = MoveCommand(kind, target, MDesc.from_fields(md, s), tool=tool, via=via, source=source,
-                           tool_name=tool_name)
+            tool = self.shared.tool(tool)
+        move = MoveCommand(kind, target, self.shared.mdesc(MDesc.from_fields(md, s)), tool=tool, via=via,
+                           source=self.shared.source(source), tool_name=tool_name)
         self.layers.before(time_us / US)
         context = self.context(loops)
         alterable, self.alteration.next_alterable = self.alteration.next_alterable, False
@@ -380,7 +383,7 @@ class MovingArm(ModelArm):
                 n = self._entry_count[loop] = self._entry_count.get(loop, 0) + 1
                 seen = self._entries[id(counter)] = (counter, n)  # kept: its id is not reused
             out.append(Pass(loop, seen[1], int(counter[0])))
-        return tuple(out)
+        return self.shared.context(tuple(out))
 
     def _target_in_mm(self, tg: Target, s: float) -> Target:
         """`tg` with its lengths (and a SCARA's axis 3) in mm: `s` millimetres per unit."""

@@ -34,6 +34,7 @@ from ..rules import codes
 from . import ch09_latch, ch10_motion, ch11_absolute, ch11_alter, ch11_compliance, ch11_continuous, ch11_licences
 from .budget import RUN_SHARE, RunBudget
 from .collect import collect
+from .retention import release
 from .folding import fold
 from .moving_arm import MovingArm
 from .result import SimResult
@@ -125,7 +126,9 @@ def build_machine(ws: Workspace, app: Application, options: SimOptions, *, regis
 def simulate(ws: Workspace, app: Application, options: SimOptions | None = None,
              scenario: Scenario | None = None) -> SimResult:
     """Run the application `app` of `ws` (loaded and parsed) with `options` and `scenario`: its SimResult."""
-    return run_machine(ws, app, options, scenario)[1]
+    machine, result = run_machine(ws, app, options, scenario)
+    release(machine)  # what it kept per command, now that the record is taken (retention.py)
+    return result
 
 
 def run_machine(ws: Workspace, app: Application, options: SimOptions | None = None,
