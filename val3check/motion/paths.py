@@ -338,7 +338,23 @@ class Path:
         self.spans: list[Span] = []
         self.offsets: list[float] = []
         self.end = 0.0
-        self.q_rest = np.asarray(q_start, dtype=float)  # where the path ends (or starts, empty)
+        self._rest = np.asarray(q_start, dtype=float)  # where the path ends (or starts, empty)
+        self._rest_of: Span | None = None  # the last span, its end not evaluated yet (`q_rest`)
+
+    @property
+    def q_rest(self) -> np.ndarray:
+        """Where the path ends (where it starts while empty): evaluated when asked, a trial path
+        (planner.py) appends many spans and never asks."""
+        sp = self._rest_of
+        if sp is not None:
+            self._rest = sp.q([sp.length])[0]
+            self._rest_of = None
+        return self._rest
+
+    @q_rest.setter
+    def q_rest(self, q) -> None:
+        self._rest = q
+        self._rest_of = None
 
     def append(self, span: Span) -> float:
         """Add a span at the end; returns its global offset."""
@@ -347,7 +363,7 @@ class Path:
         self.spans.append(span)
         self.offsets.append(off)
         self.end = off + span.length
-        self.q_rest = span.q([span.length])[0]
+        self._rest_of = span
         return off
 
     def cut(self, s: float) -> None:
