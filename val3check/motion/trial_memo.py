@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-REUSE = True  # off: every trial computed (tests compare the two)
+REUSE = True  # off: every trial, command check and distance computed here and in construction.py, blending.py
 SIZE = 512  # answers remembered
 
 
