@@ -183,3 +183,26 @@ def test_a_command_that_raises_is_checked_every_time():
         with pytest.raises(MotionError):
             q.record(bad, 0.0)
     assert len(q.kin.reuse) == n
+
+
+def _q_by_span(path, s, order):
+    """Path.q one sample at a time, on the span that holds it (the reference)."""
+    out = np.empty((len(s), 6))
+    idx = np.clip(np.searchsorted(np.asarray(path.offsets), s, side="right") - 1, 0, len(path.spans) - 1)
+    for k, i in enumerate(idx):
+        sp = path.spans[int(i)]
+        out[k] = sp.q(np.clip(s[k:k + 1] - path.offsets[int(i)], 0.0, sp.length), order)[0]
+    return out
+
+
+@pytest.mark.parametrize("order", [0, 1, 2])
+def test_the_path_evaluated_by_geometry_is_the_path_span_by_span(order, monkeypatch):
+    _, _, q = _run(["", "", "blend", "", "tool"], True, monkeypatch)
+    path = q.path
+    assert len({id(sp.geom) for sp in path.spans}) < len(path.spans)  # geometries shared
+    kinds = {type(sp.geom).__name__ for sp in path.spans}
+    assert {"JointLine", "JointSpline", "JointBlend"} <= kinds, kinds
+    rng = np.random.default_rng(3)
+    s = np.concatenate([rng.uniform(-1.0, path.end + 1.0, 3000), path.offsets, [path.end]])
+    got = path.q(s, order)
+    assert np.array_equal(got, _q_by_span(path, s, order))  # bit for bit

@@ -408,15 +408,24 @@ class Path:
             sp = self.spans[i0]
             out[:] = sp.q(np.clip(s - self.offsets[i0], 0.0, sp.length), order)
             return out
-        idx = np.searchsorted(np.asarray(self.offsets[i0:i1 + 1]), s, side="right") - 1 + i0
-        idx = np.clip(idx, i0, i1)
-        order_ = np.argsort(idx, kind="stable")
-        sidx = idx[order_]
-        cuts = np.flatnonzero(np.diff(sidx)) + 1
-        for rows in np.split(order_, cuts):  # one evaluation per span touched
-            i = int(idx[rows[0]])
-            sp = self.spans[i]
-            out[rows] = sp.q(np.clip(s[rows] - self.offsets[i], 0.0, sp.length), order)
+        offs = np.asarray(self.offsets[i0:i1 + 1])
+        idx = np.clip(np.searchsorted(offs, s, side="right") - 1, 0, i1 - i0)
+        # one evaluation per geometry touched (a cyclic run's spans share a few): the same
+        # element-wise arithmetic as Span.q span by span, so the same bits
+        spans = self.spans[i0:i1 + 1]
+        group: dict[int, int] = {}
+        label = np.array([group.setdefault(id(sp.geom), len(group)) for sp in spans])
+        a = np.array([sp.a for sp in spans])
+        length = np.array([sp.length for sp in spans])
+        row_label = label[idx]
+        order_ = np.argsort(row_label, kind="stable")
+        cuts = np.flatnonzero(np.diff(row_label[order_])) + 1
+        for rows in np.split(order_, cuts):
+            j = idx[rows]
+            geom = spans[int(j[0])].geom
+            sigma = np.clip(s[rows] - offs[j], 0.0, length[j])
+            d = geom.q(a[j] + sigma / geom.ell, order)
+            out[rows] = d if order == 0 else d / geom.ell ** order
         return out
 
     def stops_after(self, s: float) -> list[float]:
