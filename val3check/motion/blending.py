@@ -20,6 +20,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from . import trial_memo
 from .cartesian import Blend, Line, rotvec
 from .paths import BLEND_SHAPES, JointBlend, JointSpline
 from .tracking import track
@@ -59,6 +60,20 @@ def distance_lambda(kin, command, d: float, from_end: bool) -> float | None:
         if d < MIN_BLEND_MM:
             return None
         return 1.0 - d / L if from_end else d / L
+    # a function of the command's curves (the same objects for a repeated motion), its tool, d
+    # and the end it is measured from, on this geometry (kin.reuse)
+    g = command.geometry
+    key = ("distance", id(g.joint_curve), id(curve), _value(command.tool), d, from_end)
+    hit = kin.reuse.get(key) if trial_memo.REUSE else None
+    if hit is not None and hit[0] is g.joint_curve and hit[1] is curve:
+        return hit[2]
+    lam = _distance_lambda(kin, command, d, from_end)
+    kin.reuse.keep(key, (g.joint_curve, curve, lam))
+    return lam
+
+
+def _distance_lambda(kin, command, d: float, from_end: bool) -> float | None:
+    """`distance_lambda` on a curve other than a line, computed."""
     lam = np.linspace(0.0, 1.0, 33)
     P = tcp_positions(kin, command, lam)
     ref = P[-1] if from_end else P[0]

@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import findings as F
+from . import trial_memo
 from .cartesian import Arc, ArcError, Line
 from .failures import limit_finding, named, path_failure, rounded, target_error, unreachable_finding
 from .findings import Finding, MotionError
@@ -88,6 +89,12 @@ def _movej_target(kin, move, q_start, tool, now) -> np.ndarray:
             ax = int(np.argmax(over))
             raise target_error(limit_finding(kin, "movej: the joint target", ax, float(over[ax]), j[ax], source, now))
         return j
+    # the joints are a function of the pose, the tool, the configuration and the start (kin.reuse)
+    key = ("solve", np.asarray(target.pose, float).tobytes(), None if tool is None else np.asarray(tool, float).tobytes(),
+           tuple(target.config), q_start.tobytes())
+    hit = kin.reuse.get(key) if trial_memo.REUSE else None
+    if hit is not None:
+        return hit.copy()
     T = target.pose if tool is None else target.pose @ np.linalg.inv(tool)
     from ..robot.errors import Unreachable
 
@@ -95,13 +102,46 @@ def _movej_target(kin, move, q_start, tool, now) -> np.ndarray:
         j = kin.model.solve(T[:3, :4].tolist(), target.config, initial=tuple(q_start))
     except Unreachable as exc:
         raise target_error(unreachable_finding(kin, "movej", target, T, q_start, exc.reason, source, now)) from None
-    return np.asarray(j, dtype=float)
+    j = np.asarray(j, dtype=float)
+    if trial_memo.REUSE:
+        kin.reuse.keep(key, j.copy())
+    return j
 
 
 def _cartesian(kin, built: Construction, move, q_start, tool, now) -> None:
     """movel, movec: the TCP curve solved in the start configuration (10.1.4.2). A target (or a
     movec intermediate point) the curve cannot end at (or pass) raises 154 at the instruction; a
-    curve the arm cannot follow is `built.failure` (150 later)."""
+    curve the arm cannot follow is `built.failure` (150 later).
+
+    The checks and the joint curve are a function of the kind, the start joints, the tool, the
+    target's (and intermediate point's) pose and requested configuration, on this geometry
+    (kin.reuse): a motion that repeats exactly reuses them (the same objects). Only motions
+    that pass the checks are kept; a raise is found again every time."""
+    kind = move.kind
+    via = move.via.pose if kind == "movec" else None
+    key = ("track", kind, q_start.tobytes(), None if tool is None else np.asarray(tool, float).tobytes(),
+           np.asarray(move.target.pose, float).tobytes(), None if via is None else np.asarray(via, float).tobytes(),
+           tuple(move.target.config))
+    hit = kin.reuse.get(key) if trial_memo.REUSE else None
+    if hit is None:
+        hit = _checked_track(kin, move, q_start, tool, now)
+        if trial_memo.REUSE:
+            kin.reuse.keep(key, hit)
+    curve, tr, spline = hit
+    built.geometry.tcp_curve = curve
+    if tr is None:  # the TCP does not move
+        built.blend = "off"
+        return
+    if tr.failure is not None:
+        built.failure = path_failure(kin, kind, tr.failure, curve, move.source, now)
+        return
+    built.geometry.joint_curve = spline
+    built.geometry.q_end = tr.Q[-1].copy()
+
+
+def _checked_track(kin, move, q_start, tool, now) -> tuple:
+    """`_cartesian` computed: (TCP curve, tracking.track's answer or None when the TCP does not
+    move, the JointSpline or None when the arm cannot follow the curve); raises MotionError."""
     source = move.source
     kind = move.kind
     T_end = move.target.pose
@@ -128,31 +168,15 @@ def _cartesian(kin, built: Construction, move, q_start, tool, now) -> None:
     if kind == "movec":  # 10.6: "si point pIntermédiaire ... ne peut pas être atteint" (its configuration is not used)
         _in_start_configuration(kin, move.via, "the intermediate point", tool, q_start, code0, kind, source, now)
     _in_start_configuration(kin, move.target, "the target", tool, q_start, code0, kind, source, now)
-    built.geometry.tcp_curve = curve
     if curve.length_mm < 1e-6 and curve.angle_deg < 1e-6:
-        built.blend = "off"
-        return
-    # the joint curve is a function of the start joints, the tool, the curve's poses and the
-    # configuration, on this geometry (kin.reuse): a motion that repeats exactly reuses it
-    via = move.via.pose if kind == "movec" else None
-    key = ("track", kind, q_start.tobytes(), None if tool is None else np.asarray(tool, float).tobytes(),
-           np.asarray(T_end, float).tobytes(), None if via is None else np.asarray(via, float).tobytes(), code0)
-    hit = kin.reuse.get(key)
-    if hit is None:
-        tr = track(kin, curve, tool, q_start, code0)
-        spline = None
-        if tr.failure is None:
-            spline = JointSpline(tr.lam, tr.Q, tr.D)
-            spline.sing = tr.sing
-            spline.curve = curve
-        hit = kin.reuse.keep(key, (curve, tr, spline))
-    curve, tr, spline = hit
-    built.geometry.tcp_curve = curve
-    if tr.failure is not None:
-        built.failure = path_failure(kin, kind, tr.failure, curve, source, now)
-        return
-    built.geometry.joint_curve = spline
-    built.geometry.q_end = tr.Q[-1].copy()
+        return curve, None, None
+    tr = track(kin, curve, tool, q_start, code0)
+    spline = None
+    if tr.failure is None:
+        spline = JointSpline(tr.lam, tr.Q, tr.D)
+        spline.sing = tr.sing
+        spline.curve = curve
+    return curve, tr, spline
 
 
 def _in_start_configuration(kin, target, what: str, tool, q_start, code0: int, kind: str, source, now) -> None:

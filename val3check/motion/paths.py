@@ -338,7 +338,23 @@ class Path:
         self.spans: list[Span] = []
         self.offsets: list[float] = []
         self.end = 0.0
-        self.q_rest = np.asarray(q_start, dtype=float)  # where the path ends (or starts, empty)
+        self._rest = np.asarray(q_start, dtype=float)  # where the path ends (or starts, empty)
+        self._rest_of: Span | None = None  # the last span, its end not evaluated yet (`q_rest`)
+
+    @property
+    def q_rest(self) -> np.ndarray:
+        """Where the path ends (where it starts while empty): evaluated when asked, a trial path
+        (planner.py) appends many spans and never asks."""
+        sp = self._rest_of
+        if sp is not None:
+            self._rest = sp.q([sp.length])[0]
+            self._rest_of = None
+        return self._rest
+
+    @q_rest.setter
+    def q_rest(self, q) -> None:
+        self._rest = q
+        self._rest_of = None
 
     def append(self, span: Span) -> float:
         """Add a span at the end; returns its global offset."""
@@ -347,7 +363,7 @@ class Path:
         self.spans.append(span)
         self.offsets.append(off)
         self.end = off + span.length
-        self.q_rest = span.q([span.length])[0]
+        self._rest_of = span
         return off
 
     def cut(self, s: float) -> None:
@@ -392,15 +408,24 @@ class Path:
             sp = self.spans[i0]
             out[:] = sp.q(np.clip(s - self.offsets[i0], 0.0, sp.length), order)
             return out
-        idx = np.searchsorted(np.asarray(self.offsets[i0:i1 + 1]), s, side="right") - 1 + i0
-        idx = np.clip(idx, i0, i1)
-        order_ = np.argsort(idx, kind="stable")
-        sidx = idx[order_]
-        cuts = np.flatnonzero(np.diff(sidx)) + 1
-        for rows in np.split(order_, cuts):  # one evaluation per span touched
-            i = int(idx[rows[0]])
-            sp = self.spans[i]
-            out[rows] = sp.q(np.clip(s[rows] - self.offsets[i], 0.0, sp.length), order)
+        offs = np.asarray(self.offsets[i0:i1 + 1])
+        idx = np.clip(np.searchsorted(offs, s, side="right") - 1, 0, i1 - i0)
+        # one evaluation per geometry touched (a cyclic run's spans share a few): the same
+        # element-wise arithmetic as Span.q span by span, so the same bits
+        spans = self.spans[i0:i1 + 1]
+        group: dict[int, int] = {}
+        label = np.array([group.setdefault(id(sp.geom), len(group)) for sp in spans])
+        a = np.array([sp.a for sp in spans])
+        length = np.array([sp.length for sp in spans])
+        row_label = label[idx]
+        order_ = np.argsort(row_label, kind="stable")
+        cuts = np.flatnonzero(np.diff(row_label[order_])) + 1
+        for rows in np.split(order_, cuts):
+            j = idx[rows]
+            geom = spans[int(j[0])].geom
+            sigma = np.clip(s[rows] - offs[j], 0.0, length[j])
+            d = geom.q(a[j] + sigma / geom.ell, order)
+            out[rows] = d if order == 0 else d / geom.ell ** order
         return out
 
     def stops_after(self, s: float) -> list[float]:

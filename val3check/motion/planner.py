@@ -31,6 +31,7 @@ from .paths import Path, Span
 from .queued import Nominal
 from .timing import Timing
 from .trajectory import Profile, Trajectory
+from .trial_memo import TrialMemo, frozen
 
 # Commands recorded less than this apart while the arm starts from rest are timed together: in
 # that time the arm moves less than a micrometre, the same whichever way it is computed.
@@ -59,6 +60,7 @@ class Planner:
         self.profile = Profile(0.0, 0.0)
         self.trajectory = Trajectory(self.path, self.profile)
         self.timing = Timing(kin)
+        self.memo = TrialMemo(kin, self.timing, limits_of)  # a repeated blend decision's timings
         self.due: DueReplan | None = None
         self.fallbacks = 0  # pieces planned with the safe profile
         self.stops_chosen = 0  # junctions where stopping at the via point was chosen (`blend_pays`)
@@ -203,16 +205,27 @@ class Planner:
         if command.rest_time is None:
             sp = self.span(command.geometry.joint_curve, 0.0, 1.0, [(command.key, 0.0)], smooth=False,
                            tool=command.tool)
+            key = self.memo.key([sp], "rest")
+            hit = self.memo.get(key, [sp])
+            if hit is not None:
+                command.rest_time = hit
+                return hit
             trial = Path(command.geometry.q_start)
             trial.append(sp)
-            command.rest_time = self.timing.time(trial, 0.0, trial.end, 0.0, self.limits_of).duration
+            started = self.memo.start()
+            try:
+                command.rest_time = self.timing.time(trial, 0.0, trial.end, 0.0, self.limits_of).duration
+            finally:
+                self.memo.stop()
+            self.memo.keep(key, [sp], started, (), command.rest_time)
             self._remember(sp)
         return command.rest_time
 
     def _trial_duration(self, s0: float, v0: float, extra: list):
         """How long the arm takes from path position s0 at speed v0 to the end of the path
         followed by the spans `extra` (not added to the path), timed as `plan_from` times it,
-        and the pieces' profiles (s shifted to the path's positions; None when one fell back)."""
+        and the pieces' profiles (s shifted to the path's positions; None when one fell back).
+        A trial of the same spans from the same state is remembered (trial_memo.py)."""
         path = self.path
         trial = Path(path.q_rest)
         shift = 0.0
@@ -224,21 +237,41 @@ class Planner:
         a = s0 - shift
         for sp in extra:
             trial.append(sp)
+
+        def speed_at(g, a_):
+            return self.profile.speed_at(g + shift, a_ + shift)
+
+        key = self.memo.key(trial.spans, a, v0)
+        hit = self.memo.get(key, trial.spans, speed_at)
+        if hit is not None:
+            total, rel = hit
+            return total, None if rel is None else [(s_ + shift, sd_) for s_, sd_ in rel]
+        calls = []
+
+        def asked(g, a_):
+            v = speed_at(g, a_)
+            calls.append((g, a_, v))
+            return v
+
         total = 0.0
         pieces = []
-        for b in trial.stops_after(a) + [trial.end]:
-            if b - a <= _eps(b):
-                a = b
-                continue
-            piece = self.timing.time_from(trial, a, b, v0, self.limits_of,
-                                          lambda g, a_: self.profile.speed_at(g + shift, a_ + shift))
-            total += piece.duration
-            if piece.fallback:  # not reused: the plan reports it (R019)
-                pieces = None
-            if pieces is not None:
-                pieces.append((piece.s + shift, piece.sd))
-            a, v0 = b, 0.0
-        return total, pieces
+        started = self.memo.start()
+        try:
+            for b in trial.stops_after(a) + [trial.end]:
+                if b - a <= _eps(b):
+                    a = b
+                    continue
+                piece = self.timing.time_from(trial, a, b, v0, self.limits_of, asked)
+                total += piece.duration
+                if piece.fallback:  # not reused: the plan reports it (R019)
+                    pieces = None
+                if pieces is not None:
+                    pieces.append((frozen(piece.s), frozen(piece.sd)))
+                a, v0 = b, 0.0
+        finally:
+            self.memo.stop()
+        self.memo.keep(key, trial.spans, started, calls, (total, pieces))
+        return total, None if pieces is None else [(s_ + shift, sd_) for s_, sd_ in pieces]
 
     def forget_trial(self) -> None:
         """The limits changed (monitor speed): a blend trial's timing is no longer the plan's."""

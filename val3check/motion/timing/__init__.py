@@ -74,6 +74,15 @@ class Timing:
         """Nothing timed yet."""
         self.kin = kin
         self._cache: dict = {}
+        # what a caller that keeps results built on these answers records (`recording`)
+        self.misses = 0  # topp computed, not remembered: a first answer differs in its last bits
+        self.used: list | None = None  # (key, entry) of the remembered answers read
+
+    def holds(self, used: list) -> bool:
+        """Whether every remembered answer in `used` (recorded while `used` was `self.used`) is
+        still the one remembered: a result built on them is then what a new computation gives."""
+        cache = self._cache
+        return all(cache.get(k) is e for k, e in used)
 
     def time(self, path, a: float, b: float, v0: float, limits) -> TimedPiece:
         """The profile of the piece [a, b] of `path` (no stop inside) from path speed v0 to rest:
@@ -122,11 +131,14 @@ class Timing:
                grid.rv.tobytes())
         hit = self._cache.get(key)
         if hit is not None:
+            if self.used is not None:
+                self.used.append((key, hit))
             s_rel, sd, fallback = hit
             s = s_rel + s0
             s[0], s[-1] = grid.s[0], grid.s[-1]  # the ends exactly (a command ends there)
             return TimedProfile(s, sd.copy(), fallback)
         res = topp(grid, v0)
+        self.misses += 1
         if len(self._cache) >= TOPP_CACHE:
             self._cache.pop(next(iter(self._cache)))
         self._cache[key] = (res.s - s0, res.sd.copy(), res.fallback)

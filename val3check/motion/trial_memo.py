@@ -1,0 +1,108 @@
+"""The timings a blend decision makes (planner.py, `blend_pays`), remembered: a cyclic program
+decides the same blend from the same state every cycle (issue 29).
+
+    memo = TrialMemo(kin, timing, limits_of)
+    key = memo.key(spans, a, v0)          # None: reuse is off
+    hit = memo.get(key, spans, check)     # the remembered answer, or None
+    memo.keep(key, spans, calls, used, answer)
+
+A trial times a path of spans from position a at path speed v0. Its answer is a function of: each
+span's geometry (the same object: construction.py and blending.py reuse them), the part of it
+(a, b), whether it joins its neighbour smoothly, its tool, which spans belong to the same command
+and that command's limits (mdesc and monitor speed), a, v0, the speeds the arm had where the
+trial re-times from (`calls`: asked of the plan again and compared), and the answers of the
+remembered time-optimal parameterisations it read (timing.Timing: a first answer and a
+remembered one may differ in their last bits, so an answer is kept only when every one it read
+was remembered, and used only while those are still remembered). The arm's geometry (setDH)
+clears kin.reuse, and this memo with it. Results are shared, never copied: their arrays are
+read-only.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+REUSE = True  # off: every trial, command check and distance computed here and in construction.py, blending.py
+SIZE = 512  # answers remembered
+
+
+class TrialMemo:
+    """See the module docstring."""
+
+    def __init__(self, kin, timing, limits_of) -> None:
+        """Answers kept in `kin.reuse` (forgotten with the arm's geometry)."""
+        self.kin = kin
+        self.timing = timing
+        self.limits_of = limits_of
+        self._limit_keys: dict[int, tuple] = {}
+
+    def _store(self) -> dict:
+        store = self.kin.reuse.get("trial-memo")
+        if store is None:
+            store = self.kin.reuse.keep("trial-memo", {})
+        return store
+
+    def key(self, spans, *rest) -> tuple | None:
+        """The key of a trial of `spans` with the other inputs `rest` (floats), None when reuse is off."""
+        if not REUSE:
+            return None
+        canon: dict[int, int] = {}
+        parts = []
+        for sp in spans:
+            owners = tuple((canon.setdefault(k, len(canon)), st) for k, st in sp.owners)
+            tool = None if sp.tool is None else np.asarray(sp.tool, dtype=float).tobytes()
+            parts.append((id(sp.geom), sp.a, sp.b, sp.smooth, tool, owners))
+        limits = tuple(self._limits_key(k) for k in canon)
+        return (tuple(parts), limits, *rest)
+
+    def _limits_key(self, owner: int) -> tuple:
+        """The values of a command's limits (by the Limits object: one per mdesc and monitor speed)."""
+        lim = self.limits_of(owner)
+        hit = self._limit_keys.get(id(lim))
+        if hit is None or hit[0] is not lim:
+            hit = (lim, (lim.V.tobytes(), lim.A.tobytes(), lim.D.tobytes(), float(lim.tvel), float(lim.rvel)))
+            if len(self._limit_keys) > 64:
+                self._limit_keys.clear()
+            self._limit_keys[id(lim)] = hit
+        return hit[1]
+
+    def get(self, key, spans, speed_at=None):
+        """The answer kept under `key` when it still holds: the same geometries, the same speeds
+        asked of the plan (`speed_at(g, a)`), the same remembered parameterisations."""
+        if key is None:
+            return None
+        hit = self._store().get(key)
+        if hit is None:
+            return None
+        geoms, calls, used, answer = hit
+        if len(geoms) != len(spans) or any(g is not sp.geom for g, sp in zip(geoms, spans)):
+            return None
+        if any(speed_at(g, a) != v for g, a, v in calls) or not self.timing.holds(used):
+            return None
+        return answer
+
+    def start(self) -> tuple[int, list]:
+        """Record what a computation reads (before it)."""
+        used: list = []
+        self.timing.used = used
+        return self.timing.misses, used
+
+    def stop(self) -> None:
+        """Stop recording (after the computation, however it ended)."""
+        self.timing.used = None
+
+    def keep(self, key, spans, started, calls, answer) -> None:
+        """Keep `answer` (after `start` and `stop`) when every parameterisation it read was remembered."""
+        misses, used = started
+        if key is None or self.timing.misses != misses:
+            return
+        store = self._store()
+        if len(store) >= SIZE:
+            store.pop(next(iter(store)))
+        store[key] = (tuple(sp.geom for sp in spans), tuple(calls), tuple(used), answer)
+
+
+def frozen(a: np.ndarray) -> np.ndarray:
+    """`a`, read-only (shared between the plans that reuse it)."""
+    a.flags.writeable = False
+    return a
