@@ -35,6 +35,7 @@ class TimelineLog:
         self.tools: dict[str, list[PoseChange]] = {}
         self.tool_solids = {t.tool for t in cell.tools if t.tool != "flange"}
         self.spans: list[dict] = []  # open and closed spans: name, tool, carried, start, end, pose, bodies (left: ids of its solids in the checker)
+        self._lying: list[dict] = []  # the spans of parts left in the cell and not yet taken away (end None)
         self._carried: set[str] = set()
         self._left: set[int] = set()
 
@@ -74,9 +75,13 @@ class TimelineLog:
             self._take(name, t)
         for name in sorted(self._carried - carried):
             self._leave(name, t, left_now - self._left)
-        for span in self.spans:
-            if not span["carried"] and span["end"] is None and not (span["bodies"] & left_now):
+        lying = []
+        for span in self._lying:  # only these can end here (a long run has many spans)
+            if span["bodies"] & left_now:
+                lying.append(span)
+            else:
                 span["end"] = float(t)
+        self._lying = lying
         self._carried = carried
         self._left = left_now
 
@@ -93,6 +98,7 @@ class TimelineLog:
         F = scene.kinematics.link_poses(self.run.trajectory.position(t))[scene.flange_frame]
         self.spans.append({"name": name, "tool": span["tool"], "carried": False, "start": float(t), "end": None,
                            "pose": F @ span["pose"], "bodies": bodies})
+        self._lying.append(self.spans[-1])
 
     def timeline(self) -> CellTimeline:
         """What was logged, as the run's record keeps it."""
