@@ -303,13 +303,15 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
 
     def event(e) -> list[Diagnostic]:
         t, e = e[0] / US, e[2]
+        q = None
         if isinstance(e, str):
             checker.clear_parts(e)
             found = []
         else:
-            found = _gripper(checker, e, names, traj, run)
+            q = traj.position(t)  # the arm's joints there: for the checks and for the parts' spans
+            found = _gripper(checker, e, names, q, run)
         if log is not None:
-            log.after(checker, t)
+            log.after(checker, t, q)
         return found
 
     deadline = time.monotonic() + max_wall
@@ -455,13 +457,13 @@ def _tool_names(cell: Cell | None) -> dict[str, str]:
     return out
 
 
-def _gripper(checker: CollisionChecker, e: Any, names: dict[str, str], traj: Any,
+def _gripper(checker: CollisionChecker, e: Any, names: dict[str, str], q: np.ndarray,
              run: CollisionRun) -> list[Diagnostic]:
     tool = names.get(e.tool)
     if tool is None:
         return []
     t = e.time_us / US
-    drops = checker.gripper(tool, e.action, t, joints=traj.position(t), source=e.position)
+    drops = checker.gripper(tool, e.action, t, joints=q, source=e.position)
     run.drops.extend(drops)
     out = []
     path, line, col, program = e.position
