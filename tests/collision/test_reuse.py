@@ -247,7 +247,8 @@ def test_the_bundled_pick_and_place_reuses_checks_and_finds_what_fresh_checks_fi
         return run_folder(app, scenario=scenario, duration=70.0, robot=ROBOT, collisions=True,
                           cell=str(app / "val3check-cell.toml"), tmp_path=FsPath(__import__("tempfile").mkdtemp()))
 
-    reused = sim()
+    from val3check.collision.world import World
+
     keyed = collision_run.own_clock
 
     def unkeyed(*a):
@@ -255,10 +256,28 @@ def test_the_bundled_pick_and_place_reuses_checks_and_finds_what_fresh_checks_fi
         own.key = None
         return own
 
+    grips: list[int] = []
+    real_check = collision_run.CollisionChecker
+
+    def counted(*a, **kw):  # the open()/close() events reused by the checker
+        chk = real_check(*a, **kw)
+        grips.append(chk.world)
+        return chk
+
+    monkeypatch.setattr(collision_run, "CollisionChecker", counted)
+    reused = sim()
+    assert grips[-1].grips_reused > 10
+    # fresh: no motion, no open()/close() reused, the scene read at every motion, every frame read anew
     monkeypatch.setattr(collision_run, "own_clock", unkeyed)
+    monkeypatch.setattr(World, "_grip_key", lambda self, *a: object())
+    monkeypatch.setattr(collision_run.ValueWatch, "reading", lambda self, t: None)
+    monkeypatch.setattr(collision_run, "_chain", lambda node: None)
     fresh = sim()
+    assert grips[-1].grips_reused == 0
     a, b = reused.collision, fresh.collision
     assert b.reused == 0 and a.reused > 0.5 * len(a.by_motion) and len(a.by_motion) > 100
+    assert a.drops == b.drops
+    assert _timeline(reused.motion.cell_timeline) == _timeline(fresh.motion.cell_timeline)
     assert a.checks < 0.5 * b.checks
     assert sorted(a.by_motion) == sorted(b.by_motion)
     for i, r in a.by_motion.items():
@@ -267,3 +286,222 @@ def test_the_bundled_pick_and_place_reuses_checks_and_finds_what_fresh_checks_fi
         assert r.motion.id == i
     assert [(i, c) for i, c in a.contacts] == [(i, c) for i, c in b.contacts]
     assert [d.message for d in reused.diagnostics] == [d.message for d in fresh.diagnostics]
+
+
+def _timeline(tl) -> tuple:
+    def changes(d):
+        return {k: [(c.time, None if c.matrix is None else c.matrix.tobytes()) for c in v] for k, v in d.items()}
+
+    return changes(tl.frames), changes(tl.tools), [(p.name, p.tool, p.carried, p.start, p.end, p.pose.tobytes())
+                                                   for p in tl.parts]
+
+
+# ---- open() and close() ------------------------------------------------------------------------------------
+
+PICK = (350.0, -150.0, TOP + BRICK - 1.0)  # the brick 1 mm into the table: allowed to touch it
+PLACE = (300.0, 150.0, TOP + BRICK - 5.0)  # left 5 mm into the table: a part left in collision
+
+
+def _q(p):
+    """The joints with the TCP at p, pointing down."""
+    return _own((p[0], p[1], p[2] + 60.0), p)[1][-1]
+
+
+def _grip_cell() -> Cell:
+    c = _cell()  # and a bolt on a tool with no solids of its own: its pose is read only for the grasp
+    c.parts.append(Part("bolt", "tOther", "close", Shape("sphere", (10.0,)), trsf_matrix((0, 0, 30, 0, 0, 0))))
+    return c
+
+
+def _state(chk) -> tuple:
+    """What an open()/close() changes: the parts carried and left, the static set, the allowances."""
+    w = chk.world
+    return (list(w.carried), [(b.made_from, b.local.tobytes(), b.kind) for b in w.dropped],
+            [(name, b.made_from, b.local.tobytes(), g.weights.tobytes()) for name, g in w.carried.items()
+             for b in g.bodies],
+            [(b.made_from, b.pose.tobytes()) for b in w.static],
+            [tuple(x if isinstance(x, tuple) else x.label for x in pair) for pair in w.allowed_names()],
+            w.static_lo.tobytes())
+
+
+def test_an_open_or_close_that_repeats_in_the_same_scene_is_done_again_as_it_was_computed():
+    frames = {"fBall": BALL}
+    chk = checker(_grip_cell(), frames=frames, tools={"tTool": TOOL, "tOther": TOOL})
+
+    def cycle(c, t: float):
+        out = [c.gripper("tTool", "close", t, joints=_q(PICK), source="pick")]
+        states = [_state(c)]
+        out.append(c.gripper("tTool", "open", t + 1.0, joints=_q(PLACE), source="place"))
+        states.append(_state(c))
+        c.clear_parts("brick")  # taken away: the scene the cycle started in
+        states.append(_state(c))
+        return states, out
+
+    first = cycle(chk, 1.0)
+    assert first[1][1] and first[1][1][0].depth_mm == pytest.approx(5.0, abs=0.1)  # left 5 mm in the table
+    assert first[0][0][4]  # the brick grasped 1 mm in the table may touch it
+    n, made = chk.world.grips_reused, chk.measurements
+    second = cycle(chk, 5.0)
+    assert chk.world.grips_reused == n + 2 and chk.measurements == made  # nothing measured again
+    assert second[0] == first[0]
+    assert [(d.time, d.source) for d in second[1][1]] == [(6.0, "place")]
+    fresh = checker(_grip_cell(), frames=frames, tools={"tTool": TOOL, "tOther": TOOL})
+    assert cycle(fresh, 5.0) == second and fresh.world.grips_reused == 0
+
+
+GRIP_INPUTS = ["joints", "instruction", "tool", "tool pose", "frame moved", "part left in the cell", "touch allowance",
+               "touch tolerance", "arm geometry"]
+
+
+def _grip_event(what: str | None, frames=None, tools=None, chk=None):
+    """A checker in the scene of the event, with one input changed (`what`), and the event's arguments."""
+    frames = frames if frames is not None else {"fBall": BALL}
+    tools = tools if tools is not None else {"tTool": TOOL, "tOther": TOOL}
+    chk = chk or checker(_grip_cell(), frames=frames, tools=tools)
+    tool, instr, q = ("tOther" if what == "tool pose" else "tTool"), "close", _q(PICK)
+    if what == "joints":
+        q = _q(PLACE)
+    elif what == "instruction":
+        instr = "open"
+    elif what == "tool":
+        tool = "tOther"
+    elif what == "tool pose":
+        tools["tOther"] = (0.0, 0.0, 140.0, 0.0, 0.0, 0.0)
+    elif what == "frame moved":
+        frames["fBall"] = (300.0, 0.0, -90.0, 0, 0, 0)
+    elif what == "part left in the cell":
+        chk.gripper("tOther", "close", 0.5, joints=_q(PLACE))
+        chk.gripper("tOther", "open", 0.6, joints=_q(PLACE))
+    elif what == "touch allowance":
+        chk.refresh(1.0)
+        a, b = chk.world.static[0], next(iter(chk.world.link_groups.values())).bodies[0]
+        chk.world.allowed[frozenset((id(a), id(b)))] = (a, b)
+    elif what == "touch tolerance":
+        chk.world.touch = 2.0
+    elif what == "arm geometry":
+        chk.world.arm.links.current = _LONGER
+    return chk, (tool, instr, 1.0), q
+
+
+_LONGER = None
+
+
+@pytest.mark.parametrize("what", GRIP_INPUTS)
+def test_each_input_of_an_open_or_close_changed_is_computed_again(what):
+    global _LONGER
+    from dataclasses import replace
+
+    from val3check.robot import dh as _dh
+    from val3check.robot.absolute import with_dh
+    from val3check.robot.links import arm_links
+    from val3check.simulation.collision_run import _geometry_epochs
+
+    nominal = _dh.nominal_dh(ROBOT)
+    longer = with_dh(ROBOT, replace(nominal, a=tuple(v + (20.0 if k == 2 else 0.0) for k, v in enumerate(nominal.a))))
+    _LONGER = arm_links(longer)
+
+    def new():  # a checker whose arm's geometry can change (setDH, 11.4)
+        from val3check.collision import CollisionChecker
+
+        arm, _ = _geometry_epochs(ROBOT, [])
+        return CollisionChecker(arm, _grip_cell(), frames=frames, tools=tools)
+
+    frames, tools = {"fBall": BALL}, {"tTool": TOOL, "tOther": TOOL}
+    chk = new()
+    _, (tool, instr, t), q = _grip_event(None, frames, tools, chk)
+    chk.gripper(tool, instr, t, joints=q)
+    before = _state(chk)
+    for name in list(chk.world.carried):  # back to the scene the event ran in
+        chk.gripper(chk.world.carried[name].bodies[0].owner == "bolt" and "tOther" or "tTool", "open", 2.0,
+                    joints=_q((300.0, 0.0, 150.0)))
+        chk.clear_parts(name)
+    n = chk.world.grips_reused
+    _, (tool, instr, t), q = _grip_event(what, frames, tools, chk)
+    chk.gripper(tool, instr, 3.0, joints=q)
+    assert chk.world.grips_reused == n, what  # not found: computed
+    after = _state(chk)
+    # as a checker that saw only this event computes it
+    frames2, tools2 = {"fBall": BALL}, {"tTool": TOOL, "tOther": TOOL}
+    other = new()
+    _, (tool, instr, _t), q = _grip_event(what, frames2, tools2, other)
+    other.gripper(tool, instr, 3.0, joints=q)
+    assert _state(other) == after
+    if what in ("tool", "tool pose", "instruction", "frame moved", "part left in the cell"):
+        assert after != before, what
+
+
+# ---- the program's frames and tools, read once per change ---------------------------------------------------
+
+
+def _machine(node):
+    from types import SimpleNamespace
+
+    glob = SimpleNamespace(data=[node], off=0)
+    return SimpleNamespace(main=SimpleNamespace(globals={"fPart": glob}, aliases={})), glob
+
+
+def test_a_frame_is_computed_again_whenever_its_chain_changes_bit_for_bit():
+    from val3check.geometry.frames import Frame
+    from val3check.geometry.trsf import Trsf
+    from val3check.simulation.collision_run import _read
+
+    world = Frame(is_root=True, name="world")
+    base = Frame(Trsf(100.0, 0.0, 0.0, 0.0, 0.0, 0.0), world)
+    f = Frame(Trsf(0.0, 50.0, 0.0, 0.0, 0.0, 90.0), base)
+    machine, glob = _machine(f)
+    cache: dict = {}
+    first = _read(machine, "fPart", Frame, cache)
+    assert _read(machine, "fPart", Frame, cache) is first  # nothing changed: the same reading
+    changes = [lambda: setattr(f.trsf, "x", 1.0), lambda: setattr(base.trsf, "rz", 10.0),
+               lambda: setattr(f.trsf, "z", -0.0),  # equal as a number, not as bits
+               lambda: setattr(f, "ref", world), lambda: glob.data.__setitem__(0, Frame(Trsf(5.0), world)),
+               lambda: setattr(glob.data[0], "ref", None), lambda: setattr(glob.data[0], "ref", world),
+               lambda: setattr(world.trsf, "x", 1.0)]  # a modified world: no position
+    for k, change in enumerate(changes):
+        before = _read(machine, "fPart", Frame, cache)
+        change()
+        after = _read(machine, "fPart", Frame, cache)
+        fresh = _read(machine, "fPart", Frame)
+        assert after is not before or before is None, k
+        assert (after is None) == (fresh is None) and (fresh is None or np.array_equal(after, fresh)), k
+    assert after is None
+
+
+def test_the_reading_in_force_changes_with_every_new_value():
+    from val3check.geometry.frames import Frame
+    from val3check.geometry.trsf import Trsf
+    from val3check.simulation.collision_run import ValueWatch
+
+    world = Frame(is_root=True, name="world")
+    f = Frame(Trsf(0.0, 50.0, 0.0), world)
+    machine, _ = _machine(f)
+    cell = Cell(path="test")
+    cell.obstacles.append(Obstacle("box", Shape("box", (10.0, 10.0, 10.0)), "fPart", np.eye(4)))
+    watch = ValueWatch(cell, machine)
+    assert watch.reading(0.0) == -1
+    watch(0)
+    watch(4000)  # the same values: the same reading
+    assert watch.reading(0.0) == watch.reading(1.0) != -1
+    f.trsf.x = 3.0
+    watch(8000)
+    assert watch.reading(0.005) == watch.reading(0.0) != watch.reading(0.008) == watch.reading(5.0)
+    r = watch.reading(0.008)
+    f.trsf.x = 4.0
+    watch(8000)  # another value at the same time replaces it: another reading
+    assert watch.reading(0.008) != r and watch.frame("fPart", 0.008)[0, 3] == 4.0
+
+
+def test_the_scene_is_read_again_when_the_readings_change_and_only_then():
+    frames = {"fBall": BALL}
+    token = [0]
+    chk = checker(_cell(), frames=frames, readings=lambda t: token[0])
+    chk.refresh(1.0)
+    v = chk.world.version
+    frames["fBall"] = (300.0, 0.0, -50.0, 0, 0, 0)
+    chk.refresh(2.0)  # the same readings: what the frames give is the same (the caller's promise)
+    assert chk.world.version == v
+    token[0] = 1
+    chk.refresh(3.0)
+    assert chk.world.version != v
+    ball = next(b for b in chk.world.static if "ball" in b.label)
+    assert ball.pose[2, 3] == -50.0

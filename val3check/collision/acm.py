@@ -75,8 +75,14 @@ def compute_acm(links, bodies: dict[str, list[Body]], limits, trials: int = TRIA
             disabled[p] = "default"
     rng = random.Random(seed)
 
+    lo = np.array([float(a) for a, _ in limits])
+    span = np.array([float(b) for _, b in limits]) - lo
+
     def sample(n: int) -> np.ndarray:
-        return np.array([[rng.uniform(lo, hi) for lo, hi in limits] for _ in range(n)])
+        # rng.uniform(lo, hi) per value, row by row, all at once: lo + (hi - lo) * random(), the same
+        # operations in the same order (numpy rounds each one as Python does)
+        r = np.array([rng.random() for _ in range(n * len(lo))]).reshape(n, len(lo))
+        return lo + span * r
 
     seen: set[tuple[str, str]] = set()
     while True:

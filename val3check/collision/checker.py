@@ -65,11 +65,13 @@ class CollisionChecker:
     application's unit and degrees, an object with those attributes (geometry.Trsf), or a 4x4 /
     3x4 matrix; None when the program has none (the solids on it are left out and a CellProblem
     says so). margin_mm: clearance below it is a warning (default: the cell's). touch_mm: a
-    penetration up to it is touching, not a contact (default: the cell's)."""
+    penetration up to it is touching, not a contact (default: the cell's). readings(time): a
+    token that changes whenever frames and tools may answer otherwise at that time (the same
+    token: the scene is not read again); None: they are read at every motion."""
 
     def __init__(self, arm: ArmModel, cell: Cell, *, frames: PoseSource = None, tools: PoseSource = None,
                  margin_mm: float | None = None, touch_mm: float | None = None, app_unit_mm: float = 1.0,
-                 tolerance_mm: float = 0.05) -> None:
+                 tolerance_mm: float = 0.05, readings: Callable[[float], Hashable] | None = None) -> None:
         self.arm = arm
         self.cell = cell
         self.margin = float(cell.margin_mm if margin_mm is None else margin_mm)
@@ -77,7 +79,7 @@ class CollisionChecker:
         self.tol = float(tolerance_mm)
         self.backend = FclBackend()
         self.world = World(arm, cell, self.backend, frames=frames, tools=tools, app_unit_mm=app_unit_mm,
-                           touch_mm=self.touch)
+                           touch_mm=self.touch, readings=readings)
         # radians (or mm) per joint unit
         self._per_unit = np.array([1.0 if p else math.pi / 180.0 for p in arm.links.prismatic])
         self._results: dict = {}  # (motion key, scene key) -> (report on the motion's own clock, pairs found apart)

@@ -40,6 +40,8 @@ def same_poses(a: dict, b: dict | None) -> bool:
         return False
     for k, v in a.items():
         w = b[k]
-        if (v is None) != (w is None) or (v is not None and not np.array_equal(v, w)):
+        if v is w:  # the same reading (collision_run.ValueWatch gives the same matrix again)
+            continue
+        if (v is None) != (w is None) or not np.array_equal(v, w):
             return False
     return True

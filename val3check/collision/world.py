@@ -9,8 +9,8 @@ grippers' open/close (`gripper`); `version` changes with it, and what is compute
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from dataclasses import dataclass
+from collections.abc import Callable, Hashable
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -41,6 +41,10 @@ class ObstacleBody:
     body: Body
 
 
+SCENES = 4096  # scene contents kept with their numbers (`World.key`)
+GRIPS = 2048  # open()/close() events kept for reuse (`World.gripper`)
+
+
 class World:
     """The scene one arm moves in: see the module's docstring.
 
@@ -48,12 +52,16 @@ class World:
     the flange); unit: mm per application unit; touch: mm of overlap that is only touching."""
 
     def __init__(self, arm: ArmModel, cell: Cell, backend: FclBackend, *, frames: PoseSource = None,
-                 tools: PoseSource = None, app_unit_mm: float = 1.0, touch_mm: float = 0.05) -> None:
+                 tools: PoseSource = None, app_unit_mm: float = 1.0, touch_mm: float = 0.05,
+                 readings: Callable[[float], Hashable] | None = None) -> None:
         self.arm = arm
         self.cell = cell
         self.backend = backend
         self.frames = frames
         self.tools = tools
+        # readings(t): a token that changes whenever frames/tools may answer otherwise at t
+        self.readings = readings
+        self._read_token: Hashable = None
         self.unit = float(app_unit_mm)
         self.touch = float(touch_mm)
         self.problems: list[CellProblem] = []
@@ -90,6 +98,10 @@ class World:
         self.allowed: dict[frozenset[int], tuple[Body, Body]] = {}
         self.last_q: np.ndarray | None = None
         self.time = 0.0
+        self._scene_ids: dict[tuple, int] = {}  # scene content (`_scene_key`) -> a number never given to another
+        self._next_scene = 0
+        self._grips: dict[tuple, tuple] = {}  # `_grip_key` -> what the open()/close() did (`_replay`)
+        self.grips_reused = 0
 
     # ---- reading the program's frames and tools ------------------------------------------------------------
 
@@ -114,6 +126,10 @@ class World:
         """Read the frames of the obstacles and the tool poses (at a motion's start); the scene is
         rebuilt only when one of them changed."""
         self.time = time
+        token = None if self.readings is None else self.readings(time)
+        if token is not None and token == self._read_token:
+            return  # the same readings as the last time: the same scene
+        self._read_token = token
         frames: dict[str, np.ndarray | None] = {"world": np.eye(4)}
         for ob in self.obstacle_bodies:
             if ob.obstacle.frame not in frames:
@@ -199,7 +215,19 @@ class World:
         in force, the static set, the tool and the carried parts (each body by the solid of the cell
         it was made from and its pose), and the pairs allowed to touch."""
         links = getattr(self.arm.links, "current", self.arm.links)  # setDH (11.4): the geometry in force
-        return links, self.per_scene("key", self._scene_key), tuple(self.allowed_names())
+        return links, self.per_scene("key", self._scene_id), tuple(self.allowed_names())
+
+    def _scene_id(self) -> int:
+        """The scene's content as a number, the same for an equal content (computed once per
+        version of the scene: hashing the content at each lookup costs more than the lookup)."""
+        content = self._scene_key()
+        n = self._scene_ids.get(content)
+        if n is None:
+            if len(self._scene_ids) >= SCENES:
+                self._scene_ids.clear()  # bounded; numbers are never given again: a forgotten scene is a miss
+            n = self._scene_ids[content] = self._next_scene
+            self._next_scene += 1
+        return n
 
     def _scene_key(self) -> tuple:
         static = tuple(_placed(b) for b in self.static)
@@ -233,14 +261,48 @@ class World:
         """open(tool) or close(tool) ran at `time`, the arm at `joints` (default: where the last
         motion ended): the parts grasped on it are attached, the parts released are left in the
         cell where they are; returns the parts left inside an obstacle or another part
-        (`CollisionChecker.gripper`)."""
+        (`CollisionChecker.gripper`). What an event does is computed once per key (`_grip_key`:
+        the tool and its pose, the instruction, the joints, the scene) and done again from what
+        was recorded (`_replay`): the same solids made, taken, left and allowed to touch."""
         if instruction not in ("open", "close"):
             raise ValueError("instruction is 'open' or 'close'")
         q = np.asarray(joints, dtype=float) if joints is not None else self.last_q
         if q is None:
             q = np.zeros(self.arm.n_joints)
         self.refresh(time)
+        key = self._grip_key(tool, instruction, time, q)
+        done = self._grips.get(key)
+        if done is not None:
+            self.grips_reused += 1
+            return self._replay(done, time, source)
+        steps: list[tuple] = []
         poses = self.arm.links.poses(q)
+        drops = self._grip(tool, instruction, time, poses, source, steps)
+        if len(self._grips) >= GRIPS:
+            self._grips.clear()  # bounded: a cyclic program fills it again within a cycle or two
+        self._grips[key] = (poses, steps, [replace(d, time=0.0, source=None) for d in drops])
+        return drops
+
+    def _grip_key(self, tool: str, instruction: str, time: float, q: np.ndarray) -> tuple:
+        """Everything an open()/close() depends on: the tool, its pose (read without a side effect:
+        what the event reads is said by the event), the instruction, the joints (bits), the
+        scene (`key`) and the touch tolerance."""
+        if tool == "flange":
+            T: Any = "flange"
+        elif self.tool_in_flange is not None and tool in self.tool_in_flange:
+            T = self.tool_in_flange[tool]
+        else:
+            source = self.tools
+            try:
+                T = source(tool, time) if callable(source) else None if source is None else source.get(tool)
+                T = None if T is None else as_matrix(T, self.unit)
+            except Exception:
+                T = "unreadable"
+        T = T.tobytes() if isinstance(T, np.ndarray) else T
+        return tool, T, instruction, q.shape, q.tobytes(), self.key(), self.touch
+
+    def _grip(self, tool: str, instruction: str, time: float, poses: dict, source: Any, steps: list) -> list[PartDrop]:
+        """open()/close() computed; what it does is appended to `steps` (`_replay` does it again)."""
         flange = poses[self.arm.flange_link]
         arm_bodies: list[Body] = []
         for g in self.arm_groups():
@@ -248,32 +310,25 @@ class World:
                 b.place(poses[g.link])
             g.placed = -1.0
             arm_bodies.extend(b for b in g.bodies)
-        names: list[str] = []
-        for p in self.cell.parts:
-            if p.tool == tool and p.name not in names:
-                names.append(p.name)
         drops: list[PartDrop] = []
         cache: dict = dict(self.tool_in_flange or {})
-        for name in names:
+        for name in self._part_names(tool):
             solids = [(i, p) for i, p in enumerate(self.cell.parts) if p.name == name]
             first = solids[0][1]
             if instruction == first.grasp and name not in self.carried:
                 T = self.tool_pose(tool, time, cache, first.where)
                 if T is None:
                     continue
-                bodies = []
-                for i, p in solids:
-                    for k, b in enumerate(make_bodies("part", name, name, f"part {name!r}", p.shape.kind, p.shape.size,
-                                                      np.eye(4), *_mesh(p.shape), solid=_solid(p.shape))):
-                        b.local = T @ p.pose @ b.local
-                        b.made_from = ("part", i, k)
-                        bodies.append(b)
+                bodies = self._part_bodies(name, solids)
+                for b, p in zip(bodies, self._solid_of(bodies)):
+                    b.local = T @ p.pose @ b.local
                 for b in bodies:
                     b.place(flange)
-                self._pick_up(name, bodies)
-                self._allow_touching(bodies, self.static)
-                self.carried[name] = self._flange_group(f"part {name!r}", "part", bodies)
+                gone = self._pick_up(name, bodies)
+                pairs = self._allow_touching(bodies, self.static)
+                g = self.carried[name] = self._flange_group(f"part {name!r}", "part", bodies)
                 self.version += 1
+                steps.append(("grasp", name, solids, [b.local.copy() for b in bodies], gone, pairs, g.weights.copy()))
             elif instruction == first.release and name in self.carried:
                 g = self.carried.pop(name)
                 self.version += 1
@@ -283,10 +338,67 @@ class World:
                     b.place(np.eye(4))
                     b.kind = "obstacle"
                 drops.extend(self._dropped_inside(g.bodies, time, source))
-                self._allow_touching(g.bodies, [b for b in arm_bodies if b.owner != name])
+                pairs = self._allow_touching(g.bodies, [b for b in arm_bodies if b.owner != name])
                 self.dropped.extend(g.bodies)
                 self._set_static([*self._placed_obstacles, *self.dropped])
+                steps.append(("release", name, [b.local.copy() for b in g.bodies], pairs))
         return drops
+
+    def _replay(self, done: tuple, time: float, source: Any) -> list[PartDrop]:
+        """An open()/close() recorded by `_grip` in an equal scene done again: its steps in order,
+        each on the solids of this scene (found by their place in its lists)."""
+        poses, steps, drops = done
+        flange = poses[self.arm.flange_link]
+        arm_bodies: list[Body] = []
+        for g in self.arm_groups():
+            for b in g.bodies:
+                b.place(poses[g.link])
+            g.placed = -1.0
+            arm_bodies.extend(b for b in g.bodies)
+        for step in steps:
+            if step[0] == "grasp":
+                _, name, solids, locals_, gone, pairs, weights = step
+                bodies = self._part_bodies(name, solids)
+                for b, M in zip(bodies, locals_):
+                    b.local = M.copy()
+                    b.place(flange)
+                self._take_away(gone)
+                self._allow_pairs(bodies, self.static, pairs)
+                self.carried[name] = Group(f"part {name!r}", "part", self.arm.flange_link, bodies, weights.copy(),
+                                           frozenset(self.arm.links.movers(self.arm.flange_link)))
+                self.version += 1
+            else:
+                _, name, locals_, pairs = step
+                g = self.carried.pop(name)
+                self.version += 1
+                for b, M in zip(g.bodies, locals_):
+                    b.local = M.copy()
+                    b.place(np.eye(4))
+                    b.kind = "obstacle"
+                self._allow_pairs(g.bodies, [b for b in arm_bodies if b.owner != name], pairs)
+                self.dropped.extend(g.bodies)
+                self._set_static([*self._placed_obstacles, *self.dropped])
+        return [replace(d, time=time, source=source) for d in drops]
+
+    def _part_names(self, tool: str) -> list[str]:
+        names: list[str] = []
+        for p in self.cell.parts:
+            if p.tool == tool and p.name not in names:
+                names.append(p.name)
+        return names
+
+    def _part_bodies(self, name: str, solids: list) -> list[Body]:
+        """New solids of the part `name` (its (index, Part) in the cell), in their part's frame."""
+        bodies = []
+        for i, p in solids:
+            for k, b in enumerate(make_bodies("part", name, name, f"part {name!r}", p.shape.kind, p.shape.size,
+                                              np.eye(4), *_mesh(p.shape), solid=_solid(p.shape))):
+                b.made_from = ("part", i, k)
+                bodies.append(b)
+        return bodies
+
+    def _solid_of(self, bodies: list[Body]) -> list:
+        return [self.cell.parts[b.made_from[1]] for b in bodies]
 
     def clear_parts(self, name: str) -> int:
         """The parts named `name` left in the cell are taken away: how many solids left the cell."""
@@ -301,13 +413,19 @@ class World:
         """Touch allowances of bodies that left the cell are dropped."""
         self.allowed = {k: v for k, v in self.allowed.items() if not (k & gone)}
 
-    def _pick_up(self, name: str, bodies: list[Body]) -> None:
-        """A part taken where a part of the same name was left is that part: it leaves the cell."""
-        keep = [d for d in self.dropped if not (d.owner == name and any(self._overlap(d, b) for b in bodies))]
-        if len(keep) != len(self.dropped):
-            gone = {id(d) for d in self.dropped} - {id(d) for d in keep}
-            self._forget(gone)
-            self.dropped = keep
+    def _pick_up(self, name: str, bodies: list[Body]) -> list[int]:
+        """A part taken where a part of the same name was left is that part: it leaves the cell.
+        Returns the places in `dropped` of the solids that left."""
+        gone = [k for k, d in enumerate(self.dropped) if d.owner == name and any(self._overlap(d, b) for b in bodies)]
+        self._take_away(gone)
+        return gone
+
+    def _take_away(self, gone: list[int]) -> None:
+        """The solids at these places in `dropped` leave the cell."""
+        if gone:
+            ids = {id(self.dropped[k]) for k in gone}
+            self._forget(ids)
+            self.dropped = [d for d in self.dropped if id(d) not in ids]
             self._set_static([*self._placed_obstacles, *self.dropped])
 
     def _overlap(self, a: Body, b: Body) -> bool:
@@ -317,9 +435,12 @@ class World:
             return False
         return self.backend.distance(a, b).mm <= self.touch
 
-    def _allow_touching(self, bodies: list[Body], others: list[Body]) -> None:
+    def _allow_touching(self, bodies: list[Body], others: list[Body]) -> list[tuple[int, int]]:
+        """The pairs of `bodies` and `others` touching now may touch (until they have moved apart);
+        returns them by their places in the two lists."""
+        out: list[tuple[int, int]] = []
         if not bodies or not others:
-            return
+            return out
         # the boxes of all pairs at once; fcl measures only the pairs whose boxes are that close
         box_a, box_b = ([b.aabb() for b in group] for group in (bodies, others))
         lo_a, hi_a = (np.array(x)[:, None, :] for x in zip(*box_a))
@@ -328,7 +449,14 @@ class World:
         for i, j in zip(*np.nonzero(near)):
             a, b = bodies[i], others[j]
             if b is not a and self.backend.distance(a, b).mm <= self.touch:
-                self.allowed[frozenset((id(a), id(b)))] = (a, b)
+                out.append((int(i), int(j)))
+        self._allow_pairs(bodies, others, out)
+        return out
+
+    def _allow_pairs(self, bodies: list[Body], others: list[Body], pairs: list[tuple[int, int]]) -> None:
+        for i, j in pairs:
+            a, b = bodies[i], others[j]
+            self.allowed[frozenset((id(a), id(b)))] = (a, b)
 
     def _dropped_inside(self, bodies: list[Body], time: float, source: Any) -> list[PartDrop]:
         """The part's solids left overlapping an obstacle (deeper than the touch tolerance), or wholly

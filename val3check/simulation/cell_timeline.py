@@ -3,7 +3,7 @@ that draw it (the HTML report's 3D view, the MCAP trace).
 
     log = TimelineLog(cell, watch, arm_run, app_unit_mm)
     checker = CollisionChecker(..., frames=log.frame, tools=log.tool)   # the reads are logged
-    log.before(checker); checker.gripper(...); log.after(checker, "tGripper", t)
+    checker.gripper(...); log.after(checker, t, q)                      # q: the joints then
     arm_run.cell_timeline = log.timeline()
 
 Frames and tools are logged as the checker reads them (at a motion's start, at an open()/close():
@@ -35,6 +35,8 @@ class TimelineLog:
         self.tools: dict[str, list[PoseChange]] = {}
         self.tool_solids = {t.tool for t in cell.tools if t.tool != "flange"}
         self.spans: list[dict] = []  # open and closed spans: name, tool, carried, start, end, pose, bodies (left: ids of its solids in the checker)
+        self._flange: dict[bytes, np.ndarray] = {}  # joints (bits) -> the flange's pose there
+        self._lying: list[dict] = []  # the spans of parts left in the cell and not yet taken away (end None)
         self._carried: set[str] = set()
         self._left: set[int] = set()
 
@@ -66,17 +68,22 @@ class TimelineLog:
 
     # ---- the parts -------------------------------------------------------------------------------
 
-    def after(self, checker: Any, t: float) -> None:
-        """After an open()/close() or a `cleared_by` at `t`: the parts taken, left, taken away."""
+    def after(self, checker: Any, t: float, q=None) -> None:
+        """After an open()/close() or a `cleared_by` at `t` (q: the arm's joints then, when known):
+        the parts taken, left, taken away."""
         carried = set(checker.carried)
         left_now = {id(b) for b in getattr(checker.world, "dropped", ())}
         for name in sorted(carried - self._carried):
             self._take(name, t)
         for name in sorted(self._carried - carried):
-            self._leave(name, t, left_now - self._left)
-        for span in self.spans:
-            if not span["carried"] and span["end"] is None and not (span["bodies"] & left_now):
+            self._leave(name, t, left_now - self._left, q)
+        lying = []
+        for span in self._lying:  # only these can end here (a long run has many spans)
+            if span["bodies"] & left_now:
+                lying.append(span)
+            else:
                 span["end"] = float(t)
+        self._lying = lying
         self._carried = carried
         self._left = left_now
 
@@ -86,13 +93,21 @@ class TimelineLog:
         self.spans.append({"name": name, "tool": tool, "carried": True, "start": float(t), "end": None,
                            "pose": np.eye(4) if T is None else as_matrix(T, self.unit), "bodies": set()})
 
-    def _leave(self, name: str, t: float, bodies: set[int]) -> None:
+    def _leave(self, name: str, t: float, bodies: set[int], q=None) -> None:
         span = next(s for s in reversed(self.spans) if s["carried"] and s["name"] == name and s["end"] is None)
         span["end"] = float(t)
-        scene = self.run.scene
-        F = scene.kinematics.link_poses(self.run.trajectory.position(t))[scene.flange_frame]
+        q = self.run.trajectory.position(t) if q is None else q
+        key = np.asarray(q, dtype=float).tobytes()
+        F = self._flange.get(key)
+        if F is None:  # a cyclic program leaves its parts from a few positions: computed once each
+            scene = self.run.scene
+            F = scene.kinematics.link_poses(q)[scene.flange_frame]
+            if len(self._flange) >= 1024:
+                self._flange.clear()
+            self._flange[key] = F
         self.spans.append({"name": name, "tool": span["tool"], "carried": False, "start": float(t), "end": None,
                            "pose": F @ span["pose"], "bodies": bodies})
+        self._lying.append(self.spans[-1])
 
     def timeline(self) -> CellTimeline:
         """What was logged, as the run's record keeps it."""

@@ -19,6 +19,7 @@ from __future__ import annotations
 import functools
 import math
 import re
+import struct
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -130,6 +131,8 @@ class ValueWatch:
         self.tools = sorted({t.tool for t in (*cell.tools, *cell.parts) if t.tool != "flange"}) if cell else []
         self.times: list[float] = []
         self.values: list[dict[str, np.ndarray | None]] = []
+        self.serials: list[int] = []  # per reading, a number never given to another (`reading`)
+        self._cache: dict[str, tuple] = {}  # name -> (fingerprint, nodes held, matrix) of its last read
 
     def __call__(self, time_us: int, cycle: bool = False) -> None:
         """Read at `time_us`; `cycle`: at the start of a scheduler cycle, before any line of it ran:
@@ -138,21 +141,36 @@ class ValueWatch:
         if machine is None or (not self.frames and not self.tools):
             return
         now: dict[str, np.ndarray | None] = {}
+        cache = self._cache
         for name in self.frames:
-            now["f:" + name] = _read(machine, name, geo_frames.Frame)
+            now["f:" + name] = _read(machine, name, geo_frames.Frame, cache)
         for name in self.tools:
-            now["t:" + name] = _read(machine, name, geo_frames.Tool)
+            now["t:" + name] = _read(machine, name, geo_frames.Tool, cache)
         if self.values and same_poses(now, self.values[-1]):
             return
         if cycle:
             last = int(round(self.times[-1] * US)) if self.times else 0
             time_us = max(time_us - TICK_US + 1, last + 1)
         t = time_us / US
+        serial = len(self.serials) and self.serials[-1] + 1
         if self.times and self.times[-1] == t:
             self.values[-1] = now
+            self.serials[-1] = serial
         else:
             self.times.append(t)
             self.values.append(now)
+            self.serials.append(serial)
+
+    def reading(self, t: float) -> int:
+        """The reading `frame(name, t)` and `tool(name, t)` answer from, as a number that changes
+        whenever what they answer may change (-1: none yet): the checker reads the cell's frames
+        and tools again only then (collision.world.World.refresh)."""
+        import bisect
+
+        k = bisect.bisect_right(self.times, t + 1e-9) - 1
+        if k < 0:
+            k = 0 if self.values else -1
+        return -1 if k < 0 else self.serials[k]
 
     def _at(self, key: str, t: float):
         import bisect
@@ -169,9 +187,11 @@ class ValueWatch:
         return self._at("t:" + name, t)
 
 
-def _read(machine: Any, name: str, kind: type) -> np.ndarray | None:
+def _read(machine: Any, name: str, kind: type, cache: dict | None = None) -> np.ndarray | None:
     """The pose of the global frame/tool `name` ("fPallet", "fPallet[2]", "lib:fBase") in its
-    root (world, flange) as a 4x4 matrix, or None when the program has no such value."""
+    root (world, flange) as a 4x4 matrix, or None when the program has no such value. `cache`:
+    {name: its last read}; the same matrix object again when the chain of frames it was computed
+    from is the same nodes with the same coordinates, bit for bit (`_chain`)."""
     m = _NAME.match(name)
     unit = machine.main
     if m is None or unit is None:
@@ -188,14 +208,47 @@ def _read(machine: Any, name: str, kind: type) -> np.ndarray | None:
     node = data[c.off + index]
     if not isinstance(node, kind):
         return None
+    chain = _chain(node) if cache is not None else None
+    if chain is not None:
+        last = cache.get(name)
+        if last is not None and last[0] == chain[0]:
+            return last[2]
     try:
         r, p, _ = geo_frames.root_pose(node)
     except Exception:  # undefined reference, modified root (160/161/163/164): no position
-        return None
-    out = np.eye(4)
-    out[:3, :3] = np.array(r, dtype=float).reshape(3, 3)
-    out[:3, 3] = p
+        out = None
+    else:
+        out = np.eye(4)
+        out[:3, :3] = np.array(r, dtype=float).reshape(3, 3)
+        out[:3, 3] = p
+    if chain is not None:
+        cache[name] = (chain[0], chain[1], out)
     return out
+
+
+_PACK = struct.Struct("6d")
+
+
+def _chain(node: Any) -> tuple[tuple, list] | None:
+    """What `geometry.frames.root_pose(node)` reads: each node up to the root (or to a missing
+    reference, or past a loop) by identity, with its root flag, its reference and its
+    coordinates' bits; and the nodes themselves (held, so that no other object takes their ids).
+    None when a coordinate is not a number."""
+    out: list = []
+    held: list = []
+    n = node
+    try:
+        while n is not None and len(out) <= geo_frames.MAX_DEPTH + 1:
+            t = n.trsf
+            held.append(n)
+            held.append(n.ref)
+            out.append((id(n), n.is_root, id(n.ref), _PACK.pack(t.x, t.y, t.z, t.rx, t.ry, t.rz)))
+            if n.is_root:
+                break
+            n = n.ref
+    except (AttributeError, TypeError, struct.error):
+        return None
+    return tuple(out), held
 
 
 # ---- checking the run -------------------------------------------------------------------------------------
@@ -238,7 +291,7 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
     log = TimelineLog(cell, watch, motion, app_unit_mm) if cell is not None else None  # what the reports draw
     checker = CollisionChecker(arm, cell if cell is not None else Cell(path=""),
                                frames=log.frame if log else watch.frame, tools=log.tool if log else watch.tool,
-                               app_unit_mm=app_unit_mm)
+                               app_unit_mm=app_unit_mm, readings=watch.reading)
     run = CollisionRun(cell, cell_path, cell_found, margin_mm=checker.margin)
     diags: list[Diagnostic] = []
     traj = motion.trajectory
@@ -250,13 +303,15 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
 
     def event(e) -> list[Diagnostic]:
         t, e = e[0] / US, e[2]
+        q = None
         if isinstance(e, str):
             checker.clear_parts(e)
             found = []
         else:
-            found = _gripper(checker, e, names, traj, run)
+            q = traj.position(t)  # the arm's joints there: for the checks and for the parts' spans
+            found = _gripper(checker, e, names, q, run)
         if log is not None:
-            log.after(checker, t)
+            log.after(checker, t, q)
         return found
 
     deadline = time.monotonic() + max_wall
@@ -402,13 +457,13 @@ def _tool_names(cell: Cell | None) -> dict[str, str]:
     return out
 
 
-def _gripper(checker: CollisionChecker, e: Any, names: dict[str, str], traj: Any,
+def _gripper(checker: CollisionChecker, e: Any, names: dict[str, str], q: np.ndarray,
              run: CollisionRun) -> list[Diagnostic]:
     tool = names.get(e.tool)
     if tool is None:
         return []
     t = e.time_us / US
-    drops = checker.gripper(tool, e.action, t, joints=traj.position(t), source=e.position)
+    drops = checker.gripper(tool, e.action, t, joints=q, source=e.position)
     run.drops.extend(drops)
     out = []
     path, line, col, program = e.position
