@@ -15,15 +15,30 @@ import math
 import struct
 from typing import Any
 
+from .series import floats
+
 FULL_RATE_MAX = 30_000
 PLOT_BUCKETS = 15_000
 
 
 def f32(values) -> str:
+    """base64 of float32 values: a list, or an array of float64 (numpy, array('d')) cast at once."""
+    if not isinstance(values, list):
+        import numpy as np
+
+        a = np.asarray(values, dtype=float)
+        b = a.astype("<f4")
+        if np.isfinite(b).all() or not np.isfinite(a).all():
+            return base64.b64encode(b.tobytes()).decode("ascii")
+        values = a.tolist()  # a value beyond float32: struct says so (OverflowError)
     return base64.b64encode(struct.pack(f"<{len(values)}f", *values)).decode("ascii")
 
 
 def f64(values) -> str:
+    if not isinstance(values, list):
+        import numpy as np
+
+        return base64.b64encode(np.asarray(values, dtype="<f8").tobytes()).decode("ascii")
     return base64.b64encode(struct.pack(f"<{len(values)}d", *values)).decode("ascii")
 
 
@@ -34,10 +49,28 @@ def _buckets(n: int) -> list[tuple[int, int]]:
     return [(i, min(i + size, n)) for i in range(0, n, size)]
 
 
-def _series(values: list[float], buckets: list[tuple[int, int]]) -> dict:
+def _series(values, buckets: list[tuple[int, int]]) -> dict:
+    """A plot's series: every value, or each bucket's minimum and maximum (`values`: a list, or an
+    array('d'), reduced at once)."""
     if not buckets:
         return {"v": f32(values)}
+    arr = floats(values)
+    if arr is not None:
+        import numpy as np
+
+        if not (np.signbit(arr) & (arr == 0.0)).any():  # -0.0 beside 0.0: min() keeps the first, as below
+            starts = np.fromiter((lo for lo, _ in buckets), dtype=np.intp, count=len(buckets))
+            return {"lo": f32(np.minimum.reduceat(arr, starts)), "hi": f32(np.maximum.reduceat(arr, starts))}
+        values = arr.tolist()
     return {"lo": f32([min(values[a:b]) for a, b in buckets]), "hi": f32([max(values[a:b]) for a, b in buckets])}
+
+
+def _firsts(values, buckets: list[tuple[int, int]]):
+    """The first value of each bucket."""
+    a = floats(values)
+    if a is not None:
+        return a[0:buckets[-1][1]:buckets[0][1] - buckets[0][0]]  # buckets of one size, the last shorter
+    return [values[lo] for lo, _ in buckets]
 
 
 def _trajectory(tr: dict | None) -> dict | None:
@@ -46,7 +79,7 @@ def _trajectory(tr: dict | None) -> dict | None:
     times = tr["times"]
     n = len(times)
     buckets = _buckets(n)
-    plot_times = [times[a] for a, _ in buckets] if buckets else times
+    plot_times = _firsts(times, buckets) if buckets else times
     joints = []
     for i, j in enumerate(tr["joints"]):
         joints.append({
@@ -64,7 +97,7 @@ def _trajectory(tr: dict | None) -> dict | None:
         "anim": None,
     }
     if buckets:
-        out["anim"] = {"t": f64(plot_times), "q": [f32([row[a] for a, _ in buckets]) for row in tr["positions"]]}
+        out["anim"] = {"t": f64(plot_times), "q": [f32(_firsts(row, buckets)) for row in tr["positions"]]}
     return out
 
 
