@@ -42,35 +42,32 @@ def f64(values) -> str:
     return base64.b64encode(struct.pack(f"<{len(values)}d", *values)).decode("ascii")
 
 
-def _buckets(n: int) -> list[tuple[int, int]]:
-    if n <= FULL_RATE_MAX:
-        return []
-    size = math.ceil(n / PLOT_BUCKETS)
-    return [(i, min(i + size, n)) for i in range(0, n, size)]
+def _bucket(n: int) -> int:
+    """The samples in a bucket of a series of `n` (the last bucket may be shorter); 0: no buckets."""
+    return 0 if n <= FULL_RATE_MAX else math.ceil(n / PLOT_BUCKETS)
 
 
-def _series(values, buckets: list[tuple[int, int]]) -> dict:
-    """A plot's series: every value, or each bucket's minimum and maximum (`values`: a list, or an
-    array('d'), reduced at once)."""
-    if not buckets:
+def _series(values, size: int) -> dict:
+    """A plot's series: every value, or the minimum and maximum of each bucket of `size` values
+    (`values`: a list, or an array('d'), reduced at once)."""
+    if not size:
         return {"v": f32(values)}
     arr = floats(values)
     if arr is not None:
         import numpy as np
 
         if not (np.signbit(arr) & (arr == 0.0)).any():  # -0.0 beside 0.0: min() keeps the first, as below
-            starts = np.fromiter((lo for lo, _ in buckets), dtype=np.intp, count=len(buckets))
+            starts = np.arange(0, len(arr), size)
             return {"lo": f32(np.minimum.reduceat(arr, starts)), "hi": f32(np.maximum.reduceat(arr, starts))}
         values = arr.tolist()
-    return {"lo": f32([min(values[a:b]) for a, b in buckets]), "hi": f32([max(values[a:b]) for a, b in buckets])}
+    starts = range(0, len(values), size)
+    return {"lo": f32([min(values[a:a + size]) for a in starts]), "hi": f32([max(values[a:a + size]) for a in starts])}
 
 
-def _firsts(values, buckets: list[tuple[int, int]]):
+def _firsts(values, size: int):
     """The first value of each bucket."""
-    a = floats(values)
-    if a is not None:
-        return a[0:buckets[-1][1]:buckets[0][1] - buckets[0][0]]  # buckets of one size, the last shorter
-    return [values[lo] for lo, _ in buckets]
+    arr = floats(values)
+    return values[::size] if arr is None else arr[::size]
 
 
 def _trajectory(tr: dict | None) -> dict | None:
@@ -78,26 +75,26 @@ def _trajectory(tr: dict | None) -> dict | None:
         return None
     times = tr["times"]
     n = len(times)
-    buckets = _buckets(n)
-    plot_times = _firsts(times, buckets) if buckets else times
+    size = _bucket(n)
+    plot_times = _firsts(times, size) if size else times
     joints = []
     for i, j in enumerate(tr["joints"]):
         joints.append({
             "name": j["name"], "unit": j["unit"], "min": j.get("min"), "max": j.get("max"), "speed": j.get("speed"),
-            "pos": _series(tr["positions"][i], buckets), "vel": _series(tr["velocities"][i], buckets),
+            "pos": _series(tr["positions"][i], size), "vel": _series(tr["velocities"][i], size),
         })
     out: dict[str, Any] = {
         "samples": n,
-        "decimated": bool(buckets),
-        "bucket": (buckets[0][1] - buckets[0][0]) if buckets else 1,
+        "decimated": bool(size),
+        "bucket": size or 1,
         "t": f64(plot_times),
         "joints": joints,
-        "tcp": _series(tr["tcp_speed"], buckets) if tr.get("tcp_speed") is not None else None,
+        "tcp": _series(tr["tcp_speed"], size) if tr.get("tcp_speed") is not None else None,
         # the 3D view: full-rate positions are the plots' own, else one sample per bucket
         "anim": None,
     }
-    if buckets:
-        out["anim"] = {"t": f64(plot_times), "q": [f32(_firsts(row, buckets)) for row in tr["positions"]]}
+    if size:
+        out["anim"] = {"t": f64(plot_times), "q": [f32(_firsts(row, size)) for row in tr["positions"]]}
     return out
 
 

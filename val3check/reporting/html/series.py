@@ -41,9 +41,10 @@ def rounded(values: Any, digits: int) -> Any:
 
     x = np.asarray(values, dtype=float)
     scale = 10.0 ** digits
-    y = x * scale
-    out = np.rint(y) / scale + 0.0
-    near = np.abs(np.abs(y - np.floor(y)) - 0.5) <= np.abs(y) * 2.0 ** -49 + 1e-300
+    with np.errstate(invalid="ignore", over="ignore"):
+        y = x * scale
+        out = np.rint(y) / scale + 0.0
+        near = np.abs(np.abs(y - np.floor(y)) - 0.5) <= np.abs(y) * 2.0 ** -49 + 1e-300
     near |= ~(np.abs(y) < 2.0 ** 52)  # beyond, or not finite: as Python rounds them
     for k in np.flatnonzero(near).tolist():
         out[k] = round(float(x[k]), digits) + 0.0
