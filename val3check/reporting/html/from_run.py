@@ -62,6 +62,7 @@ def _motions(report: Any, m: Any, end: float, clearances: dict) -> list[dict]:
     """The motion table: the motions that ran within the run, with their closest approach to the
     cell (`clearances`: position in m.motions -> MotionReport)."""
     out = []
+    shown: dict[str, Any] = {}  # the display path of each file, once (a cycle repeats its lines)
     for k, motion in enumerate(m.motions):
         if motion.start is None or motion.start > end:
             continue  # failed before it moved (its diagnostic says why), or not started within the run
@@ -69,7 +70,9 @@ def _motions(report: Any, m: Any, end: float, clearances: dict) -> list[dict]:
             break  # a long run: its first rows (reporting/thinning.py), said in the limitations
         stop = end if motion.end is None else min(motion.end, end)  # None: under way when the run ended
         src = motion.source
-        where = report.display((src.path, src.line, src.col, ""))
+        if src.path not in shown:
+            shown[src.path] = report.display((src.path, src.line, src.col, ""))
+        where = shown[src.path]
         limits = motion.limits  # None: a connection move
         entry = {
             "id": len(out) + 1, "kind": motion.kind, "path": where[0] if where else None, "line": src.line or None,

@@ -34,6 +34,8 @@ def _fail(where: str, what: str) -> None:
 
 
 def _num(v: Any, where: str, *, null: bool = False) -> None:
+    if type(v) is float and v - v == 0.0:  # finite (inf - inf and nan - nan are nan): most values
+        return
     if v is None and null:
         return
     if isinstance(v, bool) or not isinstance(v, (int, float)) or not _finite(v):
