@@ -54,3 +54,55 @@ def test_lint_leaves_out_what_it_does_not_use():
     )
     r = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=60)
     assert "LOADED []" in r.stderr, r.stderr
+
+
+def _sim_modules(tmp_path, *extra: str) -> str:
+    """Standard error of `val3check sim` (the bundled pick-and-place, 1 s, its cell) run as a
+    process of its own, ending with the modules it imported and whether its collector froze."""
+    code = (
+        "import gc, sys, runpy\n"
+        f"sys.argv = ['val3check', 'sim', 'fixtures/valid/PickPlace', '--robot', 'tx2-60', '--scenario',"
+        f" 'fixtures/scenarios/pickplace.toml', '--duration', '1', '--max-wall', '600', '--report', 'json', '-o',"
+        f" {str(tmp_path / 'r.json')!r}, *{list(extra)!r}]\n"
+        "try:\n    runpy.run_module('val3check', run_name='__main__')\nexcept SystemExit:\n    pass\n"
+        "roots = sorted({m.split('.')[0] for m in sys.modules})\n"
+        "print('ROOTS', roots, file=sys.stderr)\n"
+        "print('BATCH', sorted(m for m in sys.modules if m.startswith('val3check.batch')), file=sys.stderr)\n"
+        "print('FROZEN', gc.get_freeze_count() > 0, gc.get_threshold(), file=sys.stderr)\n"
+    )
+    r = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=300)
+    assert (tmp_path / "r.json").is_file(), r.stderr
+    return r.stderr
+
+
+def test_sim_imports_only_what_its_run_uses(tmp_path):
+    """One application: none of the batch's modules (cli.sim_command.wants_batch); no trace: not
+    mcap; a cell without meshes: not trimesh; no pinocchio (the arm's kinematics are our own),
+    no Dask. The process freezes its collector once linted and collects its young generation less
+often (cli.sim_command.freeze_before_run)."""
+    err = _sim_modules(tmp_path)
+    roots = err.split("ROOTS ")[1].splitlines()[0]
+    for name in ("mcap", "trimesh", "pinocchio", "dask", "distributed", "example_robot_data"):
+        assert f"'{name}'" not in roots, (name, roots)
+    assert "'numpy'" in roots and "'fcl'" in roots, roots  # what the run does use: the check sees imports
+    assert "BATCH []" in err, err
+    assert "FROZEN True (10000, 10, 10)" in err, err
+
+
+def test_sim_imports_mcap_when_it_writes_a_trace(tmp_path):
+    err = _sim_modules(tmp_path, "--trace", str(tmp_path / "t.mcap"))
+    assert "'mcap'" in err.split("ROOTS ")[1].splitlines()[0], err
+    assert (tmp_path / "t.mcap").stat().st_size > 0
+
+
+def test_sim_called_as_a_function_leaves_the_collector_alone(tmp_path):
+    """`main(argv)` from another program (tests, tools): no freeze, thresholds left as they were
+    (their collector is theirs)."""
+    code = (
+        "import gc, sys\n"
+        "from val3check.cli import main\n"
+        f"main(['sim', 'fixtures/valid/Supervisor', '--duration', '1', '--report', 'json', '-o', {str(tmp_path / 'r.json')!r}])\n"
+        "print('FROZEN', gc.get_freeze_count() > 0, gc.get_threshold(), file=sys.stderr)\n"
+    )
+    r = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=300)
+    assert "FROZEN False (700, 10, 10)" in r.stderr, r.stderr

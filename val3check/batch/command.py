@@ -21,13 +21,6 @@ from .sweep import SweepError, load_sweep
 from .worker import CaseOutcome, CaseSummary, summary_of
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
-_GLOB_CHARS = set("*?[")
-
-
-def wanted(args: Any) -> bool:
-    """Whether the command line asks for a batch; otherwise `sim` runs one application as before."""
-    return bool(len(args.app) > 1 or args.sweep or len(args.robot or []) > 1 or args.out_dir or args.jobs is not None
-                or args.executor != "local" or any(_GLOB_CHARS & set(a) for a in args.app))
 
 
 def _err(message: str) -> int:

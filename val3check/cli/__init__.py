@@ -211,6 +211,8 @@ def main(argv: list[str] | None = None) -> int:
         if args.command in ("sim", "robots", "reach"):
             from . import sim_command
 
+            args.own_process = argv is None  # sim_command.freeze_before_run
+
             commands = {"sim": sim_command.sim, "robots": sim_command.robots, "reach": sim_command.reach}
             return commands[args.command](args)
         if args.command == "html":

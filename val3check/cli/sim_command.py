@@ -10,11 +10,19 @@ from .. import __version__
 from .common import EXIT_FINDINGS, EXIT_OK, EXIT_USAGE, MAX_DURATION, settings_of, shown, write
 
 
+_GLOB_CHARS = set("*?[")
+
+
+def wants_batch(args: argparse.Namespace) -> bool:
+    """Whether the command line asks for a batch (docs/batch.md); otherwise `sim` runs one
+    application, without importing the batch's modules."""
+    return bool(len(args.app) > 1 or args.sweep or len(args.robot or []) > 1 or args.out_dir or args.jobs is not None
+                or args.executor != "local" or any(_GLOB_CHARS & set(a) for a in args.app))
+
+
 def sim(args: argparse.Namespace) -> int:
     """Lint first (in-process); run only an application without error-level findings."""
-    from ..batch.command import wanted
-
-    batch = wanted(args)
+    batch = wants_batch(args)
     if not batch:
         args.app = args.app[0] if args.app else "."
         args.robot = args.robot[0] if args.robot else None
@@ -77,6 +85,8 @@ def sim(args: argparse.Namespace) -> int:
         from ..reporting.progress import Progress
 
         spec.progress = lambda: Progress.for_stream(sys.stderr, args.duration)  # only on a terminal
+        if getattr(args, "own_process", False):
+            spec.step = freeze_before_run
         done = sim_case.run_case(spec, say)
     if done.refused == sim_case.UNREADABLE:
         sys.stdout.write(render("text", done.lint.result))
@@ -117,6 +127,23 @@ def sim(args: argparse.Namespace) -> int:
     if written or args.format != "text":  # the text report on standard output ends with the line itself
         print(f"val3check sim: {closing_line(report, settings.fail_on, written)}", file=sys.stderr)
     return EXIT_FINDINGS if failed(report, settings.fail_on) else EXIT_OK
+
+
+YOUNG_THRESHOLD = 10_000  # the collector's first threshold during a run (Python's default: 700)
+
+
+def freeze_before_run(step: str) -> None:
+    """`val3check sim` as a process of its own: once linted, what the process holds (modules, the
+    application's trees and symbols) lives to the end; frozen, the collector's full passes during
+    the run no longer walk it. The run allocates millions of short-lived objects, nearly all freed
+    by their count: the young generation is collected every 10,000 allocations rather than 700
+    (docs/performance.md, "Start-up and the interpreter"). Not when `main` is called with
+    arguments (tests, other programs: their collector is theirs)."""
+    if step == "run":
+        import gc
+
+        gc.freeze()
+        gc.set_threshold(YOUNG_THRESHOLD, *gc.get_threshold()[1:])
 
 
 def write_trace(report, path: str) -> bool:

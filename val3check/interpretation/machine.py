@@ -369,7 +369,7 @@ class Machine:
             frames = list(self._task_frames(task))
         out = []
         for c, f in frames:
-            sites = [site for site in c.loops if site.py_first <= f.f_lineno <= site.py_last]
+            sites = c.loops_at(f.f_lineno)
             if sites:
                 local = f.f_locals
                 out.extend((c, site, local[site.var]) for site in sites if site.var in local)

@@ -116,3 +116,12 @@ class Compiled:
     # python line -> (sequence, index, length) of the VAL 3 instruction (taskResume jumps)
     bpos: dict = field(default_factory=dict)
     loops: list[LoopSite] = field(default_factory=list)  # in the order they are written
+    _loops_at: dict = field(default_factory=dict, repr=False, compare=False)
+
+    def loops_at(self, py_line: int) -> tuple[LoopSite, ...]:
+        """The loops whose Python lines hold `py_line`, outermost first (memoised: a motion
+        instruction asks at each command it records)."""
+        sites = self._loops_at.get(py_line)
+        if sites is None:
+            sites = self._loops_at[py_line] = tuple(s for s in self.loops if s.py_first <= py_line <= s.py_last)
+        return sites
