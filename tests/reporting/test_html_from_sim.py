@@ -183,6 +183,7 @@ def test_the_page_of_a_json_report_is_bounded_as_the_page_of_the_run(monkeypatch
     report hold their first rows (reporting/thinning.py), and its limitations say so in the words
     of the run's page; a short run's page holds all of them and says nothing."""
     from val3check.reporting import sim_json, thinning
+    from val3check.reporting.html import from_run
     from val3check.reporting.html.from_run import model_from_run
 
     from .runhelp import pickplace
@@ -196,6 +197,7 @@ def test_the_page_of_a_json_report_is_bounded_as_the_page_of_the_run(monkeypatch
             "IO_EVENTS": len(whole["io"]) // 2}
     for name, n in keep.items():
         monkeypatch.setattr(thinning, name, n)
+    monkeypatch.setattr(from_run, "MOTION_ROWS", keep["MOTION_ROWS"])  # the run's page: its own name
     page = model_from_sim_report(report, ReportScene())
     assert page["motions"] == whole["motions"][:keep["MOTION_ROWS"]]
     assert page["arm_timeline"] == whole["arm_timeline"][:keep["ARM_SPANS"]]

@@ -24,8 +24,7 @@ from pathlib import Path
 from typing import Any
 
 from .._common import SourceCache
-from .. import thinning
-from ..thinning import arm_spans, io_events, left_out, part_spans, task_changes
+from ..thinning import MOTION_ROWS, arm_spans, io_events, left_out, part_spans, task_changes
 from .excerpts import SEVERITY_ORDER, excerpt
 from .model import VERSION
 from .series import doubles, rounded
@@ -66,7 +65,7 @@ def _motions(report: Any, m: Any, end: float, clearances: dict) -> list[dict]:
     for k, motion in enumerate(m.motions):
         if motion.start is None or motion.start > end:
             continue  # failed before it moved (its diagnostic says why), or not started within the run
-        if len(out) == thinning.MOTION_ROWS:
+        if len(out) == MOTION_ROWS:
             break  # a long run: its first rows (reporting/thinning.py), said in the limitations
         stop = end if motion.end is None else min(motion.end, end)  # None: under way when the run ended
         src = motion.source
@@ -432,9 +431,9 @@ def model_from_run(report: Any, *, fail_on: str = "error", cell: Any = None, cle
     motions, cycles, cycle_time, trajectory, arm_timeline = [], [], None, None, []
     if m is not None:
         motions = _motions(report, m, end, clearances)
-        if len(motions) == thinning.MOTION_ROWS and len(m.motions) > thinning.MOTION_ROWS:
-            limits.append(f"A long run: the motion table lists the first {thinning.MOTION_ROWS} of {len(m.motions)} "
-                          "motions; the cycles, the findings and the plots cover the whole run.")
+        if len(motions) == MOTION_ROWS and len(m.motions) > MOTION_ROWS:
+            limits.append(f"A long run: the motion table lists the first {MOTION_ROWS} of {len(m.motions)} motions; "
+                          "the cycles, the findings and the plots cover the whole run.")
         cycles, cycle_time = _cycles(report, m, end)
         moving = m.trajectory.moving(m.end_s)  # once: it walks the whole run
         trajectory = _trajectory(report, m, limits, moving)
