@@ -147,7 +147,7 @@ def test_the_page_of_the_json_is_the_page_of_the_run(capsys):
     ca, cb = a["verdict"]["cycle_time"], b["verdict"]["cycle_time"]
     assert ca["basis"] == cb["basis"] and abs(ca["seconds"] - cb["seconds"]) <= 1e-6  # a median of two
     ta, tb = a["trajectory"], b["trajectory"]
-    assert ta["times"] == tb["times"] and ta["joints"] == tb["joints"]
+    assert list(ta["times"]) == tb["times"] and ta["joints"] == tb["joints"]  # array("d"), list
     assert np.abs(np.array(ta["positions"]) - np.array(tb["positions"])).max() <= 5e-5 + 1e-9
     assert np.abs(np.array(ta["velocities"]) - np.array(tb["velocities"])).max() <= 5e-4 + 1e-9
     assert np.abs(np.array(ta["tcp_speed"]) - np.array(tb["tcp_speed"])).max() < 0.05  # mm/s
@@ -176,3 +176,45 @@ def test_a_cell_outside_the_roots_is_not_read(capsys, tmp_path):
     assert model["scene"]["obstacles"] == [] and any("outside the application's folder" in n
                                                      for n in model["limitations"])
     assert len(model_from_sim_report(report, ReportScene(), roots=[str(tmp_path)])["scene"]["obstacles"]) == 7
+
+
+def test_the_page_of_a_json_report_is_bounded_as_the_page_of_the_run(monkeypatch):
+    """Issue 29: the motion table, the arm timeline and the I/O changes of a page made from a JSON
+    report hold their first rows (reporting/thinning.py), and its limitations say so in the words
+    of the run's page; a short run's page holds all of them and says nothing."""
+    from val3check.reporting import sim_json, thinning
+    from val3check.reporting.html import from_run
+    from val3check.reporting.html.from_run import model_from_run
+
+    from .runhelp import pickplace
+
+    _, run = pickplace(20.0)
+    report = json.loads(sim_json.render(run))
+    whole = model_from_sim_report(report, ReportScene())
+    assert not [n for n in whole["limitations"] if "A long run" in n]
+    assert len(whole["motions"]) > 30 and len(whole["arm_timeline"]) > 10 and len(whole["io"]) > 10
+    keep = {"MOTION_ROWS": len(whole["motions"]) // 2, "ARM_SPANS": len(whole["arm_timeline"]) // 2,
+            "IO_EVENTS": len(whole["io"]) // 2}
+    for name, n in keep.items():
+        monkeypatch.setattr(thinning, name, n)
+    monkeypatch.setattr(from_run, "MOTION_ROWS", keep["MOTION_ROWS"])  # the run's page: its own name
+    page = model_from_sim_report(report, ReportScene())
+    assert page["motions"] == whole["motions"][:keep["MOTION_ROWS"]]
+    assert page["arm_timeline"] == whole["arm_timeline"][:keep["ARM_SPANS"]]
+    assert page["io"] == whole["io"][:keep["IO_EVENTS"]]
+    notes = [n for n in page["limitations"] if n.startswith("A long run")]
+    spans = whole["arm_timeline"]
+    assert notes == [
+        f"A long run: the motion table lists the first {keep['MOTION_ROWS']} of {len(report['motion']['motions'])} "
+        "motions; the cycles, the findings and the plots cover the whole run.",
+        f"A long run: the arm timeline holds the first {keep['ARM_SPANS']} of {len(spans)} moving and idle spans "
+        f"(up to {spans[keep['ARM_SPANS']]['start']:g} s).",
+        f"A long run: the I/O log holds the first {keep['IO_EVENTS']} of {len(whole['io'])} I/O changes "
+        f"(up to {whole['io'][keep['IO_EVENTS']]['time']:g} s).",
+    ]
+    # the run's page says the same of its motions and I/O changes (its arm spans: to a tick)
+    ran = [n for n in model_from_run(run)["limitations"] if n.startswith("A long run")]
+    assert ran[0] == notes[0] and ran[-1] == notes[-1] and "moving and idle spans" in ran[1]
+    html = render(page)
+    assert all(f'<p class="synthetic" role="note">{n}</p>' in html for n in notes)
+    check_model(page)

@@ -104,7 +104,8 @@ def visible_data(value):  # noqa: ANN001, ANN201
         elif isinstance(v, (list, tuple)):
             copy = list(v)
             holder[key] = copy
-            todo.extend((copy, i) for i in range(len(copy)))
+            # only what may hold a string (a page's long lists are numbers)
+            todo.extend((copy, i) for i, x in enumerate(copy) if isinstance(x, (str, list, tuple, dict)))
         elif isinstance(v, dict):
             copy = {visible(k) if isinstance(k, str) else k: x for k, x in v.items()}
             holder[key] = copy

@@ -27,6 +27,7 @@ from .._common import SourceCache
 from ..thinning import MOTION_ROWS, arm_spans, io_events, left_out, part_spans, task_changes
 from .excerpts import SEVERITY_ORDER, excerpt
 from .model import VERSION
+from .series import doubles, rounded
 
 TICK_S = 0.004
 MAX_SAMPLES = 150_001  # ten minutes at 4 ms: a longer run is sampled at a multiple of 4 ms
@@ -60,6 +61,7 @@ def _motions(report: Any, m: Any, end: float, clearances: dict) -> list[dict]:
     """The motion table: the motions that ran within the run, with their closest approach to the
     cell (`clearances`: position in m.motions -> MotionReport)."""
     out = []
+    shown: dict[str, Any] = {}  # the display path of each file, once (a cycle repeats its lines)
     for k, motion in enumerate(m.motions):
         if motion.start is None or motion.start > end:
             continue  # failed before it moved (its diagnostic says why), or not started within the run
@@ -67,7 +69,9 @@ def _motions(report: Any, m: Any, end: float, clearances: dict) -> list[dict]:
             break  # a long run: its first rows (reporting/thinning.py), said in the limitations
         stop = end if motion.end is None else min(motion.end, end)  # None: under way when the run ended
         src = motion.source
-        where = report.display((src.path, src.line, src.col, ""))
+        if src.path not in shown:
+            shown[src.path] = report.display((src.path, src.line, src.col, ""))
+        where = shown[src.path]
         limits = motion.limits  # None: a connection move
         entry = {
             "id": len(out) + 1, "kind": motion.kind, "path": where[0] if where else None, "line": src.line or None,
@@ -154,11 +158,12 @@ def sample_period(end_s: float) -> float:
     return TICK_S * max(1, -(-ticks // (MAX_SAMPLES - 1)))
 
 
-def _trajectory(report: Any, m: Any, limits: list[str]) -> dict | None:
-    """The joints and the TCP speed over the run, every 4 ms (or a multiple of it)."""
+def _trajectory(report: Any, m: Any, limits: list[str], moving: list | None = None) -> dict | None:
+    """The joints and the TCP speed over the run, every 4 ms (or a multiple of it), as array('d')
+    (series.py). `moving`: the intervals in which the arm moves (default: computed)."""
     import numpy as np
 
-    if not m.trajectory.moving(m.end_s):
+    if not (m.trajectory.moving(m.end_s) if moving is None else moving):
         return None
     omitted = left_out(report.result, "The plots and the 3D view's motion are")
     if omitted is not None:
@@ -171,15 +176,19 @@ def _trajectory(report: Any, m: Any, limits: list[str]) -> dict | None:
     times, q, v = m.sample(0.0, m.end_s, dt)
     times, q, v = np.asarray(times, dtype=float), np.asarray(q, dtype=float), np.asarray(v, dtype=float)
     scene = m.scene
-    speed = m.tcp_speed(times, q, v)
+    # standing still (every joint speed 0), the TCP's two poses are the same: its speed is 0 exactly
+    speed = np.zeros(len(times))
+    on = np.flatnonzero((v != 0.0).any(axis=1))
+    if len(on):
+        speed[on] = m.tcp_speed(times[on], q[on], v[on])
     return {
         "joints": [{"name": n, "unit": u, "min": lo, "max": hi, "speed": s}
                    for n, u, (lo, hi), s in zip(scene.joint_names, scene.joint_units, scene.joint_limits,
                                                 scene.nominal_speeds)],
-        "times": [_r(t) for t in times.tolist()],
-        "positions": (np.round(q.T, 6) + 0.0).tolist(),
-        "velocities": (np.round(v.T, 4) + 0.0).tolist(),
-        "tcp_speed": (np.round(speed, 3) + 0.0).tolist(),
+        "times": doubles(rounded(times, 6)),
+        "positions": [doubles(row) for row in np.round(q.T, 6) + 0.0],
+        "velocities": [doubles(row) for row in np.round(v.T, 4) + 0.0],
+        "tcp_speed": doubles(np.round(speed, 3) + 0.0),
     }
 
 
@@ -216,10 +225,11 @@ def _note(note: str | None, limits: list[str]) -> None:
         limits.append(note[0].upper() + note[1:] + ".")
 
 
-def _arm_timeline(m: Any, end: float, limits: list[str]) -> list[dict]:
-    """The arm moving or idle over the run: its first spans on a long run (thinning.py, said)."""
+def _arm_timeline(moving: list, end: float, limits: list[str]) -> list[dict]:
+    """The arm moving or idle over the run (`moving`: the intervals in which it moves): its first
+    spans on a long run (thinning.py, said)."""
     segs, t = [], 0.0
-    for a, b in m.trajectory.moving(m.end_s):
+    for a, b in moving:
         a, b = min(a, end), min(b, end)
         if a > t:
             segs.append({"start": _r(t), "end": _r(a), "state": "idle"})
@@ -425,8 +435,9 @@ def model_from_run(report: Any, *, fail_on: str = "error", cell: Any = None, cle
             limits.append(f"A long run: the motion table lists the first {MOTION_ROWS} of {len(m.motions)} motions; "
                           "the cycles, the findings and the plots cover the whole run.")
         cycles, cycle_time = _cycles(report, m, end)
-        trajectory = _trajectory(report, m, limits)
-        arm_timeline = _arm_timeline(m, end, limits)
+        moving = m.trajectory.moving(m.end_s)  # once: it walks the whole run
+        trajectory = _trajectory(report, m, limits, moving)
+        arm_timeline = _arm_timeline(moving, end, limits)
         if cell is None:
             limits.append("No cell file: the 3D view has no obstacles and the motions no clearance (docs/cell.md).")
     elif result.robot is None:

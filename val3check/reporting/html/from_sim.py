@@ -16,7 +16,12 @@ collision/.
 
 What the JSON report does not record is absent and said so in `limitations` (shown at the top of
 the page): the tasks' states over time, the motion descriptors' speeds, and the application's
-frames (a solid of the cell placed in one is not drawn).
+frames (a solid of the cell placed in one is not drawn), and when the parts are taken and left.
+
+The page is bounded as a run's page is (reporting/thinning.py): the first MOTION_ROWS motions,
+ARM_SPANS moving and idle spans and IO_EVENTS I/O changes, each said in `limitations` when there
+were more (a JSON report keeps every I/O change of its run; there is no task timeline nor part
+span to bound).
 """
 
 from __future__ import annotations
@@ -24,9 +29,10 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+from .. import thinning
 from .._common import SourceCache
 from .excerpts import SEVERITY_ORDER, excerpt
-from .from_run import TICK_S, _obstacle_of, _r, cycles_model, sample_period, scene_model
+from .from_run import TICK_S, _note, _obstacle_of, _r, cycles_model, sample_period, scene_model
 from .model import VERSION, ModelError
 
 
@@ -65,10 +71,10 @@ def model_from_sim_report(report: dict[str, Any], scene: Any, *, fail_on: str = 
         arm = scene.arm(robot["name"])
         if motion:
             try:
-                motions = _motions(motion, report.get("collision"), end)
+                motions = _motions(motion, report.get("collision"), end, limitations)
                 cycles, cycle_time = cycles_model(motion.get("cycles", []), end)
                 trajectory = _trajectory(motion, robot, arm, scene, end, limitations)
-                arm_timeline = _arm_timeline(motion, end)
+                arm_timeline = _arm_timeline(motion, end, limitations)
             except (KeyError, TypeError, ValueError, IndexError) as exc:
                 raise ModelError(f"the `motion` section does not hold together ({type(exc).__name__}: {exc})") \
                     from None
@@ -78,6 +84,9 @@ def model_from_sim_report(report: dict[str, Any], scene: Any, *, fail_on: str = 
         view = _scene(robot, arm, scene, motion, report.get("collision"), roots, limitations)
     elif report.get("version") == 2 and motion is None:
         limitations.append("No arm model (--robot): no motion, trajectory or 3D view.")
+    io, note = thinning.first(report.get("io_log", []), thinning.IO_EVENTS, "the I/O log holds", "I/O changes",
+                              lambda e: e["time"])  # the first changes, as a run's page (from_run.py)
+    _note(note, limitations)
     return {
         "version": VERSION,
         "title": title or app.get("name") or "val3check sim",
@@ -100,21 +109,26 @@ def model_from_sim_report(report: dict[str, Any], scene: Any, *, fail_on: str = 
         "trajectory": trajectory,
         "tasks": [],
         "arm_timeline": arm_timeline,
-        "io": list(report.get("io_log", [])),
+        "io": io,
         "transcript": list(report.get("transcript", [])),
         "screen": report.get("screen"),
         "scene": view,
     }
 
 
-def _motions(motion: dict, collision: dict | None, end: float) -> list[dict]:
+def _motions(motion: dict, collision: dict | None, end: float, limits: list[str]) -> list[dict]:
     """The motion table: the motions that ran within the run, with their closest approach to the
-    cell (the `collision` section's motions, by position in `motion.motions`)."""
+    cell (the `collision` section's motions, by position in `motion.motions`): the first
+    MOTION_ROWS, as a run's page (the JSON report keeps as many, and counts the others)."""
     closest = {c["motion"]: c.get("min_clearance") for c in (collision or {}).get("motions", [])}
     out = []
-    for k, mo in enumerate(motion.get("motions", [])):
+    listed = motion.get("motions", [])
+    total = len(listed) + int((motion.get("motions_omitted") or {}).get("count", 0))
+    for k, mo in enumerate(listed):
         if mo.get("start") is None or mo["start"] > end:
             continue  # failed before it moved (its diagnostic says why), or not started within the run
+        if len(out) == thinning.MOTION_ROWS:
+            break
         stop = end if mo.get("end") is None else min(mo["end"], end)  # None: under way when the run ended
         c = closest.get(k)
         out.append({
@@ -128,6 +142,9 @@ def _motions(motion: dict, collision: dict | None, end: float) -> list[dict]:
             "clearance_to": _obstacle_of(c["body_a"], c["body_b"]) if c else None,
             "state": mo.get("state"), "motion_id": mo.get("id"),
         })
+    if len(out) == thinning.MOTION_ROWS and total > thinning.MOTION_ROWS:
+        limits.append(f"A long run: the motion table lists the first {thinning.MOTION_ROWS} of {total} motions; "
+                      "the cycles, the findings and the plots cover the whole run.")
     return out
 
 
@@ -186,7 +203,7 @@ def _trajectory(motion: dict, robot: dict, arm: Any, scene: Any, end: float, lim
     }
 
 
-def _arm_timeline(motion: dict, end: float) -> list[dict]:
+def _arm_timeline(motion: dict, end: float, limits: list[str]) -> list[dict]:
     """The arm moving or idle over the run. Each segment of the trajectory runs from the last tick
     at or before a moving interval to the first at or after its end (sim_json.py): the interval's
     ends are within a tick of the segment's, at a motion's start and end when one falls there
@@ -209,6 +226,8 @@ def _arm_timeline(motion: dict, end: float) -> list[dict]:
         t = b
     if t < end:
         segs.append({"start": _r(t), "end": _r(end), "state": "idle"})
+    segs, note = thinning.arm_spans(segs)  # the first spans, as a run's page (from_run.py)
+    _note(note, limits)
     return segs
 
 

@@ -9,7 +9,12 @@ for a model that the page could not show, instead of a broken page.
 from __future__ import annotations
 
 import math
+import operator
+from array import array
+from itertools import islice
 from typing import Any
+
+from .series import floats
 
 VERSION = 1
 
@@ -29,6 +34,8 @@ def _fail(where: str, what: str) -> None:
 
 
 def _num(v: Any, where: str, *, null: bool = False) -> None:
+    if type(v) is float and v - v == 0.0:  # finite (inf - inf and nan - nan are nan): most values
+        return
     if v is None and null:
         return
     if isinstance(v, bool) or not isinstance(v, (int, float)) or not _finite(v):
@@ -42,10 +49,16 @@ def _finite(v: int | float) -> bool:
         return False
 
 
-def _nums(values: list, where: str) -> None:
-    """`_num` of every value of a list (`where[k]`): at once when all are finite floats or ints (the
+def _nums(values: Any, where: str) -> None:
+    """`_num` of every value of a series (`where[k]`): at once when all are finite floats or ints (the
     trajectory's long rows), else one by one for the message."""
-    if set(map(type, values)) <= {float, int}:
+    a = floats(values)  # numpy's view of an array('d'): numpy is there
+    if a is not None:
+        import numpy as np
+
+        if np.isfinite(a).all():
+            return
+    elif set(map(type, values)) <= {float, int}:
         try:
             if all(map(math.isfinite, values)):
                 return
@@ -53,6 +66,35 @@ def _nums(values: list, where: str) -> None:
             pass
     for k, x in enumerate(values):
         _num(x, f"{where}[{k}]")
+
+
+def _times(times: Any, where: str) -> None:
+    """Finite numbers, not decreasing: at once, else one by one for the message."""
+    a = floats(times)
+    if a is not None:
+        import numpy as np
+
+        if np.isfinite(a).all() and (a[1:] >= a[:-1]).all():
+            return
+    elif set(map(type, times)) <= {float, int}:
+        try:
+            if all(map(math.isfinite, times)) and all(map(operator.le, times, islice(times, 1, None))):
+                return
+        except OverflowError:  # an int beyond a float: the message comes from `_num`
+            pass
+    prev = -math.inf
+    for k, t in enumerate(times):
+        _num(t, f"{where}[{k}]")
+        if t < prev:
+            _fail(f"{where}[{k}]", "times must not decrease")
+        prev = t
+
+
+def _series(v: Any, where: str) -> Any:
+    """A list, or an array('d') (a model built in process: series.py)."""
+    if isinstance(v, array) and v.typecode == "d":
+        return v
+    return _list(v, where)
 
 
 def _list(v: Any, where: str) -> list:
@@ -231,14 +273,9 @@ def check_model(model: Any) -> None:
     tr = m.get("trajectory")
     if tr is not None:
         _dict(tr, "trajectory", ("joints", "times", "positions", "velocities"))
-        times = _list(tr["times"], "trajectory.times")
+        times = _series(tr["times"], "trajectory.times")
         n = len(times)
-        prev = -math.inf
-        for k, t in enumerate(times):
-            _num(t, f"trajectory.times[{k}]")
-            if t < prev:
-                _fail(f"trajectory.times[{k}]", "times must not decrease")
-            prev = t
+        _times(times, "trajectory.times")
         joints = _list(tr["joints"], "trajectory.joints")
         njoints = len(joints)
         for i, j in enumerate(joints):
@@ -250,11 +287,11 @@ def check_model(model: Any) -> None:
             if len(rows) != njoints:
                 _fail(f"trajectory.{key}", f"one list per joint ({njoints}) is expected, not {len(rows)}")
             for i, row in enumerate(rows):
-                if len(_list(row, f"trajectory.{key}[{i}]")) != n:
+                if len(_series(row, f"trajectory.{key}[{i}]")) != n:
                     _fail(f"trajectory.{key}[{i}]", f"{n} values (one per time) are expected, not {len(row)}")
                 _nums(row, f"trajectory.{key}[{i}]")
         if tr.get("tcp_speed") is not None:
-            speed = _list(tr["tcp_speed"], "trajectory.tcp_speed")
+            speed = _series(tr["tcp_speed"], "trajectory.tcp_speed")
             if len(speed) != n:
                 _fail("trajectory.tcp_speed", f"{n} values (one per time) are expected, not {len(speed)}")
             _nums(speed, "trajectory.tcp_speed")

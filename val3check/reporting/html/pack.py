@@ -15,29 +15,59 @@ import math
 import struct
 from typing import Any
 
+from .series import floats
+
 FULL_RATE_MAX = 30_000
 PLOT_BUCKETS = 15_000
 
 
 def f32(values) -> str:
+    """base64 of float32 values: a list, or an array of float64 (numpy, array('d')) cast at once."""
+    if not isinstance(values, list):
+        import numpy as np
+
+        a = np.asarray(values, dtype=float)
+        b = a.astype("<f4")
+        if np.isfinite(b).all() or not np.isfinite(a).all():
+            return base64.b64encode(b.tobytes()).decode("ascii")
+        values = a.tolist()  # a value beyond float32: struct says so (OverflowError)
     return base64.b64encode(struct.pack(f"<{len(values)}f", *values)).decode("ascii")
 
 
 def f64(values) -> str:
+    if not isinstance(values, list):
+        import numpy as np
+
+        return base64.b64encode(np.asarray(values, dtype="<f8").tobytes()).decode("ascii")
     return base64.b64encode(struct.pack(f"<{len(values)}d", *values)).decode("ascii")
 
 
-def _buckets(n: int) -> list[tuple[int, int]]:
-    if n <= FULL_RATE_MAX:
-        return []
-    size = math.ceil(n / PLOT_BUCKETS)
-    return [(i, min(i + size, n)) for i in range(0, n, size)]
+def _bucket(n: int) -> int:
+    """The samples in a bucket of a series of `n` (the last bucket may be shorter); 0: no buckets."""
+    return 0 if n <= FULL_RATE_MAX else math.ceil(n / PLOT_BUCKETS)
 
 
-def _series(values: list[float], buckets: list[tuple[int, int]]) -> dict:
-    if not buckets:
+def _series(values, size: int) -> dict:
+    """A plot's series: every value, or the minimum and maximum of each bucket of `size` values
+    (`values`: a list, or an array('d'), reduced at once)."""
+    if not size:
         return {"v": f32(values)}
-    return {"lo": f32([min(values[a:b]) for a, b in buckets]), "hi": f32([max(values[a:b]) for a, b in buckets])}
+    arr = floats(values)
+    if arr is not None:
+        import numpy as np
+
+        if not (np.signbit(arr) & (arr == 0.0)).any():  # -0.0 beside 0.0: min() keeps the first, as below
+            starts = np.arange(0, len(arr), size)
+            return {"lo": f32(np.minimum.reduceat(arr, starts)), "hi": f32(np.maximum.reduceat(arr, starts))}
+        values = arr.tolist()
+    starts = range(0, len(values), size)
+    return {"lo": f32([min(values[a:a + size]) for a in starts]), "hi": f32([max(values[a:a + size]) for a in starts])}
+
+
+def _firsts(values, size: int):
+    """The first value of each bucket."""
+    arr = floats(values)
+    return values[::size] if arr is None else arr[::size]
 
 
 def _trajectory(tr: dict | None) -> dict | None:
@@ -45,26 +75,26 @@ def _trajectory(tr: dict | None) -> dict | None:
         return None
     times = tr["times"]
     n = len(times)
-    buckets = _buckets(n)
-    plot_times = [times[a] for a, _ in buckets] if buckets else times
+    size = _bucket(n)
+    plot_times = _firsts(times, size) if size else times
     joints = []
     for i, j in enumerate(tr["joints"]):
         joints.append({
             "name": j["name"], "unit": j["unit"], "min": j.get("min"), "max": j.get("max"), "speed": j.get("speed"),
-            "pos": _series(tr["positions"][i], buckets), "vel": _series(tr["velocities"][i], buckets),
+            "pos": _series(tr["positions"][i], size), "vel": _series(tr["velocities"][i], size),
         })
     out: dict[str, Any] = {
         "samples": n,
-        "decimated": bool(buckets),
-        "bucket": (buckets[0][1] - buckets[0][0]) if buckets else 1,
+        "decimated": bool(size),
+        "bucket": size or 1,
         "t": f64(plot_times),
         "joints": joints,
-        "tcp": _series(tr["tcp_speed"], buckets) if tr.get("tcp_speed") is not None else None,
+        "tcp": _series(tr["tcp_speed"], size) if tr.get("tcp_speed") is not None else None,
         # the 3D view: full-rate positions are the plots' own, else one sample per bucket
         "anim": None,
     }
-    if buckets:
-        out["anim"] = {"t": f64(plot_times), "q": [f32([row[a] for a, _ in buckets]) for row in tr["positions"]]}
+    if size:
+        out["anim"] = {"t": f64(plot_times), "q": [f32(_firsts(row, size)) for row in tr["positions"]]}
     return out
 
 

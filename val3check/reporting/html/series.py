@@ -1,0 +1,51 @@
+"""The trajectory's long series (its times, each joint's positions and velocities, the TCP speed).
+
+A model built from a run (from_run.py) holds them as `array('d')`: 8 bytes a value where a list
+of Python floats takes 32, made, checked (model.py) and packed (pack.py) in bulk with numpy. A
+model read from JSON holds lists; every reader takes both, and the page is the same bytes.
+
+    times = doubles(rounded(t, 6))   # as [round(x, 6) + 0.0 for x in t], in bulk
+    a = floats(times)                # numpy's view of an array('d'); None for a list
+"""
+
+from __future__ import annotations
+
+from array import array
+from typing import Any
+
+
+def doubles(values: Any) -> array:
+    """A numpy array of floats as an array('d') (one copy, no Python float)."""
+    import numpy as np
+
+    return array("d", np.ascontiguousarray(values, dtype=float).tobytes())
+
+
+def floats(values: Any) -> Any:
+    """numpy's view (no copy) of an array('d'); None for anything else (a list: read one by one)."""
+    if isinstance(values, array) and values.typecode == "d":
+        import numpy as np
+
+        return np.frombuffer(values, dtype=float) if len(values) else np.zeros(0)
+    return None
+
+
+def rounded(values: Any, digits: int) -> Any:
+    """`round(float(x), digits) + 0.0` for each x of a float array, as a float array, in bulk.
+
+    numpy's round is rint(x * 10**digits) / 10**digits: the division is correctly rounded, so it
+    gives Python's result (the double nearest the decimal rounded correctly) unless the product's
+    own rounding crosses a half: those few values (x * 10**digits within a few ulps of a half, or
+    beyond 2**52, or not finite) are rounded by Python."""
+    import numpy as np
+
+    x = np.asarray(values, dtype=float)
+    scale = 10.0 ** digits
+    with np.errstate(invalid="ignore", over="ignore"):
+        y = x * scale
+        out = np.rint(y) / scale + 0.0
+        near = np.abs(np.abs(y - np.floor(y)) - 0.5) <= np.abs(y) * 2.0 ** -49 + 1e-300
+    near |= ~(np.abs(y) < 2.0 ** 52)  # beyond, or not finite: as Python rounds them
+    for k in np.flatnonzero(near).tolist():
+        out[k] = round(float(x[k]), digits) + 0.0
+    return out
