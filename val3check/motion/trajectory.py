@@ -219,24 +219,39 @@ class Trajectory:
             n = len(self.path.q_rest)
             return times, np.zeros((0, n)), np.zeros((0, n))
         s, sd = self.profile.states(times)
-        q = self.path.q(s)
-        qd = self.path.q(s, 1) * sd[:, None]
-        return times, q, qd
+        # a sample with the same (s, ṡ) bits as the one before has the same position and velocity
+        # (the arm at rest: about half of a cyclic run): the path evaluated once per run of them,
+        # row by row the same arithmetic as on every sample, so the same bits (test_trajectory_sample)
+        first = np.ones(len(s), dtype=bool)
+        first[1:] = (s.view(np.int64)[1:] != s.view(np.int64)[:-1]) | (sd.view(np.int64)[1:] != sd.view(np.int64)[:-1])
+        at = np.flatnonzero(first)
+        if len(at) == len(s):
+            return times, self.path.q(s), self.path.q(s, 1) * sd[:, None]
+        q = self.path.q(s[at])
+        qd = self.path.q(s[at], 1) * sd[at][:, None]
+        back = np.cumsum(first) - 1  # each sample's run
+        return times, q[back], qd[back]
 
     def moving(self, t_end: float) -> list[tuple[float, float]]:
         """The intervals [start, end] of simulated time in which the arm moves, up to t_end."""
-        T, SD = self.profile.T, self.profile.SD
-        out: list[tuple[float, float]] = []
-        for i in range(len(T) - 1):
-            if T[i] >= t_end:
-                break
-            if SD[i] > 0.0 or SD[i + 1] > 0.0:
-                a, b = T[i], min(T[i + 1], t_end)
-                if out and a <= out[-1][1] + 1e-12:
-                    out[-1] = (out[-1][0], b)
-                else:
-                    out.append((a, b))
-        return out
+        T = np.array(self.profile.T, dtype=float)  # (copies: the profile's arrays may grow later)
+        SD = np.array(self.profile.SD, dtype=float)
+        if len(T) < 2:
+            return []
+        # the intervals up to the first breakpoint at or past t_end, moving at either end, each
+        # joined to the one before when it starts within 1e-12 s of its end: the loop below, at once
+        stop = np.flatnonzero(~(T[:-1] < t_end))
+        n = int(stop[0]) if len(stop) else len(T) - 1
+        i = np.flatnonzero((SD[:n] > 0.0) | (SD[1:n + 1] > 0.0))
+        if not len(i):
+            return []
+        a = T[i]
+        b = np.where(t_end < T[i + 1], t_end, T[i + 1])  # min(T[i + 1], t_end)
+        new = np.ones(len(i), dtype=bool)
+        new[1:] = ~(a[1:] <= b[:-1] + 1e-12)
+        starts = np.flatnonzero(new)
+        ends = np.append(starts[1:], len(i)) - 1
+        return list(zip(a[starts].tolist(), b[ends].tolist()))
 
     def segments(self, t_end: float, dt: float = TICK):
         """The trajectory on the clock of period dt, only where the arm moves: for each moving
