@@ -22,6 +22,8 @@ from __future__ import annotations
 import bisect
 from dataclasses import replace
 
+import numpy as np
+
 from .mdesc import Limits
 from .trajectory import Profile
 
@@ -76,14 +78,19 @@ class Stretches:
         self.spans: list[tuple] = []  # (i, j, piece_key) per stretch: profile indices of its ends
         memo: dict = {}
         T, S, SD = prof.T, prof.S, prof.SD
-        i, n = 0, len(T)
-        while i < n - 1:
-            if SD[i + 1] <= 0.0 and S[i + 1] <= S[i]:
-                i += 1
-                continue
-            j = i + 1
-            while j < n - 1 and SD[j] > 0.0:
-                j += 1
+        n = len(T)
+        # a stretch starts at a breakpoint the arm leaves (moves or goes forward after it) and ends
+        # at the next breakpoint at rest (or the last): found by bisection, not breakpoint by breakpoint
+        s_, sd_ = np.asarray(S, dtype=float), np.asarray(SD, dtype=float)
+        leaves = np.flatnonzero(~((sd_[1:] <= 0.0) & (s_[1:] <= s_[:-1]))).tolist()
+        rests = (np.flatnonzero(~(sd_[1:n - 1] > 0.0)) + 1).tolist() + [n - 1]
+        i = 0
+        while True:
+            m = bisect.bisect_left(leaves, i)
+            if m == len(leaves):
+                break
+            i = leaves[m]
+            j = rests[bisect.bisect_right(rests, i)]
             self.spans.append((i, j, piece_key(planner.path, S[i], S[j], queue.limits.of, memo)))
             i = j
         self.starts = [T[i] for i, _, _ in self.spans]
