@@ -127,6 +127,7 @@ def test_the_factors_share_the_stretches_and_places_but_not_their_timing(machine
         ref = _fresh(q, factor)
         assert rt.timed < ref.timed
         for r, o in zip(moved, records):
+            assert r == __import__("dataclasses").replace(o, start=r.start, end=r.end)  # only the times moved
             for new, t in ((r.start, o.start), (r.end, o.end)):
                 assert (new is None) == (t is None)
                 if t is not None:

@@ -20,7 +20,7 @@ is spent (the range then covers the run up to `Retiming.cut`, simulation/collect
 from __future__ import annotations
 
 import bisect
-from dataclasses import replace
+from dataclasses import fields, replace
 
 import numpy as np
 
@@ -201,7 +201,22 @@ def retimed_range(queue, records: list, factors, out_of_time=None) -> list[tuple
     st = Stretches(queue)
     places = [(st.place(r.start), st.place(r.end)) for r in records]
     out = []
+    if records and all(f.init for f in fields(records[0])) and all(type(r) is type(records[0]) for r in records):
+        # each record's other fields read once for all the factors (what `replace` does per call)
+        names = [f.name for f in fields(records[0])]
+        i_start, i_end = names.index("start"), names.index("end")
+        values = [[getattr(r, n) for n in names] for r in records]
+        make = type(records[0])
+    else:
+        values = None
     for factor in factors:
         rt = Retiming(queue, factor, out_of_time, st)
-        out.append(([replace(r, start=rt.time_at(a), end=rt.time_at(b)) for r, (a, b) in zip(records, places)], rt))
+        if values is None:
+            moved = [replace(r, start=rt.time_at(a), end=rt.time_at(b)) for r, (a, b) in zip(records, places)]
+        else:
+            moved = []
+            for v, (a, b) in zip(values, places):
+                v[i_start], v[i_end] = rt.time_at(a), rt.time_at(b)
+                moved.append(make(*v))
+        out.append((moved, rt))
     return out
