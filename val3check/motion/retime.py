@@ -81,7 +81,7 @@ class Stretches:
         n = len(T)
         # a stretch starts at a breakpoint the arm leaves (moves or goes forward after it) and ends
         # at the next breakpoint at rest (or the last): found by bisection, not breakpoint by breakpoint
-        s_, sd_ = np.asarray(S, dtype=float), np.asarray(SD, dtype=float)
+        s_, sd_ = np.array(S, dtype=float), np.array(SD, dtype=float)  # copies: a view would stop the arrays growing
         leaves = np.flatnonzero(~((sd_[1:] <= 0.0) & (s_[1:] <= s_[:-1]))).tolist()
         rests = (np.flatnonzero(~(sd_[1:n - 1] > 0.0)) + 1).tolist() + [n - 1]
         i = 0
