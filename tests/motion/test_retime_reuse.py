@@ -8,7 +8,7 @@ import pytest
 
 from interpretation.simsupport import sim
 from val3check.motion.motion_records import motion_records
-from val3check.motion.retime import Retiming, piece_key, retimed
+from val3check.motion.retime import Retiming, Stretches, piece_key, retimed, retimed_range
 from val3check.robot import load_robot
 from val3check.simulation import collect as collect_module
 
@@ -113,3 +113,34 @@ def test_a_partial_range_is_said(tmp_path, monkeypatch):
     assert spread.cycle_time(task) is None  # nothing re-timed: no range given, not a wrong one
     said = [d for d in r.diagnostics if d.code == "R006" and "re-timing" in d.message]
     assert len(said) == 1 and said[0].message == spread.partial
+
+
+def test_the_factors_share_the_stretches_and_places_but_not_their_timing(machine_run):
+    """retimed_range finds the stretches, their keys and the records' places once for all the
+    factors: each factor's records are those of its own fresh re-timing (nothing reused across
+    them), and another factor gives other times."""
+    machine, _ = machine_run
+    q = machine.arm.queue_in_use
+    records = motion_records(q)
+    both = retimed_range(q, records, (0.5, 2.0))
+    for factor, (moved, rt) in zip((0.5, 2.0), both):
+        ref = _fresh(q, factor)
+        assert rt.timed < ref.timed
+        for r, o in zip(moved, records):
+            assert r == __import__("dataclasses").replace(o, start=r.start, end=r.end)  # only the times moved
+            for new, t in ((r.start, o.start), (r.end, o.end)):
+                assert (new is None) == (t is None)
+                if t is not None:
+                    assert new == rt.time(t) and new == pytest.approx(ref.time(t), abs=1e-9)
+    assert [r.end for r in both[0][0]] != [r.end for r in both[1][0]]
+    assert retimed(q, records, 2.0)[0] == both[1][0]
+
+
+def test_the_limits_memo_gives_the_keys_made_without_it(machine_run):
+    machine, _ = machine_run
+    q = machine.arm.queue_in_use
+    path, limits, prof = q.planner.path, q.limits.of, q.planner.profile
+    st = Stretches(q)
+    assert st.spans and len(st.spans) == Retiming(q, 2.0).stretches
+    for i, j, key in st.spans:
+        assert key == piece_key(path, prof.S[i], prof.S[j], limits)

@@ -20,17 +20,20 @@ is spent (the range then covers the run up to `Retiming.cut`, simulation/collect
 from __future__ import annotations
 
 import bisect
-from dataclasses import replace
+from dataclasses import fields, replace
+
+import numpy as np
 
 from .mdesc import Limits
 from .trajectory import Profile
 
 
-def piece_key(path, a: float, b: float, limits) -> tuple | None:
+def piece_key(path, a: float, b: float, limits, memo: dict | None = None) -> tuple | None:
     """What determines the timing of the piece [a, b] of `path` (paths.Path) from rest to rest,
     up to its position on the path: per span touched, its geometry (the same object for a repeated
     motion, construction.py), its part, tool, junction and owners with their limits, and where a
-    and b fall in the first and last. None when the path has no span there."""
+    and b fall in the first and last. None when the path has no span there. `memo`: the owners'
+    limits keys already made for this `limits` (a command's limits never change once queued)."""
     i0, _ = path.locate(a)
     if i0 < 0:
         return None
@@ -44,7 +47,11 @@ def piece_key(path, a: float, b: float, limits) -> tuple | None:
         lo, hi = max(a - off, 0.0), min(b - off, sp.length)
         if hi < lo - 1e-12:
             break
-        owners = tuple((round(k_start, 9), _limits_key(limits(key))) for key, k_start in sp.owners)
+        if memo is None:
+            owners = tuple((round(k_start, 9), _limits_key(limits(key))) for key, k_start in sp.owners)
+        else:
+            owners = tuple((round(k_start, 9), memo[key] if key in memo else memo.setdefault(key, _limits_key(limits(key))))
+                           for key, k_start in sp.owners)
         tool = None if sp.tool is None else sp.tool.tobytes()
         # positions in the span to 1e-9 path units (1e-9 degrees of joint motion): the same stop of a
         # repeated motion lies at another global position, found by sums that differ in the last bits
@@ -58,17 +65,63 @@ def _limits_key(lim: Limits) -> tuple:
     return (lim.V.tobytes(), lim.A.tobytes(), lim.D.tobytes(), lim.tvel, lim.rvel)
 
 
+class Stretches:
+    """The moving stretches of `queue`'s profile (from a rest to the next) and their piece keys:
+    the same for every factor, found once for all of them (`retimed_range`)."""
+
+    def __init__(self, queue) -> None:
+        planner = queue.planner
+        planner.flush()
+        prof = planner.profile
+        self.queue = queue
+        self.profile = prof
+        self.spans: list[tuple] = []  # (i, j, piece_key) per stretch: profile indices of its ends
+        memo: dict = {}
+        T, S, SD = prof.T, prof.S, prof.SD
+        n = len(T)
+        # a stretch starts at a breakpoint the arm leaves (moves or goes forward after it) and ends
+        # at the next breakpoint at rest (or the last): found by bisection, not breakpoint by breakpoint
+        s_, sd_ = np.array(S, dtype=float), np.array(SD, dtype=float)  # copies: a view would stop the arrays growing
+        leaves = np.flatnonzero(~((sd_[1:] <= 0.0) & (s_[1:] <= s_[:-1]))).tolist()
+        rests = (np.flatnonzero(~(sd_[1:n - 1] > 0.0)) + 1).tolist() + [n - 1]
+        i = 0
+        while True:
+            m = bisect.bisect_left(leaves, i)
+            if m == len(leaves):
+                break
+            i = leaves[m]
+            j = rests[bisect.bisect_right(rests, i)]
+            self.spans.append((i, j, piece_key(planner.path, S[i], S[j], queue.limits.of, memo)))
+            i = j
+        self.starts = [T[i] for i, _, _ in self.spans]
+
+    def place(self, t: float | None) -> tuple | None:
+        """Where the run was at time t, for `Retiming.time_at`: the stretch k it was in or had last
+        ended, and its path position from that stretch's start (None at rest after it)."""
+        if t is None:
+            return None
+        k = bisect.bisect_right(self.starts, t) - 1
+        if k < 0:
+            return (t, k, None)
+        i, j, _ = self.spans[k]
+        T, S = self.profile.T, self.profile.S
+        if t >= T[j]:
+            return (t, k, None)
+        s, _, _ = self.profile.state(t)
+        return (t, k, s - S[i])
+
+
 class Retiming:
     """The run's profile re-timed piece by piece (module docstring): `time(t)` maps a time of the
     run to the same point of the re-timed run, None past `cut` (the re-timing was stopped there:
     `out_of_time()` became true; `cut` is None when the whole run was re-timed)."""
 
-    def __init__(self, queue, factor: float, out_of_time=None) -> None:
-        """The moving stretches of `queue`'s profile (from a rest to the next), each timed again
-        with accelerations and decelerations × `factor`."""
+    def __init__(self, queue, factor: float, out_of_time=None, stretches: Stretches | None = None) -> None:
+        """The moving stretches of `queue`'s profile (`stretches`, found here when not given), each
+        timed again with accelerations and decelerations × `factor`."""
+        st = stretches if stretches is not None else Stretches(queue)
         planner = queue.planner
-        planner.flush()
-        prof = planner.profile
+        prof = st.profile
         limits = queue.limits.of
 
         def scaled(key: int) -> Limits:
@@ -82,30 +135,17 @@ class Retiming:
         self.pieces: list[Profile] = []  # each stretch re-timed, path positions from its start
         self.bases: list[float] = []  # the path position of each stretch's start
         self.cut: float | None = None
-        self.stretches = 0  # moving stretches in the run
+        self.stretches = len(st.spans)  # moving stretches in the run
         self.timed = 0  # distinct pieces timed
         done: dict = {}  # piece_key -> the re-timed piece (relative Profile)
         shift = 0.0
-        T, S, SD = prof.T, prof.S, prof.SD
-        i, n = 0, len(T)
-        while i < n - 1:
-            if SD[i + 1] <= 0.0 and S[i + 1] <= S[i]:
-                i += 1
-                continue
-            j = i + 1
-            while j < n - 1 and SD[j] > 0.0:
-                j += 1
-            self.stretches += 1
-            if self.cut is not None:
-                i = j
-                continue
-            key = piece_key(planner.path, S[i], S[j], limits)
+        T, S = prof.T, prof.S
+        for i, j, key in st.spans:
             p = done.get(key) if key is not None else None
             if p is None:
                 if out_of_time is not None and out_of_time():  # before each piece timed
                     self.cut = T[i]
-                    i = j
-                    continue
+                    break
                 piece = planner.timing.time(planner.path, S[i], S[j], 0.0, scaled)
                 p = Profile(0.0, 0.0)
                 p.append(0.0, piece.s - S[i], piece.sd)
@@ -118,7 +158,6 @@ class Retiming:
             self.pieces.append(p)
             self.bases.append(S[i])
             shift += p.t_end - (T[j] - T[i])
-            i = j
         self.shift_end = shift
 
     def time(self, t: float | None) -> float | None:
@@ -134,10 +173,50 @@ class Retiming:
         at = self.pieces[k].time_at(s - self.bases[k])
         return self.new_starts[k] + (at if at is not None else self.pieces[k].t_end)
 
+    def time_at(self, place: tuple | None) -> float | None:
+        """`time(t)` from `Stretches.place(t)` (found once for every factor): the same arithmetic."""
+        if place is None:
+            return None
+        t, k, rel = place
+        if self.cut is not None and t >= self.cut:
+            return None
+        if k < 0:
+            return t
+        if rel is None:
+            return t + (self.new_starts[k] - self.starts[k]) + self.pieces[k].t_end - (self.ends[k] - self.starts[k])
+        at = self.pieces[k].time_at(rel)
+        return self.new_starts[k] + (at if at is not None else self.pieces[k].t_end)
+
 
 def retimed(queue, records: list, factor: float, out_of_time=None) -> tuple[list, Retiming]:
     """The motion records (records.MotionRecord) of the run re-timed with accelerations × factor
     (the same records, their start and end moved: module docstring), and the Retiming (its `cut`:
     where it stopped when `out_of_time()` became true; the records after it have no start)."""
-    rt = Retiming(queue, factor, out_of_time)
-    return [replace(r, start=rt.time(r.start), end=rt.time(r.end)) for r in records], rt
+    return retimed_range(queue, records, (factor,), out_of_time)[0]
+
+
+def retimed_range(queue, records: list, factors, out_of_time=None) -> list[tuple[list, Retiming]]:
+    """`retimed` for each factor in turn, the stretches, their keys and where each record's start
+    and end fall found once for all the factors."""
+    st = Stretches(queue)
+    places = [(st.place(r.start), st.place(r.end)) for r in records]
+    out = []
+    if records and all(f.init for f in fields(records[0])) and all(type(r) is type(records[0]) for r in records):
+        # each record's other fields read once for all the factors (what `replace` does per call)
+        names = [f.name for f in fields(records[0])]
+        i_start, i_end = names.index("start"), names.index("end")
+        values = [[getattr(r, n) for n in names] for r in records]
+        make = type(records[0])
+    else:
+        values = None
+    for factor in factors:
+        rt = Retiming(queue, factor, out_of_time, st)
+        if values is None:
+            moved = [replace(r, start=rt.time_at(a), end=rt.time_at(b)) for r, (a, b) in zip(records, places)]
+        else:
+            moved = []
+            for v, (a, b) in zip(values, places):
+                v[i_start], v[i_end] = rt.time_at(a), rt.time_at(b)
+                moved.append(make(*v))
+        out.append((moved, rt))
+    return out
