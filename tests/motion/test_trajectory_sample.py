@@ -98,3 +98,16 @@ def test_moving_gives_the_loop_s_intervals(pick_place):
         assert got == want
         assert all(type(x) is float for ab in got for x in ab)
     assert len(traj.moving(end)) > 5
+
+
+@pytest.mark.parametrize("block", [2, 3, 7, 64])
+def test_moving_block_by_block_gives_the_loop_s_intervals(pick_place, monkeypatch, block):
+    """Trajectory.moving reads the profile in blocks (an 8-hour profile holds millions of
+    breakpoints): intervals that cross a block's edge are joined as the loop joins them."""
+    import val3check.motion.trajectory as trajectory_module
+
+    traj, end = pick_place
+    monkeypatch.setattr(trajectory_module, "_MOVING_BLOCK", block)
+    edges = [x for a, b in _moving_loop(traj, end) for x in (a, b)]
+    for t_end in [end, *edges[:20], *(x + 1e-9 for x in edges[:20]), 0.0, 1e9]:
+        assert traj.moving(t_end) == _moving_loop(traj, t_end)

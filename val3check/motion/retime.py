@@ -82,15 +82,17 @@ class Stretches:
         # a stretch starts at a breakpoint the arm leaves (moves or goes forward after it) and ends
         # at the next breakpoint at rest (or the last): found by bisection, not breakpoint by breakpoint
         s_, sd_ = np.array(S, dtype=float), np.array(SD, dtype=float)  # copies: a view would stop the arrays growing
-        leaves = np.flatnonzero(~((sd_[1:] <= 0.0) & (s_[1:] <= s_[:-1]))).tolist()
-        rests = (np.flatnonzero(~(sd_[1:n - 1] > 0.0)) + 1).tolist() + [n - 1]
+        # index arrays, not lists: millions of Python ints in an 8-hour run
+        leaves = np.flatnonzero(~((sd_[1:] <= 0.0) & (s_[1:] <= s_[:-1])))
+        rests = np.append(np.flatnonzero(~(sd_[1:n - 1] > 0.0)) + 1, n - 1)
+        del s_, sd_
         i = 0
         while True:
-            m = bisect.bisect_left(leaves, i)
+            m = int(leaves.searchsorted(i, "left"))
             if m == len(leaves):
                 break
-            i = leaves[m]
-            j = rests[bisect.bisect_right(rests, i)]
+            i = int(leaves[m])
+            j = int(rests[rests.searchsorted(i, "right")])
             self.spans.append((i, j, piece_key(planner.path, S[i], S[j], queue.limits.of, memo)))
             i = j
         self.starts = [T[i] for i, _, _ in self.spans]

@@ -186,6 +186,9 @@ class Profile:
         return -math.inf if k == 0 else self.T[k]
 
 
+_MOVING_BLOCK = 1 << 16  # breakpoints per block in Trajectory.moving
+
+
 class Trajectory:
     """A path plus a time parameterisation: joint position and velocity at any time."""
 
@@ -234,24 +237,34 @@ class Trajectory:
 
     def moving(self, t_end: float) -> list[tuple[float, float]]:
         """The intervals [start, end] of simulated time in which the arm moves, up to t_end."""
-        T = np.array(self.profile.T, dtype=float)  # (copies: the profile's arrays may grow later)
-        SD = np.array(self.profile.SD, dtype=float)
-        if len(T) < 2:
-            return []
+        T, SD = self.profile.T, self.profile.SD
+        out: list[tuple[float, float]] = []
         # the intervals up to the first breakpoint at or past t_end, moving at either end, each
-        # joined to the one before when it starts within 1e-12 s of its end: the loop below, at once
-        stop = np.flatnonzero(~(T[:-1] < t_end))
-        n = int(stop[0]) if len(stop) else len(T) - 1
-        i = np.flatnonzero((SD[:n] > 0.0) | (SD[1:n + 1] > 0.0))
-        if not len(i):
-            return []
-        a = T[i]
-        b = np.where(t_end < T[i + 1], t_end, T[i + 1])  # min(T[i + 1], t_end)
-        new = np.ones(len(i), dtype=bool)
-        new[1:] = ~(a[1:] <= b[:-1] + 1e-12)
-        starts = np.flatnonzero(new)
-        ends = np.append(starts[1:], len(i)) - 1
-        return list(zip(a[starts].tolist(), b[ends].tolist()))
+        # joined to the one before when it starts within 1e-12 s of its end; block by block (copies:
+        # the profile's arrays may grow later), so that an 8-hour profile needs no full-length temporaries
+        last = len(T) - 1
+        for lo in range(0, max(last, 0), _MOVING_BLOCK):
+            hi = min(lo + _MOVING_BLOCK, last)
+            t = np.array(T[lo:hi + 1], dtype=float)
+            sd = np.array(SD[lo:hi + 1], dtype=float)
+            stop = np.flatnonzero(~(t[:-1] < t_end))
+            n = int(stop[0]) if len(stop) else hi - lo
+            i = np.flatnonzero((sd[:n] > 0.0) | (sd[1:n + 1] > 0.0))
+            if len(i):
+                a = t[i]
+                b = np.where(t_end < t[i + 1], t_end, t[i + 1])  # min(T[i + 1], t_end)
+                new = np.ones(len(i), dtype=bool)
+                new[1:] = ~(a[1:] <= b[:-1] + 1e-12)
+                starts = np.flatnonzero(new)
+                ends = np.append(starts[1:], len(i)) - 1
+                block = list(zip(a[starts].tolist(), b[ends].tolist()))
+                if out and block[0][0] <= out[-1][1] + 1e-12:  # joins the previous block's last
+                    out[-1] = (out[-1][0], block[0][1])
+                    block = block[1:]
+                out.extend(block)
+            if len(stop):
+                break
+        return out
 
     def segments(self, t_end: float, dt: float = TICK):
         """The trajectory on the clock of period dt, only where the arm moves: for each moving
