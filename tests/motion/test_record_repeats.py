@@ -6,7 +6,6 @@ computed afresh for every command."""
 from __future__ import annotations
 
 from array import array
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -16,24 +15,14 @@ from val3check.motion.mdesc import Limits
 from val3check.motion.motion_records import motion_records
 from val3check.motion.record_repeats import Repeats
 from val3check.motion.trajectory import Profile
-from val3check.robot import load_robot
 
-ROOT = Path(__file__).resolve().parents[2]
-TX = load_robot("TX2-60")
+from .pick_place_run import TX, pick_place_machine
 
 
 @pytest.fixture(scope="module")
 def pick_place():
     """Two minutes of the bundled pick-and-place (its scenario): about forty cycles' commands."""
-    from val3check.config import Settings
-    from val3check.lint import run as lint_run
-    from val3check.simulation import SimOptions
-    from val3check.simulation.run import run_machine
-    from val3check.simulation.scenario import load_scenario
-
-    ws = lint_run([str(ROOT / "fixtures/valid/PickPlace")], Settings()).workspace
-    scenario = load_scenario(str(ROOT / "fixtures/scenarios/pickplace.toml"))
-    machine, _ = run_machine(ws, ws.apps[ws.targets[0]], SimOptions(duration=120, max_wall=900, robot=TX), scenario)
+    machine = pick_place_machine(120)
     q = machine.arm.queue_in_use
     return q, machine.end_time / 1e6
 

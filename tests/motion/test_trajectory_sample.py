@@ -4,30 +4,18 @@ or all at once; Trajectory.moving vectorised: the same intervals as the loop it 
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 import pytest
 
 from val3check.motion.trajectory import Trajectory, tick_times
-from val3check.robot import load_robot
 
-ROOT = Path(__file__).resolve().parents[2]
-TX = load_robot("TX2-60")
+from .pick_place_run import pick_place_machine
 
 
 @pytest.fixture(scope="module")
 def pick_place():
     """Forty seconds of the bundled pick-and-place (its scenario): rest and motion, blends."""
-    from val3check.config import Settings
-    from val3check.lint import run as lint_run
-    from val3check.simulation import SimOptions
-    from val3check.simulation.run import run_machine
-    from val3check.simulation.scenario import load_scenario
-
-    ws = lint_run([str(ROOT / "fixtures/valid/PickPlace")], Settings()).workspace
-    scenario = load_scenario(str(ROOT / "fixtures/scenarios/pickplace.toml"))
-    machine, _ = run_machine(ws, ws.apps[ws.targets[0]], SimOptions(duration=40, max_wall=900, robot=TX), scenario)
+    machine = pick_place_machine(40)
     return machine.arm.queue_in_use.trajectory, machine.end_time / 1e6
 
 

@@ -301,15 +301,20 @@ class World:
         T = T.tobytes() if isinstance(T, np.ndarray) else T
         return tool, T, instruction, q.shape, q.tobytes(), self.key(), self.touch
 
-    def _grip(self, tool: str, instruction: str, time: float, poses: dict, source: Any, steps: list) -> list[PartDrop]:
-        """open()/close() computed; what it does is appended to `steps` (`_replay` does it again)."""
-        flange = poses[self.arm.flange_link]
+    def _place_arm(self, poses: dict) -> list[Body]:
+        """The arm's bodies placed at these link poses (marked for placing again at the next sample)."""
         arm_bodies: list[Body] = []
         for g in self.arm_groups():
             for b in g.bodies:
                 b.place(poses[g.link])
             g.placed = -1.0
-            arm_bodies.extend(b for b in g.bodies)
+            arm_bodies.extend(g.bodies)
+        return arm_bodies
+
+    def _grip(self, tool: str, instruction: str, time: float, poses: dict, source: Any, steps: list) -> list[PartDrop]:
+        """open()/close() computed; what it does is appended to `steps` (`_replay` does it again)."""
+        flange = poses[self.arm.flange_link]
+        arm_bodies = self._place_arm(poses)
         drops: list[PartDrop] = []
         cache: dict = dict(self.tool_in_flange or {})
         for name in self._part_names(tool):
@@ -349,12 +354,7 @@ class World:
         each on the solids of this scene (found by their place in its lists)."""
         poses, steps, drops = done
         flange = poses[self.arm.flange_link]
-        arm_bodies: list[Body] = []
-        for g in self.arm_groups():
-            for b in g.bodies:
-                b.place(poses[g.link])
-            g.placed = -1.0
-            arm_bodies.extend(b for b in g.bodies)
+        arm_bodies = self._place_arm(poses)
         for step in steps:
             if step[0] == "grasp":
                 _, name, solids, locals_, gone, pairs, weights = step
