@@ -131,11 +131,11 @@ class Retiming:
             return Limits(lim.V, lim.A * factor, lim.D * factor, lim.tvel, lim.rvel)
 
         self.profile = prof
+        self._place = st.place  # where t falls, for `time`
         self.starts: list[float] = []  # run time at the start of each moving stretch
         self.ends: list[float] = []
         self.new_starts: list[float] = []
         self.pieces: list[Profile] = []  # each stretch re-timed, path positions from its start
-        self.bases: list[float] = []  # the path position of each stretch's start
         self.cut: float | None = None
         self.stretches = len(st.spans)  # moving stretches in the run
         self.timed = 0  # distinct pieces timed
@@ -158,22 +158,12 @@ class Retiming:
             self.ends.append(T[j])
             self.new_starts.append(T[i] + shift)
             self.pieces.append(p)
-            self.bases.append(S[i])
             shift += p.t_end - (T[j] - T[i])
         self.shift_end = shift
 
     def time(self, t: float | None) -> float | None:
         """The time of the re-timed run at the point the run reached at time t."""
-        if t is None or (self.cut is not None and t >= self.cut):
-            return None
-        k = bisect.bisect_right(self.starts, t) - 1
-        if k < 0:
-            return t
-        if t >= self.ends[k]:  # at rest after stretch k
-            return t + (self.new_starts[k] - self.starts[k]) + self.pieces[k].t_end - (self.ends[k] - self.starts[k])
-        s, _, _ = self.profile.state(t)
-        at = self.pieces[k].time_at(s - self.bases[k])
-        return self.new_starts[k] + (at if at is not None else self.pieces[k].t_end)
+        return self.time_at(self._place(t))
 
     def time_at(self, place: tuple | None) -> float | None:
         """`time(t)` from `Stretches.place(t)` (found once for every factor): the same arithmetic."""
@@ -184,7 +174,7 @@ class Retiming:
             return None
         if k < 0:
             return t
-        if rel is None:
+        if rel is None:  # at rest after stretch k
             return t + (self.new_starts[k] - self.starts[k]) + self.pieces[k].t_end - (self.ends[k] - self.starts[k])
         at = self.pieces[k].time_at(rel)
         return self.new_starts[k] + (at if at is not None else self.pieces[k].t_end)
