@@ -75,6 +75,9 @@ class FinalState(NamedTuple):
     loops: tuple = ()  # the loops it was in (Machine.loop_passes)
 
 
+_TURN = Scheduler._turn.__code__  # where the scheduler resumes a task: no program runs below it
+
+
 class Machine:
     def __init__(self, ws: Workspace, app: Application, registry: Registry, arm: Any, *,
                  budgets: Budgets | None = None, disk_roots: list[str] | None = None) -> None:
@@ -359,7 +362,7 @@ class Machine:
         if task is None:
             compiled = self.compiled
             f = sys._getframe(1)
-            while f is not None:
+            while f is not None and f.f_code is not _TURN:  # (below a task's turn: the scheduler, no program)
                 c = compiled.get(f.f_code.co_filename)
                 if c is not None:
                     frames.append((c, f))

@@ -51,11 +51,9 @@ US = 1_000_000
 
 def _matrix(pose) -> np.ndarray:
     """A geometry pose (R, p, angles) as a 4x4 matrix (the caller's length unit)."""
-    r, p, _ = pose
-    m = np.eye(4)
-    m[:3, :3] = np.array(r, dtype=float).reshape(3, 3)
-    m[:3, 3] = p
-    return m
+    r, p, _ = pose  # r: the 9 values of the rotation, by rows
+    return np.array(((r[0], r[1], r[2], p[0]), (r[3], r[4], r[5], p[1]), (r[6], r[7], r[8], p[2]),
+                     (0.0, 0.0, 0.0, 1.0)), dtype=float)
 
 
 def _source(task) -> Source:
@@ -92,10 +90,10 @@ def _check_family(arm, value, what: str) -> None:
 
 def _point(task, p: Point, what: str) -> Target:
     """A point as the queue's target: its TCP pose in world through its frames, configuration and names."""
-    geo_points.check_defined(p)
+    pose = geo_points.world_pose(p)  # (what check_defined raises: computed once)
     ref = p.ref
     frame = getattr(ref, "name", "") or ("world" if ref is not None and ref.is_root else "")
-    return Target.point(_matrix(geo_points.world_pose(p)), ct(p.config), p.name or "", frame,
+    return Target.point(_matrix(pose), ct(p.config), p.name or "", frame,
                         note=_other_family_note(task, p))
 
 

@@ -128,7 +128,13 @@ class MovingArm(ModelArm):
     def queue_time(self, time_us: int) -> float:
         """The queue time (s) of real time `time_us` (arm_layers.Warp)."""
         t = time_us / US
-        return t if self.layers is None else self.layers.queue_time(t)
+        layers = self.layers
+        if layers is None:
+            return t
+        w = layers.warp
+        if len(w.T) == 1:  # one piece (the run without compliance): Warp.queue_time without its search
+            return max(w.max_tau[0], w.TAU[0] + w.R[0] * (t - w.T[0]))
+        return w.queue_time(t)
 
     def real_time(self, tau: float | None) -> float | None:
         """The first real time (s) the arm reaches queue time `tau`."""
@@ -138,14 +144,18 @@ class MovingArm(ModelArm):
 
     def _sync(self, time_us: int) -> MotionQueue | None:
         """The queue itself, with the controller's power and monitor speed applied at `time_us`."""
-        q = self.queue
+        q = self._queue
+        if q is None:
+            q = self.queue
         ctl = self.controller
         if q is not None and ctl is not None:
-            t = self.queue_time(time_us)
-            if bool(ctl.powered) != q.powered:
-                q.set_power(bool(ctl.powered), t)
-            if float(ctl.monitor_speed) != q.monitor:
-                q.set_monitor_speed(float(ctl.monitor_speed), t)
+            powered, monitor = bool(ctl.powered), float(ctl.monitor_speed)
+            if powered != q.powered or monitor != q.monitor:  # (asked several times a cycle: mostly unchanged)
+                t = self.queue_time(time_us)
+                if powered != q.powered:
+                    q.set_power(powered, t)
+                if float(ctl.monitor_speed) != q.monitor:
+                    q.set_monitor_speed(float(ctl.monitor_speed), t)
         return q
 
     def set_geometry(self, model: Any, t: float) -> None:
