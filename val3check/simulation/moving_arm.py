@@ -74,6 +74,7 @@ class MovingArm(ModelArm):
         self.contexts: dict[int, Context] = {}  # command key -> the loops it was recorded in
         self._entries: dict[int, tuple[Any, int]] = {}  # id(pass counter) -> (it, entry number)
         self._entry_count: dict[Loop, int] = {}
+        self._loops: dict[int, tuple[Any, Any, Loop]] = {}  # id(loop site) -> (it, its program, its Loop)
         self.prismatic = tuple(k == "prismatic" for k in (getattr(model, "joint_kinds", None) or ())) \
             if model is not None else ()
         self._readers: list[Callable[[int, bool], None]] = []  # `watch`
@@ -326,7 +327,8 @@ class MovingArm(ModelArm):
         tool = None
         if tool_in_flange is not None:
             tool = np.array(tool_in_flange, dtype=float)
-            tool[:3, 3] *= s
+            if s != 1.0:
+                tool[:3, 3] *= s
             tool = self.shared.tool(tool)
         move = MoveCommand(kind, target, self.shared.mdesc(MDesc.from_fields(md, s)), tool=tool, via=via,
                            source=self.shared.source(source), tool_name=tool_name)
@@ -387,7 +389,11 @@ class MovingArm(ModelArm):
         number of its entry (the n-th pass counter seen for it) and the pass."""
         out = []
         for compiled, site, counter in loops:
-            loop = Loop(compiled.path, site.line, site.col, compiled.name, site.kind)
+            known = self._loops.get(id(site))
+            if known is None or known[0] is not site or known[1] is not compiled:
+                known = self._loops[id(site)] = (site, compiled, Loop(compiled.path, site.line, site.col, compiled.name,
+                                                                      site.kind))  # (kept: its id is not reused)
+            loop = known[2]
             seen = self._entries.get(id(counter))
             if seen is None or seen[0] is not counter:
                 n = self._entry_count[loop] = self._entry_count.get(loop, 0) + 1
@@ -400,7 +406,8 @@ class MovingArm(ModelArm):
         if tg.is_joint:
             return Target.joint(self.joints_in(tg.joints, s == 1.0), tg.name)
         pose = np.array(tg.pose, dtype=float)
-        pose[:3, 3] *= s
+        if s != 1.0:  # (x * 1.0 is x: skipped)
+            pose[:3, 3] *= s
         return Target(pose=pose, config=tg.config, name=tg.name, frame=tg.frame, note=tg.note)
 
     def joints_in(self, joints: Sequence[float], millimeter_unit: bool) -> tuple[float, ...]:
