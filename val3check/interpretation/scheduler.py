@@ -143,6 +143,8 @@ class Scheduler:
         self._created: list[Task] = []  # tasks created since the round's order was taken (5.4)
         self._ran: set[Task] = set()  # tasks that ran a line in this cycle (the task timelines)
         self._alive: dict[Task, tuple] = {}  # the tasks alive at the end of the last cycle, their state
+        self._removed = False  # a task left `tasks` since the states were last noted
+        self._periodic = False  # a synchronous task was ever added (else each cycle skips their turns)
 
     def add_subsystem(self, subsystem: Any) -> None:
         self.subsystems.append(subsystem)
@@ -154,6 +156,8 @@ class Scheduler:
     def add(self, task: Task) -> Task:
         self._seq += 1
         task.seq = self._seq
+        if task.period:
+            self._periodic = True
         self.tasks.append(task)
         self.history.append(task)
         return task
@@ -233,6 +237,7 @@ class Scheduler:
         task.ended = self.clock.time_of(by)
         if task in self.tasks:
             self.tasks.remove(task)
+            self._removed = True
         if task is not self.clock.current and task.gen is not None:
             task.gen.close()
 
@@ -292,9 +297,10 @@ class Scheduler:
             advance(now)
         clock.cycle_lines = 0
         tasks = self.tasks
-        for task in list(tasks):
-            if task.period and now >= task.next_run and task in tasks:
-                self._sync_turn(task)
+        if self._periodic:
+            for task in list(tasks):
+                if task.period and now >= task.next_run and task in tasks:
+                    self._sync_turn(task)
         turn = self._turn
         stopped, delay, wait = STOPPED_STATES, DELAY, WAIT
         created = self._created
@@ -347,7 +353,8 @@ class Scheduler:
         tasks = self.tasks
         note = None
         after = now + TICK_US
-        if ran or len(alive) != len(tasks):  # (a task ends or is killed only while some task runs)
+        if self._removed:  # (only then is a task gone: the other cycles skip the search)
+            self._removed = False
             note = self.machine.recorder.task_state
             live = set(tasks)
             gone = [t for t in ran if t not in live] + [t for t in alive if t not in live and t not in ran]
@@ -437,6 +444,7 @@ class Scheduler:
             task.ended = clock.end_of_cycle()
             if task in self.tasks:
                 self.tasks.remove(task)
+                self._removed = True
             return True
         elif st is KILLED:
             if task.gen is not None:
