@@ -8,7 +8,7 @@ Events at the same time keep the order in which they were scheduled: runs are de
 from __future__ import annotations
 
 import heapq
-from dataclasses import dataclass
+from ..light_dataclass import dataclass  # (frozen record classes made without dataclasses' cost)
 from typing import Any, Union
 
 

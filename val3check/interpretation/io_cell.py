@@ -11,7 +11,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from ..light_dataclass import dataclass  # (frozen record classes made without dataclasses' cost)
 from typing import Any, Callable
 
 from ..diagnostics import Diagnostic

@@ -20,7 +20,7 @@ needs its hardware, R004 otherwise.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from ..light_dataclass import dataclass  # (frozen record classes made without dataclasses' cost)
 from typing import Any, Callable
 
 from ..language import lookup
