@@ -11,7 +11,10 @@ heavy packages it imports (mcap only with --trace, trimesh only for meshes).
 Both run with compiled bytecode, as an installed tool does: PYTHONDONTWRITEBYTECODE is dropped for
 the children, which write their `.pyc` under a temporary PYTHONPYCACHEPREFIX, filled by a first
 run that is not counted.
-Run: python bench/bench_startup.py [--runs 15]
+With --phases: the CPU of each phase of one sim process (the imports, lint, the arm, the run, the
+record, the collision checks, the page), for 1 and 60 simulated seconds: what does not grow with
+the run's length is its fixed cost (issue 29, docs/performance.md).
+Run: python bench/bench_startup.py [--runs 15] [--phases]
 """
 
 from __future__ import annotations
@@ -68,13 +71,73 @@ def show_imports(rows: list[tuple[int, str]], n: int = 12) -> None:
         print(f"  {cumulative/1000:7.1f} ms  {name}")
 
 
+# A sim process timing its phases with process_time (CPU), printed as JSON on the last line of stderr.
+PHASES = r"""
+import json, sys, time
+t0 = time.process_time()
+from val3check.cli import main
+from val3check.interpretation.machine import Machine
+from val3check.reporting import sim_render
+from val3check.simulation import case, collision_run, run
+spent = {"imports": time.process_time() - t0}
+def timed(name, f):
+    def w(*a, **k):
+        t = time.process_time()
+        try:
+            return f(*a, **k)
+        finally:
+            spent[name] = spent.get(name, 0.0) + time.process_time() - t
+    return w
+for mod, attr in ((case, "lint_case"), (case, "choose_sim_robot"), (run, "build_machine"), (run, "collect"),
+                  (collision_run, "check_run"), (sim_render, "render_sim")):
+    setattr(mod, attr, timed(attr, getattr(mod, attr)))
+for name in ("load_main", "run"):
+    setattr(Machine, name, timed("Machine." + name, getattr(Machine, name)))
+sys.argv = ["val3check", *sys.argv[1:]]
+try:
+    rc = main()
+finally:
+    spent["total"] = time.process_time()
+    sys.stderr.write("\n" + json.dumps(spent) + "\n")
+sys.exit(rc)
+"""
+
+
+def phases(env: dict[str, str], tmp: str, runs: int) -> None:
+    """CPU per phase of the sim of PICK for 1 and 60 simulated seconds (best of `runs` each)."""
+    import json
+
+    rows = {}
+    for duration in ("1", "60"):
+        args = [a if a != "1" else duration for a in PICK]
+        cmd = [sys.executable, "-c", PHASES, "sim", *args, "--report", "html", "-o", str(Path(tmp) / "p.html")]
+        best = None
+        for _ in range(runs):
+            r = subprocess.run(cmd, check=False, capture_output=True, text=True, env=env, cwd=ROOT)
+            spent = json.loads(r.stderr.strip().splitlines()[-1])
+            best = spent if best is None or spent["total"] < best["total"] else best
+        rows[duration] = best
+    print("\nCPU per phase of one sim process (ms, the run of least total CPU), 1 s and 60 s simulated:")
+    for name in rows["60"]:
+        a, b = rows["1"].get(name, 0.0) * 1000, rows["60"].get(name, 0.0) * 1000
+        print(f"  {name:18s} {a:7.0f} {b:7.0f}")
+    print("  (run_case holds lint_case, choose_sim_robot, build_machine, the Machine's load and run, collect and "
+          "check_run; render_sim is the page)")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", type=int, default=15)
+    ap.add_argument("--phases", action="store_true", help="only the CPU per phase of the 1 s and 60 s sim")
     args = ap.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
         env.update(PYTHONPATH=str(ROOT), PYTHONPYCACHEPREFIX=str(Path(tmp) / "pycache"))
+        if args.phases:
+            timed([sys.executable, "-m", "val3check", "sim", *PICK, "-o", str(Path(tmp) / "w.html")], env, 1)  # .pyc
+            phases(env, tmp, max(1, args.runs // 5))
+            print(f"load average {', '.join(f'{x:.1f}' for x in os.getloadavg())} on {os.cpu_count()} cores")
+            return
         cmd = [sys.executable, "-m", "val3check", "lint", str(APP)]
         timed(cmd, env, 1)  # warm the .pyc files once
         times, cpu, rc = timed(cmd, env, args.runs)
