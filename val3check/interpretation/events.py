@@ -8,8 +8,9 @@ Events at the same time keep the order in which they were scheduled: runs are de
 from __future__ import annotations
 
 import heapq
-from ..light_dataclass import dataclass  # (frozen record classes made without dataclasses' cost)
 from typing import Any, Union
+
+from ..light_dataclass import dataclass  # (frozen record classes made without dataclasses' cost)
 
 
 @dataclass(frozen=True, slots=True)

@@ -11,12 +11,12 @@
 
 from __future__ import annotations
 
-from ..light_dataclass import dataclass  # (frozen record classes made without dataclasses' cost)
 from typing import Any, Callable
 
 from ..diagnostics import Diagnostic
 from ..geometry.frames import new_flange, new_world
 from ..language.runtime_errors import Val3RuntimeError
+from ..light_dataclass import dataclass  # (frozen record classes made without dataclasses' cost)
 from ..rules import codes
 from .events import ControllerChange, Event, InputsChange, KeyPress, PowerChange, SerialData, Timeline
 from .recorder import sio_text

@@ -20,10 +20,10 @@ needs its hardware, R004 otherwise.
 
 from __future__ import annotations
 
-from ..light_dataclass import dataclass  # (frozen record classes made without dataclasses' cost)
 from typing import Any, Callable
 
 from ..language import lookup
+from ..light_dataclass import dataclass  # (frozen record classes made without dataclasses' cost)
 from .not_simulated import ARM_LIMIT, OTHER_LIMIT, limit_code
 
 # Options of chapter 11 that drive the arm (compliance, alter, absolute robot, continuous
