@@ -5,7 +5,7 @@ simulation.collision_run.CollisionRun or None."""
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, NamedTuple
 
 from .thinning import MOTION_ROWS
 
@@ -91,6 +91,13 @@ def text(run: Any) -> list[str]:
     return out
 
 
+class Samples(NamedTuple):
+    """Per-sample values written on one line, each as `_num(x, digits)` (sim_json.chunks)."""
+
+    a: Any  # a 1-D float array
+    digits: int
+
+
 def _num(x: float | None, digits: int = 3) -> float | None:
     return None if x is None or not math.isfinite(x) else round(float(x), digits) + 0.0
 
@@ -147,8 +154,8 @@ def section(run: Any) -> dict | None:
             "checks": r.checks,
         }
         if with_cell:
-            entry["clearance"] = {"times": [_num(x, 6) for x in r.times.tolist()],
-                                  "mm": [_num(x) for x in r.clearance.tolist()]}
+            # written from the arrays as the report goes (sim_json.chunks): no float per sample
+            entry["clearance"] = {"times": Samples(r.times, 6), "mm": Samples(r.clearance, 3)}
         motions.append(entry)
     mins = [r.min_clearance.mm for r in c.by_motion.values() if r.min_clearance is not None]
     out = {

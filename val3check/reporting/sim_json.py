@@ -16,6 +16,7 @@ from typing import Any
 
 from ..diagnostics import Severity
 from . import sim_collision
+from .sim_collision import Samples
 from ._common import TOOL_NAME
 from .thinning import JSON_TICKS, MOTION_ROWS, left_out, thinned_note, tick_multiple
 
@@ -57,16 +58,52 @@ def _pose(v) -> list[float] | None:
 
 
 class Raw(str):
-    """JSON text written as it is (rows of the trajectory, formatted at once)."""
+    """JSON text written as it is."""
 
 
-def _rows(a, digits: int) -> list[Raw]:
-    """Each row of a 2-D array as a JSON array of numbers rounded to `digits` decimals (plain
-    decimals: with at most 4 decimals Python writes no exponent for them)."""
+class Rows:
+    """The rows of a 2-D array, each written as a JSON array of numbers rounded to `digits`
+    decimals (numpy's round; plain decimals: with at most 4 decimals Python writes no exponent for
+    them), formatted block by block as the report is written: no Python object per sample."""
+
+    def __init__(self, a, digits: int):
+        self.a, self.digits = a, digits
+
+    def chunks(self, indent: int):
+        import numpy as np
+
+        n = len(self.a)
+        if not n:
+            yield "[]"
+            return
+        inner = "  " * (indent + 1)
+        yield "[\n"
+        for lo in range(0, n, ROWS_BLOCK):
+            r = np.round(np.asarray(self.a[lo:lo + ROWS_BLOCK], dtype=float), self.digits) + 0.0  # + 0.0: no -0.0
+            rows = [inner + "[" + ", ".join(map(repr, row)) + "]" for row in r.tolist()]
+            yield ("" if lo == 0 else ",\n") + ",\n".join(rows)
+        yield "\n" + "  " * indent + "]"
+
+
+def _samples(s: Samples) -> str:
+    """`_num(x, digits)` of each value of a per-sample array (Python's rounding, null for a value
+    not finite) on one line, rounded and formatted at once."""
     import numpy as np
 
-    r = np.round(np.asarray(a, dtype=float), digits) + 0.0  # + 0.0: no -0.0
-    return [Raw("[" + ", ".join(map(repr, row)) + "]") for row in r.tolist()]
+    from .html.series import rounded
+
+    a = np.asarray(s.a, dtype=float)
+    if not len(a):
+        return "[]"
+    finite = np.isfinite(a)
+    r = rounded(np.where(finite, a, 0.0), s.digits).tolist()
+    text = [number(x) if "e" in t else t for x, t in zip(r, map(repr, r))]
+    for k in np.flatnonzero(~finite).tolist():
+        text[k] = "null"
+    return "[" + ", ".join(text) + "]"
+
+
+ROWS_BLOCK = 4096  # rows of the trajectory formatted at once
 
 
 def _motion(run: Any) -> dict | None:
@@ -108,7 +145,7 @@ def _motion(run: Any) -> dict | None:
     omitted = left_out(run.result, "the trajectory")
     for k0, q, v in m.trajectory.segments(m.end_s, period) if omitted is None else ():
         segments.append({"start": round(k0 * period, 6), "first_tick": k0,
-                         "positions": _rows(q, 4), "velocities": _rows(v, 3)})
+                         "positions": Rows(q, 4), "velocities": Rows(v, 3)})
     trajectory: dict[str, Any] = {"period": round(period, 6), "axes": m.scene.axes,
                                   "units": list(m.scene.joint_units), "segments": segments}
     if omitted is not None:
@@ -224,9 +261,11 @@ def number(x: float) -> str:
 
 
 def _scalar(v: Any) -> str:
-    """A JSON scalar as text."""
+    """A JSON scalar as text (or `Samples`: an array on one line)."""
     if type(v) is Raw:
         return v
+    if type(v) is Samples:
+        return _samples(v)
     if v is None:
         return "null"
     if v is True:
@@ -246,8 +285,45 @@ def _flat(v: Any) -> bool:
         not isinstance(x, str) or type(x) is Raw for x in v) and not (v and type(v[0]) is Raw)
 
 
+def _big(v: Any) -> bool:
+    """A value written piece by piece (`chunks`): a container, or an array written as it goes."""
+    return isinstance(v, (dict, list, Rows))
+
+
+def chunks(obj: Any, indent: int = 0):
+    """The text of `dumps(obj, indent)`, piece by piece: a report is written as it goes, its arrays
+    (`Rows`, `Samples`) formatted block by block, never held whole as text."""
+    if isinstance(obj, Rows):
+        yield from obj.chunks(indent)
+        return
+    if isinstance(obj, dict) and obj and any(_big(x) for x in obj.values()):
+        inner = "  " * (indent + 1)
+        yield "{"
+        for i, k in enumerate(sorted(obj)):
+            v = obj[k]
+            head = f"{',' if i else ''}\n{inner}{json.dumps(str(k), ensure_ascii=True)}: "
+            if _big(v):
+                yield head
+                yield from chunks(v, indent + 1)
+            else:
+                yield head + _scalar(v)
+        yield "\n" + "  " * indent + "}"
+        return
+    if isinstance(obj, list) and obj and not _flat(obj):
+        inner = "  " * (indent + 1)
+        yield "["
+        for i, x in enumerate(obj):
+            yield f"{',' if i else ''}\n{inner}"
+            yield from chunks(x, indent + 1)
+        yield "\n" + "  " * indent + "]"
+        return
+    yield dumps(obj, indent)
+
+
 def dumps(obj: Any, indent: int = 0) -> str:
     """Sorted keys, 2-space indent, ASCII; a list of numbers on one line."""
+    if isinstance(obj, Rows):
+        return "".join(obj.chunks(indent))
     pad = "  " * indent
     inner = "  " * (indent + 1)
     if isinstance(obj, dict):
@@ -264,6 +340,12 @@ def dumps(obj: Any, indent: int = 0) -> str:
     return _scalar(obj)
 
 
+def pieces(run: Any):
+    """The text of `render(run)` piece by piece, made as it is written."""
+    yield from chunks(report(run))
+    yield "\n"
+
+
 def render(run: Any) -> str:
     """The report as text (sorted keys, 2-space indent, ASCII, a final newline)."""
-    return dumps(report(run)) + "\n"
+    return "".join(pieces(run))
