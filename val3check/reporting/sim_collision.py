@@ -92,10 +92,29 @@ def text(run: Any) -> list[str]:
 
 
 class Samples(NamedTuple):
-    """Per-sample values written on one line, each as `_num(x, digits)` (sim_json.chunks)."""
+    """Per-sample values written on one line by sim_json: a float array already rounded as `_num`
+    rounds, NaN where `_num` gives null."""
 
-    a: Any  # a 1-D float array
-    digits: int
+    a: Any
+
+
+def _samples(entries: list[dict], reports: list) -> None:
+    """Each entry's per-sample `clearance` (its report's `times` and `clearance`), rounded for all
+    of them at once (numpy: Python's rounding, html/series.py)."""
+    import numpy as np
+
+    from .html.series import rounded
+
+    if not entries:
+        return
+    cuts = np.cumsum([len(r.times) for r in reports])[:-1]
+    for key, name, digits in (("times", "times", 6), ("mm", "clearance", 3)):
+        a = np.concatenate([np.asarray(getattr(r, name), dtype=float) for r in reports])
+        finite = np.isfinite(a)
+        out = rounded(np.where(finite, a, 0.0), digits)
+        out[~finite] = np.nan
+        for e, part in zip(entries, np.split(out, cuts)):
+            e["clearance"][key] = Samples(part)
 
 
 def _num(x: float | None, digits: int = 3) -> float | None:
@@ -130,6 +149,7 @@ def section(run: Any) -> dict | None:
     with_cell = c.cell is not None and bool(c.cell.obstacles or c.cell.parts)
     recs = run.result.motion.motions
     motions = []
+    sampled: list[tuple[dict, Any]] = []
     found = omitted = 0
     for i in sorted(c.by_motion):
         r = c.by_motion[i]
@@ -154,9 +174,10 @@ def section(run: Any) -> dict | None:
             "checks": r.checks,
         }
         if with_cell:
-            # written from the arrays as the report goes (sim_json.chunks): no float per sample
-            entry["clearance"] = {"times": Samples(r.times, 6), "mm": Samples(r.clearance, 3)}
+            entry["clearance"] = {}  # from the arrays, as the report is written (_samples)
+            sampled.append((entry, r))
         motions.append(entry)
+    _samples([e for e, _ in sampled], [r for _, r in sampled])
     mins = [r.min_clearance.mm for r in c.by_motion.values() if r.min_clearance is not None]
     out = {
         "cell": cell,

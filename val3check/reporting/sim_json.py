@@ -86,21 +86,14 @@ class Rows:
 
 
 def _samples(s: Samples) -> str:
-    """`_num(x, digits)` of each value of a per-sample array (Python's rounding, null for a value
-    not finite) on one line, rounded and formatted at once."""
-    import numpy as np
-
-    from .html.series import rounded
-
-    a = np.asarray(s.a, dtype=float)
-    if not len(a):
+    """A per-sample array (sim_collision.Samples: rounded, NaN for null) on one line."""
+    r = s.a.tolist()
+    if not r:
         return "[]"
-    finite = np.isfinite(a)
-    r = rounded(np.where(finite, a, 0.0), s.digits).tolist()
-    text = [number(x) if "e" in t else t for x, t in zip(r, map(repr, r))]
-    for k in np.flatnonzero(~finite).tolist():
-        text[k] = "null"
-    return "[" + ", ".join(text) + "]"
+    out = ", ".join(map(repr, r))
+    if "e" in out or "n" in out:  # an exponent (below 1e-4) or a NaN: as `number` writes them
+        out = ", ".join(map(number, r))
+    return "[" + out + "]"
 
 
 ROWS_BLOCK = 4096  # rows of the trajectory formatted at once
@@ -262,9 +255,16 @@ def number(x: float) -> str:
 
 def _scalar(v: Any) -> str:
     """A JSON scalar as text (or `Samples`: an array on one line)."""
-    if type(v) is Raw:
+    t = type(v)
+    if t is float:
+        return number(v)
+    if t is str:
+        return _ascii(v)
+    if t is int:
+        return str(v)
+    if t is Raw:
         return v
-    if type(v) is Samples:
+    if t is Samples:
         return _samples(v)
     if v is None:
         return "null"
@@ -279,42 +279,59 @@ def _scalar(v: Any) -> str:
     return json.dumps(v, ensure_ascii=True)
 
 
+_NESTED = (dict, list, Rows)  # what `dumps` writes itself (anything else: `_scalar`)
+_ascii = json.encoder.encode_basestring_ascii  # json.dumps of a str, without its dispatch
+_KEYS: dict[str, str] = {}  # each key as JSON text, once
+
+
+def _key(k: Any) -> str:
+    text = _KEYS.get(k)
+    if text is None:
+        text = _KEYS[k] = _ascii(str(k))
+    return text
+
+
 def _flat(v: Any) -> bool:
     """A list written on one line (numbers only)."""
+    if type(v) is list and all(type(x) is float or type(x) is int for x in v):
+        return True  # most lists: decided in one pass
     return isinstance(v, list) and all(not isinstance(x, (list, dict)) for x in v) and all(
         not isinstance(x, str) or type(x) is Raw for x in v) and not (v and type(v[0]) is Raw)
 
 
-def _big(v: Any) -> bool:
-    """A value written piece by piece (`chunks`): a container, or an array written as it goes."""
-    return isinstance(v, (dict, list, Rows))
+def _rows_in(v: Any) -> bool:
+    """A dict holding trajectory rows (a segment): written piece by piece."""
+    return type(v) is dict and any(type(x) is Rows for x in v.values())
 
 
 def chunks(obj: Any, indent: int = 0):
-    """The text of `dumps(obj, indent)`, piece by piece: a report is written as it goes, its arrays
-    (`Rows`, `Samples`) formatted block by block, never held whole as text."""
-    if isinstance(obj, Rows):
+    """The text of `dumps(obj, indent)`, piece by piece: a report is written as it goes, its
+    trajectory's rows (`Rows`) block by block, each entry of a list (a motion with its per-sample
+    clearances) as one piece: never held whole as text."""
+    if type(obj) is Rows:
         yield from obj.chunks(indent)
         return
-    if isinstance(obj, dict) and obj and any(_big(x) for x in obj.values()):
-        inner = "  " * (indent + 1)
+    inner = "  " * (indent + 1)
+    if type(obj) is dict and obj:
         yield "{"
         for i, k in enumerate(sorted(obj)):
             v = obj[k]
-            head = f"{',' if i else ''}\n{inner}{json.dumps(str(k), ensure_ascii=True)}: "
-            if _big(v):
+            head = f"{',' if i else ''}\n{inner}{_key(k)}: "
+            if isinstance(v, _NESTED):
                 yield head
                 yield from chunks(v, indent + 1)
             else:
                 yield head + _scalar(v)
         yield "\n" + "  " * indent + "}"
         return
-    if isinstance(obj, list) and obj and not _flat(obj):
-        inner = "  " * (indent + 1)
+    if type(obj) is list and obj and not _flat(obj):
         yield "["
         for i, x in enumerate(obj):
-            yield f"{',' if i else ''}\n{inner}"
-            yield from chunks(x, indent + 1)
+            if _rows_in(x) or type(x) is list:
+                yield f"{',' if i else ''}\n{inner}"
+                yield from chunks(x, indent + 1)
+            else:
+                yield f"{',' if i else ''}\n{inner}{dumps(x, indent + 1)}"
         yield "\n" + "  " * indent + "]"
         return
     yield dumps(obj, indent)
@@ -322,21 +339,22 @@ def chunks(obj: Any, indent: int = 0):
 
 def dumps(obj: Any, indent: int = 0) -> str:
     """Sorted keys, 2-space indent, ASCII; a list of numbers on one line."""
-    if isinstance(obj, Rows):
+    if type(obj) is Rows:
         return "".join(obj.chunks(indent))
-    pad = "  " * indent
-    inner = "  " * (indent + 1)
     if isinstance(obj, dict):
         if not obj:
             return "{}"
-        items = [f"{inner}{json.dumps(str(k), ensure_ascii=True)}: {dumps(obj[k], indent + 1)}" for k in sorted(obj)]
-        return "{\n" + ",\n".join(items) + "\n" + pad + "}"
+        inner = "  " * (indent + 1)
+        items = [f"{inner}{_key(k)}: {dumps(v, indent + 1) if isinstance(v, _NESTED) else _scalar(v)}"
+                 for k, v in sorted(obj.items())]
+        return "{\n" + ",\n".join(items) + "\n" + "  " * indent + "}"
     if isinstance(obj, list):
         if not obj:
             return "[]"
         if _flat(obj):
             return "[" + ", ".join(_scalar(x) for x in obj) + "]"
-        return "[\n" + ",\n".join(inner + dumps(x, indent + 1) for x in obj) + "\n" + pad + "]"
+        inner = "  " * (indent + 1)
+        return "[\n" + ",\n".join(inner + dumps(x, indent + 1) for x in obj) + "\n" + "  " * indent + "]"
     return _scalar(obj)
 
 

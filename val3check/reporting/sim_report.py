@@ -23,12 +23,17 @@ class SimReport:
     rules: dict = field(default_factory=dict)  # the rule catalogue, by code
     link_names: dict = field(default_factory=dict)  # (kind, link) -> variable names
 
+    shown: dict = field(default_factory=dict, repr=False, compare=False)  # path -> display path, once
+
     def display(self, pos) -> Any:
         """A (path, line, col, program) position with a display path."""
         if not pos:
             return None
         path, line, col, program = pos
-        return (display_path(path), line, col, program)
+        shown = self.shown.get(path)
+        if shown is None:  # each of thousands of motions names one of a few files
+            shown = self.shown[path] = display_path(path)
+        return (shown, line, col, program)
 
     def rule_name(self, code: str) -> str | None:
         rule = self.rules.get(code)
