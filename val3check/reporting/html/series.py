@@ -39,7 +39,8 @@ def rounded(values: Any, digits: int) -> Any:
     beyond 2**52, or not finite) are rounded by Python."""
     import numpy as np
 
-    x = np.asarray(values, dtype=float)
+    shape = np.shape(values)
+    x = np.asarray(values, dtype=float).ravel()  # any shape: value by value
     scale = 10.0 ** digits
     with np.errstate(invalid="ignore", over="ignore"):
         y = x * scale
@@ -48,7 +49,7 @@ def rounded(values: Any, digits: int) -> Any:
     near |= ~(np.abs(y) < 2.0 ** 52)  # beyond, or not finite: as Python rounds them
     for k in np.flatnonzero(near).tolist():
         out[k] = round(float(x[k]), digits) + 0.0
-    return out
+    return out.reshape(shape)
 
 
 def dump_json(obj: Any, fh) -> None:
