@@ -305,3 +305,18 @@ def test_display_paths_are_remembered_by_path_and_current_folder(run, monkeypatc
     monkeypatch.chdir(tmp_path)  # the current folder is part of the key: an absolute path now
     assert run.display((app, 3, 1, "pick")) == (display_path(app), 3, 1, "pick")
     assert display_path(app) != "fixtures/valid/PickPlace/pick.pgx"
+
+
+def test_the_per_sample_clearances_are_bounded_and_said(run, monkeypatch):
+    full = json.loads(sim_json.render(run))["collision"]
+    assert "clearance_omitted" not in full  # a short run: every row with its samples
+    sizes = [len(m["clearance"]["mm"]) for m in full["motions"]]
+    bound = sum(sizes[:5]) + sizes[5] - 1  # the sixth row no longer fits
+    monkeypatch.setattr(sim_collision, "CLEARANCE_SAMPLES", bound)
+    cut = json.loads(sim_json.render(run))["collision"]
+    assert [("clearance" in m) for m in cut["motions"]] == [k < 5 for k in range(len(sizes))]
+    assert cut["motions"][:5] == full["motions"][:5]
+    assert [m["min_clearance"] for m in cut["motions"]] == [m["min_clearance"] for m in full["motions"]]
+    said = cut["clearance_omitted"]
+    assert said["count"] == len(sizes) - 5 and said["kept"] == 5 and said["samples"] == sum(sizes[:5])
+    assert f"first 5 rows ({sum(sizes[:5])} samples, at most {bound})" in said["why"]

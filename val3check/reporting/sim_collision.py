@@ -11,6 +11,9 @@ from .thinning import MOTION_ROWS
 
 CODES = {f"R0{n}" for n in range(30, 40)}
 MAX_LINES = 30  # instructions listed in the text summary
+# per-sample clearances of the JSON rows, in all (about 24 MB of JSON; the 1-hour cell's 5,000 rows
+# hold 581,372): beyond, the rows keep their min_clearance without the samples (docs/sim-report.md)
+CLEARANCE_SAMPLES = 1_000_000
 
 
 def _where(run: Any, path: str, line: int) -> str:
@@ -150,7 +153,7 @@ def section(run: Any) -> dict | None:
     recs = run.result.motion.motions
     motions = []
     sampled: list[tuple[dict, Any]] = []
-    found = omitted = 0
+    found = omitted = samples = bare = 0
     for i in sorted(c.by_motion):
         r = c.by_motion[i]
         # a long run (thinning.py): the first rows, and later the motions with a finding (as many)
@@ -173,9 +176,12 @@ def section(run: Any) -> dict | None:
             "contacts": [_contact(x) for x in r.contacts],
             "checks": r.checks,
         }
-        if with_cell:
+        if with_cell and not bare and samples + len(r.times) <= CLEARANCE_SAMPLES:
+            samples += len(r.times)
             entry["clearance"] = {}  # from the arrays, as the report is written (_samples)
             sampled.append((entry, r))
+        elif with_cell:  # a long run: this row and the next ones without their samples
+            bare += 1
         motions.append(entry)
     _samples([e for e, _ in sampled], [r for _, r in sampled])
     mins = [r.min_clearance.mm for r in c.by_motion.values() if r.min_clearance is not None]
@@ -195,6 +201,11 @@ def section(run: Any) -> dict | None:
         "drops": [{"time": _num(d.time, 6), "part": d.part, "obstacle": d.obstacle, "point": _point(d.point),
                    "depth_mm": _num(d.depth_mm)} for d in c.drops],
     }
+    if bare:
+        out["clearance_omitted"] = {"count": bare, "kept": len(sampled), "samples": samples,
+                                    "why": f"a long run: the per-sample clearances of the first {len(sampled)} rows "
+                                           f"({samples} samples, at most {CLEARANCE_SAMPLES}); every row keeps its "
+                                           "min_clearance"}
     if omitted:
         out["motions_omitted"] = {"count": omitted, "why": f"a long run: the rows of the first {MOTION_ROWS} motions, "
                                                           "then of the motions with a contact or a near miss"}
