@@ -23,6 +23,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import trial_memo
 
 TIMING_SPLIT = 4  # gridpoints of the timing per interval of a Cartesian path's knots (8 mm: one per 2 mm)
 H_FD = 1e-4  # path-units step of the finite differences of the TCP rates
@@ -258,6 +259,20 @@ class Span:
         d = self.geom.q(self.lam(sigma), order)
         return d if order == 0 else d / self.geom.ell ** order
 
+    def end(self) -> np.ndarray:
+        """Joint positions at the span's end (read-only): `q([length])[0]`, a function of the
+        geometry, a and b only, so kept on the geometry (a repeated motion's spans share it)."""
+        memo = self.geom.__dict__.setdefault("_ends", {})
+        key = (self.a, self.b)
+        hit = memo.get(key) if trial_memo.REUSE else None
+        if hit is None:
+            hit = self.q([self.length])[0]
+            hit.flags.writeable = False
+            if len(memo) >= 16:
+                memo.pop(next(iter(memo)))
+            memo[key] = hit
+        return hit
+
     def owner_at(self, sigma: float):
         """The key of the command that owns the span at σ."""
         key = self.owners[0][0]
@@ -347,7 +362,7 @@ class Path:
         (planner.py) appends many spans and never asks."""
         sp = self._rest_of
         if sp is not None:
-            self._rest = sp.q([sp.length])[0]
+            self._rest = sp.end()
             self._rest_of = None
         return self._rest
 

@@ -36,6 +36,10 @@ from .trial_memo import TrialMemo, frozen
 # Commands recorded less than this apart while the arm starts from rest are timed together: in
 # that time the arm moves less than a micrometre, the same whichever way it is computed.
 MERGE_WINDOW = 0.001
+# Every plan timed as a blend trial is, relative to its piece's start, and so reused in a cyclic
+# run; off because the path positions then differ in their last bits (docs/performance.md,
+# "Issue 29, fourth round": what it gains and changes, a decision for the lead).
+RELATIVE_PLAN = False
 
 
 class DueReplan(NamedTuple):
@@ -62,6 +66,7 @@ class Planner:
         self.timing = Timing(kin)
         self.memo = TrialMemo(kin, self.timing, limits_of)  # a repeated blend decision's timings
         self.due: DueReplan | None = None
+        self.changes = 0  # counts the changes of the profile (what is read from it is kept until it changes)
         self.fallbacks = 0  # pieces planned with the safe profile
         self.stops_chosen = 0  # junctions where stopping at the via point was chosen (`blend_pays`)
         self._trial = None  # the timing of the last blend trial, reused by the plan that follows
@@ -227,25 +232,26 @@ class Planner:
         and the pieces' profiles (s shifted to the path's positions; None when one fell back).
         A trial of the same spans from the same state is remembered (trial_memo.py)."""
         path = self.path
-        trial = Path(path.q_rest)
-        shift = 0.0
+        ahead, shift = [], 0.0
         if path.spans:
             i0, _ = path.locate(s0)
-            for sp in path.spans[i0:]:
-                trial.append(Span(sp.geom, sp.a, sp.b, sp.owners, sp.smooth, sp.tool, _cache=sp._cache))
-            shift = path.offsets[i0]
+            ahead, shift = path.spans[i0:], path.offsets[i0]
         a = s0 - shift
-        for sp in extra:
-            trial.append(sp)
+        spans = ahead + extra
 
         def speed_at(g, a_):
             return self.profile.speed_at(g + shift, a_ + shift)
 
-        key = self.memo.key(trial.spans, a, v0)
-        hit = self.memo.get(key, trial.spans, speed_at)
+        key = self.memo.key(spans, a, v0)
+        hit = self.memo.get(key, spans, speed_at)
         if hit is not None:
             total, rel = hit
             return total, None if rel is None else [(s_ + shift, sd_) for s_, sd_ in rel]
+        trial = Path(path.q_rest)  # built only when timed: a hit needs the key only
+        for sp in ahead:
+            trial.append(Span(sp.geom, sp.a, sp.b, sp.owners, sp.smooth, sp.tool, _cache=sp._cache))
+        for sp in extra:
+            trial.append(sp)
         calls = []
 
         def asked(g, a_):
@@ -311,6 +317,7 @@ class Planner:
     def plan_from(self, t_r: float) -> None:
         """Cut the profile at t_r and time the rest of the path from the arm's state there."""
         prof = self.profile
+        self.changes += 1
         prof.cut(t_r)
         s_r, sd_r = prof.s_end, prof.SD[-1]
         if self.path.end - s_r <= _eps(s_r):
@@ -318,10 +325,14 @@ class Planner:
                 prof.SD[-1] = 0.0
             return
         trial, self._trial = self._trial, None
+        pieces = None
         if trial is not None and self._trial_applies(trial, t_r, s_r):
+            pieces = trial[2]  # the blend trial timed exactly this (`blend_pays`)
+        elif RELATIVE_PLAN:  # timed as a trial (relative to the piece's start): reused, not the same bits
+            pieces = self._trial_duration(s_r, sd_r, [])[1]
+        if pieces:
             t_cur = max(t_r, prof.t_end)
-            pieces = trial[2]
-            for i, (s_, sd_) in enumerate(pieces):  # the blend trial timed exactly this (`blend_pays`)
+            for i, (s_, sd_) in enumerate(pieces):
                 s_ = s_.copy()
                 if i == 0:
                     s_[0] = s_r
@@ -359,6 +370,7 @@ class Planner:
         (stopMove, resetMotion, power off, monitor speed 0)."""
         self.flush()
         prof = self.profile
+        self.changes += 1
         prof.cut(now)
         sd = prof.SD[-1]
         if sd <= 0.0:

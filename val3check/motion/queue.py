@@ -49,6 +49,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import findings as F
+from . import trial_memo
 from .checks import slowdown
 from .commands import MoveCommand
 from .construction import JOINT_EQ, construct
@@ -100,6 +101,7 @@ class MotionQueue:
         self.findings: list[Finding] = []
         self._keys = 0
         self._by_key: dict[int, QueuedCommand] = {}
+        self._done: tuple = ()  # (planner.changes, command key, its end, when it gets there): `_done_time`
 
     # ---- what the arm does (the planner's) -------------------------------------------------------
 
@@ -243,10 +245,7 @@ class MotionQueue:
             self.planner.flush()
         while self.pending:
             command = self.pending[0]
-            end = command.placement.s_end
-            if end is None:
-                break
-            t = self.profile.time_at(end)
+            t = self._done_time(command)
             if t is None or t > now + 1e-12:
                 break
             command.state = "done"
@@ -270,10 +269,21 @@ class MotionQueue:
         self.planner.flush()
         if not self.pending:
             return None
-        end = self.pending[0].placement.s_end
+        return self._done_time(self.pending[0])
+
+    def _done_time(self, command: QueuedCommand) -> float | None:
+        """When the commanded position reaches `command`'s end (None: not planned yet). Asked every
+        scheduler cycle: kept until the profile changes (planner.changes) or the end moves."""
+        end = command.placement.s_end
         if end is None:
             return None
-        return self.profile.time_at(end)
+        done = self._done
+        if done and done[0] == self.planner.changes and done[1] == command.key and done[2] == end \
+                and trial_memo.REUSE:
+            return done[3]
+        t = self.profile.time_at(end)
+        self._done = (self.planner.changes, command.key, end, t)
+        return t
 
     def next_event(self, now: float) -> float | None:
         """The earliest time after `now` at which something a task can observe changes: a command

@@ -35,6 +35,7 @@ class TrialMemo:
         self.timing = timing
         self.limits_of = limits_of
         self._limit_keys: dict[int, tuple] = {}
+        self._tools: dict[int, tuple] = {}
 
     def _store(self) -> dict:
         store = self.kin.reuse.get("trial-memo")
@@ -50,10 +51,24 @@ class TrialMemo:
         parts = []
         for sp in spans:
             owners = tuple((canon.setdefault(k, len(canon)), st) for k, st in sp.owners)
-            tool = None if sp.tool is None else np.asarray(sp.tool, dtype=float).tobytes()
-            parts.append((id(sp.geom), sp.a, sp.b, sp.smooth, tool, owners))
+            parts.append((id(sp.geom), sp.a, sp.b, sp.smooth, self._tool_key(sp.tool), owners))
         limits = tuple(self._limits_key(k) for k in canon)
         return (tuple(parts), limits, *rest)
+
+    def _tool_key(self, tool) -> bytes | None:
+        """A tool's values; by the object when it is read-only (the run's tools are shared and never
+        changed in place: simulation/retention.py)."""
+        if tool is None:
+            return None
+        if getattr(tool, "flags", None) is None or tool.flags.writeable:
+            return np.asarray(tool, dtype=float).tobytes()
+        hit = self._tools.get(id(tool))
+        if hit is None or hit[0] is not tool:
+            hit = (tool, np.asarray(tool, dtype=float).tobytes())
+            if len(self._tools) > 64:
+                self._tools.clear()
+            self._tools[id(tool)] = hit
+        return hit[1]
 
     def _limits_key(self, owner: int) -> tuple:
         """The values of a command's limits (by the Limits object: one per mdesc and monitor speed)."""
