@@ -1,10 +1,11 @@
 """The page of a real run built in process: best of N of `render_run` on one run's report (issue 29).
 
-    python bench/bench_html_render.py --duration 600 [--repeat 5] [--profile] [--out page.html]
+    python bench/bench_html_render.py --duration 600 [--repeat 5] [--profile] [--out page.html] [--json]
 
 Runs `val3check sim fixtures/valid/PickPlace --robot tx2-60 --scenario fixtures/scenarios/pickplace.toml
 --report html` in this process, keeps the run's report, then builds its page `--repeat` times and
 prints the best CPU time (and wall time) (the page is the same each time: it is checked). --profile: cProfile of one build.
+--json: the JSON report (`sim_json.render`) instead of the page.
 """
 
 from __future__ import annotations
@@ -50,18 +51,22 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--profile", action="store_true")
     ap.add_argument("--out", type=Path)
+    ap.add_argument("--json", action="store_true", help="the JSON report instead of the page")
     a = ap.parse_args()
     from val3check.reporting.html.from_run import render_run
+    from val3check.reporting.sim_json import render as render_json
+
+    build = render_json if a.json else render_run
 
     report = report_of(a.duration)
     page, best, wall = None, float("inf"), float("inf")
     for _ in range(a.repeat):
         t0, w0 = time.process_time(), time.perf_counter()
-        text = render_run(report)
+        text = build(report)
         best, wall = min(best, time.process_time() - t0), min(wall, time.perf_counter() - w0)
         assert page is None or text == page, "the page changed from one build to the next"
         page = text
-    print(f"{a.duration:g} s run: page {len(page.encode()) / 1e6:.2f} MB, render_run best of {a.repeat}: "
+    print(f"{a.duration:g} s run: page {len(page.encode()) / 1e6:.2f} MB, {build.__module__}.{build.__name__} best of {a.repeat}: "
           f"{best:.3f} s CPU ({wall:.3f} s wall, load {os.getloadavg()[0]:.1f})")
     if a.out:
         a.out.write_text(page, encoding="utf-8")
@@ -70,7 +75,7 @@ def main() -> None:
         import pstats
 
         pr = cProfile.Profile()
-        pr.runcall(render_run, report)
+        pr.runcall(build, report)
         pstats.Stats(pr).sort_stats("cumulative").print_stats(35)
 
 

@@ -147,7 +147,7 @@ def test_the_page_of_the_json_is_the_page_of_the_run(capsys):
     ca, cb = a["verdict"]["cycle_time"], b["verdict"]["cycle_time"]
     assert ca["basis"] == cb["basis"] and abs(ca["seconds"] - cb["seconds"]) <= 1e-6  # a median of two
     ta, tb = a["trajectory"], b["trajectory"]
-    assert list(ta["times"]) == tb["times"] and ta["joints"] == tb["joints"]  # array("d"), list
+    assert list(ta["times"]) == list(tb["times"]) and ta["joints"] == tb["joints"]  # both array("d")
     assert np.abs(np.array(ta["positions"]) - np.array(tb["positions"])).max() <= 5e-5 + 1e-9
     assert np.abs(np.array(ta["velocities"]) - np.array(tb["velocities"])).max() <= 5e-4 + 1e-9
     assert np.abs(np.array(ta["tcp_speed"]) - np.array(tb["tcp_speed"])).max() < 0.05  # mm/s

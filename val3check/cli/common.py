@@ -43,20 +43,24 @@ def settings_of(args: argparse.Namespace, first_path: str, quiet: bool = False):
     return settings
 
 
-def write(text: str, output: str | None) -> bool:
+def write(text, output: str | None) -> bool:
+    # `text`: a str, or its pieces (a report written as it is made, reporting/sim_render.py).
     # Reports are UTF-8; a character that cannot be encoded (a lone surrogate from a file name
     # that is not UTF-8) is escaped rather than ending the run with UnicodeEncodeError.
+    pieces = [text] if isinstance(text, str) else text
     if output is None:
-        try:
-            sys.stdout.write(text)
-        except UnicodeEncodeError:
-            enc = sys.stdout.encoding or "utf-8"
-            sys.stdout.write(text.encode(enc, "backslashreplace").decode(enc))
+        for piece in pieces:
+            try:
+                sys.stdout.write(piece)
+            except UnicodeEncodeError:
+                enc = sys.stdout.encoding or "utf-8"
+                sys.stdout.write(piece.encode(enc, "backslashreplace").decode(enc))
         sys.stdout.flush()
         return True
     try:
         with open(output, "w", encoding="utf-8", errors="backslashreplace", newline="\n") as fh:
-            fh.write(text)
+            for piece in pieces:
+                fh.write(piece)
     except (OSError, ValueError) as exc:
         print(f"val3check: error: cannot write {shown(output)}: {getattr(exc, 'strerror', None) or exc}",
               file=sys.stderr)

@@ -70,8 +70,10 @@ def html(args: argparse.Namespace) -> int:
               "see docs/html-report.md and docs/html-report.schema.json", file=sys.stderr)
         return 2
     if args.model_out:
+        from ..reporting.html.series import dump_json
+
         with open(args.model_out, "w", encoding="utf-8") as fh:
-            json.dump(model, fh, sort_keys=True, indent=1)
+            dump_json(model, fh)  # as json.dump(sort_keys, indent=1), the series from their arrays
             fh.write("\n")
     with open(args.output, "w", encoding="utf-8", newline="\n") as fh:
         fh.write(page)

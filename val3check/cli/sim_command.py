@@ -113,13 +113,13 @@ def sim(args: argparse.Namespace) -> int:
     if done.refused == sim_case.SCENARIO:
         print(f"val3check sim: bad scenario: {shown(done.message)}", file=sys.stderr)
         return EXIT_USAGE
-    from ..reporting.sim_render import render_sim
+    from ..reporting.sim_render import sim_pieces
     from ..reporting.sim_report import build_report
     from ..reporting.sim_verdict import closing_line, failed
     from ..rules.catalogue import catalogue
 
     report = build_report(done.result, settings, catalogue(), __version__)
-    if not write(render_sim(args.format, report, fail_on=settings.fail_on, scenario=args.scenario), args.output):
+    if not write(sim_pieces(args.format, report, fail_on=settings.fail_on, scenario=args.scenario), args.output):
         return EXIT_USAGE
     if args.trace and not write_trace(report, args.trace):
         return EXIT_USAGE

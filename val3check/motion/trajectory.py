@@ -19,6 +19,7 @@ from array import array
 import numpy as np
 
 TICK = 0.004  # the controller's motion cycle (s)
+_SEGMENT_BLOCK = 8192  # ticks sampled at most in one call by `segments`
 
 
 def tick_times(t0: float, t1: float, dt: float = TICK) -> np.ndarray:
@@ -271,19 +272,29 @@ class Trajectory:
         interval, (first tick index k, positions (N, axes), velocities (N, axes)) at the ticks
         k·dt ... from the last tick at or before the motion starts to the first at or after it
         ends (both at rest). Between segments the arm stands where the previous one ended."""
-        out = []
+        ticks: list[list[int]] = []  # [first, last] tick of each segment
         last = -1
         for a, b in self.moving(t_end):
             k0 = max(math.floor(a / dt + 1e-9), last + 1)
             k1 = math.ceil(b / dt - 1e-9)
             if k1 < k0:
                 continue
-            if out and k0 == last + 1:  # touching the previous segment: one segment
-                k_prev, qp, vp = out.pop()
-                _, q, v = self.sample(k0 * dt, k1 * dt, dt)
-                out.append((k_prev, np.vstack([qp, q]), np.vstack([vp, v])))
+            if ticks and k0 == last + 1:  # touching the previous segment: one segment
+                ticks[-1][1] = k1
             else:
-                _, q, v = self.sample(k0 * dt, k1 * dt, dt)
-                out.append((k0, q, v))
+                ticks.append([k0, k1])
             last = k1
+        out = []
+        i = 0
+        while i < len(ticks):
+            # neighbouring segments sampled in one call (a tick's time is k·dt whatever the call,
+            # so the same values; the rest between them costs little): one call per segment was
+            # most of the JSON report's time. Each segment copied out: the rest is not kept.
+            j = i + 1
+            while j < len(ticks) and ticks[j][1] - ticks[i][0] < _SEGMENT_BLOCK:
+                j += 1
+            g0 = ticks[i][0]
+            _, q, v = self.sample(g0 * dt, ticks[j - 1][1] * dt, dt)
+            out.extend((k0, q[k0 - g0:k1 - g0 + 1].copy(), v[k0 - g0:k1 - g0 + 1].copy()) for k0, k1 in ticks[i:j])
+            i = j
         return out

@@ -5,12 +5,15 @@ simulation.collision_run.CollisionRun or None."""
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, NamedTuple
 
 from .thinning import MOTION_ROWS
 
 CODES = {f"R0{n}" for n in range(30, 40)}
 MAX_LINES = 30  # instructions listed in the text summary
+# per-sample clearances of the JSON rows, in all (about 24 MB of JSON; the 1-hour cell's 5,000 rows
+# hold 581,372): beyond, the rows keep their min_clearance without the samples (docs/sim-report.md)
+CLEARANCE_SAMPLES = 1_000_000
 
 
 def _where(run: Any, path: str, line: int) -> str:
@@ -91,6 +94,32 @@ def text(run: Any) -> list[str]:
     return out
 
 
+class Samples(NamedTuple):
+    """Per-sample values written on one line by sim_json: a float array already rounded as `_num`
+    rounds, NaN where `_num` gives null."""
+
+    a: Any
+
+
+def _samples(entries: list[dict], reports: list) -> None:
+    """Each entry's per-sample `clearance` (its report's `times` and `clearance`), rounded for all
+    of them at once (numpy: Python's rounding, html/series.py)."""
+    import numpy as np
+
+    from .html.series import rounded
+
+    if not entries:
+        return
+    cuts = np.cumsum([len(r.times) for r in reports])[:-1]
+    for key, name, digits in (("times", "times", 6), ("mm", "clearance", 3)):
+        a = np.concatenate([np.asarray(getattr(r, name), dtype=float) for r in reports])
+        finite = np.isfinite(a)
+        out = rounded(np.where(finite, a, 0.0), digits)
+        out[~finite] = np.nan
+        for e, part in zip(entries, np.split(out, cuts)):
+            e["clearance"][key] = Samples(part)
+
+
 def _num(x: float | None, digits: int = 3) -> float | None:
     return None if x is None or not math.isfinite(x) else round(float(x), digits) + 0.0
 
@@ -123,7 +152,8 @@ def section(run: Any) -> dict | None:
     with_cell = c.cell is not None and bool(c.cell.obstacles or c.cell.parts)
     recs = run.result.motion.motions
     motions = []
-    found = omitted = 0
+    sampled: list[tuple[dict, Any]] = []
+    found = omitted = samples = bare = 0
     for i in sorted(c.by_motion):
         r = c.by_motion[i]
         # a long run (thinning.py): the first rows, and later the motions with a finding (as many)
@@ -146,10 +176,14 @@ def section(run: Any) -> dict | None:
             "contacts": [_contact(x) for x in r.contacts],
             "checks": r.checks,
         }
-        if with_cell:
-            entry["clearance"] = {"times": [_num(x, 6) for x in r.times.tolist()],
-                                  "mm": [_num(x) for x in r.clearance.tolist()]}
+        if with_cell and not bare and samples + len(r.times) <= CLEARANCE_SAMPLES:
+            samples += len(r.times)
+            entry["clearance"] = {}  # from the arrays, as the report is written (_samples)
+            sampled.append((entry, r))
+        elif with_cell:  # a long run: this row and the next ones without their samples
+            bare += 1
         motions.append(entry)
+    _samples([e for e, _ in sampled], [r for _, r in sampled])
     mins = [r.min_clearance.mm for r in c.by_motion.values() if r.min_clearance is not None]
     out = {
         "cell": cell,
@@ -167,6 +201,11 @@ def section(run: Any) -> dict | None:
         "drops": [{"time": _num(d.time, 6), "part": d.part, "obstacle": d.obstacle, "point": _point(d.point),
                    "depth_mm": _num(d.depth_mm)} for d in c.drops],
     }
+    if bare:
+        out["clearance_omitted"] = {"count": bare, "kept": len(sampled), "samples": samples,
+                                    "why": f"a long run: the per-sample clearances of the first {len(sampled)} rows "
+                                           f"({samples} samples, at most {CLEARANCE_SAMPLES}); every row keeps its "
+                                           "min_clearance"}
     if omitted:
         out["motions_omitted"] = {"count": omitted, "why": f"a long run: the rows of the first {MOTION_ROWS} motions, "
                                                           "then of the motions with a contact or a near miss"}

@@ -16,6 +16,7 @@ from typing import Any
 
 from ..diagnostics import Severity
 from . import sim_collision
+from .sim_collision import Samples
 from ._common import TOOL_NAME
 from .thinning import JSON_TICKS, MOTION_ROWS, left_out, thinned_note, tick_multiple
 
@@ -57,16 +58,45 @@ def _pose(v) -> list[float] | None:
 
 
 class Raw(str):
-    """JSON text written as it is (rows of the trajectory, formatted at once)."""
+    """JSON text written as it is."""
 
 
-def _rows(a, digits: int) -> list[Raw]:
-    """Each row of a 2-D array as a JSON array of numbers rounded to `digits` decimals (plain
-    decimals: with at most 4 decimals Python writes no exponent for them)."""
-    import numpy as np
+class Rows:
+    """The rows of a 2-D array, each written as a JSON array of numbers rounded to `digits`
+    decimals (numpy's round; plain decimals: with at most 4 decimals Python writes no exponent for
+    them), formatted block by block as the report is written: no Python object per sample."""
 
-    r = np.round(np.asarray(a, dtype=float), digits) + 0.0  # + 0.0: no -0.0
-    return [Raw("[" + ", ".join(map(repr, row)) + "]") for row in r.tolist()]
+    def __init__(self, a, digits: int):
+        self.a, self.digits = a, digits
+
+    def chunks(self, indent: int):
+        import numpy as np
+
+        n = len(self.a)
+        if not n:
+            yield "[]"
+            return
+        inner = "  " * (indent + 1)
+        yield "[\n"
+        for lo in range(0, n, ROWS_BLOCK):
+            r = np.round(np.asarray(self.a[lo:lo + ROWS_BLOCK], dtype=float), self.digits) + 0.0  # + 0.0: no -0.0
+            rows = [inner + "[" + ", ".join(map(repr, row)) + "]" for row in r.tolist()]
+            yield ("" if lo == 0 else ",\n") + ",\n".join(rows)
+        yield "\n" + "  " * indent + "]"
+
+
+def _samples(s: Samples) -> str:
+    """A per-sample array (sim_collision.Samples: rounded, NaN for null) on one line."""
+    r = s.a.tolist()
+    if not r:
+        return "[]"
+    out = ", ".join(map(repr, r))
+    if "e" in out or "n" in out:  # an exponent (below 1e-4) or a NaN: as `number` writes them
+        out = ", ".join(map(number, r))
+    return "[" + out + "]"
+
+
+ROWS_BLOCK = 4096  # rows of the trajectory formatted at once
 
 
 def _motion(run: Any) -> dict | None:
@@ -108,7 +138,7 @@ def _motion(run: Any) -> dict | None:
     omitted = left_out(run.result, "the trajectory")
     for k0, q, v in m.trajectory.segments(m.end_s, period) if omitted is None else ():
         segments.append({"start": round(k0 * period, 6), "first_tick": k0,
-                         "positions": _rows(q, 4), "velocities": _rows(v, 3)})
+                         "positions": Rows(q, 4), "velocities": Rows(v, 3)})
     trajectory: dict[str, Any] = {"period": round(period, 6), "axes": m.scene.axes,
                                   "units": list(m.scene.joint_units), "segments": segments}
     if omitted is not None:
@@ -224,9 +254,18 @@ def number(x: float) -> str:
 
 
 def _scalar(v: Any) -> str:
-    """A JSON scalar as text."""
-    if type(v) is Raw:
+    """A JSON scalar as text (or `Samples`: an array on one line)."""
+    t = type(v)
+    if t is float:
+        return number(v)
+    if t is str:
+        return _ascii(v)
+    if t is int:
+        return str(v)
+    if t is Raw:
         return v
+    if t is Samples:
+        return _samples(v)
     if v is None:
         return "null"
     if v is True:
@@ -240,30 +279,91 @@ def _scalar(v: Any) -> str:
     return json.dumps(v, ensure_ascii=True)
 
 
+_NESTED = (dict, list, Rows)  # what `dumps` writes itself (anything else: `_scalar`)
+_ascii = json.encoder.encode_basestring_ascii  # json.dumps of a str, without its dispatch
+_KEYS: dict[str, str] = {}  # each key as JSON text, once
+
+
+def _key(k: Any) -> str:
+    text = _KEYS.get(k)
+    if text is None:
+        text = _KEYS[k] = _ascii(str(k))
+    return text
+
+
 def _flat(v: Any) -> bool:
     """A list written on one line (numbers only)."""
+    if type(v) is list and all(type(x) is float or type(x) is int for x in v):
+        return True  # most lists: decided in one pass
     return isinstance(v, list) and all(not isinstance(x, (list, dict)) for x in v) and all(
         not isinstance(x, str) or type(x) is Raw for x in v) and not (v and type(v[0]) is Raw)
 
 
+def _rows_in(v: Any) -> bool:
+    """A dict holding trajectory rows (a segment): written piece by piece."""
+    return type(v) is dict and any(type(x) is Rows for x in v.values())
+
+
+def chunks(obj: Any, indent: int = 0):
+    """The text of `dumps(obj, indent)`, piece by piece: a report is written as it goes, its
+    trajectory's rows (`Rows`) block by block, each entry of a list (a motion with its per-sample
+    clearances) as one piece: never held whole as text."""
+    if type(obj) is Rows:
+        yield from obj.chunks(indent)
+        return
+    inner = "  " * (indent + 1)
+    if type(obj) is dict and obj:
+        yield "{"
+        for i, k in enumerate(sorted(obj)):
+            v = obj[k]
+            head = f"{',' if i else ''}\n{inner}{_key(k)}: "
+            if isinstance(v, _NESTED):
+                yield head
+                yield from chunks(v, indent + 1)
+            else:
+                yield head + _scalar(v)
+        yield "\n" + "  " * indent + "}"
+        return
+    if type(obj) is list and obj and not _flat(obj):
+        yield "["
+        for i, x in enumerate(obj):
+            if _rows_in(x) or type(x) is list:
+                yield f"{',' if i else ''}\n{inner}"
+                yield from chunks(x, indent + 1)
+            else:
+                yield f"{',' if i else ''}\n{inner}{dumps(x, indent + 1)}"
+        yield "\n" + "  " * indent + "]"
+        return
+    yield dumps(obj, indent)
+
+
 def dumps(obj: Any, indent: int = 0) -> str:
     """Sorted keys, 2-space indent, ASCII; a list of numbers on one line."""
-    pad = "  " * indent
-    inner = "  " * (indent + 1)
+    if type(obj) is Rows:
+        return "".join(obj.chunks(indent))
     if isinstance(obj, dict):
         if not obj:
             return "{}"
-        items = [f"{inner}{json.dumps(str(k), ensure_ascii=True)}: {dumps(obj[k], indent + 1)}" for k in sorted(obj)]
-        return "{\n" + ",\n".join(items) + "\n" + pad + "}"
+        inner = "  " * (indent + 1)
+        items = [f"{inner}{_key(k)}: {dumps(v, indent + 1) if isinstance(v, _NESTED) else _scalar(v)}"
+                 for k, v in sorted(obj.items())]
+        return "{\n" + ",\n".join(items) + "\n" + "  " * indent + "}"
     if isinstance(obj, list):
         if not obj:
             return "[]"
         if _flat(obj):
             return "[" + ", ".join(_scalar(x) for x in obj) + "]"
-        return "[\n" + ",\n".join(inner + dumps(x, indent + 1) for x in obj) + "\n" + pad + "]"
+        inner = "  " * (indent + 1)
+        return "[\n" + ",\n".join(inner + dumps(x, indent + 1) for x in obj) + "\n" + "  " * indent + "]"
     return _scalar(obj)
+
+
+def pieces(run: Any):
+    """The text of `render(run)` piece by piece, made as it is written."""
+    yield from chunks(report(run))
+    yield "\n"
 
 
 def render(run: Any) -> str:
     """The report as text (sorted keys, 2-space indent, ASCII, a final newline)."""
-    return dumps(report(run)) + "\n"
+    return "".join(pieces(run))

@@ -1,4 +1,5 @@
-"""The report of a run in the format `sim --report` names (text, json, html, junit)."""
+"""The report of a run in the format `sim --report` names (text, json, html, junit): `render_sim`
+as one text, `sim_pieces` as pieces to write one after the other."""
 
 from __future__ import annotations
 
@@ -23,3 +24,13 @@ def render_sim(fmt: str, report: Any, *, fail_on: str = "error", scenario: str |
     from .sim_verdict import closing_line
 
     return render_text(report) + closing_line(report, fail_on) + "\n"
+
+
+def sim_pieces(fmt: str, report: Any, *, fail_on: str = "error", scenario: str | None = None):
+    """The text of `render_sim`, piece by piece: the JSON report is written as it is made (its
+    trajectory and clearances never held whole as text); the others in one piece."""
+    if fmt == "json":
+        from .sim_json import pieces
+
+        return pieces(report)
+    return [render_sim(fmt, report, fail_on=fail_on, scenario=scenario)]

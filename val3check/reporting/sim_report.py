@@ -6,6 +6,7 @@ simulated time."""
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -23,12 +24,19 @@ class SimReport:
     rules: dict = field(default_factory=dict)  # the rule catalogue, by code
     link_names: dict = field(default_factory=dict)  # (kind, link) -> variable names
 
+    # (path, current folder) -> display path, once: thousands of motions name a few files
+    shown: dict = field(default_factory=dict, repr=False, compare=False)
+
     def display(self, pos) -> Any:
         """A (path, line, col, program) position with a display path."""
         if not pos:
             return None
         path, line, col, program = pos
-        return (display_path(path), line, col, program)
+        key = (path, os.getcwd())  # what display_path reads
+        shown = self.shown.get(key)
+        if shown is None:
+            shown = self.shown[key] = display_path(path)
+        return (shown, line, col, program)
 
     def rule_name(self, code: str) -> str | None:
         rule = self.rules.get(code)

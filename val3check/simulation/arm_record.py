@@ -292,6 +292,10 @@ def tcp_speed(kinematics: ArmKinematics, flange: str, tool_uses, times, position
     ahead = positions + h * velocities
     starts = [t for t, _ in tool_uses]
     tools = [tool for _, tool in tool_uses]
+    # each motion's tool as the number of its value: a run of motions with one tool, one product
+    numbers: dict = {}
+    same = np.array([numbers.setdefault(None if t is None else np.asarray(t, dtype=float).tobytes(), k)
+                     for k, t in enumerate(tools)], dtype=int)
     times = np.asarray(times, dtype=float)
     idx = np.maximum(np.searchsorted(np.asarray(starts, dtype=float), times, side="right") - 1, 0) if starts \
         else np.zeros(len(times), int)
@@ -303,8 +307,8 @@ def tcp_speed(kinematics: ArmKinematics, flange: str, tool_uses, times, position
         rows = moving[b:b + BLOCK]
         P = kinematics.link_poses_many(np.concatenate([positions[rows], ahead[rows]]), (flange,))[flange]
         P0, P1 = P[:len(rows)], P[len(rows):]
-        # each run of samples under one motion: one product
-        at = idx[rows]
+        # each run of samples under one tool: one product
+        at = same[idx[rows]] if len(same) else idx[rows]
         cuts = np.flatnonzero(np.diff(at)) + 1
         for lo, hi in zip([0, *cuts.tolist()], [*cuts.tolist(), len(rows)]):
             tool = tools[int(at[lo])] if tools else None

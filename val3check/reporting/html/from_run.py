@@ -62,6 +62,8 @@ def _motions(report: Any, m: Any, end: float, clearances: dict) -> list[dict]:
     cell (`clearances`: position in m.motions -> MotionReport)."""
     out = []
     shown: dict[str, Any] = {}  # the display path of each file, once (a cycle repeats its lines)
+    to: dict[tuple, str] = {}  # the obstacle of each pair of bodies, once
+    times: list[float] = []  # start, end, duration of each row: rounded at once below
     for k, motion in enumerate(m.motions):
         if motion.start is None or motion.start > end:
             continue  # failed before it moved (its diagnostic says why), or not started within the run
@@ -73,11 +75,11 @@ def _motions(report: Any, m: Any, end: float, clearances: dict) -> list[dict]:
             shown[src.path] = report.display((src.path, src.line, src.col, ""))
         where = shown[src.path]
         limits = motion.limits  # None: a connection move
+        times += (motion.start, stop, stop - motion.start)
         entry = {
             "id": len(out) + 1, "kind": motion.kind, "path": where[0] if where else None, "line": src.line or None,
             "column": src.col or None, "task": src.task or None, "target": motion.target or None,
-            "start": _r(motion.start), "end": _r(stop),
-            "duration": _r(stop - motion.start), "dominant_limit": motion.dominant_limit or None,
+            "start": None, "end": None, "duration": None, "dominant_limit": motion.dominant_limit or None,
             "vel": _r(limits.vel, 3) if limits is not None else None,
             "tvel": _r(limits.tvel, 3) if limits is not None and limits.tvel is not None else None,
             "min_clearance": None, "clearance_to": None,
@@ -87,8 +89,17 @@ def _motions(report: Any, m: Any, end: float, clearances: dict) -> list[dict]:
         c = getattr(mr, "min_clearance", None)
         if c is not None:
             entry["min_clearance"] = _r(c.mm, 3)
-            entry["clearance_to"] = _obstacle_of(c.body_a, c.body_b)
+            pair = (c.body_a, c.body_b)
+            if pair not in to:
+                to[pair] = _obstacle_of(*pair)
+            entry["clearance_to"] = to[pair]
         out.append(entry)
+    if out:
+        import numpy as np
+
+        t = iter(rounded(np.array(times, dtype=float), 6).tolist())  # as _r, in bulk (series.py)
+        for entry in out:
+            entry["start"], entry["end"], entry["duration"] = next(t), next(t), next(t)
     return out
 
 
@@ -320,9 +331,14 @@ def _parts(m: Any, cell: Any, limits: list[str]) -> list[dict]:
     for p in cell.parts:
         part = out.setdefault(p.name, {"name": p.name, "solids": [], "spans": []})
         part["solids"].append(_shape_solid(p.name, p.shape, p.pose, limits))
-    for span in spans:
-        out[span.name]["spans"].append({"start": _r(span.start), "end": _r(span.end), "carried": span.carried,
-                                        "pose": _m34(span.pose)})
+    if spans:
+        import numpy as np
+
+        # as _m34 of each pose, in bulk (series.py)
+        poses = rounded(np.array([span.pose for span in spans], dtype=float)[:, :3, :4], 9).tolist()
+        for span, pose in zip(spans, poses):
+            out[span.name]["spans"].append({"start": _r(span.start), "end": _r(span.end), "carried": span.carried,
+                                            "pose": pose})
     return [p for p in out.values() if p["spans"]]
 
 

@@ -34,6 +34,7 @@ from .._common import SourceCache
 from .excerpts import SEVERITY_ORDER, excerpt
 from .from_run import TICK_S, _note, _obstacle_of, _r, cycles_model, sample_period, scene_model
 from .model import VERSION, ModelError
+from .series import doubles, rounded
 
 
 def model_from_sim_report(report: dict[str, Any], scene: Any, *, fail_on: str = "error",
@@ -196,10 +197,10 @@ def _trajectory(motion: dict, robot: dict, arm: Any, scene: Any, end: float, lim
     return {
         "joints": [{"name": n, "unit": u, "min": lo, "max": hi, "speed": s}
                    for n, u, (lo, hi), s in zip(arm.joint_names, units, lims, speeds)],
-        "times": [_r(t) for t in times.tolist()],
-        "positions": (np.round(q.T, 6) + 0.0).tolist(),
-        "velocities": (np.round(v.T, 4) + 0.0).tolist(),
-        "tcp_speed": (np.round(speed, 3) + 0.0).tolist(),
+        "times": doubles(rounded(times, 6)),  # array('d'), as a run's model (series.py)
+        "positions": [doubles(row) for row in np.round(q.T, 6) + 0.0],
+        "velocities": [doubles(row) for row in np.round(v.T, 4) + 0.0],
+        "tcp_speed": doubles(np.round(speed, 3) + 0.0),
     }
 
 

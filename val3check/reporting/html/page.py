@@ -16,6 +16,8 @@ import base64
 import hashlib
 import html
 import json
+import re
+from functools import lru_cache
 from importlib import resources
 from typing import Any
 
@@ -36,7 +38,12 @@ def _asset(name: str) -> str:
 def _e(value: Any) -> str:
     """Escaped HTML text; control characters (a program's chr(0), chr(27)...) written as escapes
     ("\\x00"): raw, they are parse errors in HTML (reporting._common.visible)."""
-    return html.escape(visible("" if value is None else str(value)), quote=True)
+    return _escaped("" if value is None else str(value))
+
+
+@lru_cache(maxsize=4096)  # the tables repeat a few paths, tasks, kinds and targets thousands of times
+def _escaped(text: str) -> str:
+    return html.escape(visible(text), quote=True)
 
 
 def _s(seconds: float | None, digits: int = 3) -> str:
@@ -425,8 +432,7 @@ def render(model: dict) -> str:
     css = _asset("report.css")
     script = "\n".join(_asset(name) for name in SCRIPTS)
     # the script writes these strings into the page: their control characters visible too
-    data = json.dumps(visible_data(page_data(model)), separators=(",", ":"), sort_keys=True, ensure_ascii=True,
-                      allow_nan=False)
+    data = _data_json(page_data(model))
     # inside <script>: no "</script>", "<!--" can be formed
     data = data.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
     csp = ("default-src 'none'; "
@@ -455,6 +461,21 @@ def render(model: dict) -> str:
         out.append(replacements[template[start + 2:end]])
         pos = end + 2
     return "".join(out)
+
+
+# In ensure_ascii JSON, every character `visible` rewrites is an escape this finds (and some it
+# keeps: a backslash before "u00", a surrogate pair): without one, the walk would change nothing.
+_MAY_REWRITE = re.compile(r"\\u00[01]|\\u007f|\\u00[89]|\\ud[89a-f]|\\ufff[ef]|\\[bfr]")
+
+
+def _data_json(data: dict) -> str:
+    """The page's data as JSON, control characters of its strings visible (_common.visible_data):
+    walked only when the JSON holds one (the walk was a tenth of a long run's page)."""
+    text = json.dumps(data, separators=(",", ":"), sort_keys=True, ensure_ascii=True, allow_nan=False)
+    if _MAY_REWRITE.search(text):
+        text = json.dumps(visible_data(data), separators=(",", ":"), sort_keys=True, ensure_ascii=True,
+                          allow_nan=False)
+    return text
 
 
 def _sha256(text: str) -> str:

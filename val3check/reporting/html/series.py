@@ -39,7 +39,8 @@ def rounded(values: Any, digits: int) -> Any:
     beyond 2**52, or not finite) are rounded by Python."""
     import numpy as np
 
-    x = np.asarray(values, dtype=float)
+    shape = np.shape(values)
+    x = np.asarray(values, dtype=float).ravel()  # any shape: value by value
     scale = 10.0 ** digits
     with np.errstate(invalid="ignore", over="ignore"):
         y = x * scale
@@ -48,4 +49,48 @@ def rounded(values: Any, digits: int) -> Any:
     near |= ~(np.abs(y) < 2.0 ** 52)  # beyond, or not finite: as Python rounds them
     for k in np.flatnonzero(near).tolist():
         out[k] = round(float(x[k]), digits) + 0.0
-    return out
+    return out.reshape(shape)
+
+
+def dump_json(obj: Any, fh) -> None:
+    """`json.dump(obj, fh, sort_keys=True, indent=1)` byte for byte (`val3check html --model-out`),
+    each array('d') written from the array block by block: json would need it as a list of floats."""
+    import json
+    import uuid
+
+    arrays: dict[str, array] = {}
+    mark = uuid.uuid4().hex  # no text of the model can hold it
+
+    def default(o: Any) -> str:
+        if not isinstance(o, array):
+            raise TypeError(f"Object of type {type(o).__name__} is not JSON serializable")
+        key = f"{mark}{len(arrays)}"
+        arrays[json.dumps(key)] = o
+        return key
+
+    depth = 0  # the leading spaces of the line being written: an array's level
+    for chunk in json.JSONEncoder(sort_keys=True, indent=1, default=default).iterencode(obj):
+        values = arrays.pop(chunk, None)
+        if values is None:
+            fh.write(chunk)
+            nl = chunk.rfind("\n")
+            if nl >= 0:
+                rest = chunk[nl + 1:]
+                depth = len(rest) - len(rest.lstrip(" "))
+            continue
+        if not len(values):
+            fh.write("[]")
+            continue
+        inner = "\n" + " " * (depth + 1)
+        fh.write("[")
+        for lo in range(0, len(values), _BLOCK):
+            fh.write(("," if lo else "") + inner + ("," + inner).join(map(_json_float, values[lo:lo + _BLOCK])))
+        fh.write("\n" + " " * depth + "]")
+
+
+_BLOCK = 65_536  # values of an array formatted at once
+
+
+def _json_float(x: float) -> str:
+    """A float as json writes it (NaN and infinities as json's words)."""
+    return repr(x) if x - x == 0.0 else {"nan": "NaN", "inf": "Infinity", "-inf": "-Infinity"}[repr(x)]
