@@ -152,3 +152,24 @@ def test_excluded_folders_report_nothing(tmp_path):
     r = val3check("lint", ".", cwd=tmp_path)
     assert r.returncode == 0, r.stdout
     assert "archive" not in r.stdout
+
+
+def test_a_report_written_in_pieces_leaves_no_half_file(tmp_path, capsys):
+    # cli.common.write takes a streamed report's pieces: a fault while making one propagates
+    # and a write error is reported; neither leaves a partial report behind
+    from val3check.cli.common import write
+
+    def pieces():
+        yield "{\n"
+        raise RuntimeError("fault while making the report")
+
+    out = tmp_path / "r.json"
+    with pytest.raises(RuntimeError):
+        write(pieces(), str(out))
+    assert not out.exists()
+    assert write(iter(["{", "}\n"]), str(out)) and out.read_text() == "{}\n"
+    if Path("/dev/full").exists():  # a device: reported, and not removed
+        for size in (1, 100_000):  # the error comes at close, or at a write
+            assert write(iter(["x" * size]), "/dev/full") is False
+            assert "cannot write" in capsys.readouterr().err
+        assert Path("/dev/full").exists()

@@ -58,14 +58,48 @@ def write(text, output: str | None) -> bool:
         sys.stdout.flush()
         return True
     try:
-        with open(output, "w", encoding="utf-8", errors="backslashreplace", newline="\n") as fh:
-            for piece in pieces:
-                fh.write(piece)
-    except (OSError, ValueError) as exc:
-        print(f"val3check: error: cannot write {shown(output)}: {getattr(exc, 'strerror', None) or exc}",
-              file=sys.stderr)
-        return False
+        fh = open(output, "w", encoding="utf-8", errors="backslashreplace", newline="\n")
+    except (OSError, ValueError) as exc:  # ValueError: a path with a NUL
+        return _cannot_write(output, exc)
+    try:
+        for piece in pieces:  # a fault while making a piece is not a write error: it propagates
+            _put(fh.write, piece)
+        _put(fh.close)  # the last buffer is written here
+    except BaseException as exc:
+        _discard(fh)  # no half report left behind as if it were whole
+        if isinstance(exc, _WriteFailed):
+            return _cannot_write(output, exc.args[0])
+        raise
     return True
+
+
+class _WriteFailed(Exception):
+    pass
+
+
+def _put(call, *args) -> None:
+    try:
+        call(*args)
+    except OSError as exc:
+        raise _WriteFailed(exc) from None
+
+
+def _cannot_write(output: str, exc: Exception) -> bool:
+    print(f"val3check: error: cannot write {shown(output)}: {getattr(exc, 'strerror', None) or exc}", file=sys.stderr)
+    return False
+
+
+def _discard(fh) -> None:
+    # closed without its last buffer; only a regular file is removed (-o /dev/null, a pipe stay)
+    try:
+        fh.close()
+    except OSError:
+        pass
+    try:
+        if os.path.isfile(fh.name):
+            os.unlink(fh.name)
+    except OSError:
+        pass
 
 
 def shown(path: str) -> str:
