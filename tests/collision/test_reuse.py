@@ -505,3 +505,31 @@ def test_the_scene_is_read_again_when_the_readings_change_and_only_then():
     assert chk.world.version != v
     ball = next(b for b in chk.world.static if "ball" in b.label)
     assert ball.pose[2, 3] == -50.0
+
+
+def test_a_frame_given_the_same_bits_in_new_objects_keeps_its_reading():
+    """The reading is reused when root_pose would read the very same objects (`_objects`), or
+    other objects with the same bits (`_chain`); each object it reads replaced in turn."""
+    from val3check.geometry.frames import Frame
+    from val3check.geometry.trsf import Trsf
+    from val3check.simulation.collision_run import _read
+
+    world = Frame(is_root=True, name="world")
+    base = Frame(Trsf(100.0, 0.0, 0.0, 0.0, 0.0, 0.0), world)
+    f = Frame(Trsf(0.0, 50.0, 0.0, 0.0, 0.0, 90.0), base)
+    machine, _ = _machine(f)
+    cache: dict = {}
+    first = _read(machine, "fPart", Frame, cache)
+    same = [lambda: setattr(f.trsf, "y", float("50")), lambda: setattr(f, "trsf", Trsf(0.0, 50.0, 0.0, 0.0, 0.0, 90.0)),
+            lambda: setattr(base.trsf, "x", float("100")), lambda: setattr(world.trsf, "z", float("0"))]
+    for k, change in enumerate(same):
+        change()
+        assert _read(machine, "fPart", Frame, cache) is first, k
+        assert _read(machine, "fPart", Frame, cache) is first, k  # and again, on the fast path
+    for k, change in enumerate([lambda: setattr(f.trsf, "y", 50.5), lambda: setattr(base, "trsf", Trsf(1.0)),
+                                lambda: setattr(base, "is_root", True)]):
+        before = _read(machine, "fPart", Frame, cache)
+        change()
+        after = _read(machine, "fPart", Frame, cache)
+        fresh = _read(machine, "fPart", Frame)
+        assert after is not before and np.array_equal(after, fresh), k
