@@ -91,6 +91,7 @@ class World:
         self.static_lo = np.zeros((0, 3))
         self.static_hi = np.zeros((0, 3))
         self._placed_obstacles: list[Body] = []
+        self._boxes: dict[int, tuple] = {}  # id of a static body -> (its pose then, its box): `_set_static`
         self._frames_read: dict | None = None
         self.version = 0
         self._scene_cache: dict[str, tuple[int, Any]] = {}
@@ -183,7 +184,16 @@ class World:
         self.static = bodies
         self.version += 1
         if bodies:
-            boxes = [b.aabb() for b in bodies]
+            # a body's box is computed again only when it was placed again (each place() makes a new pose)
+            known = self._boxes
+            boxes = []
+            for b in bodies:
+                hit = known.get(id(b))
+                if hit is None or hit[0] is not b.pose:
+                    hit = (b.pose, *b.aabb())
+                boxes.append(hit)
+            self._boxes = {id(b): hit for b, hit in zip(bodies, boxes)}
+            boxes = [hit[1:] for hit in boxes]
             self.static_lo = np.array([lo for lo, _ in boxes])
             self.static_hi = np.array([hi for _, hi in boxes])
         else:
@@ -237,6 +247,8 @@ class World:
 
     def forget_allowed(self, pairs) -> None:
         """The touch allowances of these pairs (by `key`'s names) end (a reused check found them apart)."""
+        if not pairs:
+            return
         gone = set(pairs)
         self.allowed = {k: v for k, v in self.allowed.items() if (_named(v[0]), _named(v[1])) not in gone}
 
@@ -311,6 +323,14 @@ class World:
             arm_bodies.extend(g.bodies)
         return arm_bodies
 
+    def _arm_bodies(self) -> list[Body]:
+        """The arm's bodies in `_place_arm`'s order, marked for placing again at the next sample."""
+        arm_bodies: list[Body] = []
+        for g in self.arm_groups():
+            g.placed = -1.0
+            arm_bodies.extend(g.bodies)
+        return arm_bodies
+
     def _grip(self, tool: str, instruction: str, time: float, poses: dict, source: Any, steps: list) -> list[PartDrop]:
         """open()/close() computed; what it does is appended to `steps` (`_replay` does it again)."""
         flange = poses[self.arm.flange_link]
@@ -354,7 +374,7 @@ class World:
         each on the solids of this scene (found by their place in its lists)."""
         poses, steps, drops = done
         flange = poses[self.arm.flange_link]
-        arm_bodies = self._place_arm(poses)
+        arm_bodies = self._arm_bodies()  # not placed: every reader of their poses places them first
         for step in steps:
             if step[0] == "grasp":
                 _, name, solids, locals_, gone, pairs, weights = step

@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from ..collision import CellError, CollisionChecker, MotionSpan, arm_model, find_cell, read_cell
+from ..collision import CellError, CollisionChecker, arm_model, find_cell, read_cell
 from ..collision.cell import Cell
 from ..collision.poses import same_poses
 from ..collision.results import Contact, MotionReport, PartDrop
@@ -363,7 +363,7 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
         if epochs is not None:
             epochs.at(start)
         own = own_clock(traj, start, end)  # sampled from the motion's start: a repeat is checked once
-        span = MotionSpan(index, rec.source, _label(rec))
+        span = _Span(index, rec)
         report = checker.reuse(span, start, own.key)
         if report is None:
             report = checker.check_own(span, start, own.times, own.joints, q_at=own.q_at, key=own.key)
@@ -467,6 +467,21 @@ def _spans(motion: Any) -> list[tuple[int, float, float]]:
 @functools.lru_cache(maxsize=256)
 def _file_name(path: str) -> str:
     return Path(path).name
+
+
+class _Span:
+    """The `MotionSpan` of a motion record, its label made when read (a run keeps one per motion;
+    the record itself is not held)."""
+
+    __slots__ = ("id", "source", "kind", "target")
+
+    def __init__(self, index: int, rec: Any) -> None:
+        self.id = index
+        self.source, self.kind, self.target = rec.source, rec.kind, rec.target
+
+    @property
+    def label(self) -> str:
+        return _label(self)
 
 
 def _label(rec: Any) -> str:
