@@ -328,10 +328,16 @@ def test_an_open_or_close_that_repeats_in_the_same_scene_is_done_again_as_it_was
     frames = {"fBall": BALL}
     chk = checker(_grip_cell(), frames=frames, tools={"tTool": TOOL, "tOther": TOOL})
 
+    def numbered(c) -> None:  # the scene's number (`World.key`, set by a replay) is its content's
+        w = c.world
+        assert w.per_scene("key", w._scene_id) == w._scene_ids[w._scene_key()]
+
     def cycle(c, t: float):
         out = [c.gripper("tTool", "close", t, joints=_q(PICK), source="pick")]
+        numbered(c)
         states = [_state(c)]
         out.append(c.gripper("tTool", "open", t + 1.0, joints=_q(PLACE), source="place"))
+        numbered(c)
         states.append(_state(c))
         c.clear_parts("brick")  # taken away: the scene the cycle started in
         states.append(_state(c))

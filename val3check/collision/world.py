@@ -286,13 +286,17 @@ class World:
         done = self._grips.get(key)
         if done is not None:
             self.grips_reused += 1
-            return self._replay(done, time, source)
+            drops = self._replay(done, time, source)
+            # the scene it leaves has the content it left the first time: its number then (`key`)
+            self._scene_cache["key"] = (self.version, done[3])
+            return drops
         steps: list[tuple] = []
         poses = self.arm.links.poses(q)
         drops = self._grip(tool, instruction, time, poses, source, steps)
         if len(self._grips) >= GRIPS:
             self._grips.clear()  # bounded: a cyclic program fills it again within a cycle or two
-        self._grips[key] = (poses, steps, [replace(d, time=0.0, source=None) for d in drops])
+        self._grips[key] = (poses, steps, [replace(d, time=0.0, source=None) for d in drops],
+                            self.per_scene("key", self._scene_id))
         return drops
 
     def _grip_key(self, tool: str, instruction: str, time: float, q: np.ndarray) -> tuple:
@@ -372,7 +376,7 @@ class World:
     def _replay(self, done: tuple, time: float, source: Any) -> list[PartDrop]:
         """An open()/close() recorded by `_grip` in an equal scene done again: its steps in order,
         each on the solids of this scene (found by their place in its lists)."""
-        poses, steps, drops = done
+        poses, steps, drops, _ = done
         flange = poses[self.arm.flange_link]
         arm_bodies = self._arm_bodies()  # not placed: every reader of their poses places them first
         for step in steps:
