@@ -539,3 +539,25 @@ def test_a_frame_given_the_same_bits_in_new_objects_keeps_its_reading():
         after = _read(machine, "fPart", Frame, cache)
         fresh = _read(machine, "fPart", Frame)
         assert after is not before and np.array_equal(after, fresh), k
+
+
+def test_a_shifted_report_reads_as_the_shifted_copy_bit_for_bit():
+    from dataclasses import replace
+
+    from val3check.collision.checker import shifted
+    from val3check.collision.results import Clearance, Contact, MotionReport
+
+    own = MotionReport(MotionSpan(1), np.array([0.0, 0.004, 0.0071]), np.array([5.0, 3.0, 4.0]),
+                       np.array([False, True, True]), Contact(0.0, "a", "b", (1.0, 2.0, 3.0), 0.5),
+                       Contact(0.004, "c", "d", (0.0, 0.0, 0.0), 1.0),
+                       Clearance(3.0, 0.004, "a", "b", (0.0, 0.0, 0.0), (1.0, 1.0, 1.0)), True, 10.0, 0.05, 7,
+                       [Contact(0.004, "c", "d", (0.0, 0.0, 0.0), 1.0)])
+    start = 3601.123456789
+    r = shifted(own, MotionSpan(9), start)
+    assert (start + own.times).tobytes() == r.times.tobytes()
+    assert r.clearance is own.clearance and r.exact is own.exact
+    assert r.start == float((start + own.times)[0]) and r.end == float((start + own.times)[-1])
+    for name in ("starts_in_collision", "first_contact", "min_clearance"):
+        assert getattr(r, name) == replace(getattr(own, name), time=start + getattr(own, name).time), name
+    assert r.contacts == [replace(c, time=start + c.time) for c in own.contacts]
+    assert (r.too_close, r.margin_mm, r.tolerance_mm, r.checks, r.motion.id) == (True, 10.0, 0.05, 7, 9)
