@@ -218,3 +218,12 @@ def test_a_stored_matrix_is_used_only_for_the_inputs_it_was_computed_for(tmp_pat
     path.write_text(_without_stored_matrix(text))
     again = ArmModel(from_urdf(path)).acm
     assert again.source == "computed" and again.disabled == ARM.acm.disabled
+
+
+def test_the_digest_of_the_inputs_ignores_the_last_bit_and_sees_a_real_change():
+    from val3check.collision.acm import _bits
+
+    x = np.array([290.0, 0.1 + 0.2, -1e-12, 375.00000000000006, 3.141592653589793])
+    assert _bits(x) == _bits(np.nextafter(x, np.inf)) == _bits(np.nextafter(x, -np.inf))  # sin, cos, inv of another libm
+    assert _bits(x) != _bits(x + np.array([0.0, 0.0, 0.0, 0.0, 1e-6]))
+    assert _bits([-0.0]) == _bits([0.0])

@@ -155,8 +155,8 @@ def _collisions(links, bodies: dict[str, list[Body]], Q: np.ndarray, pairs) -> d
 def acm_inputs(links, bodies: dict[str, list[Body]], limits, user: dict[tuple[str, str], str], trials: int,
                seed: int) -> str:
     """A digest of everything `compute_acm` reads: the link tree (each joint's parent, kind, index,
-    origin and axis, bit for bit), each link's solids (shape, size, pose in the link, points), the
-    joint limits, the user's pairs, trials, seed and the rules' constants."""
+    origin and axis), each link's solids (shape, size, pose in the link, points, triangles), the
+    joint limits (numbers to 1e-9: `_bits`), the user's pairs, trials, seed and the rules' constants."""
     h = hashlib.sha256()
 
     def put(*items) -> None:
@@ -165,17 +165,23 @@ def acm_inputs(links, bodies: dict[str, list[Body]], limits, user: dict[tuple[st
             h.update(b"|")
 
     put("acm 1", REASONS, ALWAYS_ROUND, ALWAYS_FRACTION, int(trials), int(seed), links.root,
-        links.root_in_world.tobytes())
+        _bits(links.root_in_world))
     for n in links.links[1:]:
         e = links.edges[n]
-        put(n, e.parent, e.kind, e.index, e.origin.tobytes(), np.asarray(e.axis, dtype=float).tobytes())
+        put(n, e.parent, e.kind, e.index, _bits(e.origin), _bits(e.axis))
     for link in sorted(bodies):
         for b in bodies[link]:
-            put(link, b.geometry, tuple(float(x) for x in b.size), b.radius, b.local.tobytes(), b.points.tobytes())
+            put(link, b.geometry, _bits(b.size), _bits(b.radius), _bits(b.local), _bits(b.points))
             tri = getattr(b.triangle_shape, "triangles", None)  # a mesh's own triangles (what fcl collides)
-            put(None if tri is None else np.asarray(tri, dtype=float).tobytes(), b.exact is None)
-    put(tuple((float(a), float(b)) for a, b in limits), sorted(user.items()))
+            put(None if tri is None else _bits(tri), b.exact is None)
+    put(_bits(limits), sorted(user.items()))
     return h.hexdigest()[:32]
+
+
+def _bits(values) -> bytes:
+    """Numbers rounded to 1e-9 (mm, degrees): a digest the same on every machine, whose sin, cos
+    and inverse may differ in the last bit, and that any real change of the arm changes."""
+    return (np.round(np.asarray(values, dtype=float), 9) + 0.0).tobytes()
 
 
 def read_acm(urdf_path: str) -> tuple[dict[tuple[str, str], str], tuple | None]:
