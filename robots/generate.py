@@ -16,6 +16,8 @@ Where sources disagree the model keeps one value and says which, why, and the ot
 (`<alternative>`).
 
 Nothing here is imported by val3check at run time: the URDF files and catalog.toml are the models.
+Each URDF also stores its arm's allowed-collision matrix, computed here by val3check/collision/acm.py
+(`with_acm`; the `sim` extra is needed to run this script).
 """
 
 from __future__ import annotations
@@ -541,6 +543,33 @@ def scara_urdf(name: str, arm: dict) -> str:
     return "\n".join(lines)
 
 
+def with_acm(text: str) -> str:
+    """The URDF with its allowed-collision matrix stored in its <val3check> element, computed by
+    val3check/collision/acm.py from this very text (so that no run computes it again: the run
+    uses it only while the digest of its inputs, `inputs`, is the arm's). Needs the `sim` extra."""
+    import tempfile
+
+    sys.path.insert(0, str(HERE.parent))  # this checkout's val3check
+    from val3check.collision.acm import ACM, acm_inputs, compute_acm, read_acm, stored_lines
+    from val3check.collision.armmodel import ArmModel
+    from val3check.robot import from_urdf
+
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "arm.urdf"
+        path.write_text(text, encoding="utf-8")
+        user, head = read_acm(str(path))
+        if head is not None:
+            raise SystemExit(f"{path}: the generated text already has an <acm>")
+        robot = from_urdf(path)
+        arm = ArmModel(robot, acm=ACM())  # its solids and links, the matrix computed below
+        acm = compute_acm(arm.links, arm.bodies, robot.joint_limits, user=user)
+        inputs = acm_inputs(arm.links, arm.bodies, robot.joint_limits, user, acm.trials, acm.seed)
+    lines = ["    <!-- allowed-collision matrix: computed from this file's solids and limits, not a fact (robots/README.md,",
+             '         "Allowed collisions"); used only while `inputs` is the digest of what it was computed from -->',
+             *stored_lines(acm, inputs)]
+    return text.replace("  </val3check>\n", "\n".join(lines) + "\n  </val3check>\n", 1)
+
+
 # ---- catalog.toml ------------------------------------------------------------------------------
 
 
@@ -605,7 +634,7 @@ def main(argv: list[str] | None = None) -> int:
     files = {}
     for name, arm in arms.items():
         text = scara_urdf(name, arm) if arm.get("kind") == "scara" else urdf(name, arm, arms)
-        files[f"{slug(name)}.urdf"] = text
+        files[f"{slug(name)}.urdf"] = with_acm(text)
     files["catalog.toml"] = catalog_toml(arms)
     stale = []
     for fname, text in files.items():

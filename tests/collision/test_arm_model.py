@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from val3check.collision import ArmModel, arm_model  # noqa: E402
-from val3check.collision.acm import compute_acm, read_acm  # noqa: E402
+from val3check.collision.acm import acm_inputs, compute_acm, read_acm  # noqa: E402
 from val3check.collision.bodies import make_bodies  # noqa: E402
 from val3check.robot import from_urdf, load_robot  # noqa: E402
 from val3check.robot.catalog import example_robot_urdf  # noqa: E402
@@ -48,7 +48,7 @@ def test_reach_bound_holds_in_every_configuration():
 
 def test_the_catalogue_matrix_of_the_tx2_60():
     acm = ARM.acm
-    assert acm.source == "computed" and acm.trials == 10_000 and acm.seed == 0
+    assert acm.source == "stored" and acm.trials == 10_000 and acm.seed == 0  # robots/generate.py
     checked = sorted((a, b) for a in ARM.bodies for b in ARM.bodies if a < b and not acm.allowed(a, b))
     # what remains to check: the forearm, wrist and flange against the base, shoulder and upper arm
     assert checked == [("base_link", "link_4"), ("base_link", "link_5"), ("base_link", "link_6"),
@@ -86,14 +86,21 @@ def test_the_matrix_is_deterministic_and_follows_moveit_rules():
                     assert not fcl.collide(bx.obj, by.obj, fcl.CollisionRequest(), fcl.CollisionResult())
 
 
+def _without_stored_matrix(text: str) -> str:
+    """A catalogue URDF's text without the matrix robots/generate.py stored in it."""
+    import re
+
+    return re.sub(r"    <!-- allowed-collision matrix.*?(?=  </val3check>)", "", text, count=1, flags=re.S)
+
+
 def test_a_urdf_may_carry_its_whole_matrix(tmp_path):
-    text = open(ROBOT.source).read().replace(
+    text = _without_stored_matrix(open(ROBOT.source).read()).replace(
         "  </val3check>", '    <acm trials="5" seed="1"/>\n'
         '    <disable_collisions link1="link_1" link2="base_link" reason="Adjacent"/>\n  </val3check>')
     path = tmp_path / "arm.urdf"
     path.write_text(text)
     declared, head = read_acm(str(path))
-    assert head == (5, 1) and declared[("base_link", "link_1")] == "adjacent"
+    assert head == (5, 1, None) and declared[("base_link", "link_1")] == "adjacent"
     model = ArmModel(from_urdf(path))
     assert model.acm.source == "urdf" and model.acm.trials == 5
     assert not model.acm.allowed("link_2", "link_3")  # only what the URDF says
@@ -158,3 +165,65 @@ def test_a_solid_of_revolution_does_not_move_when_its_own_joint_turns():
     assert ARM.weights("link_1", ARM.bodies["link_1"])[0] == 0.0  # the shoulder drum on axis 1
     assert math.isclose(ARM.weights("link_5", ARM.bodies["link_5"])[4],
                         max(b.from_line(np.zeros(3), np.array([0.0, 1.0, 0.0])) for b in ARM.bodies["link_5"]))
+
+
+@pytest.mark.parametrize("name", ["TX2-60", "RX160L", "TS2-60", "TP80"])
+def test_the_stored_matrix_of_a_catalogue_arm_is_the_one_computed(name):
+    robot = load_robot(name)
+    stored = ArmModel(robot).acm
+    assert stored.source == "stored"
+    user = {p: why for p, why in stored.disabled.items() if why == "user"}
+    arm = ArmModel(robot, acm=stored)
+    fresh = compute_acm(arm.links, arm.bodies, robot.joint_limits, user=user)
+    assert fresh.disabled == stored.disabled and (fresh.trials, fresh.seed) == (stored.trials, stored.seed)
+
+
+# each input of the stored matrix changed in the URDF's text: (old, new)
+CHANGES = {
+    "a solid": ('<cylinder radius="0.11" length="0.265"/>', '<cylinder radius="0.12" length="0.265"/>'),
+    "a joint limit": (None, None),  # joint_2's upper limit, below
+    "a joint origin": (None, None),
+    "a user pair": ('<disable_collisions link1="link_4" link2="link_6" reason="user"/>', ""),
+    "trials": ('<acm trials="10000"', '<acm trials="9000"'),
+    "seed": ('seed="0" inputs', 'seed="1" inputs'),
+}
+
+
+@pytest.mark.parametrize("what", sorted(CHANGES))
+def test_a_stored_matrix_is_used_only_for_the_inputs_it_was_computed_for(tmp_path, what):
+    import re
+
+    text = open(ROBOT.source).read()
+    old, new = CHANGES[what]
+    if what == "a joint limit":
+        old = re.search(r'<joint name="joint_2" type="revolute">.*?<limit lower="[^"]*" upper="[^"]*"', text, re.S).group(0)
+        new = re.sub(r'upper="[^"]*"$', 'upper="1.5"', old)
+    elif what == "a joint origin":
+        old = re.search(r'<joint name="joint_3" type="revolute">.*?<origin xyz="[^"]*"', text, re.S).group(0)
+        new = re.sub(r'xyz="([^ ]*) ([^ ]*) ([^"]*)"$', r'xyz="\1 \2 0.31"', old)
+    assert old in text and old != new
+    path = tmp_path / "arm.urdf"
+    path.write_text(text.replace(old, new, 1))
+    robot = from_urdf(path)
+    acm = ArmModel(robot).acm
+    assert acm.source == "computed", what
+    declared, (trials, seed, inputs) = read_acm(str(path))
+    user = {p: why for p, why in declared.items() if why == "user"}
+    arm = ArmModel(robot, acm=acm)
+    assert inputs != acm_inputs(arm.links, arm.bodies, robot.joint_limits, user, trials, seed)
+    assert acm == compute_acm(arm.links, arm.bodies, robot.joint_limits, trials, seed, user=user)
+    # the same text unchanged: the stored matrix; without it: computed, the same
+    path.write_text(text)
+    assert ArmModel(from_urdf(path)).acm.source == "stored"
+    path.write_text(_without_stored_matrix(text))
+    again = ArmModel(from_urdf(path)).acm
+    assert again.source == "computed" and again.disabled == ARM.acm.disabled
+
+
+def test_the_digest_of_the_inputs_ignores_the_last_bit_and_sees_a_real_change():
+    from val3check.collision.acm import _bits
+
+    x = np.array([290.0, 0.1 + 0.2, -1e-12, 375.00000000000006, 3.141592653589793])
+    assert _bits(x) == _bits(np.nextafter(x, np.inf)) == _bits(np.nextafter(x, -np.inf))  # sin, cos, inv of another libm
+    assert _bits(x) != _bits(x + np.array([0.0, 0.0, 0.0, 0.0, 1e-6]))
+    assert _bits([-0.0]) == _bits([0.0])

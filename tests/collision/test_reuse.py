@@ -328,10 +328,16 @@ def test_an_open_or_close_that_repeats_in_the_same_scene_is_done_again_as_it_was
     frames = {"fBall": BALL}
     chk = checker(_grip_cell(), frames=frames, tools={"tTool": TOOL, "tOther": TOOL})
 
+    def numbered(c) -> None:  # the scene's number (`World.key`, set by a replay) is its content's
+        w = c.world
+        assert w.per_scene("key", w._scene_id) == w._scene_ids[w._scene_key()]
+
     def cycle(c, t: float):
         out = [c.gripper("tTool", "close", t, joints=_q(PICK), source="pick")]
+        numbered(c)
         states = [_state(c)]
         out.append(c.gripper("tTool", "open", t + 1.0, joints=_q(PLACE), source="place"))
+        numbered(c)
         states.append(_state(c))
         c.clear_parts("brick")  # taken away: the scene the cycle started in
         states.append(_state(c))
@@ -505,3 +511,53 @@ def test_the_scene_is_read_again_when_the_readings_change_and_only_then():
     assert chk.world.version != v
     ball = next(b for b in chk.world.static if "ball" in b.label)
     assert ball.pose[2, 3] == -50.0
+
+
+def test_a_frame_given_the_same_bits_in_new_objects_keeps_its_reading():
+    """The reading is reused when root_pose would read the very same objects (`_objects`), or
+    other objects with the same bits (`_chain`); each object it reads replaced in turn."""
+    from val3check.geometry.frames import Frame
+    from val3check.geometry.trsf import Trsf
+    from val3check.simulation.collision_run import _read
+
+    world = Frame(is_root=True, name="world")
+    base = Frame(Trsf(100.0, 0.0, 0.0, 0.0, 0.0, 0.0), world)
+    f = Frame(Trsf(0.0, 50.0, 0.0, 0.0, 0.0, 90.0), base)
+    machine, _ = _machine(f)
+    cache: dict = {}
+    first = _read(machine, "fPart", Frame, cache)
+    same = [lambda: setattr(f.trsf, "y", float("50")), lambda: setattr(f, "trsf", Trsf(0.0, 50.0, 0.0, 0.0, 0.0, 90.0)),
+            lambda: setattr(base.trsf, "x", float("100")), lambda: setattr(world.trsf, "z", float("0"))]
+    for k, change in enumerate(same):
+        change()
+        assert _read(machine, "fPart", Frame, cache) is first, k
+        assert _read(machine, "fPart", Frame, cache) is first, k  # and again, on the fast path
+    for k, change in enumerate([lambda: setattr(f.trsf, "y", 50.5), lambda: setattr(base, "trsf", Trsf(1.0)),
+                                lambda: setattr(base, "is_root", True)]):
+        before = _read(machine, "fPart", Frame, cache)
+        change()
+        after = _read(machine, "fPart", Frame, cache)
+        fresh = _read(machine, "fPart", Frame)
+        assert after is not before and np.array_equal(after, fresh), k
+
+
+def test_a_shifted_report_reads_as_the_shifted_copy_bit_for_bit():
+    from dataclasses import replace
+
+    from val3check.collision.checker import shifted
+    from val3check.collision.results import Clearance, Contact, MotionReport
+
+    own = MotionReport(MotionSpan(1), np.array([0.0, 0.004, 0.0071]), np.array([5.0, 3.0, 4.0]),
+                       np.array([False, True, True]), Contact(0.0, "a", "b", (1.0, 2.0, 3.0), 0.5),
+                       Contact(0.004, "c", "d", (0.0, 0.0, 0.0), 1.0),
+                       Clearance(3.0, 0.004, "a", "b", (0.0, 0.0, 0.0), (1.0, 1.0, 1.0)), True, 10.0, 0.05, 7,
+                       [Contact(0.004, "c", "d", (0.0, 0.0, 0.0), 1.0)])
+    start = 3601.123456789
+    r = shifted(own, MotionSpan(9), start)
+    assert (start + own.times).tobytes() == r.times.tobytes()
+    assert r.clearance is own.clearance and r.exact is own.exact
+    assert r.start == float((start + own.times)[0]) and r.end == float((start + own.times)[-1])
+    for name in ("starts_in_collision", "first_contact", "min_clearance"):
+        assert getattr(r, name) == replace(getattr(own, name), time=start + getattr(own, name).time), name
+    assert r.contacts == [replace(c, time=start + c.time) for c in own.contacts]
+    assert (r.too_close, r.margin_mm, r.tolerance_mm, r.checks, r.motion.id) == (True, 10.0, 0.05, 7, 9)

@@ -16,11 +16,17 @@ A URDF may name pairs itself, inside `<val3check>`, as a MoveIt SRDF does:
 `<disable_collisions link1=".." link2=".." reason="user"/>`. Those are added to the computed ones
 (the catalogue's URDFs name two: robots/README.md). With `<acm trials=".." seed=".."/>` as well, the
 URDF's list is the whole matrix and nothing is computed (a matrix copied from a MoveIt SRDF).
-The matrix takes about 0.15 s to compute; it is computed once per URDF in a process.
+
+The catalogue's URDFs store the matrix computed here (robots/generate.py writes it): their `<acm>`
+also has `inputs`, a digest of everything the computation reads (`acm_inputs`: the link tree, the
+solids, the joint limits, the user's pairs, trials, seed and this module's constants). It is used
+only while that digest is the arm's: an arm whose solids, limits or pairs differ from the stored
+ones gets its matrix computed (about 0.1 s, once per URDF in a process).
 """
 
 from __future__ import annotations
 
+import hashlib
 import random
 from dataclasses import dataclass, field
 
@@ -43,7 +49,8 @@ class ACM:
     disabled: dict[tuple[str, str], str] = field(default_factory=dict)
     trials: int = TRIALS
     seed: int = SEED
-    source: str = "computed"  # "urdf": read from the URDF; "computed": at load
+    source: str = "computed"  # "urdf": read from the URDF; "computed": at load; "stored": computed by
+    # robots/generate.py and stored in the URDF, for the same inputs (`acm_inputs`)
 
     def allowed(self, a: str, b: str) -> bool:
         return a == b or ((a, b) if a < b else (b, a)) in self.disabled
@@ -145,9 +152,42 @@ def _collisions(links, bodies: dict[str, list[Body]], Q: np.ndarray, pairs) -> d
     return out
 
 
-def read_acm(urdf_path: str) -> tuple[dict[tuple[str, str], str], tuple[int, int] | None]:
-    """The pairs a URDF's `<val3check>` element disables ({(a, b): reason}), and (trials, seed) when
-    it also has `<acm>` (then the list is the whole matrix)."""
+def acm_inputs(links, bodies: dict[str, list[Body]], limits, user: dict[tuple[str, str], str], trials: int,
+               seed: int) -> str:
+    """A digest of everything `compute_acm` reads: the link tree (each joint's parent, kind, index,
+    origin and axis), each link's solids (shape, size, pose in the link, points, triangles), the
+    joint limits (numbers to 1e-9: `_bits`), the user's pairs, trials, seed and the rules' constants."""
+    h = hashlib.sha256()
+
+    def put(*items) -> None:
+        for x in items:
+            h.update(x if isinstance(x, bytes) else repr(x).encode())
+            h.update(b"|")
+
+    put("acm 1", REASONS, ALWAYS_ROUND, ALWAYS_FRACTION, int(trials), int(seed), links.root,
+        _bits(links.root_in_world))
+    for n in links.links[1:]:
+        e = links.edges[n]
+        put(n, e.parent, e.kind, e.index, _bits(e.origin), _bits(e.axis))
+    for link in sorted(bodies):
+        for b in bodies[link]:
+            put(link, b.geometry, _bits(b.size), _bits(b.radius), _bits(b.local), _bits(b.points))
+            tri = getattr(b.triangle_shape, "triangles", None)  # a mesh's own triangles (what fcl collides)
+            put(None if tri is None else _bits(tri), b.exact is None)
+    put(_bits(limits), sorted(user.items()))
+    return h.hexdigest()[:32]
+
+
+def _bits(values) -> bytes:
+    """Numbers rounded to 1e-9 (mm, degrees): a digest the same on every machine, whose sin, cos
+    and inverse may differ in the last bit, and that any real change of the arm changes."""
+    return (np.round(np.asarray(values, dtype=float), 9) + 0.0).tobytes()
+
+
+def read_acm(urdf_path: str) -> tuple[dict[tuple[str, str], str], tuple | None]:
+    """The pairs a URDF's `<val3check>` element disables ({(a, b): reason}), and (trials, seed,
+    inputs) when it also has `<acm>` (then the list is the whole matrix; `inputs`: the digest it
+    was computed for, or None)."""
     from defusedxml import ElementTree as ET
 
     try:
@@ -165,15 +205,33 @@ def read_acm(urdf_path: str) -> tuple[dict[tuple[str, str], str], tuple[int, int
     head = meta.find("acm")
     if head is None:
         return dict(sorted(disabled.items())), None
-    return dict(sorted(disabled.items())), (_int(head.get("trials"), 0), _int(head.get("seed"), 0))
+    return dict(sorted(disabled.items())), (_int(head.get("trials"), 0), _int(head.get("seed"), 0), head.get("inputs"))
 
 
 def arm_acm(links, bodies: dict[str, list[Body]], limits, urdf_path: str) -> ACM:
-    """The matrix of an arm: the URDF's when it has a whole one, else computed plus its own pairs."""
+    """The matrix of an arm: the URDF's when it has a whole one (a stored one only for the inputs
+    it was computed for), else computed plus the URDF's own pairs."""
     declared, head = read_acm(urdf_path)
-    if head is not None:
-        return ACM(declared, head[0], head[1], "urdf")
-    return compute_acm(links, bodies, limits, user=declared)
+    if head is None:
+        return compute_acm(links, bodies, limits, user=declared)
+    trials, seed, inputs = head
+    if inputs is None:
+        return ACM(declared, trials, seed, "urdf")
+    user = {p: why for p, why in declared.items() if why == "user"}
+    if inputs == acm_inputs(links, bodies, limits, user, trials, seed):
+        return ACM(declared, trials, seed, "stored")
+    return compute_acm(links, bodies, limits, trials, seed, user=user)
+
+
+def stored_lines(acm: ACM, inputs: str, indent: str = "    ") -> list[str]:
+    """The `<val3check>` children that store a computed matrix in a URDF (robots/generate.py): its
+    `<acm>` with the digest of its inputs, and the pairs it disables besides the user's."""
+    out = [f'{indent}<acm trials="{acm.trials}" seed="{acm.seed}" inputs="{inputs}" '
+           'computed_by="val3check/collision/acm.py (robots/generate.py)"/>']
+    for (a, b), why in sorted(acm.disabled.items()):
+        if why != "user":
+            out.append(f'{indent}<disable_collisions link1="{a}" link2="{b}" reason="{why}"/>')
+    return out
 
 
 def _int(text, default: int) -> int:

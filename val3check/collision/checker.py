@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Hashable
-from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -36,7 +35,7 @@ from .fcl_backend import FclBackend
 from .groups import Group
 from .path import ArmPath
 from .poses import PoseSource
-from .results import CellProblem, MotionReport, MotionSpan, PartDrop
+from .results import CellProblem, MotionReport, MotionSpan, PartDrop, ShiftedReport
 from .sweep import Sweep
 from .world import World
 
@@ -44,16 +43,10 @@ from .world import World
 REUSE = 2048  # checks of motions kept for reuse (check_own); a motion's report holds its per-sample arrays
 
 
-def shifted(own: MotionReport, motion: MotionSpan, start: float) -> MotionReport:
+def shifted(own: MotionReport, motion: MotionSpan, start: float) -> ShiftedReport:
     """A report on a motion's own clock, for `motion` starting at `start` on the run's clock (the
-    per-sample clearances are shared, never changed)."""
-
-    def at(c):
-        return None if c is None else replace(c, time=start + c.time)
-
-    return MotionReport(motion, start + own.times, own.clearance, own.exact, at(own.starts_in_collision),
-                        at(own.first_contact), at(own.min_clearance), own.too_close, own.margin_mm, own.tolerance_mm,
-                        own.checks, [at(c) for c in own.contacts])
+    per-sample clearances are shared, never changed; the times computed when read)."""
+    return ShiftedReport(motion, own, start)
 
 
 class CollisionChecker:
@@ -118,7 +111,7 @@ class CollisionChecker:
         return report
 
     def check_own(self, motion: MotionSpan, start: float, times, joints, q_at: Callable[[float], Any] | None = None,
-                  key: Hashable = None) -> MotionReport:
+                  key: Hashable = None) -> ShiftedReport:
         """Check one motion given on its own clock (docs/cell.md, "How checks are sampled"): it
         starts at `start` (s), `times` (N,) are from 0, `joints` and `q_at(t)` on that clock; the
         report is on the run's clock (start + its times). `key`: everything that determines times,
@@ -141,7 +134,7 @@ class CollisionChecker:
         self.world.time = start + float(T[-1])
         return shifted(own, motion, start)
 
-    def reuse(self, motion: MotionSpan, start: float, key: Hashable) -> MotionReport | None:
+    def reuse(self, motion: MotionSpan, start: float, key: Hashable) -> ShiftedReport | None:
         """The check of a motion with this key in the scene at `start` when it was made before
         (`check_own`), for `motion` starting at `start`; None when it was not (or key is None)."""
         self.world.refresh(start)

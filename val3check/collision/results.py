@@ -6,7 +6,7 @@ line that commanded it); the checker never looks inside.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -88,6 +88,76 @@ class MotionReport:
     @property
     def end(self) -> float:
         return float(self.times[-1]) if len(self.times) else 0.0
+
+
+class ShiftedReport:
+    """A motion's report kept as the report on its own clock (shared by every motion that repeats
+    it) and the motion's start: what `MotionReport` gives, computed when read, bit for bit what
+    the shifted copy was (a long run keeps one small object per motion, not its sample times)."""
+
+    __slots__ = ("motion", "own", "offset")
+
+    def __init__(self, motion: MotionSpan, own: MotionReport, offset: float) -> None:
+        self.motion = motion
+        self.own = own
+        self.offset = offset
+
+    def _at(self, c):
+        return None if c is None else replace(c, time=self.offset + c.time)
+
+    @property
+    def times(self) -> np.ndarray:
+        return self.offset + self.own.times
+
+    @property
+    def clearance(self) -> np.ndarray:
+        return self.own.clearance
+
+    @property
+    def exact(self) -> np.ndarray:
+        return self.own.exact
+
+    @property
+    def starts_in_collision(self) -> Contact | None:
+        return self._at(self.own.starts_in_collision)
+
+    @property
+    def first_contact(self) -> Contact | None:
+        return self._at(self.own.first_contact)
+
+    @property
+    def min_clearance(self) -> Clearance | None:
+        return self._at(self.own.min_clearance)
+
+    @property
+    def contacts(self) -> list[Contact]:
+        return [self._at(c) for c in self.own.contacts]
+
+    @property
+    def too_close(self) -> bool:
+        return self.own.too_close
+
+    @property
+    def margin_mm(self) -> float:
+        return self.own.margin_mm
+
+    @property
+    def tolerance_mm(self) -> float:
+        return self.own.tolerance_mm
+
+    @property
+    def checks(self) -> int:
+        return self.own.checks
+
+    @property
+    def start(self) -> float:
+        t = self.own.times
+        return float(self.offset + t[0]) if len(t) else 0.0
+
+    @property
+    def end(self) -> float:
+        t = self.own.times
+        return float(self.offset + t[-1]) if len(t) else 0.0
 
 
 @dataclass(frozen=True)

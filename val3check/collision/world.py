@@ -91,6 +91,7 @@ class World:
         self.static_lo = np.zeros((0, 3))
         self.static_hi = np.zeros((0, 3))
         self._placed_obstacles: list[Body] = []
+        self._boxes: dict[int, tuple] = {}  # id of a static body -> (its pose then, its box): `_set_static`
         self._frames_read: dict | None = None
         self.version = 0
         self._scene_cache: dict[str, tuple[int, Any]] = {}
@@ -183,7 +184,16 @@ class World:
         self.static = bodies
         self.version += 1
         if bodies:
-            boxes = [b.aabb() for b in bodies]
+            # a body's box is computed again only when it was placed again (each place() makes a new pose)
+            known = self._boxes
+            boxes = []
+            for b in bodies:
+                hit = known.get(id(b))
+                if hit is None or hit[0] is not b.pose:
+                    hit = (b.pose, *b.aabb())
+                boxes.append(hit)
+            self._boxes = {id(b): hit for b, hit in zip(bodies, boxes)}
+            boxes = [hit[1:] for hit in boxes]
             self.static_lo = np.array([lo for lo, _ in boxes])
             self.static_hi = np.array([hi for _, hi in boxes])
         else:
@@ -237,6 +247,8 @@ class World:
 
     def forget_allowed(self, pairs) -> None:
         """The touch allowances of these pairs (by `key`'s names) end (a reused check found them apart)."""
+        if not pairs:
+            return
         gone = set(pairs)
         self.allowed = {k: v for k, v in self.allowed.items() if (_named(v[0]), _named(v[1])) not in gone}
 
@@ -274,13 +286,17 @@ class World:
         done = self._grips.get(key)
         if done is not None:
             self.grips_reused += 1
-            return self._replay(done, time, source)
+            drops = self._replay(done, time, source)
+            # the scene it leaves has the content it left the first time: its number then (`key`)
+            self._scene_cache["key"] = (self.version, done[3])
+            return drops
         steps: list[tuple] = []
         poses = self.arm.links.poses(q)
         drops = self._grip(tool, instruction, time, poses, source, steps)
         if len(self._grips) >= GRIPS:
             self._grips.clear()  # bounded: a cyclic program fills it again within a cycle or two
-        self._grips[key] = (poses, steps, [replace(d, time=0.0, source=None) for d in drops])
+        self._grips[key] = (poses, steps, [replace(d, time=0.0, source=None) for d in drops],
+                            self.per_scene("key", self._scene_id))
         return drops
 
     def _grip_key(self, tool: str, instruction: str, time: float, q: np.ndarray) -> tuple:
@@ -307,6 +323,14 @@ class World:
         for g in self.arm_groups():
             for b in g.bodies:
                 b.place(poses[g.link])
+            g.placed = -1.0
+            arm_bodies.extend(g.bodies)
+        return arm_bodies
+
+    def _arm_bodies(self) -> list[Body]:
+        """The arm's bodies in `_place_arm`'s order, marked for placing again at the next sample."""
+        arm_bodies: list[Body] = []
+        for g in self.arm_groups():
             g.placed = -1.0
             arm_bodies.extend(g.bodies)
         return arm_bodies
@@ -352,9 +376,9 @@ class World:
     def _replay(self, done: tuple, time: float, source: Any) -> list[PartDrop]:
         """An open()/close() recorded by `_grip` in an equal scene done again: its steps in order,
         each on the solids of this scene (found by their place in its lists)."""
-        poses, steps, drops = done
+        poses, steps, drops, _ = done
         flange = poses[self.arm.flange_link]
-        arm_bodies = self._place_arm(poses)
+        arm_bodies = self._arm_bodies()  # not placed: every reader of their poses places them first
         for step in steps:
             if step[0] == "grasp":
                 _, name, solids, locals_, gone, pairs, weights = step

@@ -38,6 +38,7 @@ class TimelineLog:
         self._flange: dict[bytes, np.ndarray] = {}  # joints (bits) -> the flange's pose there
         self._lying: list[dict] = []  # the spans of parts left in the cell and not yet taken away (end None)
         self._carried: set[str] = set()
+        self._poses: dict[bytes, np.ndarray] = {}  # `_shared`
         self._left: set[int] = set()
 
     # ---- the checker's pose sources ----------------------------------------------------------------
@@ -91,7 +92,7 @@ class TimelineLog:
         tool = next(p.tool for p in self.cell.parts if p.name == name)
         T = None if tool == "flange" else self.watch.tool(tool, t)  # the checker took it: the tool has a value
         self.spans.append({"name": name, "tool": tool, "carried": True, "start": float(t), "end": None,
-                           "pose": np.eye(4) if T is None else as_matrix(T, self.unit), "bodies": set()})
+                           "pose": self._shared(np.eye(4) if T is None else as_matrix(T, self.unit)), "bodies": set()})
 
     def _leave(self, name: str, t: float, bodies: set[int], q=None) -> None:
         span = next(s for s in reversed(self.spans) if s["carried"] and s["name"] == name and s["end"] is None)
@@ -106,8 +107,19 @@ class TimelineLog:
                 self._flange.clear()
             self._flange[key] = F
         self.spans.append({"name": name, "tool": span["tool"], "carried": False, "start": float(t), "end": None,
-                           "pose": F @ span["pose"], "bodies": bodies})
+                           "pose": self._shared(F @ span["pose"]), "bodies": bodies})
         self._lying.append(self.spans[-1])
+
+    def _shared(self, M: np.ndarray) -> np.ndarray:
+        """One matrix per pose (bit for bit): a cyclic program takes and leaves its parts at a few
+        poses, and a long run keeps a span for each time."""
+        key = M.tobytes()
+        out = self._poses.get(key)
+        if out is None:
+            if len(self._poses) >= 4096:
+                self._poses.clear()
+            out = self._poses[key] = M
+        return out
 
     def timeline(self) -> CellTimeline:
         """What was logged, as the run's record keeps it."""

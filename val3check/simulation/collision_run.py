@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import functools
 import math
+import operator
 import re
 import struct
 import time
@@ -28,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from ..collision import CellError, CollisionChecker, MotionSpan, arm_model, find_cell, read_cell
+from ..collision import CellError, CollisionChecker, arm_model, find_cell, read_cell
 from ..collision.cell import Cell
 from ..collision.poses import same_poses
 from ..collision.results import Contact, MotionReport, PartDrop
@@ -132,20 +133,18 @@ class ValueWatch:
         self.times: list[float] = []
         self.values: list[dict[str, np.ndarray | None]] = []
         self.serials: list[int] = []  # per reading, a number never given to another (`reading`)
-        self._cache: dict[str, tuple] = {}  # name -> (fingerprint, nodes held, matrix) of its last read
+        self._cache: dict[str, tuple] = {}  # name -> (fingerprint, nodes held, matrix, objects read) of its last read
+        self._reads = [*(("f:" + n, n, geo_frames.Frame) for n in self.frames),
+                       *(("t:" + n, n, geo_frames.Tool) for n in self.tools)]
 
     def __call__(self, time_us: int, cycle: bool = False) -> None:
         """Read at `time_us`; `cycle`: at the start of a scheduler cycle, before any line of it ran:
         the values hold since the lines of the cycle before (no line runs between two cycles)."""
         machine = self.machine
-        if machine is None or (not self.frames and not self.tools):
+        if machine is None or not self._reads:
             return
-        now: dict[str, np.ndarray | None] = {}
         cache = self._cache
-        for name in self.frames:
-            now["f:" + name] = _read(machine, name, geo_frames.Frame, cache)
-        for name in self.tools:
-            now["t:" + name] = _read(machine, name, geo_frames.Tool, cache)
+        now = {key: _read(machine, name, kind, cache) for key, name, kind in self._reads}
         if self.values and same_poses(now, self.values[-1]):
             return
         if cycle:
@@ -191,12 +190,13 @@ def _read(machine: Any, name: str, kind: type, cache: dict | None = None) -> np.
     """The pose of the global frame/tool `name` ("fPallet", "fPallet[2]", "lib:fBase") in its
     root (world, flange) as a 4x4 matrix, or None when the program has no such value. `cache`:
     {name: its last read}; the same matrix object again when the chain of frames it was computed
-    from is the same nodes with the same coordinates, bit for bit (`_chain`)."""
-    m = _NAME.match(name)
+    from is the same objects (`_objects`), or the same nodes with the same coordinates, bit for
+    bit (`_chain`)."""
+    parsed = _parse(name)
     unit = machine.main
-    if m is None or unit is None:
+    if parsed is None or unit is None:
         return None
-    alias, var, index = m.group(1), m.group(2), int(m.group(3) or 0)
+    alias, var, index = parsed
     if alias is not None:
         unit = unit.aliases.get(alias)
         if unit is None or not hasattr(unit, "globals"):
@@ -208,10 +208,15 @@ def _read(machine: Any, name: str, kind: type, cache: dict | None = None) -> np.
     node = data[c.off + index]
     if not isinstance(node, kind):
         return None
-    chain = _chain(node) if cache is not None else None
-    if chain is not None:
+    chain = None
+    if cache is not None:
+        objects = _objects(node)
         last = cache.get(name)
-        if last is not None and last[0] == chain[0]:
+        if objects and last is not None and len(last[3]) == len(objects) and all(map(operator.is_, objects, last[3])):
+            return last[2]  # the very objects root_pose reads: the same result
+        chain = _chain(node)
+        if chain is not None and last is not None and last[0] == chain[0]:
+            cache[name] = (*last[:3], objects)
             return last[2]
     try:
         r, p, _ = geo_frames.root_pose(node)
@@ -222,8 +227,33 @@ def _read(machine: Any, name: str, kind: type, cache: dict | None = None) -> np.
         out[:3, :3] = np.array(r, dtype=float).reshape(3, 3)
         out[:3, 3] = p
     if chain is not None:
-        cache[name] = (chain[0], chain[1], out)
+        cache[name] = (chain[0], chain[1], out, objects)
     return out
+
+
+@functools.lru_cache(maxsize=1024)
+def _parse(name: str) -> tuple[str | None, str, int] | None:
+    """("lib", "fBase", 2) of "lib:fBase[2]"; None when it is not a name."""
+    m = _NAME.match(name)
+    return None if m is None else (m.group(1), m.group(2), int(m.group(3) or 0))
+
+
+def _objects(node: Any) -> tuple:
+    """The objects `geometry.frames.root_pose(node)` reads (each node, its reference and root
+    flag, its trsf and the six floats), held: when a later read finds the very same objects, the
+    values are the same bits (floats are immutable) and so is the pose."""
+    out: list = []
+    n = node
+    try:
+        while n is not None and len(out) <= 10 * (geo_frames.MAX_DEPTH + 1):
+            t = n.trsf
+            out += (n, n.ref, n.is_root, t, t.x, t.y, t.z, t.rx, t.ry, t.rz)
+            if n.is_root:
+                break
+            n = n.ref
+    except AttributeError:
+        return ()
+    return tuple(out)
 
 
 _PACK = struct.Struct("6d")
@@ -333,7 +363,7 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
         if epochs is not None:
             epochs.at(start)
         own = own_clock(traj, start, end)  # sampled from the motion's start: a repeat is checked once
-        span = MotionSpan(index, rec.source, _label(rec))
+        span = _Span(index, rec)
         report = checker.reuse(span, start, own.key)
         if report is None:
             report = checker.check_own(span, start, own.times, own.joints, q_at=own.q_at, key=own.key)
@@ -437,6 +467,21 @@ def _spans(motion: Any) -> list[tuple[int, float, float]]:
 @functools.lru_cache(maxsize=256)
 def _file_name(path: str) -> str:
     return Path(path).name
+
+
+class _Span:
+    """The `MotionSpan` of a motion record, its label made when read (a run keeps one per motion;
+    the record itself is not held)."""
+
+    __slots__ = ("id", "source", "kind", "target")
+
+    def __init__(self, index: int, rec: Any) -> None:
+        self.id = index
+        self.source, self.kind, self.target = rec.source, rec.kind, rec.target
+
+    @property
+    def label(self) -> str:
+        return _label(self)
 
 
 def _label(rec: Any) -> str:
