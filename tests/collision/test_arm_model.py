@@ -227,3 +227,15 @@ def test_the_digest_of_the_inputs_ignores_the_last_bit_and_sees_a_real_change():
     assert _bits(x) == _bits(np.nextafter(x, np.inf)) == _bits(np.nextafter(x, -np.inf))  # sin, cos, inv of another libm
     assert _bits(x) != _bits(x + np.array([0.0, 0.0, 0.0, 0.0, 1e-6]))
     assert _bits([-0.0]) == _bits([0.0])
+
+
+def test_one_urdf_with_other_limits_is_another_model():
+    # the ACM samples the joint limits: a robot file overriding them must not share the model
+    import dataclasses
+
+    robot = load_robot("tx2-60")
+    narrow = dataclasses.replace(robot, joint_limits=tuple((lo / 2, hi / 2) for lo, hi in robot.joint_limits))
+    assert arm_model(robot) is arm_model(dataclasses.replace(robot))
+    other = arm_model(narrow)
+    assert other is not arm_model(robot)
+    assert arm_model(robot).acm.source == "stored" and other.acm.source == "computed"  # the digest saw the limits

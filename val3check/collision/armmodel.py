@@ -99,13 +99,15 @@ _MODELS: dict[tuple, ArmModel] = {}
 
 
 def arm_model(robot) -> ArmModel:
-    """The `ArmModel` of a robot, built once per URDF file (and per joint names) in a process."""
+    """The `ArmModel` of a robot, built once per URDF file (and per joint names and limits: the
+    allowed-collision matrix samples the limits; a robot file may override them) in a process."""
     p = Path(robot.source)
     try:
         mtime = p.stat().st_mtime_ns
     except OSError:
         mtime = 0
-    key = (str(p.resolve()), mtime, tuple(robot.joint_names), robot.world_frame, robot.flange_frame)
+    key = (str(p.resolve()), mtime, tuple(robot.joint_names), tuple(map(tuple, robot.joint_limits)),
+           robot.world_frame, robot.flange_frame)
     m = _MODELS.get(key)
     if m is None:
         m = _MODELS[key] = ArmModel(robot)
