@@ -144,3 +144,23 @@ def test_the_limits_memo_gives_the_keys_made_without_it(machine_run):
     assert st.spans and len(st.spans) == Retiming(q, 2.0).stretches
     for i, j, key in st.spans:
         assert key == piece_key(path, prof.S[i], prof.S[j], limits)
+
+
+def test_one_stretches_for_many_factors_gives_each_factor_s_fresh_records(machine_run):
+    """fit.py re-times the run for each factor it tries with one Stretches: each factor's records
+    are those found with stretches of its own, and another queue's stretches are refused."""
+    machine, _ = machine_run
+    q = machine.arm.queue_in_use
+    records = motion_records(q)
+    st = Stretches(q)
+    for factor in (0.25, 0.5, 1.5, 2.0, 0.25):
+        moved, rt = retimed(q, records, factor, stretches=st)
+        fresh, ref = retimed(q, records, factor)
+        assert moved == fresh and rt.new_starts == ref.new_starts and rt.shift_end == ref.shift_end
+
+    class Other:
+        planner = q.planner
+        limits = q.limits
+
+    with pytest.raises(ValueError):
+        Retiming(Other(), 2.0, stretches=st)

@@ -122,6 +122,8 @@ class Retiming:
         """The moving stretches of `queue`'s profile (`stretches`, found here when not given), each
         timed again with accelerations and decelerations × `factor`."""
         st = stretches if stretches is not None else Stretches(queue)
+        if st.queue is not queue:
+            raise ValueError("the stretches are another queue's")
         planner = queue.planner
         prof = st.profile
         limits = queue.limits.of
@@ -180,17 +182,20 @@ class Retiming:
         return self.new_starts[k] + (at if at is not None else self.pieces[k].t_end)
 
 
-def retimed(queue, records: list, factor: float, out_of_time=None) -> tuple[list, Retiming]:
+def retimed(queue, records: list, factor: float, out_of_time=None,
+            stretches: Stretches | None = None) -> tuple[list, Retiming]:
     """The motion records (records.MotionRecord) of the run re-timed with accelerations × factor
     (the same records, their start and end moved: module docstring), and the Retiming (its `cut`:
-    where it stopped when `out_of_time()` became true; the records after it have no start)."""
-    return retimed_range(queue, records, (factor,), out_of_time)[0]
+    where it stopped when `out_of_time()` became true; the records after it have no start).
+    `stretches`: the queue's, found once by a caller that re-times it for many factors (fit.py)."""
+    return retimed_range(queue, records, (factor,), out_of_time, stretches)[0]
 
 
-def retimed_range(queue, records: list, factors, out_of_time=None) -> list[tuple[list, Retiming]]:
+def retimed_range(queue, records: list, factors, out_of_time=None,
+                  stretches: Stretches | None = None) -> list[tuple[list, Retiming]]:
     """`retimed` for each factor in turn, the stretches, their keys and where each record's start
-    and end fall found once for all the factors."""
-    st = Stretches(queue)
+    and end fall found once for all the factors (`stretches`: found here when not given)."""
+    st = stretches if stretches is not None else Stretches(queue)
     places = [(st.place(r.start), st.place(r.end)) for r in records]
     out = []
     if records and all(f.init for f in fields(records[0])) and all(type(r) is type(records[0]) for r in records):
