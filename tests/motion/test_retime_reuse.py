@@ -164,3 +164,36 @@ def test_one_stretches_for_many_factors_gives_each_factor_s_fresh_records(machin
 
     with pytest.raises(ValueError):
         Retiming(Other(), 2.0, stretches=st)
+
+
+def test_next_true_finds_what_a_search_of_every_index_finds():
+    import numpy as np
+
+    from val3check.motion.retime import _next_true
+
+    rng = np.random.default_rng(7)
+    for n, p in ((0, 0.5), (1, 1.0), (5, 0.0), (300, 0.9), (5000, 0.001), (200_000, 0.00002)):
+        mask = rng.random(n) < p
+        at = np.flatnonzero(mask)
+        for i in {0, 1, n // 3, max(n - 1, 0), n, *rng.integers(0, max(n, 1), 20).tolist()}:
+            k = at.searchsorted(i)
+            assert _next_true(mask, i) == (int(at[k]) if k < len(at) else -1)
+
+
+def test_window_is_a_view_of_an_array_and_the_profile_grows_once_it_is_dropped():
+    from array import array
+
+    import numpy as np
+
+    from val3check.motion.trajectory import Profile, window
+
+    p = Profile()
+    p.append(0.0, np.array([0.0, 1.0, 3.0]), np.array([0.0, 2.0, 0.0]))
+    w = window(p.S, 1, 10)
+    assert w.tolist() == [1.0, 3.0] and not w.flags.owndata
+    assert window([5.0, 6.0, 7.0], 1, 3).tolist() == [6.0, 7.0] and window(p.T, 3, 3).tolist() == []
+    with pytest.raises(BufferError):
+        p.S.append(4.0)  # while the view lives
+    del w
+    p.append(p.t_end, np.array([3.0, 4.0]), np.array([0.0, 0.0]))
+    assert isinstance(p.S, array) and p.S[-1] == 4.0

@@ -22,6 +22,7 @@ import numpy as np
 from .findings import Source
 from .paths import tcp_rates
 from .record_repeats import Repeats, noise
+from .trajectory import window
 
 
 @dataclass(frozen=True, slots=True)  # one per command of the run
@@ -157,7 +158,9 @@ def _evaluate(queue, prof, out: list, todo: list) -> list:
             codes, clear = _limits_on(lim, rows, q1[sm][i], q2[sm][i], pt[sm][i], rt[sm][i], prof, lo, k1, s1)
             share = _seconds(rows, codes, len(lim.V))
             out[idx] = _record(command, start, end, length, peak, share)
-            again.extend((item, (length, peak, codes, clear)) for item in slot or ())
+            if slot:
+                order = _order(codes, len(lim.V))
+                again.extend((item, (length, peak, codes, clear, i, order)) for item in slot)
     return again
 
 
@@ -166,12 +169,12 @@ def _repeat(queue, prof, out: list, again: list) -> None:
     the earlier)): its length and peak, its limits per interval but where they were a near tie
     (decided again on its own path, all of them in one evaluation per tool)."""
     doubt: dict = {}  # tool -> [(item, rows, codes, unclear rows, their midpoints)]
-    for item, (length, peak, codes, clear) in again:
+    for item, (length, peak, codes, clear, i, order) in again:
         idx, command, s0, s1, start, end, k0, k1, lim = item
-        rows = _intervals(prof, max(k0 - 1, 0), k1, s0, s1)
-        if clear.all():
-            out[idx] = _record(command, start, end, length, peak, _seconds(rows, codes, len(lim.V)))
+        if clear.all():  # the earlier's intervals (the key holds where s0 and s1 fall) and limits
+            out[idx] = _record(command, start, end, length, peak, _seconds_of(prof, max(k0 - 1, 0), k1, s0, s1, i, order))
             continue
+        rows = _intervals(prof, max(k0 - 1, 0), k1, s0, s1)
         j = np.nonzero(~clear)[0]
         S = rows[0]
         tool = command.tool
@@ -241,6 +244,32 @@ def _seconds(rows, codes: np.ndarray, n: int) -> dict:
     total = np.bincount(codes, weights=dt * frac)
     first = np.unique(codes, return_index=True)[1]
     return {_label(int(codes[k]), n): float(total[codes[k]]) for k in np.sort(first)}
+
+
+def _order(codes: np.ndarray, n: int) -> tuple[list, np.ndarray]:
+    """The limits of `codes` as `_seconds` lists them (in order of first appearance, labelled) and
+    each interval's place in that list."""
+    if not len(codes):
+        return [], codes
+    first = np.sort(np.unique(codes, return_index=True)[1])
+    rank = np.zeros(int(codes.max()) + 1, dtype=np.intp)
+    rank[codes[first]] = np.arange(len(first))
+    return [_label(int(codes[k]), n) for k in first], rank[codes]
+
+
+def _seconds_of(prof, lo: int, k1: int, s0: float, s1: float, i: np.ndarray, order: tuple) -> dict:
+    """`_seconds(_intervals(...), codes, n)` of a repeat whose intervals `i` and limits (`order` of
+    the codes) are the earlier command's: the same arithmetic on its own breakpoints, read in
+    place (views, dropped here: the profile may grow after)."""
+    labels, rank = order
+    if not labels:
+        return {}
+    S, T = window(prof.S, lo, k1 + 1), window(prof.T, lo, k1 + 1)
+    a, b = S[i], S[i + 1]
+    frac = np.clip((np.minimum(b, s1) - np.maximum(a, s0)) / (b - a), 0.0, 1.0)
+    total = np.bincount(rank, weights=(T[i + 1] - T[i]) * frac)
+    del S, T
+    return dict(zip(labels, total.tolist()))
 
 
 def _label(code: int, n: int) -> str:

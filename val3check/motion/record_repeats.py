@@ -22,6 +22,8 @@ import bisect
 
 import numpy as np
 
+from .trajectory import window
+
 POS_TOL = 1e-13  # × the magnitude of the run's path positions (their rounding: ~1e-16 per operation)
 TIME_TOL = 1e-13  # × the magnitude of the run's times
 SPEED_TOL = 1e-10  # × the largest path speed of the command (the timing's own rounding reaches 1e-11)
@@ -43,9 +45,8 @@ class Repeats:
         are lo..k1 (what motion_records reads of the profile)."""
         prof, path = self.prof, self.path
         hi = min(k1, len(prof.S) - 1)
-        S = np.asarray(prof.S[lo:hi + 1])
-        T = np.asarray(prof.T[lo:hi + 1])
-        SD = np.asarray(prof.SD[lo:hi + 1])
+        # views of the profile, not copies (none is returned: the profile may grow after)
+        S, T, SD = window(prof.S, lo, hi + 1), window(prof.T, lo, hi + 1), window(prof.SD, lo, hi + 1)
         i0 = path.locate(min(S[0], s0))[0]
         i1 = path.locate(max(S[-1], s1))[0]
         offsets = path.offsets[i0:i1 + 1]

@@ -25,7 +25,7 @@ from dataclasses import fields, replace
 import numpy as np
 
 from .mdesc import Limits
-from .trajectory import Profile
+from .trajectory import Profile, window
 
 
 def piece_key(path, a: float, b: float, limits, memo: dict | None = None) -> tuple | None:
@@ -65,6 +65,20 @@ def _limits_key(lim: Limits) -> tuple:
     return (lim.V.tobytes(), lim.A.tobytes(), lim.D.tobytes(), lim.tvel, lim.rvel)
 
 
+def _next_true(mask: np.ndarray, i: int) -> int:
+    """The first index k >= i where `mask` is true, -1 when none: a window at a time (the next leave
+    is usually the breakpoint itself or the next)."""
+    w = 8
+    while i < len(mask):
+        part = mask[i:i + w]
+        k = int(part.argmax())
+        if part[k]:
+            return i + k
+        i += w
+        w = min(w * 8, 1 << 16)
+    return -1
+
+
 class Stretches:
     """The moving stretches of `queue`'s profile (from a rest to the next) and their piece keys:
     the same for every factor, found once for all of them (`retimed_range`)."""
@@ -80,18 +94,18 @@ class Stretches:
         T, S, SD = prof.T, prof.S, prof.SD
         n = len(T)
         # a stretch starts at a breakpoint the arm leaves (moves or goes forward after it) and ends
-        # at the next breakpoint at rest (or the last): found by bisection, not breakpoint by breakpoint
-        s_, sd_ = np.array(S, dtype=float), np.array(SD, dtype=float)  # copies: a view would stop the arrays growing
-        # index arrays, not lists: millions of Python ints in an 8-hour run
-        leaves = np.flatnonzero(~((sd_[1:] <= 0.0) & (s_[1:] <= s_[:-1])))
+        # at the next breakpoint at rest (or the last). Views of the profile (no copies: 8 hours hold
+        # millions of breakpoints), dropped before anything can grow it; a mask of one byte per
+        # breakpoint for the leaves, an index array for the rests (a few per motion)
+        s_, sd_ = window(S, 0, n), window(SD, 0, n)
+        leaves = ~((sd_[1:] <= 0.0) & (s_[1:] <= s_[:-1]))
         rests = np.append(np.flatnonzero(~(sd_[1:n - 1] > 0.0)) + 1, n - 1)
         del s_, sd_
         i = 0
         while True:
-            m = int(leaves.searchsorted(i, "left"))
-            if m == len(leaves):
+            i = _next_true(leaves, i)
+            if i < 0:
                 break
-            i = int(leaves[m])
             j = int(rests[rests.searchsorted(i, "right")])
             self.spans.append((i, j, piece_key(planner.path, S[i], S[j], queue.limits.of, memo)))
             i = j
