@@ -74,20 +74,32 @@ class Repeats:
                          SPEED_TOL * max(1.0, float(SD.max()))], [len(S) + len(offs) + 1, len(S) - 1, len(S)])
         return exact, got, tol
 
-    def find(self, inputs) -> tuple[list | None, list | None]:
-        """(the list of the commands that repeat an earlier one with these inputs, None), or
-        (None, a new such list) when none has them: the first command with them is computed and
-        its figures given to those it lists."""
+    def find(self, inputs) -> tuple[Slot | None, Slot | None]:
+        """(the Slot of an earlier command with these inputs, None), or (None, a new Slot) when
+        none has them: the first command with them is computed and its figures kept in its Slot."""
         exact, got, tol = inputs
         kept = self.seen.setdefault(exact, [])
-        for earlier, repeats in kept:
+        for earlier, slot in kept:
             if np.all(np.abs(got - earlier) <= tol):
                 self.hits += 1
-                return repeats, None
-        repeats: list = []
+                return slot, None
+        slot = Slot()
         if len(kept) < KEPT:
-            kept.append((got, repeats))
-        return None, repeats
+            kept.append((got, slot))
+        return None, slot
+
+
+class Slot:
+    """The figures of the first command with some inputs (`figures`, None until computed), where
+    they were computed (`place`), and the repeats met before that (`items`, then emptied)."""
+
+    __slots__ = ("figures", "place", "items")
+
+    def __init__(self) -> None:
+        """Not computed yet, no repeat waiting."""
+        self.figures: tuple | None = None
+        self.place: tuple = ()
+        self.items: list = []
 
 
 def noise(prof, lo: int, k1: int, s_max: float) -> tuple[float, float]:
