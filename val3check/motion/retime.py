@@ -91,6 +91,7 @@ class Stretches:
         self.profile = prof
         self.spans: list[tuple] = []  # (i, j, piece_key) per stretch: profile indices of its ends
         memo: dict = {}
+        keys: dict = {}  # one object per distinct key (a cyclic run repeats a few thousand times)
         T, S, SD = prof.T, prof.S, prof.SD
         n = len(T)
         # a stretch starts at a breakpoint the arm leaves (moves or goes forward after it) and ends
@@ -107,7 +108,8 @@ class Stretches:
             if i < 0:
                 break
             j = int(rests[rests.searchsorted(i, "right")])
-            self.spans.append((i, j, piece_key(planner.path, S[i], S[j], queue.limits.of, memo)))
+            key = piece_key(planner.path, S[i], S[j], queue.limits.of, memo)
+            self.spans.append((i, j, keys.setdefault(key, key)))
             i = j
         self.starts = [T[i] for i, _, _ in self.spans]
 
@@ -209,9 +211,14 @@ def retimed_range(queue, records: list, factors, out_of_time=None,
                   stretches: Stretches | None = None) -> list[tuple[list, Retiming]]:
     """`retimed` for each factor in turn, the stretches, their keys and where each record's start
     and end fall found once for all the factors (`stretches`: found here when not given)."""
+    return list(each_retimed(queue, records, factors, out_of_time, stretches))
+
+
+def each_retimed(queue, records: list, factors, out_of_time=None, stretches: Stretches | None = None):
+    """`retimed_range` one factor at a time (a generator: a caller that takes what it needs of a
+    factor's records holds one factor's at a time)."""
     st = stretches if stretches is not None else Stretches(queue)
     places = [(st.place(r.start), st.place(r.end)) for r in records]
-    out = []
     if records and all(f.init for f in fields(records[0])) and all(type(r) is type(records[0]) for r in records):
         # each record's other fields read once for all the factors (what `replace` does per call)
         names = [f.name for f in fields(records[0])]
@@ -229,5 +236,5 @@ def retimed_range(queue, records: list, factors, out_of_time=None,
             for v, (a, b) in zip(values, places):
                 v[i_start], v[i_end] = rt.time_at(a), rt.time_at(b)
                 moved.append(make(*v))
-        out.append((moved, rt))
-    return out
+        yield moved, rt
+        del moved  # before the next factor's
