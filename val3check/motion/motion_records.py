@@ -181,8 +181,8 @@ def _repeat(prof, out: list, item: tuple, slot, doubts: list) -> None:
     """The record of a command that repeats an earlier one (its Slot's figures): its length and
     peak, its limits per interval, its own seconds under each; when a limit was a near tie, left
     to `_decide` (`doubts`)."""
-    length, peak, codes, clear, i, order = slot.figures
-    idx, command, s0, s1, start, end, k0, k1, lim = item
+    length, peak, _, clear, i, order = slot.figures
+    idx, command, s0, s1, start, end, k0, k1, _ = item
     if clear.all():  # the earlier's intervals (the key holds where s0 and s1 fall) and limits
         out[idx] = _record(command, start, end, length, peak, _seconds_of(prof, max(k0 - 1, 0), k1, s0, s1, i, order))
     else:

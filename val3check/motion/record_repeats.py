@@ -93,7 +93,7 @@ class Slot:
     """The figures of the first command with some inputs (`figures`, None until computed), where
     they were computed (`place`), and the repeats met before that (`items`, then emptied)."""
 
-    __slots__ = ("figures", "place", "items")
+    __slots__ = ("figures", "items", "place")
 
     def __init__(self) -> None:
         """Not computed yet, no repeat waiting."""
