@@ -194,21 +194,22 @@ def _decide(queue, prof, out: list, doubts: list) -> None:
     their own path, all of them in one evaluation per tool (in the order the earlier commands were
     evaluated, then of the run)."""
     doubts.sort(key=lambda d: d[0])
-    doubt: dict = {}  # tool -> [(item, rows, codes, unclear rows, their midpoints)]
+    doubt: dict = {}  # tool -> [(item, codes, unclear rows, their midpoints)]
     for _, item, (length, peak, codes, clear, _, _) in doubts:
         idx, command, s0, s1, start, end, k0, k1, lim = item
-        rows = _intervals(prof, max(k0 - 1, 0), k1, s0, s1)
+        rows = _intervals(prof, max(k0 - 1, 0), k1, s0, s1)  # made again below: not held for every doubt
         j = np.nonzero(~clear)[0]
         S = rows[0]
         tool = command.tool
         doubt.setdefault(None if tool is None else np.asarray(tool, dtype=float).tobytes(), []).append(
-            (item, rows, codes.copy(), j, 0.5 * (S[rows[5][j]] + S[rows[5][j] + 1]), length, peak))
+            (item, codes.copy(), j, 0.5 * (S[rows[5][j]] + S[rows[5][j] + 1]), length, peak))
     doubts.clear()
     for items in doubt.values():
-        q, q1, q2 = _path_at(queue.path, np.concatenate([it[4] for it in items]))
+        q, q1, q2 = _path_at(queue.path, np.concatenate([it[3] for it in items]))
         pt, rt = tcp_rates(queue.kin, q, q1, items[0][0][1].tool)
         at = 0
-        for (idx, command, s0, s1, start, end, k0, k1, lim), rows, codes, j, mids, length, peak in items:
+        for (idx, command, s0, s1, start, end, k0, k1, lim), codes, j, _, length, peak in items:
+            rows = _intervals(prof, max(k0 - 1, 0), k1, s0, s1)
             sl = slice(at, at + len(j))
             at += len(j)
             sub = tuple(r[j] if k >= 1 else r for k, r in enumerate(rows))  # the rows in doubt
