@@ -213,3 +213,25 @@ def test_the_tcp_speed_skips_the_samples_at_rest_and_gives_every_sample_s_speed(
         tool = uses[max(int(np.searchsorted(starts, times[k], side="right")) - 1, 0)][1]
         p = np.array([0.0, 0.0, 0.0, 1.0]) if tool is None else np.asarray(tool)[:, 3]
         assert got[k] == pytest.approx(np.linalg.norm((P1[k] @ p - P0[k] @ p)[:3]) / TCP_STEP_S, rel=1e-9, abs=1e-6)
+
+
+@pytest.mark.parametrize("block", [1, 2, 5])
+def test_records_made_as_the_blocks_fill_are_the_fresh_ones(pick_place, monkeypatch, block):
+    """Blocks of new commands evaluated as soon as they fill: a repeat met after its first one was
+    evaluated is made at once, one met before waits for it; either way the fresh record."""
+    q, end = pick_place
+    fresh = motion_records(q, end, reuse=False)
+    monkeypatch.setattr(records_module, "RECORD_BLOCK", block)
+    waited = []
+    repeat = records_module._repeat
+
+    def spy(prof, out, item, slot, doubts):
+        waited.append(out[item[0]] is None and slot.figures is not None)
+        return repeat(prof, out, item, slot, doubts)
+
+    monkeypatch.setattr(records_module, "_repeat", spy)
+    reused = motion_records(q, end)
+    assert len(waited) > 100
+    for a, b in zip(fresh, reused, strict=True):
+        assert (a.id, a.start, a.end, a.dominant, a.limit_share) == (b.id, b.start, b.end, b.dominant, b.limit_share)
+        assert (round(a.length_mm, 3), round(a.peak_tcp_mm_s, 3)) == (round(b.length_mm, 3), round(b.peak_tcp_mm_s, 3))

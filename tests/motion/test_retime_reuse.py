@@ -144,3 +144,56 @@ def test_the_limits_memo_gives_the_keys_made_without_it(machine_run):
     assert st.spans and len(st.spans) == Retiming(q, 2.0).stretches
     for i, j, key in st.spans:
         assert key == piece_key(path, prof.S[i], prof.S[j], limits)
+
+
+def test_one_stretches_for_many_factors_gives_each_factor_s_fresh_records(machine_run):
+    """fit.py re-times the run for each factor it tries with one Stretches: each factor's records
+    are those found with stretches of its own, and another queue's stretches are refused."""
+    machine, _ = machine_run
+    q = machine.arm.queue_in_use
+    records = motion_records(q)
+    st = Stretches(q)
+    for factor in (0.25, 0.5, 1.5, 2.0, 0.25):
+        moved, rt = retimed(q, records, factor, stretches=st)
+        fresh, ref = retimed(q, records, factor)
+        assert moved == fresh and rt.new_starts == ref.new_starts and rt.shift_end == ref.shift_end
+
+    class Other:
+        planner = q.planner
+        limits = q.limits
+
+    with pytest.raises(ValueError):
+        Retiming(Other(), 2.0, stretches=st)
+
+
+def test_next_true_finds_what_a_search_of_every_index_finds():
+    import numpy as np
+
+    from val3check.motion.retime import _next_true
+
+    rng = np.random.default_rng(7)
+    for n, p in ((0, 0.5), (1, 1.0), (5, 0.0), (300, 0.9), (5000, 0.001), (200_000, 0.00002)):
+        mask = rng.random(n) < p
+        at = np.flatnonzero(mask)
+        for i in {0, 1, n // 3, max(n - 1, 0), n, *rng.integers(0, max(n, 1), 20).tolist()}:
+            k = at.searchsorted(i)
+            assert _next_true(mask, i) == (int(at[k]) if k < len(at) else -1)
+
+
+def test_window_is_a_view_of_an_array_and_the_profile_grows_once_it_is_dropped():
+    from array import array
+
+    import numpy as np
+
+    from val3check.motion.trajectory import Profile, window
+
+    p = Profile()
+    p.append(0.0, np.array([0.0, 1.0, 3.0]), np.array([0.0, 2.0, 0.0]))
+    w = window(p.S, 1, 10)
+    assert w.tolist() == [1.0, 3.0] and not w.flags.owndata
+    assert window([5.0, 6.0, 7.0], 1, 3).tolist() == [6.0, 7.0] and window(p.T, 3, 3).tolist() == []
+    with pytest.raises(BufferError):
+        p.S.append(4.0)  # while the view lives
+    del w
+    p.append(p.t_end, np.array([3.0, 4.0]), np.array([0.0, 0.0]))
+    assert isinstance(p.S, array) and p.S[-1] == 4.0

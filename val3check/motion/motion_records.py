@@ -22,6 +22,7 @@ import numpy as np
 from .findings import Source
 from .paths import tcp_rates
 from .record_repeats import Repeats, noise
+from .trajectory import window
 
 
 @dataclass(frozen=True, slots=True)  # one per command of the run
@@ -82,7 +83,10 @@ def motion_records(queue, end_s: float | None = None, reuse: bool = True) -> lis
     repeats = Repeats(queue.path, prof) if reuse else None
     reached = prof.s_end if end_s is None else prof.state(end_s)[0]  # how far the arm got
     out: list[MotionRecord | None] = []
-    todo = []  # (what _evaluate needs of a command, the commands that repeat it)
+    # the commands met first, by tool (group number, blocks done, commands waiting), evaluated a
+    # block at a time as they come: what a command needs is dropped once its record is made
+    groups: dict = {}
+    doubts: list = []  # repeats with a near tie, decided at the end (`_decide`)
     for command in queue.history:
         req = command.request
         place = command.placement
@@ -114,74 +118,98 @@ def motion_records(queue, end_s: float | None = None, reuse: bool = True) -> lis
         if repeats is not None:
             earlier, slot = repeats.find(repeats.inputs(command.tool, item[8], s0, s1, max(k0 - 1, 0), k1))
             if earlier is not None:  # given the figures of the first (`_evaluate`)
-                earlier.append(item)
+                if earlier.figures is None:
+                    earlier.items.append(item)
+                else:
+                    _repeat(prof, out, item, earlier, doubts)
                 continue
-        todo.append((item, slot))
-    again = _evaluate(queue, prof, out, todo)
-    _repeat(queue, prof, out, again)
+        tool = command.tool  # the same TCP (by value: each command holds its own copy) evaluated together
+        key = None if tool is None else np.asarray(tool, dtype=float).tobytes()
+        group = groups.get(key)
+        if group is None:
+            group = groups[key] = [len(groups), 0, []]
+        group[2].append((item, slot))
+        if len(group[2]) == RECORD_BLOCK:
+            _evaluate(queue, prof, out, group, doubts)
+    for group in groups.values():
+        if group[2]:
+            _evaluate(queue, prof, out, group, doubts)
+    _decide(queue, prof, out, doubts)
     return out  # type: ignore[return-value]
 
 
-def _evaluate(queue, prof, out: list, todo: list) -> list:
-    """Fill `out` with the records of the commands of `todo` ((index in out, command, s0, s1, start,
-    end, k0, k1, limits), the commands that repeat it); returns [(a repeat, the figures of the
-    command it repeats)] for `_repeat`."""
-    groups: dict = {}
-    for item, slot in todo:
-        tool = item[1].tool  # the same TCP (by value: each command holds its own copy) evaluated together
-        groups.setdefault(None if tool is None else np.asarray(tool, dtype=float).tobytes(), []).append((item, slot))
-    # in blocks of commands: the memory of an evaluation does not grow with the run
-    blocks = [items[k:k + RECORD_BLOCK] for items in groups.values() for k in range(0, len(items), RECORD_BLOCK)]
-    again: list = []
-    for items in blocks:
-        where = []
-        for (_, _, s0, s1, _, _, k0, k1, _), _ in items:
-            pts = np.unique(np.concatenate([np.linspace(s0, s1, 33), np.asarray(prof.S[k0:k1])]))
-            lo = max(k0 - 1, 0)
-            S = np.asarray(prof.S[lo:k1 + 1])
-            where.append((pts, 0.5 * (S[1:] + S[:-1]), lo))
-        allp = np.concatenate([np.concatenate([pts, mids]) for pts, mids, _ in where])
-        q = queue.path.q(allp)
-        q1 = queue.path.q(allp, 1)
-        q2 = queue.path.q(allp, 2)
-        pt, rt = tcp_rates(queue.kin, q, q1, items[0][0][1].tool)
-        at = 0
-        for ((idx, command, s0, s1, start, end, _, k1, lim), slot), (pts, mids, lo) in zip(items, where):
-            n, m = len(pts), len(mids)
-            sl, sm = slice(at, at + n), slice(at + n, at + n + m)
-            at += n + m
-            length = float(np.sum(0.5 * (pt[sl][1:] + pt[sl][:-1]) * np.diff(pts)))
-            peak = float(np.max(pt[sl] * _speeds_at(prof, pts)))
-            rows = _intervals(prof, lo, k1, s0, s1)
-            i = rows[5]
-            codes, clear = _limits_on(lim, rows, q1[sm][i], q2[sm][i], pt[sm][i], rt[sm][i], prof, lo, k1, s1)
-            share = _seconds(rows, codes, len(lim.V))
-            out[idx] = _record(command, start, end, length, peak, share)
-            again.extend((item, (length, peak, codes, clear)) for item in slot or ())
-    return again
+def _evaluate(queue, prof, out: list, group: list, doubts: list) -> None:
+    """Fill `out` with the records of a block of commands met first (`group`: its number, blocks
+    done, [((index in out, command, s0, s1, start, end, k0, k1, limits), its Slot)]), all with
+    the same tool, in one evaluation of the path (the memory of an evaluation does not grow with
+    the run); then those of the repeats that waited for them (`_repeat`)."""
+    number, done, items = group
+    group[1], group[2] = done + 1, []
+    where = []
+    for (_, _, s0, s1, _, _, k0, k1, _), _ in items:
+        pts = np.unique(np.concatenate([np.linspace(s0, s1, 33), np.asarray(prof.S[k0:k1])]))
+        lo = max(k0 - 1, 0)
+        S = np.asarray(prof.S[lo:k1 + 1])
+        where.append((pts, 0.5 * (S[1:] + S[:-1]), lo))
+    allp = np.concatenate([np.concatenate([pts, mids]) for pts, mids, _ in where])
+    q = queue.path.q(allp)
+    q1 = queue.path.q(allp, 1)
+    q2 = queue.path.q(allp, 2)
+    pt, rt = tcp_rates(queue.kin, q, q1, items[0][0][1].tool)
+    at = 0
+    for n_item, (((idx, command, s0, s1, start, end, _, k1, lim), slot), (pts, mids, lo)) in enumerate(zip(items, where)):
+        n, m = len(pts), len(mids)
+        sl, sm = slice(at, at + n), slice(at + n, at + n + m)
+        at += n + m
+        length = float(np.sum(0.5 * (pt[sl][1:] + pt[sl][:-1]) * np.diff(pts)))
+        peak = float(np.max(pt[sl] * _speeds_at(prof, pts)))
+        rows = _intervals(prof, lo, k1, s0, s1)
+        i = rows[5]
+        codes, clear = _limits_on(lim, rows, q1[sm][i], q2[sm][i], pt[sm][i], rt[sm][i], prof, lo, k1, s1)
+        share = _seconds(rows, codes, len(lim.V))
+        out[idx] = _record(command, start, end, length, peak, share)
+        if slot is not None:
+            # where it was evaluated: the near ties of its repeats are decided in that order
+            slot.figures, slot.place = (length, peak, codes, clear, i, _order(codes, len(lim.V))), \
+                (number, done * RECORD_BLOCK + n_item)
+            for item in slot.items:
+                _repeat(prof, out, item, slot, doubts)
+            slot.items = []
 
 
-def _repeat(queue, prof, out: list, again: list) -> None:
-    """The records of the commands that repeat an earlier one (`again`: (command's item, figures of
-    the earlier)): its length and peak, its limits per interval but where they were a near tie
-    (decided again on its own path, all of them in one evaluation per tool)."""
-    doubt: dict = {}  # tool -> [(item, rows, codes, unclear rows, their midpoints)]
-    for item, (length, peak, codes, clear) in again:
+def _repeat(prof, out: list, item: tuple, slot, doubts: list) -> None:
+    """The record of a command that repeats an earlier one (its Slot's figures): its length and
+    peak, its limits per interval, its own seconds under each; when a limit was a near tie, left
+    to `_decide` (`doubts`)."""
+    length, peak, _, clear, i, order = slot.figures
+    idx, command, s0, s1, start, end, k0, k1, _ = item
+    if clear.all():  # the earlier's intervals (the key holds where s0 and s1 fall) and limits
+        out[idx] = _record(command, start, end, length, peak, _seconds_of(prof, max(k0 - 1, 0), k1, s0, s1, i, order))
+    else:
+        doubts.append((slot.place + (idx,), item, slot.figures))
+
+
+def _decide(queue, prof, out: list, doubts: list) -> None:
+    """The records of the repeats whose limit in some interval was a near tie: decided again on
+    their own path, all of them in one evaluation per tool (in the order the earlier commands were
+    evaluated, then of the run)."""
+    doubts.sort(key=lambda d: d[0])
+    doubt: dict = {}  # tool -> [(item, codes, unclear rows, their midpoints)]
+    for _, item, (length, peak, codes, clear, _, _) in doubts:
         idx, command, s0, s1, start, end, k0, k1, lim = item
-        rows = _intervals(prof, max(k0 - 1, 0), k1, s0, s1)
-        if clear.all():
-            out[idx] = _record(command, start, end, length, peak, _seconds(rows, codes, len(lim.V)))
-            continue
+        rows = _intervals(prof, max(k0 - 1, 0), k1, s0, s1)  # made again below: not held for every doubt
         j = np.nonzero(~clear)[0]
         S = rows[0]
         tool = command.tool
         doubt.setdefault(None if tool is None else np.asarray(tool, dtype=float).tobytes(), []).append(
-            (item, rows, codes.copy(), j, 0.5 * (S[rows[5][j]] + S[rows[5][j] + 1]), length, peak))
+            (item, codes.copy(), j, 0.5 * (S[rows[5][j]] + S[rows[5][j] + 1]), length, peak))
+    doubts.clear()
     for items in doubt.values():
-        q, q1, q2 = _path_at(queue.path, np.concatenate([it[4] for it in items]))
+        q, q1, q2 = _path_at(queue.path, np.concatenate([it[3] for it in items]))
         pt, rt = tcp_rates(queue.kin, q, q1, items[0][0][1].tool)
         at = 0
-        for (idx, command, s0, s1, start, end, k0, k1, lim), rows, codes, j, mids, length, peak in items:
+        for (idx, command, s0, s1, start, end, k0, k1, lim), codes, j, _, length, peak in items:
+            rows = _intervals(prof, max(k0 - 1, 0), k1, s0, s1)
             sl = slice(at, at + len(j))
             at += len(j)
             sub = tuple(r[j] if k >= 1 else r for k, r in enumerate(rows))  # the rows in doubt
@@ -241,6 +269,32 @@ def _seconds(rows, codes: np.ndarray, n: int) -> dict:
     total = np.bincount(codes, weights=dt * frac)
     first = np.unique(codes, return_index=True)[1]
     return {_label(int(codes[k]), n): float(total[codes[k]]) for k in np.sort(first)}
+
+
+def _order(codes: np.ndarray, n: int) -> tuple[list, np.ndarray]:
+    """The limits of `codes` as `_seconds` lists them (in order of first appearance, labelled) and
+    each interval's place in that list."""
+    if not len(codes):
+        return [], codes
+    first = np.sort(np.unique(codes, return_index=True)[1])
+    rank = np.zeros(int(codes.max()) + 1, dtype=np.intp)
+    rank[codes[first]] = np.arange(len(first))
+    return [_label(int(codes[k]), n) for k in first], rank[codes]
+
+
+def _seconds_of(prof, lo: int, k1: int, s0: float, s1: float, i: np.ndarray, order: tuple) -> dict:
+    """`_seconds(_intervals(...), codes, n)` of a repeat whose intervals `i` and limits (`order` of
+    the codes) are the earlier command's: the same arithmetic on its own breakpoints, read in
+    place (views, dropped here: the profile may grow after)."""
+    labels, rank = order
+    if not labels:
+        return {}
+    S, T = window(prof.S, lo, k1 + 1), window(prof.T, lo, k1 + 1)
+    a, b = S[i], S[i + 1]
+    frac = np.clip((np.minimum(b, s1) - np.maximum(a, s0)) / (b - a), 0.0, 1.0)
+    total = np.bincount(rank, weights=(T[i + 1] - T[i]) * frac)
+    del S, T
+    return dict(zip(labels, total.tolist()))
 
 
 def _label(code: int, n: int) -> str:

@@ -22,6 +22,8 @@ import bisect
 
 import numpy as np
 
+from .trajectory import window
+
 POS_TOL = 1e-13  # × the magnitude of the run's path positions (their rounding: ~1e-16 per operation)
 TIME_TOL = 1e-13  # × the magnitude of the run's times
 SPEED_TOL = 1e-10  # × the largest path speed of the command (the timing's own rounding reaches 1e-11)
@@ -43,9 +45,8 @@ class Repeats:
         are lo..k1 (what motion_records reads of the profile)."""
         prof, path = self.prof, self.path
         hi = min(k1, len(prof.S) - 1)
-        S = np.asarray(prof.S[lo:hi + 1])
-        T = np.asarray(prof.T[lo:hi + 1])
-        SD = np.asarray(prof.SD[lo:hi + 1])
+        # views of the profile, not copies (none is returned: the profile may grow after)
+        S, T, SD = window(prof.S, lo, hi + 1), window(prof.T, lo, hi + 1), window(prof.SD, lo, hi + 1)
         i0 = path.locate(min(S[0], s0))[0]
         i1 = path.locate(max(S[-1], s1))[0]
         offsets = path.offsets[i0:i1 + 1]
@@ -73,20 +74,32 @@ class Repeats:
                          SPEED_TOL * max(1.0, float(SD.max()))], [len(S) + len(offs) + 1, len(S) - 1, len(S)])
         return exact, got, tol
 
-    def find(self, inputs) -> tuple[list | None, list | None]:
-        """(the list of the commands that repeat an earlier one with these inputs, None), or
-        (None, a new such list) when none has them: the first command with them is computed and
-        its figures given to those it lists."""
+    def find(self, inputs) -> tuple[Slot | None, Slot | None]:
+        """(the Slot of an earlier command with these inputs, None), or (None, a new Slot) when
+        none has them: the first command with them is computed and its figures kept in its Slot."""
         exact, got, tol = inputs
         kept = self.seen.setdefault(exact, [])
-        for earlier, repeats in kept:
+        for earlier, slot in kept:
             if np.all(np.abs(got - earlier) <= tol):
                 self.hits += 1
-                return repeats, None
-        repeats: list = []
+                return slot, None
+        slot = Slot()
         if len(kept) < KEPT:
-            kept.append((got, repeats))
-        return None, repeats
+            kept.append((got, slot))
+        return None, slot
+
+
+class Slot:
+    """The figures of the first command with some inputs (`figures`, None until computed), where
+    they were computed (`place`), and the repeats met before that (`items`, then emptied)."""
+
+    __slots__ = ("figures", "items", "place")
+
+    def __init__(self) -> None:
+        """Not computed yet, no repeat waiting."""
+        self.figures: tuple | None = None
+        self.place: tuple = ()
+        self.items: list = []
 
 
 def noise(prof, lo: int, k1: int, s_max: float) -> tuple[float, float]:

@@ -25,7 +25,7 @@ from dataclasses import fields, replace
 import numpy as np
 
 from .mdesc import Limits
-from .trajectory import Profile
+from .trajectory import Profile, window
 
 
 def piece_key(path, a: float, b: float, limits, memo: dict | None = None) -> tuple | None:
@@ -65,6 +65,20 @@ def _limits_key(lim: Limits) -> tuple:
     return (lim.V.tobytes(), lim.A.tobytes(), lim.D.tobytes(), lim.tvel, lim.rvel)
 
 
+def _next_true(mask: np.ndarray, i: int) -> int:
+    """The first index k >= i where `mask` is true, -1 when none: a window at a time (the next leave
+    is usually the breakpoint itself or the next)."""
+    w = 8
+    while i < len(mask):
+        part = mask[i:i + w]
+        k = int(part.argmax())
+        if part[k]:
+            return i + k
+        i += w
+        w = min(w * 8, 1 << 16)
+    return -1
+
+
 class Stretches:
     """The moving stretches of `queue`'s profile (from a rest to the next) and their piece keys:
     the same for every factor, found once for all of them (`retimed_range`)."""
@@ -77,23 +91,25 @@ class Stretches:
         self.profile = prof
         self.spans: list[tuple] = []  # (i, j, piece_key) per stretch: profile indices of its ends
         memo: dict = {}
+        keys: dict = {}  # one object per distinct key (a cyclic run repeats a few thousand times)
         T, S, SD = prof.T, prof.S, prof.SD
         n = len(T)
         # a stretch starts at a breakpoint the arm leaves (moves or goes forward after it) and ends
-        # at the next breakpoint at rest (or the last): found by bisection, not breakpoint by breakpoint
-        s_, sd_ = np.array(S, dtype=float), np.array(SD, dtype=float)  # copies: a view would stop the arrays growing
-        # index arrays, not lists: millions of Python ints in an 8-hour run
-        leaves = np.flatnonzero(~((sd_[1:] <= 0.0) & (s_[1:] <= s_[:-1])))
+        # at the next breakpoint at rest (or the last). Views of the profile (no copies: 8 hours hold
+        # millions of breakpoints), dropped before anything can grow it; a mask of one byte per
+        # breakpoint for the leaves, an index array for the rests (a few per motion)
+        s_, sd_ = window(S, 0, n), window(SD, 0, n)
+        leaves = ~((sd_[1:] <= 0.0) & (s_[1:] <= s_[:-1]))
         rests = np.append(np.flatnonzero(~(sd_[1:n - 1] > 0.0)) + 1, n - 1)
         del s_, sd_
         i = 0
         while True:
-            m = int(leaves.searchsorted(i, "left"))
-            if m == len(leaves):
+            i = _next_true(leaves, i)
+            if i < 0:
                 break
-            i = int(leaves[m])
             j = int(rests[rests.searchsorted(i, "right")])
-            self.spans.append((i, j, piece_key(planner.path, S[i], S[j], queue.limits.of, memo)))
+            key = piece_key(planner.path, S[i], S[j], queue.limits.of, memo)
+            self.spans.append((i, j, keys.setdefault(key, key)))
             i = j
         self.starts = [T[i] for i, _, _ in self.spans]
 
@@ -122,6 +138,8 @@ class Retiming:
         """The moving stretches of `queue`'s profile (`stretches`, found here when not given), each
         timed again with accelerations and decelerations × `factor`."""
         st = stretches if stretches is not None else Stretches(queue)
+        if st.queue is not queue:
+            raise ValueError("the stretches are another queue's")
         planner = queue.planner
         prof = st.profile
         limits = queue.limits.of
@@ -180,19 +198,27 @@ class Retiming:
         return self.new_starts[k] + (at if at is not None else self.pieces[k].t_end)
 
 
-def retimed(queue, records: list, factor: float, out_of_time=None) -> tuple[list, Retiming]:
+def retimed(queue, records: list, factor: float, out_of_time=None,
+            stretches: Stretches | None = None) -> tuple[list, Retiming]:
     """The motion records (records.MotionRecord) of the run re-timed with accelerations × factor
     (the same records, their start and end moved: module docstring), and the Retiming (its `cut`:
-    where it stopped when `out_of_time()` became true; the records after it have no start)."""
-    return retimed_range(queue, records, (factor,), out_of_time)[0]
+    where it stopped when `out_of_time()` became true; the records after it have no start).
+    `stretches`: the queue's, found once by a caller that re-times it for many factors (fit.py)."""
+    return retimed_range(queue, records, (factor,), out_of_time, stretches)[0]
 
 
-def retimed_range(queue, records: list, factors, out_of_time=None) -> list[tuple[list, Retiming]]:
+def retimed_range(queue, records: list, factors, out_of_time=None,
+                  stretches: Stretches | None = None) -> list[tuple[list, Retiming]]:
     """`retimed` for each factor in turn, the stretches, their keys and where each record's start
-    and end fall found once for all the factors."""
-    st = Stretches(queue)
+    and end fall found once for all the factors (`stretches`: found here when not given)."""
+    return list(each_retimed(queue, records, factors, out_of_time, stretches))
+
+
+def each_retimed(queue, records: list, factors, out_of_time=None, stretches: Stretches | None = None):
+    """`retimed_range` one factor at a time (a generator: a caller that takes what it needs of a
+    factor's records holds one factor's at a time)."""
+    st = stretches if stretches is not None else Stretches(queue)
     places = [(st.place(r.start), st.place(r.end)) for r in records]
-    out = []
     if records and all(f.init for f in fields(records[0])) and all(type(r) is type(records[0]) for r in records):
         # each record's other fields read once for all the factors (what `replace` does per call)
         names = [f.name for f in fields(records[0])]
@@ -210,5 +236,5 @@ def retimed_range(queue, records: list, factors, out_of_time=None) -> list[tuple
             for v, (a, b) in zip(values, places):
                 v[i_start], v[i_end] = rt.time_at(a), rt.time_at(b)
                 moved.append(make(*v))
-        out.append((moved, rt))
-    return out
+        yield moved, rt
+        del moved  # before the next factor's

@@ -187,6 +187,16 @@ class Profile:
         return -math.inf if k == 0 else self.T[k]
 
 
+def window(values, lo: int, hi: int) -> np.ndarray:
+    """values[lo:hi] of a profile's breakpoints as a numpy array: a view of an array('d') (no copy;
+    the caller drops it before the profile may grow: an exported buffer cannot resize), a copy of
+    anything else."""
+    if isinstance(values, array):
+        hi = min(hi, len(values))
+        return np.frombuffer(values, dtype=float, count=max(hi - lo, 0), offset=8 * lo)
+    return np.asarray(values[lo:hi], dtype=float)
+
+
 _MOVING_BLOCK = 1 << 16  # breakpoints per block in Trajectory.moving
 
 

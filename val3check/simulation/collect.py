@@ -18,7 +18,7 @@ from ..geometry.rotation import angles_of, matrix
 from ..interpretation.machine import Machine
 from ..motion.cycle import cycle_stats
 from ..motion.motion_records import busy_time, motion_records
-from ..motion.retime import retimed_range
+from ..motion.retime import each_retimed
 from ..robot.models import ASSUMED_ACCELERATION_RANGE
 from ..rules import codes
 from .arm_layers import ActualTrajectory
@@ -125,8 +125,9 @@ def acceleration_range(machine: Machine, q, queue_records, diags: list[Diagnosti
     there, the range covers the run up to that time (`AccelerationRange.partial`) and an R006 says so."""
     out_of_time = RunBudget.of(machine).out_of_time
     cycles, cut = [], None
-    for records, rt in retimed_range(q, queue_records, ASSUMED_ACCELERATION_RANGE, out_of_time):
+    for records, rt in each_retimed(q, queue_records, ASSUMED_ACCELERATION_RANGE, out_of_time):  # one factor's at a time
         cycles.append(_cycle_entries(machine, records))
+        del records  # before the next factor's
         if rt.cut is not None:
             cut = rt.cut if cut is None else min(cut, rt.cut)
     partial = None

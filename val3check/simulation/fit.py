@@ -24,7 +24,7 @@ import sys
 from dataclasses import dataclass
 
 from ..motion.motion_records import motion_records
-from ..motion.retime import retimed
+from ..motion.retime import Stretches, retimed
 from .collect import task_cycles
 from .moving_arm import MovingArm
 from .run import SimOptions, run_machine
@@ -94,10 +94,11 @@ def fit_accelerations(ws, app, model, scenario, measured: float, options: SimOpt
                        "an application whose task loops on its motions (docs/motion.md, \"Cycle time\")")
     task, marker, _ = found
     log_m = math.log(measured)
+    stretches = Stretches(queue)  # the same for every factor tried: the run's profile no longer changes
 
     def g(log_f: float) -> float:
         """log(cycle time at accelerations × e^log_f) - log(measured), by re-timing the run."""
-        c = _cycle(machine, retimed(queue, records, math.exp(log_f))[0], task)
+        c = _cycle(machine, retimed(queue, records, math.exp(log_f), stretches=stretches)[0], task)
         if c is None:
             raise FitError("the re-timed run has no complete cycle")
         return math.log(c[2]) - log_m
