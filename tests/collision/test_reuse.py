@@ -446,14 +446,23 @@ def _machine(node):
     return SimpleNamespace(main=SimpleNamespace(globals={"fPart": glob}, aliases={})), glob
 
 
+
+def _chain():
+    """world -> base -> f: a frame two levels below the world, as the reading tests change it."""
+    from val3check.geometry.frames import Frame
+    from val3check.geometry.trsf import Trsf
+
+    world = Frame(is_root=True, name="world")
+    base = Frame(Trsf(100.0, 0.0, 0.0, 0.0, 0.0, 0.0), world)
+    return world, base, Frame(Trsf(0.0, 50.0, 0.0, 0.0, 0.0, 90.0), base)
+
+
 def test_a_frame_is_computed_again_whenever_its_chain_changes_bit_for_bit():
     from val3check.geometry.frames import Frame
     from val3check.geometry.trsf import Trsf
     from val3check.simulation.collision_run import _read
 
-    world = Frame(is_root=True, name="world")
-    base = Frame(Trsf(100.0, 0.0, 0.0, 0.0, 0.0, 0.0), world)
-    f = Frame(Trsf(0.0, 50.0, 0.0, 0.0, 0.0, 90.0), base)
+    world, base, f = _chain()
     machine, glob = _machine(f)
     cache: dict = {}
     first = _read(machine, "fPart", Frame, cache)
@@ -520,9 +529,7 @@ def test_a_frame_given_the_same_bits_in_new_objects_keeps_its_reading():
     from val3check.geometry.trsf import Trsf
     from val3check.simulation.collision_run import _read
 
-    world = Frame(is_root=True, name="world")
-    base = Frame(Trsf(100.0, 0.0, 0.0, 0.0, 0.0, 0.0), world)
-    f = Frame(Trsf(0.0, 50.0, 0.0, 0.0, 0.0, 90.0), base)
+    world, base, f = _chain()
     machine, _ = _machine(f)
     cache: dict = {}
     first = _read(machine, "fPart", Frame, cache)
