@@ -1,6 +1,7 @@
 """memory_budget.rss_bytes reads /proc/self/statm through a descriptor kept open: it must follow
 the process as it grows, and a forked child must read its own size, not its parent's."""
 
+import mmap
 import os
 
 import pytest
@@ -17,14 +18,20 @@ def _statm_rss() -> int:
 
 
 def test_follows_growth():
+    # fresh pages from mmap, each written: a bytearray could reuse memory an earlier test freed
+    # and that is still resident (the full suite's process), and then nothing would grow
+    size = 64 * 1024 * 1024
     before = rss_bytes()
-    block = bytearray(64 * 1024 * 1024)  # touched: resident
+    block = mmap.mmap(-1, size)
     try:
+        page = mmap.PAGESIZE
+        for offset in range(0, size, page):
+            block[offset] = 1
         grown = rss_bytes()
         assert grown - before >= 60 * 1024 * 1024
         assert abs(grown - _statm_rss()) < 4 * 1024 * 1024
     finally:
-        del block
+        block.close()
 
 
 @pytest.mark.skipif(not hasattr(os, "fork"), reason="fork")
