@@ -41,6 +41,8 @@ class Warp:
         return len(self.T) == 1
 
     def _piece(self, t: float) -> int:
+        if len(self.T) == 1:  # one piece (every run without compliance): asked at every cycle
+            return 0
         return max(bisect.bisect_right(self.T, t) - 1, 0)
 
     def tau(self, t: float) -> float:

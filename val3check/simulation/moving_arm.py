@@ -129,13 +129,7 @@ class MovingArm(ModelArm):
     def queue_time(self, time_us: int) -> float:
         """The queue time (s) of real time `time_us` (arm_layers.Warp)."""
         t = time_us / US
-        layers = self.layers
-        if layers is None:
-            return t
-        w = layers.warp
-        if len(w.T) == 1:  # one piece (the run without compliance): Warp.queue_time without its search
-            return max(w.max_tau[0], w.TAU[0] + w.R[0] * (t - w.T[0]))
-        return w.queue_time(t)
+        return t if self.layers is None else self.layers.queue_time(t)
 
     def real_time(self, tau: float | None) -> float | None:
         """The first real time (s) the arm reaches queue time `tau`."""
@@ -155,8 +149,8 @@ class MovingArm(ModelArm):
                 t = self.queue_time(time_us)
                 if powered != q.powered:
                     q.set_power(powered, t)
-                if float(ctl.monitor_speed) != q.monitor:
-                    q.set_monitor_speed(float(ctl.monitor_speed), t)
+                if monitor != q.monitor:
+                    q.set_monitor_speed(monitor, t)
         return q
 
     def set_geometry(self, model: Any, t: float) -> None:
