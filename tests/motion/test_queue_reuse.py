@@ -6,7 +6,6 @@ that reuses them answers every question as a fresh computation does, bit for bit
 from __future__ import annotations
 
 import numpy as np
-import pytest
 
 from val3check.motion import queue as queue_mod
 from val3check.motion import trial_memo
@@ -14,7 +13,7 @@ from val3check.motion.mdesc import CommandLimits, MDesc
 from val3check.motion.paths import JointLine, Span
 from val3check.motion.queue import QueueFull
 
-from .motionhelp import HOME, KIN, movej, movel, point, queue
+from .motionhelp import HOME, KIN, movel, point, queue
 from .test_plan_reuse import TOOL, _cycle, _run
 
 
@@ -179,47 +178,3 @@ def test_a_read_only_tool_is_keyed_by_its_object_a_writable_one_by_its_values():
     assert key(writable) != k_w
     assert key(None) != k_shared
 
-
-def test_relative_plans_are_off_and_differ_only_in_the_last_bits(monkeypatch):
-    """planner.RELATIVE_PLAN (a decision for the lead, off): every plan timed as a blend trial
-    (relative to its piece's start, so reused in a cyclic run) moves the arm the same to within
-    rounding."""
-    from val3check.motion import planner
-
-    assert planner.RELATIVE_PLAN is False
-    plans = []
-    trial = planner.Planner._trial_duration
-
-    def counted(self, s0, v0, extra):
-        plans.append(not extra)
-        return trial(self, s0, v0, extra)
-
-    monkeypatch.setattr(planner.Planner, "_trial_duration", counted)
-
-    def run():
-        """Commands each recorded at rest (no blend trial before their plan), then a blended cycle."""
-        q = queue()
-        now = 0.0
-        for n in range(6):
-            for move in (movel(point(dx=60.0, dz=20.0 * (n % 2))), movel(point(dy=40.0)), movej(HOME)):
-                q.record(move, now)
-                now = q.wait_end_move(now)
-                q.advance(now)
-        for move in _cycle(""):
-            q.record(move, now)
-        now = q.wait_end_move(now)
-        q.advance(now)
-        prof = q.profile
-        return [(c.id, c.state, c.t_done, c.placement.s_end) for c in q.history], (prof.T, prof.S, prof.SD)
-
-    off, prof_off = run()
-    assert not any(plans)
-    monkeypatch.setattr(planner, "RELATIVE_PLAN", True)
-    on, prof_on = run()
-    assert sum(plans) >= 18  # plans timed as trials
-    assert [c[:2] for c in on] == [c[:2] for c in off]
-    for a, b in zip(on, off):
-        assert a[2:] == pytest.approx(b[2:], rel=1e-12, abs=1e-12)
-    assert len(prof_on[0]) == len(prof_off[0])
-    for u, v in zip(prof_on, prof_off):
-        assert np.allclose(u, v, rtol=1e-12, atol=1e-12)

@@ -36,10 +36,6 @@ from .trial_memo import TrialMemo, frozen
 # Commands recorded less than this apart while the arm starts from rest are timed together: in
 # that time the arm moves less than a micrometre, the same whichever way it is computed.
 MERGE_WINDOW = 0.001
-# Every plan timed as a blend trial is, relative to its piece's start, and so reused in a cyclic
-# run; off because the path positions then differ in their last bits (docs/performance.md,
-# "Issue 29, fourth round": what it gains and changes, a decision for the lead).
-RELATIVE_PLAN = False
 
 
 class DueReplan(NamedTuple):
@@ -328,8 +324,6 @@ class Planner:
         pieces = None
         if trial is not None and self._trial_applies(trial, t_r, s_r):
             pieces = trial[2]  # the blend trial timed exactly this (`blend_pays`)
-        elif RELATIVE_PLAN:  # timed as a trial (relative to the piece's start): reused, not the same bits
-            pieces = self._trial_duration(s_r, sd_r, [])[1]
         if pieces:
             t_cur = max(t_r, prof.t_end)
             for i, (s_, sd_) in enumerate(pieces):
