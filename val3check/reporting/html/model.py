@@ -14,7 +14,7 @@ from array import array
 from itertools import islice
 from typing import Any
 
-from .series import floats
+from .series import Packed, floats
 
 VERSION = 1
 
@@ -227,6 +227,14 @@ def _check_part(part: Any, where: str) -> None:
         _matrix(span["pose"], f"{w}.pose")
 
 
+def _check_joints(joints: Any) -> int:
+    for i, j in enumerate(_list(joints, "trajectory.joints")):
+        _dict(j, f"trajectory.joints[{i}]", ("name", "unit", "min", "max", "speed"))
+        for k in ("min", "max", "speed"):
+            _num(j[k], f"trajectory.joints[{i}].{k}", null=True)
+    return len(joints)
+
+
 def check_model(model: Any) -> None:
     """Raise ModelError if `model` is not a report model the page can show (docs/html-report.md)."""
     m = _dict(model, "model", ("version", "application", "verdict"))
@@ -271,17 +279,14 @@ def check_model(model: Any) -> None:
             _num(it["duration"], f"cycles[{i}].iterations[{k}].duration")
     njoints = None
     tr = m.get("trajectory")
-    if tr is not None:
+    if isinstance(tr, Packed):  # a run's page: its values checked block by block (run_trajectory.py)
+        njoints = _check_joints(tr.joints)
+    elif tr is not None:
         _dict(tr, "trajectory", ("joints", "times", "positions", "velocities"))
         times = _series(tr["times"], "trajectory.times")
         n = len(times)
         _times(times, "trajectory.times")
-        joints = _list(tr["joints"], "trajectory.joints")
-        njoints = len(joints)
-        for i, j in enumerate(joints):
-            _dict(j, f"trajectory.joints[{i}]", ("name", "unit", "min", "max", "speed"))
-            for k in ("min", "max", "speed"):
-                _num(j[k], f"trajectory.joints[{i}].{k}", null=True)
+        njoints = _check_joints(tr["joints"])
         for key in ("positions", "velocities"):
             rows = _list(tr[key], f"trajectory.{key}")
             if len(rows) != njoints:

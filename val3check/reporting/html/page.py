@@ -23,7 +23,7 @@ from typing import Any
 
 from .._common import visible, visible_data
 from .model import check_model
-from .pack import page_data
+from .pack import data_items
 
 # Script files, concatenated in this order into the page's one <script>.
 SCRIPTS = ("core.js", "plot.js", "lanes.js", "view3d.js", "main.js")
@@ -422,19 +422,20 @@ def _timebar(m: dict) -> str:
 
 def render(model: dict) -> str:
     """The self-contained HTML page of a report model (raises ModelError for a bad model)."""
+    return "".join(pieces(model))
+
+
+def pieces(model: dict):
+    """The text of `render(model)` piece by piece, to be written as it is made: no piece holds
+    more than a section's header, a block of table rows or one value of the page's data. The
+    model is checked first (ModelError before any piece)."""
     check_model(model)
-    sections = "".join(fn(model) for _, _, fn in SECTIONS)
-    body = (f"{_header(model)}{_nav([(sid, title) for sid, title, _ in SECTIONS])}"
-            f'<main id="main">{_timebar(model) if _has_time(model) else ""}{sections}</main>'
-            '<footer><p>This page is self-contained: it loads nothing, from the network or from disk. '
-            'Its plots and 3D view need JavaScript; the tables above do not.</p></footer>'
-            '<noscript><p class="empty">JavaScript is off: the plots, timelines and the 3D view are not drawn.</p></noscript>')
+    return _pieces(model)
+
+
+def _pieces(model: dict):
     css = _asset("report.css")
     script = "\n".join(_asset(name) for name in SCRIPTS)
-    # the script writes these strings into the page: their control characters visible too
-    data = _data_json(page_data(model))
-    # inside <script>: no "</script>", "<!--" can be formed
-    data = data.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
     csp = ("default-src 'none'; "
            f"script-src '{_sha256(script)}'; style-src '{_sha256(css)}'; img-src data:; "
            "base-uri 'none'; form-action 'none'")
@@ -444,23 +445,53 @@ def render(model: dict) -> str:
         "generator": _e(f"{tool.get('name', 'val3check')} {tool.get('version', '')}".strip()),
         "title": _e(f"{model.get('title') or model['application']['name']}: simulation report"),
         "css": css,
-        "body": body,
-        "data": data,
+        "body": _body,
+        "data": _data,
         "script": script,
     }
     template = _asset("page.html")
-    out = []
     pos = 0
     while True:  # one pass, so that no inserted text is ever taken for a placeholder
         start = template.find("{{", pos)
         if start < 0:
-            out.append(template[pos:])
+            yield template[pos:]
             break
         end = template.index("}}", start)
-        out.append(template[pos:start])
-        out.append(replacements[template[start + 2:end]])
+        yield template[pos:start]
+        value = replacements[template[start + 2:end]]
+        if isinstance(value, str):
+            yield value
+        else:
+            yield from value(model)
         pos = end + 2
-    return "".join(out)
+
+
+def _body(model: dict):
+    yield f"{_header(model)}{_nav([(sid, title) for sid, title, _ in SECTIONS])}"
+    yield f'<main id="main">{_timebar(model) if _has_time(model) else ""}'
+    for _, _, fn in SECTIONS:
+        yield from _parts(fn(model))
+    yield ('</main><footer><p>This page is self-contained: it loads nothing, from the network or from disk. '
+           'Its plots and 3D view need JavaScript; the tables above do not.</p></footer>'
+           '<noscript><p class="empty">JavaScript is off: the plots, timelines and the 3D view are not drawn.</p></noscript>')
+
+
+def _parts(section):
+    """A section's text: a str, or its pieces (a long table's rows, a block at a time)."""
+    if isinstance(section, str):
+        yield section
+    else:
+        yield from section
+
+
+def _data(model: dict):
+    """The page's data as `_data_json(page_data(model))`, one top-level value at a time (in the
+    order sort_keys gives), each escaped for <script>: no "</script>", "<!--" can be formed."""
+    yield "{"
+    for k, (key, value) in enumerate(data_items(model)):
+        text = ("," if k else "") + json.dumps(key) + ":" + _data_json(value)
+        yield text.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
+    yield "}"
 
 
 # In ensure_ascii JSON, every character `visible` rewrites is an escape this finds (and some it
