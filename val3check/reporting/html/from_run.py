@@ -238,20 +238,24 @@ def _note(note: str | None, limits: list[str]) -> None:
 
 def _arm_timeline(moving: list, end: float, limits: list[str]) -> list[dict]:
     """The arm moving or idle over the run (`moving`: the intervals in which it moves): its first
-    spans on a long run (thinning.py, said)."""
-    segs, t = [], 0.0
+    spans on a long run (thinning.py, said), the others counted, never made."""
+    spans, note = arm_spans(_arm_spans(moving, end), lambda s: _r(s[0]))
+    _note(note, limits)
+    return [{"start": _r(a), "end": _r(b), "state": state} for a, b, state in spans]
+
+
+def _arm_spans(moving: list, end: float):
+    """(start, end, "idle" or "moving") over the run."""
+    t = 0.0
     for a, b in moving:
         a, b = min(a, end), min(b, end)
         if a > t:
-            segs.append({"start": _r(t), "end": _r(a), "state": "idle"})
+            yield t, a, "idle"
         if b > a:
-            segs.append({"start": _r(a), "end": _r(b), "state": "moving"})
+            yield a, b, "moving"
         t = max(t, b)
     if t < end:
-        segs.append({"start": _r(t), "end": _r(end), "state": "idle"})
-    segs, note = arm_spans(segs)
-    _note(note, limits)
-    return segs
+        yield t, end, "idle"
 
 
 def _shape_solid(name: str, shape: Any, pose, limits: list[str]) -> dict:

@@ -184,43 +184,50 @@ def _diagnostics(m: dict) -> str:
     return f'<section id="diagnostics" aria-labelledby="diagnostics-h"><h2 id="diagnostics-h">Diagnostics</h2>{body}</section>'
 
 
-def _motions(m: dict) -> str:
+def _motions(m: dict):
     motions = m.get("motions", [])
     if not motions:
-        body = '<p class="empty">No motion in this run.</p>'
-    else:
-        moving = sum(mo["end"] - mo["start"] for mo in motions)
-        clear = [mo for mo in motions if mo.get("min_clearance") is not None]
-        closest = min(clear, key=lambda mo: mo["min_clearance"]) if clear else None
-        summary = f"{_plural(len(motions), 'motion')}, {_s(moving)} moving"
-        if closest:
-            summary += (f"; smallest clearance {_num(closest['min_clearance'])} mm"
-                        f"{' to ' + _e(closest['clearance_to']) if closest.get('clearance_to') else ''} (motion {closest['id']})")
-        rows = []
-        for mo in motions:
-            speed = []
-            if mo.get("vel") is not None:
-                speed.append(f"vel {mo['vel']:g} %")
-            if mo.get("tvel") is not None:
-                speed.append(f"tvel {mo['tvel']:g} mm/s")
-            clearance = _num(mo.get("min_clearance"))
-            if mo.get("clearance_to") and mo.get("min_clearance") is not None:
-                clearance += f' <span class="muted">{_e(mo["clearance_to"])}</span>'
-            rows.append(
-                f'<tr><td class="n">{_time_button(mo["start"], mo["end"], str(mo["id"]), True)}</td>'
-                f'<td class="nw">{_source(mo)}</td><td>{_e(mo.get("task") or "")}</td>'
-                f'<td><code>{_e(mo["kind"])}</code></td><td>{_e(mo.get("target") or "")}</td>'
-                f'<td class="n">{mo["start"]:.3f}</td><td class="n">{mo["end"]:.3f}</td>'
-                f'<td class="n">{(mo["end"] - mo["start"]) if mo.get("duration") is None else mo["duration"]:.3f}</td>'
-                f'<td>{_e(mo.get("dominant_limit") or "–")}</td><td class="nw">{_e(", ".join(speed))}</td>'
-                f'<td class="n">{clearance}</td></tr>')
-        body = (f'<p>{summary}. The number zooms the timelines on the motion.</p>'
-                '<div class="scroll tall"><table class="data motions"><thead><tr>'
-                '<th scope="col">#</th><th scope="col">program:line</th><th scope="col">task</th><th scope="col">kind</th>'
-                '<th scope="col">target</th><th scope="col">start (s)</th><th scope="col">end (s)</th>'
-                '<th scope="col">duration (s)</th><th scope="col">dominant limit</th><th scope="col">speed</th>'
-                f'<th scope="col">clearance (mm)</th></tr></thead><tbody>{"".join(rows)}</tbody></table></div>')
-    return f'<section id="motions" aria-labelledby="motions-h"><h2 id="motions-h">Motions</h2>{body}</section>'
+        yield '<section id="motions" aria-labelledby="motions-h"><h2 id="motions-h">Motions</h2>' \
+              '<p class="empty">No motion in this run.</p></section>'
+        return
+    moving = sum(mo["end"] - mo["start"] for mo in motions)
+    clear = [mo for mo in motions if mo.get("min_clearance") is not None]
+    closest = min(clear, key=lambda mo: mo["min_clearance"]) if clear else None
+    summary = f"{_plural(len(motions), 'motion')}, {_s(moving)} moving"
+    if closest:
+        summary += (f"; smallest clearance {_num(closest['min_clearance'])} mm"
+                    f"{' to ' + _e(closest['clearance_to']) if closest.get('clearance_to') else ''} (motion {closest['id']})")
+    yield (f'<section id="motions" aria-labelledby="motions-h"><h2 id="motions-h">Motions</h2>'
+           f'<p>{summary}. The number zooms the timelines on the motion.</p>'
+           '<div class="scroll tall"><table class="data motions"><thead><tr>'
+           '<th scope="col">#</th><th scope="col">program:line</th><th scope="col">task</th><th scope="col">kind</th>'
+           '<th scope="col">target</th><th scope="col">start (s)</th><th scope="col">end (s)</th>'
+           '<th scope="col">duration (s)</th><th scope="col">dominant limit</th><th scope="col">speed</th>'
+           '<th scope="col">clearance (mm)</th></tr></thead><tbody>')
+    for lo in range(0, len(motions), ROWS):
+        yield "".join(map(_motion_row, motions[lo:lo + ROWS]))
+    yield '</tbody></table></div></section>'
+
+
+ROWS = 500  # table rows written as one piece
+
+
+def _motion_row(mo: dict) -> str:
+    speed = []
+    if mo.get("vel") is not None:
+        speed.append(f"vel {mo['vel']:g} %")
+    if mo.get("tvel") is not None:
+        speed.append(f"tvel {mo['tvel']:g} mm/s")
+    clearance = _num(mo.get("min_clearance"))
+    if mo.get("clearance_to") and mo.get("min_clearance") is not None:
+        clearance += f' <span class="muted">{_e(mo["clearance_to"])}</span>'
+    return (f'<tr><td class="n">{_time_button(mo["start"], mo["end"], str(mo["id"]), True)}</td>'
+            f'<td class="nw">{_source(mo)}</td><td>{_e(mo.get("task") or "")}</td>'
+            f'<td><code>{_e(mo["kind"])}</code></td><td>{_e(mo.get("target") or "")}</td>'
+            f'<td class="n">{mo["start"]:.3f}</td><td class="n">{mo["end"]:.3f}</td>'
+            f'<td class="n">{(mo["end"] - mo["start"]) if mo.get("duration") is None else mo["duration"]:.3f}</td>'
+            f'<td>{_e(mo.get("dominant_limit") or "–")}</td><td class="nw">{_e(", ".join(speed))}</td>'
+            f'<td class="n">{clearance}</td></tr>')
 
 
 def _source(mo: dict) -> str:
@@ -233,32 +240,33 @@ def _source(mo: dict) -> str:
     return f'<span title="{_e(_where(path, line, mo.get("column")))}">{_e(f"{name}:{line}" if line else name)}</span>'
 
 
-def _cycles(m: dict) -> str:
+def _cycles(m: dict):
     cycles = m.get("cycles", [])
+    head = '<section id="cycles" aria-labelledby="cycles-h"><h2 id="cycles-h">Cycle time per loop iteration</h2>'
     if not cycles or not any(c["iterations"] for c in cycles):
-        body = '<p class="empty">No loop iteration recorded.</p>'
-    else:
-        parts = []
-        for ci, c in enumerate(cycles):
-            its = c["iterations"]
-            done = [it["duration"] for it in its if it.get("complete", True)]
-            stats = (f"{len(done)} complete: min {_s(min(done))}, mean {_s(sum(done) / len(done))}, max {_s(max(done))}"
-                     if done else "no complete iteration")
-            rows = "".join(
+        yield head + '<p class="empty">No loop iteration recorded.</p></section>'
+        return
+    yield head
+    for ci, c in enumerate(cycles):
+        its = c["iterations"]
+        done = [it["duration"] for it in its if it.get("complete", True)]
+        stats = (f"{len(done)} complete: min {_s(min(done))}, mean {_s(sum(done) / len(done))}, max {_s(max(done))}"
+                 if done else "no complete iteration")
+        where = _where(c.get("path"), c.get("line"), None)
+        yield (f'<h3>Task {_e(c["task"])}: {_e(c.get("label") or "")} <span class="muted">{_e(where)}</span></h3>'
+               f'<p>{stats}.</p><div class="figure cyclebars" data-cycle="{ci}" role="img" '
+               f'aria-label="Duration of each iteration of the loop of task {_e(c["task"])}"></div>'
+               '<details><summary>Iterations</summary><table class="data"><thead><tr><th scope="col">#</th>'
+               '<th scope="col">start (s)</th><th scope="col">duration (s)</th><th scope="col">note</th></tr></thead>'
+               '<tbody>')
+        for lo in range(0, len(its), ROWS):
+            yield "".join(
                 f'<tr><td class="n">{_time_button(it["start"], it["start"] + it["duration"], str(k + 1), True)}</td>'
                 f'<td class="n">{it["start"]:.3f}</td><td class="n">{it["duration"]:.3f}</td>'
                 f'<td>{"" if it.get("complete", True) else "cut by the end of the run"}</td></tr>'
-                for k, it in enumerate(its))
-            where = _where(c.get("path"), c.get("line"), None)
-            parts.append(
-                f'<h3>Task {_e(c["task"])}: {_e(c.get("label") or "")} <span class="muted">{_e(where)}</span></h3>'
-                f'<p>{stats}.</p><div class="figure cyclebars" data-cycle="{ci}" role="img" '
-                f'aria-label="Duration of each iteration of the loop of task {_e(c["task"])}"></div>'
-                '<details><summary>Iterations</summary><table class="data"><thead><tr><th scope="col">#</th>'
-                '<th scope="col">start (s)</th><th scope="col">duration (s)</th><th scope="col">note</th></tr></thead>'
-                f'<tbody>{rows}</tbody></table></details>')
-        body = "".join(parts)
-    return f'<section id="cycles" aria-labelledby="cycles-h"><h2 id="cycles-h">Cycle time per loop iteration</h2>{body}</section>'
+                for k, it in enumerate(its[lo:lo + ROWS], lo))
+        yield '</tbody></table></details>'
+    yield '</section>'
 
 
 def _joints(m: dict) -> str:
