@@ -83,23 +83,29 @@ def _blocks(m: Any, dt: float, n: int, size: int):
     """The samples 0..n-1 (every dt from 0) as the page's series, a block at a time: times (b,),
     positions and velocities (axes, b), TCP speed (b,), rounded. Each block a whole number of
     buckets of `size` samples (the page's min/max buckets, pack.py) but the last."""
-    import numpy as np
 
     unit = max(size, 1)
     per = max(unit, min(BLOCK_SAMPLES, int(BLOCK_S / dt)) // unit * unit)
     tcp = _TcpSpeed(m)
     for k0 in range(0, n, per):
-        k1 = min(k0 + per, n) - 1
-        times, q, v = m.sample(k0 * dt, k1 * dt, dt)  # the ticks k0..k1: a tick's time is k·dt whatever the call
-        times, q, v = np.asarray(times, dtype=float), np.asarray(q, dtype=float), np.asarray(v, dtype=float)
-        if len(times) != k1 - k0 + 1:
-            raise AssertionError(f"the trajectory's ticks {k0}..{k1} gave {len(times)} samples")
-        # standing still (every joint speed 0), the TCP's two poses are the same: its speed is 0 exactly
-        speed = np.zeros(len(times))
-        on = np.flatnonzero((v != 0.0).any(axis=1))
-        if len(on):
-            speed[on] = tcp(times[on], q[on], v[on])
-        yield rounded(times, 6), np.round(q.T, 6) + 0.0, np.round(v.T, 4) + 0.0, np.round(speed, 3) + 0.0
+        yield _block(m, tcp, k0, min(k0 + per, n) - 1, dt)
+
+
+def _block(m: Any, tcp: Any, k0: int, k1: int, dt: float):
+    """The ticks k0..k1 (a tick's time is k·dt whatever the call), rounded; the samples dropped
+    on return."""
+    import numpy as np
+
+    times, q, v = m.sample(k0 * dt, k1 * dt, dt)
+    times, q, v = np.asarray(times, dtype=float), np.asarray(q, dtype=float), np.asarray(v, dtype=float)
+    if len(times) != k1 - k0 + 1:
+        raise AssertionError(f"the trajectory's ticks {k0}..{k1} gave {len(times)} samples")
+    # standing still (every joint speed 0), the TCP's two poses are the same: its speed is 0 exactly
+    speed = np.zeros(len(times))
+    on = np.flatnonzero((v != 0.0).any(axis=1))
+    if len(on):
+        speed[on] = tcp(times[on], q[on], v[on])
+    return rounded(times, 6), np.round(q.T, 6) + 0.0, np.round(v.T, 4) + 0.0, np.round(speed, 3) + 0.0
 
 
 class _TcpSpeed:
