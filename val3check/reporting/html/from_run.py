@@ -211,15 +211,19 @@ def _task_segments(result: Any, end: float, limits: list[str]) -> list[dict]:
     if note is not None:
         end = min(end, _r(result.task_states[len(changes)].time_us / 1e6))
         _note(note, limits)
-    for c in changes:
-        t = min(c.time_us / 1e6, end)
+    times = [min(c.time_us / 1e6, end) for c in changes]
+    if times:
+        import numpy as np
+
+        shown = rounded(np.array(times, dtype=float), 6).tolist()  # as _r, in bulk (series.py)
+    for c, t, r in zip(changes, times, shown if times else ()):
         segs = by_task.setdefault(c.task, [])
         if segs and segs[-1]["end"] is None:
-            segs[-1]["end"] = _r(t)
+            segs[-1]["end"] = r
             if segs[-1]["end"] <= segs[-1]["start"]:
                 segs.pop()
         if c.state != "ended" and t < end:
-            segs.append({"start": _r(t), "end": None, "state": c.state, "detail": c.detail or None})
+            segs.append({"start": r, "end": None, "state": c.state, "detail": c.detail or None})
     out = []
     for name, segs in by_task.items():
         if segs and segs[-1]["end"] is None:
