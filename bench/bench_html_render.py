@@ -28,20 +28,20 @@ def report_of(duration: float):
     from val3check.cli import main
 
     kept = []
-    original = sim_render.render_sim
+    original = sim_render.sim_pieces
 
     def keep(fmt, report, **kw):
         kept.append(report)
-        return ""
+        return [""]
 
-    sim_render.render_sim = keep
+    sim_render.sim_pieces = keep
     try:
         with tempfile.TemporaryDirectory() as d:
             main(["sim", str(ROOT / "fixtures/valid/PickPlace"), "--robot", "tx2-60", "--scenario",
                   str(ROOT / "fixtures/scenarios/pickplace.toml"), "--duration", str(duration), "--max-wall", "3600",
                   "--max-memory", "4096", "--report", "html", "-o", str(Path(d) / "r.html")])
     finally:
-        sim_render.render_sim = original
+        sim_render.sim_pieces = original
     return kept[0]
 
 

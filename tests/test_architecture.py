@@ -68,7 +68,8 @@ LINT_PATH = ALLOWED["lint"] | {"lint"}
 RUN_REPORTS = {f"val3check.reporting.{m}" for m in (
     "sim_report", "sim_text", "sim_json", "sim_junit", "sim_collision", "sim_render", "sim_verdict", "mcap_trace",
     "progress", "thinning",
-    "html.from_run", "html.from_sim", "html.page", "html.pack", "html.model", "html.series", "html.excerpts")}
+    "html.from_run", "html.from_sim", "html.page", "html.pack", "html.model", "html.series", "html.excerpts",
+    "html.run_trajectory")}
 RECORDS = {"val3check.simulation", "val3check.simulation.result", "val3check.simulation.arm_record"}
 REPORT_HELPERS = {"val3check.reporting", "val3check.reporting._common", "val3check.reporting.junit",
                   "val3check.reporting.html"}

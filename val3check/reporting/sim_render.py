@@ -27,10 +27,14 @@ def render_sim(fmt: str, report: Any, *, fail_on: str = "error", scenario: str |
 
 
 def sim_pieces(fmt: str, report: Any, *, fail_on: str = "error", scenario: str | None = None):
-    """The text of `render_sim`, piece by piece: the JSON report is written as it is made (its
-    trajectory and clearances never held whole as text); the others in one piece."""
+    """The text of `render_sim`, piece by piece: the JSON report and the page are written as they
+    are made (their trajectory never held whole, as series or as text); the others in one piece."""
     if fmt == "json":
         from .sim_json import pieces
 
         return pieces(report)
+    if fmt == "html":
+        from .html.from_run import page_pieces
+
+        return page_pieces(report, fail_on=fail_on)
     return [render_sim(fmt, report, fail_on=fail_on, scenario=scenario)]

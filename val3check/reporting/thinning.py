@@ -13,6 +13,7 @@ tell the rest.
 from __future__ import annotations
 
 import math
+from itertools import islice
 from typing import Any
 
 TICK_S = 0.004  # the controller's clock (manual 5.x: the 4 ms cycle)
@@ -51,14 +52,16 @@ def left_out(result: Any, what: str) -> str | None:
 
 
 def first(items, bound: int, where: str, what: str, time_of) -> tuple[list, str | None]:
-    """The first `bound` of `items` (in time order), and what a report says when there were more
-    (None: all of them): "a long run: {where} the first N of M {what} (up to the time of the
-    first one left out)"."""
-    items = list(items)
-    if len(items) <= bound:
-        return items, None
-    return items[:bound], (f"a long run: {where} the first {bound} of {len(items)} {what} "
-                           f"(up to {time_of(items[bound]):g} s)")
+    """The first `bound` of `items` (in time order; any iterable: those beyond are counted, not
+    kept), and what a report says when there were more (None: all of them): "a long run: {where}
+    the first N of M {what} (up to the time of the first one left out)"."""
+    rest = iter(items)
+    kept = list(islice(rest, bound + 1))
+    if len(kept) <= bound:
+        return kept, None
+    total = len(kept) + sum(1 for _ in rest)
+    return kept[:bound], (f"a long run: {where} the first {bound} of {total} {what} "
+                          f"(up to {time_of(kept[bound]):g} s)")
 
 
 def task_changes(result: Any) -> tuple[list, str | None]:
@@ -68,9 +71,10 @@ def task_changes(result: Any) -> tuple[list, str | None]:
                  lambda c: c.time_us / 1e6)
 
 
-def arm_spans(segments: list[dict]) -> tuple[list[dict], str | None]:
-    """The first ARM_SPANS of the arm timeline's moving and idle `segments` ({"start", ...})."""
-    return first(segments, ARM_SPANS, "the arm timeline holds", "moving and idle spans", lambda s: s["start"])
+def arm_spans(segments, start=lambda s: s["start"]) -> tuple[list, str | None]:
+    """The first ARM_SPANS of the arm timeline's moving and idle `segments` ({"start", ...}; or
+    anything whose `start` is given), any iterable."""
+    return first(segments, ARM_SPANS, "the arm timeline holds", "moving and idle spans", start)
 
 
 def io_events(result: Any) -> tuple[list, str | None]:

@@ -18,6 +18,7 @@ The cell and the per-motion clearance come from the collision checks when the ru
 
 from __future__ import annotations
 
+import math
 import statistics
 from itertools import pairwise
 from pathlib import Path
@@ -27,7 +28,8 @@ from .._common import SourceCache
 from ..thinning import MOTION_ROWS, arm_spans, io_events, left_out, part_spans, task_changes
 from .excerpts import SEVERITY_ORDER, excerpt
 from .model import VERSION
-from .series import doubles, rounded
+from .run_trajectory import packed, series_model
+from .series import rounded
 
 TICK_S = 0.004
 MAX_SAMPLES = 150_001  # ten minutes at 4 ms: a longer run is sampled at a multiple of 4 ms
@@ -172,9 +174,23 @@ def sample_period(end_s: float) -> float:
 def _trajectory(report: Any, m: Any, limits: list[str], moving: list | None = None) -> dict | None:
     """The joints and the TCP speed over the run, every 4 ms (or a multiple of it), as array('d')
     (series.py). `moving`: the intervals in which the arm moves (default: computed)."""
-    import numpy as np
+    clock = _clock(report, m, limits, m.trajectory.moving(m.end_s) if moving is None else moving)
+    return None if clock is None else series_model(m, *clock)
 
-    if not (m.trajectory.moving(m.end_s) if moving is None else moving):
+
+def _packed(report: Any, m: Any, limits: list[str], moving: list) -> Any:
+    """The trajectory as the page's script reads it (series.Packed), made block by block; a value
+    check_model would refuse: the model's series instead, so that check_model says which."""
+    clock = _clock(report, m, limits, moving)
+    if clock is None:
+        return None
+    return packed(m, *clock) or series_model(m, *clock)
+
+
+def _clock(report: Any, m: Any, limits: list[str], moving: list) -> tuple[float, int] | None:
+    """The page's clock of the run: (period, samples from 0), or None: no motion, or the
+    trajectory left out (said in `limits`)."""
+    if not moving:
         return None
     omitted = left_out(report.result, "The plots and the 3D view's motion are")
     if omitted is not None:
@@ -184,23 +200,7 @@ def _trajectory(report: Any, m: Any, limits: list[str], moving: list | None = No
     if dt > TICK_S:
         limits.append(f"A long run: the plots and the 3D view sample the trajectory every {dt * 1000:g} ms "
                       f"(a multiple of the controller's 4 ms), at most {MAX_SAMPLES} samples.")
-    times, q, v = m.sample(0.0, m.end_s, dt)
-    times, q, v = np.asarray(times, dtype=float), np.asarray(q, dtype=float), np.asarray(v, dtype=float)
-    scene = m.scene
-    # standing still (every joint speed 0), the TCP's two poses are the same: its speed is 0 exactly
-    speed = np.zeros(len(times))
-    on = np.flatnonzero((v != 0.0).any(axis=1))
-    if len(on):
-        speed[on] = m.tcp_speed(times[on], q[on], v[on])
-    return {
-        "joints": [{"name": n, "unit": u, "min": lo, "max": hi, "speed": s}
-                   for n, u, (lo, hi), s in zip(scene.joint_names, scene.joint_units, scene.joint_limits,
-                                                scene.nominal_speeds)],
-        "times": doubles(rounded(times, 6)),
-        "positions": [doubles(row) for row in np.round(q.T, 6) + 0.0],
-        "velocities": [doubles(row) for row in np.round(v.T, 4) + 0.0],
-        "tcp_speed": doubles(np.round(speed, 3) + 0.0),
-    }
+    return dt, math.floor(m.end_s / dt + 1e-9) + 1  # as motion.trajectory.tick_times from 0
 
 
 def _task_segments(result: Any, end: float, limits: list[str]) -> list[dict]:
@@ -211,15 +211,19 @@ def _task_segments(result: Any, end: float, limits: list[str]) -> list[dict]:
     if note is not None:
         end = min(end, _r(result.task_states[len(changes)].time_us / 1e6))
         _note(note, limits)
-    for c in changes:
-        t = min(c.time_us / 1e6, end)
+    times = [min(c.time_us / 1e6, end) for c in changes]
+    if times:
+        import numpy as np
+
+        shown = rounded(np.array(times, dtype=float), 6).tolist()  # as _r, in bulk (series.py)
+    for c, t, r in zip(changes, times, shown if times else ()):
         segs = by_task.setdefault(c.task, [])
         if segs and segs[-1]["end"] is None:
-            segs[-1]["end"] = _r(t)
+            segs[-1]["end"] = r
             if segs[-1]["end"] <= segs[-1]["start"]:
                 segs.pop()
         if c.state != "ended" and t < end:
-            segs.append({"start": _r(t), "end": None, "state": c.state, "detail": c.detail or None})
+            segs.append({"start": r, "end": None, "state": c.state, "detail": c.detail or None})
     out = []
     for name, segs in by_task.items():
         if segs and segs[-1]["end"] is None:
@@ -238,20 +242,24 @@ def _note(note: str | None, limits: list[str]) -> None:
 
 def _arm_timeline(moving: list, end: float, limits: list[str]) -> list[dict]:
     """The arm moving or idle over the run (`moving`: the intervals in which it moves): its first
-    spans on a long run (thinning.py, said)."""
-    segs, t = [], 0.0
+    spans on a long run (thinning.py, said), the others counted, never made."""
+    spans, note = arm_spans(_arm_spans(moving, end), lambda s: _r(s[0]))
+    _note(note, limits)
+    return [{"start": _r(a), "end": _r(b), "state": state} for a, b, state in spans]
+
+
+def _arm_spans(moving: list, end: float):
+    """(start, end, "idle" or "moving") over the run."""
+    t = 0.0
     for a, b in moving:
         a, b = min(a, end), min(b, end)
         if a > t:
-            segs.append({"start": _r(t), "end": _r(a), "state": "idle"})
+            yield t, a, "idle"
         if b > a:
-            segs.append({"start": _r(a), "end": _r(b), "state": "moving"})
+            yield a, b, "moving"
         t = max(t, b)
     if t < end:
-        segs.append({"start": _r(t), "end": _r(end), "state": "idle"})
-    segs, note = arm_spans(segs)
-    _note(note, limits)
-    return segs
+        yield t, end, "idle"
 
 
 def _shape_solid(name: str, shape: Any, pose, limits: list[str]) -> dict:
@@ -425,11 +433,13 @@ def scene_model(chain: dict, joints, frames: dict, tool_uses: list, cell: Any, l
 
 
 def model_from_run(report: Any, *, fail_on: str = "error", cell: Any = None, clearances: dict | None = None,
-                   roots: list[str] | None = None, title: str | None = None) -> dict:
+                   roots: list[str] | None = None, title: str | None = None, packed: bool = False) -> dict:
     """The report model (docs/html-report.md) of a run. `report`: a `reporting.sim_report.SimReport`.
     `cell`, `clearances`: the cell and per-motion `MotionReport`s by position in the motions
     (default: `result.collision.cell` and each motion's `clearance`).
-    `roots`: folders whose files the excerpts may quote (default: the application's folder)."""
+    `roots`: folders whose files the excerpts may quote (default: the application's folder).
+    `packed`: the trajectory as the page's script reads it (series.Packed, the page of a run), not
+    its series."""
     result = report.result
     collision = getattr(result, "collision", None)
     if cell is None and collision is not None:
@@ -452,7 +462,7 @@ def model_from_run(report: Any, *, fail_on: str = "error", cell: Any = None, cle
                           "the cycles, the findings and the plots cover the whole run.")
         cycles, cycle_time = _cycles(report, m, end)
         moving = m.trajectory.moving(m.end_s)  # once: it walks the whole run
-        trajectory = _trajectory(report, m, limits, moving)
+        trajectory = (_packed if packed else _trajectory)(report, m, limits, moving)
         arm_timeline = _arm_timeline(moving, end, limits)
         if cell is None:
             limits.append("No cell file: the 3D view has no obstacles and the motions no clearance (docs/cell.md).")
@@ -498,6 +508,11 @@ def model_from_run(report: Any, *, fail_on: str = "error", cell: Any = None, cle
 
 def render_run(report: Any, *, fail_on: str = "error") -> str:
     """`val3check sim --report html`: the page of a run."""
-    from .page import render
+    return "".join(page_pieces(report, fail_on=fail_on))
 
-    return render(model_from_run(report, fail_on=fail_on))
+
+def page_pieces(report: Any, *, fail_on: str = "error"):
+    """The page of a run piece by piece (page.pieces), its trajectory packed block by block."""
+    from .page import pieces
+
+    return pieces(model_from_run(report, fail_on=fail_on, packed=True))

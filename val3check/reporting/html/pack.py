@@ -15,7 +15,7 @@ import math
 import struct
 from typing import Any
 
-from .series import floats
+from .series import Packed, floats
 
 FULL_RATE_MAX = 30_000
 PLOT_BUCKETS = 15_000
@@ -23,23 +23,31 @@ PLOT_BUCKETS = 15_000
 
 def f32(values) -> str:
     """base64 of float32 values: a list, or an array of float64 (numpy, array('d')) cast at once."""
+    return base64.b64encode(_f32(values)).decode("ascii")
+
+
+def _f32(values) -> bytes:
     if not isinstance(values, list):
         import numpy as np
 
         a = np.asarray(values, dtype=float)
         b = a.astype("<f4")
         if np.isfinite(b).all() or not np.isfinite(a).all():
-            return base64.b64encode(b.tobytes()).decode("ascii")
+            return b.tobytes()
         values = a.tolist()  # a value beyond float32: struct says so (OverflowError)
-    return base64.b64encode(struct.pack(f"<{len(values)}f", *values)).decode("ascii")
+    return struct.pack(f"<{len(values)}f", *values)
 
 
 def f64(values) -> str:
+    return base64.b64encode(_f64(values)).decode("ascii")
+
+
+def _f64(values) -> bytes:
     if not isinstance(values, list):
         import numpy as np
 
-        return base64.b64encode(np.asarray(values, dtype="<f8").tobytes()).decode("ascii")
-    return base64.b64encode(struct.pack(f"<{len(values)}d", *values)).decode("ascii")
+        return np.asarray(values, dtype="<f8").tobytes()
+    return struct.pack(f"<{len(values)}d", *values)
 
 
 def _bucket(n: int) -> int:
@@ -50,18 +58,27 @@ def _bucket(n: int) -> int:
 def _series(values, size: int) -> dict:
     """A plot's series: every value, or the minimum and maximum of each bucket of `size` values
     (`values`: a list, or an array('d'), reduced at once)."""
+    return {k: base64.b64encode(b).decode("ascii") for k, b in _series_bytes(values, size).items()}
+
+
+def _series_bytes(values, size: int) -> dict:
+    """`_series` before base64: float32 bytes (a series packed block by block joins its blocks')."""
     if not size:
-        return {"v": f32(values)}
+        return {"v": _f32(values)}
     arr = floats(values)
+    if arr is None and not isinstance(values, list):  # numpy: a run's trajectory, block by block
+        import numpy as np
+
+        arr = np.asarray(values, dtype=float)
     if arr is not None:
         import numpy as np
 
         if not (np.signbit(arr) & (arr == 0.0)).any():  # -0.0 beside 0.0: min() keeps the first, as below
             starts = np.arange(0, len(arr), size)
-            return {"lo": f32(np.minimum.reduceat(arr, starts)), "hi": f32(np.maximum.reduceat(arr, starts))}
+            return {"lo": _f32(np.minimum.reduceat(arr, starts)), "hi": _f32(np.maximum.reduceat(arr, starts))}
         values = arr.tolist()
     starts = range(0, len(values), size)
-    return {"lo": f32([min(values[a:a + size]) for a in starts]), "hi": f32([max(values[a:a + size]) for a in starts])}
+    return {"lo": _f32([min(values[a:a + size]) for a in starts]), "hi": _f32([max(values[a:a + size]) for a in starts])}
 
 
 def _firsts(values, size: int):
@@ -73,29 +90,56 @@ def _firsts(values, size: int):
 def _trajectory(tr: dict | None) -> dict | None:
     if not tr or not tr.get("times"):
         return None
-    times = tr["times"]
-    n = len(times)
+    if isinstance(tr, Packed):
+        return tr.data
+    one = (tr["times"], tr["positions"], tr["velocities"], tr.get("tcp_speed"))
+    return _packed(tr["joints"], len(tr["times"]), [one])
+
+
+def _packed(joints: list[dict], n: int, blocks) -> dict:
+    """The page's trajectory of `n` samples given as `blocks` (times, positions and velocities per
+    joint, TCP speed or None), each a whole number of buckets but the last: every series is
+    reduced block by block and joined, the bytes of the series reduced whole."""
     size = _bucket(n)
-    plot_times = _firsts(times, size) if size else times
-    joints = []
-    for i, j in enumerate(tr["joints"]):
-        joints.append({
-            "name": j["name"], "unit": j["unit"], "min": j.get("min"), "max": j.get("max"), "speed": j.get("speed"),
-            "pos": _series(tr["positions"][i], size), "vel": _series(tr["velocities"][i], size),
-        })
+    t: list[bytes] = []
+    pos: list[list[dict]] = [[] for _ in joints]
+    vel: list[list[dict]] = [[] for _ in joints]
+    anim: list[list[bytes]] = [[] for _ in joints]
+    tcp: list[dict] = []
+    has_tcp = None
+    for times, positions, velocities, speed in blocks:
+        t.append(_f64(_firsts(times, size) if size else times))
+        for i in range(len(joints)):
+            pos[i].append(_series_bytes(positions[i], size))
+            vel[i].append(_series_bytes(velocities[i], size))
+            if size:
+                anim[i].append(_f32(_firsts(positions[i], size)))
+        has_tcp = speed is not None
+        if has_tcp:
+            tcp.append(_series_bytes(speed, size))
+    plot_t = _b64(t)
     out: dict[str, Any] = {
         "samples": n,
         "decimated": bool(size),
         "bucket": size or 1,
-        "t": f64(plot_times),
-        "joints": joints,
-        "tcp": _series(tr["tcp_speed"], size) if tr.get("tcp_speed") is not None else None,
+        "t": plot_t,
+        "joints": [{"name": j["name"], "unit": j["unit"], "min": j.get("min"), "max": j.get("max"),
+                    "speed": j.get("speed"), "pos": _joined(pos[i]), "vel": _joined(vel[i])}
+                   for i, j in enumerate(joints)],
+        "tcp": _joined(tcp) if has_tcp else None,
         # the 3D view: full-rate positions are the plots' own, else one sample per bucket
-        "anim": None,
+        "anim": {"t": plot_t, "q": [_b64(a) for a in anim]} if size else None,
     }
-    if size:
-        out["anim"] = {"t": f64(plot_times), "q": [f32(_firsts(row, size)) for row in tr["positions"]]}
     return out
+
+
+def _b64(parts: list[bytes]) -> str:
+    return base64.b64encode(b"".join(parts)).decode("ascii")
+
+
+def _joined(parts: list[dict]) -> dict:
+    """A series packed in blocks (`_series_bytes` of each) as `_series` of the whole."""
+    return {k: _b64([p[k] for p in parts]) for k in parts[0]}
 
 
 def _io(events: list[dict]) -> list[dict]:
@@ -138,26 +182,29 @@ def _states(rows: list[dict], states: tuple[str, ...]) -> tuple[list[dict], list
 
 def page_data(model: dict) -> dict:
     """The JSON object the page's script reads (its shape is private to page and script)."""
+    return dict(data_items(model))
+
+
+def data_items(model: dict):
+    """The (key, value) pairs of `page_data`, in the order of their keys, each made when asked
+    (the page writes one before it makes the next)."""
     from .model import ARM_STATES, TASK_STATES
 
+    yield "arm", _states([{"name": "arm", "segments": model.get("arm_timeline", [])}], ARM_STATES)[0][0]["segs"] \
+        if model.get("arm_timeline") else []
+    yield "arm_states", list(ARM_STATES)
+    yield "cycles", [{"task": c["task"], "label": c.get("label") or c["task"],
+                      "it": [[it["start"], it["duration"], 1 if it.get("complete", True) else 0]
+                             for it in c["iterations"]]} for c in model.get("cycles", [])]
     tasks, details = _states(model.get("tasks", []), TASK_STATES)
-    arm_rows, _ = _states([{"name": "arm", "segments": model.get("arm_timeline", [])}], ARM_STATES)
-    verdict = model["verdict"]
-    return {
-        "duration": verdict["simulated_duration"],
-        "traj": _trajectory(model.get("trajectory")),
-        "motions": [{"id": m["id"], "kind": m["kind"], "line": m.get("line"), "start": m["start"], "end": m["end"],
-                     "vel": m.get("vel"), "tvel": m.get("tvel")} for m in model.get("motions", [])],
-        "task_states": list(TASK_STATES),
-        "arm_states": list(ARM_STATES),
-        "tasks": tasks,
-        "details": details,
-        "arm": arm_rows[0]["segs"] if model.get("arm_timeline") else [],
-        "io": _io(model.get("io", [])),
-        "diags": [{"time": d.get("time"), "severity": d["severity"], "code": d["code"], "task": d.get("task"),
-                   "line": d.get("line"), "message": d["message"]} for d in model.get("diagnostics", [])],
-        "cycles": [{"task": c["task"], "label": c.get("label") or c["task"],
-                    "it": [[it["start"], it["duration"], 1 if it.get("complete", True) else 0] for it in c["iterations"]]}
-                   for c in model.get("cycles", [])],
-        "scene": model.get("scene"),
-    }
+    yield "details", details
+    yield "diags", [{"time": d.get("time"), "severity": d["severity"], "code": d["code"], "task": d.get("task"),
+                     "line": d.get("line"), "message": d["message"]} for d in model.get("diagnostics", [])]
+    yield "duration", model["verdict"]["simulated_duration"]
+    yield "io", _io(model.get("io", []))
+    yield "motions", [{"id": m["id"], "kind": m["kind"], "line": m.get("line"), "start": m["start"], "end": m["end"],
+                       "vel": m.get("vel"), "tvel": m.get("tvel")} for m in model.get("motions", [])]
+    yield "scene", model.get("scene")
+    yield "task_states", list(TASK_STATES)
+    yield "tasks", tasks
+    yield "traj", _trajectory(model.get("trajectory"))

@@ -23,7 +23,7 @@ from typing import Any
 
 from .._common import visible, visible_data
 from .model import check_model
-from .pack import page_data
+from .pack import data_items
 
 # Script files, concatenated in this order into the page's one <script>.
 SCRIPTS = ("core.js", "plot.js", "lanes.js", "view3d.js", "main.js")
@@ -184,43 +184,50 @@ def _diagnostics(m: dict) -> str:
     return f'<section id="diagnostics" aria-labelledby="diagnostics-h"><h2 id="diagnostics-h">Diagnostics</h2>{body}</section>'
 
 
-def _motions(m: dict) -> str:
+def _motions(m: dict):
     motions = m.get("motions", [])
     if not motions:
-        body = '<p class="empty">No motion in this run.</p>'
-    else:
-        moving = sum(mo["end"] - mo["start"] for mo in motions)
-        clear = [mo for mo in motions if mo.get("min_clearance") is not None]
-        closest = min(clear, key=lambda mo: mo["min_clearance"]) if clear else None
-        summary = f"{_plural(len(motions), 'motion')}, {_s(moving)} moving"
-        if closest:
-            summary += (f"; smallest clearance {_num(closest['min_clearance'])} mm"
-                        f"{' to ' + _e(closest['clearance_to']) if closest.get('clearance_to') else ''} (motion {closest['id']})")
-        rows = []
-        for mo in motions:
-            speed = []
-            if mo.get("vel") is not None:
-                speed.append(f"vel {mo['vel']:g} %")
-            if mo.get("tvel") is not None:
-                speed.append(f"tvel {mo['tvel']:g} mm/s")
-            clearance = _num(mo.get("min_clearance"))
-            if mo.get("clearance_to") and mo.get("min_clearance") is not None:
-                clearance += f' <span class="muted">{_e(mo["clearance_to"])}</span>'
-            rows.append(
-                f'<tr><td class="n">{_time_button(mo["start"], mo["end"], str(mo["id"]), True)}</td>'
-                f'<td class="nw">{_source(mo)}</td><td>{_e(mo.get("task") or "")}</td>'
-                f'<td><code>{_e(mo["kind"])}</code></td><td>{_e(mo.get("target") or "")}</td>'
-                f'<td class="n">{mo["start"]:.3f}</td><td class="n">{mo["end"]:.3f}</td>'
-                f'<td class="n">{(mo["end"] - mo["start"]) if mo.get("duration") is None else mo["duration"]:.3f}</td>'
-                f'<td>{_e(mo.get("dominant_limit") or "–")}</td><td class="nw">{_e(", ".join(speed))}</td>'
-                f'<td class="n">{clearance}</td></tr>')
-        body = (f'<p>{summary}. The number zooms the timelines on the motion.</p>'
-                '<div class="scroll tall"><table class="data motions"><thead><tr>'
-                '<th scope="col">#</th><th scope="col">program:line</th><th scope="col">task</th><th scope="col">kind</th>'
-                '<th scope="col">target</th><th scope="col">start (s)</th><th scope="col">end (s)</th>'
-                '<th scope="col">duration (s)</th><th scope="col">dominant limit</th><th scope="col">speed</th>'
-                f'<th scope="col">clearance (mm)</th></tr></thead><tbody>{"".join(rows)}</tbody></table></div>')
-    return f'<section id="motions" aria-labelledby="motions-h"><h2 id="motions-h">Motions</h2>{body}</section>'
+        yield '<section id="motions" aria-labelledby="motions-h"><h2 id="motions-h">Motions</h2>' \
+              '<p class="empty">No motion in this run.</p></section>'
+        return
+    moving = sum(mo["end"] - mo["start"] for mo in motions)
+    clear = [mo for mo in motions if mo.get("min_clearance") is not None]
+    closest = min(clear, key=lambda mo: mo["min_clearance"]) if clear else None
+    summary = f"{_plural(len(motions), 'motion')}, {_s(moving)} moving"
+    if closest:
+        summary += (f"; smallest clearance {_num(closest['min_clearance'])} mm"
+                    f"{' to ' + _e(closest['clearance_to']) if closest.get('clearance_to') else ''} (motion {closest['id']})")
+    yield (f'<section id="motions" aria-labelledby="motions-h"><h2 id="motions-h">Motions</h2>'
+           f'<p>{summary}. The number zooms the timelines on the motion.</p>'
+           '<div class="scroll tall"><table class="data motions"><thead><tr>'
+           '<th scope="col">#</th><th scope="col">program:line</th><th scope="col">task</th><th scope="col">kind</th>'
+           '<th scope="col">target</th><th scope="col">start (s)</th><th scope="col">end (s)</th>'
+           '<th scope="col">duration (s)</th><th scope="col">dominant limit</th><th scope="col">speed</th>'
+           '<th scope="col">clearance (mm)</th></tr></thead><tbody>')
+    for lo in range(0, len(motions), ROWS):
+        yield "".join(map(_motion_row, motions[lo:lo + ROWS]))
+    yield '</tbody></table></div></section>'
+
+
+ROWS = 500  # table rows written as one piece
+
+
+def _motion_row(mo: dict) -> str:
+    speed = []
+    if mo.get("vel") is not None:
+        speed.append(f"vel {mo['vel']:g} %")
+    if mo.get("tvel") is not None:
+        speed.append(f"tvel {mo['tvel']:g} mm/s")
+    clearance = _num(mo.get("min_clearance"))
+    if mo.get("clearance_to") and mo.get("min_clearance") is not None:
+        clearance += f' <span class="muted">{_e(mo["clearance_to"])}</span>'
+    return (f'<tr><td class="n">{_time_button(mo["start"], mo["end"], str(mo["id"]), True)}</td>'
+            f'<td class="nw">{_source(mo)}</td><td>{_e(mo.get("task") or "")}</td>'
+            f'<td><code>{_e(mo["kind"])}</code></td><td>{_e(mo.get("target") or "")}</td>'
+            f'<td class="n">{mo["start"]:.3f}</td><td class="n">{mo["end"]:.3f}</td>'
+            f'<td class="n">{(mo["end"] - mo["start"]) if mo.get("duration") is None else mo["duration"]:.3f}</td>'
+            f'<td>{_e(mo.get("dominant_limit") or "–")}</td><td class="nw">{_e(", ".join(speed))}</td>'
+            f'<td class="n">{clearance}</td></tr>')
 
 
 def _source(mo: dict) -> str:
@@ -233,32 +240,33 @@ def _source(mo: dict) -> str:
     return f'<span title="{_e(_where(path, line, mo.get("column")))}">{_e(f"{name}:{line}" if line else name)}</span>'
 
 
-def _cycles(m: dict) -> str:
+def _cycles(m: dict):
     cycles = m.get("cycles", [])
+    head = '<section id="cycles" aria-labelledby="cycles-h"><h2 id="cycles-h">Cycle time per loop iteration</h2>'
     if not cycles or not any(c["iterations"] for c in cycles):
-        body = '<p class="empty">No loop iteration recorded.</p>'
-    else:
-        parts = []
-        for ci, c in enumerate(cycles):
-            its = c["iterations"]
-            done = [it["duration"] for it in its if it.get("complete", True)]
-            stats = (f"{len(done)} complete: min {_s(min(done))}, mean {_s(sum(done) / len(done))}, max {_s(max(done))}"
-                     if done else "no complete iteration")
-            rows = "".join(
+        yield head + '<p class="empty">No loop iteration recorded.</p></section>'
+        return
+    yield head
+    for ci, c in enumerate(cycles):
+        its = c["iterations"]
+        done = [it["duration"] for it in its if it.get("complete", True)]
+        stats = (f"{len(done)} complete: min {_s(min(done))}, mean {_s(sum(done) / len(done))}, max {_s(max(done))}"
+                 if done else "no complete iteration")
+        where = _where(c.get("path"), c.get("line"), None)
+        yield (f'<h3>Task {_e(c["task"])}: {_e(c.get("label") or "")} <span class="muted">{_e(where)}</span></h3>'
+               f'<p>{stats}.</p><div class="figure cyclebars" data-cycle="{ci}" role="img" '
+               f'aria-label="Duration of each iteration of the loop of task {_e(c["task"])}"></div>'
+               '<details><summary>Iterations</summary><table class="data"><thead><tr><th scope="col">#</th>'
+               '<th scope="col">start (s)</th><th scope="col">duration (s)</th><th scope="col">note</th></tr></thead>'
+               '<tbody>')
+        for lo in range(0, len(its), ROWS):
+            yield "".join(
                 f'<tr><td class="n">{_time_button(it["start"], it["start"] + it["duration"], str(k + 1), True)}</td>'
                 f'<td class="n">{it["start"]:.3f}</td><td class="n">{it["duration"]:.3f}</td>'
                 f'<td>{"" if it.get("complete", True) else "cut by the end of the run"}</td></tr>'
-                for k, it in enumerate(its))
-            where = _where(c.get("path"), c.get("line"), None)
-            parts.append(
-                f'<h3>Task {_e(c["task"])}: {_e(c.get("label") or "")} <span class="muted">{_e(where)}</span></h3>'
-                f'<p>{stats}.</p><div class="figure cyclebars" data-cycle="{ci}" role="img" '
-                f'aria-label="Duration of each iteration of the loop of task {_e(c["task"])}"></div>'
-                '<details><summary>Iterations</summary><table class="data"><thead><tr><th scope="col">#</th>'
-                '<th scope="col">start (s)</th><th scope="col">duration (s)</th><th scope="col">note</th></tr></thead>'
-                f'<tbody>{rows}</tbody></table></details>')
-        body = "".join(parts)
-    return f'<section id="cycles" aria-labelledby="cycles-h"><h2 id="cycles-h">Cycle time per loop iteration</h2>{body}</section>'
+                for k, it in enumerate(its[lo:lo + ROWS], lo))
+        yield '</tbody></table></details>'
+    yield '</section>'
 
 
 def _joints(m: dict) -> str:
@@ -422,19 +430,20 @@ def _timebar(m: dict) -> str:
 
 def render(model: dict) -> str:
     """The self-contained HTML page of a report model (raises ModelError for a bad model)."""
+    return "".join(pieces(model))
+
+
+def pieces(model: dict):
+    """The text of `render(model)` piece by piece, to be written as it is made: no piece holds
+    more than a section's header, a block of table rows or one value of the page's data. The
+    model is checked first (ModelError before any piece)."""
     check_model(model)
-    sections = "".join(fn(model) for _, _, fn in SECTIONS)
-    body = (f"{_header(model)}{_nav([(sid, title) for sid, title, _ in SECTIONS])}"
-            f'<main id="main">{_timebar(model) if _has_time(model) else ""}{sections}</main>'
-            '<footer><p>This page is self-contained: it loads nothing, from the network or from disk. '
-            'Its plots and 3D view need JavaScript; the tables above do not.</p></footer>'
-            '<noscript><p class="empty">JavaScript is off: the plots, timelines and the 3D view are not drawn.</p></noscript>')
+    return _pieces(model)
+
+
+def _pieces(model: dict):
     css = _asset("report.css")
     script = "\n".join(_asset(name) for name in SCRIPTS)
-    # the script writes these strings into the page: their control characters visible too
-    data = _data_json(page_data(model))
-    # inside <script>: no "</script>", "<!--" can be formed
-    data = data.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
     csp = ("default-src 'none'; "
            f"script-src '{_sha256(script)}'; style-src '{_sha256(css)}'; img-src data:; "
            "base-uri 'none'; form-action 'none'")
@@ -444,23 +453,53 @@ def render(model: dict) -> str:
         "generator": _e(f"{tool.get('name', 'val3check')} {tool.get('version', '')}".strip()),
         "title": _e(f"{model.get('title') or model['application']['name']}: simulation report"),
         "css": css,
-        "body": body,
-        "data": data,
+        "body": _body,
+        "data": _data,
         "script": script,
     }
     template = _asset("page.html")
-    out = []
     pos = 0
     while True:  # one pass, so that no inserted text is ever taken for a placeholder
         start = template.find("{{", pos)
         if start < 0:
-            out.append(template[pos:])
+            yield template[pos:]
             break
         end = template.index("}}", start)
-        out.append(template[pos:start])
-        out.append(replacements[template[start + 2:end]])
+        yield template[pos:start]
+        value = replacements[template[start + 2:end]]
+        if isinstance(value, str):
+            yield value
+        else:
+            yield from value(model)
         pos = end + 2
-    return "".join(out)
+
+
+def _body(model: dict):
+    yield f"{_header(model)}{_nav([(sid, title) for sid, title, _ in SECTIONS])}"
+    yield f'<main id="main">{_timebar(model) if _has_time(model) else ""}'
+    for _, _, fn in SECTIONS:
+        yield from _parts(fn(model))
+    yield ('</main><footer><p>This page is self-contained: it loads nothing, from the network or from disk. '
+           'Its plots and 3D view need JavaScript; the tables above do not.</p></footer>'
+           '<noscript><p class="empty">JavaScript is off: the plots, timelines and the 3D view are not drawn.</p></noscript>')
+
+
+def _parts(section):
+    """A section's text: a str, or its pieces (a long table's rows, a block at a time)."""
+    if isinstance(section, str):
+        yield section
+    else:
+        yield from section
+
+
+def _data(model: dict):
+    """The page's data as `_data_json(page_data(model))`, one top-level value at a time (in the
+    order sort_keys gives), each escaped for <script>: no "</script>", "<!--" can be formed."""
+    yield "{"
+    for k, (key, value) in enumerate(data_items(model)):
+        text = ("," if k else "") + json.dumps(key) + ":" + _data_json(value)
+        yield text.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
+    yield "}"
 
 
 # In ensure_ascii JSON, every character `visible` rewrites is an escape this finds (and some it

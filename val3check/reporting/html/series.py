@@ -6,6 +6,9 @@ model read from JSON holds lists; every reader takes both, and the page is the s
 
     times = doubles(rounded(t, 6))   # as [round(x, 6) + 0.0 for x in t], in bulk
     a = floats(times)                # numpy's view of an array('d'); None for a list
+
+The page of a run holds none of them: its trajectory is a `Packed`, the page's data made block by
+block (run_trajectory.py).
 """
 
 from __future__ import annotations
@@ -94,3 +97,24 @@ _BLOCK = 65_536  # values of an array formatted at once
 def _json_float(x: float) -> str:
     """A float as json writes it (NaN and infinities as json's words)."""
     return repr(x) if x - x == 0.0 else {"nan": "NaN", "inf": "Infinity", "-inf": "-Infinity"}[repr(x)]
+
+
+class Packed:
+    """A run's trajectory as the page's script reads it (pack._packed), made block by block from the
+    run (from_run.page_pieces), so that its full-rate series are never held: the model's
+    "trajectory" of a run's page. `joints` as a model's, `samples` their count, `data` the page's."""
+
+    __slots__ = ("joints", "samples", "data")
+
+    def __init__(self, joints: list[dict], samples: int, data: dict) -> None:
+        self.joints, self.samples, self.data = joints, samples, data
+
+    def get(self, key: str, default: Any = None) -> Any:
+        """As a model's trajectory for the page's sections: "times" (its count), "tcp_speed"."""
+        if key == "times":
+            return self.samples
+        if key == "tcp_speed":
+            return True if self.data["tcp"] is not None else None
+        if key == "joints":
+            return self.joints
+        return default
