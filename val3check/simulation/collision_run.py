@@ -39,7 +39,7 @@ from ..interpretation.clock import TICK_US
 from ..rules import codes
 from .budget import WALL
 from .cell_timeline import TimelineLog
-from .own_clock import own_clock
+from .own_clock import Positions, own_clocks
 
 US = 1_000_000
 _NAME = re.compile(r"^(?:([A-Za-z_][A-Za-z0-9_]*):)?([A-Za-z_][A-Za-z0-9_]*)(?:\[\s*(\d+)\s*\])?$")
@@ -328,6 +328,8 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
     spans = _spans(motion)
     events = _events(motion.tool_events, cell, io_log, link_names or {})
     names = _tool_names(cell)
+    position = Positions(traj)
+    clocks = own_clocks(traj, [(start, end) for _, start, end in spans])  # a repeat is checked once
     ev = 0
     ongoing: set[tuple[str, str]] = set()  # pairs in contact since the last motion free of contact
 
@@ -338,7 +340,7 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
             checker.clear_parts(e)
             found = []
         else:
-            q = traj.position(t)  # the arm's joints there: for the checks and for the parts' spans
+            q = position(t)  # the arm's joints there: for the checks and for the parts' spans
             found = _gripper(checker, e, names, q, run)
         if log is not None:
             log.after(checker, t, q)
@@ -362,7 +364,7 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
         rec = motion.motions[index]
         if epochs is not None:
             epochs.at(start)
-        own = own_clock(traj, start, end)  # sampled from the motion's start: a repeat is checked once
+        own = next(clocks)  # sampled from the motion's start
         span = _Span(index, rec)
         report = checker.reuse(span, start, own.key)
         if report is None:
