@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from .armmodel import ArmModel
-from .bodies import Body, aabb_gap, make_bodies
+from .bodies import Body, aabb_gap, copies, make_bodies
 from .cell import Cell, Obstacle, ToolSolid
 from .fcl_backend import FclBackend
 from .groups import Group, Watch, link_group, make_watches
@@ -102,6 +102,7 @@ class World:
         self._scene_ids: dict[tuple, int] = {}  # scene content (`_scene_key`) -> a number never given to another
         self._next_scene = 0
         self._grips: dict[tuple, tuple] = {}  # `_grip_key` -> what the open()/close() did (`_replay`)
+        self._parts_made: dict[tuple, list[Body]] = {}  # a part's solids (their places in the cell) -> as first made
         self.grips_reused = 0
 
     # ---- reading the program's frames and tools ------------------------------------------------------------
@@ -379,6 +380,7 @@ class World:
         poses, steps, drops, _ = done
         flange = poses[self.arm.flange_link]
         arm_bodies = self._arm_bodies()  # not placed: every reader of their poses places them first
+        world = _EYE
         for step in steps:
             if step[0] == "grasp":
                 _, name, solids, locals_, gone, pairs, weights = step
@@ -397,9 +399,10 @@ class World:
                 self.version += 1
                 for b, M in zip(g.bodies, locals_):
                     b.local = M.copy()
-                    b.place(np.eye(4))
+                    b.place(world)
                     b.kind = "obstacle"
-                self._allow_pairs(g.bodies, [b for b in arm_bodies if b.owner != name], pairs)
+                if pairs:
+                    self._allow_pairs(g.bodies, [b for b in arm_bodies if b.owner != name], pairs)
                 self.dropped.extend(g.bodies)
                 self._set_static([*self._placed_obstacles, *self.dropped])
         return [replace(d, time=time, source=source) for d in drops]
@@ -412,14 +415,19 @@ class World:
         return names
 
     def _part_bodies(self, name: str, solids: list) -> list[Body]:
-        """New solids of the part `name` (its (index, Part) in the cell), in their part's frame."""
-        bodies = []
-        for i, p in solids:
-            for k, b in enumerate(make_bodies("part", name, name, f"part {name!r}", p.shape.kind, p.shape.size,
-                                              np.eye(4), *_mesh(p.shape), solid=_solid(p.shape))):
-                b.made_from = ("part", i, k)
-                bodies.append(b)
-        return bodies
+        """New solids of the part `name` (its (index, Part) in the cell), in their part's frame:
+        copies of the ones made the first time (`bodies.copies`: a part is taken again and again)."""
+        key = tuple(i for i, _ in solids)
+        made = self._parts_made.get(key)
+        if made is None:
+            made = []
+            for i, p in solids:
+                for k, b in enumerate(make_bodies("part", name, name, f"part {name!r}", p.shape.kind, p.shape.size,
+                                                  np.eye(4), *_mesh(p.shape), solid=_solid(p.shape))):
+                    b.made_from = ("part", i, k)
+                    made.append(b)
+            self._parts_made[key] = made  # never placed nor handed out: only copied
+        return copies(made)
 
     def _solid_of(self, bodies: list[Body]) -> list:
         return [self.cell.parts[b.made_from[1]] for b in bodies]
@@ -511,6 +519,8 @@ class World:
 
 
 
+_EYE = np.eye(4)  # the world frame (read only: Body.place makes a new pose)
+_EYE.flags.writeable = False
 GRID_MM = 1e-6  # a part left in the cell is put on this grid (and its rotation on GRID_ROT): see _on_grid
 GRID_ROT = 1e-9
 

@@ -370,11 +370,17 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
         if report is None:
             report = checker.check_own(span, start, own.times, own.joints, q_at=own.q_at, key=own.key)
         run.by_motion[index] = report
+        own_report = getattr(report, "own", report)  # a ShiftedReport's fields are computed when read
+        if not own_report.contacts and own_report.starts_in_collision is None and not own_report.too_close:
+            ongoing = set()  # no finding, no contact: what follows reads the same
+            continue
+        contacts = report.contacts
         diags.extend(_motion_findings(report, rec, ongoing, checker.margin))
-        run.contacts.extend((index, c) for c in report.contacts)
-        now = {(c.body_a, c.body_b) for c in report.contacts}
-        if report.starts_in_collision is not None:
-            now.add((report.starts_in_collision.body_a, report.starts_in_collision.body_b))
+        run.contacts.extend((index, c) for c in contacts)
+        now = {(c.body_a, c.body_b) for c in contacts}
+        if own_report.starts_in_collision is not None:
+            first = report.starts_in_collision
+            now.add((first.body_a, first.body_b))
         ongoing = ongoing | now if now else set()
     while ev < len(events):
         diags.extend(event(events[ev]))
