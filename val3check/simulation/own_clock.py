@@ -49,7 +49,7 @@ class Own:
     when first asked for (a check found by its key needs none), and so is `q_at` when `make_q_at`
     gives it."""
 
-    __slots__ = ("key", "_q_at", "_make", "_duration", "_times", "_joints")
+    __slots__ = ("_duration", "_joints", "_make", "_q_at", "_times", "key")
 
     def __init__(self, key: tuple | None, duration: float, q_at: Callable | None = None,
                  make_q_at: Callable[[], Callable] | None = None) -> None:
