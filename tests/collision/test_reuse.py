@@ -286,7 +286,7 @@ def test_the_bundled_pick_and_place_reuses_checks_and_finds_what_fresh_checks_fi
     monkeypatch.setattr(World, "_part_bodies", made_anew)
     monkeypatch.setattr(World, "_grip_key", lambda self, *a: object())
     monkeypatch.setattr(collision_run.ValueWatch, "reading", lambda self, t: None)
-    monkeypatch.setattr(collision_run, "_chain", lambda node: None)
+    monkeypatch.setattr(collision_run, "_chain", lambda objects: None)
     fresh = sim()
     assert grips[-1].grips_reused == 0
     a, b = reused.collision, fresh.collision
