@@ -322,7 +322,7 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
     events = _events(motion.tool_events, cell, io_log, link_names or {})
     names = _tool_names(cell)
     position = Positions(traj)
-    clocks = own_clocks(traj, [(start, end) for _, start, end in spans])  # a repeat is checked once
+    clocks = own_clocks(traj, ((start, end) for _, start, end in spans))  # a repeat is checked once
     ev = 0
     ongoing: set[tuple[str, str]] = set()  # pairs in contact since the last motion free of contact
 

@@ -5,6 +5,8 @@ that repeats exactly are computed once.
 
     own = own_clock(trajectory, start, end)   # -> Own: times from 0 every 4 ms and the end,
                                               #    joints there, q_at(t) between, key (or None)
+    for own in own_clocks(trajectory, windows):   # the same for many (start, end), keyed in blocks
+    q = Positions(trajectory)(t)              # trajectory.position(t), found again by its span
 
 The run's trajectory (motion.trajectory.Trajectory) holds one path for the whole run (global path
 position s) and one profile s(t) on the run's clock: the same motion one cycle later has the same
@@ -25,8 +27,9 @@ too, from the trajectory itself, without a key.
 from __future__ import annotations
 
 import bisect
+import itertools
 import math
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 
 import numpy as np
 
@@ -103,15 +106,17 @@ def own_clock(traj, start: float, end: float) -> Own:
     return Own(None, max(end - start, 0.0), q_at)
 
 
-def own_clocks(traj, windows: list[tuple[float, float]]) -> Iterator[Own]:
+def own_clocks(traj, windows: Iterable[tuple[float, float]]) -> Iterator[Own]:
     """`own_clock(traj, start, end)` of each (start, end) of `windows`, in order: the keys of
-    BLOCK motions computed at once, the same numbers (the same operations, element by element)."""
+    BLOCK motions computed at once, the same numbers (the same operations, element by element).
+    `windows` is read a block at a time (a long run has many motions)."""
     if not (type(traj) is Trajectory and traj.path.spans and len(traj.profile.T) >= 2):
         for start, end in windows:
             yield own_clock(traj, start, end)
         return
-    for b in range(0, len(windows), BLOCK):
-        yield from _block(traj, windows[b:b + BLOCK])
+    it = iter(windows)
+    while block := list(itertools.islice(it, BLOCK)):
+        yield from _block(traj, block)
 
 
 def _block(traj: Trajectory, windows: list[tuple[float, float]]) -> Iterator[Own]:
