@@ -328,13 +328,13 @@ class World:
             arm_bodies.extend(g.bodies)
         return arm_bodies
 
-    def _arm_bodies(self) -> list[Body]:
-        """The arm's bodies in `_place_arm`'s order, marked for placing again at the next sample."""
-        arm_bodies: list[Body] = []
-        for g in self.arm_groups():
+    def _arm_groups_unplaced(self) -> list[Group]:
+        """The arm's groups (`_place_arm`'s order of their bodies), marked for placing again at the
+        next sample."""
+        groups = self.arm_groups()
+        for g in groups:
             g.placed = -1.0
-            arm_bodies.extend(g.bodies)
-        return arm_bodies
+        return groups
 
     def _grip(self, tool: str, instruction: str, time: float, poses: dict, source: Any, steps: list) -> list[PartDrop]:
         """open()/close() computed; what it does is appended to `steps` (`_replay` does it again)."""
@@ -379,7 +379,7 @@ class World:
         each on the solids of this scene (found by their place in its lists)."""
         poses, steps, drops, _ = done
         flange = poses[self.arm.flange_link]
-        arm_bodies = self._arm_bodies()  # not placed: every reader of their poses places them first
+        groups = self._arm_groups_unplaced()  # not placed: every reader of their poses places them first
         world = _EYE
         for step in steps:
             if step[0] == "grasp":
@@ -401,7 +401,8 @@ class World:
                     b.local = M.copy()
                     b.place(world)
                     b.kind = "obstacle"
-                if pairs:
+                if pairs:  # by their places among the arm's bodies as the event found them
+                    arm_bodies = [b for a in groups for b in a.bodies]
                     self._allow_pairs(g.bodies, [b for b in arm_bodies if b.owner != name], pairs)
                 self.dropped.extend(g.bodies)
                 self._set_static([*self._placed_obstacles, *self.dropped])
