@@ -42,7 +42,7 @@ Q_T = 1e-9  # s: the profile's times within the motion
 Q_S = 1e-7  # path units (degrees of joint motion): positions along the motion's path
 Q_SD = 1e-7  # path units per second: path speeds
 _QUANTA = np.array([[Q_T], [Q_S], [Q_SD]])
-BLOCK = 512  # motions keyed at once (`own_clocks`)
+BLOCK = 256  # motions keyed at once (`own_clocks`)
 
 
 class Own:
