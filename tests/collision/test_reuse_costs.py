@@ -71,6 +71,24 @@ def test_the_keys_computed_in_blocks_are_own_clocks_keys_and_samples(monkeypatch
     assert len({keys[0], keys[1], keys[2]}) == 3
 
 
+@pytest.mark.parametrize("block", [1, 2, 3, 512])
+def test_the_blocks_read_a_profile_with_breakpoints_at_one_time_as_own_clock(monkeypatch, block):
+    # a replan cuts the profile and continues from the same instant: two breakpoints at one time
+    from array import array
+
+    monkeypatch.setattr(oc, "BLOCK", block)
+    traj, _ = _long_run()
+    prof = traj.profile
+    prof.T = array("d", [0.0, 1.0, 1.0, 2.0, 3.0, 3.0, 3.0, 4.5, 6.0])
+    prof.S = array("d", [0.0, 5.0, 5.5, 20.0, 40.0, 40.0, 41.0, 60.0, 70.0])
+    prof.SD = array("d", [0.0, 10.0, 12.0, 15.0, 10.0, 9.0, 9.0, 5.0, 0.0])
+    windows = [(1.0, 1.0), (1.0, 3.0), (3.0, 3.0), (0.5, 1.0), (3.0, 4.5), (2.0, 3.0), (-1.0, 0.0), (4.5, 7.0),
+               (6.0, 6.0), (0.0, 6.0), (2.5, 2.5)]
+    for (a, b), got in zip(windows, oc.own_clocks(traj, windows)):
+        one = oc.own_clock(traj, a, b)
+        assert got.key == one.key and got.joints.tobytes() == one.joints.tobytes()
+
+
 def test_the_blocks_read_the_profile_exactly_as_profile_state():
     traj, spans = _long_run()
     prof = traj.profile

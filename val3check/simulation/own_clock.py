@@ -123,20 +123,27 @@ def _block(traj: Trajectory, windows: list[tuple[float, float]]) -> Iterator[Own
     prof, path = traj.profile, traj.path
     w = np.array(windows, dtype=float).reshape(-1, 2)
     starts, ends = w[:, 0].copy(), w[:, 1].copy()
+    # only the breakpoints around the block's motions, from a to b (the profile holds the whole run):
+    # those before a are at or before every time asked, those from b on after every one
     n = len(prof.T)
-    T, S, SD = window(prof.T, 0, n), window(prof.S, 0, n), window(prof.SD, 0, n)
-    s0, sd0 = _states(T, S, SD, starts)
-    s1, sd1 = _states(T, S, SD, ends)
+    a = max(bisect.bisect_right(prof.T, float(min(starts.min(), ends.min()))) - 1, 0)
+    b = min(bisect.bisect_right(prof.T, float(max(starts.max(), ends.max()))) + 1, n)
+    a = min(a, max(b - 2, 0))  # at least two of them
+    b = max(b, min(a + 2, n))
+    T, S, SD = window(prof.T, a, b), window(prof.S, a, b), window(prof.SD, a, b)
+    head = (prof.T[0], prof.S[0])
+    s0, sd0 = _states(T, S, SD, starts, head, b == n)
+    s1, sd1 = _states(T, S, SD, ends, head, b == n)
     i0, base = _locate(path, s0)
     i1, _ = _locate(path, s1)
-    lo = np.searchsorted(T, starts, side="right")  # bisect_right, bisect_left from lo: as _keyed
-    hi = np.maximum(np.searchsorted(T, ends, side="left"), lo)
+    lo = np.searchsorted(T, starts, side="right") + a  # bisect_right, bisect_left from lo: as _keyed
+    hi = np.maximum(np.searchsorted(T, ends, side="left") + a, lo)
     # each motion's rows [start, T[lo:hi], end] (and S, SD) end to end in one array
     count = hi - lo + 2
     first = np.cumsum(count) - count
     last = first + count - 1
     seg = np.repeat(np.arange(len(w)), count)
-    src = np.clip(lo[seg] + (np.arange(len(seg)) - first[seg]) - 1, 0, n - 1)
+    src = np.clip(lo[seg] + (np.arange(len(seg)) - first[seg]) - 1 - a, 0, len(T) - 1)
     rows = np.stack([T[src], S[src], SD[src]])
     del T, S, SD  # views of the profile's arrays: dropped at once
     rows[:, first] = starts, s0, sd0
@@ -150,9 +157,13 @@ def _block(traj: Trajectory, windows: list[tuple[float, float]]) -> Iterator[Own
         yield _own(spans[j0:j1 + 1], k[:, a:z + 1])
 
 
-def _states(T: np.ndarray, S: np.ndarray, SD: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """`Profile.state`'s (s, ṡ) at many times (at least two breakpoints): its cases in its order and
-    its arithmetic, element by element, so the same numbers."""
+def _states(T: np.ndarray, S: np.ndarray, SD: np.ndarray, t: np.ndarray, head: tuple | None = None,
+            at_end: bool = True) -> tuple[np.ndarray, np.ndarray]:
+    """`Profile.state`'s (s, ṡ) at many times: its cases in its order and its arithmetic, element by
+    element, so the same numbers. T, S, SD: at least two breakpoints, every time asked at or after
+    the first unless it is the profile's first (`head`: the profile's first time and position);
+    `at_end`: the last is the profile's last (else every time asked is before it)."""
+    T0, S0 = (T[0], S[0]) if head is None else head
     n = len(T)
     k = np.searchsorted(T, t, side="right") - 1
     k0 = np.clip(k, 0, n - 2)
@@ -166,10 +177,11 @@ def _states(T: np.ndarray, S: np.ndarray, SD: np.ndarray, t: np.ndarray) -> tupl
         sd = sd0 + u * tau
     flat = dt <= 0.0
     s, sd = np.where(flat, S[k1], s), np.where(flat, SD[k1], sd)
-    end = k >= n - 1
-    s, sd = np.where(end, S[-1], s), np.where(end, 0.0, sd)
-    before = t <= T[0]
-    return np.where(before, S[0], s), np.where(before, 0.0, sd)
+    if at_end:
+        end = k >= n - 1
+        s, sd = np.where(end, S[-1], s), np.where(end, 0.0, sd)
+    before = t <= T0
+    return np.where(before, S0, s), np.where(before, 0.0, sd)
 
 
 def _locate(path: Path, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
