@@ -249,12 +249,23 @@ def test_the_bundled_pick_and_place_reuses_checks_and_finds_what_fresh_checks_fi
 
     from val3check.collision.world import World
 
-    keyed = collision_run.own_clock
+    keyed = collision_run.own_clocks
 
     def unkeyed(*a):
-        own = keyed(*a)
-        own.key = None
-        return own
+        for own in keyed(*a):
+            own.key = None
+            yield own
+
+    class Asked(collision_run.Positions):  # the trajectory asked at every event
+        def __init__(self, traj):
+            super().__init__(traj)
+            self.keyed = False
+
+    def made_anew(world, name, solids):  # a part's solids made again at every grasp, as before copies
+        world._parts_made.clear()
+        return real_part_bodies(world, name, solids)
+
+    real_part_bodies = World._part_bodies
 
     grips: list[int] = []
     real_check = collision_run.CollisionChecker
@@ -267,11 +278,15 @@ def test_the_bundled_pick_and_place_reuses_checks_and_finds_what_fresh_checks_fi
     monkeypatch.setattr(collision_run, "CollisionChecker", counted)
     reused = sim()
     assert grips[-1].grips_reused > 10
+    traj, windows = reused.motion.trajectory, [(s, e) for _, s, e in collision_run._spans(reused.motion)]
+    assert [o.key for o in keyed(traj, windows)] == [own_clock(traj, *w).key for w in windows]  # blocks: the same keys
     # fresh: no motion, no open()/close() reused, the scene read at every motion, every frame read anew
-    monkeypatch.setattr(collision_run, "own_clock", unkeyed)
+    monkeypatch.setattr(collision_run, "own_clocks", unkeyed)
+    monkeypatch.setattr(collision_run, "Positions", Asked)
+    monkeypatch.setattr(World, "_part_bodies", made_anew)
     monkeypatch.setattr(World, "_grip_key", lambda self, *a: object())
     monkeypatch.setattr(collision_run.ValueWatch, "reading", lambda self, t: None)
-    monkeypatch.setattr(collision_run, "_chain", lambda node: None)
+    monkeypatch.setattr(collision_run, "_chain", lambda objects: None)
     fresh = sim()
     assert grips[-1].grips_reused == 0
     a, b = reused.collision, fresh.collision

@@ -16,6 +16,7 @@ non-convex mesh into pieces of at most PIECE triangles (median cuts along the lo
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import fcl
@@ -65,9 +66,9 @@ class Body:
     hull's edges, unit, each direction once), support_points (a polyhedron's vertices),
     sample_points (points of the body for depth estimates), all in the body's frame."""
 
-    __slots__ = ("axis", "center", "edge_directions", "exact", "geometry", "half", "kind", "label", "lb", "local",
-                 "made_from", "name", "obj", "owner", "planes", "points", "pose", "radius", "sample_points", "size", "solid",
-                 "support_points", "triangle_shape", "whole", "whole_box", "whole_shape")
+    __slots__ = ("axis", "center", "edge_directions", "exact", "fcl_shapes", "geometry", "half", "kind", "label", "lb",
+                 "local", "made_from", "name", "obj", "owner", "planes", "points", "pose", "radius", "sample_points", "size",
+                 "solid", "support_points", "triangle_shape", "whole", "whole_box", "whole_shape")
 
     def __init__(self, kind: str, owner: str, name: str, label: str, shape_kind: str, size: tuple[float, ...],
                  local: np.ndarray, vertices=None, faces=None, solid: bool = True, exact=None,
@@ -79,7 +80,9 @@ class Body:
         self.name = name
         self.label = label
         self.local = np.asarray(local, dtype=float)
-        self.obj = fcl.CollisionObject(fcl_geometry(shape_kind, size, vertices, faces), fcl.Transform())
+        geom = fcl_geometry(shape_kind, size, vertices, faces)
+        self.obj = fcl.CollisionObject(geom, fcl.Transform())
+        self.fcl_shapes = (geom, None)  # the fcl geometries of obj and exact (`copies`)
         self.exact = exact
         self.lb = False  # True: obj is the hull of a piece, its distance a lower bound (exact: the BVH)
         self.whole_shape = whole_shape
@@ -188,6 +191,31 @@ class Body:
         return f"Body({self.label})"
 
 
+_COPIED = ("axis", "center", "edge_directions", "fcl_shapes", "geometry", "half", "kind", "label", "lb", "made_from",
+           "name", "owner", "planes", "points", "radius", "sample_points", "size", "solid", "support_points",
+           "triangle_shape", "whole_box", "whole_shape")
+
+
+def copies(bodies: list[Body]) -> list[Body]:
+    """New bodies as `make_bodies` made `bodies` (none of them placed yet): the same values, the
+    arrays and fcl geometries shared (never changed in place), their own fcl objects, pose and
+    local, and their own solid (`whole`), shared by the copies of pieces of one solid."""
+    wholes: dict[int, int] = {}
+    out = []
+    for src in bodies:
+        b = Body.__new__(Body)
+        for name in _COPIED:
+            setattr(b, name, getattr(src, name))
+        geom, exact = src.fcl_shapes
+        b.obj = fcl.CollisionObject(geom, fcl.Transform())
+        b.exact = None if exact is None else fcl.CollisionObject(exact, fcl.Transform())
+        b.local = src.local.copy()
+        b.pose = np.eye(4)
+        b.whole = id(b) if src.whole == id(src) else wholes.setdefault(src.whole, next(_WHOLES))
+        out.append(b)
+    return out
+
+
 def make_bodies(kind: str, owner: str, name: str, label: str, shape_kind: str, size: tuple[float, ...],
                 local: np.ndarray, vertices=None, faces=None, solid: bool = True,
                 hull_solid: bool | None = None) -> list[Body]:
@@ -202,7 +230,7 @@ def make_bodies(kind: str, owner: str, name: str, label: str, shape_kind: str, s
     v = np.asarray(vertices, dtype=float)
     f = np.asarray(faces, dtype=np.int64)
     pieces, whole_shape = _pieces(v, f, solid, hull_solid)
-    key = object()
+    whole = next(_WHOLES)
     lo, hi = v.min(axis=0), v.max(axis=0)
     whole_box = (0.5 * (lo + hi), 0.5 * (hi - lo))
     out = []
@@ -215,13 +243,17 @@ def make_bodies(kind: str, owner: str, name: str, label: str, shape_kind: str, s
             b = Body(kind, owner, name, label, "convex", (), local, hv, hf, solid=solid, exact=exact,
                      whole_shape=whole_shape, triangles=tris, hull_solid=not lb)
             b.lb = lb
-        b.whole = id(key)
+        b.fcl_shapes = (b.fcl_shapes[0], bvh)
+        b.whole = whole
         b.whole_box = whole_box
         out.append(b)
     return out
 
 
 _PIECES: dict[tuple, tuple] = {}
+# the solid a mesh's pieces belong to: a number never given to another (the id of an object that
+# lives no longer than the call could be given to the next mesh's pieces); far below any id
+_WHOLES = itertools.count(1)
 
 
 def _pieces(v: np.ndarray, f: np.ndarray, solid: bool, hull_solid: bool) -> tuple[list, MeshShape]:

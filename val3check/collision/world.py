@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from .armmodel import ArmModel
-from .bodies import Body, aabb_gap, make_bodies
+from .bodies import Body, aabb_gap, copies, make_bodies
 from .cell import Cell, Obstacle, ToolSolid
 from .fcl_backend import FclBackend
 from .groups import Group, Watch, link_group, make_watches
@@ -102,6 +102,7 @@ class World:
         self._scene_ids: dict[tuple, int] = {}  # scene content (`_scene_key`) -> a number never given to another
         self._next_scene = 0
         self._grips: dict[tuple, tuple] = {}  # `_grip_key` -> what the open()/close() did (`_replay`)
+        self._parts_made: dict[tuple, list[Body]] = {}  # a part's solids (their places in the cell) -> as first made
         self.grips_reused = 0
 
     # ---- reading the program's frames and tools ------------------------------------------------------------
@@ -327,13 +328,13 @@ class World:
             arm_bodies.extend(g.bodies)
         return arm_bodies
 
-    def _arm_bodies(self) -> list[Body]:
-        """The arm's bodies in `_place_arm`'s order, marked for placing again at the next sample."""
-        arm_bodies: list[Body] = []
-        for g in self.arm_groups():
+    def _arm_groups_unplaced(self) -> list[Group]:
+        """The arm's groups (`_place_arm`'s order of their bodies), marked for placing again at the
+        next sample."""
+        groups = self.arm_groups()
+        for g in groups:
             g.placed = -1.0
-            arm_bodies.extend(g.bodies)
-        return arm_bodies
+        return groups
 
     def _grip(self, tool: str, instruction: str, time: float, poses: dict, source: Any, steps: list) -> list[PartDrop]:
         """open()/close() computed; what it does is appended to `steps` (`_replay` does it again)."""
@@ -378,7 +379,8 @@ class World:
         each on the solids of this scene (found by their place in its lists)."""
         poses, steps, drops, _ = done
         flange = poses[self.arm.flange_link]
-        arm_bodies = self._arm_bodies()  # not placed: every reader of their poses places them first
+        groups = self._arm_groups_unplaced()  # not placed: every reader of their poses places them first
+        world = _EYE
         for step in steps:
             if step[0] == "grasp":
                 _, name, solids, locals_, gone, pairs, weights = step
@@ -397,9 +399,11 @@ class World:
                 self.version += 1
                 for b, M in zip(g.bodies, locals_):
                     b.local = M.copy()
-                    b.place(np.eye(4))
+                    b.place(world)
                     b.kind = "obstacle"
-                self._allow_pairs(g.bodies, [b for b in arm_bodies if b.owner != name], pairs)
+                if pairs:  # by their places among the arm's bodies as the event found them
+                    arm_bodies = [b for a in groups for b in a.bodies]
+                    self._allow_pairs(g.bodies, [b for b in arm_bodies if b.owner != name], pairs)
                 self.dropped.extend(g.bodies)
                 self._set_static([*self._placed_obstacles, *self.dropped])
         return [replace(d, time=time, source=source) for d in drops]
@@ -412,14 +416,19 @@ class World:
         return names
 
     def _part_bodies(self, name: str, solids: list) -> list[Body]:
-        """New solids of the part `name` (its (index, Part) in the cell), in their part's frame."""
-        bodies = []
-        for i, p in solids:
-            for k, b in enumerate(make_bodies("part", name, name, f"part {name!r}", p.shape.kind, p.shape.size,
-                                              np.eye(4), *_mesh(p.shape), solid=_solid(p.shape))):
-                b.made_from = ("part", i, k)
-                bodies.append(b)
-        return bodies
+        """New solids of the part `name` (its (index, Part) in the cell), in their part's frame:
+        copies of the ones made the first time (`bodies.copies`: a part is taken again and again)."""
+        key = tuple(i for i, _ in solids)
+        made = self._parts_made.get(key)
+        if made is None:
+            made = []
+            for i, p in solids:
+                for k, b in enumerate(make_bodies("part", name, name, f"part {name!r}", p.shape.kind, p.shape.size,
+                                                  np.eye(4), *_mesh(p.shape), solid=_solid(p.shape))):
+                    b.made_from = ("part", i, k)
+                    made.append(b)
+            self._parts_made[key] = made  # never placed nor handed out: only copied
+        return copies(made)
 
     def _solid_of(self, bodies: list[Body]) -> list:
         return [self.cell.parts[b.made_from[1]] for b in bodies]
@@ -511,6 +520,8 @@ class World:
 
 
 
+_EYE = np.eye(4)  # the world frame (read only: Body.place makes a new pose)
+_EYE.flags.writeable = False
 GRID_MM = 1e-6  # a part left in the cell is put on this grid (and its rotation on GRID_ROT): see _on_grid
 GRID_ROT = 1e-9
 

@@ -40,6 +40,7 @@ class TimelineLog:
         self._carried: set[str] = set()
         self._poses: dict[bytes, np.ndarray] = {}  # `_shared`
         self._left: set[int] = set()
+        self._last_tool: tuple | None = None  # `_matrix`
 
     # ---- the checker's pose sources ----------------------------------------------------------------
 
@@ -92,7 +93,15 @@ class TimelineLog:
         tool = next(p.tool for p in self.cell.parts if p.name == name)
         T = None if tool == "flange" else self.watch.tool(tool, t)  # the checker took it: the tool has a value
         self.spans.append({"name": name, "tool": tool, "carried": True, "start": float(t), "end": None,
-                           "pose": self._shared(np.eye(4) if T is None else as_matrix(T, self.unit)), "bodies": set()})
+                           "pose": self._shared(np.eye(4) if T is None else self._matrix(T)), "bodies": set()})
+
+    def _matrix(self, T) -> np.ndarray:
+        """as_matrix(T) in the log's unit; the last one kept with T itself (held: the watch gives
+        the same object again while the tool's value is the same reading, and never changes it)."""
+        last = self._last_tool
+        if last is None or last[0] is not T:
+            last = self._last_tool = (T, as_matrix(T, self.unit))
+        return last[1]
 
     def _leave(self, name: str, t: float, bodies: set[int], q=None) -> None:
         span = next(s for s in reversed(self.spans) if s["carried"] and s["name"] == name and s["end"] is None)

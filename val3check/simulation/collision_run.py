@@ -39,7 +39,7 @@ from ..interpretation.clock import TICK_US
 from ..rules import codes
 from .budget import WALL
 from .cell_timeline import TimelineLog
-from .own_clock import own_clock
+from .own_clock import Positions, own_clocks
 
 US = 1_000_000
 _NAME = re.compile(r"^(?:([A-Za-z_][A-Za-z0-9_]*):)?([A-Za-z_][A-Za-z0-9_]*)(?:\[\s*(\d+)\s*\])?$")
@@ -133,7 +133,7 @@ class ValueWatch:
         self.times: list[float] = []
         self.values: list[dict[str, np.ndarray | None]] = []
         self.serials: list[int] = []  # per reading, a number never given to another (`reading`)
-        self._cache: dict[str, tuple] = {}  # name -> (fingerprint, nodes held, matrix, objects read) of its last read
+        self._cache: dict[str, tuple] = {}  # name -> (fingerprint, matrix, objects read) of its last read
         self._reads = [*(("f:" + n, n, geo_frames.Frame) for n in self.frames),
                        *(("t:" + n, n, geo_frames.Tool) for n in self.tools)]
 
@@ -212,12 +212,12 @@ def _read(machine: Any, name: str, kind: type, cache: dict | None = None) -> np.
     if cache is not None:
         objects = _objects(node)
         last = cache.get(name)
-        if objects and last is not None and len(last[3]) == len(objects) and all(map(operator.is_, objects, last[3])):
-            return last[2]  # the very objects root_pose reads: the same result
-        chain = _chain(node)
-        if chain is not None and last is not None and last[0] == chain[0]:
-            cache[name] = (*last[:3], objects)
-            return last[2]
+        if objects and last is not None and len(last[2]) == len(objects) and all(map(operator.is_, objects, last[2])):
+            return last[1]  # the very objects root_pose reads: the same result
+        chain = _chain(objects)
+        if chain is not None and last is not None and last[0] == chain:
+            cache[name] = (last[0], last[1], objects)  # the same nodes (their ids), held by objects
+            return last[1]
     try:
         r, p, _ = geo_frames.root_pose(node)
     except Exception:  # undefined reference, modified root (160/161/163/164): no position
@@ -227,7 +227,7 @@ def _read(machine: Any, name: str, kind: type, cache: dict | None = None) -> np.
         out[:3, :3] = np.array(r, dtype=float).reshape(3, 3)
         out[:3, 3] = p
     if chain is not None:
-        cache[name] = (chain[0], chain[1], out, objects)
+        cache[name] = (chain, out, objects)
     return out
 
 
@@ -259,26 +259,19 @@ def _objects(node: Any) -> tuple:
 _PACK = struct.Struct("6d")
 
 
-def _chain(node: Any) -> tuple[tuple, list] | None:
-    """What `geometry.frames.root_pose(node)` reads: each node up to the root (or to a missing
-    reference, or past a loop) by identity, with its root flag, its reference and its
-    coordinates' bits; and the nodes themselves (held, so that no other object takes their ids).
-    None when a coordinate is not a number."""
-    out: list = []
-    held: list = []
-    n = node
-    try:
-        while n is not None and len(out) <= geo_frames.MAX_DEPTH + 1:
-            t = n.trsf
-            held.append(n)
-            held.append(n.ref)
-            out.append((id(n), n.is_root, id(n.ref), _PACK.pack(t.x, t.y, t.z, t.rx, t.ry, t.rz)))
-            if n.is_root:
-                break
-            n = n.ref
-    except (AttributeError, TypeError, struct.error):
+def _chain(objects: tuple) -> tuple | None:
+    """What `geometry.frames.root_pose` reads, by value, from `_objects`' walk (one walk gives
+    both): each node up to the root (or to a missing reference, or past a loop) by identity, with
+    its root flag, its reference and its coordinates' bits (the nodes are held by `objects`, so
+    that no other object takes their ids). None when there is no walk or a coordinate is not a
+    number."""
+    if not objects:
         return None
-    return tuple(out), held
+    try:
+        return tuple((id(objects[k]), objects[k + 2], id(objects[k + 1]), _PACK.pack(*objects[k + 4:k + 10]))
+                     for k in range(0, len(objects), 10))
+    except (TypeError, struct.error):
+        return None
 
 
 # ---- checking the run -------------------------------------------------------------------------------------
@@ -328,6 +321,8 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
     spans = _spans(motion)
     events = _events(motion.tool_events, cell, io_log, link_names or {})
     names = _tool_names(cell)
+    position = Positions(traj)
+    clocks = own_clocks(traj, ((start, end) for _, start, end in spans))  # a repeat is checked once
     ev = 0
     ongoing: set[tuple[str, str]] = set()  # pairs in contact since the last motion free of contact
 
@@ -338,7 +333,7 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
             checker.clear_parts(e)
             found = []
         else:
-            q = traj.position(t)  # the arm's joints there: for the checks and for the parts' spans
+            q = position(t)  # the arm's joints there: for the checks and for the parts' spans
             found = _gripper(checker, e, names, q, run)
         if log is not None:
             log.after(checker, t, q)
@@ -362,17 +357,23 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
         rec = motion.motions[index]
         if epochs is not None:
             epochs.at(start)
-        own = own_clock(traj, start, end)  # sampled from the motion's start: a repeat is checked once
+        own = next(clocks)  # sampled from the motion's start
         span = _Span(index, rec)
         report = checker.reuse(span, start, own.key)
         if report is None:
             report = checker.check_own(span, start, own.times, own.joints, q_at=own.q_at, key=own.key)
         run.by_motion[index] = report
+        own_report = getattr(report, "own", report)  # a ShiftedReport's fields are computed when read
+        if not own_report.contacts and own_report.starts_in_collision is None and not own_report.too_close:
+            ongoing = set()  # no finding, no contact: what follows reads the same
+            continue
+        contacts = report.contacts
         diags.extend(_motion_findings(report, rec, ongoing, checker.margin))
-        run.contacts.extend((index, c) for c in report.contacts)
-        now = {(c.body_a, c.body_b) for c in report.contacts}
-        if report.starts_in_collision is not None:
-            now.add((report.starts_in_collision.body_a, report.starts_in_collision.body_b))
+        run.contacts.extend((index, c) for c in contacts)
+        now = {(c.body_a, c.body_b) for c in contacts}
+        if own_report.starts_in_collision is not None:
+            first = report.starts_in_collision
+            now.add((first.body_a, first.body_b))
         ongoing = ongoing | now if now else set()
     while ev < len(events):
         diags.extend(event(events[ev]))
