@@ -10,7 +10,7 @@ there wholly behind the arm (resetMotion cuts the path where the arm stops). Com
 recording order: a cancelled command (its record reads the profile as the run ends) and everything
 after it wait for the end of the run, as do the commands not final by then. The records are made
 by the same `RecordMaker` in the same order, blocks and near ties as after the run: the same bits
-(tests/simulation/test_live_record.py).
+(tests/interpretation/test_live_record.py).
 
 Commands are released from the history only while nothing of chapter 11 reads it by index
 (arm_layers.Residuals, alteration.py, compliance.py): once one does, the history is kept whole
