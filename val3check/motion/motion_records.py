@@ -165,12 +165,17 @@ class RecordMaker:
         if len(group[2]) == RECORD_BLOCK:
             _evaluate(queue, prof, out, group, self.doubts)
 
-    def finish(self) -> list[MotionRecord]:
-        """The records of every command added: the blocks not full evaluated, the near ties decided."""
+    def flush(self) -> None:
+        """Every command added so far given its record: the blocks not full evaluated, the near ties
+        decided (a record's figures do not depend on the commands evaluated with it: the same bits)."""
         for group in self.groups.values():
             if group[2]:
                 _evaluate(self.queue, self.prof, self.out, group, self.doubts)
         _decide(self.queue, self.prof, self.out, self.doubts)
+
+    def finish(self) -> list[MotionRecord]:
+        """The records of every command added."""
+        self.flush()
         return self.out  # type: ignore[return-value]
 
 

@@ -27,7 +27,7 @@ from __future__ import annotations
 import bisect
 from typing import Any
 
-from ..motion.motion_records import MotionRecord, RecordMaker
+from ..motion.motion_records import RECORD_BLOCK, MotionRecord, RecordMaker
 
 RELEASE_AT = 256  # commands taken before the history is trimmed (a trim moves what is left)
 
@@ -48,6 +48,7 @@ class LiveRecord:
         self.releasing = True
         self.blocked = False  # a cancelled command met: the rest waits for the end of the run
         self._records: tuple | None = None  # (end_s, the records) once finished
+        self._flushed = 0  # commands taken when the maker last made every record
 
     def take(self, arm: Any, queue: Any) -> None:
         """Make the records of the commands become final (module docstring), release them."""
@@ -84,6 +85,9 @@ class LiveRecord:
             self._take(arm, command)
             i += 1
         self.cursor = i
+        if len(self.kept) - self._flushed >= RECORD_BLOCK:  # their records made now, not after the run
+            self.maker.flush()
+            self._flushed = len(self.kept)
         if self.releasing and not _history_read(arm):
             if i >= RELEASE_AT:
                 queue.release(i)
