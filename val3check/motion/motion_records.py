@@ -396,13 +396,25 @@ def _apart(values, slack) -> np.ndarray:
     return top - slack[rows, k] > reach + 1e-9 * np.abs(top)
 
 
+_BUSY_BLOCK = 1 << 16  # breakpoints read at a time by `busy_time`
+
+
 def busy_time(profile, t_end: float) -> tuple[float, float]:
-    """(seconds the arm moved, seconds it stood still) between 0 and t_end."""
+    """(seconds the arm moved, seconds it stood still) between 0 and t_end: the intervals moving at
+    either end, each min(its end, t_end) - its start, summed in order (a running sum, block by
+    block: the same bits as one loop over the breakpoints; views of the profile, dropped here)."""
     T, SD = profile.T, profile.SD
+    n = len(T)
     busy = 0.0
-    for i in range(len(T) - 1):
-        if T[i] >= t_end:
+    for lo in range(0, max(n - 1, 0), _BUSY_BLOCK):
+        hi = min(lo + _BUSY_BLOCK, n - 1)
+        t, sd = window(T, lo, hi + 1), window(SD, lo, hi + 1)
+        stop = np.flatnonzero(t[:-1] >= t_end)
+        m = int(stop[0]) if len(stop) else hi - lo
+        moving = (sd[:m] > 0) | (sd[1:m + 1] > 0)
+        d = np.minimum(t[1:m + 1], t_end)[moving] - t[:m][moving]
+        busy = float(np.add.accumulate(np.concatenate(([busy], d)))[-1])  # sequential, as busy += each
+        del t, sd
+        if len(stop):
             break
-        if SD[i] > 0 or SD[i + 1] > 0:
-            busy += min(T[i + 1], t_end) - T[i]
     return busy, max(t_end - busy, 0.0)
