@@ -49,6 +49,7 @@ class LiveRecord:
         self.blocked = False  # a cancelled command met: the rest waits for the end of the run
         self._records: tuple | None = None  # (end_s, the records) once finished
         self._flushed = 0  # commands taken when the maker last made every record
+        self._wait: tuple | None = None  # (the next command, the time before which it is not final)
 
     def take(self, arm: Any, queue: Any) -> None:
         """Make the records of the commands become final (module docstring), release them."""
@@ -60,8 +61,12 @@ class LiveRecord:
         i = self.cursor
         if i >= len(history):
             return
-        prof, path = queue.planner.profile, queue.path
         final = queue.final_before()
+        wait = self._wait
+        if wait is not None and wait[0] is history[i] and final < wait[1]:
+            return  # (asked at every advance of the arm: mostly nothing new is final)
+        self._wait = None
+        prof, path = queue.planner.profile, queue.path
         S, T = prof.S, prof.T
         behind = None  # where the arm is at `final` (found when first needed)
         while i < len(history):
@@ -72,13 +77,19 @@ class LiveRecord:
                 if place.s_begin is not None:
                     s = max(place.s_begin, place.s_end)
                     k = bisect.bisect_right(S, s + 1e-9 * max(1.0, abs(s)))
-                    if k >= len(S) or T[k] > final:
+                    if k >= len(S):
+                        break
+                    if T[k] > final:
+                        self._wait = (command, T[k])  # (the breakpoint is there: only its time can come)
                         break
                     if behind is None:
                         behind = prof.state(final)[0]
                     j, _ = path.locate(S[k])
                     if j >= 0 and path.offsets[j] + path.spans[j].length > behind:
-                        break  # a resetMotion could still cut that span
+                        # a resetMotion could still cut that span: not before the arm leaves it
+                        t = prof.time_at(path.offsets[j] + path.spans[j].length)
+                        self._wait = None if t is None else (command, t)
+                        break
             elif state != "failed":
                 self.blocked = state == "cancelled"
                 break
@@ -88,12 +99,14 @@ class LiveRecord:
         if len(self.kept) - self._flushed >= RECORD_BLOCK:  # their records made now, not after the run
             self.maker.flush()
             self._flushed = len(self.kept)
-        if self.releasing and not _history_read(arm):
-            if i >= RELEASE_AT:
+        if i >= RELEASE_AT and self.releasing:
+            # what chapter 11 does to the arm stays in its state (the layers, the alterable keys,
+            # the compliant moves): asked only when about to release
+            if _history_read(arm):
+                self.releasing = False
+            else:
                 queue.release(i)
                 self.cursor = 0
-        else:
-            self.releasing = False
 
     def _take(self, arm: Any, command: Any) -> None:
         """The record of a final command, and what the motion table and the cycles read of it."""
