@@ -9,8 +9,9 @@ the queue says the profile can no longer change (`MotionQueue.final_before`), an
 there wholly behind the arm (resetMotion cuts the path where the arm stops). Commands are taken in
 recording order: a cancelled command (its record reads the profile as the run ends) and everything
 after it wait for the end of the run, as do the commands not final by then. The records are made
-by the same `RecordMaker` in the same order, blocks and near ties as after the run: the same bits
-(tests/interpretation/test_live_record.py).
+by the same `RecordMaker`, in the same order, as after the run; the blocks not full are evaluated
+and the near ties decided every RECORD_BLOCK commands (a record's figures do not depend on the
+commands evaluated with it): the same bits (tests/interpretation/test_live_record.py).
 
 Commands are released from the history only while nothing of chapter 11 reads it by index
 (arm_layers.Residuals, alteration.py, compliance.py): once one does, the history is kept whole
