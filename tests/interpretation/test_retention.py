@@ -40,15 +40,16 @@ def _distinct(objects) -> int:
 
 def test_the_commands_of_a_long_run_share_one_object_per_value(long_loop):
     machine, _ = long_loop
-    history = machine.arm.queue_in_use.history
-    moves = [c for c in history if c.kind == "movej"]
+    live = machine.arm.live  # what the run kept of its commands once they left the history (live_record.py)
+    assert len(machine.arm.queue_in_use.history) < 300
+    moves = [(asked[0], context) for asked, context in zip(live.kept, live.contexts) if asked[0].kind == "movej"]
     assert len(moves) > 700
     # two instructions, one mdesc, one tool: the same objects for every pass
-    assert _distinct(c.request.source for c in moves) == 2
-    assert _distinct(c.request.mdesc for c in moves) == 1
-    assert _distinct(c.request.tool for c in moves) <= 1
+    assert _distinct(req.source for req, _ in moves) == 2
+    assert _distinct(req.mdesc for req, _ in moves) == 1
+    assert _distinct(req.tool for req, _ in moves) <= 1
     # the two commands of one pass share their loop context
-    contexts = [machine.arm.contexts[c.key] for c in moves]
+    contexts = [context for _, context in moves]
     assert _distinct(contexts) == len(moves) // 2 + len(moves) % 2
     counts = machine.arm.shared.counts()
     assert counts["sources"] == 2 and counts["mdescs"] == 1 and counts["tools"] <= 1

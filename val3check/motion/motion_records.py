@@ -79,15 +79,47 @@ def motion_records(queue, end_s: float | None = None, reuse: bool = True) -> lis
     part of the path it ran (docs/sim-report.md: "null when it never ran"). The path is evaluated
     once for all commands (grouped by tool) but those that repeat an earlier one (`reuse`: the
     module docstring)."""
-    prof = queue.trajectory.profile
-    repeats = Repeats(queue.path, prof) if reuse else None
+    maker = RecordMaker(queue, reuse)
+    prof = queue.trajectory.profile  # (up to date)
     reached = prof.s_end if end_s is None else prof.state(end_s)[0]  # how far the arm got
-    out: list[MotionRecord | None] = []
-    # the commands met first, by tool (group number, blocks done, commands waiting), evaluated a
-    # block at a time as they come: what a command needs is dropped once its record is made
-    groups: dict = {}
-    doubts: list = []  # repeats with a near tie, decided at the end (`_decide`)
     for command in queue.history:
+        maker.add(command, end_s, reached)
+    return maker.finish()
+
+
+class _Asked:
+    """What a record needs of its command once the command may be gone (issue 29: the record is
+    taken as the run goes and the command released, simulation/live_record.py)."""
+
+    __slots__ = ("id", "request", "state")
+
+    def __init__(self, command) -> None:
+        self.id, self.request, self.state = command.id, command.request, command.state
+
+    @property
+    def tool(self):
+        return self.request.tool
+
+
+class RecordMaker:
+    """`motion_records` one command at a time (`add`, in recording order; `finish`: the records).
+    A command added before the end of the run must be final: its state can no longer change and
+    the profile and path it reads are final (simulation/live_record.py decides)."""
+
+    def __init__(self, queue, reuse: bool = True) -> None:
+        self.queue = queue
+        self.prof = queue.planner.profile  # (the same object all run: never flushed from here)
+        self.repeats = Repeats(queue.path, self.prof) if reuse else None
+        self.out: list[MotionRecord | None] = []
+        # the commands met first, by tool (group number, blocks done, commands waiting), evaluated a
+        # block at a time as they come: what a command needs is dropped once its record is made
+        self.groups: dict = {}
+        self.doubts: list = []  # repeats with a near tie, decided at the end (`_decide`)
+
+    def add(self, command, end_s: float | None = None, reached: float | None = None) -> None:
+        """The record of `command` (made now, or with its block or at `finish`); `end_s`, `reached`:
+        the end of the run and how far the arm got (None: a final command, the run goes on)."""
+        queue, prof, out = self.queue, self.prof, self.out
         req = command.request
         place = command.placement
         base = dict(target=req.target_name, tool=req.tool_name)
@@ -95,13 +127,13 @@ def motion_records(queue, end_s: float | None = None, reuse: bool = True) -> lis
         if start is None or (end_s is not None and start > end_s + 1e-9):
             out.append(MotionRecord(command.id, req.kind, req.source, command.state, req.recorded, None, None, 0.0,
                                     0.0, "", {}, **base))
-            continue
+            return
         s0 = place.s_begin
         s1 = place.s_end if place.s_end is not None else min(prof.s_end, place.s_provisional or prof.s_end)
         if command.state in ("cancelled", "pending"):
             s1 = min(s1, prof.s_end)
         end = command.t_done if command.state == "done" else prof.time_at(s1)
-        if command.state != "done" and s1 > reached + 1e-9 * max(1.0, abs(s1)):
+        if command.state != "done" and reached is not None and s1 > reached + 1e-9 * max(1.0, abs(s1)):
             s1, end = max(reached, s0), None  # under way when the run ended
         elif end is not None and end_s is not None and end > end_s + 1e-9:
             end = None  # a cancelled command braking when the run ended
@@ -109,33 +141,42 @@ def motion_records(queue, end_s: float | None = None, reuse: bool = True) -> lis
             out.append(MotionRecord(command.id, req.kind, req.source, command.state, req.recorded, start,
                                     end if end is not None or command.state == "pending" else start, 0.0, 0.0, "",
                                     {}, **base))
-            continue
+            return
         k0 = bisect.bisect_left(prof.S, s0)
         k1 = bisect.bisect_right(prof.S, s1)
-        item = (len(out), command, s0, s1, start, end, k0, k1, queue.limits_of(command))
+        item = (len(out), _Asked(command), s0, s1, start, end, k0, k1, queue.limits_of(command))
         out.append(None)
         slot = None
+        repeats = self.repeats
         if repeats is not None:
             earlier, slot = repeats.find(repeats.inputs(command.tool, item[8], s0, s1, max(k0 - 1, 0), k1))
             if earlier is not None:  # given the figures of the first (`_evaluate`)
                 if earlier.figures is None:
                     earlier.items.append(item)
                 else:
-                    _repeat(prof, out, item, earlier, doubts)
-                continue
+                    _repeat(prof, out, item, earlier, self.doubts)
+                return
         tool = command.tool  # the same TCP (by value: each command holds its own copy) evaluated together
         key = None if tool is None else np.asarray(tool, dtype=float).tobytes()
-        group = groups.get(key)
+        group = self.groups.get(key)
         if group is None:
-            group = groups[key] = [len(groups), 0, []]
+            group = self.groups[key] = [len(self.groups), 0, []]
         group[2].append((item, slot))
         if len(group[2]) == RECORD_BLOCK:
-            _evaluate(queue, prof, out, group, doubts)
-    for group in groups.values():
-        if group[2]:
-            _evaluate(queue, prof, out, group, doubts)
-    _decide(queue, prof, out, doubts)
-    return out  # type: ignore[return-value]
+            _evaluate(queue, prof, out, group, self.doubts)
+
+    def flush(self) -> None:
+        """Every command added so far given its record: the blocks not full evaluated, the near ties
+        decided (a record's figures do not depend on the commands evaluated with it: the same bits)."""
+        for group in self.groups.values():
+            if group[2]:
+                _evaluate(self.queue, self.prof, self.out, group, self.doubts)
+        _decide(self.queue, self.prof, self.out, self.doubts)
+
+    def finish(self) -> list[MotionRecord]:
+        """The records of every command added."""
+        self.flush()
+        return self.out  # type: ignore[return-value]
 
 
 def _evaluate(queue, prof, out: list, group: list, doubts: list) -> None:
@@ -355,13 +396,25 @@ def _apart(values, slack) -> np.ndarray:
     return top - slack[rows, k] > reach + 1e-9 * np.abs(top)
 
 
+_BUSY_BLOCK = 1 << 16  # breakpoints read at a time by `busy_time`
+
+
 def busy_time(profile, t_end: float) -> tuple[float, float]:
-    """(seconds the arm moved, seconds it stood still) between 0 and t_end."""
+    """(seconds the arm moved, seconds it stood still) between 0 and t_end: the intervals moving at
+    either end, each min(its end, t_end) - its start, summed in order (a running sum, block by
+    block: the same bits as one loop over the breakpoints; views of the profile, dropped here)."""
     T, SD = profile.T, profile.SD
+    n = len(T)
     busy = 0.0
-    for i in range(len(T) - 1):
-        if T[i] >= t_end:
+    for lo in range(0, max(n - 1, 0), _BUSY_BLOCK):
+        hi = min(lo + _BUSY_BLOCK, n - 1)
+        t, sd = window(T, lo, hi + 1), window(SD, lo, hi + 1)
+        stop = np.flatnonzero(t[:-1] >= t_end)
+        m = int(stop[0]) if len(stop) else hi - lo
+        moving = (sd[:m] > 0) | (sd[1:m + 1] > 0)
+        d = np.minimum(t[1:m + 1], t_end)[moving] - t[:m][moving]
+        busy = float(np.add.accumulate(np.concatenate(([busy], d)))[-1])  # sequential, as busy += each
+        del t, sd
+        if len(stop):
             break
-        if SD[i] > 0 or SD[i + 1] > 0:
-            busy += min(T[i + 1], t_end) - T[i]
     return busy, max(t_end - busy, 0.0)

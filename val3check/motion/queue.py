@@ -102,6 +102,8 @@ class MotionQueue:
         self._keys = 0
         self._by_key: dict[int, QueuedCommand] = {}
         self._done: tuple = ()  # (planner.changes, command key, its end, when it gets there): `_done_time`
+        self._told = 0.0  # the latest time the queue was advanced to (`final_before`)
+        self.released_done = 0  # commands of the program done and released from `history` (`release`)
 
     # ---- what the arm does (the planner's) -------------------------------------------------------
 
@@ -241,6 +243,8 @@ class MotionQueue:
     def _advance(self, now: float, lenient: bool = False) -> None:
         """Complete the commands done by `now`; `lenient`: a record within the merge window does
         not force the replan due (the profile up to now is the current one)."""
+        if now > self._told:
+            self._told = now
         if self.planner.due is not None and not (lenient and self.planner.merges(now)):
             self.planner.flush()
         while self.pending:
@@ -491,6 +495,22 @@ class MotionQueue:
         T = self.kin.tcp(np.vstack([q + h * qd, q - h * qd]), None if tool is None else np.asarray(tool, float))
         return float(np.linalg.norm(T[0, :3, 3] - T[1, :3, 3]) / (2 * h))
 
+
+    def final_before(self) -> float:
+        """The time before which the profile can no longer change (issue 29: the record is taken as
+        the run goes, simulation/live_record.py): a replan or a brake cuts it at the time the queue
+        is told or later (planner.py), a replan due at its start (a record that merges into it)."""
+        due = self.planner.due
+        return self._told if due is None else min(self._told, due.t_from)
+
+    def release(self, n: int) -> None:
+        """Drop the first n commands of `history`: their record is taken and nothing reads them
+        again (simulation/live_record.py)."""
+        for command in self.history[:n]:
+            self._by_key.pop(command.key, None)
+            if command.state == "done" and command.id is not None:
+                self.released_done += 1
+        del self.history[:n]
 
     def release_history(self) -> None:
         """The run is over and its record taken (simulation/retention.py): drop the commands kept

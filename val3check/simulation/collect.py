@@ -17,7 +17,7 @@ from ..geometry.frames import Frame, root_pose
 from ..geometry.rotation import angles_of, matrix
 from ..interpretation.machine import Machine
 from ..motion.cycle import cycle_stats
-from ..motion.motion_records import busy_time, motion_records
+from ..motion.motion_records import busy_time
 from ..motion.retime import each_retimed
 from ..robot.models import ASSUMED_ACCELERATION_RANGE
 from ..rules import codes
@@ -98,13 +98,14 @@ def arm_run(machine: Machine, diags: list[Diagnostic]) -> ArmRun | None:
         diags.append(Diagnostic(f.code, f.message, src.path, src.line, src.col, time_us=int(round(f.time * 1e6)),
                                 task=src.task, program=src.program, error=f.error))
     layers = getattr(arm, "layers", None)
-    queue_records = records = motion_records(q, arm.queue_time(machine.end_time))
+    # the records taken as the run went (live_record.py), and those of the commands left
+    queue_records = records = arm.live.records(arm, q, arm.queue_time(machine.end_time))
     trajectory = q.trajectory
     if layers is not None and not layers.trivial:  # chapter 11 moved the arm off the queue's trajectory
         trajectory = ActualTrajectory(trajectory, layers)
         records = [actual_record(rec, arm) for rec in records]
     same: dict = {}  # the limits and tool poses of the run's entries, one object each (a long run repeats them)
-    motions = [_entry(rec, command, layers, same) for rec, command in zip(records, q.history)]
+    motions = [_entry(rec, asked, layers, same) for rec, asked in zip(records, arm.live.kept)]
     cycles = _cycle_entries(machine, records)
     if trajectory is q.trajectory:
         busy, idle = busy_time(q.trajectory.profile, end_s)
@@ -161,17 +162,18 @@ def task_cycles(machine: Machine, records) -> dict:
     """Each task's cycle (motion/cycle.py) from the run's motion records (or the same re-timed):
     the loops each command was recorded in and the loops each task was in when the run ended."""
     arm = machine.arm
-    contexts = [arm.contexts.get(command.key, ()) for command in arm.queue_in_use.history]
+    contexts = arm.live.contexts  # (complete once the run's records are made: `arm_run`)
     inside = {t.name: arm.context(t.final.loops) for t in machine.scheduler.history
               if t.final is not None and t.final.loops}
     return cycle_stats(records, contexts, inside)
 
 
-def _entry(rec, command, layers=None, same: dict | None = None) -> MotionEntry:
+def _entry(rec, asked: tuple, layers=None, same: dict | None = None) -> MotionEntry:
     """A row of the motion table: the motion record (motion/motion_records.py) and what its command
-    (motion/queued.py) asked; its joints with the turns resetTurn took off (`layers`). `same`: the
-    limits and tool poses already made, reused when equal."""
-    req = command.request
+    (motion/queued.py) asked (`asked`: its request, start and end joints, state: live_record.py);
+    its joints with the turns resetTurn took off (`layers`). `same`: the limits and tool poses
+    already made, reused when equal."""
+    req, q_start, q_end, state = asked
     connection = req.kind == "connection"
     md = req.mdesc
     limits = None if connection else MotionLimits(md.vel, md.accel, md.decel, md.tvel_limit, md.rvel_limit)
@@ -192,8 +194,8 @@ def _entry(rec, command, layers=None, same: dict | None = None) -> MotionEntry:
         rec.dominant, rec.limit_share, rec.target, req.frame_name, rec.tool,
         tool_in_flange=None if connection else req.tool,
         tool_trsf=trsf,
-        joints_start=_turned(command.geometry.q_start, rec.start, layers),
-        joints_end=_turned(command.geometry.q_end, rec.end, layers) if command.state != "failed" else None,
+        joints_start=_turned(q_start, rec.start, layers),
+        joints_end=_turned(q_end, rec.end, layers) if state != "failed" else None,
         limits=limits)
 
 

@@ -23,7 +23,6 @@ import statistics
 import sys
 from dataclasses import dataclass
 
-from ..motion.motion_records import motion_records
 from ..motion.retime import Stretches, retimed
 from .collect import task_cycles
 from .moving_arm import MovingArm
@@ -63,7 +62,7 @@ def _run(ws, app, model, scenario, options: SimOptions):
     queue = arm.queue_in_use if isinstance(arm, MovingArm) else None
     if queue is None:
         raise FitError("the application moves no arm: there is no cycle to fit")
-    return machine, queue, motion_records(queue, machine.end_time / 1_000_000)
+    return machine, queue, arm.live.records(arm, queue, arm.queue_time(machine.end_time))  # (collect's: the same)
 
 
 def _cycle(machine, records, task: str | None = None):

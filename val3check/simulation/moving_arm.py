@@ -52,6 +52,7 @@ from ..rules import codes
 from .alteration import Alteration
 from .arm_layers import Layers, QueueView
 from .compliance import Compliance
+from .live_record import LiveRecord
 from .retention import Shared
 from .model_arm import ModelArm
 
@@ -87,6 +88,7 @@ class MovingArm(ModelArm):
             self.layers.hooks.append(_Hook(self))
         self.geometries: list[tuple[float, Any]] = []  # (from time s, model) after each setDH
         self.shared = Shared()  # what every command keeps, one object per value (retention.py)
+        self.live = LiveRecord()  # the run's records taken as commands become final (issue 29)
 
     def bind(self, controller: Any) -> None:
         """The controller whose power and monitor speed the arm follows (chapter 8)."""
@@ -282,6 +284,7 @@ class MovingArm(ModelArm):
         self.compliance.update(q, self.layers, to_us / US)
         self.alteration.advance(q, to_us / US)
         q.advance(self.queue_time(to_us))
+        self.live.take(self, q)
         end = self._cycles_end()
         if end is not None and end * US <= to_us + 1e-6:
             self._end_command = None  # once: stop() then runs as after any end of a run

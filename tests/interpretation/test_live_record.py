@@ -1,0 +1,184 @@
+"""The run's motion records taken as the run goes (issue 29, simulation/live_record.py): the queue's
+hook (`MotionQueue.final_before`) never lets a record read a profile that changes after, the
+records made live are those made after the run (several programs: blends, stops, resets,
+waitEndMove, two tools; the whole JSON report compared), and a long run's history stays bounded."""
+
+from __future__ import annotations
+
+import random
+from dataclasses import fields
+
+import numpy as np
+import pytest
+
+from motion.motionhelp import HOME, movej, queue
+from val3check.config import Settings
+from val3check.lint import run
+from val3check.motion.mdesc import MDesc
+from val3check.reporting import sim_json
+from val3check.reporting.sim_report import build_report
+from val3check.rules.catalogue import catalogue
+from val3check.simulation import live_record
+from val3check.simulation.run import SimOptions, run_machine
+
+from .simsupport import build, frozen_clock
+from .test_long_runs import LOOP, LOOP_GLOBALS, TX2_60
+
+# blended movel corners with two tools, a stop and a restart, waitEndMove each pass
+BLENDS = """begin
+  movej({0, 20, 100, 0, 60, 0}, flange, mStop)
+  waitEndMove()
+  tT.trsf = {0, 0, 80, 0, 0, 0}
+  pA = here(flange, world)
+  pB = compose(pA, world, {0, 0, 40, 0, 0, 0})
+  pC = compose(pA, world, {0, 250, 40, 0, 0, 0})
+  pD = compose(pA, world, {0, 250, 0, 0, 0, 0})
+  mB.blend = joint
+  mB.leave = 20
+  mB.reach = 60
+  mStop.blend = off
+  while true
+    movel(pB, flange, mB)
+    movel(pC, flange, mB)
+    movel(pD, flange, mStop)
+    movej({10, 25, 95, 0, 60, 0}, tT, mB)
+    movej({0, 20, 100, 0, 60, 0}, tT, mStop)
+    delay(0.2)
+    stopMove()
+    delay(0.1)
+    restartMove()
+    waitEndMove()
+    delay(0.05)
+  endWhile
+end
+"""
+BLENDS_GLOBALS = ["point pA", "point pB", "point pC", "point pD", "mdesc mB", "mdesc mStop", "tool tT"]
+# a resetMotion in the middle of a motion every third pass, the run going on after it
+RESETS = """begin
+  jA.j1 = 30
+  jB.j1 = -30
+  jB.j2 = 20
+  while true
+    movej(jA, flange, mD)
+    movej(jB, flange, mD)
+    nI = nI + 1
+    if nI >= 3
+      nI = 0
+      delay(0.2)
+      resetMotion()
+    endIf
+    waitEndMove()
+  endWhile
+end
+"""
+RESETS_GLOBALS = ["joint jA", "joint jB", "mdesc mD", "num nI"]
+
+
+def _machine(folder, duration, live=True, monkeypatch=None):
+    if not live:  # every record made after the run, as before issue 29's live record
+        monkeypatch.setattr(live_record.LiveRecord, "take", lambda self, arm, queue: None)
+    ws = run([str(folder)], Settings()).workspace
+    machine, result = run_machine(ws, ws.apps[ws.targets[0]], SimOptions(duration=duration, robot=TX2_60,
+                                                                          wall_clock=frozen_clock))
+    if not live:
+        monkeypatch.undo()
+    return machine, result
+
+
+def _bits(entry) -> tuple:
+    """A motion table row, its arrays by their bytes (floats compared bit for bit)."""
+    values = (getattr(entry, f.name) for f in fields(entry))
+    return tuple(v.tobytes() if isinstance(v, np.ndarray) else repr(v) for v in values)
+
+
+def _report(result) -> str:
+    return "".join(sim_json.render(build_report(result, Settings(), catalogue(), "test")))
+
+
+@pytest.mark.parametrize("name, code, globals_, duration", [
+    ("loop", LOOP, LOOP_GLOBALS, 200.0),
+    ("blends", BLENDS, BLENDS_GLOBALS, 120.0),
+    ("resets", RESETS, RESETS_GLOBALS, 60.0),
+])
+def test_the_records_made_live_are_those_made_after_the_run(tmp_path, monkeypatch, name, code, globals_, duration):
+    folder = build(tmp_path, code, globals_=globals_)
+    machine, live = _machine(folder, duration)
+    _, after = _machine(folder, duration, live=False, monkeypatch=monkeypatch)
+    taken = machine.arm.live
+    assert len(taken.kept) == len(live.motion.motions) > 100
+    if name == "resets":  # a cancelled command's record reads the profile as the run ends: the rest waited
+        assert taken.blocked and any(m.state == "cancelled" for m in live.motion.motions)
+    else:  # most commands were recorded and released while the run went
+        assert machine.arm.queue_in_use.released_done >= 2 * live_record.RELEASE_AT
+        assert len(machine.arm.queue_in_use.history) < live_record.RELEASE_AT + 20
+    assert [_bits(m) for m in live.motion.motions] == [_bits(m) for m in after.motion.motions]
+    assert live.motion.cycles == after.motion.cycles
+    assert live.motion.acceleration_range == after.motion.acceleration_range
+    assert _report(live) == _report(after)
+
+
+def test_a_long_run_keeps_a_bounded_history_and_counts_its_motions(tmp_path):
+    seen = []
+    folder = build(tmp_path, LOOP, globals_=LOOP_GLOBALS)
+    ws = run([str(folder)], Settings()).workspace
+    machine, result = run_machine(ws, ws.apps[ws.targets[0]], SimOptions(
+        duration=600.0, robot=TX2_60, wall_clock=frozen_clock, progress=lambda t, done: seen.append((t, done()))))
+    q = machine.arm.queue_in_use
+    assert len(result.motion.motions) > 1500
+    assert len(q.history) < live_record.RELEASE_AT + 20 and len(q._by_key) == len(q.history)
+    assert len(machine.arm.contexts) < live_record.RELEASE_AT + 20
+    # the progress count (run.py's motions_done) adds the commands released
+    done = sum(1 for m in result.motion.motions if m.state == "done" and m.id is not None)
+    assert seen and seen[-1][1] <= done and q.released_done + sum(
+        1 for c in q.history if c.state == "done" and c.id is not None) == done
+
+
+def test_the_profile_never_changes_before_the_time_the_queue_says_is_final():
+    """Records, blends, waits, stops, restarts, monitor speeds, power and resets at random times:
+    every breakpoint before `final_before` stays as it was, whatever comes after."""
+    rng = random.Random(29)
+    for trial in range(6):
+        q = queue()
+        now, frozen = 0.0, []
+        for step in range(60):
+            now += rng.choice([0.0, 0.0005, 0.01, 0.1, 0.4, 1.0])
+            op = rng.random()
+            blend = MDesc(blend="joint", leave=30, reach=30) if rng.random() < 0.5 else MDesc(blend="off")
+            if op < 0.45:
+                joints = HOME + np.array([rng.uniform(-60, 60), rng.uniform(-10, 10), 0, 0, 0, 0])
+                q.record(movej(joints, blend), now)
+            elif op < 0.55:
+                q.wait_end_move(now)
+            elif op < 0.62:
+                q.stop_move(now)
+            elif op < 0.7:
+                q.restart_move(now)
+            elif op < 0.76:
+                q.set_monitor_speed(rng.choice([0.0, 30.0, 100.0]), now)
+            elif op < 0.8:
+                q.set_power(rng.random() < 0.7, now)
+            elif op < 0.84:
+                q.reset_motion(now)
+            else:
+                q.advance(now)
+            q.advance(now)
+            final = q.final_before()
+            assert final <= now + 1e-12
+            prof = q.planner.profile
+            k = int(np.searchsorted(np.asarray(prof.T), final, side="right"))
+            frozen.append((k, bytes(prof.T[:k]), bytes(prof.S[:k]), bytes(prof.SD[:k])))
+            _ = q.trajectory  # the replan due done: what any reader sees
+            for k, T, S, SD in frozen:
+                assert (bytes(prof.T[:k]), bytes(prof.S[:k]), bytes(prof.SD[:k])) == (T, S, SD), (trial, step)
+
+
+def test_chapter_11_reading_the_history_stops_the_release():
+    from types import SimpleNamespace as NS
+
+    plain = NS(layers=NS(trivial=True), alteration=NS(alterable=set(), state="off", deferred=[]),
+               compliance=NS(moves=[]))
+    assert not live_record._history_read(plain)
+    for changed in (dict(layers=NS(trivial=False)), dict(alteration=NS(alterable={3}, state="off", deferred=[])),
+                    dict(alteration=NS(alterable=set(), state="pending", deferred=[])),
+                    dict(compliance=NS(moves=[object()]))):
+        assert live_record._history_read(NS(**{**vars(plain), **changed}))
