@@ -62,3 +62,85 @@ def test_motions_done_is_the_count_over_the_history_at_every_progress_call():
     # a resetMotion cancels what is pending; the completed stay counted
     q.reset_motion(q.profile.t_end)
     assert q.completed == _done_over_history(q)
+
+
+# ---- the rotation matrices kept by their angles (geometry/rotation.py) --------------------------
+
+def test_a_kept_rotation_matrix_is_the_computed_one_and_each_angle_changes_it():
+    import random
+
+    from val3check.geometry import rotation as R
+
+    rnd = random.Random(29)
+    angles = [(rnd.uniform(-400, 400), rnd.uniform(-400, 400), rnd.uniform(-400, 400)) for _ in range(200)]
+    angles += [(0.0, 0.0, 0.0), (-0.0, 0.0, -0.0), (180.0, 0.0, 0.0), (-180.0, 90.0, 45.0), (360.0, -0.0, 30.0)]
+    for a in angles * 2:  # the second pass reads what the first kept
+        assert R.matrix(*a) == R._matrix(*a)
+    base = (10.0, 20.0, 30.0)
+    for i in range(3):  # each input changed in turn: another matrix, the computed one
+        changed = list(base)
+        changed[i] += 1e-9
+        assert R.matrix(*changed) != R.matrix(*base)
+        assert R.matrix(*changed) == R._matrix(*changed)
+    # -0.0 and 0.0 are one key: their matrices are the same bits (norm180 makes -0.0 0.0)
+    import struct
+
+    def bits(m):
+        return struct.pack("9d", *m)
+
+    assert bits(R._matrix(-0.0, -0.0, -0.0)) == bits(R._matrix(0.0, 0.0, 0.0))
+    for k in range(R.MATRICES_KEPT + 10):  # bounded
+        R.matrix(float(k), 1.0, 2.0)
+    assert len(R._MATRICES) <= R.MATRICES_KEPT
+
+
+# ---- the shared mdesc and source of a record (moving_arm.py, ch10_motion.py) ---------------------
+
+MD = {"accel": 100.0, "vel": 80.0, "decel": 90.0, "tvel": 500.0, "rvel": 300.0, "blend": "joint",
+      "leave": 20.0, "reach": 30.0}
+
+
+def test_the_mdesc_kept_by_its_fields_is_the_one_made_from_them():
+    from val3check.motion.mdesc import MDesc
+
+    arm = MovingArm(TX)
+    first = arm._mdesc(dict(MD), 1.0)
+    assert first == MDesc.from_fields(MD, 1.0)
+    assert arm._mdesc(dict(MD), 1.0) is first  # kept
+    changes = {"accel": 50.0, "vel": 81.0, "decel": 1.0, "tvel": 499.0, "rvel": 1.5, "blend": "Cartesian",
+               "leave": 21.0, "reach": 31.0}
+    for name, value in changes.items():  # each field changed in turn: another mdesc, the one made
+        md = {**MD, name: value}
+        got = arm._mdesc(md, 1.0)
+        assert got == MDesc.from_fields(md, 1.0) and got != first, name
+    inch = arm._mdesc(dict(MD), 25.4)  # the unit
+    assert inch == MDesc.from_fields(MD, 25.4) and inch.tvel == 500.0 * 25.4
+    # a zero field is not kept: 0.0 and -0.0 are the same key but not the same mdesc
+    zero, minus = {**MD, "leave": 0.0}, {**MD, "leave": -0.0}
+    assert repr(arm._mdesc(zero, 1.0)) == repr(MDesc.from_fields(zero, 1.0))
+    assert repr(arm._mdesc(minus, 1.0)) == repr(MDesc.from_fields(minus, 1.0))
+    assert repr(MDesc.from_fields(zero, 1.0)) != repr(MDesc.from_fields(minus, 1.0))
+    odd = {**MD, "extra": [1.0]}  # not hashable: made every time
+    assert arm._mdesc(odd, 1.0) == MDesc.from_fields(odd, 1.0)
+
+
+def test_the_source_kept_by_its_values_changes_with_each():
+    from types import SimpleNamespace
+
+    from val3check.motion.findings import Source
+    from val3check.simulation import ch10_motion
+
+    where = ["p.pgx", 3, 5, "pick"]
+
+    def task(name="robot"):
+        machine = SimpleNamespace(line_running=lambda: tuple(where), app=SimpleNamespace(path="app.pjx"))
+        return SimpleNamespace(machine=machine, name=name, program="pick")
+
+    first = ch10_motion._source(task())
+    assert first == Source("p.pgx", 3, 5, "pick", "robot")
+    assert ch10_motion._source(task()) is first
+    for i, value in enumerate(["q.pgx", 4, 6, "place"]):  # each value changed in turn
+        where[i], old = value, where[i]
+        assert ch10_motion._source(task()) == Source(*where, "robot")
+        where[i] = old
+    assert ch10_motion._source(task("other")) == Source("p.pgx", 3, 5, "pick", "other")
