@@ -144,3 +144,49 @@ def test_the_source_kept_by_its_values_changes_with_each():
         assert ch10_motion._source(task()) == Source(*where, "robot")
         where[i] = old
     assert ch10_motion._source(task("other")) == Source("p.pgx", 3, 5, "pick", "other")
+
+
+# ---- a blend decision's three timings remembered together (planner._trials) ---------------------
+
+def test_the_blend_decisions_timings_remembered_together_are_the_computed_ones(monkeypatch):
+    """A scheduled run of the test cycles (records while the arm moves, QueueFull, each input of
+    the cycle changed in turn, twice): every answer of `_trials` is compared with the same call
+    computed without reuse, float for float, and most answers were remembered ones."""
+    import numpy as np
+
+    from val3check.motion import trial_memo
+    from val3check.motion.planner import Planner
+
+    from .test_plan_reuse import VARIANTS, _run
+
+    original = Planner._trials
+    hits, compared = [], []
+    get = trial_memo.TrialMemo.get
+
+    def counted(self, key, spans, speed_at=None):
+        hit = get(self, key, spans, speed_at)
+        if key is not None and key[-1] == "pays":
+            hits.append(hit is not None)
+        return hit
+
+    def checked(self, *args):
+        got = original(self, *args)
+        monkeypatch.setattr(trial_memo, "REUSE", False)
+        try:
+            fresh = original(self, *args)
+        finally:
+            monkeypatch.setattr(trial_memo, "REUSE", True)
+        assert got[0] == fresh[0] and got[2] == fresh[2] and got[3] == fresh[3]
+        assert (got[1] is None) == (fresh[1] is None)
+        for (s1, v1), (s2, v2) in zip(got[1] or [], fresh[1] or []):
+            assert np.array_equal(s1, s2) and np.array_equal(v1, v2)
+        compared.append(got)
+        return got
+
+    monkeypatch.setattr(trial_memo.TrialMemo, "get", counted)
+    monkeypatch.setattr(Planner, "_trials", checked)
+    cycles = [""] * 6
+    for v in VARIANTS:
+        cycles += [v, "", v, ""]
+    _run(cycles, True, monkeypatch)
+    assert len(compared) > 100 and sum(hits) > len(hits) // 3, (sum(hits), len(hits))  # 79 of 167
