@@ -190,3 +190,99 @@ def test_the_blend_decisions_timings_remembered_together_are_the_computed_ones(m
         cycles += [v, "", v, ""]
     _run(cycles, True, monkeypatch)
     assert len(compared) > 100 and sum(hits) > len(hits) // 3, (sum(hits), len(hits))  # 79 of 167
+
+
+# ---- a grid's rows kept by the spans' rows and the owners' limits (timing/grid.py) ---------------
+
+def _grid_arrays(g):
+    return [g.s, g.q1, g.q2, g.pt, g.rt, g.V, g.A, g.D, g.tv, g.rv]
+
+
+def test_a_kept_grid_is_the_assembled_one_at_every_call_of_a_run(monkeypatch):
+    """Every grid of a scheduled run of the test cycles (each input changed in turn, twice),
+    assembled with its rows kept, is compared with the same grid assembled afresh, array for
+    array and bit for bit; most were kept ones."""
+    import numpy as np
+
+    from val3check.motion.timing import grid as G
+
+    from .test_plan_reuse import VARIANTS, _run
+
+    original = G._assemble
+    kept = []
+
+    def checked(parts, limits, seen=None, kin=None):
+        store = kin.reuse.get("grid-rows") if kin is not None else None
+        before = {id(v[1][-1]) for v in store.values()} if store else set()
+        grid, own = original(parts, limits, seen, kin)
+        fresh, own2 = original(parts, limits)
+        assert np.array_equal(own, own2)
+        for x, y in zip(_grid_arrays(grid), _grid_arrays(fresh)):
+            assert x.dtype == y.dtype and x.shape == y.shape and x.tobytes() == y.tobytes()
+        if grid.rows is not None:
+            assert grid.rows == tuple(x.tobytes() for x in _grid_arrays(fresh)[1:])
+            assert not grid.q1.flags.writeable  # shared: never changed in place
+        kept.append(id(grid.rows) in before)
+        return grid, own
+
+    monkeypatch.setattr(G, "_assemble", checked)
+    cycles = [""] * 6
+    for v in VARIANTS:
+        cycles += [v, "", v, ""]
+    _run(cycles, True, monkeypatch)
+    assert len(kept) > 100 and sum(kept) > len(kept) // 3, (sum(kept), len(kept))
+
+
+def test_each_input_of_a_kept_grid_changed_in_turn_misses():
+    """The key: each span's rows (the very tuple), each owner's limits (the very object), which
+    positions are kept; the owners and the positions themselves are never taken from the kept one."""
+    import numpy as np
+
+    from val3check.motion.kin import ArmKin
+    from val3check.motion.mdesc import Limits, MDesc
+    from val3check.motion.timing import grid as G
+
+    kin = ArmKin(TX)
+    lim = {1: Limits.of(kin, MDesc(), 1.0), 2: Limits.of(kin, MDesc(vel=50.0), 1.0)}
+    n = 5
+
+    def rows(seed):
+        r = np.random.default_rng(seed)
+        return (np.linspace(0.0, 1.0, n), r.random((n, 6)), r.random((n, 6)), r.random(n), r.random(n), None)
+
+    def parts(rws, off, owner):
+        return [(rw[0] + o, *rw[1:5], np.full(n, k)) for rw, o, k in zip(rws, off, owner)]
+
+    r1, r2 = rows(1), rows(2)
+
+    def make(rws=(r1, r2), off=(0.0, 1.0), owner=(1, 1), limits=None):
+        limits = limits or lim
+        seen = [(rw, (limits[k],)) for rw, k in zip(rws, owner)]
+        return G._assemble(parts(rws, off, owner), limits.get, seen, kin)
+
+    def same(g1, g2):
+        return all(x.tobytes() == y.tobytes() for x, y in zip(_grid_arrays(g1), _grid_arrays(g2)))
+
+    base, _ = make()
+    again, _ = make()
+    assert again.rows is base.rows and same(again, base)  # kept
+    moved, _ = make(off=(100.0, 101.0))  # other positions: the same rows, new s
+    assert moved.rows is base.rows and np.array_equal(moved.s, base.s + 100.0)
+    owners = make(owner=(1, 1), limits={1: lim[1]})  # owner keys themselves: read fresh
+    assert np.array_equal(owners[1], np.ones(2 * n - 1))
+    changes = {
+        "rows": make(rws=(r1, rows(2))),  # equal values, another tuple
+        "limits": make(limits={1: Limits.of(kin, MDesc(), 1.0)}),  # equal values, another object
+        "owner's limits": make(owner=(1, 2)),
+        "positions kept": make(off=(0.0, 1.5)),  # the junction no longer repeats a position
+    }
+    for name, (g, _) in changes.items():
+        assert g.rows is not base.rows, name
+        fresh, _ = G._assemble(parts(*(
+            ((r1, rows(2)), (0.0, 1.0), (1, 1)) if name == "rows" else
+            ((r1, r2), (0.0, 1.0), (1, 2)) if name == "owner's limits" else
+            ((r1, r2), (0.0, 1.5), (1, 1)) if name == "positions kept" else
+            ((r1, r2), (0.0, 1.0), (1, 1)))), {1: lim[1], 2: lim[2]}.get if name != "limits" else lim.get)
+        assert same(g, fresh), name
+    assert not same(changes["owner's limits"][0], base)
+    assert len(changes["positions kept"][0].s) == 2 * n
