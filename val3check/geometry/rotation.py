@@ -86,8 +86,26 @@ def sincos(deg: float) -> tuple[float, float]:
     return math.sin(t), math.cos(t)
 
 
+_MATRICES: dict[tuple[float, float, float], Mat] = {}  # `matrix`, by its angles
+MATRICES_KEPT = 4096
+
+
 def matrix(rx: float, ry: float, rz: float) -> Mat:
-    """R = Rx(rx) * Ry(ry) * Rz(rz) (9.3.2: about x, then y', then z'')."""
+    """R = Rx(rx) * Ry(ry) * Rz(rz) (9.3.2: about x, then y', then z''). Kept by value: a
+    program computes the same few orientations again and again (issue 29); -0.0 and 0.0, the one
+    pair of equal keys with other bits, give the same matrix (norm180)."""
+    key = (rx, ry, rz)
+    m = _MATRICES.get(key)
+    if m is None:
+        m = _matrix(rx, ry, rz)
+        if len(_MATRICES) >= MATRICES_KEPT:
+            _MATRICES.clear()
+        _MATRICES[key] = m
+    return m
+
+
+def _matrix(rx: float, ry: float, rz: float) -> Mat:
+    """`matrix`, computed."""
     sa, ca = sincos(rx)
     sb, cb = sincos(ry)
     sc, cc = sincos(rz)

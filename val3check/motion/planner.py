@@ -189,8 +189,12 @@ class Planner:
                              tool=command.tool)]
         tail = self.span(previous.geometry.joint_curve, previous.placement.lam_leave, 1.0, [(previous.key, 0.0)],
                          smooth=True, tool=previous.tool)
-        t_blend, pieces = self._trial_duration(s0, v0, blended)
-        t_stop = self._trial_duration(s0, v0, [tail])[0] + self.rest_time(command)
+        alone = self.span(command.geometry.joint_curve, 0.0, 1.0, [(command.key, 0.0)], smooth=False,
+                          tool=command.tool)
+        t_blend, pieces, t_stop, rest = self._trials(s0, v0, blended, tail, alone, command.geometry.q_start)
+        if command.rest_time is None:
+            command.rest_time = rest
+        t_stop += command.rest_time
         for sp in blended + [tail]:  # the one chosen is sampled once
             self._remember(sp)
         if t_blend <= t_stop * (1.0 + 1e-9):
@@ -201,79 +205,81 @@ class Planner:
         self._trial = None
         return False
 
-    def rest_time(self, command) -> float:
-        """The time of `command` alone, from rest at its start to rest at its target."""
-        if command.rest_time is None:
-            sp = self.span(command.geometry.joint_curve, 0.0, 1.0, [(command.key, 0.0)], smooth=False,
-                           tool=command.tool)
-            key = self.memo.key([sp], "rest")
-            hit = self.memo.get(key, [sp])
-            if hit is not None:
-                command.rest_time = hit
-                return hit
-            trial = Path(command.geometry.q_start)
-            trial.append(sp)
-            started = self.memo.start()
-            try:
-                command.rest_time = self.timing.time(trial, 0.0, trial.end, 0.0, self.limits_of).duration
-            finally:
-                self.memo.stop()
-            self.memo.keep(key, [sp], started, (), command.rest_time)
-            self._remember(sp)
-        return command.rest_time
-
-    def _trial_duration(self, s0: float, v0: float, extra: list):
-        """How long the arm takes from path position s0 at speed v0 to the end of the path
-        followed by the spans `extra` (not added to the path), timed as `plan_from` times it,
-        and the pieces' profiles (s shifted to the path's positions; None when one fell back).
-        A trial of the same spans from the same state is remembered (trial_memo.py)."""
+    def _trials(self, s0: float, v0: float, blended: list, tail: Span, alone: Span, q_start):
+        """What `blend_pays` compares, from path position s0 at speed v0: the blend trial's duration
+        and pieces (s at the path's positions; None when one fell back), the stop trial's duration to
+        the via point, and the time of the command alone from rest to rest (its span `alone`, from
+        q_start).
+        Trials are timed as `plan_from` times the path followed by their spans (not added to it).
+        The three are remembered together (trial_memo.py): a cyclic program decides the same blend
+        from the same state every cycle, and one key and one check of the spans ahead and the plan's
+        speeds serve the three."""
         path = self.path
         ahead, shift = [], 0.0
         if path.spans:
             i0, _ = path.locate(s0)
             ahead, shift = path.spans[i0:], path.offsets[i0]
         a = s0 - shift
-        spans = ahead + extra
+        spans = ahead + blended + [tail, alone]
 
         def speed_at(g, a_):
             return self.profile.speed_at(g + shift, a_ + shift)
 
-        key = self.memo.key(spans, a, v0)
+        key = self.memo.key(spans, a, v0, "pays")
         hit = self.memo.get(key, spans, speed_at)
-        if hit is not None:
-            total, rel = hit
-            return total, None if rel is None else [(s_ + shift, sd_) for s_, sd_ in rel]
-        trial = Path(path.q_rest)  # built only when timed: a hit needs the key only
+        if hit is None:
+            calls = []
+
+            def asked(g, a_):
+                v = speed_at(g, a_)
+                calls.append((g, a_, v))
+                return v
+
+            started = self.memo.start()
+            try:
+                t_blend, rel = self._trial_duration(ahead, a, v0, blended, asked)
+                t_stop, _ = self._trial_duration(ahead, a, v0, [tail], asked)
+                rest = self._rest_time(alone, q_start)
+            finally:
+                self.memo.stop()
+            hit = (t_blend, rel, t_stop, rest)
+            self.memo.keep(key, spans, started, calls, hit)
+        t_blend, rel, t_stop, rest = hit
+        return t_blend, None if rel is None else [(s_ + shift, sd_) for s_, sd_ in rel], t_stop, rest
+
+    def _rest_time(self, alone: Span, q_start) -> float:
+        """The time of a command alone (its whole curve, the span `alone`, from joints q_start),
+        from rest to rest."""
+        trial = Path(q_start)
+        trial.append(alone)
+        rest = self.timing.time(trial, 0.0, trial.end, 0.0, self.limits_of).duration
+        self._remember(alone)
+        return rest
+
+    def _trial_duration(self, ahead: list, a: float, v0: float, extra: list, asked):
+        """How long the arm takes from position a of the spans `ahead` (the path's, a relative to
+        the first) at speed v0 to the end of them followed by the spans `extra`, and the pieces'
+        profiles (s relative to the first span ahead; None when one fell back). `asked(g, a)`: the
+        plan's speed where the re-timing starts (timing.Timing.time_from)."""
+        trial = Path(self.path.q_rest)
         for sp in ahead:
             trial.append(Span(sp.geom, sp.a, sp.b, sp.owners, sp.smooth, sp.tool, _cache=sp._cache))
         for sp in extra:
             trial.append(sp)
-        calls = []
-
-        def asked(g, a_):
-            v = speed_at(g, a_)
-            calls.append((g, a_, v))
-            return v
-
         total = 0.0
         pieces = []
-        started = self.memo.start()
-        try:
-            for b in trial.stops_after(a) + [trial.end]:
-                if b - a <= _eps(b):
-                    a = b
-                    continue
-                piece = self.timing.time_from(trial, a, b, v0, self.limits_of, asked)
-                total += piece.duration
-                if piece.fallback:  # not reused: the plan reports it (R019)
-                    pieces = None
-                if pieces is not None:
-                    pieces.append((frozen(piece.s), frozen(piece.sd)))
-                a, v0 = b, 0.0
-        finally:
-            self.memo.stop()
-        self.memo.keep(key, trial.spans, started, calls, (total, pieces))
-        return total, None if pieces is None else [(s_ + shift, sd_) for s_, sd_ in pieces]
+        for b in trial.stops_after(a) + [trial.end]:
+            if b - a <= _eps(b):
+                a = b
+                continue
+            piece = self.timing.time_from(trial, a, b, v0, self.limits_of, asked)
+            total += piece.duration
+            if piece.fallback:  # not reused: the plan reports it (R019)
+                pieces = None
+            if pieces is not None:
+                pieces.append((frozen(piece.s), frozen(piece.sd)))
+            a, v0 = b, 0.0
+        return total, pieces
 
     def forget_trial(self) -> None:
         """The limits changed (monitor speed): a blend trial's timing is no longer the plan's."""

@@ -99,6 +99,7 @@ class MotionQueue:
         self.connect_to: np.ndarray | None = None  # resetMotion(jStart)
         self.auto_connect = False
         self.findings: list[Finding] = []
+        self.completed = 0  # commands of the program done (a counter: the progress display asks often)
         self._keys = 0
         self._by_key: dict[int, QueuedCommand] = {}
         self._done: tuple = ()  # (planner.changes, command key, its end, when it gets there): `_done_time`
@@ -256,6 +257,7 @@ class MotionQueue:
             command.t_done = max(t, command.request.recorded)
             if command.id is not None:
                 self.pos_id = command.id + 1
+                self.completed += 1
             self.pending.pop(0)
             self._check_singularity(command)
 

@@ -49,11 +49,21 @@ class TrialMemo:
             return None
         canon: dict[int, int] = {}
         parts = []
-        for sp in spans:
-            owners = tuple((canon.setdefault(k, len(canon)), st) for k, st in sp.owners)
-            parts.append((id(sp.geom), sp.a, sp.b, sp.smooth, self._tool_key(sp.tool), owners))
-        limits = tuple(self._limits_key(k) for k in canon)
-        return (tuple(parts), limits, *rest)
+        tool_key = self._tool_key
+        for sp in spans:  # (loops, not generators: asked three times per motion command)
+            owners = sp.owners
+            if len(owners) == 1:
+                k, st = owners[0]
+                c = canon.get(k)
+                if c is None:
+                    c = canon[k] = len(canon)
+                own: tuple = ((c, st),)
+            else:
+                own = tuple([(canon.setdefault(k, len(canon)), st) for k, st in owners])
+            tool = sp.tool
+            parts.append((id(sp.geom), sp.a, sp.b, sp.smooth, None if tool is None else tool_key(tool), own))
+        limits_key = self._limits_key
+        return (tuple(parts), tuple([limits_key(k) for k in canon]), *rest)
 
     def _tool_key(self, tool) -> bytes | None:
         """A tool's values; by the object when it is read-only (the run's tools are shared and never
@@ -90,9 +100,15 @@ class TrialMemo:
         if hit is None:
             return None
         geoms, calls, used, answer = hit
-        if len(geoms) != len(spans) or any(g is not sp.geom for g, sp in zip(geoms, spans)):
+        if len(geoms) != len(spans):
             return None
-        if any(speed_at(g, a) != v for g, a, v in calls) or not self.timing.holds(used):
+        for g, sp in zip(geoms, spans):
+            if g is not sp.geom:
+                return None
+        for g, a, v in calls:
+            if speed_at(g, a) != v:
+                return None
+        if used and not self.timing.holds(used):
             return None
         return answer
 

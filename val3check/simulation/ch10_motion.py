@@ -56,13 +56,23 @@ def _matrix(pose) -> np.ndarray:
                      (0.0, 0.0, 0.0, 1.0)), dtype=float)
 
 
+_SOURCES: dict[tuple, Source] = {}  # `_source`, by its values (a frozen value: one object serves)
+
+
 def _source(task) -> Source:
     """Where the task's running instruction is written (the motion diagnostics point at it)."""
     w = task.machine.line_running()
     if w is None:
         return Source(task.machine.app.path, 0, 0, task.program, task.name)
-    path, line, col, program = w
-    return Source(path, line, col, program, task.name)
+    key = (w, task.name)
+    hit = _SOURCES.get(key)
+    if hit is None:
+        path, line, col, program = w
+        hit = Source(path, line, col, program, task.name)
+        if len(_SOURCES) >= 256:
+            _SOURCES.clear()
+        _SOURCES[key] = hit
+    return hit
 
 
 def _arm(task, what: str):
@@ -105,8 +115,10 @@ def _other_family_note(task, p: Point) -> str:
     arm's configuration) and the arm is a SCARA, whose points have a shoulder only (9.7.2): a
     `point` of the data file written for another arm (a `pointRx` stops with 81 before)."""
     arm = task.machine.arm
+    if tuple(getattr(arm.model, "config_fields", ())) != ("shoulder",):  # (first: the cheaper test)
+        return ""
     m = _ELEMENT.match(p.name or "")
-    if m is None or tuple(getattr(arm.model, "config_fields", ())) != ("shoulder",):
+    if m is None:
         return ""
     data = task.machine.app.data.get(m.group(1))
     if data is None or arm_family(data.type) is not None:

@@ -89,6 +89,7 @@ class MovingArm(ModelArm):
         self.geometries: list[tuple[float, Any]] = []  # (from time s, model) after each setDH
         self.shared = Shared()  # what every command keeps, one object per value (retention.py)
         self.live = LiveRecord()  # the run's records taken as commands become final (issue 29)
+        self._mdescs: dict[tuple, MDesc] = {}  # `_mdesc`
 
     def bind(self, controller: Any) -> None:
         """The controller whose power and monitor speed the arm follows (chapter 8)."""
@@ -327,7 +328,7 @@ class MovingArm(ModelArm):
             if s != 1.0:
                 tool[:3, 3] *= s
             tool = self.shared.tool(tool)
-        move = MoveCommand(kind, target, self.shared.mdesc(MDesc.from_fields(md, s)), tool=tool, via=via,
+        move = MoveCommand(kind, target, self._mdesc(md, s), tool=tool, via=via,
                            source=self.shared.source(source), tool_name=tool_name)
         self.layers.before(time_us / US)
         context = self.context(loops)
@@ -347,6 +348,23 @@ class MovingArm(ModelArm):
             for reader in self._readers:
                 reader(time_us, False)
         return r
+
+    def _mdesc(self, md: dict, s: float) -> MDesc:
+        """The shared MDesc of the program's mdesc value `md` (`s` mm per unit), kept by the
+        value's fields: a program records the same few mdescs again and again. Not kept when a
+        field is zero (0.0 and -0.0 are equal keys with other values) or not hashable."""
+        try:
+            key = (tuple(md.items()), s)
+            hit = self._mdescs.get(key)
+        except TypeError:
+            return self.shared.mdesc(MDesc.from_fields(md, s))
+        if hit is None:
+            hit = self.shared.mdesc(MDesc.from_fields(md, s))
+            if 0.0 not in md.values():
+                if len(self._mdescs) >= 64:
+                    self._mdescs.clear()
+                self._mdescs[key] = hit
+        return hit
 
     def recorded(self, command: Any, context: Context) -> None:
         """A command entered the queue: its loops, and whether it completes the cycles asked for."""

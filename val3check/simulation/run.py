@@ -112,8 +112,7 @@ def build_machine(ws: Workspace, app: Application, options: SimOptions, *, regis
         def motions_done() -> int:
             """Commands of the program the arm completed so far."""
             queue = arm.queue_in_use if isinstance(arm, MovingArm) else None
-            return queue.released_done + sum(1 for command in queue.history if command.state == "done"
-                                             and command.id is not None) if queue is not None else 0
+            return queue.completed if queue is not None else 0
 
         def progress(now_us: int) -> None:
             """The progress line at simulated time now_us."""

@@ -126,9 +126,11 @@ class Timing:
     def _topp(self, grid: Grid, v0: float) -> TimedProfile:
         """optimal.topp, remembered: an identical problem has an identical answer."""
         s0 = grid.s[0]
-        key = (v0, (grid.s - s0).tobytes(), grid.q1.tobytes(), grid.q2.tobytes(), grid.pt.tobytes(),
-               grid.rt.tobytes(), grid.V.tobytes(), grid.A.tobytes(), grid.D.tobytes(), grid.tv.tobytes(),
-               grid.rv.tobytes())
+        rows = grid.rows
+        if rows is None:
+            rows = (grid.q1.tobytes(), grid.q2.tobytes(), grid.pt.tobytes(), grid.rt.tobytes(), grid.V.tobytes(),
+                    grid.A.tobytes(), grid.D.tobytes(), grid.tv.tobytes(), grid.rv.tobytes())
+        key = (v0, (grid.s - s0).tobytes(), *rows)
         hit = self._cache.get(key)
         if hit is not None:
             if self.used is not None:

@@ -16,6 +16,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import trial_memo
+
+ROWS_KEPT = 128  # grids whose rows are kept (`_assemble`)
 XMAX = 1e12  # "no bound" on ṡ² (path units are degrees of joint motion: ṡ stays far below 1e6)
 MIN_GRID = 9  # gridpoints of the shortest piece of path given to the solver
 
@@ -35,6 +38,7 @@ class Grid:
     D: np.ndarray
     tv: np.ndarray
     rv: np.ndarray
+    rows: tuple | None = None  # the bytes of q1 .. rv (the time parameterisation's key), when kept
 
     def __len__(self) -> int:
         """The number of gridpoints."""
@@ -129,6 +133,7 @@ def _sample_spans(path, a: float, b: float, kin, limits, points: np.ndarray | No
         return _assemble(parts, limits)
     i0, _ = path.locate(a)
     parts = []
+    seen: list | None = []  # (rows, the owners' limits) of each span: what `_assemble` keeps its grid by
     i = i0
     while i < len(path.spans):
         off = path.offsets[i]
@@ -156,13 +161,17 @@ def _sample_spans(path, a: float, b: float, kin, limits, points: np.ndarray | No
                 if len(memo) >= 8:
                     memo.pop(next(iter(memo)))
                 memo[key] = hit
+            else:
+                seen = None  # rows made for this grid only: neither is it kept
         pts, q1, q2, pt, rt, which = hit
         own = np.full(len(pts), sp.owners[0][0]) if which is None else np.array([k for k, _ in sp.owners])[which]
         parts.append((pts + off, q1, q2, pt, rt, own))
+        if seen is not None:
+            seen.append((hit, tuple([limits(k) for k, _ in sp.owners])))
         if off + sp.length >= b - 1e-12:
             break
         i += 1
-    return _assemble(parts, limits)
+    return _assemble(parts, limits, seen, kin)
 
 
 def _span_rows(sp, smp: dict, kin, lo: float, hi: float, first: bool, start: int | None) -> tuple:
@@ -199,25 +208,49 @@ def _span_rows(sp, smp: dict, kin, lo: float, hi: float, first: bool, start: int
     return pts, q1, q2, pt, rt, which
 
 
-def _assemble(parts, limits) -> tuple[Grid, np.ndarray]:
+def _assemble(parts, limits, seen=None, kin=None) -> tuple[Grid, np.ndarray]:
     """One Grid from the parts (s, q1, q2, pt, rt, owners) of consecutive spans, without
-    repeated positions, with each owner's limits."""
+    repeated positions, with each owner's limits. `seen`: each part's rows (the very tuple
+    `_sample_spans` keeps) and its owners' limits (mdesc.Limits objects): a grid of the same rows
+    and limits, the same positions kept, has the same q1 .. rv, shared (read-only views of their
+    bytes, `rows`) from the last one; only s (the path's positions) and the owners are new."""
     s = np.concatenate([p[0] for p in parts])
-    q1 = np.vstack([p[1] for p in parts])
-    q2 = np.vstack([p[2] for p in parts])
-    pt = np.concatenate([p[3] for p in parts])
-    rt = np.concatenate([p[4] for p in parts])
     own = np.concatenate([p[5] for p in parts])
     keep = np.concatenate([[True], np.diff(s) > 1e-9])
-    s, q1, q2, pt, rt, own = s[keep], q1[keep], q2[keep], pt[keep], rt[keep], own[keep]
+    s, own = s[keep], own[keep]
+    store = key = None
+    if seen is not None and kin is not None and trial_memo.REUSE:
+        store = kin.reuse.get("grid-rows")
+        if store is None:
+            store = kin.reuse.keep("grid-rows", {})
+        key = (tuple([(id(rows), tuple([id(lim) for lim in lims])) for rows, lims in seen]), keep.tobytes())
+        hit = store.get(key)
+        if hit is not None and all(r is rows and all(x is y for x, y in zip(ls, lims))
+                                   for (r, ls), (rows, lims) in zip(hit[0], seen)):
+            q1, q2, pt, rt, V, A, D, tv, rv, content = hit[1]
+            return Grid(s, q1, q2, pt, rt, V, A, D, tv, rv, content), own
+    q1 = np.vstack([p[1] for p in parts])[keep]
+    q2 = np.vstack([p[2] for p in parts])[keep]
+    pt = np.concatenate([p[3] for p in parts])[keep]
+    rt = np.concatenate([p[4] for p in parts])[keep]
     n = len(s)
     V = np.empty((n, q1.shape[1]))
     A = np.empty_like(V)
     D = np.empty_like(V)
     tv = np.empty(n)
     rv = np.empty(n)
-    for key in np.unique(own):
-        m = own == key
-        lim = limits(int(key))
+    for key_ in np.unique(own):
+        m = own == key_
+        lim = limits(int(key_))
         V[m], A[m], D[m], tv[m], rv[m] = lim.V, lim.A, lim.D, lim.tvel, lim.rvel
-    return Grid(s, q1, q2, pt, rt, V, A, D, tv, rv), own
+    if store is None:
+        return Grid(s, q1, q2, pt, rt, V, A, D, tv, rv), own
+    # kept as their bytes (the key of Timing._topp's cache holds the very same), read through views
+    content = tuple(x.tobytes() for x in (q1, q2, pt, rt, V, A, D, tv, rv))
+    width = q1.shape[1]
+    arrays = tuple(np.frombuffer(c).reshape(n, width) if k in (0, 1, 4, 5, 6) else np.frombuffer(c)
+                   for k, c in enumerate(content))
+    if len(store) >= ROWS_KEPT:
+        store.pop(next(iter(store)))
+    store[key] = (tuple(seen), (*arrays, content))
+    return Grid(s, *arrays, content), own
