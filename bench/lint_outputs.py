@@ -42,7 +42,9 @@ def _cli(target: Path, cwd: Path, out: Path, name: str) -> None:
     for fmt in FORMATS:
         r = subprocess.run([sys.executable, "-m", "val3check", "lint", "--format", fmt, str(target)], cwd=cwd,
                            capture_output=True, env=env, check=False)
-        (out / f"{name}.{fmt}").write_bytes(r.stdout + b"\n--- stderr\n" + r.stderr + f"\n--- rc {r.returncode}\n".encode())
+        here = Path(cwd).resolve().as_uri().encode()  # SARIF's base: the checkout's or temporary folder
+        (out / f"{name}.{fmt}").write_bytes(r.stdout.replace(here, b"file:///CWD") + b"\n--- stderr\n" + r.stderr
+                                            + f"\n--- rc {r.returncode}\n".encode())
 
 
 def _in_process(folder: Path, target: str, settings, out: Path, name: str) -> None:  # noqa: ANN001
