@@ -52,13 +52,13 @@ def _in_process(folder: Path, target: str, settings, out: Path, name: str) -> No
     from val3check.reporting import render
 
     old = os.getcwd()
-    os.chdir(folder)
+    os.chdir(folder)  # rendered here too: SARIF resolves the paths shown against the current folder
     try:
         result = run([target], settings).result
+        texts = {fmt: render(fmt, result).replace(folder.resolve().as_uri(), "file:///TMP") for fmt in FORMATS}
     finally:
         os.chdir(old)
-    for fmt in FORMATS:
-        text = render(fmt, result).replace(folder.resolve().as_uri(), "file:///TMP")  # SARIF's base
+    for fmt, text in texts.items():
         (out / f"{name}.{fmt}").write_text(text, encoding="utf-8")
 
 
