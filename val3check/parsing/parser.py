@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import gc
 import re
-import threading
+import _thread  # RLock without the threading module (1 ms of start-up)
 
 from ..diagnostics import Diagnostic
 from ..positions import SourceMap
@@ -43,7 +43,7 @@ __all__ = ["parse_code", "parse_program", "scan_comments", "MAX_BLOCK_DEPTH", "M
 MAX_EXPR_DEPTH = 100  # nested operations in one expression
 
 _engine: Engine | None = None
-_lock = threading.RLock()  # one parse at a time (the builder holds per-parse state)
+_lock = _thread.RLock()  # one parse at a time (the builder holds per-parse state)
 
 
 def get_engine() -> Engine:
