@@ -23,7 +23,6 @@ reported too; errors that could be consequences of an earlier one are not report
 from __future__ import annotations
 
 import gc
-import re
 import _thread  # RLock without the threading module (1 ms of start-up)
 
 from ..diagnostics import Diagnostic
@@ -169,14 +168,10 @@ def _parse_lalr(engine: Engine, code: str, source_map: SourceMap, path: str) -> 
     return _checked(body, code, source_map, path)
 
 
-# a line longer than MAX_EXPR_DEPTH (no shorter one can nest deeper): one scan, no list of lines
-_LONG_LINE = re.compile(f"[^\\n]{{{MAX_EXPR_DEPTH + 1}}}")
-
-
 def _checked(body: A.ProgramBody, code: str, source_map: SourceMap,
              path: str) -> tuple[A.ProgramBody | None, list[Diagnostic]]:
     """A parsed body, unless an expression is nested too deep; with its comments."""
-    if len(code) > MAX_EXPR_DEPTH and _LONG_LINE.search(code) is not None:
+    if len(code) > MAX_EXPR_DEPTH and max(map(len, code.split("\n"))) > MAX_EXPR_DEPTH:
         node = _expr_too_deep(body)
         if node is not None:
             return None, [Diagnostic(
