@@ -40,16 +40,35 @@ def test_lint_process_runs_without_the_cyclic_collector_and_main_leaves_it_alone
     assert "MAIN True" in r.stderr, r.stderr
 
 
+def test_lint_process_imports_without_the_cyclic_collector():
+    """`python -m val3check lint` turns the collector off before its first import of the command
+    line (val3check/__main__.py); another command keeps it on."""
+    code = (
+        "import gc, sys, runpy\n"
+        "seen = []\n"
+        "sys.addaudithook(lambda e, a: seen.append(gc.isenabled()) if e == 'import' and a[0] == 'val3check.cli' "
+        "else None)\n"
+        "sys.argv = ['val3check', sys.argv[1], 'fixtures/valid/Cell']\n"
+        "try:\n    runpy.run_module('val3check', run_name='__main__')\nexcept SystemExit:\n    pass\n"
+        "print('IMPORTED', seen[:1], file=sys.stderr)\n"
+    )
+    r = subprocess.run([sys.executable, "-c", code, "lint"], cwd=ROOT, capture_output=True, text=True, timeout=60)
+    assert "IMPORTED [False]" in r.stderr, r.stderr
+    r = subprocess.run([sys.executable, "-c", code, "rules"], cwd=ROOT, capture_output=True, text=True, timeout=60)
+    assert "IMPORTED [True]" in r.stderr, r.stderr
+
+
 def test_lint_leaves_out_what_it_does_not_use():
     """Not the sim command's module, nor shutil (bz2, lzma) for argparse's terminal width, nor json
     unless an s8 application has user pages (cli._terminal_columns, loading.bindings), nor typing
-    (annotations only: `if TYPE_CHECKING`), nor difflib unless a name is not found."""
+    (annotations only: `if TYPE_CHECKING`), nor difflib unless a name is not found, nor threading
+    (the parser's lock is `_thread`'s)."""
     code = (
         "import sys, runpy\n"
         "sys.argv = ['val3check', 'lint', 'fixtures/valid/Cell']\n"
         "try:\n    runpy.run_module('val3check', run_name='__main__')\nexcept SystemExit:\n    pass\n"
         "print('LOADED', sorted(m for m in ('val3check.cli.sim_command', 'shutil', 'bz2', 'lzma', 'json',"
-        " 'typing', 'difflib')"
+        " 'typing', 'difflib', 'threading')"
         " if m in sys.modules), file=sys.stderr)\n"
     )
     r = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=60)

@@ -194,3 +194,40 @@ _LINE = st.lists(st.sampled_from(_PIECES[:-6] + ["a", "b", "f(", "l:g(", "n[", "
 @given(st.lists(_LINE, max_size=8))
 def test_programs_of_random_lines(lines):
     _same("begin\n" + "\n".join(lines) + "\nend\n")
+
+
+# ---------------------------------------------------------------- the tokenizer's order of terminals
+
+def _regexes():
+    from val3check.parsing.fast_lexer import FIRST, pair_regex
+
+    master = get_engine().descent.master.__self__.pattern
+    return pair_regex(master, ()), pair_regex(master, FIRST)
+
+
+def test_terminals_tried_first_are_the_grammars_terminals():
+    from val3check.parsing.fast_lexer import FIRST
+
+    grammar_order, ours = _regexes()
+    assert grammar_order.pattern != ours.pattern
+    master = get_engine().descent.master.__self__.pattern
+    for name in FIRST:
+        assert f"(?P<{name}>" in master  # a renamed terminal would silently keep the grammar's order
+
+
+def test_terminals_tried_first_find_the_same_tokens_on_every_fixture():
+    grammar_order, ours = _regexes()
+    programs = _programs(ROOT / "fixtures")
+    for p in programs:
+        assert ours.findall(p.code) == grammar_order.findall(p.code)
+
+
+_CHARS = st.sampled_from(_PIECES + list("0123456789eE+-_$aZ/*%<>=!.;\"\n \t\f\r\\@#é") + ["//x\n", "1e+5", "1.5e-3x"])
+
+
+@settings(max_examples=int(os.environ.get("VAL3CHECK_FUZZ_EXAMPLES", "25")) * 20, deadline=None, database=None,
+          derandomize=os.environ.get("VAL3CHECK_FUZZ_LONG") != "1", suppress_health_check=list(HealthCheck))
+@given(st.lists(_CHARS, max_size=40).map("".join))
+def test_terminals_tried_first_find_the_same_tokens_on_any_text(text):
+    grammar_order, ours = _regexes()
+    assert ours.findall(text) == grammar_order.findall(text)

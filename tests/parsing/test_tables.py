@@ -114,3 +114,20 @@ def test_compiled_rule_plans_build_what_lark_builds(monkeypatch, tmp_path):
     old = [P.parse_code(c, SourceMap.identity(c), "t.pgx") for c in codes]
     assert len(codes) > 40
     assert new == old
+
+
+def test_the_automaton_is_made_on_first_use_only(monkeypatch):
+    """Code without errors takes the fast path: the engine's tables of actions are made only
+    when a program has syntax errors (4 ms of lint's start-up otherwise)."""
+    from val3check.parsing import parser as P
+    from val3check.positions import SourceMap
+
+    engine = Engine()
+    monkeypatch.setattr(P, "_engine", engine)
+    good, bad = "begin\n  x = f(1, 2)\nend", "begin\n  x = 1 +\nend"
+    assert P.parse_code(good, SourceMap.identity(good), "t.pgx")[0] is not None
+    assert "actions" not in vars(engine)
+    body, diags = P.parse_code(bad, SourceMap.identity(bad), "t.pgx")
+    assert body is None and diags and "actions" in vars(engine) and "expected" in vars(engine)
+    fresh = Engine()
+    assert fresh.expected == engine.expected and len(fresh.actions) == len(engine.actions)

@@ -45,6 +45,8 @@ def test_every_subtree_is_the_slice_its_own_walk_gives(tmp_path):
         assert _ids(walk.order) == _ids(order)
         for node in order:
             kinds_seen.add(type(node))
+            children = A.children(node)
+            assert A.last_child(node) is (children[-1] if children else None)
             assert _ids(walk.under(node)) == _ids(A.nodes(node)), type(node).__name__
         for node in reversed(order):  # against the order of the walk
             assert _ids(walk.under(node)) == _ids(A.nodes(node)), type(node).__name__
@@ -95,3 +97,21 @@ def test_scope_without_case_answers_the_first_local_then_the_first_parameter(tmp
     assert start.type_of("bflag", ci=True) == "bool" and start.type_of("nothing", ci=True) is None
     sub = patterns_usage.Scope(resolver, app.programs["sub"])
     assert sub.type_of("x_npar", ci=True) == "num" and sub.type_of("NCOUNT", ci=True) == "num"
+
+
+def test_last_child_skips_empty_fields_and_absent_parts():
+    from val3check.parsing.parser import parse_code
+    from val3check.positions import SourceMap
+
+    code = ("begin\n  p = {1, , 2, }\n  q = {, }\n  if a\n  endIf\n  for i = 0 to 3\n  endFor\n"
+            "  switch n\n    case 1\n    break\n  endSwitch\n  f()\nend")
+    body, diags = parse_code(code, SourceMap.identity(code), "t.pgx")
+    assert body is not None and not diags
+    walk = ProgramNodes(body)
+    for node in walk.order:
+        children = A.children(node)
+        assert A.last_child(node) is (children[-1] if children else None), type(node).__name__
+        assert _ids(walk.under(node)) == _ids(A.nodes(node))
+    structs = walk.of(A.Struct)
+    assert [f is None for f in structs[0].fields] == [False, True, False, True]
+    assert A.last_child(structs[1]) is None

@@ -96,11 +96,42 @@ def _add_batch(sim: argparse.ArgumentParser) -> None:
     e.add_argument("--seed", type=int, default=0, metavar="K", help="the seed of the draws: the same command gives the same variants anywhere (default: 0)")
 
 
-def build_parser() -> argparse.ArgumentParser:
+COMMANDS = ("lint", "sim", "reach", "robots", "html", "server", "rules", "rule")
+
+
+def build_parser(only: str | None = None) -> argparse.ArgumentParser:
+    """The command line's parser; `only`: a command whose options alone are built (the others'
+    cost about 5 ms at every start: `lint` in a pre-commit hook parses only its own)."""
     p = _Parser(prog="val3check", description="Check Stäubli VAL 3 applications.")
     p.add_argument("--version", action="version", version=f"val3check {__version__}")
     sub = p.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    if only is None or only == "lint":
+        _add_lint(sub)
+    if only is None or only == "sim":
+        _add_sim(sub)
+    if only is None or only == "reach":
+        _add_reach(sub)
+    if only is None or only == "robots":
+        _add_robots(sub)
+    if only is None or only == "html":
+        html = sub.add_parser("html", help="the HTML report of a run's JSON report (--sim-report), or of a report model "
+                              "saved as JSON (docs/html-report.md)")
+        html_command.add_arguments(html)
+    if only is None or only == "server":
+        server = sub.add_parser("server", help="run the language server for editors, over stdio (docs/editors.md)")
+        server.add_argument("--stdio", action="store_true", help="talk LSP over standard input and output (the default and only transport)")
+    if only is None or only == "rules":
+        rules = sub.add_parser("rules", help="list the rule catalogue")
+        _add_format(rules, ("text", "json"))
+    if only is None or only == "rule":
+        rule = sub.add_parser("rule", help="explain one rule, or every rule with --all")
+        rule.add_argument("code", nargs="?", metavar="CODE")
+        rule.add_argument("--all", action="store_true", help="explain every rule")
+        _add_format(rule, ("text", "json"))
+    return p
 
+
+def _add_lint(sub) -> None:  # noqa: ANN001
     lint = sub.add_parser("lint", help="check applications (.pjx, .pgx, folders, controller trees)")
     lint.add_argument("paths", nargs="*", metavar="PATH", help="files or folders (default: .)")
     _add_format(lint, FORMATS)
@@ -130,6 +161,8 @@ def build_parser() -> argparse.ArgumentParser:
     lint.add_argument("--color", choices=("auto", "always", "never"), default="auto",
                       help="colour the text output (auto: on a terminal; NO_COLOR and FORCE_COLOR are honoured)")
 
+
+def _add_sim(sub) -> None:  # noqa: ANN001
     sim = sub.add_parser("sim", help="run an application in the virtual controller (docs/sim.md)")
     sim.add_argument("app", nargs="*", metavar="APP", help="the application: its folder or .pjx (default: .); several"
                      " applications, folders of applications, controller trees or globs run as a batch (docs/batch.md)")
@@ -152,6 +185,8 @@ def build_parser() -> argparse.ArgumentParser:
     _add_config(sim)
     _add_batch(sim)
 
+
+def _add_reach(sub) -> None:  # noqa: ANN001
     reach = sub.add_parser("reach", help="check that the arm reaches every point and joint of the data files (docs/motion.md)")
     reach.add_argument("app", metavar="APP", help="the application: its folder or .pjx")
     reach.add_argument("--robot", metavar="NAME|URDF", help="the arm model (default: the usr/configs/arm.cfx of the controller tree holding APP)")
@@ -160,6 +195,8 @@ def build_parser() -> argparse.ArgumentParser:
     reach.add_argument("--disk-root", action="append", default=[], metavar="DIR", help="folder where Disk:// libraries are also searched (repeatable)")
     reach.add_argument("--fail-on", choices=("error", "warning", "info", "never"), default="error", help="lowest finding severity that makes the exit code 1 (default: error; reach findings are warnings and infos, docs/motion.md)")
 
+
+def _add_robots(sub) -> None:  # noqa: ANN001
     robots = sub.add_parser("robots", help="list the arm models by family (reach, joint limits, speeds, assumptions), show "
                             "one, or fit one's accelerations to a measured cycle (robots fit APP --robot ROBOT "
                             "--measured-cycle S -o FILE)")
@@ -178,27 +215,13 @@ def build_parser() -> argparse.ArgumentParser:
     robots.add_argument("--cycles", type=int, metavar="N", help="fit: end each run after N cycles")
     robots.add_argument("-o", "--output", metavar="FILE", help="fit: write the robot file to FILE (default: standard output)")
 
-    html = sub.add_parser("html", help="the HTML report of a run's JSON report (--sim-report), or of a report model "
-                          "saved as JSON (docs/html-report.md)")
-    html_command.add_arguments(html)
-
-    server = sub.add_parser("server", help="run the language server for editors, over stdio (docs/editors.md)")
-    server.add_argument("--stdio", action="store_true", help="talk LSP over standard input and output (the default and only transport)")
-
-    rules = sub.add_parser("rules", help="list the rule catalogue")
-    _add_format(rules, ("text", "json"))
-    rule = sub.add_parser("rule", help="explain one rule, or every rule with --all")
-    rule.add_argument("code", nargs="?", metavar="CODE")
-    rule.add_argument("--all", action="store_true", help="explain every rule")
-    _add_format(rule, ("text", "json"))
-    return p
-
 
 def main(argv: list[str] | None = None) -> int:
     """Run the command `argv` (default: this process's command line, as the `val3check` script
     and `python -m val3check` do). Only the command's own modules are imported: `lint` loads
     nothing of `sim`."""
-    args = build_parser().parse_args(argv)
+    given = sys.argv[1:] if argv is None else argv
+    args = build_parser(given[0] if given and given[0] in COMMANDS else None).parse_args(argv)
     batch = argv is None and args.command == "lint"
     if batch:
         _short_lived()

@@ -465,6 +465,22 @@ def children(node: object) -> list:
     return out
 
 
+def last_child(node: object) -> object | None:
+    """`children(node)[-1]` (None when there is none), without making the list: finding the
+    end of a subtree (semantics.program_nodes) steps down the last children only."""
+    for name in reversed(_CHILDREN.get(type(node), ())):
+        value = getattr(node, name)
+        if value is None:
+            continue
+        if type(value) is list:
+            for v in reversed(value):
+                if v is not None:
+                    return v
+        else:
+            return value
+    return None
+
+
 def _pusher(cls: type, fields: tuple[str, ...]):
     """A function that pushes the children of a `cls` node on a stack, last child first (so
     that popping gives them in source order). Generated once per class: `walk` is the hot loop

@@ -67,6 +67,21 @@ class Engine:
     def __init__(self) -> None:
         self.builder = Builder()
         tables = load_tables()
+        self.start_state = tables["START"]
+        self.end_state = tables["END"]
+        self.unit_memo: dict[tuple[int, int, str], int] = {}
+        self.regex = re.compile(tables["LEXER"])
+        # the fast path for code without errors (None: the tables alone, as tests compare them)
+        self.descent: Descent | None = Descent(self.builder, self.regex)
+        self._tables = tables
+        # self.actions, self.expected: made on first use (__getattr__)
+
+    def __getattr__(self, name: str) -> Any:
+        """The automaton, made on first use: code without errors never needs it (the fast path
+        parses it), and making it is about 4 ms of lint's start-up (a function per rule)."""
+        if name not in ("actions", "expected") or "_tables" not in self.__dict__:
+            raise AttributeError(name)
+        tables = self.__dict__.pop("_tables")
         # rules[k]: (number of children, rule name, callback); callback None for `?rule: other`
         # (the value passes through unchanged: only the state changes)
         rules = [(size, origin, None if plan is None else _reducer(self.builder, plan))
@@ -74,13 +89,8 @@ class Engine:
         # actions[state][symbol]: int = shift to (or goto) that state; tuple = reduce
         self.actions: list[dict[str, Any]] = [
             {sym: (act if act >= 0 else rules[-1 - act]) for sym, act in row.items()} for row in tables["STATES"]]
-        self.start_state = tables["START"]
-        self.end_state = tables["END"]
-        self.unit_memo: dict[tuple[int, int, str], int] = {}
         self.expected = [frozenset(k for k in acts if k.isupper()) for acts in self.actions]
-        self.regex = re.compile(tables["LEXER"])
-        # the fast path for code without errors (None: the tables alone, as tests compare them)
-        self.descent: Descent | None = Descent(self.builder, self.regex)
+        return getattr(self, name)
 
     # -------------------------------------------------------------- driver
 

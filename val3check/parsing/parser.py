@@ -23,7 +23,7 @@ reported too; errors that could be consequences of an earlier one are not report
 from __future__ import annotations
 
 import gc
-import threading
+import _thread  # RLock without the threading module (1 ms of start-up)
 
 from ..diagnostics import Diagnostic
 from ..positions import SourceMap
@@ -42,7 +42,7 @@ __all__ = ["parse_code", "parse_program", "scan_comments", "MAX_BLOCK_DEPTH", "M
 MAX_EXPR_DEPTH = 100  # nested operations in one expression
 
 _engine: Engine | None = None
-_lock = threading.RLock()  # one parse at a time (the builder holds per-parse state)
+_lock = _thread.RLock()  # one parse at a time (the builder holds per-parse state)
 
 
 def get_engine() -> Engine:

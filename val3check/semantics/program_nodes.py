@@ -55,11 +55,10 @@ class ProgramNodes:
                 start = ids.index(id(node), 0, self._from)
             self._from = start
         last = node
-        while True:
-            children = A.children(last)
-            if not children:
-                break
-            last = children[-1]
+        child = A.last_child(node)
+        while child is not None:
+            last = child
+            child = A.last_child(child)
         return within[start:ids.index(id(last), start) + 1]
 
 
