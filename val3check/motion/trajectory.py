@@ -8,6 +8,9 @@ the replanning time and continues from the exact state there (position and speed
 
 `Trajectory` joins it to the `paths.Path`: joint position and velocity at any time, and sampling
 on the controller's 4 ms clock (`sample`). Times are seconds of simulated time.
+
+The breakpoints are `history.History` sequences: the old ones in a temporary file, so that what a
+long run holds of them is bounded (the readers index, slice, bisect and `window` them as arrays).
 """
 
 from __future__ import annotations
@@ -17,6 +20,8 @@ import math
 from array import array
 
 import numpy as np
+
+from .history import History
 
 TICK = 0.004  # the controller's motion cycle (s)
 _SEGMENT_BLOCK = 8192  # ticks sampled at most in one call by `segments`
@@ -35,11 +40,11 @@ class Profile:
 
     def __init__(self, s0: float = 0.0, t0: float = 0.0):
         """At rest at s0 from time t0."""
-        # arrays of doubles, not lists of floats: a long run holds about 70 breakpoints per motion
-        # (8 bytes each instead of 32); the same values, indexed and bisected as lists
-        self.T = array("d", [t0])
-        self.S = array("d", [s0])
-        self.SD = array("d", [0.0])
+        # doubles, not lists of floats: a long run holds about 70 breakpoints per motion (8 bytes
+        # each instead of 32), the old ones in a file (history.py); indexed and bisected as lists
+        self.T = History([t0])
+        self.S = History([s0])
+        self.SD = History([0.0])
 
     @property
     def t_end(self) -> float:
@@ -54,9 +59,29 @@ class Profile:
     def state(self, t: float) -> tuple[float, float, float]:
         """(s, ṡ, s̈) at time t."""
         T = self.T
+        if T.__class__ is History and T.tail_len > 1 and T.tail[0] < t:
+            # the hot case (the arm now, the queue ahead): t in the chunk being written, read in place
+            # (S and SD are chunked as T: the same length, the same chunk size)
+            tail, n = T.tail, T.tail_len
+            j = bisect.bisect_right(tail, t, 0, n) - 1
+            S, SD = self.S.tail, self.SD.tail
+            if j >= n - 1:
+                return S[n - 1], 0.0, 0.0
+            dt = tail[j + 1] - tail[j]
+            if dt <= 0.0:
+                return S[j + 1], SD[j + 1], 0.0
+            sd0, sd1 = SD[j], SD[j + 1]
+            u = (sd1 - sd0) / dt
+            tau = t - tail[j]
+            return S[j] + sd0 * tau + 0.5 * u * tau * tau, sd0 + u * tau, u
+        return self._state(t)
+
+    def _state(self, t: float) -> tuple[float, float, float]:
+        """`state`, on any sequences of breakpoints."""
+        T = self.T
         if t <= T[0]:
             return self.S[0], 0.0, 0.0
-        k = bisect.bisect_right(T, t) - 1
+        k = _bisect_right(T, t) - 1
         if k >= len(T) - 1:
             return self.S[-1], 0.0, 0.0
         dt = T[k + 1] - T[k]
@@ -73,8 +98,8 @@ class Profile:
         if len(t) == 0:
             return np.zeros(0), np.zeros(0)
         # only the breakpoints around the times asked (the profile holds the whole run)
-        a = max(bisect.bisect_right(self.T, float(t.min())) - 1, 0)
-        b = bisect.bisect_right(self.T, float(t.max())) + 1
+        a = max(_bisect_right(self.T, float(t.min())) - 1, 0)
+        b = _bisect_right(self.T, float(t.max())) + 1
         T, S, SD = np.asarray(self.T[a:b]), np.asarray(self.S[a:b]), np.asarray(self.SD[a:b])
         k = np.clip(np.searchsorted(T, t, side="right") - 1, 0, len(T) - 1)
         last = k >= len(T) - 1
@@ -95,7 +120,7 @@ class Profile:
         if t >= self.T[-1]:
             return
         s, sd, _ = self.state(t)
-        k = bisect.bisect_right(self.T, t)
+        k = _bisect_right(self.T, t)
         del self.T[k:]
         del self.S[k:]
         del self.SD[k:]
@@ -125,7 +150,7 @@ class Profile:
         """ṡ where the profile passed position s on its way to position `until` (the last time),
         None when it stood still in between or never got there."""
         S, SD = self.S, self.SD
-        k = bisect.bisect_right(S, s) - 1
+        k = _bisect_right(S, s) - 1
         if k < 0 or k >= len(S) - 1:
             return None
         j = k + 1
@@ -140,7 +165,7 @@ class Profile:
     def time_at(self, s_target: float) -> float | None:
         """The first time at which s reaches s_target; None when the profile never gets there."""
         S = self.S
-        k = bisect.bisect_left(S, s_target - 1e-12 * max(1.0, abs(s_target)))  # s grows over a run
+        k = _bisect_left(S, s_target - 1e-12 * max(1.0, abs(s_target)))  # s grows over a run
         if k >= len(S):
             return None
         if k == 0:
@@ -180,17 +205,29 @@ class Profile:
         _, sd, _ = self.state(t)
         if sd > 1e-12:
             return None
-        k = min(bisect.bisect_right(self.T, t) - 1, len(self.T) - 1)
+        k = min(_bisect_right(self.T, t) - 1, len(self.T) - 1)
         k = max(k, 0)
         while k > 0 and self.SD[k - 1] <= 1e-12:
             k -= 1
         return -math.inf if k == 0 else self.T[k]
 
 
+def _bisect_right(a, x: float) -> int:
+    """bisect.bisect_right(a, x), reading one chunk of a History (sorted breakpoints: the same index)."""
+    return a.bisect_right(x) if a.__class__ is History else bisect.bisect_right(a, x)
+
+
+def _bisect_left(a, x: float) -> int:
+    """bisect.bisect_left(a, x), reading one chunk of a History."""
+    return a.bisect_left(x) if a.__class__ is History else bisect.bisect_left(a, x)
+
+
 def window(values, lo: int, hi: int) -> np.ndarray:
-    """values[lo:hi] of a profile's breakpoints as a numpy array: a view of an array('d') (no copy;
-    the caller drops it before the profile may grow: an exported buffer cannot resize), a copy of
+    """values[lo:hi] of a profile's breakpoints as a numpy array: a view of an array('d') or of
+    one chunk of a History (no copy; the caller drops it before the profile may be cut), a copy of
     anything else."""
+    if values.__class__ is History:
+        return values.window(lo, hi)
     if isinstance(values, array):
         hi = min(hi, len(values))
         return np.frombuffer(values, dtype=float, count=max(hi - lo, 0), offset=8 * lo)
