@@ -117,7 +117,7 @@ class History:
             return array("d", [self[i] for i in range(start, stop, step)])
         if stop <= start:
             return array("d")
-        n, sh = self._n, self._shift
+        sh = self._shift
         c0, c1 = start >> sh, (stop - 1) >> sh
         if c0 == c1:
             return self.chunk(c0)[start - (c0 << sh):stop - (c0 << sh)]
