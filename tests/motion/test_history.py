@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from val3check.motion import history
+from val3check.motion import history, trajectory
 from val3check.motion.history import History, HistoryFull
 
 hypothesis = pytest.importorskip("hypothesis")
@@ -23,8 +23,9 @@ from hypothesis import strategies as st  # noqa: E402
 
 @pytest.fixture
 def tiny(monkeypatch):
-    """Chunks of 4 doubles, one kept behind the tail, one read back cached: every path of the
-    history taken by a few dozen values."""
+    """Chunks of 4 doubles (a new tail of 1, grown), one kept behind the tail, one read back cached:
+    every path of the history taken by a few dozen values."""
+    monkeypatch.setattr(history, "FIRST", 1)
     monkeypatch.setattr(history, "CHUNK", 4)
     monkeypatch.setattr(history, "KEEP", 1)
     monkeypatch.setattr(history, "CACHE", 1)
@@ -53,8 +54,8 @@ SETTINGS = settings(max_examples=150, derandomize=True, deadline=None, suppress_
 @SETTINGS
 @given(ops=OPS)
 def test_every_operation_as_a_plain_array(ops):
-    old = history.CHUNK, history.KEEP, history.CACHE
-    history.CHUNK, history.KEEP, history.CACHE = 4, 1, 1
+    old = history.CHUNK, history.KEEP, history.CACHE, history.FIRST
+    history.CHUNK, history.KEEP, history.CACHE, history.FIRST = 4, 1, 1, 1
     try:
         h, ref = History(), array("d")
         for op in ops:
@@ -90,7 +91,7 @@ def test_every_operation_as_a_plain_array(ops):
             with pytest.raises(IndexError):
                 h[i]
     finally:
-        history.CHUNK, history.KEEP, history.CACHE = old
+        history.CHUNK, history.KEEP, history.CACHE, history.FIRST = old
 
 
 @SETTINGS
@@ -111,6 +112,10 @@ def test_bisect_of_sorted_values_as_a_plain_array(steps, probes, cut):
                     assert h.bisect_left(x, lo, hi) == bisect.bisect_left(ref, x, lo, hi)
                     assert h.bisect_right(x, lo, hi) == bisect.bisect_right(ref, x, lo, hi)
                     assert bisect.bisect_right(h, x, lo, hi) == bisect.bisect_right(ref, x, lo, hi)
+                    for seq in (h, ref, ref.tolist()):  # the readers' helpers, on a history or not
+                        assert trajectory.bisect_left(seq, x, lo, hi) == bisect.bisect_left(ref, x, lo, hi)
+                        assert trajectory.bisect_right(seq, x, lo) == bisect.bisect_right(ref, x, lo)
+                assert h.bisect_left(x, 5, 2) == bisect.bisect_left(ref, x, 5, 2)  # hi before lo
             del h[cut:]
             del ref[cut:]
     finally:

@@ -32,6 +32,7 @@ import numpy as np
 CHUNK = 1 << 14  # doubles per chunk (128 KB); a power of two. Tests set it small (read at creation)
 KEEP = 2  # full chunks kept in memory behind the one being written (a replan cuts near the end)
 CACHE = 4  # chunks read back from the file kept in memory, the most recent
+FIRST = 16  # doubles a new tail holds before it grows (doubling, to CHUNK): many profiles are short
 DISK_LIMIT = 2 << 30  # bytes the histories of one process may hold in their files (~2,000 h of the bundled cell)
 
 _on_disk = [0]  # bytes the live histories of this process hold in their files
@@ -62,8 +63,8 @@ class History:
         self._held = 0  # bytes this history holds in its file
         self._file = None
         self._n, self._shift = n, n.bit_length() - 1
-        self.tail = _new_chunk(n)
-        self._chunks: list = [self.tail]  # array('d') of n doubles each; None when only in the file
+        self.tail = _new_chunk(min(FIRST, n))
+        self._chunks: list = [self.tail]  # array('d') of n doubles each (the tail fewer); None when only in the file
         self._firsts: list[float] = []  # each chunk's first value (for the two-level bisect)
         self._len = 0
         self.tail_start = 0
@@ -154,12 +155,12 @@ class History:
     def bisect_right(self, x: float, lo: int = 0, hi: int | None = None) -> int:
         """`bisect.bisect_right(self, x, lo, hi)` for sorted values, reading one chunk."""
         g = self._first_past(x, bisect.bisect_right)
-        return min(max(g, lo), self._len if hi is None else hi)
+        return max(min(g, self._len if hi is None else hi), lo)
 
     def bisect_left(self, x: float, lo: int = 0, hi: int | None = None) -> int:
         """`bisect.bisect_left(self, x, lo, hi)` for sorted values, reading one chunk."""
         g = self._first_past(x, bisect.bisect_left)
-        return min(max(g, lo), self._len if hi is None else hi)
+        return max(min(g, self._len if hi is None else hi), lo)
 
     def _first_past(self, x: float, search) -> int:
         firsts = self._firsts
@@ -198,8 +199,8 @@ class History:
 
     def append(self, x: float) -> None:
         """Add x at the end."""
-        if self.tail_len == self._n:
-            self._next_chunk()
+        if self.tail_len == len(self.tail):
+            self._room(1)
         self.tail[self.tail_len] = x
         if self.tail_len == 0:
             self._firsts.append(self.tail[0])
@@ -215,9 +216,9 @@ class History:
         v = np.asarray(values if isinstance(values, (np.ndarray, array)) else list(values), dtype=float).ravel()
         at, total = 0, len(v)
         while at < total:
-            if self.tail_len == self._n:
-                self._next_chunk()
-            room = min(self._n - self.tail_len, total - at)
+            if self.tail_len == len(self.tail):
+                self._room(total - at)
+            room = min(len(self.tail) - self.tail_len, total - at)
             view = np.frombuffer(self.tail, dtype=float)
             view[self.tail_len:self.tail_len + room] = v[at:at + room]
             del view
@@ -265,12 +266,19 @@ class History:
         if self.tail_len == 0:
             del self._firsts[last:]
 
-    def _next_chunk(self) -> None:
-        """The tail is full: a new one, and the oldest chunk kept in memory beyond KEEP to the file."""
+    def _room(self, more: int) -> None:
+        """The tail is full: grown (a new array: a view of the old one stays valid) until it holds a
+        whole chunk, then a new tail, and the oldest chunk kept in memory beyond KEEP to the file."""
+        n = self._n
+        if len(self.tail) < n:
+            grown = _new_chunk(min(n, max(2 * len(self.tail), self.tail_len + more)))
+            grown[:self.tail_len] = self.tail[:self.tail_len]
+            self.tail = self._chunks[-1] = grown
+            return
         old = len(self._chunks) - 1 - KEEP
         if old >= 0 and self._chunks[old] is not None:
             self._spill(old)
-        self.tail = _new_chunk(self._n)
+        self.tail = _new_chunk(min(FIRST, n))
         self._chunks.append(self.tail)
         self.tail_start += self._n
         self.tail_len = 0

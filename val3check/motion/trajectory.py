@@ -81,7 +81,7 @@ class Profile:
         T = self.T
         if t <= T[0]:
             return self.S[0], 0.0, 0.0
-        k = _bisect_right(T, t) - 1
+        k = bisect_right(T, t) - 1
         if k >= len(T) - 1:
             return self.S[-1], 0.0, 0.0
         dt = T[k + 1] - T[k]
@@ -98,8 +98,8 @@ class Profile:
         if len(t) == 0:
             return np.zeros(0), np.zeros(0)
         # only the breakpoints around the times asked (the profile holds the whole run)
-        a = max(_bisect_right(self.T, float(t.min())) - 1, 0)
-        b = _bisect_right(self.T, float(t.max())) + 1
+        a = max(bisect_right(self.T, float(t.min())) - 1, 0)
+        b = bisect_right(self.T, float(t.max())) + 1
         T, S, SD = np.asarray(self.T[a:b]), np.asarray(self.S[a:b]), np.asarray(self.SD[a:b])
         k = np.clip(np.searchsorted(T, t, side="right") - 1, 0, len(T) - 1)
         last = k >= len(T) - 1
@@ -120,7 +120,7 @@ class Profile:
         if t >= self.T[-1]:
             return
         s, sd, _ = self.state(t)
-        k = _bisect_right(self.T, t)
+        k = bisect_right(self.T, t)
         del self.T[k:]
         del self.S[k:]
         del self.SD[k:]
@@ -150,7 +150,7 @@ class Profile:
         """ṡ where the profile passed position s on its way to position `until` (the last time),
         None when it stood still in between or never got there."""
         S, SD = self.S, self.SD
-        k = _bisect_right(S, s) - 1
+        k = bisect_right(S, s) - 1
         if k < 0 or k >= len(S) - 1:
             return None
         j = k + 1
@@ -165,7 +165,7 @@ class Profile:
     def time_at(self, s_target: float) -> float | None:
         """The first time at which s reaches s_target; None when the profile never gets there."""
         S = self.S
-        k = _bisect_left(S, s_target - 1e-12 * max(1.0, abs(s_target)))  # s grows over a run
+        k = bisect_left(S, s_target - 1e-12 * max(1.0, abs(s_target)))  # s grows over a run
         if k >= len(S):
             return None
         if k == 0:
@@ -205,21 +205,26 @@ class Profile:
         _, sd, _ = self.state(t)
         if sd > 1e-12:
             return None
-        k = min(_bisect_right(self.T, t) - 1, len(self.T) - 1)
+        k = min(bisect_right(self.T, t) - 1, len(self.T) - 1)
         k = max(k, 0)
         while k > 0 and self.SD[k - 1] <= 1e-12:
             k -= 1
         return -math.inf if k == 0 else self.T[k]
 
 
-def _bisect_right(a, x: float) -> int:
-    """bisect.bisect_right(a, x), reading one chunk of a History (sorted breakpoints: the same index)."""
-    return a.bisect_right(x) if a.__class__ is History else bisect.bisect_right(a, x)
+def bisect_right(a, x: float, lo: int = 0, hi: int | None = None) -> int:
+    """bisect.bisect_right(a, x, lo, hi) of a profile's T or S: a History's reads one chunk (the
+    module's would read one value per step through Python, most of them in the file)."""
+    if a.__class__ is History:
+        return a.bisect_right(x, lo, hi)
+    return bisect.bisect_right(a, x, lo, len(a) if hi is None else hi)
 
 
-def _bisect_left(a, x: float) -> int:
-    """bisect.bisect_left(a, x), reading one chunk of a History."""
-    return a.bisect_left(x) if a.__class__ is History else bisect.bisect_left(a, x)
+def bisect_left(a, x: float, lo: int = 0, hi: int | None = None) -> int:
+    """bisect.bisect_left(a, x, lo, hi) of a profile's T or S (`bisect_right`)."""
+    if a.__class__ is History:
+        return a.bisect_left(x, lo, hi)
+    return bisect.bisect_left(a, x, lo, len(a) if hi is None else hi)
 
 
 def window(values, lo: int, hi: int) -> np.ndarray:

@@ -24,7 +24,6 @@ too, from the trajectory itself, without a key.
 
 from __future__ import annotations
 
-import bisect
 import math
 from collections.abc import Callable
 
@@ -32,7 +31,7 @@ import numpy as np
 
 from ..interpretation.clock import TICK_US
 from ..motion.paths import Path
-from ..motion.trajectory import Profile, Trajectory
+from ..motion.trajectory import Profile, Trajectory, bisect_left, bisect_right
 
 TICK = TICK_US / 1_000_000
 Q_T = 1e-9  # s: the profile's times within the motion
@@ -99,8 +98,8 @@ def _keyed(traj: Trajectory, start: float, end: float) -> Own:
     i1, _ = path.locate(s1)
     spans = path.spans[i0:i1 + 1]
     base = path.offsets[i0]
-    lo = bisect.bisect_right(prof.T, start)  # the profile holds the whole run: no array of it
-    hi = bisect.bisect_left(prof.T, end, lo)
+    lo = bisect_right(prof.T, start)  # the profile holds the whole run: no array of it
+    hi = bisect_left(prof.T, end, lo)
     # the three rows at once, each shifted and rounded as it was alone (the same operations, element by element)
     rows = np.array([[start, *prof.T[lo:hi], end], [s0, *prof.S[lo:hi], s1], [sd0, *prof.SD[lo:hi], sd1]])
     k = np.rint((rows - np.array([[start], [base], [0.0]])) / _QUANTA).astype(np.int64)
