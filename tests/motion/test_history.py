@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from val3check.motion import history, trajectory
+from val3check.motion import history, retime, trajectory
 from val3check.motion.history import History, HistoryFull
 
 hypothesis = pytest.importorskip("hypothesis")
@@ -195,7 +195,7 @@ def test_only_the_cut_at_the_end():
 
 def test_a_run_with_tiny_chunks_writes_the_same_reports(monkeypatch):
     """The bundled pick-and-place for two minutes with its cell (collision checks) and the acceleration
-    range, once with chunks of 16 breakpoints (most of the profile read back from the file, replans
+    range, once with chunks of 16 breakpoints and the stretches of the range found 7 at a time (most of the profile read back from the file, replans
     cut across chunks) and once with the default chunks: the same JSON and page, byte for byte."""
     from val3check.config import Settings
     from val3check.lint import run
@@ -223,6 +223,7 @@ def test_a_run_with_tiny_chunks_writes_the_same_reports(monkeypatch):
     monkeypatch.setattr(history, "CHUNK", 16)
     monkeypatch.setattr(history, "KEEP", 1)
     monkeypatch.setattr(history, "CACHE", 2)
+    monkeypatch.setattr(retime, "_BLOCK", 7)  # the acceleration range's stretches read in small blocks
     before = history.disk_bytes()
     spilled: list = []
     real = History._spill
