@@ -49,10 +49,10 @@ def disk_bytes() -> int:
 
 class History:
     """A sequence of doubles in chunks (module docstring). `tail`, `tail_start`, `tail_len`: the
-    chunk being written, the index of its first value and how many it holds (the fast path of
-    the hot readers, trajectory.Profile)."""
+    chunk being written, the index of its first value and how many it holds; `shift`: value k is
+    at k & (2**shift - 1) in chunk k >> shift (the fast paths of the hot readers, trajectory.Profile)."""
 
-    __slots__ = ("_n", "_shift", "_chunks", "_firsts", "_len", "tail", "tail_start", "tail_len", "_file",
+    __slots__ = ("_n", "shift", "_chunks", "_firsts", "_len", "tail", "tail_start", "tail_len", "_file",
                  "_cache", "_held", "__weakref__")
 
     def __init__(self, values=()) -> None:
@@ -62,7 +62,7 @@ class History:
             raise ValueError("CHUNK must be a power of two")
         self._held = 0  # bytes this history holds in its file
         self._file = None
-        self._n, self._shift = n, n.bit_length() - 1
+        self._n, self.shift = n, n.bit_length() - 1
         self.tail = _new_chunk(min(FIRST, n))
         self._chunks: list = [self.tail]  # array('d') of n doubles each (the tail fewer); None when only in the file
         self._firsts: list[float] = []  # each chunk's first value (for the two-level bisect)
@@ -95,7 +95,7 @@ class History:
                 return self.tail[i - self.tail_start]
             if i < 0:
                 raise IndexError("history index out of range")
-        return self.chunk(i >> self._shift)[i & (self._n - 1)]
+        return self.chunk(i >> self.shift)[i & (self._n - 1)]
 
     def chunk(self, c: int) -> array:
         """The values of chunk c (all of its n slots: only the first `tail_len` of the tail count)."""
@@ -118,7 +118,7 @@ class History:
             return array("d", [self[i] for i in range(start, stop, step)])
         if stop <= start:
             return array("d")
-        sh = self._shift
+        sh = self.shift
         c0, c1 = start >> sh, (stop - 1) >> sh
         if c0 == c1:
             return self.chunk(c0)[start - (c0 << sh):stop - (c0 << sh)]
@@ -133,7 +133,7 @@ class History:
         hi = min(hi, self._len)
         if hi <= lo:
             return np.zeros(0)
-        sh = self._shift
+        sh = self.shift
         c0, c1 = lo >> sh, (hi - 1) >> sh
         if c0 == c1:
             return np.frombuffer(self.chunk(c0), dtype=float, count=hi - lo, offset=8 * (lo - (c0 << sh)))
@@ -174,7 +174,7 @@ class History:
         c = search(firsts, x, 0, last) - 1
         if c < 0:
             return 0
-        return (c << self._shift) + search(self.chunk(c), x)
+        return (c << self.shift) + search(self.chunk(c), x)
 
     # ---- writing
 
@@ -186,7 +186,7 @@ class History:
             i += self._len
         if not 0 <= i < self._len:
             raise IndexError("history assignment index out of range")
-        c, k = i >> self._shift, i & (self._n - 1)
+        c, k = i >> self.shift, i & (self._n - 1)
         a = self._chunks[c]
         if a is None:  # in the file (and maybe the cache): both changed
             a = self.chunk(c)
@@ -240,7 +240,7 @@ class History:
         self._truncate(start)
 
     def _truncate(self, length: int) -> None:
-        n, sh = self._n, self._shift
+        n, sh = self._n, self.shift
         keep = max((length + n - 1) >> sh, 1)  # chunks that still hold values (at least the tail)
         for c in range(keep, len(self._chunks)):
             if self._chunks[c] is None:

@@ -49,12 +49,25 @@ class Profile:
     @property
     def t_end(self) -> float:
         """The time of the last breakpoint (the arm at rest from then on)."""
-        return self.T[-1]
+        T = self.T
+        return T.tail[T.tail_len - 1] if T.__class__ is History and T.tail_len else T[-1]
 
     @property
     def s_end(self) -> float:
         """The path position where the profile ends."""
-        return self.S[-1]
+        S = self.S
+        return S.tail[S.tail_len - 1] if S.__class__ is History and S.tail_len else S[-1]
+
+    def _cells(self, k: int) -> tuple:
+        """(T, S, SD, j): sequences whose items j and j + 1 are breakpoints k and k + 1 (k + 1 in
+        the profile): a chunk's arrays when both lie in one chunk of a History, read in place."""
+        T = self.T
+        if T.__class__ is History:
+            j = k & ((1 << T.shift) - 1)
+            if j + 1 < 1 << T.shift:
+                c = k >> T.shift
+                return T.chunk(c), self.S.chunk(c), self.SD.chunk(c), j
+        return T, self.S, self.SD, k
 
     def state(self, t: float) -> tuple[float, float, float]:
         """(s, ṡ, s̈) at time t."""
@@ -84,13 +97,14 @@ class Profile:
         k = bisect_right(T, t) - 1
         if k >= len(T) - 1:
             return self.S[-1], 0.0, 0.0
+        T, S, SD, k = self._cells(k)
         dt = T[k + 1] - T[k]
         if dt <= 0.0:
-            return self.S[k + 1], self.SD[k + 1], 0.0
-        sd0, sd1 = self.SD[k], self.SD[k + 1]
+            return S[k + 1], SD[k + 1], 0.0
+        sd0, sd1 = SD[k], SD[k + 1]
         u = (sd1 - sd0) / dt
         tau = t - T[k]
-        return self.S[k] + sd0 * tau + 0.5 * u * tau * tau, sd0 + u * tau, u
+        return S[k] + sd0 * tau + 0.5 * u * tau * tau, sd0 + u * tau, u
 
     def states(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(s, ṡ) at many times (vectorised)."""
@@ -142,9 +156,9 @@ class Profile:
             dt = np.where(ds > 0, 2.0 * ds / np.maximum(v, 1e-300), 0.0)
         times = t + np.cumsum(dt)
         keep = ~(ds <= 0.0)  # (as a loop skipping ds <= 0 would: a NaN kept)
-        self.T.frombytes(np.ascontiguousarray(times[keep], dtype=float).tobytes())
-        self.S.frombytes(np.ascontiguousarray(np.asarray(s, dtype=float)[1:][keep]).tobytes())
-        self.SD.frombytes(np.ascontiguousarray(np.asarray(sd, dtype=float)[1:][keep]).tobytes())
+        self.T.extend(np.asarray(times[keep], dtype=float))
+        self.S.extend(np.asarray(s, dtype=float)[1:][keep])
+        self.SD.extend(np.asarray(sd, dtype=float)[1:][keep])
 
     def speed_at(self, s: float, until: float) -> float | None:
         """ṡ where the profile passed position s on its way to position `until` (the last time),
@@ -170,25 +184,10 @@ class Profile:
             return None
         if k == 0:
             return self.T[0]
-        if abs(S[k] - s_target) <= 1e-9 * max(1.0, abs(s_target)):
-            return self.T[k]  # a breakpoint (the end of a motion): exact
-        return self._solve(k - 1, s_target)
-
-    def _solve(self, k: int, s_target: float) -> float:
-        """Time within interval k (T[k]..T[k+1]) where s = s_target."""
-        T, S, SD = self.T, self.S, self.SD
-        dt = T[k + 1] - T[k]
-        ds = s_target - S[k]
-        if ds <= 0.0 or dt <= 0.0:
-            return T[k] if ds <= 0.0 else T[k + 1]
-        sd0 = SD[k]
-        u = (SD[k + 1] - sd0) / dt
-        if abs(u) < 1e-15:
-            tau = ds / sd0 if sd0 > 0 else dt
-        else:
-            disc = sd0 * sd0 + 2.0 * u * ds
-            tau = (-sd0 + math.sqrt(max(disc, 0.0))) / u
-        return T[k] + min(max(tau, 0.0), dt)
+        T, S, SD, j = self._cells(k - 1)
+        if abs(S[j + 1] - s_target) <= 1e-9 * max(1.0, abs(s_target)):
+            return T[j + 1]  # a breakpoint (the end of a motion): exact
+        return _solve(T, S, SD, j, s_target)
 
     def final_decel_start(self) -> int:
         """Index of the breakpoint where the last run of decreasing speed begins (the braking to
@@ -210,6 +209,22 @@ class Profile:
         while k > 0 and self.SD[k - 1] <= 1e-12:
             k -= 1
         return -math.inf if k == 0 else self.T[k]
+
+
+def _solve(T, S, SD, k: int, s_target: float) -> float:
+    """Time within interval k (T[k]..T[k+1]) where s = s_target."""
+    dt = T[k + 1] - T[k]
+    ds = s_target - S[k]
+    if ds <= 0.0 or dt <= 0.0:
+        return T[k] if ds <= 0.0 else T[k + 1]
+    sd0 = SD[k]
+    u = (SD[k + 1] - sd0) / dt
+    if abs(u) < 1e-15:
+        tau = ds / sd0 if sd0 > 0 else dt
+    else:
+        disc = sd0 * sd0 + 2.0 * u * ds
+        tau = (-sd0 + math.sqrt(max(disc, 0.0))) / u
+    return T[k] + min(max(tau, 0.0), dt)
 
 
 def bisect_right(a, x: float, lo: int = 0, hi: int | None = None) -> int:
