@@ -5,8 +5,10 @@ command, three doubles each, 104 MB at 8 h of the bundled cell. The run reads th
 (the arm's state now, the queue's times ahead); the record, the collision checks and the reports
 read them after it, in order. So a `History` keeps the chunk being written and the KEEP full
 chunks before it in memory, writes older chunks to an unlinked temporary file (gone at exit, even
-on a crash) and reads them back through a cache of CACHE chunks: what the process holds is bounded
-by the chunk size, not by the run's length, and the values read back are the same bits.
+on a crash) and reads them back: a slice or window exactly as asked (the record reads a few
+breakpoints per command, here and there), single values and bisects through a cache of CACHE
+chunks. What the process holds is bounded by the chunk size, not by the run's length, and the
+values read back are the same bits.
 
 It is the sequence the readers used when these were `array('d')`: len, int and slice indexing
 (a slice is an `array('d')` copy), bisect (the module's functions, or the faster methods here for
@@ -29,9 +31,9 @@ from array import array
 
 import numpy as np
 
-CHUNK = 1 << 14  # doubles per chunk (128 KB); a power of two. Tests set it small (read at creation)
-KEEP = 2  # full chunks kept in memory behind the one being written (a replan cuts near the end)
-CACHE = 4  # chunks read back from the file kept in memory, the most recent
+CHUNK = 1 << 12  # doubles per chunk (32 KB: a chunk read back costs ~20 µs); a power of two, read at creation
+KEEP = 8  # full chunks kept in memory behind the one being written (~450 commands: a replan cuts near the end)
+CACHE = 32  # chunks read back from the file kept in memory, the most recent (the record reads a few places at once)
 FIRST = 16  # doubles a new tail holds before it grows (doubling, to CHUNK): many profiles are short
 DISK_LIMIT = 2 << 30  # bytes the histories of one process may hold in their files (~2,000 h of the bundled cell)
 
@@ -105,8 +107,7 @@ class History:
         cache = self._cache
         a = cache.pop(c, None)
         if a is None:
-            a = _new_chunk(self._n)
-            os.preadv(self._file.fileno(), [a], c * self._n * 8)
+            a = self._read(c)
             if len(cache) >= CACHE:
                 del cache[next(iter(cache))]
         cache[c] = a
@@ -116,35 +117,52 @@ class History:
         start, stop, step = s.indices(self._len)
         if step != 1:
             return array("d", [self[i] for i in range(start, stop, step)])
+        return self._range(start, stop)
+
+    def _held_chunk(self, c: int) -> array | None:
+        """Chunk c if it is in memory (written or read back), else None."""
+        a = self._chunks[c]
+        return a if a is not None else self._cache.get(c)
+
+    def _range(self, start: int, stop: int) -> array:
+        """values[start:stop] (a copy): from the chunks in memory, the rest read from the file in one
+        read per run of chunks (the file holds chunk c at c·CHUNK doubles: the sequence itself), so
+        that a reader of a few breakpoints here and there reads only those."""
         if stop <= start:
             return array("d")
         sh = self.shift
-        c0, c1 = start >> sh, (stop - 1) >> sh
-        if c0 == c1:
-            return self.chunk(c0)[start - (c0 << sh):stop - (c0 << sh)]
-        out = self.chunk(c0)[start - (c0 << sh):]
-        for c in range(c0 + 1, c1):
-            out += self.chunk(c)
-        out += self.chunk(c1)[:stop - (c1 << sh)]
+        c0 = start >> sh
+        if c0 == (stop - 1) >> sh:
+            a = self._held_chunk(c0)
+            if a is not None:
+                return a[start - (c0 << sh):stop - (c0 << sh)]
+        out = array("d")
+        i = start
+        while i < stop:
+            c = i >> sh
+            a = self._held_chunk(c)
+            end = min(stop, (c + 1) << sh)
+            if a is not None:
+                out += a[i - (c << sh):end - (c << sh)]
+            else:
+                while end < stop and self._held_chunk(end >> sh) is None:
+                    end = min(stop, end + self._n)
+                out.frombytes(os.pread(self._file.fileno(), 8 * (end - i), 8 * i))
+            i = end
         return out
 
     def window(self, lo: int, hi: int) -> np.ndarray:
-        """values[lo:hi] as a numpy array: a view inside one chunk, a copy across chunks."""
+        """values[lo:hi] as a numpy array: a view inside one chunk in memory, else a copy."""
         hi = min(hi, self._len)
         if hi <= lo:
             return np.zeros(0)
         sh = self.shift
-        c0, c1 = lo >> sh, (hi - 1) >> sh
-        if c0 == c1:
-            return np.frombuffer(self.chunk(c0), dtype=float, count=hi - lo, offset=8 * (lo - (c0 << sh)))
-        out = np.empty(hi - lo)
-        at = 0
-        for c in range(c0, c1 + 1):
-            a = max(lo - (c << sh), 0)
-            b = min(hi - (c << sh), self._n)
-            out[at:at + b - a] = np.frombuffer(self.chunk(c), dtype=float, count=b - a, offset=8 * a)
-            at += b - a
-        return out
+        c0 = lo >> sh
+        if c0 == (hi - 1) >> sh:
+            a = self._held_chunk(c0)
+            if a is not None:
+                return np.frombuffer(a, dtype=float, count=hi - lo, offset=8 * (lo - (c0 << sh)))
+        return np.frombuffer(self._range(lo, hi), dtype=float)
 
     def __iter__(self):
         last = len(self._chunks) - 1
@@ -251,8 +269,7 @@ class History:
         if self._chunks[last] is None:  # written again from here: back in memory
             a = self._cache.pop(last, None)
             if a is None:
-                a = _new_chunk(n)
-                os.preadv(self._file.fileno(), [a], last * n * 8)
+                a = self._read(last)
             self._chunks[last] = a
             self._release(n * 8)
         for c in [c for c in self._cache if c >= last]:  # their place in the file is written again
@@ -282,6 +299,12 @@ class History:
         self._chunks.append(self.tail)
         self.tail_start += self._n
         self.tail_len = 0
+
+    def _read(self, c: int) -> array:
+        """Chunk c read back from the file."""
+        a = array("d")
+        a.frombytes(os.pread(self._file.fileno(), self._n * 8, c * self._n * 8))
+        return a
 
     def _spill(self, c: int) -> None:
         nbytes = self._n * 8
@@ -314,4 +337,4 @@ class History:
 
 
 def _new_chunk(n: int) -> array:
-    return array("d", bytes(8 * n))
+    return array("d", [0.0]) * n
