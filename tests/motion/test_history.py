@@ -239,3 +239,14 @@ def test_a_run_with_tiny_chunks_writes_the_same_reports(monkeypatch):
     assert tiny_chunks[1] == fresh[1]
     gc.collect()
     assert history.disk_bytes() == before
+
+
+def test_a_profile_refused_by_the_disk_bound_keeps_its_three_sequences_alike(tiny, monkeypatch):
+    from val3check.motion.trajectory import Profile
+
+    monkeypatch.setattr(history, "DISK_LIMIT", history.disk_bytes() + 2 * 3 * 4 * 8)
+    p = Profile()
+    with pytest.raises(HistoryFull):
+        for k in range(20):
+            p.append(p.t_end, np.array([p.s_end, p.s_end + 1.0, p.s_end + 2.0]), np.array([0.0, 1.0, 0.0]))
+    assert len(p.T) == len(p.S) == len(p.SD) > 1

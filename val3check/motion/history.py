@@ -300,6 +300,15 @@ class History:
         self.tail_start += self._n
         self.tail_len = 0
 
+    def reserve(self, more: int, copies: int = 1) -> None:
+        """Raise HistoryFull, before anything changes, when adding `more` values to `copies`
+        histories like this one could take the files past DISK_LIMIT (a profile appends to its
+        three at once: none of them may be left longer than the others)."""
+        chunks = (self.tail_len + more + self._n - 1) >> self.shift  # new chunks at most: a spill each
+        if chunks and _on_disk[0] + copies * chunks * self._n * 8 > DISK_LIMIT:
+            raise HistoryFull(f"the run's motion history would hold more than {DISK_LIMIT / (1 << 20):,.0f} MB in its"
+                              f" temporary file (motion/history.py DISK_LIMIT): shorten --duration")
+
     def _read(self, c: int) -> array:
         """Chunk c read back from the file."""
         a = array("d")

@@ -145,6 +145,8 @@ class Profile:
 
     def append(self, t0: float, s: np.ndarray, sd: np.ndarray) -> None:
         """Add a motion starting at t0 from (s[0], sd[0]) (the current end of the profile)."""
+        if self.T.__class__ is History:  # refused before any of the three grows (history.DISK_LIMIT)
+            self.T.reserve(len(s) + 1, 3)
         if t0 > self.T[-1]:
             self.T.append(t0)
             self.S.append(self.S[-1])
