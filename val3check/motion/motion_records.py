@@ -22,6 +22,7 @@ import numpy as np
 from .findings import Source
 from .paths import tcp_rates
 from .record_repeats import Repeats, noise
+from . import trajectory
 from .trajectory import window
 
 
@@ -51,7 +52,7 @@ class MotionRecord:
 def time_leaving(profile, s0: float) -> float | None:
     """The last time the path parameter is at or before s0 (when the arm leaves s0)."""
     S = profile.S
-    k = bisect.bisect_right(S, s0 + 1e-9) - 1
+    k = trajectory.bisect_right(S, s0 + 1e-9) - 1
     if k < 0:
         return None
     if abs(S[k] - s0) <= 1e-9 * max(1.0, abs(s0)):
@@ -61,8 +62,8 @@ def time_leaving(profile, s0: float) -> float | None:
 
 def _speeds_at(profile, s: np.ndarray) -> np.ndarray:
     """ṡ at path positions s (ṡ² is linear in s between breakpoints)."""
-    k0 = max(bisect.bisect_left(profile.S, float(s.min())) - 1, 0)
-    k1 = bisect.bisect_right(profile.S, float(s.max())) + 1
+    k0 = max(trajectory.bisect_left(profile.S, float(s.min())) - 1, 0)
+    k1 = trajectory.bisect_right(profile.S, float(s.max())) + 1
     S = np.asarray(profile.S[k0:k1])
     X = np.asarray(profile.SD[k0:k1]) ** 2
     keep = np.concatenate([np.diff(S) > 0, [True]])  # one value per position (a rest repeats S)
@@ -142,8 +143,8 @@ class RecordMaker:
                                     end if end is not None or command.state == "pending" else start, 0.0, 0.0, "",
                                     {}, **base))
             return
-        k0 = bisect.bisect_left(prof.S, s0)
-        k1 = bisect.bisect_right(prof.S, s1)
+        k0 = trajectory.bisect_left(prof.S, s0)
+        k1 = trajectory.bisect_right(prof.S, s1)
         item = (len(out), _Asked(command), s0, s1, start, end, k0, k1, queue.limits_of(command))
         out.append(None)
         slot = None

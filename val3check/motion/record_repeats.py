@@ -22,7 +22,7 @@ import bisect
 
 import numpy as np
 
-from .trajectory import window
+from .trajectory import bisect_left, bisect_right, window
 
 POS_TOL = 1e-13  # × the magnitude of the run's path positions (their rounding: ~1e-16 per operation)
 TIME_TOL = 1e-13  # × the magnitude of the run's times
@@ -58,8 +58,8 @@ class Repeats:
         # breakpoints are points of the length) and against the spans' offsets (the span each
         # point is evaluated on: the one at or before it)
         Sa, end = prof.S, hi + 1
-        where = (bisect.bisect_left(Sa, s0, lo, end) - lo, bisect.bisect_right(Sa, s0, lo, end) - lo,
-                 bisect.bisect_left(Sa, s1, lo, end) - lo, bisect.bisect_right(Sa, s1, lo, end) - lo,
+        where = (bisect_left(Sa, s0, lo, end) - lo, bisect_right(Sa, s0, lo, end) - lo,
+                 bisect_left(Sa, s1, lo, end) - lo, bisect_right(Sa, s1, lo, end) - lo,
                  bisect.bisect_right(offsets, s0), bisect.bisect_right(offsets, s1))
         dS = np.diff(S)
         moves = dS > 0

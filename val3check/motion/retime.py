@@ -79,6 +79,9 @@ def _next_true(mask: np.ndarray, i: int) -> int:
     return -1
 
 
+_BLOCK = 1 << 16  # breakpoints read at a time by `Stretches`
+
+
 class Stretches:
     """The moving stretches of `queue`'s profile (from a rest to the next) and their piece keys:
     the same for every factor, found once for all of them (`retimed_range`)."""
@@ -95,13 +98,18 @@ class Stretches:
         T, S, SD = prof.T, prof.S, prof.SD
         n = len(T)
         # a stretch starts at a breakpoint the arm leaves (moves or goes forward after it) and ends
-        # at the next breakpoint at rest (or the last). Views of the profile (no copies: 8 hours hold
-        # millions of breakpoints), dropped before anything can grow it; a mask of one byte per
+        # at the next breakpoint at rest (or the last). A block of the profile at a time (8 hours
+        # hold millions of breakpoints, most in a file: history.py); a mask of one byte per
         # breakpoint for the leaves, an index array for the rests (a few per motion)
-        s_, sd_ = window(S, 0, n), window(SD, 0, n)
-        leaves = ~((sd_[1:] <= 0.0) & (s_[1:] <= s_[:-1]))
-        rests = np.append(np.flatnonzero(~(sd_[1:n - 1] > 0.0)) + 1, n - 1)
-        del s_, sd_
+        leaves = np.empty(max(n - 1, 0), dtype=bool)
+        rests_in: list = []
+        for lo in range(0, n - 1, _BLOCK):
+            hi = min(lo + _BLOCK, n - 1)  # breakpoints lo..hi: the leaves lo..hi-1, the rests lo+1..hi
+            s_, sd_ = window(S, lo, hi + 1), window(SD, lo, hi + 1)
+            leaves[lo:hi] = ~((sd_[1:] <= 0.0) & (s_[1:] <= s_[:-1]))
+            rests_in.append(np.flatnonzero(~(sd_[1:min(hi, n - 2) - lo + 1] > 0.0)) + lo + 1)
+            del s_, sd_
+        rests = np.append(np.concatenate(rests_in) if rests_in else np.zeros(0, dtype=np.intp), n - 1)
         i = 0
         while True:
             i = _next_true(leaves, i)

@@ -8,6 +8,9 @@ the replanning time and continues from the exact state there (position and speed
 
 `Trajectory` joins it to the `paths.Path`: joint position and velocity at any time, and sampling
 on the controller's 4 ms clock (`sample`). Times are seconds of simulated time.
+
+The breakpoints are `history.History` sequences: the old ones in a temporary file, so that what a
+long run holds of them is bounded (the readers index, slice, bisect and `window` them as arrays).
 """
 
 from __future__ import annotations
@@ -17,6 +20,8 @@ import math
 from array import array
 
 import numpy as np
+
+from .history import History
 
 TICK = 0.004  # the controller's motion cycle (s)
 _SEGMENT_BLOCK = 8192  # ticks sampled at most in one call by `segments`
@@ -35,37 +40,71 @@ class Profile:
 
     def __init__(self, s0: float = 0.0, t0: float = 0.0):
         """At rest at s0 from time t0."""
-        # arrays of doubles, not lists of floats: a long run holds about 70 breakpoints per motion
-        # (8 bytes each instead of 32); the same values, indexed and bisected as lists
-        self.T = array("d", [t0])
-        self.S = array("d", [s0])
-        self.SD = array("d", [0.0])
+        # doubles, not lists of floats: a long run holds about 70 breakpoints per motion (8 bytes
+        # each instead of 32), the old ones in a file (history.py); indexed and bisected as lists
+        self.T = History([t0])
+        self.S = History([s0])
+        self.SD = History([0.0])
 
     @property
     def t_end(self) -> float:
         """The time of the last breakpoint (the arm at rest from then on)."""
-        return self.T[-1]
+        T = self.T
+        return T.tail[T.tail_len - 1] if T.__class__ is History and T.tail_len else T[-1]
 
     @property
     def s_end(self) -> float:
         """The path position where the profile ends."""
-        return self.S[-1]
+        S = self.S
+        return S.tail[S.tail_len - 1] if S.__class__ is History and S.tail_len else S[-1]
+
+    def _cells(self, k: int) -> tuple:
+        """(T, S, SD, j): sequences whose items j and j + 1 are breakpoints k and k + 1 (k + 1 in
+        the profile): a chunk's arrays when both lie in one chunk of a History, read in place."""
+        T = self.T
+        if T.__class__ is History:
+            j = k & ((1 << T.shift) - 1)
+            if j + 1 < 1 << T.shift:
+                c = k >> T.shift
+                return T.chunk(c), self.S.chunk(c), self.SD.chunk(c), j
+        return T, self.S, self.SD, k
 
     def state(self, t: float) -> tuple[float, float, float]:
         """(s, ṡ, s̈) at time t."""
         T = self.T
+        if T.__class__ is History and T.tail_len > 1 and T.tail[0] < t:
+            # the hot case (the arm now, the queue ahead): t in the chunk being written, read in place
+            # (S and SD are chunked as T: the same length, the same chunk size)
+            tail, n = T.tail, T.tail_len
+            j = bisect.bisect_right(tail, t, 0, n) - 1
+            S, SD = self.S.tail, self.SD.tail
+            if j >= n - 1:
+                return S[n - 1], 0.0, 0.0
+            dt = tail[j + 1] - tail[j]
+            if dt <= 0.0:
+                return S[j + 1], SD[j + 1], 0.0
+            sd0, sd1 = SD[j], SD[j + 1]
+            u = (sd1 - sd0) / dt
+            tau = t - tail[j]
+            return S[j] + sd0 * tau + 0.5 * u * tau * tau, sd0 + u * tau, u
+        return self._state(t)
+
+    def _state(self, t: float) -> tuple[float, float, float]:
+        """`state`, on any sequences of breakpoints."""
+        T = self.T
         if t <= T[0]:
             return self.S[0], 0.0, 0.0
-        k = bisect.bisect_right(T, t) - 1
+        k = bisect_right(T, t) - 1
         if k >= len(T) - 1:
             return self.S[-1], 0.0, 0.0
+        T, S, SD, k = self._cells(k)
         dt = T[k + 1] - T[k]
         if dt <= 0.0:
-            return self.S[k + 1], self.SD[k + 1], 0.0
-        sd0, sd1 = self.SD[k], self.SD[k + 1]
+            return S[k + 1], SD[k + 1], 0.0
+        sd0, sd1 = SD[k], SD[k + 1]
         u = (sd1 - sd0) / dt
         tau = t - T[k]
-        return self.S[k] + sd0 * tau + 0.5 * u * tau * tau, sd0 + u * tau, u
+        return S[k] + sd0 * tau + 0.5 * u * tau * tau, sd0 + u * tau, u
 
     def states(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(s, ṡ) at many times (vectorised)."""
@@ -73,8 +112,8 @@ class Profile:
         if len(t) == 0:
             return np.zeros(0), np.zeros(0)
         # only the breakpoints around the times asked (the profile holds the whole run)
-        a = max(bisect.bisect_right(self.T, float(t.min())) - 1, 0)
-        b = bisect.bisect_right(self.T, float(t.max())) + 1
+        a = max(bisect_right(self.T, float(t.min())) - 1, 0)
+        b = bisect_right(self.T, float(t.max())) + 1
         T, S, SD = np.asarray(self.T[a:b]), np.asarray(self.S[a:b]), np.asarray(self.SD[a:b])
         k = np.clip(np.searchsorted(T, t, side="right") - 1, 0, len(T) - 1)
         last = k >= len(T) - 1
@@ -95,7 +134,7 @@ class Profile:
         if t >= self.T[-1]:
             return
         s, sd, _ = self.state(t)
-        k = bisect.bisect_right(self.T, t)
+        k = bisect_right(self.T, t)
         del self.T[k:]
         del self.S[k:]
         del self.SD[k:]
@@ -106,6 +145,8 @@ class Profile:
 
     def append(self, t0: float, s: np.ndarray, sd: np.ndarray) -> None:
         """Add a motion starting at t0 from (s[0], sd[0]) (the current end of the profile)."""
+        if self.T.__class__ is History:  # refused before any of the three grows (history.DISK_LIMIT)
+            self.T.reserve(len(s) + 1, 3)
         if t0 > self.T[-1]:
             self.T.append(t0)
             self.S.append(self.S[-1])
@@ -117,15 +158,15 @@ class Profile:
             dt = np.where(ds > 0, 2.0 * ds / np.maximum(v, 1e-300), 0.0)
         times = t + np.cumsum(dt)
         keep = ~(ds <= 0.0)  # (as a loop skipping ds <= 0 would: a NaN kept)
-        self.T.frombytes(np.ascontiguousarray(times[keep], dtype=float).tobytes())
-        self.S.frombytes(np.ascontiguousarray(np.asarray(s, dtype=float)[1:][keep]).tobytes())
-        self.SD.frombytes(np.ascontiguousarray(np.asarray(sd, dtype=float)[1:][keep]).tobytes())
+        self.T.extend(np.asarray(times[keep], dtype=float))
+        self.S.extend(np.asarray(s, dtype=float)[1:][keep])
+        self.SD.extend(np.asarray(sd, dtype=float)[1:][keep])
 
     def speed_at(self, s: float, until: float) -> float | None:
         """ṡ where the profile passed position s on its way to position `until` (the last time),
         None when it stood still in between or never got there."""
         S, SD = self.S, self.SD
-        k = bisect.bisect_right(S, s) - 1
+        k = bisect_right(S, s) - 1
         if k < 0 or k >= len(S) - 1:
             return None
         j = k + 1
@@ -140,30 +181,15 @@ class Profile:
     def time_at(self, s_target: float) -> float | None:
         """The first time at which s reaches s_target; None when the profile never gets there."""
         S = self.S
-        k = bisect.bisect_left(S, s_target - 1e-12 * max(1.0, abs(s_target)))  # s grows over a run
+        k = bisect_left(S, s_target - 1e-12 * max(1.0, abs(s_target)))  # s grows over a run
         if k >= len(S):
             return None
         if k == 0:
             return self.T[0]
-        if abs(S[k] - s_target) <= 1e-9 * max(1.0, abs(s_target)):
-            return self.T[k]  # a breakpoint (the end of a motion): exact
-        return self._solve(k - 1, s_target)
-
-    def _solve(self, k: int, s_target: float) -> float:
-        """Time within interval k (T[k]..T[k+1]) where s = s_target."""
-        T, S, SD = self.T, self.S, self.SD
-        dt = T[k + 1] - T[k]
-        ds = s_target - S[k]
-        if ds <= 0.0 or dt <= 0.0:
-            return T[k] if ds <= 0.0 else T[k + 1]
-        sd0 = SD[k]
-        u = (SD[k + 1] - sd0) / dt
-        if abs(u) < 1e-15:
-            tau = ds / sd0 if sd0 > 0 else dt
-        else:
-            disc = sd0 * sd0 + 2.0 * u * ds
-            tau = (-sd0 + math.sqrt(max(disc, 0.0))) / u
-        return T[k] + min(max(tau, 0.0), dt)
+        T, S, SD, j = self._cells(k - 1)
+        if abs(S[j + 1] - s_target) <= 1e-9 * max(1.0, abs(s_target)):
+            return T[j + 1]  # a breakpoint (the end of a motion): exact
+        return _solve(T, S, SD, j, s_target)
 
     def final_decel_start(self) -> int:
         """Index of the breakpoint where the last run of decreasing speed begins (the braking to
@@ -180,17 +206,50 @@ class Profile:
         _, sd, _ = self.state(t)
         if sd > 1e-12:
             return None
-        k = min(bisect.bisect_right(self.T, t) - 1, len(self.T) - 1)
+        k = min(bisect_right(self.T, t) - 1, len(self.T) - 1)
         k = max(k, 0)
         while k > 0 and self.SD[k - 1] <= 1e-12:
             k -= 1
         return -math.inf if k == 0 else self.T[k]
 
 
+def _solve(T, S, SD, k: int, s_target: float) -> float:
+    """Time within interval k (T[k]..T[k+1]) where s = s_target."""
+    dt = T[k + 1] - T[k]
+    ds = s_target - S[k]
+    if ds <= 0.0 or dt <= 0.0:
+        return T[k] if ds <= 0.0 else T[k + 1]
+    sd0 = SD[k]
+    u = (SD[k + 1] - sd0) / dt
+    if abs(u) < 1e-15:
+        tau = ds / sd0 if sd0 > 0 else dt
+    else:
+        disc = sd0 * sd0 + 2.0 * u * ds
+        tau = (-sd0 + math.sqrt(max(disc, 0.0))) / u
+    return T[k] + min(max(tau, 0.0), dt)
+
+
+def bisect_right(a, x: float, lo: int = 0, hi: int | None = None) -> int:
+    """bisect.bisect_right(a, x, lo, hi) of a profile's T or S: a History's reads one chunk (the
+    module's would read one value per step through Python, most of them in the file)."""
+    if a.__class__ is History:
+        return a.bisect_right(x, lo, hi)
+    return bisect.bisect_right(a, x, lo, len(a) if hi is None else hi)
+
+
+def bisect_left(a, x: float, lo: int = 0, hi: int | None = None) -> int:
+    """bisect.bisect_left(a, x, lo, hi) of a profile's T or S (`bisect_right`)."""
+    if a.__class__ is History:
+        return a.bisect_left(x, lo, hi)
+    return bisect.bisect_left(a, x, lo, len(a) if hi is None else hi)
+
+
 def window(values, lo: int, hi: int) -> np.ndarray:
-    """values[lo:hi] of a profile's breakpoints as a numpy array: a view of an array('d') (no copy;
-    the caller drops it before the profile may grow: an exported buffer cannot resize), a copy of
+    """values[lo:hi] of a profile's breakpoints as a numpy array: a view of an array('d') or of
+    one chunk of a History (no copy; the caller drops it before the profile may be cut), a copy of
     anything else."""
+    if values.__class__ is History:
+        return values.window(lo, hi)
     if isinstance(values, array):
         hi = min(hi, len(values))
         return np.frombuffer(values, dtype=float, count=max(hi - lo, 0), offset=8 * lo)

@@ -25,10 +25,11 @@ from then on.
 
 from __future__ import annotations
 
-import bisect
+
 from typing import Any
 
 from ..motion.motion_records import RECORD_BLOCK, MotionRecord, RecordMaker
+from ..motion import trajectory
 
 RELEASE_AT = 256  # commands taken before the history is trimmed (a trim moves what is left)
 
@@ -77,7 +78,7 @@ class LiveRecord:
                 place = command.placement
                 if place.s_begin is not None:
                     s = max(place.s_begin, place.s_end)
-                    k = bisect.bisect_right(S, s + 1e-9 * max(1.0, abs(s)))
+                    k = trajectory.bisect_right(S, s + 1e-9 * max(1.0, abs(s)))
                     if k >= len(S):
                         break
                     if T[k] > final:

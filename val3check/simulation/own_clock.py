@@ -35,7 +35,7 @@ import numpy as np
 
 from ..interpretation.clock import TICK_US
 from ..motion.paths import Path
-from ..motion.trajectory import Profile, Trajectory, window
+from ..motion.trajectory import Profile, Trajectory, bisect_left, bisect_right, window
 
 TICK = TICK_US / 1_000_000
 Q_T = 1e-9  # s: the profile's times within the motion
@@ -126,8 +126,8 @@ def _block(traj: Trajectory, windows: list[tuple[float, float]]) -> Iterator[Own
     # only the breakpoints around the block's motions, from a to b (the profile holds the whole run):
     # those before a are at or before every time asked, those from b on after every one
     n = len(prof.T)
-    a = max(bisect.bisect_right(prof.T, float(min(starts.min(), ends.min()))) - 1, 0)
-    b = min(bisect.bisect_right(prof.T, float(max(starts.max(), ends.max()))) + 1, n)
+    a = max(bisect_right(prof.T, float(min(starts.min(), ends.min()))) - 1, 0)
+    b = min(bisect_right(prof.T, float(max(starts.max(), ends.max()))) + 1, n)
     a = min(a, max(b - 2, 0))  # at least two of them
     b = max(b, min(a + 2, n))
     T, S, SD = window(prof.T, a, b), window(prof.S, a, b), window(prof.SD, a, b)
@@ -200,8 +200,8 @@ def _keyed(traj: Trajectory, start: float, end: float) -> Own:
     s1, sd1, _ = prof.state(end)
     i0, _ = path.locate(s0)
     i1, _ = path.locate(s1)
-    lo = bisect.bisect_right(prof.T, start)  # the profile holds the whole run: no array of it
-    hi = bisect.bisect_left(prof.T, end, lo)
+    lo = bisect_right(prof.T, start)  # the profile holds the whole run: no array of it
+    hi = bisect_left(prof.T, end, lo)
     # the three rows at once, filled from views of the profile, each shifted and rounded as it was
     # alone (the same operations, element by element: x - 0.0 is x, so the speeds are not shifted)
     rows = np.empty((3, hi - lo + 2))
