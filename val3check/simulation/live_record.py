@@ -25,11 +25,10 @@ from then on.
 
 from __future__ import annotations
 
-
 from typing import Any
 
-from ..motion.motion_records import RECORD_BLOCK, MotionRecord, RecordMaker
 from ..motion import trajectory
+from ..motion.motion_records import RECORD_BLOCK, MotionRecord, RecordMaker
 
 RELEASE_AT = 256  # commands taken before the history is trimmed (a trim moves what is left)
 
