@@ -250,3 +250,24 @@ def test_a_profile_refused_by_the_disk_bound_keeps_its_three_sequences_alike(tin
         for k in range(20):
             p.append(p.t_end, np.array([p.s_end, p.s_end + 1.0, p.s_end + 2.0]), np.array([0.0, 1.0, 0.0]))
     assert len(p.T) == len(p.S) == len(p.SD) > 1
+
+
+def test_a_run_near_the_disk_bound_ends_with_r006_not_a_traceback(monkeypatch, capsys, tmp_path):
+    """A run whose profile would fill its temporary file ends between two lines with R006 (the
+    budget check asks `history.over`), its report written; never `HistoryFull` inside a line (that
+    would be the application's runtime error 40)."""
+    import json
+
+    from val3check.cli import main
+
+    root = Path(__file__).resolve().parents[2]
+    monkeypatch.chdir(root)
+    monkeypatch.setattr(history, "DISK_LIMIT", history.disk_bytes() + (1 << 20))  # ~10 minutes of the cell
+    out = tmp_path / "r.json"
+    main(["sim", "fixtures/valid/PickPlace", "--robot", "tx2-60", "--scenario", "fixtures/scenarios/pickplace.toml",
+          "--duration", "3600", "--max-wall", "900", "--report", "json", "-o", str(out)])
+    findings = json.loads(out.read_text())["diagnostics"]
+    said = [d for d in findings if d["code"] == "R006"]
+    assert said and "temporary file" in said[0]["message"] and "DISK_LIMIT" in said[0]["message"]
+    assert not any(d["code"] == "R040" or "runtime error 40" in d["message"] for d in findings)
+    assert "Traceback" not in capsys.readouterr().err

@@ -68,6 +68,7 @@ class MemoryBudget:
         self.base = rss_bytes()
         self.clock = clock
         self.pending = 0.0  # bytes allocated since the process size was last read
+        self.also: list = []  # other budgets asked with `over` (callables: why the run must end, or None)
 
     def used(self) -> int:
         return max(0, rss_bytes() - self.base)
@@ -91,4 +92,8 @@ class MemoryBudget:
         used = self.used()
         if used > self.limit:
             return f"the simulation uses {_mb(used)}, more than its memory budget of {_mb(self.limit)} (--max-memory)"
+        for other in self.also:
+            why = other()
+            if why:
+                return why
         return None

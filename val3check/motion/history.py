@@ -37,6 +37,8 @@ CACHE = 32  # chunks read back from the file kept in memory, the most recent (th
 FIRST = 16  # doubles a new tail holds before it grows (doubling, to CHUNK): many profiles are short
 DISK_LIMIT = 2 << 30  # bytes the histories of one process may hold in their files (~2,000 h of the bundled cell)
 
+DISK_MARGIN = 64 << 20  # far more than a run writes between two budget checks (256 cycles, ~1.7 KB a command)
+
 _on_disk = [0]  # bytes the live histories of this process hold in their files
 
 
@@ -47,6 +49,17 @@ class HistoryFull(MemoryError):
 def disk_bytes() -> int:
     """Bytes the histories of this process hold in their temporary files."""
     return _on_disk[0]
+
+
+def over() -> str | None:
+    """Why the run must end, when the files come near DISK_LIMIT: asked with the memory budget
+    (the scheduler, every 256 cycles), so the run ends with R006 between two lines rather than
+    with `HistoryFull` inside one (a line's MemoryError is the application's runtime error 40)."""
+    near = DISK_LIMIT - min(DISK_MARGIN, DISK_LIMIT // 4)
+    if _on_disk[0] > near:
+        return (f"the run's motion history holds {_on_disk[0] / (1 << 20):,.0f} MB in its temporary file, near its bound"
+                f" of {DISK_LIMIT / (1 << 20):,.0f} MB (motion/history.py DISK_LIMIT): shorten --duration")
+    return None
 
 
 class History:

@@ -30,6 +30,7 @@ from ..interpretation.registry import Registry
 from ..interpretation.scheduler import EndRun
 from ..lengths import INCH_MM
 from ..loading.model import Application, Workspace
+from ..motion import history
 from ..rules import codes
 from . import ch09_latch, ch10_motion, ch11_absolute, ch11_alter, ch11_compliance, ch11_continuous, ch11_licences
 from .budget import RUN_SHARE, RunBudget
@@ -106,6 +107,7 @@ def build_machine(ws: Workspace, app: Application, options: SimOptions, *, regis
     if hasattr(arm, "bind"):
         arm.bind(machine.controller)  # its power and monitor speed (chapter 8)
     machine.add_subsystem(arm)  # after the cell: inputs are refreshed before the arm moves
+    machine.cell.budget.also.append(history.over)  # the profile's temporary file (motion/history.py)
     if options.progress is not None:
         report = options.progress
 
