@@ -35,6 +35,18 @@ def tick_times(t0: float, t1: float, dt: float = TICK) -> np.ndarray:
 
 
 
+def _between(T, S, SD, k: int, t: float) -> tuple[float, float, float]:
+    """(s, ṡ, s̈) at time t between breakpoints k and k + 1 of the sequences T, S, SD (constant
+    path acceleration; a zero-length interval is the state after it)."""
+    dt = T[k + 1] - T[k]
+    if dt <= 0.0:
+        return S[k + 1], SD[k + 1], 0.0
+    sd0, sd1 = SD[k], SD[k + 1]
+    u = (sd1 - sd0) / dt
+    tau = t - T[k]
+    return S[k] + sd0 * tau + 0.5 * u * tau * tau, sd0 + u * tau, u
+
+
 class Profile:
     """s(t) as breakpoints; before the first breakpoint the arm rests at s0."""
 
@@ -80,13 +92,7 @@ class Profile:
             S, SD = self.S.tail, self.SD.tail
             if j >= n - 1:
                 return S[n - 1], 0.0, 0.0
-            dt = tail[j + 1] - tail[j]
-            if dt <= 0.0:
-                return S[j + 1], SD[j + 1], 0.0
-            sd0, sd1 = SD[j], SD[j + 1]
-            u = (sd1 - sd0) / dt
-            tau = t - tail[j]
-            return S[j] + sd0 * tau + 0.5 * u * tau * tau, sd0 + u * tau, u
+            return _between(tail, S, SD, j, t)
         return self._state(t)
 
     def _state(self, t: float) -> tuple[float, float, float]:
@@ -97,14 +103,7 @@ class Profile:
         k = bisect_right(T, t) - 1
         if k >= len(T) - 1:
             return self.S[-1], 0.0, 0.0
-        T, S, SD, k = self._cells(k)
-        dt = T[k + 1] - T[k]
-        if dt <= 0.0:
-            return S[k + 1], SD[k + 1], 0.0
-        sd0, sd1 = SD[k], SD[k + 1]
-        u = (sd1 - sd0) / dt
-        tau = t - T[k]
-        return S[k] + sd0 * tau + 0.5 * u * tau * tau, sd0 + u * tau, u
+        return _between(*self._cells(k), t)
 
     def states(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(s, ṡ) at many times (vectorised)."""
