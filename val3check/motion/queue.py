@@ -295,18 +295,21 @@ class MotionQueue:
         """The earliest time after `now` at which something a task can observe changes: a command
         completes (a queue place frees, isEmpty, waitEndMove), the arm comes to rest, or it has
         been at rest 50 ms (isSettled). None when nothing will change."""
-        self.planner.flush()
-        cands = []
-        t = self._first_done_time()
-        if t is not None and t > now:
-            cands.append(t)
-        te = self.profile.t_end
-        if te > now:
-            cands.append(te)
-        if te > 0 and te + SETTLE_S > now:
-            cands.append(te + SETTLE_S)
-        cands = [c for c in cands if c > now + 1e-12]
-        return min(cands) if cands else None
+        planner = self.planner
+        if planner.due is not None:
+            planner.flush()
+        after = now + 1e-12  # (asked every scheduler cycle: no lists, the flush once)
+        best = None
+        if self.pending:
+            t = self._done_time(self.pending[0])
+            if t is not None and t > after:
+                best = t
+        te = planner.profile.t_end
+        if te > after and (best is None or te < best):
+            best = te
+        if te > 0 and te + SETTLE_S > after and (best is None or te + SETTLE_S < best):
+            best = te + SETTLE_S
+        return best
 
     def next_time(self, now_us: int) -> int | None:
         """next_event in integer microseconds (the scheduler's Subsystem protocol)."""

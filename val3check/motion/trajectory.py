@@ -144,32 +144,48 @@ class Profile:
 
     def append(self, t0: float, s: np.ndarray, sd: np.ndarray) -> None:
         """Add a motion starting at t0 from (s[0], sd[0]) (the current end of the profile)."""
-        if self.T.__class__ is History:  # refused before any of the three grows (history.DISK_LIMIT)
-            self.T.reserve(len(s) + 1, 3)
-        if t0 > self.T[-1]:
-            self.T.append(t0)
+        T = self.T
+        if T.__class__ is History:  # refused before any of the three grows (history.DISK_LIMIT)
+            T.reserve(len(s) + 1, 3)
+        if t0 > T[-1]:
+            T.append(t0)
             self.S.append(self.S[-1])
             self.SD.append(0.0)
-        t = self.T[-1]
-        ds = np.diff(s)
+        t = T[-1]
+        s = np.asarray(s, dtype=float)
+        sd = np.asarray(sd, dtype=float)
+        ds = s[1:] - s[:-1]
         v = sd[:-1] + sd[1:]
+        if len(ds) and ds.min() > 0.0:
+            # every interval moves (the usual case): the general formula below, without its masks
+            times = t + np.cumsum(2.0 * ds / np.maximum(v, 1e-300))
+            T.extend(times)
+            self.S.extend(s[1:])
+            self.SD.extend(sd[1:])
+            return
         with np.errstate(divide="ignore", invalid="ignore"):
             dt = np.where(ds > 0, 2.0 * ds / np.maximum(v, 1e-300), 0.0)
         times = t + np.cumsum(dt)
         keep = ~(ds <= 0.0)  # (as a loop skipping ds <= 0 would: a NaN kept)
-        self.T.extend(np.asarray(times[keep], dtype=float))
-        self.S.extend(np.asarray(s, dtype=float)[1:][keep])
-        self.SD.extend(np.asarray(sd, dtype=float)[1:][keep])
+        T.extend(times[keep])
+        self.S.extend(s[1:][keep])
+        self.SD.extend(sd[1:][keep])
 
     def speed_at(self, s: float, until: float) -> float | None:
         """ṡ where the profile passed position s on its way to position `until` (the last time),
         None when it stood still in between or never got there."""
         S, SD = self.S, self.SD
-        k = bisect_right(S, s) - 1
-        if k < 0 or k >= len(S) - 1:
+        if S.__class__ is History and S.tail_len > 1 and S.tail[0] <= s:
+            # in the chunk being written (the plan ahead): its arrays read in place, as `state`
+            S, SD, n = S.tail, SD.tail, S.tail_len
+            k = bisect.bisect_right(S, s, 0, n) - 1
+        else:
+            n = len(S)
+            k = bisect_right(S, s) - 1
+        if k < 0 or k >= n - 1:
             return None
         j = k + 1
-        while j < len(S) and S[j] < until:
+        while j < n and S[j] < until:
             if SD[j] <= 0.0:
                 return None
             j += 1
@@ -180,7 +196,18 @@ class Profile:
     def time_at(self, s_target: float) -> float | None:
         """The first time at which s reaches s_target; None when the profile never gets there."""
         S = self.S
-        k = bisect_left(S, s_target - 1e-12 * max(1.0, abs(s_target)))  # s grows over a run
+        x = s_target - 1e-12 * max(1.0, abs(s_target))  # s grows over a run
+        if S.__class__ is History and S.tail_len > 1 and S.tail[0] < x:
+            # the hot case (a command ahead or just done): in the chunk being written, read in place
+            # (as `state`: T and SD chunked as S), the same values as the general path below
+            tail, n = S.tail, S.tail_len
+            j = bisect.bisect_left(tail, x, 0, n)
+            if j >= n:
+                return None
+            if abs(tail[j] - s_target) <= 1e-9 * max(1.0, abs(s_target)):
+                return self.T.tail[j]
+            return _solve(self.T.tail, tail, self.SD.tail, j - 1, s_target)
+        k = bisect_left(S, x)
         if k >= len(S):
             return None
         if k == 0:

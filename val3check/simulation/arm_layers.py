@@ -63,6 +63,8 @@ class Warp:
 
     def queue_time(self, t: float) -> float:
         """The time the motion queue is told at real time t: τ, never less than before."""
+        if len(self.T) == 1 and self.R[0] == 1 and self.TAU[0] == 0.0 and self.max_tau[0] <= t:
+            return t  # the identity, asked several times a cycle (0.0 + 1 * (t - 0.0) is t)
         k = self._piece(t)
         return max(self.max_tau[k], self.TAU[k] + self.R[k] * (t - self.T[k]))
 
