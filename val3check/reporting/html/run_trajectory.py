@@ -110,7 +110,10 @@ def _block(m: Any, tcp: Any, k0: int, k1: int, dt: float):
 
 class _TcpSpeed:
     """`ArmRun.tcp_speed` of the samples of a block, given only the motions whose tool they can use
-    (the tool of the last motion started at or before a sample; before any, the first's)."""
+    (the tool of the last motion started at or before a sample; before any, the first's), and
+    computed once for each distinct (tool, joints, joint velocities): a cyclic cell passes the same
+    rows cycle after cycle (at 1 h, 82,824 moving samples hold 19,922 distinct rows), and a
+    sample's speed is a function of its row and its tool alone, to the bit (tcp_speed)."""
 
     def __init__(self, m: Any) -> None:
         import numpy as np
@@ -120,8 +123,28 @@ class _TcpSpeed:
                      if motion.start is not None and motion.kind != "connection"]
         self.starts = np.array([t for t, _ in self.uses], dtype=float)
         self.window = bool((self.starts[1:] >= self.starts[:-1]).all())  # in order of start: a window
+        # each use's tool as the number of its value (None apart), as tcp_speed tells them apart
+        numbers: dict = {}
+        self.tools = np.array([numbers.setdefault(None if t is None else np.asarray(t, dtype=float).tobytes(),
+                                                  len(numbers)) for _, t in self.uses], dtype=float)
+        self.seen = _Seen()
 
     def __call__(self, times, q, v):
+        import numpy as np
+
+        if not (self.window and self.uses):
+            return self._speed(times, q, v)
+        at = np.maximum(np.searchsorted(self.starts, times, side="right") - 1, 0)
+        rows = np.ascontiguousarray(np.column_stack([self.tools[at], q, v]))
+        known, todo = self.seen.split(rows)
+        out = np.empty(len(times))
+        out[known[0]] = known[1]
+        if len(todo):
+            out[todo] = self._speed(times[todo], q[todo], v[todo])
+        self.seen.keep(rows, out)
+        return out
+
+    def _speed(self, times, q, v):
         import numpy as np
 
         from ...simulation.arm_record import tcp_speed
@@ -133,3 +156,44 @@ class _TcpSpeed:
             uses = uses[a:max(b, a + 1)]
         scene = self.m.scene
         return tcp_speed(scene.kinematics, scene.flange_frame, uses, times, q, v)
+
+
+class _Seen:
+    """The distinct rows (tool, joints, joint velocities) of the last block and their speeds: each
+    row of the next block found among them (compared by their bits) or computed, once for equal
+    rows (the first of them)."""
+
+    def __init__(self) -> None:
+        self.rows = self.speeds = None
+
+    def split(self, rows):
+        """((indices of the rows known, their speeds), indices of the rows to compute)."""
+        import numpy as np
+
+        old = 0 if self.rows is None else len(self.rows)
+        both = rows if not old else np.concatenate([self.rows, rows])
+        _, first, inverse = np.unique(_bits(both), return_index=True, return_inverse=True)
+        self._inverse = inverse = inverse.ravel()[old:]
+        self._source = source = first[inverse] - old  # each row's first equal row: < 0 in the last block
+        here = np.arange(len(rows))
+        known = np.flatnonzero(source < 0)
+        return (known, self.speeds[source[known] + old] if old else np.zeros(0)), np.flatnonzero(source == here)
+
+    def keep(self, rows, out) -> None:
+        """`out` (the speeds, known and computed) given to the rows equal to a computed one; this
+        block's distinct rows kept for the next."""
+        import numpy as np
+
+        later = np.flatnonzero(self._source >= 0)
+        later = later[self._source[later] != later]
+        out[later] = out[self._source[later]]
+        distinct = np.unique(self._inverse, return_index=True)[1]
+        self.rows, self.speeds = rows[distinct], out[distinct]
+
+
+def _bits(rows):
+    """Each row of a float array as one opaque value, equal when the bits are."""
+    import numpy as np
+
+    rows = np.ascontiguousarray(rows)
+    return rows.view(np.dtype((np.void, rows.dtype.itemsize * rows.shape[1]))).ravel()
