@@ -88,7 +88,9 @@ def _motions(report: Any, m: Any, end: float, clearances: dict) -> list[dict]:
             "state": motion.state, "motion_id": motion.id,
         }
         mr = clearances.get(k)  # keyed by the position in m.motions (identifiers repeat, 10.6)
-        c = getattr(mr, "min_clearance", None)
+        # a repeated motion's report is a view shifting its first one's times (collision/results.py):
+        # the first's closest approach read as it is, its time not used here
+        c = getattr(getattr(mr, "own", mr), "min_clearance", None)
         if c is not None:
             entry["min_clearance"] = _r(c.mm, 3)
             pair = (c.body_a, c.body_b)
