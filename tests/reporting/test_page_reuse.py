@@ -60,6 +60,20 @@ def test_the_page_s_tcp_speed_reused_over_many_blocks_is_the_speed_of_each_sampl
         assert sum(computed) <= len(times) // 2
 
 
+def test_rows_whose_hashes_collide_are_each_computed_as_themselves(run, monkeypatch):
+    """Every row given the same hash: the rows are still told apart by their bits, and each speed
+    is the speed of its own row."""
+    result, _ = run
+    m = result.motion
+    times, q, v = m.sample(0.0, m.end_s, 0.004)
+    on = np.flatnonzero((v != 0.0).any(axis=1))[:400]
+    times, q, v = (np.repeat(a[on], 2, axis=0) for a in (times, q, v))
+    monkeypatch.setattr(run_trajectory, "_hash", lambda bits: np.zeros(len(bits), dtype=np.uint64))
+    tcp = run_trajectory._TcpSpeed(m)
+    got = np.concatenate([tcp(times[lo:lo + 50], q[lo:lo + 50], v[lo:lo + 50]) for lo in range(0, len(times), 50)])
+    assert got.tobytes() == m.tcp_speed(times, q, v).tobytes()
+
+
 def test_each_input_of_a_reused_tcp_speed_row_changed_is_computed_again(run):
     """The key is the tool, the joints and the joint velocities: a row equal in all three is reused;
     one differing in any of them (by one bit) is computed, and gives the fresh speed."""

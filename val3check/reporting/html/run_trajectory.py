@@ -160,8 +160,9 @@ class _TcpSpeed:
 
 class _Seen:
     """The distinct rows (tool, joints, joint velocities) of the last block and their speeds: each
-    row of the next block found among them (compared by their bits) or computed, once for equal
-    rows (the first of them)."""
+    row of the next block found among them or computed, once for equal rows (the first of them).
+    Rows are grouped by a hash of their bits, then each compared bit for bit with its group's
+    first: a row that differs (a hash collision) is computed itself."""
 
     def __init__(self) -> None:
         self.rows = self.speeds = None
@@ -172,16 +173,21 @@ class _Seen:
 
         old = 0 if self.rows is None else len(self.rows)
         both = rows if not old else np.concatenate([self.rows, rows])
-        _, first, inverse = np.unique(_bits(both), return_index=True, return_inverse=True)
+        bits = both.view(np.uint64)
+        _, first, inverse = np.unique(_hash(bits), return_index=True, return_inverse=True)
         self._inverse = inverse = inverse.ravel()[old:]
-        self._source = source = first[inverse] - old  # each row's first equal row: < 0 in the last block
-        here = np.arange(len(rows))
+        source = first[inverse]  # each row's first row of its hash, in `both`
+        here = np.arange(old, old + len(rows))
+        differs = np.flatnonzero((bits[source] != bits[old:]).any(axis=1))
+        source[differs] = here[differs]
+        self._source = source = source - old  # < 0: a row of the last block
         known = np.flatnonzero(source < 0)
-        return (known, self.speeds[source[known] + old] if old else np.zeros(0)), np.flatnonzero(source == here)
+        return (known, self.speeds[source[known] + old] if old else np.zeros(0)), \
+            np.flatnonzero(source == here - old)
 
     def keep(self, rows, out) -> None:
         """`out` (the speeds, known and computed) given to the rows equal to a computed one; this
-        block's distinct rows kept for the next."""
+        block's first row of each hash kept for the next (with its own speed)."""
         import numpy as np
 
         later = np.flatnonzero(self._source >= 0)
@@ -191,9 +197,12 @@ class _Seen:
         self.rows, self.speeds = rows[distinct], out[distinct]
 
 
-def _bits(rows):
-    """Each row of a float array as one opaque value, equal when the bits are."""
+def _hash(bits):
+    """A 64-bit hash of each row of 64-bit words (wrapping arithmetic, column by column)."""
     import numpy as np
 
-    rows = np.ascontiguousarray(rows)
-    return rows.view(np.dtype((np.void, rows.dtype.itemsize * rows.shape[1]))).ravel()
+    h = np.zeros(len(bits), dtype=np.uint64)
+    for k in range(bits.shape[1]):
+        h *= np.uint64(0x9E3779B97F4A7C15)
+        h ^= bits[:, k]
+    return h
