@@ -84,6 +84,8 @@ def _fresh(run) -> str:
     def walk(v):
         if isinstance(v, sim_json.Rows):
             return _old_rows(v.a, v.digits)
+        if isinstance(v, sim_json.Lazy):
+            return [walk(x) for x in v.make()]
         if isinstance(v, dict):
             return {k: walk(x) for k, x in v.items()}
         if isinstance(v, list):

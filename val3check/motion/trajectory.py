@@ -367,6 +367,11 @@ class Trajectory:
         interval, (first tick index k, positions (N, axes), velocities (N, axes)) at the ticks
         k·dt ... from the last tick at or before the motion starts to the first at or after it
         ends (both at rest). Between segments the arm stands where the previous one ended."""
+        return list(self.iter_segments(t_end, dt))
+
+    def iter_segments(self, t_end: float, dt: float = TICK):
+        """`segments` one group of samples at a time, made as they are asked (a report written as
+        it goes holds one group, not the run's)."""
         ticks: list[list[int]] = []  # [first, last] tick of each segment
         last = -1
         for a, b in self.moving(t_end):
@@ -379,7 +384,6 @@ class Trajectory:
             else:
                 ticks.append([k0, k1])
             last = k1
-        out = []
         i = 0
         while i < len(ticks):
             # neighbouring segments sampled in one call (a tick's time is k·dt whatever the call,
@@ -390,6 +394,6 @@ class Trajectory:
                 j += 1
             g0 = ticks[i][0]
             _, q, v = self.sample(g0 * dt, ticks[j - 1][1] * dt, dt)
-            out.extend((k0, q[k0 - g0:k1 - g0 + 1].copy(), v[k0 - g0:k1 - g0 + 1].copy()) for k0, k1 in ticks[i:j])
+            for k0, k1 in ticks[i:j]:
+                yield k0, q[k0 - g0:k1 - g0 + 1].copy(), v[k0 - g0:k1 - g0 + 1].copy()
             i = j
-        return out

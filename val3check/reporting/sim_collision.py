@@ -4,8 +4,9 @@ simulation.collision_run.CollisionRun or None."""
 
 from __future__ import annotations
 
+import bisect
 import math
-from typing import Any, NamedTuple
+from typing import Any
 
 from .thinning import MOTION_ROWS
 
@@ -94,30 +95,75 @@ def text(run: Any) -> list[str]:
     return out
 
 
-class Samples(NamedTuple):
-    """Per-sample values written on one line by sim_json: a float array already rounded as `_num`
-    rounds, NaN where `_num` gives null."""
+class Samples:
+    """Per-sample values written on one line by sim_json: `a`, a float array rounded as `_num`
+    rounds, NaN where `_num` gives null; made when read, a group of entries at a time (_Rounded)."""
 
-    a: Any
+    __slots__ = ("group", "index", "key")
+
+    def __init__(self, group: "_Rounded", index: int, key: str) -> None:
+        self.group, self.index, self.key = group, index, key
+
+    @property
+    def a(self) -> Any:
+        return self.group.part(self.index, self.key)
+
+
+GROUP_SAMPLES = 65_536  # per-sample clearances rounded at once (numpy): a group of entries, not the run's
+
+
+class _Rounded:
+    """The rounded `times` and `mm` of the reports, a group of consecutive reports (up to
+    GROUP_SAMPLES samples) rounded at once when one of them is read, only the last group held:
+    the report is written in order, so each group is rounded once."""
+
+    def __init__(self, reports: list) -> None:
+        self.reports = reports
+        self.first = [0]  # each group's first report
+        total = 0
+        for k, r in enumerate(reports):
+            n = len(r.times)
+            if k > self.first[-1] and total + n > GROUP_SAMPLES:
+                self.first.append(k)
+                total = 0
+            total += n
+        self.first.append(len(reports))
+        self.held: tuple[int, dict] | None = None
+
+    def part(self, index: int, key: str) -> Any:
+        g = bisect.bisect_right(self.first, index) - 1
+        if self.held is None or self.held[0] != g:
+            self.held = (g, self._round(g))
+        return self.held[1][index, key]
+
+    def _round(self, g: int) -> dict:
+        import numpy as np
+
+        from .html.series import rounded
+
+        members = range(self.first[g], self.first[g + 1])
+        reports = [self.reports[k] for k in members]
+        cuts = np.cumsum([len(r.times) for r in reports])[:-1]
+        out = {}
+        for key, name, digits in (("times", "times", 6), ("mm", "clearance", 3)):
+            a = np.concatenate([np.asarray(getattr(r, name), dtype=float) for r in reports])
+            finite = np.isfinite(a)
+            values = rounded(np.where(finite, a, 0.0), digits)
+            values[~finite] = np.nan
+            for k, part in zip(members, np.split(values, cuts)):
+                out[k, key] = part
+        return out
 
 
 def _samples(entries: list[dict], reports: list) -> None:
-    """Each entry's per-sample `clearance` (its report's `times` and `clearance`), rounded for all
-    of them at once (numpy: Python's rounding, html/series.py)."""
-    import numpy as np
-
-    from .html.series import rounded
-
+    """Each entry's per-sample `clearance` (its report's `times` and `clearance`), rounded when
+    written, a group of entries at once (numpy: Python's rounding, html/series.py)."""
     if not entries:
         return
-    cuts = np.cumsum([len(r.times) for r in reports])[:-1]
-    for key, name, digits in (("times", "times", 6), ("mm", "clearance", 3)):
-        a = np.concatenate([np.asarray(getattr(r, name), dtype=float) for r in reports])
-        finite = np.isfinite(a)
-        out = rounded(np.where(finite, a, 0.0), digits)
-        out[~finite] = np.nan
-        for e, part in zip(entries, np.split(out, cuts)):
-            e["clearance"][key] = Samples(part)
+    rounded = _Rounded(reports)
+    for k, e in enumerate(entries):
+        e["clearance"]["times"] = Samples(rounded, k, "times")
+        e["clearance"]["mm"] = Samples(rounded, k, "mm")
 
 
 def _num(x: float | None, digits: int = 3) -> float | None:

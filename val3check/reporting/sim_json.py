@@ -85,6 +85,14 @@ class Rows:
         yield "\n" + "  " * indent + "]"
 
 
+class Lazy:
+    """A list of objects (never numbers: a list written one entry a line) made as it is written:
+    `make()` gives a new iterator over its entries each time the list is written."""
+
+    def __init__(self, make) -> None:
+        self.make = make
+
+
 def _samples(s: Samples) -> str:
     """A per-sample array (sim_collision.Samples: rounded, NaN for null) on one line."""
     r = s.a.tolist()
@@ -134,13 +142,14 @@ def _motion(run: Any) -> dict | None:
                        "median_range": None if spread is None else [_s(spread[0]), _s(spread[1])]})
     every = tick_multiple(m, JSON_TICKS)
     period = TICK_S * every
-    segments = []
     omitted = left_out(run.result, "the trajectory")
-    for k0, q, v in m.trajectory.segments(m.end_s, period) if omitted is None else ():
-        segments.append({"start": round(k0 * period, 6), "first_tick": k0,
-                         "positions": Rows(q, 4), "velocities": Rows(v, 3)})
+
+    def segments():  # sampled as they are written: the run's segments never held at once
+        for k0, q, v in m.trajectory.iter_segments(m.end_s, period) if omitted is None else ():
+            yield {"start": round(k0 * period, 6), "first_tick": k0, "positions": Rows(q, 4), "velocities": Rows(v, 3)}
+
     trajectory: dict[str, Any] = {"period": round(period, 6), "axes": m.scene.axes,
-                                  "units": list(m.scene.joint_units), "segments": segments}
+                                  "units": list(m.scene.joint_units), "segments": Lazy(segments)}
     if omitted is not None:
         trajectory["omitted"] = omitted
     if every > 1:
@@ -159,12 +168,11 @@ def _motion(run: Any) -> dict | None:
         "acceleration_factors": None if m.acceleration_range is None else list(m.acceleration_range.factors),
         "cycles": cycles,
         "motions": motions,
-        "tool_events": [
+        "tool_events": Lazy(lambda: (
             {"time": _t(e.time_us), "task": e.task, "action": e.action, "tool": e.tool or None,
              "gripper": e.gripper or None, "tcp_in_flange": _pose(e.tcp_in_flange),
              **{k: v for k, v in (_pos(run.display(e.position)) or {}).items() if k != "program"}}
-            for e in m.tool_events
-        ],
+            for e in m.tool_events)),
         "trajectory": trajectory,
     }
     if len(m.motions) > MOTION_ROWS:
@@ -223,15 +231,14 @@ def report(run: Any) -> dict[str, Any]:
         "diagnostics": [_diagnostic(run, d) for d in run.diagnostics],
         "motion": _motion(run),
         "collision": sim_collision.section(run),
-        "transcript": [
+        # the long lists made as they are written (an 8-hour run's I/O log is some 60,000 entries)
+        "transcript": Lazy(lambda: (
             {"time": _t(e.time_us), "task": e.task, "kind": e.kind, "text": e.text, "screen": e.screen}
-            for e in r.transcript
-        ],
-        "io_log": [
+            for e in r.transcript)),
+        "io_log": Lazy(lambda: (
             {"time": _t(e.time_us), "kind": e.kind, "link": e.link, "names": run.link_names.get((e.kind, e.link), []),
              "value": e.value if not isinstance(e.value, float) or e.value == e.value else None, "source": e.source}
-            for e in r.io_log
-        ],
+            for e in r.io_log)),
         "screen": r.screen,
     }
 
@@ -279,7 +286,7 @@ def _scalar(v: Any) -> str:
     return json.dumps(v, ensure_ascii=True)
 
 
-_NESTED = (dict, list, Rows)  # what `dumps` writes itself (anything else: `_scalar`)
+_NESTED = (dict, list, Rows, Lazy)  # what `dumps` writes itself (anything else: `_scalar`)
 _ascii = json.encoder.encode_basestring_ascii  # json.dumps of a str, without its dispatch
 _KEYS: dict[str, str] = {}  # each key as JSON text, once
 
@@ -324,15 +331,18 @@ def chunks(obj: Any, indent: int = 0):
                 yield head + _scalar(v)
         yield "\n" + "  " * indent + "}"
         return
-    if type(obj) is list and obj and not _flat(obj):
-        yield "["
-        for i, x in enumerate(obj):
+    if type(obj) is Lazy or type(obj) is list and obj and not _flat(obj):
+        opened = False
+        for i, x in enumerate(obj.make() if type(obj) is Lazy else obj):
+            if not opened:
+                yield "["
+                opened = True
             if _rows_in(x) or type(x) is list:
                 yield f"{',' if i else ''}\n{inner}"
                 yield from chunks(x, indent + 1)
             else:
                 yield f"{',' if i else ''}\n{inner}{dumps(x, indent + 1)}"
-        yield "\n" + "  " * indent + "]"
+        yield "\n" + "  " * indent + "]" if opened else "[]"
         return
     yield dumps(obj, indent)
 
@@ -341,6 +351,8 @@ def dumps(obj: Any, indent: int = 0) -> str:
     """Sorted keys, 2-space indent, ASCII; a list of numbers on one line."""
     if type(obj) is Rows:
         return "".join(obj.chunks(indent))
+    if type(obj) is Lazy:
+        return "".join(chunks(obj, indent))
     if isinstance(obj, dict):
         if not obj:
             return "{}"

@@ -88,7 +88,9 @@ def _motions(report: Any, m: Any, end: float, clearances: dict) -> list[dict]:
             "state": motion.state, "motion_id": motion.id,
         }
         mr = clearances.get(k)  # keyed by the position in m.motions (identifiers repeat, 10.6)
-        c = getattr(mr, "min_clearance", None)
+        # a repeated motion's report is a view shifting its first one's times (collision/results.py):
+        # the first's closest approach read as it is, its time not used here
+        c = getattr(getattr(mr, "own", mr), "min_clearance", None)
         if c is not None:
             entry["min_clearance"] = _r(c.mm, 3)
             pair = (c.body_a, c.body_b)
@@ -245,7 +247,17 @@ def _arm_timeline(moving: list, end: float, limits: list[str]) -> list[dict]:
     spans on a long run (thinning.py, said), the others counted, never made."""
     spans, note = arm_spans(_arm_spans(moving, end), lambda s: _r(s[0]))
     _note(note, limits)
-    return [{"start": _r(a), "end": _r(b), "state": state} for a, b, state in spans]
+    ends = _bulk([x for a, b, _ in spans for x in (a, b)])
+    return [{"start": ends[2 * k], "end": ends[2 * k + 1], "state": state} for k, (_, _, state) in enumerate(spans)]
+
+
+def _bulk(values: list) -> list:
+    """[_r(x) for x in values] in bulk (series.rounded)."""
+    if not values:
+        return []
+    import numpy as np
+
+    return rounded(np.array(values, dtype=float), 6).tolist()
 
 
 def _arm_spans(moving: list, end: float):
@@ -495,10 +507,10 @@ def model_from_run(report: Any, *, fail_on: str = "error", cell: Any = None, cle
         "trajectory": trajectory,
         "tasks": tasks,
         "arm_timeline": arm_timeline,
-        "io": [{"time": _r(e.time_us / 1e6), "kind": e.kind, "link": e.link,
+        "io": [{"time": t, "kind": e.kind, "link": e.link,
                 "names": report.link_names.get((e.kind, e.link), []),
                 "value": e.value if not isinstance(e.value, float) or e.value == e.value else None,
-                "source": e.source} for e in io],
+                "source": e.source} for e, t in zip(io, _bulk([e.time_us / 1e6 for e in io]))],
         "transcript": [{"time": _r(e.time_us / 1e6), "task": e.task, "kind": e.kind, "text": e.text,
                         "screen": e.screen} for e in result.transcript],
         "screen": result.screen,

@@ -168,6 +168,7 @@ def _io(events: list[dict]) -> list[dict]:
 
 def _states(rows: list[dict], states: tuple[str, ...]) -> tuple[list[dict], list[str]]:
     details: dict[str, int] = {}
+    number = {state: k for k, state in reversed(list(enumerate(states)))}  # as states.index, without its calls
     out = []
     for r in rows:
         segs = []
@@ -175,7 +176,8 @@ def _states(rows: list[dict], states: tuple[str, ...]) -> tuple[list[dict], list
             d = s.get("detail") or ""
             if d not in details:
                 details[d] = len(details)
-            segs.append([s["start"], s["end"], states.index(s["state"]), details[d]])
+            state = s["state"]
+            segs.append([s["start"], s["end"], number[state] if state in number else states.index(state), details[d]])
         out.append({"name": r["name"], "segs": segs})
     return out, list(details)
 

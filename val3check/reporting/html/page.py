@@ -213,21 +213,39 @@ ROWS = 500  # table rows written as one piece
 
 
 def _motion_row(mo: dict) -> str:
-    speed = []
-    if mo.get("vel") is not None:
-        speed.append(f"vel {mo['vel']:g} %")
-    if mo.get("tvel") is not None:
-        speed.append(f"tvel {mo['tvel']:g} mm/s")
-    clearance = _num(mo.get("min_clearance"))
-    if mo.get("clearance_to") and mo.get("min_clearance") is not None:
+    get = mo.get
+    clearance = _num(get("min_clearance"))
+    if get("clearance_to") and get("min_clearance") is not None:
         clearance += f' <span class="muted">{_e(mo["clearance_to"])}</span>'
-    return (f'<tr><td class="n">{_time_button(mo["start"], mo["end"], str(mo["id"]), True)}</td>'
-            f'<td class="nw">{_source(mo)}</td><td>{_e(mo.get("task") or "")}</td>'
-            f'<td><code>{_e(mo["kind"])}</code></td><td>{_e(mo.get("target") or "")}</td>'
-            f'<td class="n">{mo["start"]:.3f}</td><td class="n">{mo["end"]:.3f}</td>'
-            f'<td class="n">{(mo["end"] - mo["start"]) if mo.get("duration") is None else mo["duration"]:.3f}</td>'
-            f'<td>{_e(mo.get("dominant_limit") or "–")}</td><td class="nw">{_e(", ".join(speed))}</td>'
+    start, end, duration = mo["start"], mo["end"], get("duration")
+    return (f'<tr><td class="n">{_time_button(start, end, str(mo["id"]), True)}</td>'
+            f'{_where_cells(get("path"), get("line"), get("column"), get("task"), mo["kind"], get("target"))}'
+            f'<td class="n">{start:.3f}</td><td class="n">{end:.3f}</td>'
+            f'<td class="n">{(end - start) if duration is None else duration:.3f}</td>'
+            f'{_limit_cells(get("dominant_limit"), _speed(get("vel"), get("tvel")))}'
             f'<td class="n">{clearance}</td></tr>')
+
+
+@lru_cache(maxsize=4096, typed=True)  # a cyclic cell's rows repeat these: made once each (from their arguments alone)
+def _where_cells(path, line, column, task, kind, target) -> str:
+    """The cells of a motion row from its program:line to its target."""
+    return (f'<td class="nw">{_source({"path": path, "line": line, "column": column})}</td><td>{_e(task or "")}</td>'
+            f'<td><code>{_e(kind)}</code></td><td>{_e(target or "")}</td>')
+
+
+def _speed(vel, tvel) -> str:
+    speed = []
+    if vel is not None:
+        speed.append(f"vel {vel:g} %")
+    if tvel is not None:
+        speed.append(f"tvel {tvel:g} mm/s")
+    return ", ".join(speed)
+
+
+@lru_cache(maxsize=4096, typed=True)
+def _limit_cells(dominant_limit, speed: str) -> str:
+    """The cells of a motion row's dominant limit and speed."""
+    return f'<td>{_e(dominant_limit or "–")}</td><td class="nw">{_e(speed)}</td>'
 
 
 def _source(mo: dict) -> str:
