@@ -425,7 +425,8 @@ class Scheduler:
             task.state = ERROR
             task.error = 61
             self.machine.runtime_error(task, None, 61, f"{RUNTIME_CODES[61]} ({exc.__class__.__name__}: {exc})")
-        ran = quantum - max(task.q, 0)
+        q = task.q
+        ran = quantum - q if q > 0 else quantum
         clock.cycle_lines += ran
         task.lines += ran
         if ran > 0:
