@@ -33,16 +33,19 @@ class Clock:
         running task's turn included)."""
         lines = self.cycle_lines
         if task is not None and task is self.current:
-            lines += self.turn_given - max(task.q, 0)
-        return self.now + min(lines, LINES_PER_CYCLE) * LINE_US
+            q = task.q
+            lines += self.turn_given - q if q > 0 else self.turn_given
+        return self.now + (lines if lines < LINES_PER_CYCLE else LINES_PER_CYCLE) * LINE_US
 
     def wake_time(self, task: Any, seconds: float) -> int:
         """The tick at which a wait of `seconds` started now ends (nearest tick, at least the
         next one: delay(), watch(), 5.10). (`time_of` inlined: every delay() comes here.)"""
         lines = self.cycle_lines
         if task is not None and task is self.current:
-            lines += self.turn_given - max(task.q, 0)
-        target = self.now + min(lines, LINES_PER_CYCLE) * LINE_US + int(round(seconds * 1_000_000))
+            q = task.q
+            lines += self.turn_given - q if q > 0 else self.turn_given
+        target = self.now + (lines if lines < LINES_PER_CYCLE else LINES_PER_CYCLE) * LINE_US + int(round(
+            seconds * 1_000_000))
         tick = (target + TICK_US // 2) // TICK_US
         return max(tick * TICK_US, self.now + TICK_US)
 

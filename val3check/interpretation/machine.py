@@ -18,9 +18,12 @@ from __future__ import annotations
 import os
 import time as _time
 from dataclasses import dataclass
+from sys import _getframe
 from typing import Any, Callable, NamedTuple
 
 from ..diagnostics import Diagnostic
+from ..geometry.frames import root_pose
+from ..geometry.trsf import Trsf
 from ..language.runtime_errors import RUNTIME_CODES, Val3RuntimeError
 from ..lengths import app_mm
 from ..loading.model import Application, Workspace
@@ -35,7 +38,7 @@ from .libraries import autoload_libraries
 from .memory import TypeSpace
 from .memory_budget import MemoryBudget
 from .not_simulated import ARM_LIMIT, SimLimit, arm_message, limit_code
-from .recorder import IOEvent, Recorder, TranscriptEntry
+from .recorder import IOEvent, Recorder, ToolEvent, TranscriptEntry
 from .registry import Registry
 from .scheduler import ERROR, HELD, START_PRIORITY, WAIT, EndRun, Scheduler, Task
 from .system_io import SystemIO
@@ -205,10 +208,6 @@ class Machine:
 
     def tool_action(self, task: Task, action: str, tool: Any, millimeter_unit: bool) -> None:
         """open()/close() of `tool` (9.5.4), recorded with the tool's centre point in the flange."""
-        from ..geometry.frames import root_pose
-        from ..geometry.trsf import Trsf
-        from .recorder import ToolEvent
-
         if len(self.recorder.tool_events) >= self.recorder.max_io_log:
             return
         x, y, z, rx, ry, rz = Trsf.from_pose(root_pose(tool)).as_tuple()
@@ -349,19 +348,18 @@ class Machine:
             code = getattr(g, "gi_code", None)
             frame = getattr(g, "gi_frame", None)
             if code is not None and frame is not None and code.co_filename in compiled:
-                yield compiled[code.co_filename], frame.f_lineno
+                c = compiled[code.co_filename]
+                yield c, c.line_of(frame)
             g = getattr(g, "gi_yieldfrom", None)
 
     def loop_passes(self, task: Task | None = None) -> tuple:
         """The loops the running line (or the suspended `task`) is in, outermost first, across the
         programs of its call stack: (compiled program, compiler.structures.LoopSite, the loop's
         pass counter: a list, new at each entry of the loop, whose [0] is the current pass)."""
-        import sys
-
         frames = []
         if task is None:
             compiled = self.compiled
-            f = sys._getframe(1)
+            f = _getframe(1)
             while f is not None and f.f_code is not _TURN:  # (below a task's turn: the scheduler, no program)
                 c = compiled.get(f.f_code.co_filename)
                 if c is not None:
@@ -372,7 +370,7 @@ class Machine:
             frames = list(self._task_frames(task))
         out = []
         for c, f in frames:
-            sites = c.loops_at(f.f_lineno)
+            sites = c.loops_at(c.line_of(f))
             if sites:
                 local = f.f_locals
                 out.extend((c, site, local[site.var]) for site in sites if site.var in local)
@@ -392,14 +390,12 @@ class Machine:
     def line_running(self) -> tuple[str, int, int, str] | None:
         """The file position of the VAL 3 line being executed now, for an instruction handler
         (the innermost program on the Python stack; `where` only sees suspended tasks)."""
-        import sys
-
         compiled = self.compiled
-        f = sys._getframe(1)
+        f = _getframe(1)
         while f is not None:
             c = compiled.get(f.f_code.co_filename)
             if c is not None:
-                lc = c.pos.get(f.f_lineno)
+                lc = c.pos.get(c.line_of(f))
                 if lc is not None:
                     return (c.path, lc[0], lc[1], c.name)
             f = f.f_back

@@ -365,24 +365,19 @@ class Scheduler:
                 alive.pop(task, None)
         for task in tasks:
             st = task.state
-            key = (st, task.waiting_for)
-            if task not in ran and alive.get(task) == key:
+            wf = task.waiting_for
+            last = alive.get(task)
+            if last is not None and last[0] is st and last[1] == wf and task not in ran:
                 continue
             if note is None:
                 note = self.machine.recorder.task_state
             if task in ran:
                 note(now, task.name, "running", "", task)
-            elif task not in alive:
-                note(now, task.name, "running" if st is READY else task_state_of(st.value, task.waiting_for), "",
-                     task)
-            state = task_state_of(st.value, task.waiting_for)
-            if task.period and state == "running":  # a synchronous task between its periods (5.5)
-                state, detail = "waiting", "period"
-            else:
-                detail = task.waiting_for if state in ("waiting", "blocked") else (st.report_name
-                                                                                    if state == "stopped" else "")
+            elif last is None:
+                note(now, task.name, "running" if st is READY else task_state_of(st.value, wf), "", task)
+            state, detail = _shown(st, wf, task.period != 0)
             note(after, task.name, state, detail, task)
-            alive[task] = key
+            alive[task] = (st, wf)
         if ran:
             ran.clear()
 
@@ -430,7 +425,8 @@ class Scheduler:
             task.state = ERROR
             task.error = 61
             self.machine.runtime_error(task, None, 61, f"{RUNTIME_CODES[61]} ({exc.__class__.__name__}: {exc})")
-        ran = quantum - max(task.q, 0)
+        q = task.q
+        ran = quantum - q if q > 0 else quantum
         clock.cycle_lines += ran
         task.lines += ran
         if ran > 0:
@@ -478,6 +474,14 @@ class Scheduler:
         if tdep:
             times.append(now + TICK_US)
         return min(times) if times else None
+
+
+def _shown(st: TaskState, waiting_for: str, periodic: bool) -> tuple[str, str]:
+    """(timeline state, detail) of a task left in state `st`, from the next cycle on."""
+    state = task_state_of(st.value, waiting_for)
+    if periodic and state == "running":  # a synchronous task between its periods (5.5)
+        return "waiting", "period"
+    return state, (waiting_for if state in ("waiting", "blocked") else (st.report_name if state == "stopped" else ""))
 
 
 def _jump_ok(ctx: tuple | None, jump: int) -> bool:

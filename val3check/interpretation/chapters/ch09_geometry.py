@@ -48,6 +48,8 @@ def jd(j) -> dict[str, float]:
 
 def ct(c: dict) -> tuple[str, ...]:
     """A config dict -> ("lefty", "epositive", "wsame") (RS arms: only the shoulder)."""
+    if len(c) == 3 and "shoulder" in c and "elbow" in c and "wrist" in c:  # (each motion command: no generator)
+        return (c["shoulder"], c["elbow"], c["wrist"])
     return tuple(c[f] for f in ("shoulder", "elbow", "wrist") if f in c)
 
 

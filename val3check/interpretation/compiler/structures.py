@@ -117,6 +117,21 @@ class Compiled:
     bpos: dict = field(default_factory=dict)
     loops: list[LoopSite] = field(default_factory=list)  # in the order they are written
     _loops_at: dict = field(default_factory=dict, repr=False, compare=False)
+    _lines: dict = field(default_factory=dict, repr=False, compare=False)
+
+    def line_of(self, frame) -> int:
+        """The Python line a frame of this program is at. `f_lineno` scans the code's line table
+        from its start (tens of microseconds at the end of a long program, asked at each motion
+        command): the lines of the program's own code are kept by instruction offset, which
+        determines the line (a lambda of the program has other code: asked each time)."""
+        func = self.func
+        if func is None or frame.f_code is not func.__code__:
+            return frame.f_lineno
+        at = frame.f_lasti
+        line = self._lines.get(at)
+        if line is None:
+            line = self._lines[at] = frame.f_lineno
+        return line
 
     def loops_at(self, py_line: int) -> tuple[LoopSite, ...]:
         """The loops whose Python lines hold `py_line`, outermost first (memoised: a motion
