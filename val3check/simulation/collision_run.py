@@ -16,6 +16,7 @@ last values read at or before its start (docs/cell.md).
 
 from __future__ import annotations
 
+import bisect
 import functools
 import math
 import operator
@@ -147,16 +148,11 @@ class ValueWatch:
         held = self._held
         if held is not None and _unchanged(machine, self._reads, held):
             return  # the very objects the last reading came from: the same values (most cycles)
-        cache = self._cache
-        now = {}
-        objects: list[tuple] | None = []
+        now, used = {}, []
         for key, name, kind in self._reads:
-            now[key], used = _read_node(_node(machine, name, kind), name, cache)
-            if used is None:
-                objects = None
-            elif objects is not None:
-                objects.append(used)
-        self._held = objects
+            now[key], objects = _read_node(_node(machine, name, kind), name, self._cache)
+            used.append(objects)
+        self._held = None if None in used else used
         if self.values and same_poses(now, self.values[-1]):
             return
         if cycle:
@@ -176,16 +172,12 @@ class ValueWatch:
         """The reading `frame(name, t)` and `tool(name, t)` answer from, as a number that changes
         whenever what they answer may change (-1: none yet): the checker reads the cell's frames
         and tools again only then (collision.world.World.refresh)."""
-        import bisect
-
         k = bisect.bisect_right(self.times, t + 1e-9) - 1
         if k < 0:
             k = 0 if self.values else -1
         return -1 if k < 0 else self.serials[k]
 
     def _at(self, key: str, t: float):
-        import bisect
-
         k = bisect.bisect_right(self.times, t + 1e-9) - 1
         if k < 0:
             k = 0 if self.values else -1
@@ -360,6 +352,7 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
     events = _events(motion.tool_events, cell, io_log, link_names or {})
     names = _tool_names(cell)
     position = Positions(traj)
+    joints_at = position.each(e[0] / US for e in events if not isinstance(e[2], str))  # the grippers' events, in order
     clocks = own_clocks(traj, ((start, end) for _, start, end in spans))  # a repeat is checked once
     ev = 0
     ongoing: set[tuple[str, str]] = set()  # pairs in contact since the last motion free of contact
@@ -371,7 +364,7 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
             checker.clear_parts(e)
             found = []
         else:
-            q = position(t)  # the arm's joints there: for the checks and for the parts' spans
+            q = next(joints_at)  # the arm's joints at t: for the checks and for the parts' spans
             found = _gripper(checker, e, names, q, run)
         if log is not None:
             log.after(checker, t, q)
