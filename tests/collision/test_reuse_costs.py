@@ -136,6 +136,32 @@ def test_the_joints_at_an_event_are_the_trajectorys_and_found_again_only_by_thei
     assert pos(ospans[2][1] + 0.5).tobytes() == other.position(ospans[2][1]).tobytes() and pos.hits == 1  # at rest
 
 
+@pytest.mark.parametrize("block", [1, 7, 4096])
+def test_the_joints_at_many_events_are_the_trajectorys_computed_in_blocks(monkeypatch, block):
+    """`Positions.each` (the path positions of a block of events at once) gives, event by event,
+    what the trajectory gives and what `Positions` alone gives, with the same memo hits; times
+    before the profile, after it, at its breakpoints and out of order too."""
+    monkeypatch.setattr(oc, "BLOCK", block)
+    traj, spans = _long_run()
+    times = (np.arange(-0.5, spans[-1][1] + 0.5, 0.0037).tolist() + [b for _, b in spans] + [a for a, _ in spans]
+             + list(traj.profile.T) + [3.0, 0.1, 20.0, 0.0])
+    one, many = oc.Positions(traj), oc.Positions(traj)
+    for t, q in zip(times, many.each(times), strict=True):
+        assert q.tobytes() == traj.position(t).tobytes() == one(t).tobytes(), t
+    assert many.hits == one.hits > len(spans) and many.memo.keys() == one.memo.keys()
+
+
+def test_a_motions_joints_at_one_time_are_its_joints_at_many_bit_for_bit():
+    """`Own.q_at(t)` (one time between two samples, without arrays) gives `q_at.many([t])`'s bits:
+    at every breakpoint of the motion's profile, between them, before its start and after its end."""
+    traj, spans = _long_run()
+    for own, (a, b) in zip(oc.own_clocks(traj, spans), spans):
+        breaks = np.frombuffer(own.key[1], dtype=np.int64).reshape(3, -1)[0] * oc.Q_T  # its profile's times
+        knots = np.unique(np.concatenate([breaks, own.times, np.linspace(-0.01, b - a + 0.01, 97)]))
+        for t in np.concatenate([knots, 0.5 * (knots[1:] + knots[:-1]), np.nextafter(knots, np.inf)]).tolist():
+            assert own.q_at(t).tobytes() == own.q_at.many(np.array([t]))[0].tobytes(), t
+
+
 def test_the_joints_of_another_kind_of_trajectory_are_asked_every_time():
     traj, spans = _long_run()
 

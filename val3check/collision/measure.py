@@ -8,6 +8,7 @@ depth when they overlap (docs/cell.md, "What a clearance is")."""
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 
 import numpy as np
@@ -95,10 +96,11 @@ class Probe:
         if w.b is not None:
             self.path.place(w.b, u)
 
-    def pairs(self, w: Watch, u: float | None = None) -> list[tuple[float, Body, Body]]:
+    def pairs(self, w: Watch, u: float | None = None) -> Iterable[tuple[float, Body, Body]]:
         """(gap between boxes, body a, body b) for the body pairs of a watch, nearest first: at a
         sample, from the boxes `bounds.prepare` computed for the whole motion; else from the bodies
-        where they are."""
+        where they are. Against the static set, made as they are read (a measurement reads the
+        nearest few of many)."""
         path, world = self.path, self.world
         A = w.a.bodies
         k = -1 if u is None else int(u)
@@ -112,8 +114,7 @@ class Probe:
             else:
                 lo, hi = _boxes(A)
             gaps = aabb_gap(lo[:, None, :], hi[:, None, :], world.static_lo[None], world.static_hi[None]).ravel()
-            S, st = len(world.static), world.static
-            return [(float(gaps[i]), A[i // S], st[i % S]) for i in np.argsort(gaps, kind="stable")]
+            return _nearest_first(gaps, A, world.static)
         Bs = w.b.bodies
         if at_sample:
             cols = [path.box_col[id(b)] for b in A + Bs]
@@ -234,6 +235,13 @@ class Probe:
             self._insides.clear()
         self._insides[key] = out
         return out
+
+
+def _nearest_first(gaps: np.ndarray, A: list[Body], static: list[Body]) -> Iterator[tuple[float, Body, Body]]:
+    S = len(static)
+    g = gaps.tolist()
+    for i in np.argsort(gaps, kind="stable").tolist():
+        yield g[i], A[i // S], static[i % S]
 
 
 def _boxes(bodies: list[Body]) -> tuple[np.ndarray, np.ndarray]:

@@ -16,6 +16,7 @@ last values read at or before its start (docs/cell.md).
 
 from __future__ import annotations
 
+import bisect
 import functools
 import math
 import operator
@@ -136,6 +137,7 @@ class ValueWatch:
         self._cache: dict[str, tuple] = {}  # name -> (fingerprint, matrix, objects read) of its last read
         self._reads = [*(("f:" + n, n, geo_frames.Frame) for n in self.frames),
                        *(("t:" + n, n, geo_frames.Tool) for n in self.tools)]
+        self._held: list[tuple] | None = None  # per read, the objects the last call's value came from (`_unchanged`)
 
     def __call__(self, time_us: int, cycle: bool = False) -> None:
         """Read at `time_us`; `cycle`: at the start of a scheduler cycle, before any line of it ran:
@@ -143,8 +145,14 @@ class ValueWatch:
         machine = self.machine
         if machine is None or not self._reads:
             return
-        cache = self._cache
-        now = {key: _read(machine, name, kind, cache) for key, name, kind in self._reads}
+        held = self._held
+        if held is not None and _unchanged(machine, self._reads, held):
+            return  # the very objects the last reading came from: the same values (most cycles)
+        now, used = {}, []
+        for key, name, kind in self._reads:
+            now[key], objects = _read_node(_node(machine, name, kind), name, self._cache)
+            used.append(objects)
+        self._held = None if None in used else used
         if self.values and same_poses(now, self.values[-1]):
             return
         if cycle:
@@ -164,16 +172,12 @@ class ValueWatch:
         """The reading `frame(name, t)` and `tool(name, t)` answer from, as a number that changes
         whenever what they answer may change (-1: none yet): the checker reads the cell's frames
         and tools again only then (collision.world.World.refresh)."""
-        import bisect
-
         k = bisect.bisect_right(self.times, t + 1e-9) - 1
         if k < 0:
             k = 0 if self.values else -1
         return -1 if k < 0 else self.serials[k]
 
     def _at(self, key: str, t: float):
-        import bisect
-
         k = bisect.bisect_right(self.times, t + 1e-9) - 1
         if k < 0:
             k = 0 if self.values else -1
@@ -192,6 +196,11 @@ def _read(machine: Any, name: str, kind: type, cache: dict | None = None) -> np.
     {name: its last read}; the same matrix object again when the chain of frames it was computed
     from is the same objects (`_objects`), or the same nodes with the same coordinates, bit for
     bit (`_chain`)."""
+    return _read_node(_node(machine, name, kind), name, cache)[0]
+
+
+def _node(machine: Any, name: str, kind: type) -> Any:
+    """The global frame/tool `name` of `machine` (a `kind`), or None when the program has none."""
     parsed = _parse(name)
     unit = machine.main
     if parsed is None or unit is None:
@@ -206,18 +215,25 @@ def _read(machine: Any, name: str, kind: type, cache: dict | None = None) -> np.
     if data is None or not 0 <= index < len(data) - c.off:
         return None
     node = data[c.off + index]
-    if not isinstance(node, kind):
-        return None
+    return node if isinstance(node, kind) else None
+
+
+def _read_node(node: Any, name: str, cache: dict | None) -> tuple[np.ndarray | None, tuple | None]:
+    """(`_read`'s pose of `node`, the objects `_objects` found it from and `cache` now holds for
+    `name`, or None when there are none)."""
+    if node is None:
+        return None, None
     chain = None
+    objects = ()
     if cache is not None:
         objects = _objects(node)
         last = cache.get(name)
         if objects and last is not None and len(last[2]) == len(objects) and all(map(operator.is_, objects, last[2])):
-            return last[1]  # the very objects root_pose reads: the same result
+            return last[1], last[2]  # the very objects root_pose reads: the same result
         chain = _chain(objects)
         if chain is not None and last is not None and last[0] == chain:
             cache[name] = (last[0], last[1], objects)  # the same nodes (their ids), held by objects
-            return last[1]
+            return last[1], objects
     try:
         r, p, _ = geo_frames.root_pose(node)
     except Exception:  # undefined reference, modified root (160/161/163/164): no position
@@ -226,9 +242,23 @@ def _read(machine: Any, name: str, kind: type, cache: dict | None = None) -> np.
         out = np.eye(4)
         out[:3, :3] = np.array(r, dtype=float).reshape(3, 3)
         out[:3, 3] = p
-    if chain is not None:
-        cache[name] = (chain, out, objects)
-    return out
+    if chain is None:
+        return out, None
+    cache[name] = (chain, out, objects)  # type: ignore[index]
+    return out, objects
+
+
+def _unchanged(machine: Any, reads: list, held: list[tuple]) -> bool:
+    """Whether every read of `reads` finds the very objects of `held` (its last call's): then
+    `_read` gives the same matrices again (at a few microseconds, not a reading's cost)."""
+    for (_, name, kind), last in zip(reads, held):
+        node = _node(machine, name, kind)
+        if node is not last[0]:
+            return False
+        objects = _objects(node)
+        if len(objects) != len(last) or not all(map(operator.is_, objects, last)):
+            return False
+    return True
 
 
 @functools.lru_cache(maxsize=1024)
@@ -322,6 +352,7 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
     events = _events(motion.tool_events, cell, io_log, link_names or {})
     names = _tool_names(cell)
     position = Positions(traj)
+    joints_at = position.each(e[0] / US for e in events if not isinstance(e[2], str))  # the grippers' events, in order
     clocks = own_clocks(traj, ((start, end) for _, start, end in spans))  # a repeat is checked once
     ev = 0
     ongoing: set[tuple[str, str]] = set()  # pairs in contact since the last motion free of contact
@@ -333,7 +364,7 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
             checker.clear_parts(e)
             found = []
         else:
-            q = position(t)  # the arm's joints there: for the checks and for the parts' spans
+            q = next(joints_at)  # the arm's joints at t: for the checks and for the parts' spans
             found = _gripper(checker, e, names, q, run)
         if log is not None:
             log.after(checker, t, q)

@@ -232,11 +232,29 @@ def _q_at(spans: list, k: np.ndarray) -> Callable:
             own.append(_trajectory(spans, kt * Q_T, ks * Q_S, ksd * Q_SD))
         return own[0].positions(ts)
 
-    def q_at(t: float):
-        return at(np.array([t], dtype=float))[0]
+    def q_at(t: float):  # one time (between two samples): `at`'s numbers without its arrays
+        if not own:
+            own.append(_trajectory(spans, kt * Q_T, ks * Q_S, ksd * Q_SD))
+        return own[0].path.q(np.array([_s_at(own[0].profile, float(t))]))[0]
 
     q_at.many = at
     return q_at
+
+
+def _s_at(prof: Profile, t: float) -> float:
+    """`Profile.states`' path position at one time: its cases and its arithmetic on floats, so the
+    same bits (a motion's profile here is lists: `_trajectory`)."""
+    T, S, SD = prof.T, prof.S, prof.SD
+    if t <= T[0]:
+        return S[0]
+    j = bisect.bisect_right(T, t)
+    if j >= len(T):
+        return S[-1]
+    k = j - 1
+    dt = T[j] - T[k]
+    u = (SD[j] - SD[k]) / dt if dt > 0 else 0.0
+    tau = max(t - T[k], 0.0)
+    return S[k] + SD[k] * tau + 0.5 * u * tau * tau
 
 
 class Positions:
@@ -253,12 +271,34 @@ class Positions:
         self.memo: dict[tuple, tuple] = {}  # key -> (the geometry, held: its id is not given again; the joints)
         self.hits = 0
 
-    def __call__(self, t: float) -> np.ndarray:
+    def each(self, times: Iterable[float]) -> Iterator[np.ndarray]:
+        """`self(t)` for each t of `times` (in any order), the path positions of BLOCK of them
+        computed at once (`_states`: Profile.state's numbers)."""
+        prof = self.traj.profile
+        if not (self.keyed and self.traj.path.spans and len(prof.T) >= 2):
+            yield from map(self, times)
+            return
+        it = iter(times)
+        while block := list(itertools.islice(it, BLOCK)):
+            t = np.array(block, dtype=float)
+            n = len(prof.T)
+            a = max(bisect_right(prof.T, float(t.min())) - 1, 0)
+            b = min(bisect_right(prof.T, float(t.max())) + 1, n)
+            a = min(a, max(b - 2, 0))  # at least two breakpoints, as `_block`
+            b = max(b, min(a + 2, n))
+            s, _ = _states(window(prof.T, a, b), window(prof.S, a, b), window(prof.SD, a, b), t,
+                           (prof.T[0], prof.S[0]), b == n)
+            for tk, sk in zip(block, s.tolist()):
+                yield self(tk, sk)
+
+    def __call__(self, t: float, s: float | None = None) -> np.ndarray:
+        """The joints at `t`; `s`: the path position there when known (Profile.state's)."""
         traj = self.traj
         path = traj.path
         if not self.keyed or not path.spans:
             return traj.position(t)
-        s, _, _ = traj.profile.state(t)
+        if s is None:
+            s, _, _ = traj.profile.state(t)
         i, sigma = path.locate(s)
         sp = path.spans[i]
         key = (id(sp.geom), sp.a, sp.b, min(max(sigma, 0.0), sp.length))
