@@ -231,31 +231,50 @@ def _repeat(prof, out: list, item: tuple, slot, doubts: list) -> None:
         doubts.append((slot.place + (idx,), item, slot.figures))
 
 
+DECIDE_BLOCK = 256  # near ties decided in one evaluation (what is held for them is bounded)
+
+
 def _decide(queue, prof, out: list, doubts: list) -> None:
     """The records of the repeats whose limit in some interval was a near tie: decided again on
-    their own path, all of them in one evaluation per tool (in the order the earlier commands were
-    evaluated, then of the run)."""
+    their own path, DECIDE_BLOCK of them in one evaluation per tool and one choice of limits (in
+    the order the earlier commands were evaluated, then of the run; a row's choice depends on its
+    own values only)."""
     doubts.sort(key=lambda d: d[0])
-    doubt: dict = {}  # tool -> [(item, codes, unclear rows, their midpoints)]
+    for at in range(0, len(doubts), DECIDE_BLOCK):
+        _decide_block(queue, prof, out, doubts[at:at + DECIDE_BLOCK])
+    doubts.clear()
+
+
+def _decide_block(queue, prof, out: list, doubts: list) -> None:
+    """`_decide` of a block of doubts."""
+    doubt: dict = {}  # tool -> [(item, codes, unclear rows, their rows, noise)]
     for _, item, (length, peak, codes, clear, _, _) in doubts:
         idx, command, s0, s1, start, end, k0, k1, lim = item
-        rows = _intervals(prof, max(k0 - 1, 0), k1, s0, s1)  # made again below: not held for every doubt
+        lo = max(k0 - 1, 0)
+        rows = _intervals(prof, lo, k1, s0, s1)
         j = np.nonzero(~clear)[0]
-        S = rows[0]
         tool = command.tool
         doubt.setdefault(None if tool is None else np.asarray(tool, dtype=float).tobytes(), []).append(
-            (item, codes.copy(), j, 0.5 * (S[rows[5][j]] + S[rows[5][j] + 1]), length, peak))
-    doubts.clear()
+            (item, codes.copy(), j, rows, noise(prof, lo, k1, max(abs(rows[0][-1]), abs(s1))), length, peak))
     for items in doubt.values():
-        q, q1, q2 = _path_at(queue.path, np.concatenate([it[3] for it in items]))
+        per_row: list = [[] for _ in range(11)]  # ds, ṡ² at both ends, midpoint, V, A, D, tvel, rvel, e_s, e_v
+        for (*_, lim), _, j, rows, (e_s, e_v), _, _ in items:
+            S, i = rows[0], rows[5][j]
+            a, b = S[i], S[i + 1]
+            m = len(j)
+            for values, more in zip(per_row, (b - a, rows[1][j], rows[2][j], 0.5 * (a + b))):
+                values.append(more)
+            for values, more in zip(per_row[4:], (lim.V, lim.A, lim.D, lim.tvel, lim.rvel, e_s, e_v)):
+                values.extend([more] * m)
+        ds, x0, x1, mids = (np.concatenate(v) for v in per_row[:4])
+        V, A, D, tvel, rvel, e_s, e_v = (np.array(v) for v in per_row[4:])
+        q, q1, q2 = _path_at(queue.path, mids)
         pt, rt = tcp_rates(queue.kin, q, q1, items[0][0][1].tool)
+        chosen = _choose(ds, x0, x1, q1, q2, pt, rt, V, A, D, tvel, rvel, e_s, e_v)[0]
         at = 0
-        for (idx, command, s0, s1, start, end, k0, k1, lim), codes, j, _, length, peak in items:
-            rows = _intervals(prof, max(k0 - 1, 0), k1, s0, s1)
-            sl = slice(at, at + len(j))
+        for (idx, command, s0, s1, start, end, k0, k1, lim), codes, j, rows, _, length, peak in items:
+            codes[j] = chosen[at:at + len(j)]
             at += len(j)
-            sub = tuple(r[j] if k >= 1 else r for k, r in enumerate(rows))  # the rows in doubt
-            codes[j] = _limits_on(lim, sub, q1[sl], q2[sl], pt[sl], rt[sl], prof, max(k0 - 1, 0), k1, s1)[0]
             out[idx] = _record(command, start, end, length, peak, _seconds(rows, codes, len(lim.V)))
 
 
@@ -295,7 +314,7 @@ def _intervals(prof, lo: int, k1: int, s0: float, s1: float) -> tuple:
     S = np.asarray(prof.S[lo:k1 + 1])
     T = np.asarray(prof.T[lo:k1 + 1])
     SD = np.asarray(prof.SD[lo:k1 + 1])
-    ds_all = np.diff(S)
+    ds_all = S[1:] - S[:-1]  # (np.diff's arithmetic)
     i = np.nonzero((ds_all > 0) & (S[1:] > s0) & (S[:-1] < s1))[0]
     ds = ds_all[i]
     frac = np.clip((np.minimum(S[i + 1], s1) - np.maximum(S[i], s0)) / ds, 0.0, 1.0)
@@ -348,32 +367,38 @@ def _label(code: int, n: int) -> str:
 
 
 def _limits_on(lim, rows, q1, q2, pt, rt, prof, lo: int, k1: int, s1: float) -> tuple[np.ndarray, np.ndarray]:
-    """The limit the profile is on in each interval of `rows` (`_intervals`) as a code (`_label`):
-    the acceleration or deceleration of the axis nearest its limit when the path speed changes,
-    the speed limit nearest when it is held. q1..rt: the path at the intervals' midpoints. With
-    it, whether each choice is clear by more than a repetition's rounding (record_repeats.noise),
-    else a repetition could choose another."""
+    """The limit the profile is on in each interval of `rows` (`_intervals`) as a code (`_label`),
+    and whether each choice is clear (`_choose`)."""
     S, x0, x1, _, _, i = rows
-    n = len(lim.V)
     if not len(i):
         return np.zeros(0, dtype=np.intp), np.ones(0, dtype=bool)
-    ds = S[i + 1] - S[i]
+    e_s, e_v = noise(prof, lo, k1, max(abs(S[-1]), abs(s1)))
+    return _choose(S[i + 1] - S[i], x0, x1, q1, q2, pt, rt, lim.V, lim.A, lim.D, lim.tvel, lim.rvel, e_s, e_v)
+
+
+def _choose(ds, x0, x1, q1, q2, pt, rt, V, A, D, tvel, rvel, e_s, e_v) -> tuple[np.ndarray, np.ndarray]:
+    """Per interval (of length ds, ṡ² from x0 to x1; q1..rt: the path at its midpoint): the
+    acceleration or deceleration of the axis nearest its limit when the path speed changes, the
+    speed limit nearest when it is held. With it, whether each choice is clear by more than a
+    repetition's rounding (record_repeats.noise: e_s, e_v), else a repetition could choose another.
+    The limits (V, A, D, tvel, rvel) and the noise are one command's or one per interval: the same
+    arithmetic per interval."""
+    n = V.shape[-1]
     x = 0.5 * (x0 + x1)
     u = (x1 - x0) / (2.0 * ds)
     acc = np.abs(q1 * u[:, None] + q2 * x[:, None])
     up = u > 0
-    lim_a = np.where(up[:, None], lim.A, lim.D)
+    lim_a = np.where(up[:, None], A, D)
     ratio = acc / lim_a
     ka = np.argmax(ratio, axis=1)
     sd = np.sqrt(x)
-    speed = np.hstack([np.abs(q1) * sd[:, None] / lim.V, (pt * sd / lim.tvel)[:, None], (rt * sd / lim.rvel)[:, None]])
+    speed = np.hstack([np.abs(q1) * sd[:, None] / V, (pt * sd / tvel)[:, None], (rt * sd / rvel)[:, None]])
     kv = np.argmax(speed, axis=1)
     thr = 1e-6 * np.maximum(1.0, x)
     changing = np.abs(u) > thr
     codes = np.where(changing, 2 * ka + np.where(up, 0, 1), 2 * n + kv)
-    # how far a repetition's inputs may move each choice (record_repeats.noise): positions by e_s,
-    # path speeds by e_v, so ṡ² by dx, its slope u by du
-    e_s, e_v = noise(prof, lo, k1, max(abs(S[-1]), abs(s1)))
+    # how far a repetition's inputs may move each choice: positions by e_s, path speeds by e_v, so
+    # ṡ² by dx, its slope u by du
     dx = 2.0 * np.sqrt(np.maximum(x0, x1)) * e_v + e_v * e_v
     du = dx / ds + np.abs(u) * 2.0 * e_s / ds
     clear = np.abs(np.abs(u) - thr) > du + 1e-6 * dx + 1e-9 * thr
