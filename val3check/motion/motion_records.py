@@ -150,12 +150,13 @@ class RecordMaker:
         slot = None
         repeats = self.repeats
         if repeats is not None:
-            earlier, slot = repeats.find(repeats.inputs(command.tool, item[8], s0, s1, max(k0 - 1, 0), k1))
+            inputs = repeats.inputs(command.tool, item[8], s0, s1, max(k0 - 1, 0), k1)
+            earlier, slot = repeats.find(inputs)
             if earlier is not None:  # given the figures of the first (`_evaluate`)
                 if earlier.figures is None:
-                    earlier.items.append(item)
+                    earlier.items.append((item, inputs[3]))
                 else:
-                    _repeat(prof, out, item, earlier, self.doubts)
+                    _repeat(prof, out, item, inputs[3], earlier, self.doubts)
                 return
         tool = command.tool  # the same TCP (by value: each command holds its own copy) evaluated together
         key = None if tool is None else np.asarray(tool, dtype=float).tobytes()
@@ -214,19 +215,20 @@ def _evaluate(queue, prof, out: list, group: list, doubts: list) -> None:
             # where it was evaluated: the near ties of its repeats are decided in that order
             slot.figures, slot.place = (length, peak, codes, clear, i, _order(codes, len(lim.V))), \
                 (number, done * RECORD_BLOCK + n_item)
-            for item in slot.items:
-                _repeat(prof, out, item, slot, doubts)
+            for item, dt in slot.items:
+                _repeat(prof, out, item, dt, slot, doubts)
             slot.items = []
 
 
-def _repeat(prof, out: list, item: tuple, slot, doubts: list) -> None:
+def _repeat(prof, out: list, item: tuple, dt: np.ndarray, slot, doubts: list) -> None:
     """The record of a command that repeats an earlier one (its Slot's figures): its length and
-    peak, its limits per interval, its own seconds under each; when a limit was a near tie, left
-    to `_decide` (`doubts`)."""
+    peak, its limits per interval, its own seconds under each (`dt`: the durations of its intervals
+    that count, record_repeats.Repeats.inputs); when a limit was a near tie, left to `_decide`
+    (`doubts`)."""
     length, peak, _, clear, i, order = slot.figures
     idx, command, s0, s1, start, end, k0, k1, _ = item
     if clear.all():  # the earlier's intervals (the key holds where s0 and s1 fall) and limits
-        out[idx] = _record(command, start, end, length, peak, _seconds_of(prof, max(k0 - 1, 0), k1, s0, s1, i, order))
+        out[idx] = _record(command, start, end, length, peak, _seconds_of(prof, max(k0 - 1, 0), s0, s1, i, order, dt))
     else:
         doubts.append((slot.place + (idx,), item, slot.figures))
 
@@ -343,19 +345,21 @@ def _order(codes: np.ndarray, n: int) -> tuple[list, np.ndarray]:
     return [_label(int(codes[k]), n) for k in first], rank[codes]
 
 
-def _seconds_of(prof, lo: int, k1: int, s0: float, s1: float, i: np.ndarray, order: tuple) -> dict:
-    """`_seconds(_intervals(...), codes, n)` of a repeat whose intervals `i` and limits (`order` of
-    the codes) are the earlier command's: the same arithmetic on its own breakpoints, read in
-    place (views, dropped here: the profile may grow after)."""
+def _seconds_of(prof, lo: int, s0: float, s1: float, i: np.ndarray, order: tuple, dt: np.ndarray) -> dict:
+    """`_seconds(_intervals(...), codes, n)` of a repeat whose intervals `i` (from breakpoint lo)
+    and limits (`order` of the codes) are the earlier command's, `dt` its durations: the same
+    arithmetic. Only the first and last intervals can lie partly outside (s0, s1): the share of
+    any other, (b - a) / (b - a), is exactly 1."""
     labels, rank = order
     if not labels:
         return {}
-    S, T = window(prof.S, lo, k1 + 1), window(prof.T, lo, k1 + 1)
-    a, b = S[i], S[i + 1]
-    frac = np.clip((np.minimum(b, s1) - np.maximum(a, s0)) / (b - a), 0.0, 1.0)
-    total = np.bincount(rank, weights=(T[i + 1] - T[i]) * frac)
-    del S, T
-    return dict(zip(labels, total.tolist()))
+    w = dt[i]
+    S = prof.S
+    for e in {0, len(i) - 1}:
+        k = int(i[e])
+        a, b = S[lo + k], S[lo + k + 1]
+        w[e] = dt[k] * min(max((min(b, s1) - max(a, s0)) / (b - a), 0.0), 1.0)
+    return dict(zip(labels, np.bincount(rank, weights=w).tolist()))
 
 
 def _label(code: int, n: int) -> str:

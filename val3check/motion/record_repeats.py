@@ -41,8 +41,9 @@ class Repeats:
         self.hits = 0
 
     def inputs(self, tool, lim, s0: float, s1: float, lo: int, k1: int) -> tuple:
-        """(exact part, compared part, tolerances) of the command over [s0, s1] whose breakpoints
-        are lo..k1 (what motion_records reads of the profile)."""
+        """(exact part, compared part, tolerances, durations) of the command over [s0, s1] whose
+        breakpoints are lo..k1 (what motion_records reads of the profile); the durations of its
+        intervals that count (0 for the others) are those a repeat's seconds are summed from."""
         prof, path = self.prof, self.path
         hi = min(k1, len(prof.S) - 1)
         # views of the profile, not copies (none is returned: the profile may grow after)
@@ -76,12 +77,12 @@ class Repeats:
         got[:n + len(offs) + 1] -= s0
         tol = np.array((POS_TOL * max(1.0, abs(S[-1]), abs(s1)), TIME_TOL * max(1.0, abs(T[-1])),
                         SPEED_TOL * max(1.0, float(SD.max()))))[_pattern(n, len(offs))]
-        return exact, got, tol
+        return exact, got, tol, dt
 
     def find(self, inputs) -> tuple[Slot | None, Slot | None]:
         """(the Slot of an earlier command with these inputs, None), or (None, a new Slot) when
         none has them: the first command with them is computed and its figures kept in its Slot."""
-        exact, got, tol = inputs
+        exact, got, tol = inputs[:3]
         kept = self.seen.setdefault(exact, [])
         for earlier, slot in kept:
             if (abs(got - earlier) <= tol).all():
