@@ -150,12 +150,13 @@ class RecordMaker:
         slot = None
         repeats = self.repeats
         if repeats is not None:
-            earlier, slot = repeats.find(repeats.inputs(command.tool, item[8], s0, s1, max(k0 - 1, 0), k1))
+            inputs = repeats.inputs(command.tool, item[8], s0, s1, max(k0 - 1, 0), k1)
+            earlier, slot = repeats.find(inputs)
             if earlier is not None:  # given the figures of the first (`_evaluate`)
                 if earlier.figures is None:
-                    earlier.items.append(item)
+                    earlier.items.append((item, inputs[3]))
                 else:
-                    _repeat(prof, out, item, earlier, self.doubts)
+                    _repeat(prof, out, item, inputs[3], earlier, self.doubts)
                 return
         tool = command.tool  # the same TCP (by value: each command holds its own copy) evaluated together
         key = None if tool is None else np.asarray(tool, dtype=float).tobytes()
@@ -214,48 +215,68 @@ def _evaluate(queue, prof, out: list, group: list, doubts: list) -> None:
             # where it was evaluated: the near ties of its repeats are decided in that order
             slot.figures, slot.place = (length, peak, codes, clear, i, _order(codes, len(lim.V))), \
                 (number, done * RECORD_BLOCK + n_item)
-            for item in slot.items:
-                _repeat(prof, out, item, slot, doubts)
+            for item, dt in slot.items:
+                _repeat(prof, out, item, dt, slot, doubts)
             slot.items = []
 
 
-def _repeat(prof, out: list, item: tuple, slot, doubts: list) -> None:
+def _repeat(prof, out: list, item: tuple, dt: np.ndarray, slot, doubts: list) -> None:
     """The record of a command that repeats an earlier one (its Slot's figures): its length and
-    peak, its limits per interval, its own seconds under each; when a limit was a near tie, left
-    to `_decide` (`doubts`)."""
+    peak, its limits per interval, its own seconds under each (`dt`: the durations of its intervals
+    that count, record_repeats.Repeats.inputs); when a limit was a near tie, left to `_decide`
+    (`doubts`)."""
     length, peak, _, clear, i, order = slot.figures
     idx, command, s0, s1, start, end, k0, k1, _ = item
     if clear.all():  # the earlier's intervals (the key holds where s0 and s1 fall) and limits
-        out[idx] = _record(command, start, end, length, peak, _seconds_of(prof, max(k0 - 1, 0), k1, s0, s1, i, order))
+        out[idx] = _record(command, start, end, length, peak, _seconds_of(prof, max(k0 - 1, 0), s0, s1, i, order, dt))
     else:
         doubts.append((slot.place + (idx,), item, slot.figures))
 
 
+DECIDE_BLOCK = 256  # near ties decided in one evaluation (what is held for them is bounded)
+
+
 def _decide(queue, prof, out: list, doubts: list) -> None:
     """The records of the repeats whose limit in some interval was a near tie: decided again on
-    their own path, all of them in one evaluation per tool (in the order the earlier commands were
-    evaluated, then of the run)."""
+    their own path, DECIDE_BLOCK of them in one evaluation per tool and one choice of limits (in
+    the order the earlier commands were evaluated, then of the run; a row's choice depends on its
+    own values only)."""
     doubts.sort(key=lambda d: d[0])
-    doubt: dict = {}  # tool -> [(item, codes, unclear rows, their midpoints)]
+    for at in range(0, len(doubts), DECIDE_BLOCK):
+        _decide_block(queue, prof, out, doubts[at:at + DECIDE_BLOCK])
+    doubts.clear()
+
+
+def _decide_block(queue, prof, out: list, doubts: list) -> None:
+    """`_decide` of a block of doubts."""
+    doubt: dict = {}  # tool -> [(item, codes, unclear rows, their rows, noise)]
     for _, item, (length, peak, codes, clear, _, _) in doubts:
         idx, command, s0, s1, start, end, k0, k1, lim = item
-        rows = _intervals(prof, max(k0 - 1, 0), k1, s0, s1)  # made again below: not held for every doubt
+        lo = max(k0 - 1, 0)
+        rows = _intervals(prof, lo, k1, s0, s1)
         j = np.nonzero(~clear)[0]
-        S = rows[0]
         tool = command.tool
         doubt.setdefault(None if tool is None else np.asarray(tool, dtype=float).tobytes(), []).append(
-            (item, codes.copy(), j, 0.5 * (S[rows[5][j]] + S[rows[5][j] + 1]), length, peak))
-    doubts.clear()
+            (item, codes.copy(), j, rows, noise(prof, lo, k1, max(abs(rows[0][-1]), abs(s1))), length, peak))
     for items in doubt.values():
-        q, q1, q2 = _path_at(queue.path, np.concatenate([it[3] for it in items]))
+        per_row: list = [[] for _ in range(11)]  # ds, ṡ² at both ends, midpoint, V, A, D, tvel, rvel, e_s, e_v
+        for (*_, lim), _, j, rows, (e_s, e_v), _, _ in items:
+            S, i = rows[0], rows[5][j]
+            a, b = S[i], S[i + 1]
+            m = len(j)
+            for values, more in zip(per_row, (b - a, rows[1][j], rows[2][j], 0.5 * (a + b))):
+                values.append(more)
+            for values, more in zip(per_row[4:], (lim.V, lim.A, lim.D, lim.tvel, lim.rvel, e_s, e_v)):
+                values.extend([more] * m)
+        ds, x0, x1, mids = (np.concatenate(v) for v in per_row[:4])
+        V, A, D, tvel, rvel, e_s, e_v = (np.array(v) for v in per_row[4:])
+        q, q1, q2 = _path_at(queue.path, mids)
         pt, rt = tcp_rates(queue.kin, q, q1, items[0][0][1].tool)
+        chosen = _choose(ds, x0, x1, q1, q2, pt, rt, V, A, D, tvel, rvel, e_s, e_v)[0]
         at = 0
-        for (idx, command, s0, s1, start, end, k0, k1, lim), codes, j, _, length, peak in items:
-            rows = _intervals(prof, max(k0 - 1, 0), k1, s0, s1)
-            sl = slice(at, at + len(j))
+        for (idx, command, s0, s1, start, end, k0, k1, lim), codes, j, rows, _, length, peak in items:
+            codes[j] = chosen[at:at + len(j)]
             at += len(j)
-            sub = tuple(r[j] if k >= 1 else r for k, r in enumerate(rows))  # the rows in doubt
-            codes[j] = _limits_on(lim, sub, q1[sl], q2[sl], pt[sl], rt[sl], prof, max(k0 - 1, 0), k1, s1)[0]
             out[idx] = _record(command, start, end, length, peak, _seconds(rows, codes, len(lim.V)))
 
 
@@ -295,7 +316,7 @@ def _intervals(prof, lo: int, k1: int, s0: float, s1: float) -> tuple:
     S = np.asarray(prof.S[lo:k1 + 1])
     T = np.asarray(prof.T[lo:k1 + 1])
     SD = np.asarray(prof.SD[lo:k1 + 1])
-    ds_all = np.diff(S)
+    ds_all = S[1:] - S[:-1]  # (np.diff's arithmetic)
     i = np.nonzero((ds_all > 0) & (S[1:] > s0) & (S[:-1] < s1))[0]
     ds = ds_all[i]
     frac = np.clip((np.minimum(S[i + 1], s1) - np.maximum(S[i], s0)) / ds, 0.0, 1.0)
@@ -324,19 +345,21 @@ def _order(codes: np.ndarray, n: int) -> tuple[list, np.ndarray]:
     return [_label(int(codes[k]), n) for k in first], rank[codes]
 
 
-def _seconds_of(prof, lo: int, k1: int, s0: float, s1: float, i: np.ndarray, order: tuple) -> dict:
-    """`_seconds(_intervals(...), codes, n)` of a repeat whose intervals `i` and limits (`order` of
-    the codes) are the earlier command's: the same arithmetic on its own breakpoints, read in
-    place (views, dropped here: the profile may grow after)."""
+def _seconds_of(prof, lo: int, s0: float, s1: float, i: np.ndarray, order: tuple, dt: np.ndarray) -> dict:
+    """`_seconds(_intervals(...), codes, n)` of a repeat whose intervals `i` (from breakpoint lo)
+    and limits (`order` of the codes) are the earlier command's, `dt` its durations: the same
+    arithmetic. Only the first and last intervals can lie partly outside (s0, s1): the share of
+    any other, (b - a) / (b - a), is exactly 1."""
     labels, rank = order
     if not labels:
         return {}
-    S, T = window(prof.S, lo, k1 + 1), window(prof.T, lo, k1 + 1)
-    a, b = S[i], S[i + 1]
-    frac = np.clip((np.minimum(b, s1) - np.maximum(a, s0)) / (b - a), 0.0, 1.0)
-    total = np.bincount(rank, weights=(T[i + 1] - T[i]) * frac)
-    del S, T
-    return dict(zip(labels, total.tolist()))
+    w = dt[i]
+    S = prof.S
+    for e in {0, len(i) - 1}:
+        k = int(i[e])
+        a, b = S[lo + k], S[lo + k + 1]
+        w[e] = dt[k] * min(max((min(b, s1) - max(a, s0)) / (b - a), 0.0), 1.0)
+    return dict(zip(labels, np.bincount(rank, weights=w).tolist()))
 
 
 def _label(code: int, n: int) -> str:
@@ -348,32 +371,38 @@ def _label(code: int, n: int) -> str:
 
 
 def _limits_on(lim, rows, q1, q2, pt, rt, prof, lo: int, k1: int, s1: float) -> tuple[np.ndarray, np.ndarray]:
-    """The limit the profile is on in each interval of `rows` (`_intervals`) as a code (`_label`):
-    the acceleration or deceleration of the axis nearest its limit when the path speed changes,
-    the speed limit nearest when it is held. q1..rt: the path at the intervals' midpoints. With
-    it, whether each choice is clear by more than a repetition's rounding (record_repeats.noise),
-    else a repetition could choose another."""
+    """The limit the profile is on in each interval of `rows` (`_intervals`) as a code (`_label`),
+    and whether each choice is clear (`_choose`)."""
     S, x0, x1, _, _, i = rows
-    n = len(lim.V)
     if not len(i):
         return np.zeros(0, dtype=np.intp), np.ones(0, dtype=bool)
-    ds = S[i + 1] - S[i]
+    e_s, e_v = noise(prof, lo, k1, max(abs(S[-1]), abs(s1)))
+    return _choose(S[i + 1] - S[i], x0, x1, q1, q2, pt, rt, lim.V, lim.A, lim.D, lim.tvel, lim.rvel, e_s, e_v)
+
+
+def _choose(ds, x0, x1, q1, q2, pt, rt, V, A, D, tvel, rvel, e_s, e_v) -> tuple[np.ndarray, np.ndarray]:
+    """Per interval (of length ds, ṡ² from x0 to x1; q1..rt: the path at its midpoint): the
+    acceleration or deceleration of the axis nearest its limit when the path speed changes, the
+    speed limit nearest when it is held. With it, whether each choice is clear by more than a
+    repetition's rounding (record_repeats.noise: e_s, e_v), else a repetition could choose another.
+    The limits (V, A, D, tvel, rvel) and the noise are one command's or one per interval: the same
+    arithmetic per interval."""
+    n = V.shape[-1]
     x = 0.5 * (x0 + x1)
     u = (x1 - x0) / (2.0 * ds)
     acc = np.abs(q1 * u[:, None] + q2 * x[:, None])
     up = u > 0
-    lim_a = np.where(up[:, None], lim.A, lim.D)
+    lim_a = np.where(up[:, None], A, D)
     ratio = acc / lim_a
     ka = np.argmax(ratio, axis=1)
     sd = np.sqrt(x)
-    speed = np.hstack([np.abs(q1) * sd[:, None] / lim.V, (pt * sd / lim.tvel)[:, None], (rt * sd / lim.rvel)[:, None]])
+    speed = np.hstack([np.abs(q1) * sd[:, None] / V, (pt * sd / tvel)[:, None], (rt * sd / rvel)[:, None]])
     kv = np.argmax(speed, axis=1)
     thr = 1e-6 * np.maximum(1.0, x)
     changing = np.abs(u) > thr
     codes = np.where(changing, 2 * ka + np.where(up, 0, 1), 2 * n + kv)
-    # how far a repetition's inputs may move each choice (record_repeats.noise): positions by e_s,
-    # path speeds by e_v, so ṡ² by dx, its slope u by du
-    e_s, e_v = noise(prof, lo, k1, max(abs(S[-1]), abs(s1)))
+    # how far a repetition's inputs may move each choice: positions by e_s, path speeds by e_v, so
+    # ṡ² by dx, its slope u by du
     dx = 2.0 * np.sqrt(np.maximum(x0, x1)) * e_v + e_v * e_v
     du = dx / ds + np.abs(u) * 2.0 * e_s / ds
     clear = np.abs(np.abs(u) - thr) > du + 1e-6 * dx + 1e-9 * thr

@@ -22,7 +22,7 @@ import bisect
 
 import numpy as np
 
-from .trajectory import bisect_left, bisect_right, window
+from .trajectory import window
 
 POS_TOL = 1e-13  # × the magnitude of the run's path positions (their rounding: ~1e-16 per operation)
 TIME_TOL = 1e-13  # × the magnitude of the run's times
@@ -41,8 +41,9 @@ class Repeats:
         self.hits = 0
 
     def inputs(self, tool, lim, s0: float, s1: float, lo: int, k1: int) -> tuple:
-        """(exact part, compared part, tolerances) of the command over [s0, s1] whose breakpoints
-        are lo..k1 (what motion_records reads of the profile)."""
+        """(exact part, compared part, tolerances, durations) of the command over [s0, s1] whose
+        breakpoints are lo..k1 (what motion_records reads of the profile); the durations of its
+        intervals that count (0 for the others) are those a repeat's seconds are summed from."""
         prof, path = self.prof, self.path
         hi = min(k1, len(prof.S) - 1)
         # views of the profile, not copies (none is returned: the profile may grow after)
@@ -56,37 +57,52 @@ class Repeats:
             held = self._limits[id(lim)] = (lim, (lim.V.tobytes(), lim.A.tobytes(), lim.D.tobytes(), lim.tvel, lim.rvel))
         # how the breakpoints, s0 and s1 fall against each other (which intervals count, which
         # breakpoints are points of the length) and against the spans' offsets (the span each
-        # point is evaluated on: the one at or before it)
-        Sa, end = prof.S, hi + 1
-        where = (bisect_left(Sa, s0, lo, end) - lo, bisect_right(Sa, s0, lo, end) - lo,
-                 bisect_left(Sa, s1, lo, end) - lo, bisect_right(Sa, s1, lo, end) - lo,
-                 bisect.bisect_right(offsets, s0), bisect.bisect_right(offsets, s1))
-        dS = np.diff(S)
-        moves = dS > 0
+        # point is evaluated on: the one at or before it); searches in the window equal the
+        # profile's clamped to it (its positions are sorted)
+        left0, left1 = S.searchsorted((s0, s1)).tolist()
+        right0, right1 = S.searchsorted((s0, s1), "right").tolist()
+        where = (left0, right0, left1, right1, bisect.bisect_right(offsets, s0), bisect.bisect_right(offsets, s1))
+        moves = S[1:] > S[:-1]  # (S[k + 1] - S[k] > 0: a difference of floats is 0 only when equal)
         exact = (tuple((id(sp.geom), sp.a, sp.b) for sp in path.spans[i0:i1 + 1]),
                  None if tool is None else np.asarray(tool, dtype=float).tobytes(), held[1], len(S), where,
-                 moves.tobytes(), np.searchsorted(offs, S, side="right").tobytes())
+                 moves.tobytes(), offs.searchsorted(S, "right").tobytes())
         # the durations of the intervals that count only (a rest before the command, waiting for
-        # the program, is as long as it is)
-        counts = moves & (S[1:] > s0) & (S[:-1] < s1)
-        got = np.concatenate([S - s0, offs - s0, [s1 - s0], np.where(counts, np.diff(T), 0.0), SD])
-        tol = np.repeat([POS_TOL * max(1.0, abs(S[-1]), abs(s1)), TIME_TOL * max(1.0, abs(T[-1])),
-                         SPEED_TOL * max(1.0, float(SD.max()))], [len(S) + len(offs) + 1, len(S) - 1, len(S)])
-        return exact, got, tol
+        # the program, is as long as it is): those moving, after the last breakpoint at or before
+        # s0 (S[k + 1] > s0) and before the first at or past s1 (S[k] < s1)
+        dt = np.where(moves, T[1:] - T[:-1], 0.0)
+        dt[:max(right0 - 1, 0)] = 0.0
+        dt[left1:] = 0.0
+        n = len(S)
+        got = np.concatenate((S, offs, (s1,), dt, SD))
+        got[:n + len(offs) + 1] -= s0
+        tol = np.array((POS_TOL * max(1.0, abs(S[-1]), abs(s1)), TIME_TOL * max(1.0, abs(T[-1])),
+                        SPEED_TOL * max(1.0, float(SD.max()))))[_pattern(n, len(offs))]
+        return exact, got, tol, dt
 
     def find(self, inputs) -> tuple[Slot | None, Slot | None]:
         """(the Slot of an earlier command with these inputs, None), or (None, a new Slot) when
         none has them: the first command with them is computed and its figures kept in its Slot."""
-        exact, got, tol = inputs
+        exact, got, tol = inputs[:3]
         kept = self.seen.setdefault(exact, [])
         for earlier, slot in kept:
-            if np.all(np.abs(got - earlier) <= tol):
+            if (abs(got - earlier) <= tol).all():
                 self.hits += 1
                 return slot, None
         slot = Slot()
         if len(kept) < KEPT:
             kept.append((got, slot))
         return None, slot
+
+
+_PATTERNS: dict = {}  # (breakpoints, offsets) -> which tolerance each compared value takes
+
+
+def _pattern(n: int, m: int) -> np.ndarray:
+    """The index into (positions, times, speeds) of each value `Repeats.inputs` compares."""
+    p = _PATTERNS.get((n, m))
+    if p is None:
+        p = _PATTERNS[(n, m)] = np.repeat(np.arange(3), [n + m + 1, n - 1, n])
+    return p
 
 
 class Slot:

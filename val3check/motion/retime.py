@@ -119,7 +119,11 @@ class Stretches:
             key = piece_key(planner.path, S[i], S[j], queue.limits.of, memo)
             self.spans.append((i, j, keys.setdefault(key, key)))
             i = j
+        # each stretch's ends read once (History reads through Python), for `place` and every factor
         self.starts = [T[i] for i, _, _ in self.spans]
+        self.ends = [T[j] for _, j, _ in self.spans]
+        self.s_starts = [S[i] for i, _, _ in self.spans]
+        self.s_ends = [S[j] for _, j, _ in self.spans]
 
     def place(self, t: float | None) -> tuple | None:
         """Where the run was at time t, for `Retiming.time_at`: the stretch k it was in or had last
@@ -129,12 +133,10 @@ class Stretches:
         k = bisect.bisect_right(self.starts, t) - 1
         if k < 0:
             return (t, k, None)
-        i, j, _ = self.spans[k]
-        T, S = self.profile.T, self.profile.S
-        if t >= T[j]:
+        if t >= self.ends[k]:
             return (t, k, None)
         s, _, _ = self.profile.state(t)
-        return (t, k, s - S[i])
+        return (t, k, s - self.s_starts[k])
 
 
 class Retiming:
@@ -167,24 +169,23 @@ class Retiming:
         self.timed = 0  # distinct pieces timed
         done: dict = {}  # piece_key -> the re-timed piece (relative Profile)
         shift = 0.0
-        T, S = prof.T, prof.S
-        for i, j, key in st.spans:
+        for (_, _, key), t_i, t_j, s_i, s_j in zip(st.spans, st.starts, st.ends, st.s_starts, st.s_ends):
             p = done.get(key) if key is not None else None
             if p is None:
                 if out_of_time is not None and out_of_time():  # before each piece timed
-                    self.cut = T[i]
+                    self.cut = t_i
                     break
-                piece = planner.timing.time(planner.path, S[i], S[j], 0.0, scaled)
+                piece = planner.timing.time(planner.path, s_i, s_j, 0.0, scaled)
                 p = Profile(0.0, 0.0)
-                p.append(0.0, piece.s - S[i], piece.sd)
+                p.append(0.0, piece.s - s_i, piece.sd)
                 self.timed += 1
                 if key is not None:
                     done[key] = p
-            self.starts.append(T[i])
-            self.ends.append(T[j])
-            self.new_starts.append(T[i] + shift)
+            self.starts.append(t_i)
+            self.ends.append(t_j)
+            self.new_starts.append(t_i + shift)
             self.pieces.append(p)
-            shift += p.t_end - (T[j] - T[i])
+            shift += p.t_end - (t_j - t_i)
         self.shift_end = shift
 
     def time(self, t: float | None) -> float | None:
