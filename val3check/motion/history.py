@@ -26,7 +26,6 @@ from __future__ import annotations
 import bisect
 import operator
 import os
-import tempfile
 from array import array
 
 import numpy as np
@@ -334,6 +333,8 @@ class History:
             raise HistoryFull(f"the run's motion history would hold more than {DISK_LIMIT / (1 << 20):,.0f} MB in its"
                               f" temporary file (motion/history.py DISK_LIMIT): shorten --duration")
         if self._file is None:
+            import tempfile  # only a long run spills: its import (shutil, bz2, lzma) is 0.5 % of a 60 s run
+
             self._file = tempfile.TemporaryFile(prefix="val3check-history-")
         os.pwrite(self._file.fileno(), self._chunks[c], c * nbytes)
         self._chunks[c] = None

@@ -36,7 +36,7 @@ import numpy as np
 
 from .analytic import duration
 from .grid import Grid
-from .refine import accel_xmax, refine
+from .refine import accel_xmax, coefficients, refine
 from .safe import brake_into, integrate
 
 _OFF = 1e300  # an affine bound that never binds: 0·x + _OFF
@@ -57,25 +57,19 @@ class TimedProfile:
         return duration(self.s, self.sd)
 
 
-def bounds(grid: Grid) -> tuple[np.ndarray, ...]:
+def bounds(grid: Grid, coef: tuple | None = None) -> tuple[np.ndarray, ...]:
     """Per gridpoint and axis, the path acceleration bounds u ≤ Uc + Us·x and u ≥ Lc + Ls·x
     (module docstring); an axis that does not move along the path bounds only the speed
-    (accel_xmax) and is given bounds that never bind."""
-    up, lo = grid.accel_bounds()
-    q1, q2 = grid.q1, grid.q2
-    moving = np.abs(q1) > 1e-12
-    g = np.where(moving, q1, 1.0)
-    uc = np.where(moving, np.where(q1 > 0, up / g, -lo / g), np.inf)
-    lc = np.where(moving, np.where(q1 > 0, -lo / g, up / g), -np.inf)
-    us = np.where(moving, -q2 / g, 0.0)
+    (accel_xmax) and is given bounds that never bind. `coef`: refine.coefficients(grid)."""
+    uc, us, lc, _, _, _ = coefficients(grid) if coef is None else coef
     return uc, us, lc, us
 
 
-def steps(grid: Grid) -> tuple[np.ndarray, np.ndarray]:
+def steps(grid: Grid, coef: tuple | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The affine maps of both passes, per interval k (between gridpoints k and k+1), as arrays
     (intervals, pairs, 2) of (slope, offset) pairs: backward, K[k] ≤ slope·K[k+1] + offset; forward, x[k+1] ≤ slope·x[k] +
     offset. Each pair is one axis's bound at one end of the interval (module docstring)."""
-    uc, us, lc, ls = bounds(grid)
+    uc, us, lc, ls = bounds(grid, coef)
     h = np.diff(grid.s)[:, None]
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         # backward: braking at the start's bound, x(1 + 2h·Ls) + 2h·Lc ≤ K  (where 1 + 2h·Ls > 0)
@@ -102,27 +96,44 @@ def steps(grid: Grid) -> tuple[np.ndarray, np.ndarray]:
 
 def reachable(grid: Grid, cap: list, back: list, x_end: float = 0.0) -> list:
     """The backward pass: K[k], the largest ṡ² at gridpoint k from which the end (at x_end) is
-    reachable within the limits."""
+    reachable within the limits. `back`: per interval, its pairs as one row [a0, b0, a1, b1...]."""
     n = len(cap)
     K = [0.0] * n
     K[-1] = min(x_end, cap[-1])
+    lowest = _lowest_of(back)
     for k in range(n - 2, -1, -1):
-        kn = K[k + 1]
-        v = min([a * kn + b for a, b in back[k]])
-        K[k] = max(0.0, min(cap[k], v))
+        K[k] = max(0.0, min(cap[k], lowest(back[k], K[k + 1])))
     return K
 
 
 def forward(x0: float, cap: list, K: list, fwd: list, k0: int = 0) -> list:
-    """The forward pass from ṡ² = x0 at gridpoint k0: as fast as allowed, within K."""
+    """The forward pass from ṡ² = x0 at gridpoint k0: as fast as allowed, within K (`fwd`: rows
+    as in `reachable`)."""
     n = len(cap)
     x = [0.0] * n
     x[k0] = x0
+    lowest = _lowest_of(fwd)
     for k in range(k0, n - 1):
-        xk = x[k]
-        y = min([a * xk + b for a, b in fwd[k]])
-        x[k + 1] = max(0.0, min(y, K[k + 1], cap[k + 1]))
+        x[k + 1] = max(0.0, min(lowest(fwd[k], x[k]), K[k + 1], cap[k + 1]))
     return x
+
+
+def _lowest_of(rows: list):
+    """The function giving min(a·x + b) over a row's pairs: unrolled for six axes' rows."""
+    return _lowest12 if rows and len(rows[0]) == 24 else _lowest
+
+
+def _lowest(row: list, x: float) -> float:
+    """min over the pairs of a row [a0, b0, a1, b1, ...] of a·x + b, taken in the row's order."""
+    return min([row[i] * x + row[i + 1] for i in range(0, len(row), 2)])
+
+
+def _lowest12(row: list, x: float) -> float:
+    """`_lowest` of a 12-pair row, unrolled (the same operations in the same order, so the same
+    bits): the passes spent half their time in the comprehension."""
+    a0, b0, a1, b1, a2, b2, a3, b3, a4, b4, a5, b5, a6, b6, a7, b7, a8, b8, a9, b9, a10, b10, a11, b11 = row
+    return min(a0 * x + b0, a1 * x + b1, a2 * x + b2, a3 * x + b3, a4 * x + b4, a5 * x + b5, a6 * x + b6,
+               a7 * x + b7, a8 * x + b8, a9 * x + b9, a10 * x + b10, a11 * x + b11)
 
 
 def topp(grid: Grid, sd0: float = 0.0) -> TimedProfile:
@@ -130,9 +141,11 @@ def topp(grid: Grid, sd0: float = 0.0) -> TimedProfile:
     n = len(grid)
     if n < 2 or grid.s[-1] - grid.s[0] <= 0.0:
         return TimedProfile(grid.s[:1].copy(), np.array([0.0]))
-    cap = np.minimum(grid.xmax(), accel_xmax(grid)).tolist()
-    back, fwd = steps(grid)
-    K = reachable(grid, cap, back.tolist())
+    coef = coefficients(grid)  # shared by both curves and both passes' steps
+    cap_a = np.minimum(grid.xmax(), accel_xmax(grid, coef))
+    cap = cap_a.tolist()
+    back, fwd = steps(grid, coef)
+    K = reachable(grid, cap, back.reshape(len(back), -1).tolist())
     x0 = sd0 * sd0
     if x0 > K[0]:
         if x0 <= K[0] * 1.02 + 1e-9:  # a hair outside (numerical noise of a new grid): clamp
@@ -145,14 +158,14 @@ def topp(grid: Grid, sd0: float = 0.0) -> TimedProfile:
                                     rest.fallback)
             s_i, sd_i = integrate(grid, sd0)
             return TimedProfile(s_i, sd_i, fallback=True)
-    x = np.array(forward(x0, cap, K, fwd.tolist()))
+    x = np.array(forward(x0, cap, K, fwd.reshape(len(fwd), -1).tolist()))
     x[-1] = 0.0
     sd = np.sqrt(x)
     # the arm must not stand still inside the path (two zero speeds in a row: a cusp, or a path
     # the limits cannot move along): then the safe profile
     still = (sd[:-1] + sd[1:] <= 1e-9 * max(float(sd.max()), 1.0)) & (np.diff(grid.s) > 0.0)
     if np.all(np.isfinite(sd)) and not np.any(still):
-        s_r, sd_r = refine(grid, sd, back, fwd)
+        s_r, sd_r = refine(grid, sd, back, fwd, cap_a)
         return TimedProfile(s_r, sd_r)
     s_i, sd_i = integrate(grid, sd0)
     return TimedProfile(s_i, sd_i, fallback=True)

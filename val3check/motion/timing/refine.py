@@ -32,41 +32,50 @@ UMAX = 1e15  # "no bound" on s̈ (path units of degrees: far above any arm's)
 REL_TOL = 1e-9  # a corner higher than the interval's straight line by less than this is dropped
 
 
-def accel_xmax(grid: Grid) -> np.ndarray:
-    """The acceleration limit curve: per gridpoint, the largest ṡ² at which some path acceleration
-    obeys every axis's accel/decel bounds (q̈ₖ = q'ₖ·s̈ + q''ₖ·ṡ²), XMAX where none binds."""
+def coefficients(grid: Grid) -> tuple[np.ndarray, ...]:
+    """Per gridpoint and axis, s̈ ≤ uc + us·x and s̈ ≥ lc + us·x (the accel/decel bounds of
+    q̈ₖ = q'ₖ·s̈ + q''ₖ·ṡ²), with `moving` (q'ₖ ≠ 0), `up` and `lo` (Grid.accel_bounds): uc and lc
+    are ±inf where the axis does not move. optimal.bounds and accel_xmax both start from them."""
     up, lo = grid.accel_bounds()
     q1, q2 = grid.q1, grid.q2
     moving = np.abs(q1) > 1e-12
+    g = np.where(moving, q1, 1.0)
+    uc = np.where(moving, np.where(q1 > 0, up / g, -lo / g), np.inf)
+    lc = np.where(moving, np.where(q1 > 0, -lo / g, up / g), -np.inf)
+    us = np.where(moving, -q2 / g, 0.0)
+    return uc, us, lc, moving, up, lo
+
+
+def accel_xmax(grid: Grid, coef: tuple | None = None) -> np.ndarray:
+    """The acceleration limit curve: per gridpoint, the largest ṡ² at which some path acceleration
+    obeys every axis's accel/decel bounds (q̈ₖ = q'ₖ·s̈ + q''ₖ·ṡ²), XMAX where none binds. `coef`:
+    `coefficients(grid)` when the caller has them."""
+    uc, us, lc, moving, up, lo = coefficients(grid) if coef is None else coef
+    q2 = grid.q2
     with np.errstate(divide="ignore", invalid="ignore"):
-        g = np.where(moving, q1, 1.0)
-        uc = np.where(q1 > 0, up / g, -lo / g)  # s̈ ≤ uc + us·x
-        lc = np.where(q1 > 0, -lo / g, up / g)  # s̈ ≥ lc + us·x
-        us = np.where(moving, -q2 / g, 0.0)
-        uc = np.where(moving, uc, np.inf)
-        lc = np.where(moving, lc, -np.inf)
-        coef = us[:, :, None] - us[:, None, :]  # lower of axis k against upper of axis j
+        coef_ = us[:, :, None] - us[:, None, :]  # lower of axis k against upper of axis j
         rhs = uc[:, None, :] - lc[:, :, None]
-        pair = np.where((coef > 1e-15) & np.isfinite(rhs), rhs / coef, np.inf).reshape(len(grid), -1).min(axis=1)
+        pair = np.where((coef_ > 1e-15) & np.isfinite(rhs), rhs / coef_, np.inf).reshape(len(grid), -1).min(axis=1)
         # an axis that does not move along the path bounds the speed: |q''·x| within its limits
         still = np.where(~moving & (q2 > 1e-12), up / np.where(q2 > 1e-12, q2, 1.0),
                          np.where(~moving & (q2 < -1e-12), lo / np.where(q2 < -1e-12, -q2, 1.0), np.inf)).min(axis=1)
     return np.minimum(np.minimum(pair, still), XMAX)
 
 
-def refine(grid: Grid, sd: np.ndarray, back: np.ndarray, fwd: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def refine(grid: Grid, sd: np.ndarray, back: np.ndarray, fwd: np.ndarray,
+           cap: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The breakpoints (s, ṡ) of the fastest motion through the gridpoints' speeds `sd` (module
     docstring): the gridpoints, and the corners of the bang-bang inside each interval. `back`,
     `fwd`: the solver's braking and accelerating steps (optimal.steps): the lines inside an
     interval are the solver's own, so that a re-timing from a point of a line finds the same line
-    (planner.py)."""
+    (planner.py). `cap`: the velocity and acceleration limit curves' minimum, when the caller has it."""
     s = grid.s
     x = sd * sd
     n = len(s)
     if n < 2:
         return s.copy(), sd.copy()
     h = np.diff(s)
-    cap = np.maximum(np.minimum(grid.xmax(), accel_xmax(grid)), x)
+    cap = np.maximum(np.minimum(grid.xmax(), accel_xmax(grid)) if cap is None else cap, x)
     u_lin = (x[1:] - x[:-1]) / (2.0 * h)
     with np.errstate(over="ignore", invalid="ignore"):
         up = np.min(fwd[:, :, 0] * x[:-1, None] + fwd[:, :, 1], axis=1)  # ṡ² at the end accelerating
