@@ -352,6 +352,12 @@ def unused_programs(app: Application, facts: dict[str, ProgramFacts], library: b
 # ------------------------------------------------------------------ read before assignment (S005)
 
 
+class _AllWritten(Exception):
+    """Every tracked local is written: no later read can be certain to see the initial value,
+    and a loop still open around an earlier read contains that read's first write (which came
+    after it), so the rest of the walk cannot change the findings."""
+
+
 def _certain_reads(statements: list, tracked: set[str], resolver: Resolver) -> list[tuple[str, A.Name]]:
     """Walks a program in evaluation order and records, per tracked local, the first write and
     the first read that comes before any write (with the outermost loop around that read); the
@@ -368,6 +374,7 @@ def _certain_reads(statements: list, tracked: set[str], resolver: Resolver) -> l
     pos = 0
     depth = 0
     outer: int | None = None
+    unwritten = {name.lower() for name in tracked}
     first_write: dict[str, int] = {}  # tracked names are exact; writes match without case (quieter)
     first_read: dict[str, tuple[A.Name, int | None]] = {}
     loop_end: dict[int, int] = {}
@@ -426,6 +433,10 @@ def _certain_reads(statements: list, tracked: set[str], resolver: Resolver) -> l
             key = e.name.lower()
             if key not in first_write:
                 first_write[key] = pos
+                if key in unwritten:
+                    unwritten.discard(key)
+                    if not unwritten:
+                        raise _AllWritten
             pos += 1
         elif t is Index:
             for i in e.indices:
@@ -495,7 +506,10 @@ def _certain_reads(statements: list, tracked: set[str], resolver: Resolver) -> l
                     write(s.overrun)
                 args(s.args, program_writes(s.target, len(s.args)))
 
-    block(statements)
+    try:
+        block(statements)
+    except _AllWritten:
+        pass
     out = []
     for name, (node, loop) in first_read.items():
         written = first_write.get(name.lower())
