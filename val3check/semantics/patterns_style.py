@@ -317,7 +317,7 @@ def _loop_is_busy(loop: object, scope: Scope, nodes: ProgramNodes, stops: dict[s
     Each thing found is a reason for no, whatever the order: the walk ends at the first.
     `stops`: per name as written, whether it may wait or is unknown (shared by a program's loops)."""
     inside = nodes.under(loop)
-    in_cond = {n.name.lower() for n in nodes.under(loop.cond, inside) if type(n) is A.Name}
+    in_cond = {n.name.lower() for n in A.nodes(loop.cond) if type(n) is A.Name}  # small: walked, not searched
     yielding, instructions = _yielding(), load_instructions()
     for node in inside:
         t = type(node)
