@@ -202,7 +202,7 @@ def _regexes():
     from val3check.parsing.fast_lexer import FIRST, pair_regex
 
     master = get_engine().descent.master.__self__.pattern
-    return pair_regex(master, ()), pair_regex(master, FIRST)
+    return pair_regex(master, (), possessive=False), pair_regex(master, FIRST)
 
 
 def test_terminals_tried_first_are_the_grammars_terminals():
@@ -213,6 +213,15 @@ def test_terminals_tried_first_are_the_grammars_terminals():
     master = get_engine().descent.master.__self__.pattern
     for name in FIRST:
         assert f"(?P<{name}>" in master  # a renamed terminal would silently keep the grammar's order
+
+
+def test_the_line_end_is_the_grammars_with_possessive_repeats():
+    from val3check.parsing.fast_lexer import NL_GRAMMAR, NL_POSSESSIVE
+
+    grammar_order, ours = _regexes()
+    assert f"(?P<_NL>{NL_GRAMMAR})" in get_engine().descent.master.__self__.pattern  # else it stays as written
+    assert NL_POSSESSIVE in ours.pattern and NL_POSSESSIVE not in grammar_order.pattern
+    assert NL_POSSESSIVE.replace("*+", "*") == NL_GRAMMAR
 
 
 def test_terminals_tried_first_find_the_same_tokens_on_every_fixture():

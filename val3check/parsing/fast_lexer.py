@@ -35,10 +35,19 @@ FIRST = ("NAME", "_LPAR", "_RPAR", "_COMMA", "_NL", "EQOP", "EQUAL", "NUMBER", "
          "RELOP", "LBRACE", "_RBRACE", "QMARK", "_COLON")
 
 
-def pair_regex(lexer: str, first: tuple[str, ...] = FIRST) -> Any:
+# A line end (with the blank and comment lines after it) as the grammar writes it, and the same
+# with possessive repeats: what follows each repeat cannot start with what it would give back (a
+# blank before `//` or a line end, a comment's character before a line end; the last blanks end
+# the token), so the matches are the same, without backtracking over each line's indentation
+# (findall 10 % faster).
+NL_GRAMMAR = "(?:\\/\\/[^\n]*)?\n(?:[ \t\x0c\r]*(?:\\/\\/[^\n]*)?\n)*[ \t\x0c\r]*"
+NL_POSSESSIVE = "(?:\\/\\/[^\n]*+)?\n(?:[ \t\x0c\r]*+(?:\\/\\/[^\n]*+)?\n)*+[ \t\x0c\r]*+"
+
+
+def pair_regex(lexer: str, first: tuple[str, ...] = FIRST, possessive: bool = True) -> Any:
     """The engine's master regex (`[ \\t\\f\\r]*(?:(?P<T>...)|...)`) as one that finds (blanks,
     token text) pairs: the same alternatives, those named in `first` tried first (in that order),
-    so the same matches."""
+    so the same matches; `possessive`: the line end's repeats possessive (NL_POSSESSIVE)."""
     prefix = "[ \\t\\f\\r]*(?:"
     if not (lexer.startswith(prefix) and lexer.endswith(")")):
         raise ValueError("unexpected form of the master regex")
@@ -50,6 +59,8 @@ def pair_regex(lexer: str, first: tuple[str, ...] = FIRST) -> Any:
         if m is None or m[1] in named:
             raise ValueError("unexpected form of the master regex")
         named[m[1]] = re.sub(r"\(\?P<[A-Za-z_0-9]+>", "(?:", piece)
+    if possessive and named.get("_NL") == f"(?:{NL_GRAMMAR})":
+        named["_NL"] = f"(?:{NL_POSSESSIVE})"
     order = [n for n in first if n in named] + [n for n in named if n not in first]
     regex = re.compile(f"([ \\t\\f\\r]*)({'|'.join(named[n] for n in order)})")
     if regex.groups != 2:
