@@ -7,7 +7,7 @@ and cached. The returned objects are frozen; do not mutate the returned dictiona
 from __future__ import annotations
 
 import os
-from functools import lru_cache
+from functools import cached_property, lru_cache
 
 from ..light_dataclass import dataclass, field
 
@@ -65,7 +65,7 @@ class Overload:
     section: str
     note: str = ""
 
-    @property
+    @cached_property  # asked at every call checked (calls._instruction)
     def min_arity(self) -> int:
         return sum(1 for p in self.params if not p.optional)
 
@@ -78,7 +78,7 @@ class Overload:
         return self.returns != "void"
 
     def accepts_arity(self, count: int) -> bool:
-        return self.min_arity <= count <= self.max_arity
+        return self.min_arity <= count <= len(self.params)
 
     def matches(self, arg_types: Sequence[str]) -> bool:
         """Whether arguments of these types (in order) select this overload."""
