@@ -217,20 +217,43 @@ def load_raw() -> dict[str, Any]:
 
 
 @lru_cache(maxsize=None)
-def load_instructions() -> dict[str, Instruction]:
-    """Every s7 instruction, keyed by lower-case name (``Instruction.name`` keeps the spelling)."""
-    result: dict[str, Instruction] = {}
+def entries() -> dict[str, tuple[str, Mapping[str, Any]]]:
+    """Every s7 instruction's catalogue entry (its spelling, its table), by lower-case name: what
+    `lookup` builds an Instruction from, when first asked (a lint run asks a few dozen of 300)."""
+    result: dict[str, tuple[str, Mapping[str, Any]]] = {}
     for name, raw in load_raw()["instructions"].items():
         key = name.lower()
         if key in result:
-            raise CatalogueError(f"instructions.{name}: same lower-case name as {result[key].name}")
-        result[key] = _instruction(name, raw)
+            raise CatalogueError(f"instructions.{name}: same lower-case name as {result[key][0]}")
+        result[key] = (name, raw)
     return result
+
+
+_BUILT: dict[str, Instruction] = {}  # by lower-case name: one Instruction each, however asked for
+
+
+@lru_cache(maxsize=None)
+def load_instructions() -> dict[str, Instruction]:
+    """Every s7 instruction, keyed by lower-case name (``Instruction.name`` keeps the spelling)."""
+    return {key: lookup(key) for key in entries()}  # type: ignore[misc]
 
 
 def lookup(name: str) -> Instruction | None:
     """The instruction of this name, whatever its case (VAL 3 source and the manual vary)."""
-    return load_instructions().get(name.lower())
+    key = name.lower()
+    ins = _BUILT.get(key)
+    if ins is None:
+        entry = entries().get(key)
+        if entry is None:
+            return None
+        ins = _BUILT.setdefault(key, _instruction(*entry))  # the first made, should two threads race
+    return ins
+
+
+@lru_cache(maxsize=None)
+def yielding_instructions() -> frozenset[str]:
+    """The instructions (lower-case) that may hand over to the next task (`yields`, manual 5.4)."""
+    return frozenset(k for k, (_, raw) in entries().items() if raw.get("yields", False))
 
 
 @lru_cache(maxsize=None)

@@ -19,7 +19,7 @@ import re
 from functools import cache
 
 from ..diagnostics import Diagnostic
-from ..language.instructions import load_instructions
+from ..language.instructions import lookup as lookup_instruction
 from ..language.types import load_aliases, load_types
 from ..light_dataclass import dataclass, field
 from ..loading.model import Application, Container, Program, Workspace
@@ -59,20 +59,21 @@ def builtin_type(name: str) -> str | None:
 
 
 @cache
-def _instruction_writes() -> dict[str, tuple[bool, ...]]:
-    """Instruction (lower-case) -> per argument position: may the instruction write it?
+def _instruction_writes(key: str) -> tuple[bool, ...] | None:
+    """Per argument position of the instruction `key` (lower-case): may the instruction write it?
+    None: not an instruction.
 
     A parameter marked `&`, or that needs a variable, or that takes an array or a collection
     counts as written (manual 2.6.2, 2.6.3): `toNum(s, nVal, bOk)`, `get(sDay)`, `sioGet(si, nBuf)`.
     """
-    result = {}
-    for key, ins in load_instructions().items():
-        width = max((len(o.params) for o in ins.overloads), default=0)
-        flags = []
-        for k in range(width):
-            flags.append(any(len(o.params) > k and o.params[k].needs_variable for o in ins.overloads))
-        result[key] = tuple(flags)
-    return result
+    ins = lookup_instruction(key)
+    if ins is None:
+        return None
+    width = max((len(o.params) for o in ins.overloads), default=0)
+    flags = []
+    for k in range(width):
+        flags.append(any(len(o.params) > k and o.params[k].needs_variable for o in ins.overloads))
+    return tuple(flags)
 
 
 def instruction_name(func: object) -> str | None:
@@ -129,7 +130,7 @@ class Resolver:
     def call_writes(call: A.CallExpr) -> list[bool]:
         """Per argument of an instruction call: may the instruction write it? Unknown: yes."""
         name = instruction_name(call.func) if type(call.func) is not A.SystemName else None
-        flags = _instruction_writes().get(name) if name else None
+        flags = _instruction_writes(name) if name else None
         count = len(call.args)
         if flags is None:
             return [True] * count
