@@ -309,7 +309,7 @@ def test_the_walk_reads_nothing_after_the_last_write():
     from val3check.semantics.patterns_usage import _certain_reads
 
     class NoProgram:  # the call after the last write must not be looked at
-        def program_writes(self, target, count):  # noqa: ANN001, ANN201
+        def program_writes(self, target, count):
             raise AssertionError("walked past the last write")
 
     code = "begin\n  put(l_nA)\n  l_nA = 1\n  call other(l_nA)\nend"

@@ -7,7 +7,7 @@ and cached. The returned objects are frozen; do not mutate the returned dictiona
 from __future__ import annotations
 
 import os
-from functools import cached_property, lru_cache
+from functools import cache, cached_property, lru_cache
 
 from ..light_dataclass import dataclass, field
 
@@ -216,7 +216,7 @@ def load_raw() -> dict[str, Any]:
     return load_toml("instructions.toml")
 
 
-@lru_cache(maxsize=None)
+@cache
 def entries() -> dict[str, tuple[str, Mapping[str, Any]]]:
     """Every s7 instruction's catalogue entry (its spelling, its table), by lower-case name: what
     `lookup` builds an Instruction from, when first asked (a lint run asks a few dozen of 300)."""
@@ -250,7 +250,7 @@ def lookup(name: str) -> Instruction | None:
     return ins
 
 
-@lru_cache(maxsize=None)
+@cache
 def yielding_instructions() -> frozenset[str]:
     """The instructions (lower-case) that may hand over to the next task (`yields`, manual 5.4)."""
     return frozenset(k for k, (_, raw) in entries().items() if raw.get("yields", False))
