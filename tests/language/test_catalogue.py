@@ -178,3 +178,20 @@ def test_every_cited_section_exists(toc_sections):
     cited += [(f"operator {o.op}", o.section) for o in load_operators()]
     for what, section in cited:
         assert section in toc_sections, (what, section)
+
+
+def test_an_instruction_is_built_when_first_asked_and_once():
+    import subprocess
+    import sys
+
+    code = (
+        "from val3check.language import instructions as I\n"
+        "a = I.lookup('MOVEJ')\n"
+        "assert list(I._BUILT) == ['movej'], list(I._BUILT)\n"
+        "assert I.lookup('movej') is a and I.load_instructions()['movej'] is a\n"
+        "assert len(I._BUILT) == len(I.load_instructions()) == len(I.entries())\n"
+        "assert I.lookup('noSuchInstruction') is None\n"
+        "assert I.yielding_instructions() == {k for k, i in I.load_instructions().items() if i.yields}\n"
+    )
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=False)
+    assert r.returncode == 0, r.stderr

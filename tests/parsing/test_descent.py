@@ -201,8 +201,8 @@ def test_programs_of_random_lines(lines):
 def _regexes():
     from val3check.parsing.fast_lexer import FIRST, pair_regex
 
-    master = get_engine().descent.master.__self__.pattern
-    return pair_regex(master, ()), pair_regex(master, FIRST)
+    master = get_engine().lexer
+    return pair_regex(master, (), possessive=False), pair_regex(master, FIRST)
 
 
 def test_terminals_tried_first_are_the_grammars_terminals():
@@ -210,9 +210,18 @@ def test_terminals_tried_first_are_the_grammars_terminals():
 
     grammar_order, ours = _regexes()
     assert grammar_order.pattern != ours.pattern
-    master = get_engine().descent.master.__self__.pattern
+    master = get_engine().lexer
     for name in FIRST:
         assert f"(?P<{name}>" in master  # a renamed terminal would silently keep the grammar's order
+
+
+def test_the_line_end_is_the_grammars_with_possessive_repeats():
+    from val3check.parsing.fast_lexer import NL_GRAMMAR, NL_POSSESSIVE
+
+    grammar_order, ours = _regexes()
+    assert f"(?P<_NL>{NL_GRAMMAR})" in get_engine().lexer  # else it stays as written
+    assert NL_POSSESSIVE in ours.pattern and NL_POSSESSIVE not in grammar_order.pattern
+    assert NL_POSSESSIVE.replace("*+", "*") == NL_GRAMMAR
 
 
 def test_terminals_tried_first_find_the_same_tokens_on_every_fixture():
@@ -231,3 +240,30 @@ _CHARS = st.sampled_from(_PIECES + list("0123456789eE+-_$aZ/*%<>=!.;\"\n \t\f\r\
 def test_terminals_tried_first_find_the_same_tokens_on_any_text(text):
     grammar_order, ours = _regexes()
     assert ours.findall(text) == grammar_order.findall(text)
+
+
+@settings(max_examples=int(os.environ.get("VAL3CHECK_FUZZ_EXAMPLES", "25")) * 20, deadline=None, database=None,
+          derandomize=os.environ.get("VAL3CHECK_FUZZ_LONG") != "1", suppress_health_check=list(HealthCheck))
+@given(st.sampled_from(list("0123456789.")).flatmap(
+    lambda first: st.text(alphabet="0123456789eE+-._aZx", max_size=8).map(lambda rest: first + rest)))
+def test_numbers_are_told_from_bad_numbers_as_the_master_regex_does(text):
+    # the tokenizer asks NUMBER alone (number_regex) what the engine asks its whole master regex
+    import re
+
+    from val3check.parsing.fast_lexer import number_regex
+
+    lexer = get_engine().lexer
+    m = re.compile(lexer).match(text)
+    n = number_regex(lexer).match(text)
+    whole = m is not None and m.lastgroup == "NUMBER" and m.end() == len(text)
+    assert whole == (n is not None and n.end() == len(text))
+
+
+def test_the_master_regex_is_compiled_only_for_the_engine():
+    from val3check.parsing.engine import Engine
+
+    engine = Engine()
+    engine.builder.setup("begin\nend\n", SourceMap.identity("begin\nend\n"))
+    assert engine.descent.parse("begin\nend\n") is not None
+    assert "regex" not in engine.__dict__
+    assert engine.regex.pattern == engine.lexer

@@ -284,6 +284,42 @@ def test_case_of_names(tmp_path):
     assert rba(tmp_path, "begin\n  L_NA = 1\n  put(l_nA)\nend", ["num l_nA"]) == []
 
 
+def test_the_walk_stops_once_every_tracked_local_is_written(tmp_path):
+    # a read inside a loop still open when the last local is written: its write is in that loop
+    # (not reported); a read at the top before its write: reported; reads after: none certain
+    code = """begin
+  put(l_nA)
+  while bRun
+    put(l_nB)
+    l_nA = 1
+    l_nB = 2
+    put(l_nC)
+  endWhile
+  l_nC = 3
+  put(l_nA + l_nB + l_nC)
+end"""
+    assert rba(tmp_path, code, ["num l_nA", "num l_nB", "num l_nC"], ["bool bRun"]) == ["l_nA", "l_nC"]
+    code = "begin\n  while bRun\n    put(l_nB)\n    l_nB = 2\n  endWhile\n  put(l_nB)\nend"
+    assert rba(tmp_path, code, ["num l_nB"], ["bool bRun"]) == []
+
+
+def test_the_walk_reads_nothing_after_the_last_write():
+    from val3check.parsing.parser import parse_code
+    from val3check.positions import SourceMap
+    from val3check.semantics.patterns_usage import _certain_reads
+
+    class NoProgram:  # the call after the last write must not be looked at
+        def program_writes(self, target, count):
+            raise AssertionError("walked past the last write")
+
+    code = "begin\n  put(l_nA)\n  l_nA = 1\n  call other(l_nA)\nend"
+    body, errors = parse_code(code, SourceMap.identity(code), "p.pgx")
+    assert errors == []
+    assert [name for name, _ in _certain_reads(body.statements, {"l_nA"}, NoProgram())] == ["l_nA"]
+    with pytest.raises(AssertionError):  # the same call before the write is walked
+        _certain_reads(body.statements, {"l_nA", "l_nB"}, NoProgram())
+
+
 # ------------------------------------------------------------------ S006 / S009 blocks
 
 

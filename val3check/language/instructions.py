@@ -7,7 +7,7 @@ and cached. The returned objects are frozen; do not mutate the returned dictiona
 from __future__ import annotations
 
 import os
-from functools import lru_cache
+from functools import cache, cached_property, lru_cache
 
 from ..light_dataclass import dataclass, field
 
@@ -65,7 +65,7 @@ class Overload:
     section: str
     note: str = ""
 
-    @property
+    @cached_property  # asked at every call checked (calls._instruction)
     def min_arity(self) -> int:
         return sum(1 for p in self.params if not p.optional)
 
@@ -78,7 +78,7 @@ class Overload:
         return self.returns != "void"
 
     def accepts_arity(self, count: int) -> bool:
-        return self.min_arity <= count <= self.max_arity
+        return self.min_arity <= count <= len(self.params)
 
     def matches(self, arg_types: Sequence[str]) -> bool:
         """Whether arguments of these types (in order) select this overload."""
@@ -216,21 +216,44 @@ def load_raw() -> dict[str, Any]:
     return load_toml("instructions.toml")
 
 
-@lru_cache(maxsize=None)
-def load_instructions() -> dict[str, Instruction]:
-    """Every s7 instruction, keyed by lower-case name (``Instruction.name`` keeps the spelling)."""
-    result: dict[str, Instruction] = {}
+@cache
+def entries() -> dict[str, tuple[str, Mapping[str, Any]]]:
+    """Every s7 instruction's catalogue entry (its spelling, its table), by lower-case name: what
+    `lookup` builds an Instruction from, when first asked (a lint run asks a few dozen of 300)."""
+    result: dict[str, tuple[str, Mapping[str, Any]]] = {}
     for name, raw in load_raw()["instructions"].items():
         key = name.lower()
         if key in result:
-            raise CatalogueError(f"instructions.{name}: same lower-case name as {result[key].name}")
-        result[key] = _instruction(name, raw)
+            raise CatalogueError(f"instructions.{name}: same lower-case name as {result[key][0]}")
+        result[key] = (name, raw)
     return result
+
+
+_BUILT: dict[str, Instruction] = {}  # by lower-case name: one Instruction each, however asked for
+
+
+@lru_cache(maxsize=None)
+def load_instructions() -> dict[str, Instruction]:
+    """Every s7 instruction, keyed by lower-case name (``Instruction.name`` keeps the spelling)."""
+    return {key: lookup(key) for key in entries()}  # type: ignore[misc]
 
 
 def lookup(name: str) -> Instruction | None:
     """The instruction of this name, whatever its case (VAL 3 source and the manual vary)."""
-    return load_instructions().get(name.lower())
+    key = name.lower()
+    ins = _BUILT.get(key)
+    if ins is None:
+        entry = entries().get(key)
+        if entry is None:
+            return None
+        ins = _BUILT.setdefault(key, _instruction(*entry))  # the first made, should two threads race
+    return ins
+
+
+@cache
+def yielding_instructions() -> frozenset[str]:
+    """The instructions (lower-case) that may hand over to the next task (`yields`, manual 5.4)."""
+    return frozenset(k for k, (_, raw) in entries().items() if raw.get("yields", False))
 
 
 @lru_cache(maxsize=None)

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from . import ast as A
 from .builder import Builder
-from .fast_lexer import Fallback, pair_regex, tokenize
+from .fast_lexer import Fallback, number_regex, pair_regex, tokenize
 from .tokens import MAX_BLOCK_DEPTH, OPENERS
 
 TYPE_CHECKING = False  # not typing's: importing typing costs 3 ms at lint's start-up
@@ -37,16 +37,17 @@ _EXPR_END = frozenset({"_NL", "_RPAR", "_RSQB", "_RBRACE", "_COMMA", "NAME"})  #
 class Descent:
     """The parser of one engine's builder and lexer."""
 
-    def __init__(self, builder: Builder, master: Any) -> None:
+    def __init__(self, builder: Builder, lexer: str) -> None:
+        """`lexer`: the engine's master regex (its pattern)."""
         self.builder = builder
-        self.regex = pair_regex(master.pattern)
-        self.master = master.match
+        self.regex = pair_regex(lexer)
+        self.number = number_regex(lexer).match
         self.known: dict[str, str] = {}
 
     def parse(self, code: str) -> Any:
         """The body of the program `code`, or None: not for this parser (the engine's job)."""
         try:
-            types, toks = tokenize(code, self.regex, self.master, self.known)
+            types, toks = tokenize(code, self.regex, self.number, self.known)
             return _parse(types, toks, self.builder)
         except (Fallback, IndexError, RecursionError):
             return None

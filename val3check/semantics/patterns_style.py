@@ -9,7 +9,7 @@ import re
 from functools import cache
 
 from ..diagnostics import Diagnostic
-from ..language.instructions import load_instructions
+from ..language.instructions import entries, yielding_instructions
 from ..language.types import load_constants
 from ..loading.model import Container, Program
 from ..parsing import ast as A
@@ -43,7 +43,7 @@ _DIRECTIVE = re.compile(r"//\s*val3check\s*:", re.IGNORECASE)
 @cache
 def _yielding() -> frozenset[str]:
     """Instructions that may hand over to the next task (manual 5.4, `yields` in the catalogue)."""
-    return frozenset(k for k, ins in load_instructions().items() if ins.yields) | MOTION_INSTRUCTIONS
+    return yielding_instructions() | MOTION_INSTRUCTIONS
 
 
 @cache
@@ -317,8 +317,8 @@ def _loop_is_busy(loop: object, scope: Scope, nodes: ProgramNodes, stops: dict[s
     Each thing found is a reason for no, whatever the order: the walk ends at the first.
     `stops`: per name as written, whether it may wait or is unknown (shared by a program's loops)."""
     inside = nodes.under(loop)
-    in_cond = {n.name.lower() for n in nodes.under(loop.cond, inside) if type(n) is A.Name}
-    yielding, instructions = _yielding(), load_instructions()
+    in_cond = {n.name.lower() for n in A.nodes(loop.cond) if type(n) is A.Name}  # small: walked, not searched
+    yielding, instructions = _yielding(), entries()  # the catalogue's names (lower-case)
     for node in inside:
         t = type(node)
         if t is A.Return or t is A.Call or t is A.TaskCreate or t is A.TaskCreateSync:

@@ -19,7 +19,7 @@ import re
 from functools import cache
 
 from ..diagnostics import Diagnostic
-from ..language.instructions import load_instructions
+from ..language.instructions import lookup as lookup_instruction
 from ..language.types import load_aliases, load_types
 from ..light_dataclass import dataclass, field
 from ..loading.model import Application, Container, Program, Workspace
@@ -59,20 +59,21 @@ def builtin_type(name: str) -> str | None:
 
 
 @cache
-def _instruction_writes() -> dict[str, tuple[bool, ...]]:
-    """Instruction (lower-case) -> per argument position: may the instruction write it?
+def _instruction_writes(key: str) -> tuple[bool, ...] | None:
+    """Per argument position of the instruction `key` (lower-case): may the instruction write it?
+    None: not an instruction.
 
     A parameter marked `&`, or that needs a variable, or that takes an array or a collection
     counts as written (manual 2.6.2, 2.6.3): `toNum(s, nVal, bOk)`, `get(sDay)`, `sioGet(si, nBuf)`.
     """
-    result = {}
-    for key, ins in load_instructions().items():
-        width = max((len(o.params) for o in ins.overloads), default=0)
-        flags = []
-        for k in range(width):
-            flags.append(any(len(o.params) > k and o.params[k].needs_variable for o in ins.overloads))
-        result[key] = tuple(flags)
-    return result
+    ins = lookup_instruction(key)
+    if ins is None:
+        return None
+    width = max((len(o.params) for o in ins.overloads), default=0)
+    flags = []
+    for k in range(width):
+        flags.append(any(len(o.params) > k and o.params[k].needs_variable for o in ins.overloads))
+    return tuple(flags)
 
 
 def instruction_name(func: object) -> str | None:
@@ -129,7 +130,7 @@ class Resolver:
     def call_writes(call: A.CallExpr) -> list[bool]:
         """Per argument of an instruction call: may the instruction write it? Unknown: yes."""
         name = instruction_name(call.func) if type(call.func) is not A.SystemName else None
-        flags = _instruction_writes().get(name) if name else None
+        flags = _instruction_writes(name) if name else None
         count = len(call.args)
         if flags is None:
             return [True] * count
@@ -352,6 +353,12 @@ def unused_programs(app: Application, facts: dict[str, ProgramFacts], library: b
 # ------------------------------------------------------------------ read before assignment (S005)
 
 
+class _AllWritten(Exception):
+    """Every tracked local is written: no later read can be certain to see the initial value,
+    and a loop still open around an earlier read contains that read's first write (which came
+    after it), so the rest of the walk cannot change the findings."""
+
+
 def _certain_reads(statements: list, tracked: set[str], resolver: Resolver) -> list[tuple[str, A.Name]]:
     """Walks a program in evaluation order and records, per tracked local, the first write and
     the first read that comes before any write (with the outermost loop around that read); the
@@ -368,6 +375,7 @@ def _certain_reads(statements: list, tracked: set[str], resolver: Resolver) -> l
     pos = 0
     depth = 0
     outer: int | None = None
+    unwritten = {name.lower() for name in tracked}
     first_write: dict[str, int] = {}  # tracked names are exact; writes match without case (quieter)
     first_read: dict[str, tuple[A.Name, int | None]] = {}
     loop_end: dict[int, int] = {}
@@ -426,6 +434,10 @@ def _certain_reads(statements: list, tracked: set[str], resolver: Resolver) -> l
             key = e.name.lower()
             if key not in first_write:
                 first_write[key] = pos
+                if key in unwritten:
+                    unwritten.discard(key)
+                    if not unwritten:
+                        raise _AllWritten
             pos += 1
         elif t is Index:
             for i in e.indices:
@@ -495,7 +507,10 @@ def _certain_reads(statements: list, tracked: set[str], resolver: Resolver) -> l
                     write(s.overrun)
                 args(s.args, program_writes(s.target, len(s.args)))
 
-    block(statements)
+    try:
+        block(statements)
+    except _AllWritten:
+        pass
     out = []
     for name, (node, loop) in first_read.items():
         written = first_write.get(name.lower())

@@ -3,7 +3,7 @@
 `ProgramNodes(body)` walks the tree once (`parsing.ast.nodes`: depth first, source order) and
 groups the nodes by kind. A check reads the kinds it subscribes to (`of(A.Name)`) instead of
 walking the tree again, as pyflakes' and ruff's checkers dispatch on the kind of node. The nodes
-under one node are a slice of that walk (`under(node)`: a loop's, its condition's).
+under one node are a slice of that walk (`under(node)`: a loop's).
 
 Readers: `patterns_usage.gather` (names, calls, strings, assignments, loops: the S rules),
 `limits` (numeric constants, F017), `patterns_style.check_loops` (the nodes of each loop, S014).
@@ -37,23 +37,18 @@ class ProgramNodes:
         """The nodes of class `kind`, in source order (depth first). Shared: read, do not modify."""
         return self._kinds.get(kind, ())
 
-    def under(self, node: object, within: list | None = None) -> list:
+    def under(self, node: object) -> list:
         """`node` and every node under it, in source order: what `parsing.ast.nodes(node)` gives,
         as a slice of the program's walk (a subtree is contiguous in a depth-first order and ends
-        with its last child's last child...). `within`: a slice known to hold `node` (a loop's,
-        for its condition), searched instead of the program's walk."""
-        if within is not None:
-            ids = list(map(id, within))
-            start = ids.index(id(node))
-        else:
-            within, ids = self.order, self._ids
-            if ids is None:
-                ids = self._ids = list(map(id, within))
-            try:  # from where the last search started: callers that go in source order make one pass
-                start = ids.index(id(node), self._from)
-            except ValueError:
-                start = ids.index(id(node), 0, self._from)
-            self._from = start
+        with its last child's last child...)."""
+        within, ids = self.order, self._ids
+        if ids is None:
+            ids = self._ids = list(map(id, within))
+        try:  # from where the last search started: callers that go in source order make one pass
+            start = ids.index(id(node), self._from)
+        except ValueError:
+            start = ids.index(id(node), 0, self._from)
+        self._from = start
         last = node
         child = A.last_child(node)
         while child is not None:
