@@ -295,16 +295,12 @@ class MotionQueue:
         """The earliest time after `now` at which something a task can observe changes: a command
         completes (a queue place frees, isEmpty, waitEndMove), the arm comes to rest, or it has
         been at rest 50 ms (isSettled). None when nothing will change."""
-        planner = self.planner
-        if planner.due is not None:
-            planner.flush()
         after = now + 1e-12  # (asked every scheduler cycle: no lists, the flush once)
         best = None
-        if self.pending:
-            t = self._done_time(self.pending[0])
-            if t is not None and t > after:
-                best = t
-        te = planner.profile.t_end
+        t = self._first_done_time()  # (it does the replan due before anything is read)
+        if t is not None and t > after:
+            best = t
+        te = self.planner.profile.t_end
         if te > after and (best is None or te < best):
             best = te
         if te > 0 and te + SETTLE_S > after and (best is None or te + SETTLE_S < best):
