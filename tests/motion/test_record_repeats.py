@@ -30,14 +30,14 @@ def pick_place():
 def _spy(monkeypatch) -> list:
     """Whether each look-up of a command found an earlier one."""
     found = []
-    find = Repeats.find
+    find_block = Repeats.find_block
 
-    def spy(self, inputs):
-        out = find(self, inputs)
-        found.append(out[0] is not None)
+    def spy(self, asks):
+        out = find_block(self, asks)
+        found.extend(earlier is not None for earlier, _, _ in out)
         return out
 
-    monkeypatch.setattr(Repeats, "find", spy)
+    monkeypatch.setattr(Repeats, "find_block", spy)
     return found
 
 
@@ -49,7 +49,7 @@ def test_a_long_run_reusing_its_records_gives_the_fresh_records(pick_place, monk
     decide = records_module._decide
 
     def counted(queue, prof, out, pending):
-        doubts.extend(int((~figures[3]).sum()) for _, _, figures in pending)
+        doubts.extend(int((~figures[3]).sum()) for _, _, figures, *_ in pending)
         return decide(queue, prof, out, pending)
 
     monkeypatch.setattr(records_module, "_decide", counted)
@@ -235,3 +235,68 @@ def test_records_made_as_the_blocks_fill_are_the_fresh_ones(pick_place, monkeypa
     for a, b in zip(fresh, reused, strict=True):
         assert (a.id, a.start, a.end, a.dominant, a.limit_share) == (b.id, b.start, b.end, b.dominant, b.limit_share)
         assert (round(a.length_mm, 3), round(a.peak_tcp_mm_s, 3)) == (round(b.length_mm, 3), round(b.peak_tcp_mm_s, 3))
+
+
+def _asks(q) -> list:
+    """(tool, limits, s0, s1, lo, hi, i0, i1) of each command that moved, as RecordMaker.add makes them."""
+    import bisect
+
+    prof, path = q.trajectory.profile, q.path
+    out = []
+    for command in q.history:
+        place = command.placement
+        if place.s_begin is None or place.s_end is None or place.s_end - place.s_begin < 1e-6:
+            continue
+        s0, s1 = place.s_begin, place.s_end
+        k0, k1 = bisect.bisect_left(prof.S, s0), bisect.bisect_right(prof.S, s1)
+        lo, hi = max(k0 - 1, 0), min(k1, len(prof.S) - 1)
+        out.append((command.tool, q.limits_of(command), s0, s1, lo, hi, path.locate(min(prof.S[lo], s0))[0],
+                    path.locate(max(prof.S[hi], s1))[0]))
+    return out
+
+
+@pytest.mark.parametrize("block", [1, 7, 128, 10_000])
+def test_a_block_of_look_ups_answers_as_one_look_up_at_a_time(pick_place, block):
+    """find_block: the same answers (which earlier command, or a new one), the same durations and the
+    same keys kept as `inputs` and `find` one command at a time, whatever the block."""
+    q, _ = pick_place
+    prof = q.trajectory.profile
+    asks = _asks(q)
+    one, many = Repeats(q.path, prof), Repeats(q.path, prof)
+    expected = []
+    for tool, lim, s0, s1, lo, hi, _, _ in asks:
+        inputs = one.inputs(tool, lim, s0, s1, lo, hi)
+        expected.append((*one.find(inputs), inputs[3]))
+    got = []
+    for at in range(0, len(asks), block):
+        got.extend(many.find_block(asks[at:at + block]))
+    names_one, names_many = {}, {}  # each Slot named by the command that made it
+
+    def name(names, r, earlier, slot):
+        if slot is not None:
+            names[id(slot)] = r
+            return ("new", r)
+        return ("repeats", names[id(earlier)])
+
+    assert len(got) == len(expected) > 200
+    for r, ((e1, n1, d1), (e2, n2, d2)) in enumerate(zip(expected, got)):
+        assert name(names_one, r, e1, n1) == name(names_many, r, e2, n2)
+        assert d1.tobytes() == d2.tobytes()
+    assert one.hits == many.hits > 0.5 * len(asks)
+    assert len(one.seen) == len(many.seen)
+    for kept in one.seen.values():  # the values kept per key: the same bytes (keys differ in form only)
+        assert any([g.tobytes() for g, _ in kept] == [g.tobytes() for g, _ in other] for other in many.seen.values())
+
+
+def test_a_block_with_a_span_appended_at_a_command_s_end_is_looked_up_one_at_a_time(pick_place, monkeypatch):
+    """A span that begins where a command's last read breakpoint lies, appended after the command was
+    added, would change the key made from the path now: that block is looked up one at a time."""
+    q, _ = pick_place
+    asks = _asks(q)[:20]
+    tool, lim, s0, s1, lo, hi, i0, _ = asks[3]
+    asks[3] = (tool, lim, s0, s1, lo, hi, i0, i0 - 1)  # as if its last span were then the path's last
+    calls = []
+    one = Repeats._one
+    monkeypatch.setattr(Repeats, "_one", lambda self, ask: calls.append(ask) or one(self, ask))
+    Repeats(q.path, q.trajectory.profile).find_block(asks)
+    assert len(calls) == len(asks)

@@ -116,6 +116,7 @@ class RecordMaker:
         # block at a time as they come: what a command needs is dropped once its record is made
         self.groups: dict = {}
         self.doubts: list = []  # repeats with a near tie, decided at the end (`_decide`)
+        self.pending: list = []  # (item, what its look-up reads) of the commands not looked up yet
 
     def add(self, command, end_s: float | None = None, reached: float | None = None) -> None:
         """The record of `command` (made now, or with its block or at `finish`); `end_s`, `reached`:
@@ -147,29 +148,46 @@ class RecordMaker:
         k1 = trajectory.bisect_right(prof.S, s1)
         item = (len(out), _Asked(command), s0, s1, start, end, k0, k1, queue.limits_of(command))
         out.append(None)
-        slot = None
-        repeats = self.repeats
-        if repeats is not None:
-            inputs = repeats.inputs(command.tool, item[8], s0, s1, max(k0 - 1, 0), k1)
-            earlier, slot = repeats.find(inputs)
-            if earlier is not None:  # given the figures of the first (`_evaluate`)
-                if earlier.figures is None:
-                    earlier.items.append((item, inputs[3]))
-                else:
-                    _repeat(prof, out, item, inputs[3], earlier, self.doubts)
-                return
-        tool = command.tool  # the same TCP (by value: each command holds its own copy) evaluated together
+        if self.repeats is None:
+            self._first(item, None)
+            return
+        # looked up with the block (`_settle`); what the look-up reads of the path is as it is now
+        lo, hi, path = max(k0 - 1, 0), min(k1, len(prof.S) - 1), self.repeats.path
+        i0, i1 = path.locate(min(prof.S[lo], s0))[0], path.locate(max(prof.S[hi], s1))[0]
+        self.pending.append((item, (command.tool, item[8], s0, s1, lo, hi, i0, i1)))
+        if len(self.pending) >= RECORD_BLOCK:
+            self._settle()
+
+    def _settle(self) -> None:
+        """The commands added since the last call looked up together (record_repeats.find_block):
+        a repeat is given the figures of the first (`_repeat`), the others are evaluated."""
+        pending, self.pending = self.pending, []
+        if not pending:
+            return
+        for (item, _), (earlier, slot, dt) in zip(pending, self.repeats.find_block([a for _, a in pending])):
+            if earlier is None:
+                self._first(item, slot)
+            elif earlier.figures is None:  # given them when the first is evaluated (`_evaluate`)
+                earlier.items.append((item, dt))
+            else:
+                _repeat(self.prof, self.out, item, dt, earlier, self.doubts)
+
+    def _first(self, item: tuple, slot) -> None:
+        """A command met first: evaluated with its block (its Slot, if any, then given its figures)."""
+        tool = item[1].tool  # the same TCP (by value: each command holds its own copy) evaluated together
         key = None if tool is None else np.asarray(tool, dtype=float).tobytes()
         group = self.groups.get(key)
         if group is None:
             group = self.groups[key] = [len(self.groups), 0, []]
         group[2].append((item, slot))
         if len(group[2]) == RECORD_BLOCK:
-            _evaluate(queue, prof, out, group, self.doubts)
+            _evaluate(self.queue, self.prof, self.out, group, self.doubts)
 
     def flush(self) -> None:
         """Every command added so far given its record: the blocks not full evaluated, the near ties
         decided (a record's figures do not depend on the commands evaluated with it: the same bits)."""
+        if self.repeats is not None:
+            self._settle()
         for group in self.groups.values():
             if group[2]:
                 _evaluate(self.queue, self.prof, self.out, group, self.doubts)
@@ -230,7 +248,7 @@ def _repeat(prof, out: list, item: tuple, dt: np.ndarray, slot, doubts: list) ->
     if clear.all():  # the earlier's intervals (the key holds where s0 and s1 fall) and limits
         out[idx] = _record(command, start, end, length, peak, _seconds_of(prof, max(k0 - 1, 0), s0, s1, i, order, dt))
     else:
-        doubts.append((slot.place + (idx,), item, slot.figures))
+        doubts.append((slot.place + (idx,), item, slot.figures, dt))
 
 
 DECIDE_BLOCK = 256  # near ties decided in one evaluation (what is held for them is bounded)
@@ -248,36 +266,40 @@ def _decide(queue, prof, out: list, doubts: list) -> None:
 
 
 def _decide_block(queue, prof, out: list, doubts: list) -> None:
-    """`_decide` of a block of doubts."""
-    doubt: dict = {}  # tool -> [(item, codes, unclear rows, their rows, noise)]
-    for _, item, (length, peak, codes, clear, _, _) in doubts:
+    """`_decide` of a block of doubts: only the intervals in doubt are read from the profile (as
+    `_intervals` gives them), the seconds summed from the durations the repeat's key holds
+    (`_seconds_of`: the same arithmetic as `_seconds`)."""
+    doubt: dict = {}  # tool -> [(item, codes, unclear rows, their breakpoints, noise, figures, durations)]
+    S, SD = prof.S, prof.SD
+    last = len(S) - 1
+    for _, item, (length, peak, codes, clear, i, _), dt in doubts:
         idx, command, s0, s1, start, end, k0, k1, lim = item
         lo = max(k0 - 1, 0)
-        rows = _intervals(prof, lo, k1, s0, s1)
         j = np.nonzero(~clear)[0]
+        at = (i[j] + lo).tolist()
         tool = command.tool
         doubt.setdefault(None if tool is None else np.asarray(tool, dtype=float).tobytes(), []).append(
-            (item, codes.copy(), j, rows, noise(prof, lo, k1, max(abs(rows[0][-1]), abs(s1))), length, peak))
+            (item, codes.copy(), j, at, noise(prof, lo, k1, max(abs(S[min(k1, last)]), abs(s1))), length, peak, i, dt))
     for items in doubt.values():
-        per_row: list = [[] for _ in range(11)]  # ds, ṡ² at both ends, midpoint, V, A, D, tvel, rvel, e_s, e_v
-        for (*_, lim), _, j, rows, (e_s, e_v), _, _ in items:
-            S, i = rows[0], rows[5][j]
-            a, b = S[i], S[i + 1]
+        per_row: list = [[] for _ in range(11)]  # S at both ends, ṡ at both ends, V, A, D, tvel, rvel, e_s, e_v
+        for (*_, lim), _, j, at, (e_s, e_v), *_ in items:
             m = len(j)
-            for values, more in zip(per_row, (b - a, rows[1][j], rows[2][j], 0.5 * (a + b))):
-                values.append(more)
+            for values, more in zip(per_row, ([S[k] for k in at], [S[k + 1] for k in at], [SD[k] for k in at],
+                                              [SD[k + 1] for k in at])):
+                values.extend(more)
             for values, more in zip(per_row[4:], (lim.V, lim.A, lim.D, lim.tvel, lim.rvel, e_s, e_v)):
                 values.extend([more] * m)
-        ds, x0, x1, mids = (np.concatenate(v) for v in per_row[:4])
+        a, b, sd0, sd1 = (np.array(v, dtype=float) for v in per_row[:4])
         V, A, D, tvel, rvel, e_s, e_v = (np.array(v) for v in per_row[4:])
-        q, q1, q2 = _path_at(queue.path, mids)
+        q, q1, q2 = _path_at(queue.path, 0.5 * (a + b))
         pt, rt = tcp_rates(queue.kin, q, q1, items[0][0][1].tool)
-        chosen = _choose(ds, x0, x1, q1, q2, pt, rt, V, A, D, tvel, rvel, e_s, e_v)[0]
-        at = 0
-        for (idx, command, s0, s1, start, end, k0, k1, lim), codes, j, rows, _, length, peak in items:
-            codes[j] = chosen[at:at + len(j)]
-            at += len(j)
-            out[idx] = _record(command, start, end, length, peak, _seconds(rows, codes, len(lim.V)))
+        chosen = _choose(b - a, sd0 ** 2, sd1 ** 2, q1, q2, pt, rt, V, A, D, tvel, rvel, e_s, e_v)[0]
+        n = 0
+        for (idx, command, s0, s1, start, end, k0, k1, lim), codes, j, _, _, length, peak, i, dt in items:
+            codes[j] = chosen[n:n + len(j)]
+            n += len(j)
+            share = _seconds_of(prof, max(k0 - 1, 0), s0, s1, i, _order(codes, len(lim.V)), dt)
+            out[idx] = _record(command, start, end, length, peak, share)
 
 
 def _path_at(path, s: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -94,6 +94,96 @@ class Repeats:
         return None, slot
 
 
+    def find_block(self, asks: list) -> list:
+        """`find(inputs(tool, lim, s0, s1, lo, k1))` of each ask (tool, lim, s0, s1, lo, hi, i0, i1:
+        hi = min(k1, breakpoints - 1) and i0, i1 its first and last span, as when it was added) in
+        turn: [(earlier Slot, new Slot, durations)]. The same keys, compared values and answers,
+        made for the whole block in a few numpy passes over its part of the profile (the keys of a
+        block are made together; the look-ups stay in order)."""
+        prof, offsets = self.prof, self.path.offsets
+        lo_b, hi_b = min(a[4] for a in asks), max(a[5] for a in asks)
+        S, T, SD = (window(v, lo_b, hi_b + 1) for v in (prof.S, prof.T, prof.SD))
+        s_at = S.tolist()
+        ib0, ib1 = min(a[6] for a in asks), max(a[7] for a in asks)
+        for a in asks:
+            i1 = a[7]
+            if i1 + 1 < len(offsets) and offsets[i1 + 1] <= max(s_at[a[5] - lo_b], a[3]):
+                # a span appended since at the command's end: the key made then (`inputs`) differs
+                return [self._one(a) for a in asks]
+        offs = np.asarray(offsets[ib0:ib1 + 1])
+        moves = S[1:] > S[:-1]
+        moved = moves.tobytes()
+        dt_all = np.where(moves, T[1:] - T[:-1], 0.0)
+        g = offs.searchsorted(S, "right")  # + ib0: offsets at or before each breakpoint
+        g_at = g.tolist()
+        steps = (g[1:] - g[:-1]).tobytes()
+        ends = np.array([a[2] for a in asks] + [a[3] for a in asks])
+        left, right = (S.searchsorted(ends, side).tolist() for side in ("left", "right"))
+        b = len(asks)
+        groups: dict = {}  # exact part -> [row of each ask]
+        rows = []
+        for r, (tool, lim, s0, s1, lo, hi, i0, i1) in enumerate(asks):
+            held = self._limits.get(id(lim))
+            if held is None or held[0] is not lim:
+                held = self._limits[id(lim)] = (lim, (lim.V.tobytes(), lim.A.tobytes(), lim.D.tobytes(), lim.tvel,
+                                                      lim.rvel))
+            n, m, k = hi - lo + 1, i1 - i0 + 1, lo - lo_b
+            # the searches in the window: the block's clamped to it (`inputs`)
+            left0, right0 = min(max(left[r] - k, 0), n), min(max(right[r] - k, 0), n)
+            left1, right1 = min(max(left[b + r] - k, 0), n), min(max(right[b + r] - k, 0), n)
+            where = (left0, right0, left1, right1, min(max(bisect.bisect_right(offsets, s0) - i0, 0), m),
+                     min(max(bisect.bisect_right(offsets, s1) - i0, 0), m))
+            # the span each breakpoint falls on, from i0 (`inputs`: offs.searchsorted(S, "right")):
+            # its first and its steps (it never leaves 0..m: the spans hold the window)
+            exact = (tuple((id(sp.geom), sp.a, sp.b) for sp in self.path.spans[i0:i1 + 1]),
+                     None if tool is None else np.asarray(tool, dtype=float).tobytes(), held[1], n, where,
+                     moved[k:k + n - 1], (g_at[k] + ib0 - i0, steps[8 * k:8 * (k + n - 1)]))
+            groups.setdefault(exact, []).append(r)
+            rows.append((k, n, m, i0 - ib0, s0, s1, max(1.0, abs(s_at[k + n - 1]), abs(s1)),
+                         max(1.0, abs(T[k + n - 1])), right0, left1))
+        out: list = [None] * b
+        for exact, members in groups.items():
+            self._find_group(exact, members, rows, S, SD, offs, dt_all, out)
+        return out
+
+    def _find_group(self, exact, members: list, rows: list, S, SD, offs, dt_all, out: list) -> None:
+        """`find_block` of the asks with one exact part (`members`, in order): their compared values
+        as rows of one matrix, compared with each earlier command kept in one pass."""
+        k, n, m, j0, s0, s1, mag_s, mag_t, right0, left1 = (np.array(c) for c in zip(*(rows[r] for r in members)))
+        n, m = int(n[0]), int(m[0])
+        at = k[:, None] + np.arange(n)
+        pos, sd = S[at] - s0[:, None], SD[at]
+        cols = np.arange(n - 1)
+        dt = dt_all[at[:, :-1]]
+        dt[(cols < np.maximum(right0 - 1, 0)[:, None]) | (cols >= left1[:, None])] = 0.0
+        got = np.hstack((pos, offs[j0[:, None] + np.arange(m)] - s0[:, None], (s1 - s0)[:, None], dt, sd))
+        tol = np.column_stack((POS_TOL * mag_s, TIME_TOL * mag_t, SPEED_TOL * np.maximum(1.0, sd.max(axis=1))))
+        tol = tol[:, _pattern(n, m)]
+        kept = self.seen.setdefault(exact, [])
+        match = [(np.abs(got - earlier) <= tol).all(axis=1).tolist() for earlier, _ in kept]
+        slots = [slot for _, slot in kept]
+        for x, r in enumerate(members):
+            for e, hit in enumerate(match):
+                if hit[x]:
+                    self.hits += 1
+                    out[r] = (slots[e], None, dt[x])
+                    break
+            else:
+                slot = Slot()
+                out[r] = (None, slot, dt[x])
+                if len(kept) < KEPT:
+                    kept.append((got[x].copy(), slot))
+                    slots.append(slot)
+                    match.append([False] * (x + 1) + (np.abs(got[x + 1:] - got[x]) <= tol[x + 1:]).all(axis=1).tolist())
+
+    def _one(self, ask: tuple) -> tuple:
+        """`find_block` of one ask, alone (`inputs`, `find`)."""
+        tool, lim, s0, s1, lo, hi, _, _ = ask
+        inputs = self.inputs(tool, lim, s0, s1, lo, hi)
+        earlier, slot = self.find(inputs)
+        return earlier, slot, inputs[3]
+
+
 _PATTERNS: dict = {}  # (breakpoints, offsets) -> which tolerance each compared value takes
 
 

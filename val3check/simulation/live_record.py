@@ -62,6 +62,10 @@ class LiveRecord:
         i = self.cursor
         if i >= len(history):
             return
+        state = history[i].state
+        if state != "done" and state != "failed":  # (mostly: the next command is still under way)
+            self.blocked = state == "cancelled"
+            return
         final = queue.final_before()
         wait = self._wait
         if wait is not None and wait[0] is history[i] and final < wait[1]:
