@@ -194,3 +194,41 @@ def test_window_is_a_view_and_the_profile_grows_while_it_lives():
     # a history's chunks are allocated full: growing never resizes what a view sees (history.py)
     p.append(p.t_end, np.array([3.0, 4.0]), np.array([0.0, 0.0]))
     assert isinstance(p.S, History) and p.S[-1] == 4.0 and w.tolist() == [1.0, 3.0]
+
+
+@pytest.mark.parametrize("spent_after", [None, 3])
+def test_places_and_times_found_together_are_those_found_one_at_a_time(machine_run, spent_after):
+    """Stretches.places and Retiming.times_at (what each_retimed uses): the same place and the same
+    re-timed time, bit for bit, as `place` and `time_at` of each time alone, at every breakpoint,
+    between breakpoints, before the run, past its end, None, and past a cut."""
+    import numpy as np
+
+    machine, _ = machine_run
+    q = machine.arm.queue_in_use
+    prof = q.planner.profile
+    st = Stretches(q)
+    T = np.asarray(list(prof.T))
+    times = [None, -1.0, 0.0, *T.tolist(), *(0.5 * (T[1:] + T[:-1])).tolist(), *(T[1:] - 1e-9).tolist(),
+             T[-1] + 5.0, None, *st.starts, *st.ends]
+    t, k, rel = st.places(times)
+    for x, tt, kk, rr in zip(times, t.tolist(), k.tolist(), rel.tolist()):
+        one = st.place(x)
+        if one is None:
+            assert tt != tt
+            continue
+        assert (one[0], one[1]) == (tt, kk)
+        assert (one[2] is None and rr != rr) or one[2] == rr
+    calls = []
+
+    def out_of_time():
+        calls.append(1)
+        return spent_after is not None and len(calls) > spent_after
+
+    for factor in (0.5, 2.0):
+        calls.clear()
+        rt = Retiming(q, factor, out_of_time, st)
+        assert (rt.cut is not None) == (spent_after is not None)
+        many = rt.times_at(t, k, rel).tolist()
+        for x, m in zip(times, many):
+            one = rt.time(x)
+            assert (one is None and m != m) or one == m

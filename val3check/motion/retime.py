@@ -25,7 +25,7 @@ from dataclasses import fields, replace
 import numpy as np
 
 from .mdesc import Limits
-from .trajectory import Profile, window
+from .trajectory import Profile, bisect_right, window
 
 
 def piece_key(path, a: float, b: float, limits, memo: dict | None = None) -> tuple | None:
@@ -80,6 +80,7 @@ def _next_true(mask: np.ndarray, i: int) -> int:
 
 
 _BLOCK = 1 << 16  # breakpoints read at a time by `Stretches`
+_PLACES = 4096  # times placed at a time by `Stretches.places`
 
 
 class Stretches:
@@ -124,6 +125,44 @@ class Stretches:
         self.ends = [T[j] for _, j, _ in self.spans]
         self.s_starts = [S[i] for i, _, _ in self.spans]
         self.s_ends = [S[j] for _, j, _ in self.spans]
+
+    def places(self, times: list) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """`place(t)` of many times (None: nan) as arrays (t, k, rel; rel nan at rest), the state at
+        each read from the profile a block at a time with `Profile.state`'s arithmetic."""
+        t = np.array([np.nan if x is None else x for x in times], dtype=float)
+        k = np.searchsorted(np.asarray(self.starts), t, "right") - 1  # (nan sorts last: masked below)
+        known = ~np.isnan(t)
+        k = np.where(known, k, -1)
+        rel = np.full(len(t), np.nan)
+        ends = np.asarray(self.ends)
+        moving = np.flatnonzero(known & (k >= 0) & (t < ends[np.maximum(k, 0)])) if len(ends) else k[:0]
+        prof = self.profile
+        n = len(prof.T)
+        for at in range(0, len(moving), _PLACES):
+            rows = moving[at:at + _PLACES]
+            x = t[rows]
+            # the breakpoints around these times (records come in time order: a short window)
+            lo = max(bisect_right(prof.T, float(x.min())) - 1, 0)
+            hi = min(bisect_right(prof.T, float(x.max())) + 1, n)
+            T, S, SD = (window(v, lo, hi) for v in (prof.T, prof.S, prof.SD))
+            j = T.searchsorted(x, "right") - 1  # as `state`: bisect_right(T, t) - 1
+            s = np.empty(len(x))
+            first = x <= prof.T[0]
+            past = (j + lo >= n - 1) & ~first
+            mid = ~first & ~past
+            s[first] = prof.S[0]
+            s[past] = prof.S[n - 1]
+            jm, xm = j[mid], x[mid]
+            dt = T[jm + 1] - T[jm]
+            flat = dt <= 0.0  # `_between`: a zero-length interval is the state after it
+            sd0 = SD[jm]
+            tau = xm - T[jm]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                u = (SD[jm + 1] - sd0) / dt
+                s[mid] = np.where(flat, S[jm + 1], S[jm] + sd0 * tau + 0.5 * u * tau * tau)
+            del T, S, SD
+            rel[rows] = s - np.asarray(self.s_starts)[k[rows]]
+        return t, k, rel
 
     def place(self, t: float | None) -> tuple | None:
         """Where the run was at time t, for `Retiming.time_at`: the stretch k it was in or had last
@@ -192,6 +231,29 @@ class Retiming:
         """The time of the re-timed run at the point the run reached at time t."""
         return self.time_at(self._place(t))
 
+    def times_at(self, t: np.ndarray, k: np.ndarray, rel: np.ndarray) -> np.ndarray:
+        """`time_at` of many places (`Stretches.places`: t, k, rel) as an array, nan for None: the
+        same arithmetic, each distinct piece's times found together (`_piece_times`)."""
+        out = t.copy()  # before the first stretch: t (and nan stays nan)
+        if self.cut is not None:
+            out[t >= self.cut] = np.nan
+        live = np.flatnonzero((k >= 0) & ~np.isnan(out))
+        starts, ends, new_starts = (np.asarray(v) for v in (self.starts, self.ends, self.new_starts))
+        t_end = np.array([p.t_end for p in self.pieces])
+        kk = k[live]
+        rest = np.isnan(rel[live])
+        r, kr = live[rest], kk[rest]
+        out[r] = t[r] + (new_starts[kr] - starts[kr]) + t_end[kr] - (ends[kr] - starts[kr])
+        m, km = live[~rest], kk[~rest]
+        by_piece: dict = {}
+        for row, piece in zip(m.tolist(), km.tolist()):
+            by_piece.setdefault(id(self.pieces[piece]), (self.pieces[piece], []))[1].append(row)
+        for piece, rows in by_piece.values():
+            rows = np.array(rows)
+            at = _piece_times(piece, rel[rows])
+            out[rows] = new_starts[k[rows]] + np.where(np.isnan(at), piece.t_end, at)
+        return out
+
     def time_at(self, place: tuple | None) -> float | None:
         """`time(t)` from `Stretches.place(t)` (found once for every factor): the same arithmetic."""
         if place is None:
@@ -205,6 +267,30 @@ class Retiming:
             return t + (self.new_starts[k] - self.starts[k]) + self.pieces[k].t_end - (self.ends[k] - self.starts[k])
         at = self.pieces[k].time_at(rel)
         return self.new_starts[k] + (at if at is not None else self.pieces[k].t_end)
+
+
+def _piece_times(p: Profile, x: np.ndarray) -> np.ndarray:
+    """`p.time_at(s)` of each s in x (nan for None), with its arithmetic (trajectory._solve)."""
+    T, S, SD = (np.asarray(list(v), dtype=float) for v in (p.T, p.S, p.SD))
+    out = np.full(len(x), np.nan)
+    xs = x - 1e-12 * np.maximum(1.0, np.abs(x))
+    k = S.searchsorted(xs, "left")
+    out[k == 0] = T[0]
+    inside = np.flatnonzero((k > 0) & (k < len(S)))
+    xi, ki = x[inside], k[inside]
+    at_point = np.abs(S[ki] - xi) <= 1e-9 * np.maximum(1.0, np.abs(xi))
+    j = ki - 1
+    dt = T[j + 1] - T[j]
+    ds = xi - S[j]
+    sd0 = SD[j]
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        u = (SD[j + 1] - sd0) / dt
+        tau = np.where(np.abs(u) < 1e-15, np.where(sd0 > 0, ds / sd0, dt),
+                       (-sd0 + np.sqrt(np.maximum(sd0 * sd0 + 2.0 * u * ds, 0.0))) / u)
+        solved = T[j] + np.minimum(np.maximum(tau, 0.0), dt)
+    solved = np.where((ds <= 0.0) | (dt <= 0.0), np.where(ds <= 0.0, T[j], T[j + 1]), solved)
+    out[inside] = np.where(at_point, T[ki], solved)
+    return out
 
 
 def retimed(queue, records: list, factor: float, out_of_time=None,
@@ -227,7 +313,8 @@ def each_retimed(queue, records: list, factors, out_of_time=None, stretches: Str
     """`retimed_range` one factor at a time (a generator: a caller that takes what it needs of a
     factor's records holds one factor's at a time)."""
     st = stretches if stretches is not None else Stretches(queue)
-    places = [(st.place(r.start), st.place(r.end)) for r in records]
+    n = len(records)
+    places = st.places([r.start for r in records] + [r.end for r in records])
     if records and all(f.init for f in fields(records[0])) and all(type(r) is type(records[0]) for r in records):
         # each record's other fields read once for all the factors (what `replace` does per call)
         names = [f.name for f in fields(records[0])]
@@ -238,12 +325,13 @@ def each_retimed(queue, records: list, factors, out_of_time=None, stretches: Str
         values = None
     for factor in factors:
         rt = Retiming(queue, factor, out_of_time, st)
+        at = [None if x != x else x for x in rt.times_at(*places).tolist()]  # (nan: None)
         if values is None:
-            moved = [replace(r, start=rt.time_at(a), end=rt.time_at(b)) for r, (a, b) in zip(records, places)]
+            moved = [replace(r, start=a, end=b) for r, a, b in zip(records, at[:n], at[n:])]
         else:
             moved = []
-            for v, (a, b) in zip(values, places):
-                v[i_start], v[i_end] = rt.time_at(a), rt.time_at(b)
+            for v, a, b in zip(values, at[:n], at[n:]):
+                v[i_start], v[i_end] = a, b
                 moved.append(make(*v))
         yield moved, rt
         del moved  # before the next factor's
