@@ -120,8 +120,7 @@ class Repeats:
         ends = np.array([a[2] for a in asks] + [a[3] for a in asks])
         left, right = (S.searchsorted(ends, side).tolist() for side in ("left", "right"))
         b = len(asks)
-        groups: dict = {}  # exact part -> [row of each ask]
-        rows = []
+        keys, rows = [], []
         for r, (tool, lim, s0, s1, lo, hi, i0, i1) in enumerate(asks):
             held = self._limits.get(id(lim))
             if held is None or held[0] is not lim:
@@ -135,46 +134,73 @@ class Repeats:
                      min(max(bisect.bisect_right(offsets, s1) - i0, 0), m))
             # the span each breakpoint falls on, from i0 (`inputs`: offs.searchsorted(S, "right")):
             # its first and its steps (it never leaves 0..m: the spans hold the window)
-            exact = (tuple((id(sp.geom), sp.a, sp.b) for sp in self.path.spans[i0:i1 + 1]),
-                     None if tool is None else np.asarray(tool, dtype=float).tobytes(), held[1], n, where,
-                     moved[k:k + n - 1], (g_at[k] + ib0 - i0, steps[8 * k:8 * (k + n - 1)]))
-            groups.setdefault(exact, []).append(r)
+            keys.append((tuple((id(sp.geom), sp.a, sp.b) for sp in self.path.spans[i0:i1 + 1]),
+                         None if tool is None else np.asarray(tool, dtype=float).tobytes(), held[1], n, where,
+                         moved[k:k + n - 1], (g_at[k] + ib0 - i0, steps[8 * k:8 * (k + n - 1)])))
             rows.append((k, n, m, i0 - ib0, s0, s1, max(1.0, abs(s_at[k + n - 1]), abs(s1)),
-                         max(1.0, abs(T[k + n - 1])), right0, left1))
-        out: list = [None] * b
-        for exact, members in groups.items():
-            self._find_group(exact, members, rows, S, SD, offs, dt_all, out)
-        return out
+                         max(1.0, abs(T[k + n - 1])), max(right0 - 1, 0), left1))
+        k, n, m, j0, s0, s1, mag_s, mag_t, low, left1 = (np.array(c) for c in zip(*rows))
+        # every ask's compared values (`inputs`: S - s0, offsets - s0, s1 - s0, durations, SD) one
+        # after the other in one flat array: five ranges of one source array per ask
+        ns, no = len(S), len(offs)
+        src = np.concatenate((S, offs, s1, dt_all, SD))
+        ar = np.arange(b)
+        starts = np.column_stack((k, ns + j0, ns + no + ar, ns + no + b + k, ns + no + b + ns - 1 + k)).ravel()
+        lens = np.column_stack((n, m, np.ones(b, dtype=n.dtype), n - 1, n)).ravel()
+        first = np.cumsum(lens) - lens  # where each range begins
+        each = np.arange(int(lens.sum()))
+        zero = np.zeros(b)
+        got = src[np.repeat(starts - first, lens) + each] - np.repeat(np.column_stack((s0, s0, s0, zero, zero)).ravel(),
+                                                                      lens)
+        # the durations of the intervals that do not count: 0
+        local = each - np.repeat(first, lens)
+        durations = np.repeat(np.tile(np.arange(5) == 3, b), lens)
+        got[durations & ((local < np.repeat(np.repeat(low, 5), lens)) | (local >= np.repeat(np.repeat(left1, 5), lens)))] = 0.0
+        sd_max = np.maximum.reduceat(got, first)[4::5]
+        tol = np.repeat(np.column_stack((POS_TOL * mag_s, POS_TOL * mag_s, POS_TOL * mag_s, TIME_TOL * mag_t,
+                                         SPEED_TOL * np.maximum(1.0, sd_max))).ravel(), lens)
+        return self._look_up(keys, got, tol, first[::5].tolist(), (3 * n + m).tolist(), first[3::5].tolist(),
+                             (n - 1).tolist())
 
-    def _find_group(self, exact, members: list, rows: list, S, SD, offs, dt_all, out: list) -> None:
-        """`find_block` of the asks with one exact part (`members`, in order): their compared values
-        as rows of one matrix, compared with each earlier command kept in one pass."""
-        k, n, m, j0, s0, s1, mag_s, mag_t, right0, left1 = (np.array(c) for c in zip(*(rows[r] for r in members)))
-        n, m = int(n[0]), int(m[0])
-        at = k[:, None] + np.arange(n)
-        pos, sd = S[at] - s0[:, None], SD[at]
-        cols = np.arange(n - 1)
-        dt = dt_all[at[:, :-1]]
-        dt[(cols < np.maximum(right0 - 1, 0)[:, None]) | (cols >= left1[:, None])] = 0.0
-        got = np.hstack((pos, offs[j0[:, None] + np.arange(m)] - s0[:, None], (s1 - s0)[:, None], dt, sd))
-        tol = np.column_stack((POS_TOL * mag_s, TIME_TOL * mag_t, SPEED_TOL * np.maximum(1.0, sd.max(axis=1))))
-        tol = tol[:, _pattern(n, m)]
-        kept = self.seen.setdefault(exact, [])
-        match = [(np.abs(got - earlier) <= tol).all(axis=1).tolist() for earlier, _ in kept]
-        slots = [slot for _, slot in kept]
-        for x, r in enumerate(members):
-            for e, hit in enumerate(match):
-                if hit[x]:
+    def _look_up(self, keys: list, got, tol, at: list, size: list, dt_at: list, dt_size: list) -> list:
+        """`find` of each ask of a block in turn, its compared values and tolerances got[at:at + size],
+        tol[...] (the durations at dt_at): compared with the commands kept before the block in one
+        pass per place in their lists, then, in order, with those the block adds."""
+        b = len(keys)
+        kept = [self.seen.setdefault(key, []) for key in keys]
+        before = [len(x) for x in kept]
+        match = [-1] * b
+        at_arr = np.array(at)
+        for c in range(max(before, default=0)):
+            ask = [r for r in range(b) if match[r] < 0 and before[r] > c]
+            if not ask:
+                break
+            earlier = np.concatenate([kept[r][c][0] if before[r] > c and match[r] < 0 else got[at[r]:at[r] + size[r]]
+                                      for r in range(b)])
+            same = np.logical_and.reduceat(np.abs(got - earlier) <= tol, at_arr).tolist()
+            for r in ask:
+                if same[r]:
+                    match[r] = c
+        out: list = []
+        for r in range(b):
+            dt = got[dt_at[r]:dt_at[r] + dt_size[r]]
+            c = match[r]
+            if c >= 0:
+                self.hits += 1
+                out.append((kept[r][c][1], None, dt))
+                continue
+            mine, bound = got[at[r]:at[r] + size[r]], tol[at[r]:at[r] + size[r]]
+            for earlier, slot in kept[r][before[r]:]:  # (kept by this block)
+                if (abs(mine - earlier) <= bound).all():
                     self.hits += 1
-                    out[r] = (slots[e], None, dt[x])
+                    out.append((slot, None, dt))
                     break
             else:
                 slot = Slot()
-                out[r] = (None, slot, dt[x])
-                if len(kept) < KEPT:
-                    kept.append((got[x].copy(), slot))
-                    slots.append(slot)
-                    match.append([False] * (x + 1) + (np.abs(got[x + 1:] - got[x]) <= tol[x + 1:]).all(axis=1).tolist())
+                out.append((None, slot, dt))
+                if len(kept[r]) < KEPT:
+                    kept[r].append((mine.copy(), slot))
+        return out
 
     def _one(self, ask: tuple) -> tuple:
         """`find_block` of one ask, alone (`inputs`, `find`)."""
