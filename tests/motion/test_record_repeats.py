@@ -300,3 +300,15 @@ def test_a_block_with_a_span_appended_at_a_command_s_end_is_looked_up_one_at_a_t
     monkeypatch.setattr(Repeats, "_one", lambda self, ask: calls.append(ask) or one(self, ask))
     Repeats(q.path, q.trajectory.profile).find_block(asks)
     assert len(calls) == len(asks)
+
+
+def test_the_order_of_limits_is_their_first_appearance_and_each_interval_s_place_in_it():
+    """_order (what a repeat's seconds are summed by): as np.unique's first indices gave it."""
+    rng = np.random.default_rng(7)
+    for _ in range(500):
+        codes = rng.integers(0, 15, rng.integers(0, 60)).astype(np.intp)
+        labels, rank = records_module._order(codes, 6)
+        first = np.sort(np.unique(codes, return_index=True)[1])
+        assert labels == [records_module._label(int(codes[k]), 6) for k in first]
+        assert rank.dtype == np.intp and [labels[x] for x in rank.tolist()] == [records_module._label(int(c), 6)
+                                                                                  for c in codes]

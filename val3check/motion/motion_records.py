@@ -358,13 +358,10 @@ def _seconds(rows, codes: np.ndarray, n: int) -> dict:
 
 def _order(codes: np.ndarray, n: int) -> tuple[list, np.ndarray]:
     """The limits of `codes` as `_seconds` lists them (in order of first appearance, labelled) and
-    each interval's place in that list."""
-    if not len(codes):
-        return [], codes
-    first = np.sort(np.unique(codes, return_index=True)[1])
-    rank = np.zeros(int(codes.max()) + 1, dtype=np.intp)
-    rank[codes[first]] = np.arange(len(first))
-    return [_label(int(codes[k]), n) for k in first], rank[codes]
+    each interval's place in that list (a dict: a command has a few dozen intervals)."""
+    place: dict = {}
+    rank = np.array([place.setdefault(c, len(place)) for c in codes.tolist()], dtype=np.intp)
+    return [_label(c, n) for c in place], rank
 
 
 def _seconds_of(prof, lo: int, s0: float, s1: float, i: np.ndarray, order: tuple, dt: np.ndarray) -> dict:
