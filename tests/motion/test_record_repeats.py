@@ -41,8 +41,12 @@ def _spy(monkeypatch) -> list:
     return found
 
 
-def test_a_long_run_reusing_its_records_gives_the_fresh_records(pick_place, monkeypatch):
+@pytest.mark.parametrize("planned", [False, True])
+def test_a_long_run_reusing_its_records_gives_the_fresh_records(pick_place, monkeypatch, planned):
+    """`planned`: as planned (no end: a done command's start and breakpoints are found with its block,
+    RecordMaker._place), else as the run ended."""
     q, end = pick_place
+    end = None if planned else end
     fresh = motion_records(q, end, reuse=False)
     found = _spy(monkeypatch)
     doubts = []  # per repeat with a near tie: its intervals in doubt

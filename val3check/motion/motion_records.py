@@ -122,8 +122,18 @@ class RecordMaker:
         """The record of `command` (made now, or with its block or at `finish`); `end_s`, `reached`:
         the end of the run and how far the arm got (None: a final command, the run goes on)."""
         queue, prof, out = self.queue, self.prof, self.out
-        req = command.request
         place = command.placement
+        if end_s is None and self.repeats is not None and command.state == "done" and place.s_end is not None \
+                and place.s_begin is not None:
+            # its start and breakpoints found with its block (`_place`), from the profile and path as
+            # they are now (what it reads of them is final: live_record.py)
+            out.append(None)
+            self.pending.append((len(out) - 1, _Asked(command), place.s_begin, place.s_end, command.t_done,
+                                 queue.limits_of(command), len(prof.S), len(self.repeats.path.spans)))
+            if len(self.pending) >= RECORD_BLOCK:
+                self._settle()
+            return
+        req = command.request
         base = dict(target=req.target_name, tool=req.tool_name)
         start = None if place.s_begin is None or command.state == "failed" else time_leaving(prof, place.s_begin)
         if start is None or (end_s is not None and start > end_s + 1e-9):
@@ -162,8 +172,12 @@ class RecordMaker:
         """The commands added since the last call looked up together (record_repeats.find_block):
         a repeat is given the figures of the first (`_repeat`), the others are evaluated."""
         pending, self.pending = self.pending, []
-        if not pending:
+        placed = [e for e in pending if len(e) == 2]
+        if len(placed) < len(pending):
+            placed = self._place(pending)
+        if not placed:
             return
+        pending = placed
         for (item, _), (earlier, slot, dt) in zip(pending, self.repeats.find_block([a for _, a in pending])):
             if earlier is None:
                 self._first(item, slot)
@@ -171,6 +185,48 @@ class RecordMaker:
                 earlier.items.append((item, dt))
             else:
                 _repeat(self.prof, self.out, item, dt, earlier, self.doubts)
+
+    def _place(self, pending: list) -> list:
+        """`add`'s start (time_leaving), breakpoints and spans of the final commands it left to the
+        block (idx, command, s0, s1, end, limits, breakpoints and spans then), with the same searches
+        made in one window of the profile; their records when they have no start or no length, the
+        others as `add` makes them: [(item, what its look-up reads)]."""
+        prof, path, out = self.prof, self.repeats.path, self.out
+        later = [e for e in pending if len(e) != 2]
+        s0 = np.array([e[2] for e in later])
+        s1 = np.array([e[3] for e in later])
+        x = s0 + 1e-9  # (time_leaving's search)
+        lo_b = max(trajectory.bisect_left(prof.S, float(s0.min())) - 1, 0)
+        hi_b = min(trajectory.bisect_right(prof.S, float(max(s1.max(), x.max()))), len(prof.S) - 1)
+        S, T = window(prof.S, lo_b, hi_b + 1), window(prof.T, lo_b, hi_b + 1)
+        # a search in the window is the profile's: everything before it is below every s0
+        k0 = (S.searchsorted(s0, "left") + lo_b).tolist()
+        k1 = (S.searchsorted(s1, "right") + lo_b).tolist()
+        kl = (S.searchsorted(x, "right") + (lo_b - 1)).tolist()
+        s_at, t_at = S.tolist(), T.tolist()
+        del S, T
+        done, n = [], 0
+        for e in pending:
+            if len(e) == 2:
+                done.append(e)
+                continue
+            idx, command, a, b, end, lim, breakpoints, spans = e
+            k = kl[n]
+            start = None if k < 0 else (t_at[k - lo_b] if abs(s_at[k - lo_b] - a) <= 1e-9 * max(1.0, abs(a))
+                                        else prof.time_at(a))
+            j0, j1 = k0[n], k1[n]
+            n += 1
+            req = command.request
+            if start is None or b - a <= 1e-12:  # (as `add`: no start, or no length)
+                out[idx] = MotionRecord(command.id, req.kind, req.source, command.state, req.recorded, start,
+                                        None if start is None else (end if end is not None else start), 0.0, 0.0,
+                                        "", {}, target=req.target_name, tool=req.tool_name)
+                continue
+            lo, hi = max(j0 - 1, 0), min(j1, breakpoints - 1)
+            i0 = min(max(bisect.bisect_right(path.offsets, min(prof.S[lo], a)) - 1, 0), spans - 1)
+            i1 = min(max(bisect.bisect_right(path.offsets, max(prof.S[hi], b)) - 1, 0), spans - 1)
+            done.append(((idx, command, a, b, start, end, j0, j1, lim), (req.tool, lim, a, b, lo, hi, i0, i1)))
+        return done
 
     def _first(self, item: tuple, slot) -> None:
         """A command met first: evaluated with its block (its Slot, if any, then given its figures)."""
