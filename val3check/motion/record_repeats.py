@@ -14,6 +14,10 @@ A repeated motion's global positions and times differ from the earlier one's in 
 limit was a near tie (closer than the tolerances can move it: motion_records._limits_on) is decided
 again on each repetition's own path, so that a reused record differs from a fresh one only in its
 length and peak, by that rounding (docs/performance.md, "The run's record").
+
+The keys of a block of commands are made together (`find_block`: a few numpy passes over the
+block's part of the profile, every command's compared values in one flat array); the look-ups
+stay in order and give what `inputs` and `find`, one command at a time, give.
 """
 
 from __future__ import annotations

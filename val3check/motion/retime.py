@@ -13,6 +13,8 @@ A cyclic program stops at the same places of the same motions again and again: a
 once per distinct piece (`piece_key`: the same parts of the same geometries with the same tools,
 owners and limits), and the re-timing stops when `out_of_time()` says the run's wall-clock budget
 is spent (the range then covers the run up to `Retiming.cut`, simulation/collect.py says so).
+The records' places and their re-timed times are found a block at a time (`Stretches.places`,
+`Retiming.times_at`), with the arithmetic of `place` and `time_at`.
 
     records_if = retimed(queue, records, 2.0)    # MotionRecords of the run with accelerations × 2
 """
