@@ -232,3 +232,21 @@ def test_places_and_times_found_together_are_those_found_one_at_a_time(machine_r
         for x, m in zip(times, many):
             one = rt.time(x)
             assert (one is None and m != m) or one == m
+
+
+def test_places_read_the_profile_a_stretch_at_a_time(machine_run, monkeypatch):
+    """Stretches.places reads the profile around each block of times, in time order: never the whole
+    run at once (an 8 h run holds millions of breakpoints), even when the times come unsorted (the
+    records' starts, then their ends)."""
+    from val3check.motion import retime
+
+    machine, _ = machine_run
+    q = machine.arm.queue_in_use
+    records = motion_records(q)
+    st = Stretches(q)
+    sizes = []
+    window = retime.window
+    monkeypatch.setattr(retime, "window", lambda v, lo, hi: sizes.append(hi - lo) or window(v, lo, hi))
+    monkeypatch.setattr(retime, "_PLACES", 8)
+    st.places([r.start for r in records] + [r.end for r in records])
+    assert sizes and max(sizes) < len(q.planner.profile.T) / 4

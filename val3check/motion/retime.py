@@ -82,7 +82,7 @@ def _next_true(mask: np.ndarray, i: int) -> int:
 
 
 _BLOCK = 1 << 16  # breakpoints read at a time by `Stretches`
-_PLACES = 4096  # times placed at a time by `Stretches.places`
+_PLACES = 1024  # times placed at a time by `Stretches.places` (their window of the profile: a few MB at most)
 
 
 class Stretches:
@@ -138,12 +138,13 @@ class Stretches:
         rel = np.full(len(t), np.nan)
         ends = np.asarray(self.ends)
         moving = np.flatnonzero(known & (k >= 0) & (t < ends[np.maximum(k, 0)])) if len(ends) else k[:0]
+        moving = moving[np.argsort(t[moving], kind="stable")]  # in time order: each block reads a short window
         prof = self.profile
         n = len(prof.T)
         for at in range(0, len(moving), _PLACES):
             rows = moving[at:at + _PLACES]
             x = t[rows]
-            # the breakpoints around these times (records come in time order: a short window)
+            # the breakpoints around these times (a stretch of the run, not the whole of it)
             lo = max(bisect_right(prof.T, float(x.min())) - 1, 0)
             hi = min(bisect_right(prof.T, float(x.max())) + 1, n)
             T, S, SD = (window(v, lo, hi) for v in (prof.T, prof.S, prof.SD))
