@@ -250,13 +250,22 @@ def _read_node(node: Any, name: str, cache: dict | None) -> tuple[np.ndarray | N
 
 def _unchanged(machine: Any, reads: list, held: list[tuple]) -> bool:
     """Whether every read of `reads` finds the very objects of `held` (its last call's): then
-    `_read` gives the same matrices again (at a few microseconds, not a reading's cost)."""
+    `_read` gives the same matrices again (at a few microseconds, not a reading's cost). The walk
+    is `_objects`' compared as it goes: equal objects up to the held length end it alike."""
     for (_, name, kind), last in zip(reads, held):
-        node = _node(machine, name, kind)
-        if node is not last[0]:
-            return False
-        objects = _objects(node)
-        if len(objects) != len(last) or not all(map(operator.is_, objects, last)):
+        n = _node(machine, name, kind)
+        m = len(last)
+        k = 0
+        try:
+            while k < m:
+                t = n.trsf
+                if (n is not last[k] or n.ref is not last[k + 1] or n.is_root is not last[k + 2] or t is not last[k + 3]
+                        or t.x is not last[k + 4] or t.y is not last[k + 5] or t.z is not last[k + 6]
+                        or t.rx is not last[k + 7] or t.ry is not last[k + 8] or t.rz is not last[k + 9]):
+                    return False
+                k += 10
+                n = n.ref
+        except AttributeError:
             return False
     return True
 
