@@ -100,5 +100,5 @@ def test_a_replayed_open_or_close_leaves_the_static_boxes_a_fresh_computation_gi
             assert not w.static_lo.flags.writeable and not w.static_hi.flags.writeable  # shared with the record
     assert w.grips_reused >= 12
     assert seen[0:4] == seen[4:8] == seen[12:16] and len(set(seen[:4])) == 3  # carried twice: the obstacles alone
-    chk.clear_parts("brick")  # after replays, a set computed afresh: the same numbers
+    chk.clear_parts("brick")  # after replays, the boxes kept from them: the same numbers
     assert (w.static_lo.tobytes(), w.static_hi.tobytes()) == _boxes(w)

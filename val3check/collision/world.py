@@ -189,7 +189,7 @@ class World:
         self.version += 1
         if given is not None:
             self.static_lo, self.static_hi = given
-            self._boxes = {}  # the next set computes its boxes afresh: the same numbers
+            self._boxes = {id(b): (b.pose, lo, hi) for b, lo, hi in zip(bodies, *given)}
         elif bodies:
             # a body's box is computed again only when it was placed again (each place() makes a new pose)
             known = self._boxes
