@@ -336,7 +336,7 @@ def _state(chk) -> tuple:
              for b in g.bodies],
             [(b.made_from, b.pose.tobytes()) for b in w.static],
             [tuple(x if isinstance(x, tuple) else x.label for x in pair) for pair in w.allowed_names()],
-            w.static_lo.tobytes())
+            w.static_lo.tobytes(), w.static_hi.tobytes())
 
 
 def test_an_open_or_close_that_repeats_in_the_same_scene_is_done_again_as_it_was_computed():

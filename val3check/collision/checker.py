@@ -125,12 +125,14 @@ class CollisionChecker:
         full = self._full_key(key)
         allowed = self.world.allowed_names()
         own = self._sweep(motion, T, Q, q_at)
+        last_q = Q[-1].copy()
+        last_q.flags.writeable = False  # shared by every reuse (`reuse`): never changed in place
         if full is not None:
             left = set(self.world.allowed_names())
             if len(self._results) >= REUSE:
                 self._results.clear()  # bounded: a cyclic program fills it again within a cycle or two
-            self._results[full] = (own, [p for p in allowed if p not in left], Q[-1].copy())
-        self.world.last_q = Q[-1].copy()
+            self._results[full] = (own, [p for p in allowed if p not in left], last_q)
+        self.world.last_q = last_q
         self.world.time = start + float(T[-1])
         return shifted(own, motion, start)
 
@@ -143,11 +145,13 @@ class CollisionChecker:
         if hit is None:
             return None
         own, apart, last_q = hit
-        self.world.forget_allowed(apart)  # what the sweep ended in the scene
-        self.world.last_q = last_q.copy()
-        self.world.time = start + float(own.times[-1])
+        world = self.world
+        if apart:
+            world.forget_allowed(apart)  # what the sweep ended in the scene
+        world.last_q = last_q
+        world.time = start + own.end
         self.reused += 1
-        return shifted(own, motion, start)
+        return ShiftedReport(motion, own, start)
 
     def _full_key(self, key: Hashable):
         if key is None:

@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from .allowed import Allowed
 from .armmodel import ArmModel
 from .bodies import Body, aabb_gap, copies, make_bodies
 from .cell import Cell, Obstacle, ToolSolid
@@ -96,7 +97,8 @@ class World:
         self.version = 0
         self._scene_cache: dict[str, tuple[int, Any]] = {}
         # body pairs touching at a grasp or a release, not checked until they have moved apart
-        self.allowed: dict[frozenset[int], tuple[Body, Body]] = {}
+        self.allowed = {}
+        self._key: tuple = (None, None, None, None)  # (links, scene number, allowed's stamp, `key`'s answer)
         self.last_q: np.ndarray | None = None
         self.time = 0.0
         self._scene_ids: dict[tuple, int] = {}  # scene content (`_scene_key`) -> a number never given to another
@@ -181,10 +183,14 @@ class World:
 
     # ---- the scene ---------------------------------------------------------------------------------------
 
-    def _set_static(self, bodies: list[Body]) -> None:
+    def _set_static(self, bodies: list[Body], given: tuple | None = None) -> None:
+        """The static set is `bodies`; `given`: their boxes (lo, hi) as an equal set had them (`_replay`)."""
         self.static = bodies
         self.version += 1
-        if bodies:
+        if given is not None:
+            self.static_lo, self.static_hi = given
+            self._boxes = {id(b): (b.pose, lo, hi) for b, lo, hi in zip(bodies, *given)}
+        elif bodies:
             # a body's box is computed again only when it was placed again (each place() makes a new pose)
             known = self._boxes
             boxes = []
@@ -200,6 +206,8 @@ class World:
         else:
             self.static_lo = np.zeros((0, 3))
             self.static_hi = np.zeros((0, 3))
+        self.static_lo.flags.writeable = False  # shared with `_grip`'s record
+        self.static_hi.flags.writeable = False
 
     def _flange_group(self, name: str, kind: str, bodies: list[Body]) -> Group:
         return link_group(self.arm, self.arm.flange_link, bodies, name, kind)
@@ -211,6 +219,15 @@ class World:
             out.append(self.tool_group)
         out.extend(self.carried.values())
         return out
+
+    @property
+    def allowed(self) -> Allowed:
+        """Body pairs allowed to touch: {frozenset of their ids: (a, b)}."""
+        return self._allowed
+
+    @allowed.setter
+    def allowed(self, pairs: dict) -> None:
+        self._allowed = Allowed(pairs)
 
     def per_scene(self, key: str, make: Callable[[], Any]) -> Any:
         """make(), computed once per version of the scene."""
@@ -226,7 +243,14 @@ class World:
         in force, the static set, the tool and the carried parts (each body by the solid of the cell
         it was made from and its pose), and the pairs allowed to touch."""
         links = getattr(self.arm.links, "current", self.arm.links)  # setDH (11.4): the geometry in force
-        return links, self.per_scene("key", self._scene_id), tuple(self.allowed_names())
+        scene = self.per_scene("key", self._scene_id)
+        last = self._key
+        stamp = self._allowed.stamp
+        if last[0] is links and last[1] == scene and last[2] == stamp:
+            return last[3]  # nothing it is made of changed (stamps are never given twice)
+        out = links, scene, tuple(self.allowed_names())
+        self._key = (links, scene, stamp, out)
+        return out
 
     def _scene_id(self) -> int:
         """The scene's content as a number, the same for an equal content (computed once per
@@ -358,7 +382,8 @@ class World:
                 pairs = self._allow_touching(bodies, self.static)
                 g = self.carried[name] = self._flange_group(f"part {name!r}", "part", bodies)
                 self.version += 1
-                steps.append(("grasp", name, solids, [b.local.copy() for b in bodies], gone, pairs, g.weights.copy()))
+                steps.append(("grasp", name, solids, [b.local.copy() for b in bodies], gone, pairs, g.weights.copy(),
+                              (self.static_lo, self.static_hi)))
             elif instruction == first.release and name in self.carried:
                 g = self.carried.pop(name)
                 self.version += 1
@@ -371,7 +396,7 @@ class World:
                 pairs = self._allow_touching(g.bodies, [b for b in arm_bodies if b.owner != name])
                 self.dropped.extend(g.bodies)
                 self._set_static([*self._placed_obstacles, *self.dropped])
-                steps.append(("release", name, [b.local.copy() for b in g.bodies], pairs))
+                steps.append(("release", name, [b.local.copy() for b in g.bodies], pairs, (self.static_lo, self.static_hi)))
         return drops
 
     def _replay(self, done: tuple, time: float, source: Any) -> list[PartDrop]:
@@ -383,18 +408,18 @@ class World:
         world = _EYE
         for step in steps:
             if step[0] == "grasp":
-                _, name, solids, locals_, gone, pairs, weights = step
+                _, name, solids, locals_, gone, pairs, weights, boxes = step
                 bodies = self._part_bodies(name, solids)
                 for b, M in zip(bodies, locals_):
                     b.local = M.copy()
                     b.place(flange)
-                self._take_away(gone)
+                self._take_away(gone, boxes)
                 self._allow_pairs(bodies, self.static, pairs)
                 self.carried[name] = Group(f"part {name!r}", "part", self.arm.flange_link, bodies, weights.copy(),
                                            frozenset(self.arm.links.movers(self.arm.flange_link)))
                 self.version += 1
             else:
-                _, name, locals_, pairs = step
+                _, name, locals_, pairs, boxes = step
                 g = self.carried.pop(name)
                 self.version += 1
                 for b, M in zip(g.bodies, locals_):
@@ -405,7 +430,7 @@ class World:
                     arm_bodies = [b for a in groups for b in a.bodies]
                     self._allow_pairs(g.bodies, [b for b in arm_bodies if b.owner != name], pairs)
                 self.dropped.extend(g.bodies)
-                self._set_static([*self._placed_obstacles, *self.dropped])
+                self._set_static([*self._placed_obstacles, *self.dropped], boxes)
         return [replace(d, time=time, source=source) for d in drops]
 
     def _part_names(self, tool: str) -> list[str]:
@@ -453,13 +478,13 @@ class World:
         self._take_away(gone)
         return gone
 
-    def _take_away(self, gone: list[int]) -> None:
-        """The solids at these places in `dropped` leave the cell."""
+    def _take_away(self, gone: list[int], boxes: tuple | None = None) -> None:
+        """The solids at these places in `dropped` leave the cell (`boxes`: `_set_static`'s)."""
         if gone:
             ids = {id(self.dropped[k]) for k in gone}
             self._forget(ids)
             self.dropped = [d for d in self.dropped if id(d) not in ids]
-            self._set_static([*self._placed_obstacles, *self.dropped])
+            self._set_static([*self._placed_obstacles, *self.dropped], boxes)
 
     def _overlap(self, a: Body, b: Body) -> bool:
         la, ha = a.aabb()

@@ -161,8 +161,7 @@ class ValueWatch:
         t = time_us / US
         serial = len(self.serials) and self.serials[-1] + 1
         if self.times and self.times[-1] == t:
-            self.values[-1] = now
-            self.serials[-1] = serial
+            self.values[-1], self.serials[-1] = now, serial
         else:
             self.times.append(t)
             self.values.append(now)
@@ -172,15 +171,15 @@ class ValueWatch:
         """The reading `frame(name, t)` and `tool(name, t)` answer from, as a number that changes
         whenever what they answer may change (-1: none yet): the checker reads the cell's frames
         and tools again only then (collision.world.World.refresh)."""
-        k = bisect.bisect_right(self.times, t + 1e-9) - 1
-        if k < 0:
-            k = 0 if self.values else -1
+        k = self._index(t)
         return -1 if k < 0 else self.serials[k]
 
-    def _at(self, key: str, t: float):
+    def _index(self, t: float) -> int:
         k = bisect.bisect_right(self.times, t + 1e-9) - 1
-        if k < 0:
-            k = 0 if self.values else -1
+        return k if k >= 0 else (0 if self.values else -1)
+
+    def _at(self, key: str, t: float):
+        k = self._index(t)
         return None if k < 0 else self.values[k].get(key)
 
     def frame(self, name: str, t: float):
@@ -249,14 +248,19 @@ def _read_node(node: Any, name: str, cache: dict | None) -> tuple[np.ndarray | N
 
 
 def _unchanged(machine: Any, reads: list, held: list[tuple]) -> bool:
-    """Whether every read of `reads` finds the very objects of `held` (its last call's): then
-    `_read` gives the same matrices again (at a few microseconds, not a reading's cost)."""
+    """Whether every read of `reads` finds the very objects of `held` (its last call's): then `_read` gives
+    the same matrices again. `_objects`' walk, compared as it goes (the same objects end it alike)."""
     for (_, name, kind), last in zip(reads, held):
-        node = _node(machine, name, kind)
-        if node is not last[0]:
-            return False
-        objects = _objects(node)
-        if len(objects) != len(last) or not all(map(operator.is_, objects, last)):
+        n, k, m = _node(machine, name, kind), 0, len(last)
+        try:
+            while k < m:
+                t = n.trsf
+                if (n is not last[k] or n.ref is not last[k + 1] or n.is_root is not last[k + 2] or t is not last[k + 3]
+                        or t.x is not last[k + 4] or t.y is not last[k + 5] or t.z is not last[k + 6]
+                        or t.rx is not last[k + 7] or t.ry is not last[k + 8] or t.rz is not last[k + 9]):
+                    return False
+                k, n = k + 10, n.ref
+        except AttributeError:
             return False
     return True
 
@@ -414,8 +418,7 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
         path, line, col = (w.path, w.line, w.column) if w is not None else (cell_path or "", 0, 0)
         diags.append(Diagnostic(codes.CELL_FRAME_WITHOUT_VALUE, p.message, path, line, col, time_us=int(round(p.time * US)), task="",
                                 program=""))
-    run.checks = checker.measurements
-    run.reused = checker.reused
+    run.checks, run.reused = checker.measurements, checker.reused
     if log is not None:
         motion.cell_timeline = log.timeline()
     return run, diags
