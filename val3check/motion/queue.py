@@ -395,7 +395,6 @@ class MotionQueue:
         was = self.monitor
         self.monitor = percent
         self.limits.set_monitor(percent)
-        self.planner.forget_trial()
         if self._can_move():
             self.planner.plan_from(now if was > 0.0 else max(now, self.profile.t_end))
 
