@@ -276,3 +276,46 @@ def test_the_next_event_misses_when_each_input_changes():
     kept = q._next
     q.stop_move(t1 + 0.01)  # the profile changed
     assert q.next_event(t1 + 0.01) == q.profile.t_end and q._next is not kept
+
+
+# ---- a time-optimal parameterisation solved relative to its grid's start (timing.Timing._topp) ------
+
+def test_a_first_parameterisation_is_the_remembered_one_to_the_bit():
+    """A piece of path far along the run's path (after a long span): solved relative to the grid's
+    start, the first answer and the remembered one are the same bits (a trial or plan that read a
+    parameterisation computed then is kept, trial_memo.py), and the ends are the grid's exactly;
+    the same piece at the path's start has the same profile to rounding."""
+    from val3check.motion.paths import JointLine, Path, Span
+    from val3check.motion.timing import Timing
+    from val3check.motion.timing.grid import sample_path
+
+    from .motionhelp import KIN
+
+    geom = JointLine(HOME, HOME + np.array([30.0, -20.0, 10.0, 40.0, 25.0, -35.0]))
+    far = JointLine(HOME, HOME + 9000.0)  # 22,000 degrees of joint motion before the piece
+    answers = []
+    for lead in (None, far):
+        path = Path(HOME)
+        if lead is not None:
+            path.append(Span(lead, 0.0, 1.0, [(1, 0.0)]))
+        off = path.append(Span(geom, 0.0, 1.0, [(1, 0.0)], False, None))
+        grid, _ = sample_path(path, off, path.end, KIN, lambda k: _limits())
+        timing = Timing(KIN)
+        first = timing._topp(grid, 0.0)
+        again = timing._topp(grid, 0.0)
+        assert timing.misses == 1
+        assert first.s.tobytes() == again.s.tobytes() and first.sd.tobytes() == again.sd.tobytes()
+        assert first.s[0] == grid.s[0] and first.s[-1] == grid.s[-1]
+        answers.append((first.s - grid.s[0], first.sd))
+    assert np.allclose(answers[0][0], answers[1][0], rtol=0, atol=1e-9)
+    assert np.allclose(answers[0][1], answers[1][1], rtol=1e-9, atol=1e-9)
+
+
+def _limits():
+    from val3check.motion.mdesc import CommandLimits, MDesc
+
+    from .motionhelp import KIN
+
+    limits = CommandLimits(KIN, 100.0)
+    limits.register(1, MDesc(blend="off"), False)
+    return limits.of(1)
