@@ -319,3 +319,28 @@ def _limits():
     limits = CommandLimits(KIN, 100.0)
     limits.register(1, MDesc(blend="off"), False)
     return limits.of(1)
+
+
+def test_the_final_braking_read_in_place_is_the_general_answer():
+    """Profile.final_decel_start reads the chunk being written in place: the same index as the
+    general loop on a plain sequence, for braking wholly inside the chunk, crossing its start,
+    and a profile with one breakpoint in it (chunks of 8 so that they are often short)."""
+    import random
+
+    from val3check.motion import history
+
+    rng = random.Random(7)
+    old = history.CHUNK
+    history.CHUNK = 8
+    try:
+        for n in range(1, 40):
+            for _ in range(5):
+                sd = [rng.choice([0.0, 1.0, 2.0, 3.0]) for _ in range(n)]
+                sd[-1] = 0.0
+                p = Profile(0.0, 0.0)
+                p.SD.extend(sd)  # (only SD is read)
+                ref = Profile(0.0, 0.0)
+                ref.SD = [0.0, *sd]
+                assert p.final_decel_start() == ref.final_decel_start(), sd
+    finally:
+        history.CHUNK = old

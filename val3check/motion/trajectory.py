@@ -242,6 +242,14 @@ class Profile:
         the end of the profile)."""
         SD = self.SD
         k = len(SD) - 1
+        if SD.__class__ is History and SD.tail_len > 1:
+            # in the chunk being written, read in place (the braking is about 30 breakpoints)
+            tail, j = SD.tail, SD.tail_len - 1
+            while j > 0 and tail[j - 1] > tail[j] + 1e-12:
+                j -= 1
+            if j > 0:
+                return SD.tail_start + j
+            k = SD.tail_start
         while k > 0 and SD[k - 1] > SD[k] + 1e-12:
             k -= 1
         return k
