@@ -50,7 +50,8 @@ class TrialMemo:
         canon: dict[int, int] = {}
         parts = []
         tool_key = self._tool_key
-        for sp in spans:  # (loops, not generators: asked three times per motion command)
+        last_tool = last_key = None  # neighbouring spans mostly share their tool object: its key once
+        for sp in spans:  # (loops, not generators: asked twice per motion command)
             owners = sp.owners
             if len(owners) == 1:
                 k, st = owners[0]
@@ -61,7 +62,9 @@ class TrialMemo:
             else:
                 own = tuple([(canon.setdefault(k, len(canon)), st) for k, st in owners])
             tool = sp.tool
-            parts.append((id(sp.geom), sp.a, sp.b, sp.smooth, None if tool is None else tool_key(tool), own))
+            if tool is not last_tool:
+                last_tool, last_key = tool, None if tool is None else tool_key(tool)
+            parts.append((id(sp.geom), sp.a, sp.b, sp.smooth, last_key, own))
         limits_key = self._limits_key
         return (tuple(parts), tuple([limits_key(k) for k in canon]), *rest)
 
