@@ -65,7 +65,6 @@ class Planner:
         self.changes = 0  # counts the changes of the profile (what is read from it is kept until it changes)
         self.fallbacks = 0  # pieces planned with the safe profile
         self.stops_chosen = 0  # junctions where stopping at the via point was chosen (`blend_pays`)
-        self._trial = None  # the timing of the last blend trial, reused by the plan that follows
         self._samples: dict = {}  # samples of spans timed in trials, reused when the span is added
 
     # ---- building the path ---------------------------------------------------------------------
@@ -191,25 +190,21 @@ class Planner:
                          smooth=True, tool=previous.tool)
         alone = self.span(command.geometry.joint_curve, 0.0, 1.0, [(command.key, 0.0)], smooth=False,
                           tool=command.tool)
-        t_blend, pieces, t_stop, rest = self._trials(s0, v0, blended, tail, alone, command.geometry.q_start)
+        t_blend, t_stop, rest = self._trials(s0, v0, blended, tail, alone, command.geometry.q_start)
         if command.rest_time is None:
             command.rest_time = rest
         t_stop += command.rest_time
         for sp in blended + [tail]:  # the one chosen is sampled once
             self._remember(sp)
         if t_blend <= t_stop * (1.0 + 1e-9):
-            # when `command` ends there (no blend after it), this timing is the plan that follows
-            self._trial = (t0, blended, pieces) if command.placement.blend == "off" else None
             return True
         self.stops_chosen += 1
-        self._trial = None
         return False
 
     def _trials(self, s0: float, v0: float, blended: list, tail: Span, alone: Span, q_start):
-        """What `blend_pays` compares, from path position s0 at speed v0: the blend trial's duration
-        and pieces (s at the path's positions; None when one fell back), the stop trial's duration to
-        the via point, and the time of the command alone from rest to rest (its span `alone`, from
-        q_start).
+        """What `blend_pays` compares, from path position s0 at speed v0: the blend trial's duration,
+        the stop trial's duration to the via point, and the time of the command alone from rest to
+        rest (its span `alone`, from q_start).
         Trials are timed as `plan_from` times the path followed by their spans (not added to it).
         The three are remembered together (trial_memo.py): a cyclic program decides the same blend
         from the same state every cycle, and one key and one check of the spans ahead and the plan's
@@ -237,15 +232,14 @@ class Planner:
 
             started = self.memo.start()
             try:
-                t_blend, rel = self._trial_duration(ahead, a, v0, blended, asked)
-                t_stop, _ = self._trial_duration(ahead, a, v0, [tail], asked)
+                t_blend = _duration(self._timed(ahead, a, v0, blended, asked))
+                t_stop = _duration(self._timed(ahead, a, v0, [tail], asked))
                 rest = self._rest_time(alone, q_start)
             finally:
                 self.memo.stop()
-            hit = (t_blend, rel, t_stop, rest)
+            hit = (t_blend, t_stop, rest)
             self.memo.keep(key, spans, started, calls, hit)
-        t_blend, rel, t_stop, rest = hit
-        return t_blend, None if rel is None else [(s_ + shift, sd_) for s_, sd_ in rel], t_stop, rest
+        return hit
 
     def _rest_time(self, alone: Span, q_start) -> float:
         """The time of a command alone (its whole curve, the span `alone`, from joints q_start),
@@ -256,34 +250,25 @@ class Planner:
         self._remember(alone)
         return rest
 
-    def _trial_duration(self, ahead: list, a: float, v0: float, extra: list, asked):
-        """How long the arm takes from position a of the spans `ahead` (the path's, a relative to
-        the first) at speed v0 to the end of them followed by the spans `extra`, and the pieces'
-        profiles (s relative to the first span ahead; None when one fell back). `asked(g, a)`: the
-        plan's speed where the re-timing starts (timing.Timing.time_from)."""
+    def _timed(self, ahead: list, a: float, v0: float, extra: list, asked) -> list:
+        """The timed pieces (timing.TimedPiece) of the arm from position a of the spans `ahead` (the
+        path's, a relative to the first) at speed v0 to the end of them followed by the spans
+        `extra`: s relative to the first span ahead, so that a repeated motion is timed on the same
+        grid to the bit wherever it lies on the run's path. `asked(g, a)`: the plan's speed where
+        the re-timing starts (timing.Timing.time_from)."""
         trial = Path(self.path.q_rest)
         for sp in ahead:
             trial.append(Span(sp.geom, sp.a, sp.b, sp.owners, sp.smooth, sp.tool, _cache=sp._cache))
         for sp in extra:
             trial.append(sp)
-        total = 0.0
         pieces = []
         for b in trial.stops_after(a) + [trial.end]:
             if b - a <= _eps(b):
                 a = b
                 continue
-            piece = self.timing.time_from(trial, a, b, v0, self.limits_of, asked)
-            total += piece.duration
-            if piece.fallback:  # not reused: the plan reports it (R019)
-                pieces = None
-            if pieces is not None:
-                pieces.append((frozen(piece.s), frozen(piece.sd)))
+            pieces.append(self.timing.time_from(trial, a, b, v0, self.limits_of, asked))
             a, v0 = b, 0.0
-        return total, pieces
-
-    def forget_trial(self) -> None:
-        """The limits changed (monitor speed): a blend trial's timing is no longer the plan's."""
-        self._trial = None
+        return pieces
 
     # ---- timing ----------------------------------------------------------------------------------
 
@@ -317,53 +302,57 @@ class Planner:
             self.plan_from(t_r)
 
     def plan_from(self, t_r: float) -> None:
-        """Cut the profile at t_r and time the rest of the path from the arm's state there."""
+        """Cut the profile at t_r and time the rest of the path from the arm's state there: timed
+        relative to the span the arm is on (`_plan`), then shifted to the path's positions."""
         prof = self.profile
         self.changes += 1
         prof.cut(t_r)
         s_r, sd_r = prof.s_end, prof.SD[-1]
-        if self.path.end - s_r <= _eps(s_r):
+        path = self.path
+        if path.end - s_r <= _eps(s_r):
             if sd_r > 0:  # numerically at the end: stop there
                 prof.SD[-1] = 0.0
             return
-        trial, self._trial = self._trial, None
-        pieces = None
-        if trial is not None and self._trial_applies(trial, t_r, s_r):
-            pieces = trial[2]  # the blend trial timed exactly this (`blend_pays`)
-        if pieces:
-            t_cur = max(t_r, prof.t_end)
-            for i, (s_, sd_) in enumerate(pieces):
-                s_ = s_.copy()
-                if i == 0:
-                    s_[0] = s_r
-                if i == len(pieces) - 1:
-                    s_[-1] = self.path.end  # exactly where the last command ends
-                prof.append(t_cur, s_, sd_)
-                t_cur = prof.t_end
-            return
-        stops = self.path.stops_after(s_r) + [self.path.end]
-        a, v0 = s_r, sd_r
-        t_cur = max(t_r, prof.t_end)
-        for b in stops:
-            if b - a <= _eps(b):
-                a = b
-                continue
-            piece = self.timing.time_from(self.path, a, b, v0, self.limits_of, self.profile.speed_at)
+        i0, _ = path.locate(s_r)
+        shift = path.offsets[i0]
+        T, S, SD = self._plan(path.spans[i0:], s_r - shift, sd_r, shift)
+        prof.extend_shifted(max(t_r, prof.t_end), T, S, SD, shift, path.end)
+
+    def _plan(self, ahead: list, a: float, v0: float, shift: float) -> tuple:
+        """The plan of the spans `ahead` (the path's from the one holding the arm, at `shift`) from
+        a (relative to the first) at speed v0: its breakpoints after the start as read-only arrays
+        (times from the start, s relative to the first span, ṡ). Remembered (trial_memo.py) with
+        the plan's speeds it asked: a cyclic program plans the same spans from the same state every
+        cycle, and its plan is then one look-up (pieces that fell back, R019, are not kept)."""
+        def speed_at(g, a_):
+            return self.profile.speed_at(g + shift, a_ + shift)
+
+        key = self.memo.key(ahead, a, v0, "plan")
+        hit = self.memo.get(key, ahead, speed_at)
+        if hit is not None:
+            return hit
+        calls = []
+
+        def asked(g, a_):
+            v = speed_at(g, a_)
+            calls.append((g, a_, v))
+            return v
+
+        started = self.memo.start()
+        try:
+            pieces = self._timed(ahead, a, v0, [], asked)
+        finally:
+            self.memo.stop()
+        fell = False
+        for piece in pieces:
             if piece.fallback:
+                fell = True
                 self.fallbacks += 1
                 self.on_fallback(piece.owner)
-            prof.append(t_cur, piece.s, piece.sd)
-            t_cur = prof.t_end
-            a, v0 = b, 0.0
-
-    def _trial_applies(self, trial, t_r: float, s_r: float) -> bool:
-        """Whether the blend trial `trial` timed exactly the plan from t_r: the same start, the
-        same spans at the end of the path, the same end."""
-        t0, spans, pieces = trial
-        return (t0 == t_r and len(self.path.spans) >= len(spans)
-                and all(_same_span(x, y) for x, y in zip(self.path.spans[-len(spans):], spans))
-                and bool(pieces) and abs(pieces[0][0][0] - s_r) <= _eps(s_r)
-                and abs(pieces[-1][0][-1] - self.path.end) <= 1e-9 * max(1.0, self.path.end))
+        plan = _joined(pieces)
+        if not fell:
+            self.memo.keep(key, ahead, started, calls, plan)
+        return plan
 
     def brake(self, now: float) -> None:
         """Stop on the path at once with the decelerations of the commands being executed
@@ -386,6 +375,28 @@ def _eps(s: float) -> float:
     return 1e-12 * max(1.0, abs(s))
 
 
-def _same_span(x: Span, y: Span) -> bool:
-    """Two spans of the same piece of the same curve."""
-    return x.geom is y.geom and x.a == y.a and x.b == y.b and x.smooth == y.smooth
+def _duration(pieces: list) -> float:
+    """The time of timed pieces one after the other."""
+    total = 0.0
+    for piece in pieces:
+        total += piece.duration
+    return total
+
+
+def _joined(pieces: list) -> tuple:
+    """Timed pieces (each from rest but the first, to rest) as one plan: the breakpoints after the
+    start (times from it, s, ṡ), read-only, as trajectory.Profile.append would add them piece by
+    piece (an interval that does not move is dropped)."""
+    dts, ss, sds = [], [], []
+    for piece in pieces:
+        s, sd = piece.s, piece.sd
+        ds = s[1:] - s[:-1]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            dt = np.where(ds > 0, 2.0 * ds / np.maximum(sd[:-1] + sd[1:], 1e-300), 0.0)
+        keep = ~(ds <= 0.0)
+        dts.append(dt[keep])
+        ss.append(s[1:][keep])
+        sds.append(sd[1:][keep])
+    if not dts:
+        return tuple(frozen(np.zeros(0)) for _ in range(3))
+    return frozen(np.cumsum(np.concatenate(dts))), frozen(np.concatenate(ss)), frozen(np.concatenate(sds))

@@ -103,6 +103,7 @@ class MotionQueue:
         self._keys = 0
         self._by_key: dict[int, QueuedCommand] = {}
         self._done: tuple = ()  # (planner.changes, command key, its end, when it gets there): `_done_time`
+        self._next: tuple = ()  # (what next_event's answer depends on, the time asked, the answer): `next_event`
         self._told = 0.0  # the latest time the queue was advanced to (`final_before`)
         self.released_done = 0  # commands of the program done and released from `history` (`release`)
 
@@ -296,6 +297,16 @@ class MotionQueue:
         completes (a queue place frees, isEmpty, waitEndMove), the arm comes to rest, or it has
         been at rest 50 ms (isSettled). None when nothing will change."""
         after = now + 1e-12  # (asked every scheduler cycle: no lists, the flush once)
+        planner = self.planner
+        if planner.due is None and self._next and trial_memo.REUSE:
+            # nothing changed since the last answer (the profile, the first command, its end) and
+            # it is still ahead: the same answer (the times it passed over were at or before then)
+            state, asked, best = self._next
+            first = self.pending[0] if self.pending else None
+            if state[0] == planner.changes and state[1] is first and \
+                    (first is None or state[2] == first.placement.s_end) and asked <= now and \
+                    (best is None or best > after):
+                return best
         best = None
         t = self._first_done_time()  # (it does the replan due before anything is read)
         if t is not None and t > after:
@@ -305,6 +316,8 @@ class MotionQueue:
             best = te
         if te > 0 and te + SETTLE_S > after and (best is None or te + SETTLE_S < best):
             best = te + SETTLE_S
+        first = self.pending[0] if self.pending else None
+        self._next = ((planner.changes, first, None if first is None else first.placement.s_end), now, best)
         return best
 
     def next_time(self, now_us: int) -> int | None:
@@ -395,7 +408,6 @@ class MotionQueue:
         was = self.monitor
         self.monitor = percent
         self.limits.set_monitor(percent)
-        self.planner.forget_trial()
         if self._can_move():
             self.planner.plan_from(now if was > 0.0 else max(now, self.profile.t_end))
 

@@ -171,6 +171,26 @@ class Profile:
         self.S.extend(s[1:][keep])
         self.SD.extend(sd[1:][keep])
 
+    def extend_shifted(self, t0: float, T, S, SD, shift: float, end: float) -> None:
+        """Add a plan timed relative to its start (planner.py): breakpoints at times t0 + T (t0 the
+        current end of the profile or later, at rest until then), positions shift + S, the last
+        one exactly `end` (where the path ends), speeds SD: one array operation each."""
+        n = len(T)
+        if n == 0:
+            return
+        T_ = self.T
+        if T_.__class__ is History:  # refused before any of the three grows (history.DISK_LIMIT)
+            T_.reserve(n + 1, 3)
+        if t0 > T_[-1]:
+            T_.append(t0)
+            self.S.append(self.S[-1])
+            self.SD.append(0.0)
+        s = S + shift
+        s[-1] = end
+        T_.extend(T + T_[-1])
+        self.S.extend(s)
+        self.SD.extend(SD)
+
     def speed_at(self, s: float, until: float) -> float | None:
         """ṡ where the profile passed position s on its way to position `until` (the last time),
         None when it stood still in between or never got there."""
@@ -222,6 +242,14 @@ class Profile:
         the end of the profile)."""
         SD = self.SD
         k = len(SD) - 1
+        if SD.__class__ is History and SD.tail_len > 1:
+            # in the chunk being written, read in place (the braking is about 30 breakpoints)
+            tail, j = SD.tail, SD.tail_len - 1
+            while j > 0 and tail[j - 1] > tail[j] + 1e-12:
+                j -= 1
+            if j > 0:
+                return SD.tail_start + j
+            k = SD.tail_start
         while k > 0 and SD[k - 1] > SD[k] + 1e-12:
             k -= 1
         return k

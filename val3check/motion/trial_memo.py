@@ -10,10 +10,10 @@ A trial times a path of spans from position a at path speed v0. Its answer is a 
 span's geometry (the same object: construction.py and blending.py reuse them), the part of it
 (a, b), whether it joins its neighbour smoothly, its tool, which spans belong to the same command
 and that command's limits (mdesc and monitor speed), a, v0, the speeds the arm had where the
-trial re-times from (`calls`: asked of the plan again and compared), and the answers of the
-remembered time-optimal parameterisations it read (timing.Timing: a first answer and a
-remembered one may differ in their last bits, so an answer is kept only when every one it read
-was remembered, and used only while those are still remembered). The arm's geometry (setDH)
+trial re-times from (`calls`: asked of the plan again and compared), and the time-optimal
+parameterisations it read (timing.Timing solves each relative to its grid's start, so a first
+answer and a remembered one are the same bits; an answer is used only while the remembered ones
+it read are still remembered). The arm's geometry (setDH)
 clears kin.reuse, and this memo with it. Results are shared, never copied: their arrays are
 read-only.
 """
@@ -50,7 +50,8 @@ class TrialMemo:
         canon: dict[int, int] = {}
         parts = []
         tool_key = self._tool_key
-        for sp in spans:  # (loops, not generators: asked three times per motion command)
+        last_tool = last_key = None  # neighbouring spans mostly share their tool object: its key once
+        for sp in spans:  # (loops, not generators: asked twice per motion command)
             owners = sp.owners
             if len(owners) == 1:
                 k, st = owners[0]
@@ -61,7 +62,9 @@ class TrialMemo:
             else:
                 own = tuple([(canon.setdefault(k, len(canon)), st) for k, st in owners])
             tool = sp.tool
-            parts.append((id(sp.geom), sp.a, sp.b, sp.smooth, None if tool is None else tool_key(tool), own))
+            if tool is not last_tool:
+                last_tool, last_key = tool, None if tool is None else tool_key(tool)
+            parts.append((id(sp.geom), sp.a, sp.b, sp.smooth, last_key, own))
         limits_key = self._limits_key
         return (tuple(parts), tuple([limits_key(k) for k in canon]), *rest)
 
@@ -112,21 +115,21 @@ class TrialMemo:
             return None
         return answer
 
-    def start(self) -> tuple[int, list]:
+    def start(self) -> list:
         """Record what a computation reads (before it)."""
         used: list = []
         self.timing.used = used
-        return self.timing.misses, used
+        return used
 
     def stop(self) -> None:
         """Stop recording (after the computation, however it ended)."""
         self.timing.used = None
 
     def keep(self, key, spans, started, calls, answer) -> None:
-        """Keep `answer` (after `start` and `stop`) when every parameterisation it read was remembered."""
-        misses, used = started
-        if key is None or self.timing.misses != misses:
+        """Keep `answer` (after `start` and `stop`, whose record of what it read is `started`)."""
+        if key is None:
             return
+        used = started
         store = self._store()
         if len(store) >= SIZE:
             store.pop(next(iter(store)))

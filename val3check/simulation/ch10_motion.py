@@ -138,13 +138,13 @@ def _tool(tool: Tool) -> np.ndarray | None:
     return None if tool.is_root else _matrix(pose)
 
 
-def _record(task, unit, kind: str, target: Target, via: Target | None, tool: Tool, mdesc: dict):
-    """Record the command (10.2.1); a full queue: wait until the arm completes the command it is
-    executing, then record (the instruction waits, as the manual says)."""
+def _record(task, unit, kind: str, target: Target, via: Target | None, tool: Tool, tool_m, mdesc: dict):
+    """Record the command (10.2.1) with the tool `tool`, whose TCP in the flange is `tool_m`
+    (`_tool`); a full queue: wait until the arm completes the command it is executing, then
+    record (the instruction waits, as the manual says)."""
     arm = task.machine.arm
     clock = task.machine.clock
     source = _source(task)
-    tool_m = _tool(tool)
     mm = millimeter_unit(unit)
     name = tool.name or ("flange" if tool.is_root else "")
     loops = task.machine.loop_passes()  # which pass of which loops records it (the cycle)
@@ -167,31 +167,31 @@ def _record(task, unit, kind: str, target: Target, via: Target | None, tool: Too
 def I_movej(task, unit, target, tool: Tool, mdesc: dict):
     """10.6 movej(joint|point, tool, mdesc): records a joint move; returns its identifier."""
     arm = _arm(task, "movej")
-    geo_frames.check_defined(tool)
+    tool_m = _tool(tool)  # (raises what check_defined would: the tool's pose computed once)
     _check_family(arm, target, "movej")
     if type(target) is dict:
         tg = Target.joint(jt(target))
     else:
         tg = _point(task, target, "movej")
-    return (yield from _record(task, unit, "movej", tg, None, tool, mdesc))
+    return (yield from _record(task, unit, "movej", tg, None, tool, tool_m, mdesc))
 
 
 def I_movel(task, unit, target: Point, tool: Tool, mdesc: dict):
     """10.6 movel(point, tool, mdesc): records a straight line of the tool centre point."""
     arm = _arm(task, "movel")
-    geo_frames.check_defined(tool)
+    tool_m = _tool(tool)
     _check_family(arm, target, "movel")
-    return (yield from _record(task, unit, "movel", _point(task, target, "movel"), None, tool, mdesc))
+    return (yield from _record(task, unit, "movel", _point(task, target, "movel"), None, tool, tool_m, mdesc))
 
 
 def I_movec(task, unit, via: Point, target: Point, tool: Tool, mdesc: dict):
     """10.6 movec(intermediate, target, tool, mdesc): records an arc."""
     arm = _arm(task, "movec")
-    geo_frames.check_defined(tool)
+    tool_m = _tool(tool)
     _check_family(arm, via, "movec")
     _check_family(arm, target, "movec")
     tg = _point(task, target, "movec")
-    return (yield from _record(task, unit, "movec", tg, _point(task, via, "movec"), tool, mdesc))
+    return (yield from _record(task, unit, "movec", tg, _point(task, via, "movec"), tool, tool_m, mdesc))
 
 
 def I_waitendmove(task, unit):

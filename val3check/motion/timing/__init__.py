@@ -124,27 +124,30 @@ class Timing:
         return brake_stop(grid, sd0)
 
     def _topp(self, grid: Grid, v0: float) -> TimedProfile:
-        """optimal.topp, remembered: an identical problem has an identical answer."""
+        """optimal.topp, remembered: an identical problem has an identical answer. Solved on the
+        grid relative to its start (s - s0) and shifted back, so that a remembered answer is the
+        computed one to the bit wherever the piece lies on the path."""
         s0 = grid.s[0]
+        s_rel = grid.s - s0
         rows = grid.rows
         if rows is None:
             rows = (grid.q1.tobytes(), grid.q2.tobytes(), grid.pt.tobytes(), grid.rt.tobytes(), grid.V.tobytes(),
                     grid.A.tobytes(), grid.D.tobytes(), grid.tv.tobytes(), grid.rv.tobytes())
-        key = (v0, (grid.s - s0).tobytes(), *rows)
+        key = (v0, s_rel.tobytes(), *rows)
         hit = self._cache.get(key)
         if hit is not None:
             if self.used is not None:
                 self.used.append((key, hit))
-            s_rel, sd, fallback = hit
-            s = s_rel + s0
-            s[0], s[-1] = grid.s[0], grid.s[-1]  # the ends exactly (a command ends there)
-            return TimedProfile(s, sd.copy(), fallback)
-        res = topp(grid, v0)
-        self.misses += 1
-        if len(self._cache) >= TOPP_CACHE:
-            self._cache.pop(next(iter(self._cache)))
-        self._cache[key] = (res.s - s0, res.sd.copy(), res.fallback)
-        return res
+        else:
+            res = topp(Grid(s_rel, grid.q1, grid.q2, grid.pt, grid.rt, grid.V, grid.A, grid.D, grid.tv, grid.rv), v0)
+            self.misses += 1
+            if len(self._cache) >= TOPP_CACHE:
+                self._cache.pop(next(iter(self._cache)))
+            hit = self._cache[key] = (res.s, res.sd.copy(), res.fallback)
+        s_rel, sd, fallback = hit
+        s = s_rel + s0
+        s[0], s[-1] = grid.s[0], grid.s[-1]  # the ends exactly (a command ends there)
+        return TimedProfile(s, sd.copy(), fallback)
 
 
 def _straight(grid: Grid, owners: np.ndarray) -> bool:
