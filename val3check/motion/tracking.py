@@ -149,7 +149,7 @@ def track(kin: ArmKin, curve, tool: np.ndarray | None, q_start, code: int, n: in
         k = np.asarray(knots, dtype=float)
         k = k[np.abs(lam[np.clip(np.searchsorted(lam, k), 0, len(lam) - 1)] - k) > 1e-9]
         k = k[np.abs(lam[np.clip(np.searchsorted(lam, k) - 1, 0, len(lam) - 1)] - k) > 1e-9]
-        lam = np.unique(np.concatenate([lam, k]))
+        lam = np.unique(np.concatenate([lam, k]), return_index=True)[0]  # (return_index: no numpy.ma import)
 
     def solve(ls):
         """The joints at the path parameters ls (in the start configuration)."""
