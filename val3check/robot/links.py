@@ -14,13 +14,13 @@ from __future__ import annotations
 
 import math
 import os
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from ..excerpt import shown
 from ..lengths import M_MM
+from ..light_dataclass import dataclass
 from .errors import RobotError
 from .urdf import UrdfInfo, read_urdf
 

@@ -21,10 +21,10 @@ the flange). Joint limits and nominal speeds are the URDF's own `<limit lower up
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..excerpt import shown
+from ..light_dataclass import dataclass, field
 from .errors import RobotError
 
 Mat = tuple[tuple[float, float, float, float], tuple[float, float, float, float], tuple[float, float, float, float]]
