@@ -16,10 +16,10 @@ each gridpoint, and the first failure if any (`Failure`: kind "reach", "config",
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
+from ..light_dataclass import dataclass
 from .kin import ArmKin, Singularity, wrap_near
 
 JUMP_DEG = 2.0  # neighbouring gridpoints further apart on some axis are refined
