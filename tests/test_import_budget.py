@@ -125,3 +125,19 @@ def test_sim_called_as_a_function_leaves_the_collector_alone(tmp_path):
     )
     r = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=300)
     assert "FROZEN False (700, 10, 10)" in r.stderr, r.stderr
+
+
+def test_sim_with_its_page_leaves_out_numpy_ma_and_the_html_entities(tmp_path):
+    """numpy.ma (48 M instructions) is imported by np.unique without return_index (motion_records,
+    tracking ask for it), `html` (its entity table, 8 M) by html.escape (the page escapes itself)."""
+    code = (
+        "import sys, runpy\n"
+        "sys.argv = ['val3check', 'sim', 'fixtures/valid/PickPlace', '--robot', 'tx2-60', '--scenario',"
+        f" 'fixtures/scenarios/pickplace.toml', '--duration', '4', '--max-wall', '600', '--report', 'html', '-o',"
+        f" {str(tmp_path / 'r.html')!r}]\n"
+        "try:\n    runpy.run_module('val3check', run_name='__main__')\nexcept SystemExit:\n    pass\n"
+        "print('LOADED', sorted(m for m in ('numpy.ma', 'html', 'html.entities') if m in sys.modules), file=sys.stderr)\n"
+    )
+    r = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=300)
+    assert (tmp_path / "r.html").is_file(), r.stderr
+    assert "LOADED []" in r.stderr, r.stderr

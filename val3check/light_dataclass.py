@@ -13,7 +13,8 @@ eq=False)`, fields from the class annotations in order, defaults, `field(default
 tuple, same class only), `__hash__` (from the fields when frozen; None when eq and not frozen),
 `__match_args__`; frozen classes refuse assignments (FrozenInstanceError, an AttributeError).
 Not supported (not used here): inheritance of fields, `ClassVar`, `InitVar`, `__post_init__`,
-ordering, `kw_only`; the robotics and simulation code keeps the standard module.
+ordering, `kw_only`, `dataclasses.replace`/`fields`, `field(repr=..., compare=...)`: classes that
+need them keep the standard module. The simulation uses it too (some 4 M instructions saved per class).
 """
 
 from __future__ import annotations

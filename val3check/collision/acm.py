@@ -28,11 +28,11 @@ from __future__ import annotations
 
 import hashlib
 import random
-from dataclasses import dataclass, field
 
 import fcl
 import numpy as np
 
+from ..light_dataclass import dataclass, field
 from .bodies import Body
 
 REASONS = ("adjacent", "default", "always", "never")

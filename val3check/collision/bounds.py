@@ -10,10 +10,10 @@ distance at every sample that the measurements raise.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
+from ..light_dataclass import dataclass
 from .bodies import Body, aabb_gap
 from .groups import Group, Watch
 from .path import ArmPath

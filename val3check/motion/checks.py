@@ -8,10 +8,9 @@ following error). The manual gives no figures; val3check uses these (docs/motion
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
+from ..light_dataclass import dataclass
 from . import findings as F
 from .findings import Finding
 from .paths import JointSpline, tcp_rates

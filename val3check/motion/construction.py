@@ -19,10 +19,9 @@ records it and the next motion instruction raises 150.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 import numpy as np
 
+from ..light_dataclass import dataclass, field
 from . import findings as F
 from . import trial_memo
 from .cartesian import Arc, ArcError, Line

@@ -24,7 +24,7 @@ pass N + 1.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from ..light_dataclass import dataclass, field
 
 
 @dataclass(frozen=True)

@@ -10,9 +10,9 @@ waitEndMove, open or close when an already recorded command cannot be executed.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from typing import Any
 
+from ..light_dataclass import dataclass, field
 from ..rules import codes
 
 # The motion rules (rules/R0xx.toml describe them).

@@ -12,10 +12,10 @@ Units: joints in degrees, lengths in millimetres, poses as 4x4 matrices (N, 4, 4
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
+from ..light_dataclass import dataclass
 from ..robot.dh import fk_many as dh_fk_many
 from ..robot.dh import refine as dh_refine
 from ..robot.errors import IKUnsupported

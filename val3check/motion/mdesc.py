@@ -8,11 +8,11 @@ invalid fields; `Limits` is what the time parameterisation obeys.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
 from ..language.types import load_types
+from ..light_dataclass import dataclass
 
 BLENDS = ("off", "joint", "Cartesian")
 # The fields' defaults: language/types.toml, the one source of the type facts (10.5.1: the

@@ -44,10 +44,10 @@ Semantics (docs/motion.md gives the choices where the manual is silent):
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
+from ..light_dataclass import dataclass
 from . import findings as F
 from . import trial_memo
 from .checks import slowdown

@@ -16,10 +16,10 @@ each gridpoint, and the first failure if any (`Failure`: kind "reach", "config",
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
+from ..light_dataclass import dataclass
 from .kin import ArmKin, Singularity, wrap_near
 
 JUMP_DEG = 2.0  # neighbouring gridpoints further apart on some axis are refined
@@ -149,7 +149,7 @@ def track(kin: ArmKin, curve, tool: np.ndarray | None, q_start, code: int, n: in
         k = np.asarray(knots, dtype=float)
         k = k[np.abs(lam[np.clip(np.searchsorted(lam, k), 0, len(lam) - 1)] - k) > 1e-9]
         k = k[np.abs(lam[np.clip(np.searchsorted(lam, k) - 1, 0, len(lam) - 1)] - k) > 1e-9]
-        lam = np.unique(np.concatenate([lam, k]))
+        lam = np.unique(np.concatenate([lam, k]), return_index=True)[0]  # (return_index: no numpy.ma import)
 
     def solve(ls):
         """The joints at the path parameters ls (in the start configuration)."""

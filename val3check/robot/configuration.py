@@ -23,9 +23,9 @@ epositive: an RS/TS arm has no elbow or wrist configuration.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 from ..geometry.config_values import CONCRETE
+from ..light_dataclass import dataclass
 from .errors import RobotError
 
 DEG = math.pi / 180.0

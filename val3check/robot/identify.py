@@ -20,9 +20,9 @@ from __future__ import annotations
 import math
 import os
 import re
-from dataclasses import dataclass
 
 from ..excerpt import shown
+from ..light_dataclass import dataclass
 from . import catalog as _catalog
 from .errors import RobotError
 

@@ -21,10 +21,10 @@ from __future__ import annotations
 
 import math
 import random
-from dataclasses import dataclass
 
 from ..geometry import rotation as _rot
 from ..lengths import M_MM
+from ..light_dataclass import dataclass
 from .errors import RobotError
 from .urdf import IDENTITY, Mat, UrdfInfo, axis_angle, inverse, mul, transform
 

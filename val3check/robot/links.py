@@ -14,13 +14,13 @@ from __future__ import annotations
 
 import math
 import os
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from ..excerpt import shown
 from ..lengths import M_MM
+from ..light_dataclass import dataclass
 from .errors import RobotError
 from .urdf import UrdfInfo, read_urdf
 
@@ -234,13 +234,35 @@ def read_collision_solids(path: str | os.PathLike, resolve_meshes: bool = True) 
     """The `<collision>` elements of every link of a URDF, in mm. A mesh file is resolved beside the
     URDF (relative path or file://) and must stay inside the URDF's folder (`resolve_meshes=False`:
     its name is kept as written, for a reader that does not open meshes)."""
+    import io
+
     from defusedxml import ElementTree as ET
 
     path = str(path)
     try:
-        root = ET.parse(path).getroot()
+        with open(path, "rb") as fh:
+            data = fh.read()
+        key = (path, data, resolve_meshes)
+        kept = _SOLIDS.get(key)
+        if kept is not None:
+            return [Solid(k.link, k.name, k.kind, k.size, k.origin.copy(), k.mesh) for k in kept]
+        root = ET.parse(io.BytesIO(data)).getroot()
     except (OSError, ET.ParseError) as exc:
         raise RobotError(f"{path}: cannot read the URDF: {exc}") from None
+    out = _collision_solids(root, path, resolve_meshes)
+    # a mesh's file is resolved on the disk: kept only without meshes (then path and bytes decide)
+    if not resolve_meshes or not any(s.kind == "mesh" for s in out):
+        if len(_SOLIDS) >= 8:
+            _SOLIDS.pop(next(iter(_SOLIDS)))
+        _SOLIDS[key] = tuple(Solid(k.link, k.name, k.kind, k.size, k.origin.copy(), k.mesh) for k in out)
+    return out
+
+
+_SOLIDS: dict = {}  # (path, bytes, resolve_meshes) -> the solids of a URDF without meshes (a run reads it thrice)
+
+
+def _collision_solids(root, path: str, resolve_meshes: bool) -> list[Solid]:  # noqa: ANN001
+    """`read_collision_solids` of the parsed URDF."""
     base = Path(path).resolve().parent
     out: list[Solid] = []
     for link in root.findall("link"):

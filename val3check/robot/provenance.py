@@ -13,7 +13,7 @@ A generated model (robots/generate.py) writes them in its URDF's <val3check> ele
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from ..light_dataclass import dataclass
 
 
 @dataclass(frozen=True)

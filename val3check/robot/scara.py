@@ -23,8 +23,8 @@ from __future__ import annotations
 
 import math
 import random
-from dataclasses import dataclass
 
+from ..light_dataclass import dataclass
 from .urdf import Mat
 
 _ORIENT_TOL = 1e-7  # rad: a target tilted more than this off the vertical is out of a SCARA's reach

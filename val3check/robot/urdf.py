@@ -21,10 +21,10 @@ the flange). Joint limits and nominal speeds are the URDF's own `<limit lower up
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..excerpt import shown
+from ..light_dataclass import dataclass, field
 from .errors import RobotError
 
 Mat = tuple[tuple[float, float, float, float], tuple[float, float, float, float], tuple[float, float, float, float]]
@@ -105,15 +105,24 @@ def parse_xml_file(path: str, roots=None, what: str = "file"):  # noqa: ANN001
     """The root element of a robot XML file (URDF, arm.cfx), read through val3check.confine
     (regular file, size checked first, inside `roots` when given) and parsed with defusedxml
     (no entity, no DTD is ever followed); RobotError for anything else."""
-    from defusedxml import DefusedXmlException
-    from defusedxml import ElementTree as ET
+    return _parse_xml(path, _xml_bytes(path, roots), what)
 
+
+def _xml_bytes(path: str, roots=None) -> bytes:  # noqa: ANN001
+    """`parse_xml_file`'s read: its checks, then the file's bytes."""
     from ..confine import Refused, Roots, read_bytes
 
     try:
-        data = read_bytes(path, roots or Roots.user_given(), MAX_URDF_SIZE)
+        return read_bytes(path, roots or Roots.user_given(), MAX_URDF_SIZE)
     except Refused as exc:
         raise RobotError(f"{path}: {'no such file' if exc.reason == 'file not found' else exc.reason}") from None
+
+
+def _parse_xml(path: str, data: bytes, what: str):  # noqa: ANN202
+    """`parse_xml_file`'s parse of the bytes read."""
+    from defusedxml import DefusedXmlException
+    from defusedxml import ElementTree as ET
+
     try:
         return ET.fromstring(data, forbid_dtd=True)
     except DefusedXmlException:
@@ -157,9 +166,28 @@ def _check_tree(path: str, joints: dict[str, UrdfJoint]) -> None:
         done.update(seen)
 
 
+_READ: dict = {}  # (path, the file's bytes) -> UrdfInfo: a run reads its arm's URDF four times
+READ_KEPT = 8
+
+
 def read_urdf(path: str | Path) -> UrdfInfo:
+    """The URDF at `path` (its checks and its read every time; parsed again only when its path or
+    its bytes are new to this process). Each call gets its own containers."""
     path = str(path)
-    root = parse_xml_file(path, what="URDF")
+    data = _xml_bytes(path)
+    info = _READ.get((path, data))
+    if info is None:
+        info = _read_urdf(path, data)
+        if len(_READ) >= READ_KEPT:
+            _READ.pop(next(iter(_READ)))
+        _READ[(path, data)] = info
+    return UrdfInfo(info.path, info.robot_name, dict(info.joints), set(info.links),
+                    None if info.meta is None else dict(info.meta), {k: dict(v) for k, v in info.meta_joints.items()},
+                    [(tag, dict(a)) for tag, a in info.meta_items])
+
+
+def _read_urdf(path: str, data: bytes) -> UrdfInfo:
+    root = _parse_xml(path, data, "URDF")
     if root.tag != "robot":
         raise RobotError(f"{path}: not a URDF (the root element is <{root.tag}>, not <robot>)")
     links = {el.get("name") for el in root.findall("link")}

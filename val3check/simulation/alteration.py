@@ -31,12 +31,12 @@ from __future__ import annotations
 import bisect
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
 from ..diagnostics import Diagnostic
+from ..light_dataclass import dataclass, field
 from ..motion.findings import NO_OP, UNREACHABLE, Finding, MotionError, Source
 from ..motion.kin import wrap_near
 from ..motion.motion_records import time_leaving

@@ -16,10 +16,10 @@ from __future__ import annotations
 import os
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
 from typing import Any
 
 from ..diagnostics import Severity
+from ..light_dataclass import dataclass, field
 from .robot_choice import choose_sim_robot
 
 Say = Callable[[str], None]  # a note for the user (the single run prints it on standard error)

@@ -15,9 +15,8 @@ oemLicence runtime licence).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 from ..language.runtime_errors import Val3RuntimeError
+from ..light_dataclass import dataclass, field
 from ..rules import codes
 from .runtime_notes import note
 

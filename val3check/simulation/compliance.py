@@ -33,12 +33,12 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
 from ..diagnostics import Diagnostic
+from ..light_dataclass import dataclass, field
 from ..motion.motion_records import time_leaving
 from ..rules import codes
 

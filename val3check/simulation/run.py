@@ -12,7 +12,6 @@ scenario's settings. Nothing here writes files: reports are `val3check.reporting
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
 from typing import Any
 
 from ..interpretation import code_support, not_simulated, waiting
@@ -29,16 +28,17 @@ from ..interpretation.machine import Budgets, Machine
 from ..interpretation.registry import Registry
 from ..interpretation.scheduler import EndRun
 from ..lengths import INCH_MM
+from ..light_dataclass import dataclass, field
 from ..loading.model import Application, Workspace
 from ..motion import history
 from ..rules import codes
 from . import ch09_latch, ch10_motion, ch11_absolute, ch11_alter, ch11_compliance, ch11_continuous, ch11_licences
 from .budget import RUN_SHARE, RunBudget
 from .collect import collect
-from .retention import release
 from .folding import fold
 from .moving_arm import MovingArm
 from .result import SimResult
+from .retention import release
 from .scenario import Scenario, apply_scenario
 
 # What the generated code calls, then the chapters of the manual, in order.

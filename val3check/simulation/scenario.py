@@ -10,7 +10,6 @@ signal, key or a value of the wrong type is an error that names the line.
 from __future__ import annotations
 
 import datetime
-from dataclasses import dataclass, field
 from typing import Any
 
 from ..excerpt import excerpt, shown
@@ -19,6 +18,7 @@ from ..interpretation.io_cell import Reaction, SerialReply
 from ..interpretation.user_page import Key
 from ..interpretation.values import Arr, FaultyIOPoint, IOPoint
 from ..interpretation.virtual_disk import disk_key
+from ..light_dataclass import dataclass, field
 from .scenario_numbers import MAX_SECONDS
 from .scenario_numbers import finite as _finite
 from .scenario_numbers import seconds as _seconds

@@ -31,11 +31,11 @@ only when the arguments match `params`.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import Any
 
 from val3check.interpretation.builtins import bits, numeric, strings
 from val3check.interpretation.builtins.strings import format_num_default
+from val3check.light_dataclass import dataclass
 
 
 @dataclass(frozen=True)

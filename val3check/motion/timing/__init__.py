@@ -24,10 +24,9 @@ times the monitor speed (docs/motion.md, "Timing").
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
+from ...light_dataclass import dataclass
 from .analytic import duration, trapezoid
 from .grid import Grid, gridpoint_before, sample_path
 from .optimal import TimedProfile, topp

@@ -12,10 +12,10 @@ including the monitor speed); `owners` is that command's key at each gridpoint.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
+from ...light_dataclass import dataclass
 from .. import trial_memo
 
 ROWS_KEPT = 128  # grids whose rows are kept (`_assemble`)

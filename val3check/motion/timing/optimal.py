@@ -30,10 +30,9 @@ reports it (R019).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
+from ...light_dataclass import dataclass
 from .analytic import duration
 from .grid import Grid
 from .refine import accel_xmax, coefficients, refine
