@@ -144,6 +144,9 @@ class Scheduler:
         self._ran: set[Task] = set()  # tasks that ran a line in this cycle (the task timelines)
         self._alive: dict[Task, tuple] = {}  # the tasks alive at the end of the last cycle, their state
         self._removed = False  # a task left `tasks` since the states were last noted
+        # a task was added or took a turn since the states were last noted: only then can a
+        # state have changed (a wait's condition, evaluated by the cycle, changes none)
+        self._changed = False
         self._periodic = False  # a synchronous task was ever added (else each cycle skips their turns)
 
     def add_subsystem(self, subsystem: Any) -> None:
@@ -158,6 +161,7 @@ class Scheduler:
         task.seq = self._seq
         if task.period:
             self._periodic = True
+        self._changed = True
         self.tasks.append(task)
         self.history.append(task)
         return task
@@ -341,13 +345,16 @@ class Scheduler:
             if not progress:
                 break
         self.total_lines += clock.cycle_lines
-        self._note_states(now)
+        if self._changed or self._removed:
+            self._changed = False
+            self._note_states(now)
         return clock.cycle_lines >= LINES_PER_CYCLE
 
     def _note_states(self, now: int) -> None:
         """The task timelines (recorder.TaskStateChange): over this cycle, running for a task that
-        ran a line in it; from the next cycle on, the state it was left in. A task that did not
-        run and whose state did not change costs one dict lookup."""
+        ran a line in it; from the next cycle on, the state it was left in. Called only after a
+        turn or a change of the task list (`cycle`); a task that did not run and whose state
+        did not change costs one dict lookup."""
         ran = self._ran
         alive = self._alive  # task -> (state, waiting_for) last noted
         tasks = self.tasks
@@ -404,6 +411,7 @@ class Scheduler:
         clock = self.clock
         clock.current = task
         clock.turn_given = quantum
+        self._changed = True
         before = task.state
         # a task preempted at the start of a line has already counted that line (task.q -= 1)
         task.q = quantum - 1 if before is PREEMPTED else quantum
@@ -449,31 +457,33 @@ class Scheduler:
         return ran > 0 or st is not before and st is not WAIT
 
     def next_event(self) -> int | None:
-        """The next time something can change, or None (deadlock)."""
+        """The next time something can change, or None (deadlock). (A running minimum: this is
+        asked at every cycle where every task waits.)"""
         now = self.clock.now
-        times = []
+        best = None
         for next_time in self._next_time:
             t = next_time(now)
-            if t is not None:
-                times.append(t)
+            if t is not None and (best is None or t < best):
+                best = t
         tdep = False
         stopped, delay, wait = STOPPED_STATES, DELAY, WAIT
         for task in self.tasks:
             st = task.state
             if task.period and st not in stopped:
-                times.append(task.next_run)
-            if st is delay and task.wake is not None:
-                times.append(task.wake)
-            elif st is wait:
-                if task.wake is not None:
-                    times.append(task.wake)
-                if task.tdep:
+                t = task.next_run
+                if best is None or t < best:
+                    best = t
+            if st is delay or st is wait:
+                t = task.wake
+                if t is not None and (best is None or t < best):
+                    best = t
+                if task.tdep and st is wait:
                     tdep = True
             elif st is READY or st is YIELD or st is PREEMPTED:
                 tdep = True
-        if tdep:
-            times.append(now + TICK_US)
-        return min(times) if times else None
+        if tdep and (best is None or now + TICK_US < best):
+            best = now + TICK_US
+        return best
 
 
 def _shown(st: TaskState, waiting_for: str, periodic: bool) -> tuple[str, str]:
