@@ -146,3 +146,28 @@ def test_point_assign_and_equality(world):
     assert p3 != p1
     p2.trsf.z = 4
     assert p2 != p1
+
+
+def test_appro_raises_what_world_pose_raises(world):
+    """appro checks the point's reference as world_pose does (without computing the pose it does
+    not use): the same code and message for no reference, a frame without reference, a loop of
+    references and a modified world; an infinite angle raises in the product, as it did."""
+    loose = Frame(Trsf(1, 2, 3, 0, 0, 0), None, name="fLoose")
+    a = Frame(Trsf(), world, name="fA")
+    b = Frame(Trsf(), a, name="fB")
+    a.ref = b
+    moved = new_world()
+    moved.trsf = Trsf(1, 0, 0, 0, 0, 0)
+    cases = [Point(Trsf(), CFG, None, name="pNone"), Point(Trsf(), CFG, loose, name="pLoose"),
+             Point(Trsf(), CFG, a, name="pLoop"), Point(Trsf(), CFG, moved, name="pMoved")]
+    for p in cases:
+        with pytest.raises(Val3RuntimeError) as want:
+            points.world_pose(p)
+        with pytest.raises(Val3RuntimeError) as got:
+            points.appro(p, Trsf(0, 0, -100, 0, 0, 0))
+        assert (got.value.code, str(got.value)) == (want.value.code, str(want.value))
+    assert {code(points.appro, p, Trsf()) for p in cases} == {161, 162, 163}
+    with pytest.raises(ValueError):
+        points.appro(Point(Trsf(0, 0, 0, float("inf"), 0, 0), CFG, world), Trsf())
+    ok = Point(Trsf(400, 200, 50, 0, 180, 0), CFG, Frame(Trsf(10, 0, 0, 0, 0, 30), world))
+    assert points.appro(ok, Trsf(0, 0, -100, 0, 0, 0)).trsf == ok.trsf * Trsf(0, 0, -100, 0, 0, 0)

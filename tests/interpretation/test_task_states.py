@@ -85,3 +85,44 @@ def test_the_timeline_has_a_budget():
     rec.finish_task_states()
     assert len(rec.task_states) == rec.max_task_states == 10
     assert len(full) == 1 and "task timeline is full" in full[0]
+
+
+def test_states_noted_only_after_a_turn_are_those_noted_every_cycle(tmp_path, monkeypatch):
+    """The scheduler notes the task states only after a cycle where a task took a turn or the
+    task list changed (a wait's condition, evaluated by the cycle itself, changes no state): the
+    timelines are those of noting at every cycle, here with delays, waits on the cell and on
+    globals, a watch's timeout, a synchronous task, suspend/resume, kill and an error."""
+    code = """begin
+  taskCreate "sleeper", 10, sleeper()
+  taskCreate "waiter", 10, waiter()
+  taskCreateSync "tick", 0.1, bOver, ticker()
+  delay(0.3)
+  taskSuspend("sleeper")
+  delay(0.5)
+  bGo = true
+  taskResume("sleeper", 0)
+  delay(0.6)
+  taskKill("tick")
+  delay(1)
+end
+"""
+    programs = {
+        "sleeper": {"code": "begin\n  while nN < 40\n    nN = nN + 1\n    delay(0.05)\n  endWhile\nend\n"},
+        "waiter": {"code": "begin\n  wait(bGo == true)\n  bOk = watch(bNever == true, 0.2)\n  wait(diIn == true)\n"
+                           "  nN = 1 / nZero\nend\n"},
+        "ticker": {"code": "begin\n  nTicks = nTicks + 1\nend\n"},
+    }
+    scenario = 'version = 1\n[inputs]\ndiIn = false\n[[events]]\nat = 2.5\nset = { diIn = true }\n'
+    globals_ = ["bool bGo", "bool bOk", "bool bNever", "bool bOver", "num nN", "num nTicks", "num nZero",
+                "dio diIn"]
+    links = {"diIn": "BasicIO-1\\%I0"}
+    noted = sim(tmp_path / "a", code, globals_=globals_, programs=programs, scenario=scenario, duration=4, links=links)
+    from val3check.interpretation.scheduler import Scheduler
+
+    # every cycle notes (what the scheduler did before): a flag that is always set
+    monkeypatch.setattr(Scheduler, "_changed", property(lambda self: True, lambda self, value: None), raising=False)
+    every = sim(tmp_path / "b", code, globals_=globals_, programs=programs, scenario=scenario, duration=4, links=links)
+    assert len(noted.task_states) > 40
+    assert {c.task for c in noted.task_states} >= {"sleeper", "waiter", "tick"}
+    assert [(c.time_us, c.task, c.state, c.detail) for c in noted.task_states] == \
+        [(c.time_us, c.task, c.state, c.detail) for c in every.task_states]

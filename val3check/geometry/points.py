@@ -119,7 +119,10 @@ def appro(p: Point, tr: Trsf) -> Point:
     """9.6.3 appro(pPosition, trTransformation): p.trsf * tr, i.e. `tr` expressed in the axes
     of the point itself (appro(p, {0,0,-100,0,0,0}) is 100 back along the tool's Z axis).
     Reference frame and config of the result are those of `p`; 162 without reference frame."""
-    world_pose(p)  # the errors: no reference frame, undefined or modified frames
+    ref = p.ref  # world_pose's errors (no reference frame, undefined or modified frames), not its pose
+    if ref is None:
+        raise Val3RuntimeError(162, f"{_label(p)} has no reference frame")
+    root_pose(ref)
     return Point(p.trsf * tr, p.config, p.ref)
 
 

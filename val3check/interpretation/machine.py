@@ -124,6 +124,10 @@ class Machine:
         self._outside_seen: set[tuple] = set()  # the lines already reported R041
         self.files = VirtualDisk()  # the controller's disk of the system library's file instructions
         self.base_namespace = self._base_namespace()
+        # the condition of every wait for the end of motion (waitEndMove, open, close): one
+        # function for the run, not one made at each wait
+        self.motion_done = lambda: arm.motion_done(self.clock.now)
+        self.motion_done.motion = True  # the deadlock report asks the arm why (deadlock.py)
 
     def add_subsystem(self, subsystem: Any) -> None:
         """A `Subsystem` (subsystem.py) the scheduler advances and asks for its next event,

@@ -144,6 +144,9 @@ class Scheduler:
         self._ran: set[Task] = set()  # tasks that ran a line in this cycle (the task timelines)
         self._alive: dict[Task, tuple] = {}  # the tasks alive at the end of the last cycle, their state
         self._removed = False  # a task left `tasks` since the states were last noted
+        # a task was added or took a turn since the states were last noted: only then can a
+        # state have changed (a wait's condition, evaluated by the cycle, changes none)
+        self._changed = False
         self._periodic = False  # a synchronous task was ever added (else each cycle skips their turns)
 
     def add_subsystem(self, subsystem: Any) -> None:
@@ -158,6 +161,7 @@ class Scheduler:
         task.seq = self._seq
         if task.period:
             self._periodic = True
+        self._changed = True
         self.tasks.append(task)
         self.history.append(task)
         return task
@@ -248,6 +252,8 @@ class Scheduler:
         raise EndRun (duration reached, deadlock, budgets)."""
         machine = self.machine
         clock = self.clock
+        tasks = self.tasks  # (one list for the run: tasks leave it by remove())
+        cycle, next_event = self.cycle, self.next_event
         budgets = machine.budgets
         wall_deadline = budgets.run_deadline(machine.wall_start)
         wall_clock = budgets.wall_clock
@@ -256,37 +262,43 @@ class Scheduler:
         while True:
             if stopping and machine.stop_done():
                 return  # stop() has ended, or stopped on an error: the caller destroys the rest
-            if not self.tasks:
+            if not tasks:
                 if machine.stopping:
                     return
                 # 2.1.3: the application ends when its last task ends; then stop() runs
                 machine.start_stop_program()
                 stopping = True
                 continue
-            if clock.now >= limit_us:
+            now = clock.now
+            if now >= limit_us:
                 raise EndRun("stop-timeout" if stopping else "duration")
             cycles += 1
             if wall_clock() > wall_deadline:
                 raise EndRun("wall-clock")
-            if cycles & 255 == 0:
-                why = memory.over()
-                if why:
-                    raise EndRun("budget:" + why)
-            if cycles & 63 == 0 and machine.progress is not None:
-                machine.progress(clock.now)
+            if cycles & 63 == 0:
+                if cycles & 255 == 0:
+                    why = memory.over()
+                    if why:
+                        raise EndRun("budget:" + why)
+                if machine.progress is not None:
+                    machine.progress(now)
             if self.total_lines > budgets.max_lines:
                 raise EndRun("steps")
-            busy = self.cycle()
+            busy = cycle()
             if stopping and machine.stop_done():
                 return  # at once, not after the clock jumps to the next event
-            if busy or not self.tasks:
-                clock.now += TICK_US
+            if busy or not tasks:
+                clock.now = now + TICK_US
                 continue
-            nxt = self.next_event()
+            nxt = next_event()
             if nxt is None:
-                waiting = any(t.state is WAIT or t.state is DELAY or t.state is SUSPENDED for t in self.tasks)
+                waiting = any(t.state is WAIT or t.state is DELAY or t.state is SUSPENDED for t in tasks)
                 raise EndRun("deadlock" if waiting else "stalled")
-            clock.now = min(limit_us, max(clock.now + TICK_US, -(-nxt // TICK_US) * TICK_US))
+            # the tick of the next event, at least the next one, at most the limit
+            nxt = -(-nxt // TICK_US) * TICK_US
+            if nxt < now + TICK_US:
+                nxt = now + TICK_US
+            clock.now = nxt if nxt < limit_us else limit_us
 
     def cycle(self) -> bool:
         """One 4 ms cycle. Returns True when the line budget was spent (busy), False when every
@@ -301,37 +313,39 @@ class Scheduler:
             for task in list(tasks):
                 if task.period and now >= task.next_run and task in tasks:
                     self._sync_turn(task)
-        turn = self._turn
-        stopped, delay, wait = STOPPED_STATES, DELAY, WAIT
         created = self._created
         while clock.cycle_lines < LINES_PER_CYCLE:
             progress = False
-            created.clear()
+            if created:
+                created.clear()
             order = list(tasks)
             # (a list iterator sees the items appended while it runs: the tasks created below)
             for task in order:
                 if task.period or task not in tasks:
                     continue
                 st = task.state
-                if st in stopped:
-                    continue
-                if st is delay and task.wake > now:
-                    continue
                 ok = None
-                if st is wait and task.cond is not None:
-                    # the wait's condition, evaluated once per turn here rather than by
-                    # resuming the task: it is resumed when true (or at the watch timeout)
-                    try:
-                        ok = task.cond()
-                    except Exception:  # noqa: BLE001 - raised again in the task, at its line
-                        ok = None
-                    else:
-                        if not ok and (task.wake is None or now < task.wake):
-                            continue
+                if st is WAIT:
+                    cond = task.cond
+                    if cond is not None:
+                        # the wait's condition, evaluated once per turn here rather than by
+                        # resuming the task: it is resumed when true (or at the watch timeout)
+                        try:
+                            ok = cond()
+                        except Exception:  # noqa: BLE001 - raised again in the task, at its line
+                            ok = None
+                        else:
+                            if not ok and (task.wake is None or now < task.wake):
+                                continue
+                elif st is DELAY:
+                    if task.wake > now:
+                        continue
+                elif st in STOPPED_STATES:
+                    continue
                 left = LINES_PER_CYCLE - clock.cycle_lines
                 if left <= 0:
                     break
-                if turn(task, task.prio if task.prio < left else left, ok):
+                if self._turn(task, task.prio if task.prio < left else left, ok):
                     progress = True
                 if created:
                     # 5.4: tasks take turns in creation order; one created in this turn takes
@@ -340,14 +354,19 @@ class Scheduler:
                     created.clear()
             if not progress:
                 break
-        self.total_lines += clock.cycle_lines
-        self._note_states(now)
-        return clock.cycle_lines >= LINES_PER_CYCLE
+        lines = clock.cycle_lines
+        if lines:
+            self.total_lines += lines
+        if self._changed or self._removed:
+            self._changed = False
+            self._note_states(now)
+        return lines >= LINES_PER_CYCLE
 
     def _note_states(self, now: int) -> None:
         """The task timelines (recorder.TaskStateChange): over this cycle, running for a task that
-        ran a line in it; from the next cycle on, the state it was left in. A task that did not
-        run and whose state did not change costs one dict lookup."""
+        ran a line in it; from the next cycle on, the state it was left in. Called only after a
+        turn or a change of the task list (`cycle`); a task that did not run and whose state
+        did not change costs one dict lookup."""
         ran = self._ran
         alive = self._alive  # task -> (state, waiting_for) last noted
         tasks = self.tasks
@@ -404,6 +423,7 @@ class Scheduler:
         clock = self.clock
         clock.current = task
         clock.turn_given = quantum
+        self._changed = True
         before = task.state
         # a task preempted at the start of a line has already counted that line (task.q -= 1)
         task.q = quantum - 1 if before is PREEMPTED else quantum
@@ -449,31 +469,32 @@ class Scheduler:
         return ran > 0 or st is not before and st is not WAIT
 
     def next_event(self) -> int | None:
-        """The next time something can change, or None (deadlock)."""
+        """The next time something can change, or None (deadlock). (A running minimum: this is
+        asked at every cycle where every task waits.)"""
         now = self.clock.now
-        times = []
+        best = None
         for next_time in self._next_time:
             t = next_time(now)
-            if t is not None:
-                times.append(t)
+            if t is not None and (best is None or t < best):
+                best = t
         tdep = False
-        stopped, delay, wait = STOPPED_STATES, DELAY, WAIT
         for task in self.tasks:
             st = task.state
-            if task.period and st not in stopped:
-                times.append(task.next_run)
-            if st is delay and task.wake is not None:
-                times.append(task.wake)
-            elif st is wait:
-                if task.wake is not None:
-                    times.append(task.wake)
-                if task.tdep:
+            if task.period and st not in STOPPED_STATES:
+                t = task.next_run
+                if best is None or t < best:
+                    best = t
+            if st is DELAY or st is WAIT:
+                t = task.wake
+                if t is not None and (best is None or t < best):
+                    best = t
+                if task.tdep and st is WAIT:
                     tdep = True
             elif st is READY or st is YIELD or st is PREEMPTED:
                 tdep = True
-        if tdep:
-            times.append(now + TICK_US)
-        return min(times) if times else None
+        if tdep and (best is None or now + TICK_US < best):
+            best = now + TICK_US
+        return best
 
 
 def _shown(st: TaskState, waiting_for: str, periodic: bool) -> tuple[str, str]:

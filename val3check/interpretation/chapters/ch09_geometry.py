@@ -305,12 +305,9 @@ def wait_end_of_motion(task, what: str):
     """waitEndMove() (10.6), and open()/close() before they act (9.5.4): the blend of the last
     command is cancelled (error 150 when a motion recorded before cannot be executed), then the
     task waits on the arm's motion queue; the clock jumps to the end of the motion."""
-    arm = task.machine.arm
-    clock = task.machine.clock
-    arm.end_motion(clock.time_of(task))
-    done = lambda: arm.motion_done(clock.now)  # noqa: E731
-    done.motion = True  # the deadlock report asks the arm why (machine._report_blocked)
-    yield from WAIT(task, done, False, f"{what} (end of motion)")
+    machine = task.machine
+    machine.arm.end_motion(machine.clock.time_of(task))
+    yield from WAIT(task, machine.motion_done, False, f"{what} (end of motion)")
 
 
 def _tool_action(task, unit, tool: Tool, action: str, value: bool, seconds: float):
