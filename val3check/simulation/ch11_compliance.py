@@ -103,7 +103,7 @@ def _compliant(task, unit, kind: str, target, tool, mdesc: dict, force: float):
                 tg = Target(pose=pose, config=tg.config, name=tg.name, frame=tg.frame)
     md = dict(mdesc)
     md["blend"] = "off"  # 11.1.4: the arm stops at the end of a compliant move
-    ident = yield from _record(task, unit, kind, tg, None, tool, md)
+    ident = yield from _record(task, unit, kind, tg, None, tool, tool_m, md)
     command = arm.queue.history[-1]
     if command.id == ident and command.state != "failed":
         comp.report = task.machine.diags.append
