@@ -467,6 +467,27 @@ def test_quaternions_of_any_rotation():
         assert np.abs(back - Rk).max() < 1e-12
 
 
+def test_a_half_turn_keeps_its_sign_whatever_the_last_bits():
+    """A tool pointing straight down is a half turn about a horizontal axis: w is 0 up to the
+    matrix's last bits, and the w >= 0 rule alone wrote x and y with either sign (the traces of one
+    motion timed two ways, issue 29). The first of w, x, y, z that is not about 0 is positive."""
+    from val3check.reporting.mcap_trace import quaternions
+
+    c, s = np.cos(0.7), np.sin(0.7)
+    axis = np.array([c, s, 0.0])
+    R0 = 2 * np.outer(axis, axis) - np.eye(3)  # a half turn about `axis`
+    qs = []
+    for e in (0.0, 1e-15, -1e-15, 3e-16, -3e-16):
+        R = R0.copy()
+        R[2, 1] += e
+        R[1, 2] -= e  # w = (R21 - R12) / 4x: its sign follows e
+        qs.append(quaternions(R[None])[0])
+    for q in qs:
+        assert np.allclose(q, [c, s, 0.0, 0.0], atol=1e-12)
+    q = quaternions(np.stack([R0, np.diag([-1.0, -1, 1]), np.eye(3)]))
+    assert np.allclose(q, [[c, s, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]], atol=1e-12)
+
+
 def test_obstacles_follow_their_frame_and_parts_their_spans(tmp_path):
     """A run that moves fBlock between two motions and carries a part (runhelp.MOVING), read back:
     the block is sent again, 800 mm further, when the checks read fBlock's new value, and fBlock's

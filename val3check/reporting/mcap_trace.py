@@ -126,9 +126,14 @@ def _stamp(ns: int) -> dict:
     return {"sec": ns // 1_000_000_000, "nsec": ns % 1_000_000_000}
 
 
+SIGN_EPS = 1e-9  # a component this close to 0 is a matrix's last bits, not a sign
+
+
 def quaternions(R):
-    """Unit quaternions (x, y, z, w) of rotation matrices (N, 3, 3), w >= 0 (Shepperd's method:
-    the largest of w, x, y, z is computed first, so every branch is well conditioned)."""
+    """Unit quaternions (x, y, z, w) of rotation matrices (N, 3, 3) (Shepperd's method: the largest
+    of w, x, y, z is computed first, so every branch is well conditioned). Of q and -q, the one whose
+    first of w, x, y, z farther than SIGN_EPS from 0 is positive: w >= 0, and a half turn (w about 0,
+    a tool pointing straight down) keeps its sign whatever the last bits of its matrix."""
     import numpy as np
 
     R = np.asarray(R, dtype=float).reshape(-1, 3, 3)
@@ -155,7 +160,9 @@ def quaternions(R):
             out[:, m] = (r[:, m, i] + r[:, i, m]) / (4 * a)
             out[:, 3] = (r[:, m, j] - r[:, j, m]) / (4 * a)
             q[s] = out
-    q[q[:, 3] < 0] *= -1.0
+    lead = q[:, [3, 0, 1, 2]]
+    first = np.argmax(np.abs(lead) > SIGN_EPS, axis=1)  # a unit quaternion has one component >= 0.5
+    q[lead[np.arange(n), first] < 0] *= -1.0
     return q
 
 
