@@ -215,31 +215,13 @@ class Planner:
             i0, _ = path.locate(s0)
             ahead, shift = path.spans[i0:], path.offsets[i0]
         a = s0 - shift
-        spans = ahead + blended + [tail, alone]
 
-        def speed_at(g, a_):
-            return self.profile.speed_at(g + shift, a_ + shift)
+        def trials(asked):
+            t_blend = _duration(self._timed(ahead, a, v0, blended, asked))
+            t_stop = _duration(self._timed(ahead, a, v0, [tail], asked))
+            return (t_blend, t_stop, self._rest_time(alone, q_start)), True
 
-        key = self.memo.key(spans, a, v0, "pays")
-        hit = self.memo.get(key, spans, speed_at)
-        if hit is None:
-            calls = []
-
-            def asked(g, a_):
-                v = speed_at(g, a_)
-                calls.append((g, a_, v))
-                return v
-
-            started = self.memo.start()
-            try:
-                t_blend = _duration(self._timed(ahead, a, v0, blended, asked))
-                t_stop = _duration(self._timed(ahead, a, v0, [tail], asked))
-                rest = self._rest_time(alone, q_start)
-            finally:
-                self.memo.stop()
-            hit = (t_blend, t_stop, rest)
-            self.memo.keep(key, spans, started, calls, hit)
-        return hit
+        return self._remembered(ahead + blended + [tail, alone], a, v0, "pays", shift, trials)
 
     def _rest_time(self, alone: Span, q_start) -> float:
         """The time of a command alone (its whole curve, the span `alone`, from joints q_start),
@@ -324,11 +306,27 @@ class Planner:
         (times from the start, s relative to the first span, ṡ). Remembered (trial_memo.py) with
         the plan's speeds it asked: a cyclic program plans the same spans from the same state every
         cycle, and its plan is then one look-up (pieces that fell back, R019, are not kept)."""
+        def plan(asked):
+            pieces = self._timed(ahead, a, v0, [], asked)
+            fell = False
+            for piece in pieces:
+                if piece.fallback:
+                    fell = True
+                    self.fallbacks += 1
+                    self.on_fallback(piece.owner)
+            return _joined(pieces), not fell
+
+        return self._remembered(ahead, a, v0, "plan", shift, plan)
+
+    def _remembered(self, spans: list, a: float, v0: float, kind: str, shift: float, compute):
+        """`compute(asked)`'s answer for `spans` from a at v0, remembered (trial_memo.py) with the
+        plan's speeds it asked: `asked(g, a)` reads them on the path, the spans being at `shift`.
+        `compute` returns (answer, whether it may be kept)."""
         def speed_at(g, a_):
             return self.profile.speed_at(g + shift, a_ + shift)
 
-        key = self.memo.key(ahead, a, v0, "plan")
-        hit = self.memo.get(key, ahead, speed_at)
+        key = self.memo.key(spans, a, v0, kind)
+        hit = self.memo.get(key, spans, speed_at)
         if hit is not None:
             return hit
         calls = []
@@ -340,19 +338,12 @@ class Planner:
 
         started = self.memo.start()
         try:
-            pieces = self._timed(ahead, a, v0, [], asked)
+            answer, keep = compute(asked)
         finally:
             self.memo.stop()
-        fell = False
-        for piece in pieces:
-            if piece.fallback:
-                fell = True
-                self.fallbacks += 1
-                self.on_fallback(piece.owner)
-        plan = _joined(pieces)
-        if not fell:
-            self.memo.keep(key, ahead, started, calls, plan)
-        return plan
+        if keep:
+            self.memo.keep(key, spans, started, calls, answer)
+        return answer
 
     def brake(self, now: float) -> None:
         """Stop on the path at once with the decelerations of the commands being executed
