@@ -117,6 +117,50 @@ def test_the_records_made_live_are_those_made_after_the_run(tmp_path, monkeypatc
     assert _report(live) == _report(after)
 
 
+# the monitor speed halved between two motions (BETWEEN) or while the second runs (DURING): 8.1
+SPEED_CHANGE = """begin
+  jA.j1 = 60
+  jB.j1 = -60
+  jB.j2 = 30
+  movej(jA, flange, mD)
+  waitEndMove()
+  {BETWEEN}
+  movej(jB, flange, mD)
+  {DURING}
+  waitEndMove()
+  movej(jA, flange, mD)
+  waitEndMove()
+end
+"""
+SPEED_CHANGE_GLOBALS = ["joint jA", "joint jB", "mdesc mD", "num nR"]
+
+
+@pytest.mark.parametrize("between, during", [("nR = setMonitorSpeed(50)", ""),
+                                             ("", "delay(0.2)\n  nR = setMonitorSpeed(50)")])
+def test_a_monitor_speed_change_mid_run_gives_the_records_made_after_the_run(tmp_path, monkeypatch, between, during):
+    """The live record takes a command's limits when the command is final; made after the run,
+    every record read the limits in force at the end. A monitor speed change mid-run (8.1) leaves
+    the two the same, and the motions before it those of a run without it."""
+    code = SPEED_CHANGE.replace("{BETWEEN}", between).replace("{DURING}", during)
+    machine, live = _machine(build(tmp_path / "change", code, globals_=SPEED_CHANGE_GLOBALS), 30.0)
+    _, after = _machine(build(tmp_path / "after", code, globals_=SPEED_CHANGE_GLOBALS), 30.0, live=False,
+                        monkeypatch=monkeypatch)
+    plain = SPEED_CHANGE.replace("{BETWEEN}", "").replace("{DURING}", "delay(0.2)" if during else "")
+    _, same = _machine(build(tmp_path / "plain", plain, globals_=SPEED_CHANGE_GLOBALS), 30.0)
+    assert machine.arm.live.kept and len(live.motion.motions) == 3
+    def row(m):  # its source (a path in another folder) aside
+        b = _bits(m)
+        return b[:2] + b[3:]
+
+    assert [row(m) for m in live.motion.motions] == [row(m) for m in after.motion.motions]
+    first, second, third = live.motion.motions
+    assert row(first) == row(same.motion.motions[0])
+    # at half the speed the second motion (changed before or while it runs) and the third are slower
+    for k, m in ((1, second), (2, third)):
+        ref = same.motion.motions[k]
+        assert m.end - m.start > (ref.end - ref.start) * 1.05 and m.peak_tcp_mm_s < ref.peak_tcp_mm_s
+
+
 def test_a_long_run_keeps_a_bounded_history_and_counts_its_motions(tmp_path):
     seen = []
     folder = build(tmp_path, LOOP, globals_=LOOP_GLOBALS)
