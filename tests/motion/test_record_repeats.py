@@ -74,9 +74,9 @@ def test_a_long_run_reusing_its_records_gives_the_fresh_records(pick_place, monk
         assert (round(a.length_mm, 3), round(a.peak_tcp_mm_s, 3)) == (round(b.length_mm, 3), round(b.peak_tcp_mm_s, 3))
 
 
-def _first_repeat(q, repeats: Repeats):
-    """(inputs of a command, the arguments that gave them) for the first command that repeats an
-    earlier one, with the earlier one's inputs already seen."""
+def _moved(q):
+    """(command, s0, s1, k0, k1) of each command that moved: its path positions and the profile's
+    breakpoints around them."""
     import bisect
 
     prof = q.trajectory.profile
@@ -85,7 +85,13 @@ def _first_repeat(q, repeats: Repeats):
         if place.s_begin is None or place.s_end is None or place.s_end - place.s_begin < 1e-6:
             continue
         s0, s1 = place.s_begin, place.s_end
-        k0, k1 = bisect.bisect_left(prof.S, s0), bisect.bisect_right(prof.S, s1)
+        yield command, s0, s1, bisect.bisect_left(prof.S, s0), bisect.bisect_right(prof.S, s1)
+
+
+def _first_repeat(q, repeats: Repeats):
+    """(inputs of a command, the arguments that gave them) for the first command that repeats an
+    earlier one, with the earlier one's inputs already seen."""
+    for command, s0, s1, k0, k1 in _moved(q):
         args = (command.tool, q.limits_of(command), s0, s1, max(k0 - 1, 0), k1)
         if repeats.find(repeats.inputs(*args))[0] is not None:
             return args
@@ -243,16 +249,9 @@ def test_records_made_as_the_blocks_fill_are_the_fresh_ones(pick_place, monkeypa
 
 def _asks(q) -> list:
     """(tool, limits, s0, s1, lo, hi, i0, i1) of each command that moved, as RecordMaker.add makes them."""
-    import bisect
-
     prof, path = q.trajectory.profile, q.path
     out = []
-    for command in q.history:
-        place = command.placement
-        if place.s_begin is None or place.s_end is None or place.s_end - place.s_begin < 1e-6:
-            continue
-        s0, s1 = place.s_begin, place.s_end
-        k0, k1 = bisect.bisect_left(prof.S, s0), bisect.bisect_right(prof.S, s1)
+    for command, s0, s1, k0, k1 in _moved(q):
         lo, hi = max(k0 - 1, 0), min(k1, len(prof.S) - 1)
         out.append((command.tool, q.limits_of(command), s0, s1, lo, hi, path.locate(min(prof.S[lo], s0))[0],
                     path.locate(max(prof.S[hi], s1))[0]))
