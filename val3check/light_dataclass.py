@@ -8,12 +8,16 @@ the same classes with one small `exec` each, for `__init__`; `__repr__`, `__eq__
 are closures over the field names (compiled like `__init__`, they cost as much again).
 
 Supported, with the standard meaning: `@dataclass`, `@dataclass(slots=True, frozen=True,
-eq=False)`, fields from the class annotations in order, defaults, `field(default=...)` and
-`field(default_factory=...)`; generated `__init__`, `__repr__`, `__eq__` (fields compared as a
-tuple, same class only), `__hash__` (from the fields when frozen; None when eq and not frozen),
-`__match_args__`; frozen classes refuse assignments (FrozenInstanceError, an AttributeError).
-Not supported (not used here): inheritance of fields, `ClassVar`, `InitVar`, `__post_init__`,
-ordering, `kw_only`, `dataclasses.replace`/`fields`, `field(repr=..., compare=...)`: classes that
+eq=False)`, fields from the class annotations in order, defaults, `field(default=...)`,
+`field(default_factory=...)`, `field(repr=False, compare=False)`; generated `__init__` (calling
+`__post_init__` when the class has one), `__repr__`, `__eq__` (fields compared as a tuple, same
+class only), `__hash__` (from the fields when frozen; None when eq and not frozen),
+`__match_args__`; frozen classes refuse assignments (FrozenInstanceError, an AttributeError), and
+pickle and copy when slotted (`__getstate__`/`__setstate__`, as the standard module's).
+`dataclasses.fields`, `replace`, `asdict` and `is_dataclass` work on them: `__dataclass_fields__`
+and `__dataclass_params__` are made by the standard module at their first read only.
+Not supported (not used here): inheritance of fields, `ClassVar`, `InitVar`, ordering, `kw_only`,
+a class without a docstring (the standard module writes one from the signature): classes that
 need them keep the standard module. The simulation uses it too (some 4 M instructions saved per class).
 """
 
@@ -40,18 +44,46 @@ MISSING = _Missing()
 
 
 class _Field:
-    __slots__ = ("default", "default_factory")
+    __slots__ = ("default", "default_factory", "repr", "compare")
 
-    def __init__(self, default: object, default_factory: object) -> None:
+    def __init__(self, default: object, default_factory: object, repr: bool = True, compare: bool = True) -> None:
         self.default = default
         self.default_factory = default_factory
+        self.repr = repr
+        self.compare = compare
 
 
-def field(*, default: object = MISSING, default_factory: object = MISSING) -> object:
-    """A field's default value, or the function that makes it (`list`, `dict`...)."""
+def field(*, default: object = MISSING, default_factory: object = MISSING, repr: bool = True,  # noqa: A002
+          compare: bool = True) -> object:
+    """A field's default value, or the function that makes it (`list`, `dict`...); `repr`: shown
+    by `__repr__`; `compare`: part of `__eq__` and `__hash__`."""
     if default is not MISSING and default_factory is not MISSING:
         raise ValueError("cannot specify both default and default_factory")
-    return _Field(default, default_factory)
+    return _Field(default, default_factory, repr, compare)
+
+
+class _Standard:
+    """`__dataclass_fields__` or `__dataclass_params__`, made by the standard module at the first
+    read (dataclasses.fields, replace, asdict...) and then kept on the class: a run that never
+    asks never imports it."""
+
+    def __init__(self, name: str, spec: list, params: tuple) -> None:
+        self.name, self.spec, self.params = name, spec, params
+
+    def __get__(self, obj: object, owner: type) -> object:
+        import dataclasses as dc
+
+        if self.name == "__dataclass_params__":
+            value: object = dc._DataclassParams(True, True, *self.params)
+        else:
+            value = {}
+            for name, typ, default, factory, rep, cmp in self.spec:
+                f = dc.field(default=dc.MISSING if default is MISSING else default,
+                             default_factory=dc.MISSING if factory is MISSING else factory, repr=rep, compare=cmp)
+                f.name, f.type, f._field_type = name, typ, dc._FIELD
+                value[name] = f
+        setattr(owner, self.name, value)
+        return value
 
 
 def _frozen_setattr(self, name, value):  # noqa: ANN001
@@ -62,12 +94,12 @@ def _frozen_delattr(self, name):  # noqa: ANN001
     raise FrozenInstanceError(f"cannot delete field {name!r}")
 
 
-def _init_code(frozen: bool, kinds: tuple[str, ...]):
+def _init_code(frozen: bool, kinds: tuple[str, ...], post: bool = False):
     """The code of an `__init__` for fields of these kinds ("value" or "factory"), with the
     placeholder names `_p0_`, `_p1_`...: compiled once per shape (compiling is most of the cost
     of a record class, and the lint path declares some eighty). A plain default is not in the
-    code: it is the function's `__defaults__`."""
-    code = _INIT_CODES.get((frozen, kinds))
+    code: it is the function's `__defaults__`. `post`: it ends by calling `__post_init__`."""
+    code = _INIT_CODES.get((frozen, kinds, post))
     if code is None:
         params, body = [], []
         for i, kind in enumerate(kinds):
@@ -75,20 +107,23 @@ def _init_code(frozen: bool, kinds: tuple[str, ...]):
             params.append(name)
             value = f"_factory{name}() if {name} is MISSING else {name}" if kind == "factory" else name
             body.append(f"__object_setattr(self, {name!r}, {value})" if frozen else f"self.{name} = {value}")
+        if post:
+            body.append("self.__post_init__()")
         src = [f"def __init__(self, {', '.join(params)}):" if params else "def __init__(self):"]
         src += [f"    {line}" for line in body or ["pass"]]
         scope: dict = {"MISSING": MISSING}
         exec("\n".join(src), scope)  # noqa: S102 - source built above from placeholder names
-        code = _INIT_CODES[(frozen, kinds)] = scope["__init__"].__code__
+        code = _INIT_CODES[(frozen, kinds, post)] = scope["__init__"].__code__
     return code
 
 
 _INIT_CODES: dict = {}
 
 
-def _make_init(names: list[str], kinds: tuple[str, ...], defaults: list, frozen: bool, scope: dict):
+def _make_init(names: list[str], kinds: tuple[str, ...], defaults: list, frozen: bool, scope: dict,
+               post: bool = False):
     """The `__init__` of fields `names`: the shape's code with the placeholders renamed."""
-    code = _init_code(frozen, kinds)
+    code = _init_code(frozen, kinds, post)
     rename = {}
     for i, name in enumerate(names):
         rename[f"_p{i}_"] = name
@@ -102,14 +137,16 @@ def _make_init(names: list[str], kinds: tuple[str, ...], defaults: list, frozen:
 
 
 def _process(cls: type, slots: bool, frozen: bool, eq: bool) -> type:
-    names = [n for n in cls.__dict__.get("__annotations__", {})]
+    annotations = cls.__dict__.get("__annotations__", {})
+    names = [n for n in annotations]
     scope: dict = {"MISSING": MISSING, "__object_setattr": object.__setattr__}
-    kinds, defaults = [], []
+    kinds, defaults, spec = [], [], []
     for name in names:
         default = cls.__dict__.get(name, MISSING)
-        factory = MISSING
+        factory, shown, compared = MISSING, True, True
         if isinstance(default, _Field):
-            default, factory = default.default, default.default_factory
+            default, factory, shown, compared = default.default, default.default_factory, default.repr, default.compare
+        spec.append((name, annotations[name], default, factory, shown, compared))
         if factory is not MISSING:
             scope[f"_factory_{name}"] = factory
             kinds.append("factory")
@@ -121,10 +158,10 @@ def _process(cls: type, slots: bool, frozen: bool, eq: bool) -> type:
             if defaults:
                 raise TypeError(f"non-default argument {name!r} follows default argument")
             kinds.append("value")
-    scope["__init__"] = _make_init(names, tuple(kinds), defaults, frozen, scope)
-    scope["__repr__"] = _repr(tuple(names))
+    scope["__init__"] = _make_init(names, tuple(kinds), defaults, frozen, scope, hasattr(cls, "__post_init__"))
+    scope["__repr__"] = _repr(tuple([s[0] for s in spec if s[4]]))
     if eq:
-        values = _values(tuple(names))
+        values = _values(tuple([s[0] for s in spec if s[5]]))
         scope["__eq__"] = _eq(values)
         if frozen:
             scope["__hash__"] = _hash(values)
@@ -137,9 +174,14 @@ def _process(cls: type, slots: bool, frozen: bool, eq: bool) -> type:
     if eq and not frozen:
         body_dict["__hash__"] = None  # like dataclasses: mutable and compared by value
     body_dict["__match_args__"] = tuple(names)
+    body_dict["__dataclass_fields__"] = _Standard("__dataclass_fields__", spec, (eq, False, False, frozen))
+    body_dict["__dataclass_params__"] = _Standard("__dataclass_params__", spec, (eq, False, False, frozen))
     if frozen:
         body_dict["__setattr__"] = _frozen_setattr
         body_dict["__delattr__"] = _frozen_delattr
+    if slots and frozen:  # pickling and copying set the fields through these, as the standard module's
+        body_dict["__getstate__"] = _getstate(tuple(names))
+        body_dict["__setstate__"] = _setstate(tuple(names))
     if slots:
         body_dict["__slots__"] = tuple(names)
         for name in names:
@@ -157,9 +199,25 @@ def _process(cls: type, slots: bool, frozen: bool, eq: bool) -> type:
             else:
                 setattr(cls, name, default.default)
     for key, value in body_dict.items():
-        if key in ("__init__", "__repr__", "__eq__", "__hash__", "__match_args__", "__setattr__", "__delattr__"):
+        if key in ("__init__", "__repr__", "__eq__", "__hash__", "__match_args__", "__setattr__", "__delattr__",
+                   "__dataclass_fields__", "__dataclass_params__"):
             setattr(cls, key, value)
     return cls
+
+
+def _getstate(names: tuple[str, ...]):  # noqa: ANN202
+    def __getstate__(self) -> list:  # noqa: N807
+        return [getattr(self, n) for n in names]
+
+    return __getstate__
+
+
+def _setstate(names: tuple[str, ...]):  # noqa: ANN202
+    def __setstate__(self, state: list) -> None:  # noqa: N807
+        for name, value in zip(names, state):
+            object.__setattr__(self, name, value)
+
+    return __setstate__
 
 
 def _values(names: tuple[str, ...]):  # noqa: ANN202
