@@ -7,16 +7,19 @@ simulated time."""
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass, field
 from typing import Any
 
 from ..diagnostics import Diagnostic, Severity
+from ..light_dataclass import dataclass, field
 from ..lint import display_path
 from ..simulation.result import SimResult
 
 
 @dataclass
 class SimReport:
+    """A run's result as the reports show it: its diagnostics (severities set, paths as displayed),
+    the rule catalogue, and the names of the I/O links."""
+
     result: SimResult
     app_path: str  # display path of the application
     tool_version: str

@@ -27,10 +27,10 @@ positions singulières").
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
+from ..light_dataclass import dataclass
 from .errors import IKUnsupported
 
 DEG = math.pi / 180.0

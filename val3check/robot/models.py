@@ -5,10 +5,11 @@ from __future__ import annotations
 import functools
 import itertools
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 from typing import Sequence
 
 from ..lengths import M_MM
+from ..light_dataclass import dataclass, field
 from . import overrides
 from . import scara as _scara
 from .configuration import Config, classify, resolve
