@@ -9,11 +9,10 @@ are grasped by a tool on `close` (or `open`) and left in the cell on the other i
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 import numpy as np
 
 from ..lengths import INCH_MM
+from ..light_dataclass import dataclass, field
 from .errors import CellError
 
 SHAPES = ("box", "cylinder", "sphere", "mesh")

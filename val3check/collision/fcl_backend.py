@@ -24,11 +24,11 @@ What python-fcl (0.7) gets wrong, and what is done about it (docs/cell.md, "Mesh
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import fcl
 import numpy as np
 
+from ..light_dataclass import dataclass
 from .bodies import Body
 from .shapes import (
     closest_on_solid,

@@ -9,10 +9,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Iterator
-from dataclasses import dataclass
 
 import numpy as np
 
+from ..light_dataclass import dataclass
 from .bodies import Body, aabb_gap
 from .fcl_backend import Distance, FclBackend, Penetration, Point
 from .groups import Watch

@@ -6,10 +6,12 @@ line that commanded it); the checker never looks inside.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
+
+from ..light_dataclass import dataclass, field
 
 
 @dataclass(frozen=True)

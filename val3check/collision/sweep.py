@@ -16,10 +16,10 @@ the clearance per sample and the motion's minimum (docs/cell.md, "How the check 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
+from ..light_dataclass import dataclass
 from .bodies import aabb_gap
 from .bounds import Track, prepare, scene_layout
 from .fcl_backend import FclBackend

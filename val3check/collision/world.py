@@ -10,11 +10,12 @@ grippers' open/close (`gripper`); `version` changes with it, and what is compute
 from __future__ import annotations
 
 from collections.abc import Callable, Hashable
-from dataclasses import dataclass, replace
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
 
+from ..light_dataclass import dataclass
 from .allowed import Allowed
 from .armmodel import ArmModel
 from .bodies import Body, aabb_gap, copies, make_bodies

@@ -8,10 +8,9 @@ mm. Frames and tools are read when the instruction executes, as on the controlle
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
+from ..light_dataclass import dataclass
 from .findings import Source
 from .mdesc import MDesc
 

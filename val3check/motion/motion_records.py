@@ -15,10 +15,10 @@ command, and an interval whose limit was a near tie is decided again on its own 
 from __future__ import annotations
 
 import bisect
-from dataclasses import dataclass
 
 import numpy as np
 
+from ..light_dataclass import dataclass
 from .findings import Source
 from .paths import tcp_rates
 from .record_repeats import Repeats, noise

@@ -19,10 +19,10 @@ from __future__ import annotations
 
 import bisect
 import math
-from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..light_dataclass import dataclass, field
 from . import trial_memo
 
 TIMING_SPLIT = 4  # gridpoints of the timing per interval of a Cartesian path's knots (8 mm: one per 2 mm)

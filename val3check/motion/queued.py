@@ -15,11 +15,11 @@ Path positions are the global path parameter s of `paths.Path` (degrees of joint
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from typing import NamedTuple
 
 import numpy as np
 
+from ..light_dataclass import dataclass, field
 from .findings import Source
 from .mdesc import MDesc
 

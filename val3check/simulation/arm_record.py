@@ -19,10 +19,11 @@ first asked): a report reads this record and imports nothing of robot/, geometry
 from __future__ import annotations
 
 import statistics
-from dataclasses import dataclass, field
 from typing import Any, Protocol
 
 import numpy as np
+
+from ..light_dataclass import dataclass, field
 
 TCP_STEP_S = 1e-4  # the TCP speed: the TCP moved along the joint velocity over this step
 BLOCK = 4096  # samples whose link poses are computed at once (memory bounded on long runs)

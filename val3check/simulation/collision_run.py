@@ -24,7 +24,6 @@ import re
 import struct
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -37,6 +36,7 @@ from ..collision.results import Contact, MotionReport, PartDrop
 from ..diagnostics import Diagnostic
 from ..geometry import frames as geo_frames
 from ..interpretation.clock import TICK_US
+from ..light_dataclass import dataclass, field
 from ..rules import codes
 from .budget import WALL
 from .cell_timeline import TimelineLog

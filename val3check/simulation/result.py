@@ -7,10 +7,10 @@ the end of a run."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from ..diagnostics import Diagnostic
+from ..light_dataclass import dataclass, field
 from .arm_record import ArmRun
 
 if TYPE_CHECKING:
