@@ -114,7 +114,7 @@ def test_when_no_optimal_profile_is_found_a_safe_slower_profile_is_used_and_repo
 
     from .motionhelp import KIN, movel, point
 
-    def broken(x0, cap, K, fwd, k0=0):  # a forward pass that stands still inside the path
+    def broken(x0, cap, K, fwd, k0=0, at_K=None):  # a forward pass that stands still inside the path
         return [0.0] * len(cap)
 
     q0 = queue()

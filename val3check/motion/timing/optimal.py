@@ -93,28 +93,53 @@ def steps(grid: Grid, coef: tuple | None = None) -> tuple[np.ndarray, np.ndarray
     return back, fwd
 
 
-def reachable(grid: Grid, cap: list, back: list, x_end: float = 0.0) -> list:
+def reachable(grid: Grid, cap: list, back: list, x_end: float = 0.0, at_cap: list | None = None) -> list:
     """The backward pass: K[k], the largest ṡ² at gridpoint k from which the end (at x_end) is
-    reachable within the limits. `back`: per interval, its pairs as one row [a0, b0, a1, b1...]."""
+    reachable within the limits. `back`: per interval, its pairs as one row [a0, b0, a1, b1...].
+    `at_cap`: each step's value from K[k + 1] = cap[k + 1] (`_stepped`), taken where that holds."""
     n = len(cap)
     K = [0.0] * n
     K[-1] = min(x_end, cap[-1])
     lowest = _lowest_of(back)
+    if at_cap is None:
+        for k in range(n - 2, -1, -1):
+            K[k] = max(0.0, min(cap[k], lowest(back[k], K[k + 1])))
+        return K
     for k in range(n - 2, -1, -1):
-        K[k] = max(0.0, min(cap[k], lowest(back[k], K[k + 1])))
+        kn = K[k + 1]
+        K[k] = at_cap[k] if kn == cap[k + 1] else max(0.0, min(cap[k], lowest(back[k], kn)))
     return K
 
 
-def forward(x0: float, cap: list, K: list, fwd: list, k0: int = 0) -> list:
+def forward(x0: float, cap: list, K: list, fwd: list, k0: int = 0, at_K: list | None = None) -> list:
     """The forward pass from ṡ² = x0 at gridpoint k0: as fast as allowed, within K (`fwd`: rows
-    as in `reachable`)."""
+    as in `reachable`). `at_K`: each step's value from x[k] = K[k] (`_stepped`), taken where that holds."""
     n = len(cap)
     x = [0.0] * n
     x[k0] = x0
     lowest = _lowest_of(fwd)
+    if at_K is None:
+        for k in range(k0, n - 1):
+            x[k + 1] = max(0.0, min(lowest(fwd[k], x[k]), K[k + 1], cap[k + 1]))
+        return x
     for k in range(k0, n - 1):
-        x[k + 1] = max(0.0, min(lowest(fwd[k], x[k]), K[k + 1], cap[k + 1]))
+        xk = x[k]
+        x[k + 1] = at_K[k] if xk == K[k] else max(0.0, min(lowest(fwd[k], xk), K[k + 1], cap[k + 1]))
     return x
+
+
+def _stepped(pairs: np.ndarray, x: np.ndarray, *bounds: np.ndarray) -> list | None:
+    """Per interval k, a pass's step max(0, min(lowest(pairs[k], x[k]), bounds...[k])) for all k at
+    once: where a pass's input is x[k] (the cruise of the backward pass, K = cap; the braking of the
+    forward one, x = K) it needs no step of its own. The same bits: each a·x + b is the same two
+    roundings, a minimum's value does not depend on the order but for the sign of a zero, and
+    max(0, ·) makes any zero +0. None when a number is not finite (a NaN's place in min matters)."""
+    if not (np.isfinite(pairs).all() and np.isfinite(x).all()):
+        return None
+    v = np.min(pairs[:, :, 0] * x[:, None] + pairs[:, :, 1], axis=1)
+    for b in bounds:
+        v = np.minimum(v, b)
+    return np.where(v > 0.0, v, 0.0).tolist()
 
 
 def _lowest_of(rows: list):
@@ -144,7 +169,7 @@ def topp(grid: Grid, sd0: float = 0.0) -> TimedProfile:
     cap_a = np.minimum(grid.xmax(), accel_xmax(grid, coef))
     cap = cap_a.tolist()
     back, fwd = steps(grid, coef)
-    K = reachable(grid, cap, back.reshape(len(back), -1).tolist())
+    K = reachable(grid, cap, back.reshape(len(back), -1).tolist(), at_cap=_stepped(back, cap_a[1:], cap_a[:-1]))
     x0 = sd0 * sd0
     if x0 > K[0]:
         if x0 <= K[0] * 1.02 + 1e-9:  # a hair outside (numerical noise of a new grid): clamp
@@ -157,7 +182,8 @@ def topp(grid: Grid, sd0: float = 0.0) -> TimedProfile:
                                     rest.fallback)
             s_i, sd_i = integrate(grid, sd0)
             return TimedProfile(s_i, sd_i, fallback=True)
-    x = np.array(forward(x0, cap, K, fwd.reshape(len(fwd), -1).tolist()))
+    K_a = np.array(K)
+    x = np.array(forward(x0, cap, K, fwd.reshape(len(fwd), -1).tolist(), at_K=_stepped(fwd, K_a[:-1], K_a[1:], cap_a[1:])))
     x[-1] = 0.0
     sd = np.sqrt(x)
     # the arm must not stand still inside the path (two zero speeds in a row: a cusp, or a path
