@@ -88,15 +88,19 @@ def steps(grid: Grid, coef: tuple | None = None) -> tuple[np.ndarray, np.ndarray
         ok2 = np.isfinite(uc[1:]) & (e1 > 1e-12)
         f_sl1 = np.where(ok2, 1.0 / np.where(ok2, e1, 1.0), 0.0)
         f_of1 = np.where(ok2, 2.0 * h * uc[1:] * f_sl1, _OFF)
-    back = np.concatenate([np.stack([b_sl0, b_of0], -1), np.stack([b_sl1, b_of1], -1)], axis=1)
-    fwd = np.concatenate([np.stack([f_sl0, f_of0], -1), np.stack([f_sl1, f_of1], -1)], axis=1)
+    m, axes = b_sl0.shape  # the pairs filled in place: np.stack and concatenate cost as much as the arithmetic
+    back = np.empty((m, 2 * axes, 2))
+    back[:, :axes, 0], back[:, :axes, 1], back[:, axes:, 0], back[:, axes:, 1] = b_sl0, b_of0, b_sl1, b_of1
+    fwd = np.empty((m, 2 * axes, 2))
+    fwd[:, :axes, 0], fwd[:, :axes, 1], fwd[:, axes:, 0], fwd[:, axes:, 1] = f_sl0, f_of0, f_sl1, f_of1
     return back, fwd
 
 
 def reachable(grid: Grid, cap: list, back: list, x_end: float = 0.0, at_cap: list | None = None) -> list:
     """The backward pass: K[k], the largest ṡ² at gridpoint k from which the end (at x_end) is
     reachable within the limits. `back`: per interval, its pairs as one row [a0, b0, a1, b1...].
-    `at_cap`: each step's value from K[k + 1] = cap[k + 1] (`_stepped`), taken where that holds."""
+    `at_cap`: each step's value from K[k + 1] = cap[k + 1] (`_stepped`), taken where that holds;
+    `back` may then be a 2-D array, a row made a list only where a step is computed."""
     n = len(cap)
     K = [0.0] * n
     K[-1] = min(x_end, cap[-1])
@@ -105,15 +109,17 @@ def reachable(grid: Grid, cap: list, back: list, x_end: float = 0.0, at_cap: lis
         for k in range(n - 2, -1, -1):
             K[k] = max(0.0, min(cap[k], lowest(back[k], K[k + 1])))
         return K
+    row = _rows(back)
     for k in range(n - 2, -1, -1):
         kn = K[k + 1]
-        K[k] = at_cap[k] if kn == cap[k + 1] else max(0.0, min(cap[k], lowest(back[k], kn)))
+        K[k] = at_cap[k] if kn == cap[k + 1] else max(0.0, min(cap[k], lowest(row(k), kn)))
     return K
 
 
 def forward(x0: float, cap: list, K: list, fwd: list, k0: int = 0, at_K: list | None = None) -> list:
     """The forward pass from ṡ² = x0 at gridpoint k0: as fast as allowed, within K (`fwd`: rows
-    as in `reachable`). `at_K`: each step's value from x[k] = K[k] (`_stepped`), taken where that holds."""
+    as in `reachable`). `at_K`: each step's value from x[k] = K[k] (`_stepped`), taken where that
+    holds; `fwd` may then be a 2-D array, as in `reachable`."""
     n = len(cap)
     x = [0.0] * n
     x[k0] = x0
@@ -122,10 +128,17 @@ def forward(x0: float, cap: list, K: list, fwd: list, k0: int = 0, at_K: list | 
         for k in range(k0, n - 1):
             x[k + 1] = max(0.0, min(lowest(fwd[k], x[k]), K[k + 1], cap[k + 1]))
         return x
+    row = _rows(fwd)
     for k in range(k0, n - 1):
         xk = x[k]
-        x[k + 1] = at_K[k] if xk == K[k] else max(0.0, min(lowest(fwd[k], xk), K[k + 1], cap[k + 1]))
+        x[k + 1] = at_K[k] if xk == K[k] else max(0.0, min(lowest(row(k), xk), K[k + 1], cap[k + 1]))
     return x
+
+
+def _rows(rows):
+    """Row k of `rows` as a list of floats: a list's own, or a 2-D array's made when asked (about
+    half the rows of a pass are: converting them all cost as much as the pass)."""
+    return rows.__getitem__ if isinstance(rows, list) else (lambda k: rows[k].tolist())
 
 
 def _stepped(pairs: np.ndarray, x: np.ndarray, *bounds: np.ndarray) -> list | None:
@@ -144,7 +157,7 @@ def _stepped(pairs: np.ndarray, x: np.ndarray, *bounds: np.ndarray) -> list | No
 
 def _lowest_of(rows: list):
     """The function giving min(a·x + b) over a row's pairs: unrolled for six axes' rows."""
-    return _lowest12 if rows and len(rows[0]) == 24 else _lowest
+    return _lowest12 if len(rows) and len(rows[0]) == 24 else _lowest
 
 
 def _lowest(row: list, x: float) -> float:
@@ -169,7 +182,9 @@ def topp(grid: Grid, sd0: float = 0.0) -> TimedProfile:
     cap_a = np.minimum(grid.xmax(), accel_xmax(grid, coef))
     cap = cap_a.tolist()
     back, fwd = steps(grid, coef)
-    K = reachable(grid, cap, back.reshape(len(back), -1).tolist(), at_cap=_stepped(back, cap_a[1:], cap_a[:-1]))
+    at_cap = _stepped(back, cap_a[1:], cap_a[:-1])
+    rows = back.reshape(len(back), -1)
+    K = reachable(grid, cap, rows.tolist() if at_cap is None else rows, at_cap=at_cap)
     x0 = sd0 * sd0
     if x0 > K[0]:
         if x0 <= K[0] * 1.02 + 1e-9:  # a hair outside (numerical noise of a new grid): clamp
@@ -183,7 +198,9 @@ def topp(grid: Grid, sd0: float = 0.0) -> TimedProfile:
             s_i, sd_i = integrate(grid, sd0)
             return TimedProfile(s_i, sd_i, fallback=True)
     K_a = np.array(K)
-    x = np.array(forward(x0, cap, K, fwd.reshape(len(fwd), -1).tolist(), at_K=_stepped(fwd, K_a[:-1], K_a[1:], cap_a[1:])))
+    at_K = _stepped(fwd, K_a[:-1], K_a[1:], cap_a[1:])
+    rows = fwd.reshape(len(fwd), -1)
+    x = np.array(forward(x0, cap, K, rows.tolist() if at_K is None else rows, at_K=at_K))
     x[-1] = 0.0
     sd = np.sqrt(x)
     # the arm must not stand still inside the path (two zero speeds in a row: a cusp, or a path

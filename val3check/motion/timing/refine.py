@@ -117,7 +117,8 @@ def _corners(x, cap, h, a, d) -> tuple[np.ndarray, np.ndarray]:
         t_ab = np.where(a + d > 0, (x1 - x0 + 2.0 * d * h) / (2.0 * (a + d)), np.nan)
         t_ac = np.where(2.0 * a - m > 0, (c0 - x0) / (2.0 * a - m), np.nan)
         t_bc = np.where(2.0 * d + m > 0, (x1 + 2.0 * d * h - c0) / (2.0 * d + m), np.nan)
-    tau = np.stack([t_ab, t_ac, t_bc], axis=1)
+    tau = np.empty((len(h), 3))
+    tau[:, 0], tau[:, 1], tau[:, 2] = t_ab, t_ac, t_bc
     inside = (tau > 1e-12 * h[:, None]) & (tau < h[:, None] * (1.0 - 1e-12))
     tau = np.where(inside, tau, np.nan)
     env = np.minimum(np.minimum(x0[:, None] + 2.0 * a[:, None] * tau, x1[:, None] + 2.0 * d[:, None] * (h[:, None] - tau)),
