@@ -109,3 +109,59 @@ def test_refine_with_the_callers_cap_is_refine_alone(sd0):
     sd = np.sqrt(np.maximum(np.interp(g.s, res.s, res.sd ** 2), 0.0))
     for a, b in zip(refine(g, sd, back, fwd, cap), refine(g, sd, back, fwd)):
         assert a.tobytes() == b.tobytes()
+
+
+def _cruising(rng: np.random.Generator, n: int, axes: int, still: int = 0) -> Grid:
+    """A path whose speed limits bind over most of it (low joint speeds): the backward pass sits
+    on the cap while the arm cruises, the forward one on K while it brakes."""
+    g = _grid(rng, n, axes, still)
+    return Grid(g.s, g.q1, g.q2, g.pt, g.rt, g.V * 0.02, g.A, g.D, g.tv, g.rv)
+
+
+@pytest.mark.parametrize("axes,still", [(6, 0), (6, 2), (4, 0), (4, 1)])
+@pytest.mark.parametrize("make", [_grid, _cruising])
+def test_the_steps_taken_on_the_bound_give_the_plain_passes(make, axes, still):
+    """`_stepped`'s values, read where a pass's input sits on the cap (backward) or on K
+    (forward), rows made lists only where a step is computed: the plain passes' bits."""
+    rng = np.random.default_rng(axes * 7 + still)
+    hits = 0
+    for _ in range(5):
+        g = make(rng, 80, axes, still)
+        cap_a = np.minimum(g.xmax(), accel_xmax(g))
+        cap = cap_a.tolist()
+        back, fwd = steps(g)
+        at_cap = optimal._stepped(back, cap_a[1:], cap_a[:-1])
+        assert at_cap is not None
+        K = reachable(g, cap, back.reshape(len(back), -1), at_cap=at_cap)
+        assert _bits(K) == _bits(_plain_reachable(cap, back.tolist()))
+        hits += sum(K[k + 1] == cap[k + 1] for k in range(len(K) - 1))
+        K_a = np.array(K)
+        at_K = optimal._stepped(fwd, K_a[:-1], K_a[1:], cap_a[1:])
+        for x0 in (0.0, 0.5 * K[0], K[0]):
+            x = forward(x0, cap, K, fwd.reshape(len(fwd), -1), at_K=at_K)
+            assert _bits(x) == _bits(_plain_forward(x0, cap, K, fwd.tolist()))
+            hits += sum(x[k] == K[k] for k in range(len(K) - 1))
+    assert hits > 0 if make is _grid else hits > 5 * 80  # the shortcut is taken
+
+
+def test_a_step_on_the_bound_keeps_the_sign_rule_of_zero_and_refuses_what_is_not_finite():
+    pairs = np.array([[[1.0, -0.0], [1.0, 0.0]], [[-1.0, 0.0], [2.0, -3.0]]])  # two intervals, two pairs
+    x = np.array([0.0, 1.0])
+    got = optimal._stepped(pairs, x, np.array([5.0, 5.0]))
+    want = [max(0.0, min(_lowest(row, v), 5.0)) for row, v in zip(pairs.reshape(2, -1).tolist(), x.tolist())]
+    assert _bits(got) == _bits(want) and math.copysign(1.0, got[0]) == 1.0
+    assert optimal._stepped(pairs, np.array([math.nan, 1.0])) is None
+    bad = pairs.copy()
+    bad[1, 0, 1] = math.inf
+    assert optimal._stepped(bad, x) is None
+
+
+def test_topp_on_the_bound_is_topp_with_the_plain_passes(monkeypatch):
+    """The whole solver with the shortcut against the solver whose passes get no shortcut."""
+    rng = np.random.default_rng(5)
+    grids = [_cruising(rng, 70, 6, k % 3) for k in range(4)] + [_grid(rng, 70, 6, 1) for _ in range(2)]
+    fast = [topp(g, sd0) for g in grids for sd0 in (0.0, 3.0)]
+    monkeypatch.setattr(optimal, "_stepped", lambda *a: None)
+    plain = [topp(g, sd0) for g in grids for sd0 in (0.0, 3.0)]
+    for a, b in zip(fast, plain):
+        assert a.s.tobytes() == b.s.tobytes() and a.sd.tobytes() == b.sd.tobytes() and a.fallback == b.fallback
