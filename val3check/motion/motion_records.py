@@ -23,7 +23,7 @@ from .findings import Source
 from .paths import tcp_rates
 from .record_repeats import Repeats, noise
 from . import trajectory
-from .trajectory import window
+from .trajectory import _solve, window
 
 
 @dataclass(frozen=True, slots=True)  # one per command of the run
@@ -198,13 +198,17 @@ class RecordMaker:
         x = s0 + 1e-9  # (time_leaving's search)
         lo_b = max(trajectory.bisect_left(prof.S, float(s0.min())) - 1, 0)
         hi_b = min(trajectory.bisect_right(prof.S, float(max(s1.max(), x.max()))), len(prof.S) - 1)
-        S, T = window(prof.S, lo_b, hi_b + 1), window(prof.T, lo_b, hi_b + 1)
+        S, T, SD = (window(v, lo_b, hi_b + 1) for v in (prof.S, prof.T, prof.SD))
         # a search in the window is the profile's: everything before it is below every s0
         k0 = (S.searchsorted(s0, "left") + lo_b).tolist()
         k1 = (S.searchsorted(s1, "right") + lo_b).tolist()
         kl = (S.searchsorted(x, "right") + (lo_b - 1)).tolist()
-        s_at, t_at = S.tolist(), T.tolist()
-        del S, T
+        # `Profile.time_at(s0)`'s search, in the window: the profile's when it falls past the
+        # window's first breakpoint and before its end (else asked of the profile)
+        kt = S.searchsorted(s0 - 1e-12 * np.maximum(1.0, np.abs(s0)), "left").tolist()
+        s_at, t_at, sd_at = S.tolist(), T.tolist(), SD.tolist()
+        del S, T, SD
+        w = len(s_at)
         done, n = [], 0
         for e in pending:
             if len(e) == 2:
@@ -212,8 +216,15 @@ class RecordMaker:
                 continue
             idx, command, a, b, end, lim, breakpoints, spans = e
             k = kl[n]
-            start = None if k < 0 else (t_at[k - lo_b] if abs(s_at[k - lo_b] - a) <= 1e-9 * max(1.0, abs(a))
-                                        else prof.time_at(a))
+            if k < 0:
+                start = None
+            elif abs(s_at[k - lo_b] - a) <= 1e-9 * max(1.0, abs(a)):
+                start = t_at[k - lo_b]
+            elif 0 < kt[n] < w:  # (time_at: a breakpoint, or the time within the interval before it)
+                j = kt[n]
+                start = t_at[j] if abs(s_at[j] - a) <= 1e-9 * max(1.0, abs(a)) else _solve(t_at, s_at, sd_at, j - 1, a)
+            else:
+                start = prof.time_at(a)
             j0, j1 = k0[n], k1[n]
             n += 1
             req = command.request
@@ -239,15 +250,18 @@ class RecordMaker:
         if len(group[2]) == RECORD_BLOCK:
             _evaluate(self.queue, self.prof, self.out, group, self.doubts)
 
-    def flush(self) -> None:
+    def flush(self, ties: bool = True) -> None:
         """Every command added so far given its record: the blocks not full evaluated, the near ties
-        decided (a record's figures do not depend on the commands evaluated with it: the same bits)."""
+        decided (a record's figures do not depend on the commands evaluated with it: the same bits).
+        `ties` False: the near ties only once DECIDE_BLOCK of them wait (a cyclic cell's repeats share
+        their pieces of path: one evaluation per piece for the whole block)."""
         if self.repeats is not None:
             self._settle()
         for group in self.groups.values():
             if group[2]:
                 _evaluate(self.queue, self.prof, self.out, group, self.doubts)
-        _decide(self.queue, self.prof, self.out, self.doubts)
+        if ties or len(self.doubts) >= DECIDE_BLOCK:
+            _decide(self.queue, self.prof, self.out, self.doubts)
 
     def finish(self) -> list[MotionRecord]:
         """The records of every command added."""
@@ -413,12 +427,23 @@ def _seconds(rows, codes: np.ndarray, n: int) -> dict:
     return {_label(int(codes[k]), n): float(total[codes[k]]) for k in np.sort(first)}
 
 
+_ORDERS: dict = {}  # (codes' bytes, n) -> `_order` (a function of them only; a cyclic cell has a few)
+
+
 def _order(codes: np.ndarray, n: int) -> tuple[list, np.ndarray]:
     """The limits of `codes` as `_seconds` lists them (in order of first appearance, labelled) and
-    each interval's place in that list (a dict: a command has a few dozen intervals)."""
-    place: dict = {}
-    rank = np.array([place.setdefault(c, len(place)) for c in codes.tolist()], dtype=np.intp)
-    return [_label(c, n) for c in place], rank
+    each interval's place in that list (a dict: a command has a few dozen intervals). Read only."""
+    key = (codes.astype(np.intp, copy=False).tobytes(), n)
+    hit = _ORDERS.get(key)
+    if hit is None:
+        place: dict = {}
+        rank = np.array([place.setdefault(c, len(place)) for c in codes.tolist()], dtype=np.intp)
+        rank.flags.writeable = False
+        hit = ([_label(c, n) for c in place], rank)
+        if len(_ORDERS) >= 4096:
+            _ORDERS.clear()
+        _ORDERS[key] = hit
+    return hit
 
 
 def _seconds_of(prof, lo: int, s0: float, s1: float, i: np.ndarray, order: tuple, dt: np.ndarray) -> dict:

@@ -25,9 +25,11 @@ from then on.
 
 from __future__ import annotations
 
+import bisect
 from typing import Any
 
 from ..motion import trajectory
+from ..motion.history import History
 from ..motion.motion_records import RECORD_BLOCK, MotionRecord, RecordMaker
 
 RELEASE_AT = 256  # commands taken before the history is trimmed (a trim moves what is left)
@@ -73,6 +75,8 @@ class LiveRecord:
         self._wait = None
         prof, path = queue.planner.profile, queue.path
         S, T = prof.S, prof.T
+        # the chunk being written, read in place (History): what bisect_right reads in the hot case
+        tail = S.tail if S.__class__ is History and S.tail_len else None
         behind = None  # where the arm is at `final` (found when first needed)
         while i < len(history):
             command = history[i]
@@ -81,7 +85,11 @@ class LiveRecord:
                 place = command.placement
                 if place.s_begin is not None:
                     s = max(place.s_begin, place.s_end)
-                    k = trajectory.bisect_right(S, s + 1e-9 * max(1.0, abs(s)))
+                    x = s + 1e-9 * max(1.0, abs(s))
+                    if tail is not None and tail[0] <= x:  # (mostly: in the chunk being written)
+                        k = S.tail_start + bisect.bisect_right(tail, x, 0, S.tail_len)
+                    else:
+                        k = trajectory.bisect_right(S, x)
                     if k >= len(S):
                         break
                     if T[k] > final:
@@ -102,7 +110,7 @@ class LiveRecord:
             i += 1
         self.cursor = i
         if len(self.kept) - self._flushed >= RECORD_BLOCK:  # their records made now, not after the run
-            self.maker.flush()
+            self.maker.flush(ties=False)
             self._flushed = len(self.kept)
         if i >= RELEASE_AT and self.releasing:
             # what chapter 11 does to the arm stays in its state (the layers, the alterable keys,
