@@ -235,9 +235,9 @@ def test_records_made_as_the_blocks_fill_are_the_fresh_ones(pick_place, monkeypa
     waited = []
     repeat = records_module._repeat
 
-    def spy(prof, out, item, dt, slot, doubts):
+    def spy(prof, out, item, dt, slot, doubts, *window):
         waited.append(out[item[0]] is None and slot.figures is not None)
-        return repeat(prof, out, item, dt, slot, doubts)
+        return repeat(prof, out, item, dt, slot, doubts, *window)
 
     monkeypatch.setattr(records_module, "_repeat", spy)
     reused = motion_records(q, end)

@@ -178,13 +178,17 @@ class RecordMaker:
         if not placed:
             return
         pending = placed
+        # the block's breakpoints read once (a History reads old ones through its chunk cache)
+        prof = self.prof
+        base = max(min(item[6] for item, _ in pending) - 1, 0)
+        S = window(prof.S, base, max(item[7] for item, _ in pending) + 2).tolist()
         for (item, _), (earlier, slot, dt) in zip(pending, self.repeats.find_block([a for _, a in pending])):
             if earlier is None:
                 self._first(item, slot)
             elif earlier.figures is None:  # given them when the first is evaluated (`_evaluate`)
                 earlier.items.append((item, dt))
             else:
-                _repeat(self.prof, self.out, item, dt, earlier, self.doubts)
+                _repeat(prof, self.out, item, dt, earlier, self.doubts, S, base)
 
     def _place(self, pending: list) -> list:
         """`add`'s start (time_leaving), breakpoints and spans of the final commands it left to the
@@ -209,7 +213,7 @@ class RecordMaker:
         s_at, t_at, sd_at = S.tolist(), T.tolist(), SD.tolist()
         del S, T, SD
         w = len(s_at)
-        done, n = [], 0
+        done, n, offsets = [], 0, path.offsets
         for e in pending:
             if len(e) == 2:
                 done.append(e)
@@ -234,8 +238,10 @@ class RecordMaker:
                                         "", {}, target=req.target_name, tool=req.tool_name)
                 continue
             lo, hi = max(j0 - 1, 0), min(j1, breakpoints - 1)
-            i0 = min(max(bisect.bisect_right(path.offsets, min(prof.S[lo], a)) - 1, 0), spans - 1)
-            i1 = min(max(bisect.bisect_right(path.offsets, max(prof.S[hi], b)) - 1, 0), spans - 1)
+            s_lo = s_at[lo - lo_b] if 0 <= lo - lo_b < w else prof.S[lo]  # (the window's, mostly)
+            s_hi = s_at[hi - lo_b] if 0 <= hi - lo_b < w else prof.S[hi]
+            i0 = min(max(bisect.bisect_right(offsets, min(s_lo, a)) - 1, 0), spans - 1)
+            i1 = min(max(bisect.bisect_right(offsets, max(s_hi, b)) - 1, 0), spans - 1)
             done.append(((idx, command, a, b, start, end, j0, j1, lim), (req.tool, lim, a, b, lo, hi, i0, i1)))
         return done
 
@@ -309,15 +315,16 @@ def _evaluate(queue, prof, out: list, group: list, doubts: list) -> None:
             slot.items = []
 
 
-def _repeat(prof, out: list, item: tuple, dt: np.ndarray, slot, doubts: list) -> None:
+def _repeat(prof, out: list, item: tuple, dt: np.ndarray, slot, doubts: list, S=None, base: int = 0) -> None:
     """The record of a command that repeats an earlier one (its Slot's figures): its length and
     peak, its limits per interval, its own seconds under each (`dt`: the durations of its intervals
     that count, record_repeats.Repeats.inputs); when a limit was a near tie, left to `_decide`
-    (`doubts`)."""
+    (`doubts`). `S`: the profile's positions from breakpoint `base` (its window), else read there."""
     length, peak, _, clear, i, order = slot.figures
     idx, command, s0, s1, start, end, k0, k1, _ = item
     if clear.all():  # the earlier's intervals (the key holds where s0 and s1 fall) and limits
-        out[idx] = _record(command, start, end, length, peak, _seconds_of(prof, max(k0 - 1, 0), s0, s1, i, order, dt))
+        share = _seconds_of(prof.S if S is None else S, max(k0 - 1, 0) - base, s0, s1, i, order, dt)
+        out[idx] = _record(command, start, end, length, peak, share)
     else:
         doubts.append((slot.place + (idx,), item, slot.figures, dt))
 
@@ -369,7 +376,7 @@ def _decide_block(queue, prof, out: list, doubts: list) -> None:
         for (idx, command, s0, s1, start, end, k0, k1, lim), codes, j, _, _, length, peak, i, dt in items:
             codes[j] = chosen[n:n + len(j)]
             n += len(j)
-            share = _seconds_of(prof, max(k0 - 1, 0), s0, s1, i, _order(codes, len(lim.V)), dt)
+            share = _seconds_of(S, max(k0 - 1, 0), s0, s1, i, _order(codes, len(lim.V)), dt)
             out[idx] = _record(command, start, end, length, peak, share)
 
 
@@ -446,16 +453,15 @@ def _order(codes: np.ndarray, n: int) -> tuple[list, np.ndarray]:
     return hit
 
 
-def _seconds_of(prof, lo: int, s0: float, s1: float, i: np.ndarray, order: tuple, dt: np.ndarray) -> dict:
-    """`_seconds(_intervals(...), codes, n)` of a repeat whose intervals `i` (from breakpoint lo)
-    and limits (`order` of the codes) are the earlier command's, `dt` its durations: the same
-    arithmetic. Only the first and last intervals can lie partly outside (s0, s1): the share of
-    any other, (b - a) / (b - a), is exactly 1."""
+def _seconds_of(S, lo: int, s0: float, s1: float, i: np.ndarray, order: tuple, dt: np.ndarray) -> dict:
+    """`_seconds(_intervals(...), codes, n)` of a repeat whose intervals `i` (from S[lo]: the
+    profile's positions, or a window of them) and limits (`order` of the codes) are the earlier
+    command's, `dt` its durations: the same arithmetic. Only the first and last intervals can lie
+    partly outside (s0, s1): the share of any other, (b - a) / (b - a), is exactly 1."""
     labels, rank = order
     if not labels:
         return {}
     w = dt[i]
-    S = prof.S
     for e in {0, len(i) - 1}:
         k = int(i[e])
         a, b = S[lo + k], S[lo + k + 1]
