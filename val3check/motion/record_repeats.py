@@ -125,6 +125,8 @@ class Repeats:
         left, right = (S.searchsorted(ends, side).tolist() for side in ("left", "right"))
         b = len(asks)
         keys, rows = [], []
+        # each span's part of the exact key, made once for the block (neighbouring commands share spans)
+        parts = [(id(sp.geom), sp.a, sp.b) for sp in self.path.spans[ib0:ib1 + 1]]
         for r, (tool, lim, s0, s1, lo, hi, i0, i1) in enumerate(asks):
             held = self._limits.get(id(lim))
             if held is None or held[0] is not lim:
@@ -138,7 +140,7 @@ class Repeats:
                      min(max(bisect.bisect_right(offsets, s1) - i0, 0), m))
             # the span each breakpoint falls on, from i0 (`inputs`: offs.searchsorted(S, "right")):
             # its first and its steps (it never leaves 0..m: the spans hold the window)
-            keys.append((tuple((id(sp.geom), sp.a, sp.b) for sp in self.path.spans[i0:i1 + 1]),
+            keys.append((tuple(parts[i0 - ib0:i1 + 1 - ib0]),
                          None if tool is None else np.asarray(tool, dtype=float).tobytes(), held[1], n, where,
                          moved[k:k + n - 1], (g_at[k] + ib0 - i0, steps[8 * k:8 * (k + n - 1)])))
             rows.append((k, n, m, i0 - ib0, s0, s1, max(1.0, abs(s_at[k + n - 1]), abs(s1)),

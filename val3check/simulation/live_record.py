@@ -75,8 +75,9 @@ class LiveRecord:
         self._wait = None
         prof, path = queue.planner.profile, queue.path
         S, T = prof.S, prof.T
-        # the chunk being written, read in place (History): what bisect_right reads in the hot case
+        # the chunk being written, read in place (History; T is chunked as S): the hot case
         tail = S.tail if S.__class__ is History and S.tail_len else None
+        offsets, spans = path.offsets, path.spans
         behind = None  # where the arm is at `final` (found when first needed)
         while i < len(history):
             command = history[i]
@@ -86,23 +87,29 @@ class LiveRecord:
                 if place.s_begin is not None:
                     s = max(place.s_begin, place.s_end)
                     x = s + 1e-9 * max(1.0, abs(s))
-                    if tail is not None and tail[0] <= x:  # (mostly: in the chunk being written)
-                        k = S.tail_start + bisect.bisect_right(tail, x, 0, S.tail_len)
+                    if tail is not None and tail[0] <= x:  # (mostly)
+                        m = bisect.bisect_right(tail, x, 0, S.tail_len)
+                        if m >= S.tail_len:
+                            break
+                        t_k, s_k = T.tail[m], tail[m]
                     else:
                         k = trajectory.bisect_right(S, x)
-                    if k >= len(S):
-                        break
-                    if T[k] > final:
-                        self._wait = (command, T[k])  # (the breakpoint is there: only its time can come)
+                        if k >= len(S):
+                            break
+                        t_k, s_k = T[k], S[k]
+                    if t_k > final:
+                        self._wait = (command, t_k)  # (the breakpoint is there: only its time can come)
                         break
                     if behind is None:
                         behind = prof.state(final)[0]
-                    j, _ = path.locate(S[k])
-                    if j >= 0 and path.offsets[j] + path.spans[j].length > behind:
-                        # a resetMotion could still cut that span: not before the arm leaves it
-                        t = prof.time_at(path.offsets[j] + path.spans[j].length)
-                        self._wait = None if t is None else (command, t)
-                        break
+                    if spans:  # (path.locate)
+                        j = min(max(bisect.bisect_right(offsets, s_k) - 1, 0), len(spans) - 1)
+                        end = offsets[j] + spans[j].length
+                        if end > behind:
+                            # a resetMotion could still cut that span: not before the arm leaves it
+                            t = prof.time_at(end)
+                            self._wait = None if t is None else (command, t)
+                            break
             elif state != "failed":
                 self.blocked = state == "cancelled"
                 break
