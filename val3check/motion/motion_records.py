@@ -23,7 +23,7 @@ from .findings import Source
 from .paths import tcp_rates
 from .record_repeats import Repeats, noise
 from . import trajectory
-from .trajectory import _solve, window
+from .trajectory import window
 
 
 @dataclass(frozen=True, slots=True)  # one per command of the run
@@ -203,46 +203,62 @@ class RecordMaker:
         lo_b = max(trajectory.bisect_left(prof.S, float(s0.min())) - 1, 0)
         hi_b = min(trajectory.bisect_right(prof.S, float(max(s1.max(), x.max()))), len(prof.S) - 1)
         S, T, SD = (window(v, lo_b, hi_b + 1) for v in (prof.S, prof.T, prof.SD))
+        w = len(S)
         # a search in the window is the profile's: everything before it is below every s0
-        k0 = (S.searchsorted(s0, "left") + lo_b).tolist()
-        k1 = (S.searchsorted(s1, "right") + lo_b).tolist()
-        kl = (S.searchsorted(x, "right") + (lo_b - 1)).tolist()
-        # `Profile.time_at(s0)`'s search, in the window: the profile's when it falls past the
-        # window's first breakpoint and before its end (else asked of the profile)
-        kt = S.searchsorted(s0 - 1e-12 * np.maximum(1.0, np.abs(s0)), "left").tolist()
-        s_at, t_at, sd_at = S.tolist(), T.tolist(), SD.tolist()
+        k0 = S.searchsorted(s0, "left") + lo_b
+        k1 = S.searchsorted(s1, "right") + lo_b
+        # time_leaving(s0): the breakpoint at or before s0 + 1e-9 when s0 is on it, else
+        # `Profile.time_at(s0)`: its search in the window is the profile's when it falls past the
+        # window's first breakpoint and before its end (else asked of the profile, `nan` here)
+        kl = S.searchsorted(x, "right") - 1
+        tol = 1e-9 * np.maximum(1.0, np.abs(s0))
+        kt = S.searchsorted(s0 - 1e-12 * np.maximum(1.0, np.abs(s0)), "left")
+        start = np.full(len(s0), np.nan)
+        if w > 1:
+            kt_in = np.clip(kt, 1, w - 1)
+            start = np.where((kt > 0) & (kt < w), np.where(np.abs(S[kt_in] - s0) <= tol, T[kt_in],
+                                                           _solve_many(T, S, SD, kt_in - 1, s0)), np.nan)
+        on = np.clip(kl, 0, w - 1)
+        start = np.where(np.abs(S[on] - s0) <= tol, T[on], start)
+        start[kl + lo_b < 0] = -np.inf  # (no start)
+        # the spans each command's look-up reaches (`add`: the spans at the breakpoints around it)
+        spans_then = np.array([e[7] for e in later])
+        lo = np.maximum(k0 - 1, 0)
+        hi = np.minimum(k1, np.array([e[6] for e in later]) - 1)
+        s_lo = np.minimum(S[np.clip(lo - lo_b, 0, w - 1)], s0)
+        s_hi = np.maximum(S[np.clip(hi - lo_b, 0, w - 1)], s1)
+        off_lo = max(bisect.bisect_right(path.offsets, float(s_lo.min())) - 1, 0)
+        offs = np.asarray(path.offsets[off_lo:bisect.bisect_right(path.offsets, float(s_hi.max())) + 1])
+        i0 = np.minimum(np.maximum(offs.searchsorted(s_lo, "right") + (off_lo - 1), 0), spans_then - 1).tolist()
+        i1 = np.minimum(np.maximum(offs.searchsorted(s_hi, "right") + (off_lo - 1), 0), spans_then - 1).tolist()
+        outside = ((lo - lo_b < 0) | (lo - lo_b >= w) | (hi - lo_b < 0) | (hi - lo_b >= w)).tolist()
         del S, T, SD
-        w = len(s_at)
-        done, n, offsets = [], 0, path.offsets
+        start, k0, k1, lo, hi = start.tolist(), k0.tolist(), k1.tolist(), lo.tolist(), hi.tolist()
+        done, n = [], 0
         for e in pending:
             if len(e) == 2:
                 done.append(e)
                 continue
             idx, command, a, b, end, lim, breakpoints, spans = e
-            k = kl[n]
-            if k < 0:
-                start = None
-            elif abs(s_at[k - lo_b] - a) <= 1e-9 * max(1.0, abs(a)):
-                start = t_at[k - lo_b]
-            elif 0 < kt[n] < w:  # (time_at: a breakpoint, or the time within the interval before it)
-                j = kt[n]
-                start = t_at[j] if abs(s_at[j] - a) <= 1e-9 * max(1.0, abs(a)) else _solve(t_at, s_at, sd_at, j - 1, a)
-            else:
-                start = prof.time_at(a)
-            j0, j1 = k0[n], k1[n]
-            n += 1
+            t = start[n]
+            if t != t:
+                t = prof.time_at(a)
+            elif t == -np.inf:
+                t = None
             req = command.request
-            if start is None or b - a <= 1e-12:  # (as `add`: no start, or no length)
-                out[idx] = MotionRecord(command.id, req.kind, req.source, command.state, req.recorded, start,
-                                        None if start is None else (end if end is not None else start), 0.0, 0.0,
+            if t is None or b - a <= 1e-12:  # (as `add`: no start, or no length)
+                out[idx] = MotionRecord(command.id, req.kind, req.source, command.state, req.recorded, t,
+                                        None if t is None else (end if end is not None else t), 0.0, 0.0,
                                         "", {}, target=req.target_name, tool=req.tool_name)
-                continue
-            lo, hi = max(j0 - 1, 0), min(j1, breakpoints - 1)
-            s_lo = s_at[lo - lo_b] if 0 <= lo - lo_b < w else prof.S[lo]  # (the window's, mostly)
-            s_hi = s_at[hi - lo_b] if 0 <= hi - lo_b < w else prof.S[hi]
-            i0 = min(max(bisect.bisect_right(offsets, min(s_lo, a)) - 1, 0), spans - 1)
-            i1 = min(max(bisect.bisect_right(offsets, max(s_hi, b)) - 1, 0), spans - 1)
-            done.append(((idx, command, a, b, start, end, j0, j1, lim), (req.tool, lim, a, b, lo, hi, i0, i1)))
+            elif outside[n]:  # (a breakpoint outside the window: read from the profile)
+                done.append(((idx, command, a, b, t, end, k0[n], k1[n], lim),
+                             (req.tool, lim, a, b, lo[n], hi[n],
+                              min(max(bisect.bisect_right(path.offsets, min(prof.S[lo[n]], a)) - 1, 0), spans - 1),
+                              min(max(bisect.bisect_right(path.offsets, max(prof.S[hi[n]], b)) - 1, 0), spans - 1))))
+            else:
+                done.append(((idx, command, a, b, t, end, k0[n], k1[n], lim),
+                             (req.tool, lim, a, b, lo[n], hi[n], i0[n], i1[n])))
+            n += 1
         return done
 
     def _first(self, item: tuple, slot) -> None:
@@ -378,6 +394,20 @@ def _decide_block(queue, prof, out: list, doubts: list) -> None:
             n += len(j)
             share = _seconds_of(S, max(k0 - 1, 0), s0, s1, i, _order(codes, len(lim.V)), dt)
             out[idx] = _record(command, start, end, length, peak, share)
+
+
+def _solve_many(T, S, SD, k: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """trajectory._solve(T, S, SD, k, s) of each (k, s) with its arithmetic in numpy: the same bits
+    (tests/motion/test_records.py)."""
+    t0, t1, sd0 = T[k], T[k + 1], SD[k]
+    dt = t1 - t0
+    ds = s - S[k]
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        u = (SD[k + 1] - sd0) / dt
+        tau = np.where(np.abs(u) < 1e-15, np.where(sd0 > 0, ds / sd0, dt),
+                       (-sd0 + np.sqrt(np.maximum(sd0 * sd0 + 2.0 * u * ds, 0.0))) / u)
+        solved = t0 + np.minimum(np.maximum(tau, 0.0), dt)
+    return np.where(ds <= 0.0, t0, np.where(dt <= 0.0, t1, solved))
 
 
 def _path_at(path, s: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
