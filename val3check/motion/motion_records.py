@@ -364,16 +364,19 @@ def _decide_block(queue, prof, out: list, doubts: list) -> None:
     `_intervals` gives them), the seconds summed from the durations the repeat's key holds
     (`_seconds_of`: the same arithmetic as `_seconds`)."""
     doubt: dict = {}  # tool -> [(item, codes, unclear rows, their breakpoints, noise, figures, durations)]
-    S, SD = prof.S, prof.SD
-    last = len(S) - 1
+    # the breakpoints the block reads, in one window from `base` (a History reads old ones one by one)
+    base = min(max(d[1][6] - 1, 0) for d in doubts)
+    S, SD = (window(v, base, max(d[1][7] for d in doubts) + 2).tolist() for v in (prof.S, prof.SD))
+    last = len(prof.S) - 1
     for _, item, (length, peak, codes, clear, i, _), dt in doubts:
         idx, command, s0, s1, start, end, k0, k1, lim = item
         lo = max(k0 - 1, 0)
         j = np.nonzero(~clear)[0]
-        at = (i[j] + lo).tolist()
+        at = (i[j] + (lo - base)).tolist()
         tool = command.tool
         doubt.setdefault(None if tool is None else np.asarray(tool, dtype=float).tobytes(), []).append(
-            (item, codes.copy(), j, at, noise(prof, lo, k1, max(abs(S[min(k1, last)]), abs(s1))), length, peak, i, dt))
+            (item, codes.copy(), j, at, noise(prof, lo, k1, max(abs(S[min(k1, last) - base]), abs(s1)), SD, base),
+             length, peak, i, dt))
     for items in doubt.values():
         per_row: list = [[] for _ in range(11)]  # S at both ends, ṡ at both ends, V, A, D, tvel, rvel, e_s, e_v
         for (*_, lim), _, j, at, (e_s, e_v), *_ in items:
@@ -392,7 +395,7 @@ def _decide_block(queue, prof, out: list, doubts: list) -> None:
         for (idx, command, s0, s1, start, end, k0, k1, lim), codes, j, _, _, length, peak, i, dt in items:
             codes[j] = chosen[n:n + len(j)]
             n += len(j)
-            share = _seconds_of(S, max(k0 - 1, 0), s0, s1, i, _order(codes, len(lim.V)), dt)
+            share = _seconds_of(S, max(k0 - 1, 0) - base, s0, s1, i, _order(codes, len(lim.V)), dt)
             out[idx] = _record(command, start, end, length, peak, share)
 
 
