@@ -495,10 +495,11 @@ def _seconds_of(S, lo: int, s0: float, s1: float, i: np.ndarray, order: tuple, d
     if not labels:
         return {}
     w = dt[i]
-    for e in {0, len(i) - 1}:
+    last = len(i) - 1
+    for e in (0, last) if last else (0,):
         k = int(i[e])
         a, b = S[lo + k], S[lo + k + 1]
-        w[e] = dt[k] * min(max((min(b, s1) - max(a, s0)) / (b - a), 0.0), 1.0)
+        w[e] = float(dt[k]) * min(max((min(b, s1) - max(a, s0)) / (b - a), 0.0), 1.0)
     return dict(zip(labels, np.bincount(rank, weights=w).tolist()))
 
 
