@@ -277,8 +277,6 @@ def test_a_tool_pose_s_matrix_is_made_once_per_pose_and_each_component_changed_m
     """collect's open()/close() rows share one read-only matrix per tool pose, kept by the pose's
     bits: it equals the matrix made afresh, and each component changed in turn (even 0.0 to -0.0)
     makes another."""
-    import numpy as np
-
     poses: dict = {}
     base = (10.0, -20.0, 130.0, 0.0, 180.0, 90.0)
     m = collect_module._shared_matrix(base, poses)
