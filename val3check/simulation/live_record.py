@@ -10,8 +10,9 @@ there wholly behind the arm (resetMotion cuts the path where the arm stops). Com
 recording order: a cancelled command (its record reads the profile as the run ends) and everything
 after it wait for the end of the run, as do the commands not final by then. The records are made
 by the same `RecordMaker`, in the same order, as after the run; the blocks not full are evaluated
-and the near ties decided every RECORD_BLOCK commands (a record's figures do not depend on the
-commands evaluated with it): the same bits (tests/interpretation/test_live_record.py).
+every RECORD_BLOCK commands, the near ties decided once DECIDE_BLOCK of them wait (a record's
+figures do not depend on the commands evaluated with it): the same bits
+(tests/interpretation/test_live_record.py).
 
 Commands are released from the history only while nothing of chapter 11 reads it by index
 (arm_layers.Residuals, alteration.py, compliance.py): once one does, the history is kept whole
