@@ -226,3 +226,44 @@ def test_chapter_11_reading_the_history_stops_the_release():
                     dict(alteration=NS(alterable=set(), state="pending", deferred=[])),
                     dict(compliance=NS(moves=[object()]))):
         assert live_record._history_read(NS(**{**vars(plain), **changed}))
+
+
+def _pick_place(duration: float, live: bool, monkeypatch):
+    """The bundled pick-and-place (its scenario) on a TX2-60: the machine and its result."""
+    from motion.pick_place_run import ROOT, TX
+    from val3check.simulation.scenario import load_scenario
+
+    if not live:
+        monkeypatch.setattr(live_record.LiveRecord, "take", lambda self, arm, queue: None)
+    ws = run([str(ROOT / "fixtures/valid/PickPlace")], Settings()).workspace
+    scenario = load_scenario(str(ROOT / "fixtures/scenarios/pickplace.toml"))
+    out = run_machine(ws, ws.apps[ws.targets[0]], SimOptions(duration=duration, max_wall=900, robot=TX,
+                                                             wall_clock=frozen_clock), scenario)
+    if not live:
+        monkeypatch.undo()
+    return out
+
+
+def test_near_ties_decided_in_blocks_during_the_run_give_the_records_made_after_it(monkeypatch):
+    """The live record decides the repeats' near ties once DECIDE_BLOCK of them wait (one evaluation
+    of each piece of path for the block), not at every flush: with blocks of 3 decided all along a
+    real run, the rows, cycles, acceleration range and report are those made after the run."""
+    from val3check.motion import motion_records
+
+    _, after = _pick_place(300.0, False, monkeypatch)
+    monkeypatch.setattr(motion_records, "DECIDE_BLOCK", 3)
+    decided = []
+    decide = motion_records._decide
+
+    def spy(queue, prof, out, doubts):
+        decided.append(len(doubts))
+        return decide(queue, prof, out, doubts)
+
+    monkeypatch.setattr(motion_records, "_decide", spy)
+    machine, live = _pick_place(300.0, True, monkeypatch)
+    assert machine.arm.queue_in_use.released_done >= live_record.RELEASE_AT  # taken and released live
+    assert sum(n >= 3 for n in decided[:-1]) >= 3  # decided in blocks along the run, not only at its end
+    assert [_bits(m) for m in live.motion.motions] == [_bits(m) for m in after.motion.motions]
+    assert live.motion.cycles == after.motion.cycles
+    assert live.motion.acceleration_range == after.motion.acceleration_range
+    assert _report(live) == _report(after)

@@ -235,9 +235,9 @@ def test_records_made_as_the_blocks_fill_are_the_fresh_ones(pick_place, monkeypa
     waited = []
     repeat = records_module._repeat
 
-    def spy(prof, out, item, dt, slot, doubts):
+    def spy(prof, out, item, dt, slot, doubts, *window):
         waited.append(out[item[0]] is None and slot.figures is not None)
-        return repeat(prof, out, item, dt, slot, doubts)
+        return repeat(prof, out, item, dt, slot, doubts, *window)
 
     monkeypatch.setattr(records_module, "_repeat", spy)
     reused = motion_records(q, end)
@@ -315,3 +315,27 @@ def test_the_order_of_limits_is_their_first_appearance_and_each_interval_s_place
         assert labels == [records_module._label(int(codes[k]), 6) for k in first]
         assert rank.dtype == np.intp and [labels[x] for x in rank.tolist()] == [records_module._label(int(c), 6)
                                                                                   for c in codes]
+
+
+def test_the_order_of_limits_kept_is_the_order_made_afresh_and_each_input_changed_misses():
+    """_order is kept by its codes' bytes and the number of axes: each kept answer equals one made
+    with nothing kept, a code changed or the axes changed gives another answer, and what is
+    kept cannot be written through."""
+    rng = np.random.default_rng(11)
+    runs = [rng.integers(0, 15, rng.integers(1, 40)).astype(np.intp) for _ in range(200)]
+    runs += [c.copy() for c in runs]  # every one asked twice: the second from what is kept
+    kept = [records_module._order(c, 6) for c in runs]
+    records_module._ORDERS.clear()
+    for c, (labels, rank) in zip(runs, kept):
+        fresh = records_module._order(c, 6)
+        records_module._ORDERS.clear()
+        assert labels == fresh[0] and rank.tobytes() == fresh[1].tobytes()
+        with pytest.raises(ValueError):
+            rank[0] = 0
+    codes = np.array([13, 13, 2, 7], dtype=np.intp)
+    base = records_module._order(codes, 6)
+    other = codes.copy()
+    other[2] = 3
+    assert records_module._order(other, 6)[0] != base[0]  # a code
+    assert records_module._order(codes, 7)[0] != base[0]  # the axes (the labels' numbering)
+    assert records_module._order(codes.astype(np.int32), 6)[1] is base[1]  # the same codes in another integer type

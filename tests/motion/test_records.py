@@ -106,3 +106,25 @@ def test_records_of_cancelled_and_failed_commands():
     (r,) = motion_records(q)
     assert r.state == "cancelled" and r.start == 0.0 and r.end > 0.1
     assert np.isfinite(r.length_mm)
+
+
+def test_solve_many_is_solve_of_each_bit_for_bit():
+    """The record's starts found a block at a time (`_solve_many`) are `trajectory._solve` of each:
+    rests, zero-length intervals, constant speed, speeding up and slowing down, either side and
+    at the interval's ends."""
+    from val3check.motion.motion_records import _solve_many
+    from val3check.motion.trajectory import _solve
+
+    rng = np.random.default_rng(7)
+    n = 400
+    T = np.cumsum(rng.choice([0.0, 1e-3, 0.0137, 0.25], n))
+    S = np.cumsum(rng.choice([0.0, 1e-9, 0.3, 2.5], n)) + 1234.5
+    SD = rng.choice([0.0, 0.0, 1.7, 3.0, 1e-14], n)
+    SD[1::7] = SD[0::7][:len(SD[1::7])]  # some intervals at constant speed
+    k = rng.integers(0, n - 1, 3000)
+    frac = rng.choice([-0.5, 0.0, 1e-12, 0.25, 0.5, 1.0, 1.5], len(k))
+    s = S[k] + frac * (S[k + 1] - S[k]) + rng.choice([0.0, -1e-13, 1e-13], len(k))
+    many = _solve_many(T, S, SD, k, s)
+    Tl, Sl, SDl = T.tolist(), S.tolist(), SD.tolist()
+    one = np.array([_solve(Tl, Sl, SDl, j, x) for j, x in zip(k.tolist(), s.tolist())])
+    assert many.tobytes() == one.tobytes()

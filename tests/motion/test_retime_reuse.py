@@ -250,3 +250,42 @@ def test_places_read_the_profile_a_stretch_at_a_time(machine_run, monkeypatch):
     monkeypatch.setattr(retime, "_PLACES", 8)
     st.places([r.start for r in records] + [r.end for r in records])
     assert sizes and max(sizes) < len(q.planner.profile.T) / 4
+
+
+def test_the_owners_limits_kept_by_command_and_by_limits_object_are_those_made_afresh():
+    """piece_key's memo: an owner's limits key is kept by its command's key and by its Limits object
+    (the queue shares one per mdesc); two commands with other limits get other keys, two with the
+    same Limits object one, and every key equals the one made with nothing kept."""
+    import numpy as np
+
+    from val3check.motion.mdesc import Limits
+    from val3check.motion.retime import _limits_key, _owner_limits
+
+    kin_v = np.full(6, 100.0)
+    a = Limits(kin_v, kin_v * 2, kin_v * 3, 250.0, 90.0)
+    b = Limits(kin_v, kin_v * 2, kin_v * 3, 250.0, 45.0)  # rvel only
+    of = {1: a, 2: b, 3: a}
+    memo: dict = {}
+    keys = {k: _owner_limits(memo, of.__getitem__, k) for k in (1, 2, 3)}
+    assert keys[1] != keys[2] and keys[1] == keys[3]
+    assert all(keys[k] == _limits_key(of[k]) for k in keys)
+    of[4] = Limits(kin_v, kin_v * 2, kin_v * 3.5, 250.0, 90.0)  # a new object, D only
+    assert _owner_limits(memo, of.__getitem__, 4) == _limits_key(of[4]) != keys[1]
+
+
+def test_a_tool_pose_s_matrix_is_made_once_per_pose_and_each_component_changed_misses():
+    """collect's open()/close() rows share one read-only matrix per tool pose, kept by the pose's
+    bits: it equals the matrix made afresh, and each component changed in turn (even 0.0 to -0.0)
+    makes another."""
+    poses: dict = {}
+    base = (10.0, -20.0, 130.0, 0.0, 180.0, 90.0)
+    m = collect_module._shared_matrix(base, poses)
+    assert collect_module._shared_matrix(list(base), poses) is m
+    assert m.tobytes() == collect_module._matrix(base).tobytes() and not m.flags.writeable
+    for k in range(6):
+        for v in (base[k] + 1.0, -base[k] if base[k] else -0.0):
+            other = list(base)
+            other[k] = v
+            o = collect_module._shared_matrix(other, poses)
+            assert o is not m and o.tobytes() == collect_module._matrix(other).tobytes()
+    assert len(poses) == 13

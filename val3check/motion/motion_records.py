@@ -178,13 +178,17 @@ class RecordMaker:
         if not placed:
             return
         pending = placed
+        # the block's breakpoints read once (a History reads old ones through its chunk cache)
+        prof = self.prof
+        base = max(min(item[6] for item, _ in pending) - 1, 0)
+        S = window(prof.S, base, max(item[7] for item, _ in pending) + 2).tolist()
         for (item, _), (earlier, slot, dt) in zip(pending, self.repeats.find_block([a for _, a in pending])):
             if earlier is None:
                 self._first(item, slot)
             elif earlier.figures is None:  # given them when the first is evaluated (`_evaluate`)
                 earlier.items.append((item, dt))
             else:
-                _repeat(self.prof, self.out, item, dt, earlier, self.doubts)
+                _repeat(prof, self.out, item, dt, earlier, self.doubts, S, base)
 
     def _place(self, pending: list) -> list:
         """`add`'s start (time_leaving), breakpoints and spans of the final commands it left to the
@@ -198,34 +202,63 @@ class RecordMaker:
         x = s0 + 1e-9  # (time_leaving's search)
         lo_b = max(trajectory.bisect_left(prof.S, float(s0.min())) - 1, 0)
         hi_b = min(trajectory.bisect_right(prof.S, float(max(s1.max(), x.max()))), len(prof.S) - 1)
-        S, T = window(prof.S, lo_b, hi_b + 1), window(prof.T, lo_b, hi_b + 1)
+        S, T, SD = (window(v, lo_b, hi_b + 1) for v in (prof.S, prof.T, prof.SD))
+        w = len(S)
         # a search in the window is the profile's: everything before it is below every s0
-        k0 = (S.searchsorted(s0, "left") + lo_b).tolist()
-        k1 = (S.searchsorted(s1, "right") + lo_b).tolist()
-        kl = (S.searchsorted(x, "right") + (lo_b - 1)).tolist()
-        s_at, t_at = S.tolist(), T.tolist()
-        del S, T
+        k0 = S.searchsorted(s0, "left") + lo_b
+        k1 = S.searchsorted(s1, "right") + lo_b
+        # time_leaving(s0): the breakpoint at or before s0 + 1e-9 when s0 is on it, else
+        # `Profile.time_at(s0)`: its search in the window is the profile's when it falls past the
+        # window's first breakpoint and before its end (else asked of the profile, `nan` here)
+        kl = S.searchsorted(x, "right") - 1
+        tol = 1e-9 * np.maximum(1.0, np.abs(s0))
+        kt = S.searchsorted(s0 - 1e-12 * np.maximum(1.0, np.abs(s0)), "left")
+        start = np.full(len(s0), np.nan)
+        if w > 1:
+            kt_in = np.clip(kt, 1, w - 1)
+            start = np.where((kt > 0) & (kt < w), np.where(np.abs(S[kt_in] - s0) <= tol, T[kt_in],
+                                                           _solve_many(T, S, SD, kt_in - 1, s0)), np.nan)
+        on = np.clip(kl, 0, w - 1)
+        start = np.where(np.abs(S[on] - s0) <= tol, T[on], start)
+        start[kl + lo_b < 0] = -np.inf  # (no start)
+        # the spans each command's look-up reaches (`add`: the spans at the breakpoints around it)
+        spans_then = np.array([e[7] for e in later])
+        lo = np.maximum(k0 - 1, 0)
+        hi = np.minimum(k1, np.array([e[6] for e in later]) - 1)
+        s_lo = np.minimum(S[np.clip(lo - lo_b, 0, w - 1)], s0)
+        s_hi = np.maximum(S[np.clip(hi - lo_b, 0, w - 1)], s1)
+        off_lo = max(bisect.bisect_right(path.offsets, float(s_lo.min())) - 1, 0)
+        offs = np.asarray(path.offsets[off_lo:bisect.bisect_right(path.offsets, float(s_hi.max())) + 1])
+        i0 = np.minimum(np.maximum(offs.searchsorted(s_lo, "right") + (off_lo - 1), 0), spans_then - 1).tolist()
+        i1 = np.minimum(np.maximum(offs.searchsorted(s_hi, "right") + (off_lo - 1), 0), spans_then - 1).tolist()
+        outside = ((lo - lo_b < 0) | (lo - lo_b >= w) | (hi - lo_b < 0) | (hi - lo_b >= w)).tolist()
+        del S, T, SD
+        start, k0, k1, lo, hi = start.tolist(), k0.tolist(), k1.tolist(), lo.tolist(), hi.tolist()
         done, n = [], 0
         for e in pending:
             if len(e) == 2:
                 done.append(e)
                 continue
             idx, command, a, b, end, lim, breakpoints, spans = e
-            k = kl[n]
-            start = None if k < 0 else (t_at[k - lo_b] if abs(s_at[k - lo_b] - a) <= 1e-9 * max(1.0, abs(a))
-                                        else prof.time_at(a))
-            j0, j1 = k0[n], k1[n]
-            n += 1
+            t = start[n]
+            if t != t:
+                t = prof.time_at(a)
+            elif t == -np.inf:
+                t = None
             req = command.request
-            if start is None or b - a <= 1e-12:  # (as `add`: no start, or no length)
-                out[idx] = MotionRecord(command.id, req.kind, req.source, command.state, req.recorded, start,
-                                        None if start is None else (end if end is not None else start), 0.0, 0.0,
+            if t is None or b - a <= 1e-12:  # (as `add`: no start, or no length)
+                out[idx] = MotionRecord(command.id, req.kind, req.source, command.state, req.recorded, t,
+                                        None if t is None else (end if end is not None else t), 0.0, 0.0,
                                         "", {}, target=req.target_name, tool=req.tool_name)
-                continue
-            lo, hi = max(j0 - 1, 0), min(j1, breakpoints - 1)
-            i0 = min(max(bisect.bisect_right(path.offsets, min(prof.S[lo], a)) - 1, 0), spans - 1)
-            i1 = min(max(bisect.bisect_right(path.offsets, max(prof.S[hi], b)) - 1, 0), spans - 1)
-            done.append(((idx, command, a, b, start, end, j0, j1, lim), (req.tool, lim, a, b, lo, hi, i0, i1)))
+            elif outside[n]:  # (a breakpoint outside the window: read from the profile)
+                done.append(((idx, command, a, b, t, end, k0[n], k1[n], lim),
+                             (req.tool, lim, a, b, lo[n], hi[n],
+                              min(max(bisect.bisect_right(path.offsets, min(prof.S[lo[n]], a)) - 1, 0), spans - 1),
+                              min(max(bisect.bisect_right(path.offsets, max(prof.S[hi[n]], b)) - 1, 0), spans - 1))))
+            else:
+                done.append(((idx, command, a, b, t, end, k0[n], k1[n], lim),
+                             (req.tool, lim, a, b, lo[n], hi[n], i0[n], i1[n])))
+            n += 1
         return done
 
     def _first(self, item: tuple, slot) -> None:
@@ -239,15 +272,18 @@ class RecordMaker:
         if len(group[2]) == RECORD_BLOCK:
             _evaluate(self.queue, self.prof, self.out, group, self.doubts)
 
-    def flush(self) -> None:
+    def flush(self, ties: bool = True) -> None:
         """Every command added so far given its record: the blocks not full evaluated, the near ties
-        decided (a record's figures do not depend on the commands evaluated with it: the same bits)."""
+        decided (a record's figures do not depend on the commands evaluated with it: the same bits).
+        `ties` False: the near ties only once DECIDE_BLOCK of them wait (a cyclic cell's repeats share
+        their pieces of path: one evaluation per piece for the whole block)."""
         if self.repeats is not None:
             self._settle()
         for group in self.groups.values():
             if group[2]:
                 _evaluate(self.queue, self.prof, self.out, group, self.doubts)
-        _decide(self.queue, self.prof, self.out, self.doubts)
+        if ties or len(self.doubts) >= DECIDE_BLOCK:
+            _decide(self.queue, self.prof, self.out, self.doubts)
 
     def finish(self) -> list[MotionRecord]:
         """The records of every command added."""
@@ -295,15 +331,16 @@ def _evaluate(queue, prof, out: list, group: list, doubts: list) -> None:
             slot.items = []
 
 
-def _repeat(prof, out: list, item: tuple, dt: np.ndarray, slot, doubts: list) -> None:
+def _repeat(prof, out: list, item: tuple, dt: np.ndarray, slot, doubts: list, S=None, base: int = 0) -> None:
     """The record of a command that repeats an earlier one (its Slot's figures): its length and
     peak, its limits per interval, its own seconds under each (`dt`: the durations of its intervals
     that count, record_repeats.Repeats.inputs); when a limit was a near tie, left to `_decide`
-    (`doubts`)."""
+    (`doubts`). `S`: the profile's positions from breakpoint `base` (its window), else read there."""
     length, peak, _, clear, i, order = slot.figures
     idx, command, s0, s1, start, end, k0, k1, _ = item
     if clear.all():  # the earlier's intervals (the key holds where s0 and s1 fall) and limits
-        out[idx] = _record(command, start, end, length, peak, _seconds_of(prof, max(k0 - 1, 0), s0, s1, i, order, dt))
+        share = _seconds_of(prof.S if S is None else S, max(k0 - 1, 0) - base, s0, s1, i, order, dt)
+        out[idx] = _record(command, start, end, length, peak, share)
     else:
         doubts.append((slot.place + (idx,), item, slot.figures, dt))
 
@@ -327,16 +364,19 @@ def _decide_block(queue, prof, out: list, doubts: list) -> None:
     `_intervals` gives them), the seconds summed from the durations the repeat's key holds
     (`_seconds_of`: the same arithmetic as `_seconds`)."""
     doubt: dict = {}  # tool -> [(item, codes, unclear rows, their breakpoints, noise, figures, durations)]
-    S, SD = prof.S, prof.SD
-    last = len(S) - 1
+    # the breakpoints the block reads, in one window from `base` (a History reads old ones one by one)
+    base = min(max(d[1][6] - 1, 0) for d in doubts)
+    S, SD = (window(v, base, max(d[1][7] for d in doubts) + 2).tolist() for v in (prof.S, prof.SD))
+    last = len(prof.S) - 1
     for _, item, (length, peak, codes, clear, i, _), dt in doubts:
         idx, command, s0, s1, start, end, k0, k1, lim = item
         lo = max(k0 - 1, 0)
         j = np.nonzero(~clear)[0]
-        at = (i[j] + lo).tolist()
+        at = (i[j] + (lo - base)).tolist()
         tool = command.tool
         doubt.setdefault(None if tool is None else np.asarray(tool, dtype=float).tobytes(), []).append(
-            (item, codes.copy(), j, at, noise(prof, lo, k1, max(abs(S[min(k1, last)]), abs(s1))), length, peak, i, dt))
+            (item, codes.copy(), j, at, noise(prof, lo, k1, max(abs(S[min(k1, last) - base]), abs(s1)), SD, base),
+             length, peak, i, dt))
     for items in doubt.values():
         per_row: list = [[] for _ in range(11)]  # S at both ends, ṡ at both ends, V, A, D, tvel, rvel, e_s, e_v
         for (*_, lim), _, j, at, (e_s, e_v), *_ in items:
@@ -355,8 +395,22 @@ def _decide_block(queue, prof, out: list, doubts: list) -> None:
         for (idx, command, s0, s1, start, end, k0, k1, lim), codes, j, _, _, length, peak, i, dt in items:
             codes[j] = chosen[n:n + len(j)]
             n += len(j)
-            share = _seconds_of(prof, max(k0 - 1, 0), s0, s1, i, _order(codes, len(lim.V)), dt)
+            share = _seconds_of(S, max(k0 - 1, 0) - base, s0, s1, i, _order(codes, len(lim.V)), dt)
             out[idx] = _record(command, start, end, length, peak, share)
+
+
+def _solve_many(T, S, SD, k: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """trajectory._solve(T, S, SD, k, s) of each (k, s) with its arithmetic in numpy: the same bits
+    (tests/motion/test_records.py)."""
+    t0, t1, sd0 = T[k], T[k + 1], SD[k]
+    dt = t1 - t0
+    ds = s - S[k]
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        u = (SD[k + 1] - sd0) / dt
+        tau = np.where(np.abs(u) < 1e-15, np.where(sd0 > 0, ds / sd0, dt),
+                       (-sd0 + np.sqrt(np.maximum(sd0 * sd0 + 2.0 * u * ds, 0.0))) / u)
+        solved = t0 + np.minimum(np.maximum(tau, 0.0), dt)
+    return np.where(ds <= 0.0, t0, np.where(dt <= 0.0, t1, solved))
 
 
 def _path_at(path, s: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -413,28 +467,39 @@ def _seconds(rows, codes: np.ndarray, n: int) -> dict:
     return {_label(int(codes[k]), n): float(total[codes[k]]) for k in np.sort(first)}
 
 
+_ORDERS: dict = {}  # (codes' bytes, n) -> `_order` (a function of them only; a cyclic cell has a few)
+
+
 def _order(codes: np.ndarray, n: int) -> tuple[list, np.ndarray]:
     """The limits of `codes` as `_seconds` lists them (in order of first appearance, labelled) and
-    each interval's place in that list (a dict: a command has a few dozen intervals)."""
-    place: dict = {}
-    rank = np.array([place.setdefault(c, len(place)) for c in codes.tolist()], dtype=np.intp)
-    return [_label(c, n) for c in place], rank
+    each interval's place in that list (a dict: a command has a few dozen intervals). Read only."""
+    key = (codes.astype(np.intp, copy=False).tobytes(), n)
+    hit = _ORDERS.get(key)
+    if hit is None:
+        place: dict = {}
+        rank = np.array([place.setdefault(c, len(place)) for c in codes.tolist()], dtype=np.intp)
+        rank.flags.writeable = False
+        hit = ([_label(c, n) for c in place], rank)
+        if len(_ORDERS) >= 4096:
+            _ORDERS.clear()
+        _ORDERS[key] = hit
+    return hit
 
 
-def _seconds_of(prof, lo: int, s0: float, s1: float, i: np.ndarray, order: tuple, dt: np.ndarray) -> dict:
-    """`_seconds(_intervals(...), codes, n)` of a repeat whose intervals `i` (from breakpoint lo)
-    and limits (`order` of the codes) are the earlier command's, `dt` its durations: the same
-    arithmetic. Only the first and last intervals can lie partly outside (s0, s1): the share of
-    any other, (b - a) / (b - a), is exactly 1."""
+def _seconds_of(S, lo: int, s0: float, s1: float, i: np.ndarray, order: tuple, dt: np.ndarray) -> dict:
+    """`_seconds(_intervals(...), codes, n)` of a repeat whose intervals `i` (from S[lo]: the
+    profile's positions, or a window of them) and limits (`order` of the codes) are the earlier
+    command's, `dt` its durations: the same arithmetic. Only the first and last intervals can lie
+    partly outside (s0, s1): the share of any other, (b - a) / (b - a), is exactly 1."""
     labels, rank = order
     if not labels:
         return {}
     w = dt[i]
-    S = prof.S
-    for e in {0, len(i) - 1}:
+    last = len(i) - 1
+    for e in (0, last) if last else (0,):
         k = int(i[e])
         a, b = S[lo + k], S[lo + k + 1]
-        w[e] = dt[k] * min(max((min(b, s1) - max(a, s0)) / (b - a), 0.0), 1.0)
+        w[e] = float(dt[k]) * min(max((min(b, s1) - max(a, s0)) / (b - a), 0.0), 1.0)
     return dict(zip(labels, np.bincount(rank, weights=w).tolist()))
 
 

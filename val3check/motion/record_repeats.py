@@ -121,29 +121,34 @@ class Repeats:
         g = offs.searchsorted(S, "right")  # + ib0: offsets at or before each breakpoint
         g_at = g.tolist()
         steps = (g[1:] - g[:-1]).tobytes()
-        ends = np.array([a[2] for a in asks] + [a[3] for a in asks])
-        left, right = (S.searchsorted(ends, side).tolist() for side in ("left", "right"))
+        tools, lims, s0, s1, lo, hi, i0, i1 = zip(*asks)
+        s0, s1 = np.array(s0, dtype=float), np.array(s1, dtype=float)
+        lo, hi, i0, i1 = (np.array(v, dtype=np.intp) for v in (lo, hi, i0, i1))
+        n, m, k = hi - lo + 1, i1 - i0 + 1, lo - lo_b
+        # the searches in the window: the block's clamped to it (`inputs`); where s0 and s1 fall
+        # among the spans' offsets: the block's offsets hold them (the spans hold the window)
+        left0, right0 = np.clip(S.searchsorted(s0, "left") - k, 0, n), np.clip(S.searchsorted(s0, "right") - k, 0, n)
+        left1, right1 = np.clip(S.searchsorted(s1, "left") - k, 0, n), np.clip(S.searchsorted(s1, "right") - k, 0, n)
+        o0 = np.clip(offs.searchsorted(s0, "right") + (ib0 - i0), 0, m)
+        o1 = np.clip(offs.searchsorted(s1, "right") + (ib0 - i0), 0, m)
         b = len(asks)
-        keys, rows = [], []
-        for r, (tool, lim, s0, s1, lo, hi, i0, i1) in enumerate(asks):
+        keys = []
+        # each span's part of the exact key, made once for the block (neighbouring commands share spans)
+        parts = [(id(sp.geom), sp.a, sp.b) for sp in self.path.spans[ib0:ib1 + 1]]
+        for tool, lim, i0_, i1_, n_, k_, where in zip(tools, lims, i0.tolist(), i1.tolist(), n.tolist(), k.tolist(),
+                                                     zip(*(v.tolist() for v in (left0, right0, left1, right1, o0, o1)))):
             held = self._limits.get(id(lim))
             if held is None or held[0] is not lim:
                 held = self._limits[id(lim)] = (lim, (lim.V.tobytes(), lim.A.tobytes(), lim.D.tobytes(), lim.tvel,
                                                       lim.rvel))
-            n, m, k = hi - lo + 1, i1 - i0 + 1, lo - lo_b
-            # the searches in the window: the block's clamped to it (`inputs`)
-            left0, right0 = min(max(left[r] - k, 0), n), min(max(right[r] - k, 0), n)
-            left1, right1 = min(max(left[b + r] - k, 0), n), min(max(right[b + r] - k, 0), n)
-            where = (left0, right0, left1, right1, min(max(bisect.bisect_right(offsets, s0) - i0, 0), m),
-                     min(max(bisect.bisect_right(offsets, s1) - i0, 0), m))
             # the span each breakpoint falls on, from i0 (`inputs`: offs.searchsorted(S, "right")):
             # its first and its steps (it never leaves 0..m: the spans hold the window)
-            keys.append((tuple((id(sp.geom), sp.a, sp.b) for sp in self.path.spans[i0:i1 + 1]),
-                         None if tool is None else np.asarray(tool, dtype=float).tobytes(), held[1], n, where,
-                         moved[k:k + n - 1], (g_at[k] + ib0 - i0, steps[8 * k:8 * (k + n - 1)])))
-            rows.append((k, n, m, i0 - ib0, s0, s1, max(1.0, abs(s_at[k + n - 1]), abs(s1)),
-                         max(1.0, abs(T[k + n - 1])), max(right0 - 1, 0), left1))
-        k, n, m, j0, s0, s1, mag_s, mag_t, low, left1 = (np.array(c) for c in zip(*rows))
+            keys.append((tuple(parts[i0_ - ib0:i1_ + 1 - ib0]),
+                         None if tool is None else np.asarray(tool, dtype=float).tobytes(), held[1], n_, where,
+                         moved[k_:k_ + n_ - 1], (g_at[k_] + ib0 - i0_, steps[8 * k_:8 * (k_ + n_ - 1)])))
+        j0, low = i0 - ib0, np.maximum(right0 - 1, 0)
+        mag_s = np.maximum(np.maximum(1.0, np.abs(S[k + n - 1])), np.abs(s1))
+        mag_t = np.maximum(1.0, np.abs(T[k + n - 1]))
         # every ask's compared values (`inputs`: S - s0, offsets - s0, s1 - s0, durations, SD) one
         # after the other in one flat array: five ranges of one source array per ask
         ns, no = len(S), len(offs)
@@ -238,7 +243,9 @@ class Slot:
         self.items: list = []
 
 
-def noise(prof, lo: int, k1: int, s_max: float) -> tuple[float, float]:
-    """(positions, path speeds): how far a repetition's inputs may lie from these (`Repeats`)."""
+def noise(prof, lo: int, k1: int, s_max: float, SD=None, base: int = 0) -> tuple[float, float]:
+    """(positions, path speeds): how far a repetition's inputs may lie from these (`Repeats`).
+    `SD`: the profile's path speeds from breakpoint `base` (a window of them), else its own."""
     hi = min(k1, len(prof.S) - 1)
-    return POS_TOL * max(1.0, abs(s_max)), SPEED_TOL * max(1.0, max(prof.SD[lo:hi + 1]))
+    SD = prof.SD if SD is None else SD
+    return POS_TOL * max(1.0, abs(s_max)), SPEED_TOL * max(1.0, max(SD[lo - base:hi + 1 - base]))

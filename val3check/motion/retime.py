@@ -41,25 +41,36 @@ def piece_key(path, a: float, b: float, limits, memo: dict | None = None) -> tup
         return None
     parts: list = [round(b - a, 9)]
     i = i0
-    while i < len(path.spans):
-        off = path.offsets[i]
+    spans, offsets = path.spans, path.offsets
+    if memo is None:
+        memo = {}
+    while i < len(spans):
+        off = offsets[i]
         if off > b + 1e-12:
             break
-        sp = path.spans[i]
+        sp = spans[i]
         lo, hi = max(a - off, 0.0), min(b - off, sp.length)
         if hi < lo - 1e-12:
             break
-        if memo is None:
-            owners = tuple((round(k_start, 9), _limits_key(limits(key))) for key, k_start in sp.owners)
-        else:
-            owners = tuple((round(k_start, 9), memo[key] if key in memo else memo.setdefault(key, _limits_key(limits(key))))
-                           for key, k_start in sp.owners)
+        owners = tuple([(round(k_start, 9), memo.get(key) or _owner_limits(memo, limits, key))
+                        for key, k_start in sp.owners])
         tool = None if sp.tool is None else sp.tool.tobytes()
         # positions in the span to 1e-9 path units (1e-9 degrees of joint motion): the same stop of a
         # repeated motion lies at another global position, found by sums that differ in the last bits
         parts.append((id(sp.geom), sp.a, sp.b, tool, sp.smooth, owners, round(lo, 9), round(hi, 9)))
         i += 1
     return tuple(parts)
+
+
+def _owner_limits(memo: dict, limits, key) -> tuple:
+    """The limits key of the command `key` (`piece_key`), kept in `memo` by command and by Limits
+    object (the queue shares one per distinct mdesc: mdesc.CommandLimits)."""
+    lim = limits(key)
+    held = memo.get(("limits", id(lim)))
+    if held is None or held[0] is not lim:
+        held = memo[("limits", id(lim))] = (lim, _limits_key(lim))
+    memo[key] = held[1]
+    return held[1]
 
 
 def _limits_key(lim: Limits) -> tuple:
@@ -113,20 +124,29 @@ class Stretches:
             rests_in.append(np.flatnonzero(~(sd_[1:min(hi, n - 2) - lo + 1] > 0.0)) + lo + 1)
             del s_, sd_
         rests = np.append(np.concatenate(rests_in) if rests_in else np.zeros(0, dtype=np.intp), n - 1)
+        ends: list = []  # (i, j) per stretch
         i = 0
         while True:
             i = _next_true(leaves, i)
             if i < 0:
                 break
             j = int(rests[rests.searchsorted(i, "right")])
-            key = piece_key(planner.path, S[i], S[j], queue.limits.of, memo)
-            self.spans.append((i, j, keys.setdefault(key, key)))
+            ends.append((i, j))
             i = j
-        # each stretch's ends read once (History reads through Python), for `place` and every factor
-        self.starts = [T[i] for i, _, _ in self.spans]
-        self.ends = [T[j] for _, j, _ in self.spans]
-        self.s_starts = [S[i] for i, _, _ in self.spans]
-        self.s_ends = [S[j] for _, j, _ in self.spans]
+        # each stretch's ends read once, a block of the profile at a time (a History reads old
+        # values one by one through its chunk cache), for the keys, `place` and every factor
+        at = np.array(ends, dtype=np.intp).reshape(-1, 2).ravel()
+        t_at, s_at = np.empty(len(at)), np.empty(len(at))
+        for lo in range(0, n, _BLOCK):
+            r0, r1 = at.searchsorted((lo, lo + _BLOCK)).tolist()  # (the ends are in order)
+            if r1 > r0:
+                t_at[r0:r1] = window(T, lo, lo + _BLOCK)[at[r0:r1] - lo]
+                s_at[r0:r1] = window(S, lo, lo + _BLOCK)[at[r0:r1] - lo]
+        self.starts, self.ends = t_at[0::2].tolist(), t_at[1::2].tolist()
+        self.s_starts, self.s_ends = s_at[0::2].tolist(), s_at[1::2].tolist()
+        for (i, j), a, b in zip(ends, self.s_starts, self.s_ends):
+            key = piece_key(planner.path, a, b, queue.limits.of, memo)
+            self.spans.append((i, j, keys.setdefault(key, key)))
 
     def places(self, times: list) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """`place(t)` of many times (None: nan) as arrays (t, k, rel; rel nan at rest), the state at

@@ -113,7 +113,8 @@ def arm_run(machine: Machine, diags: list[Diagnostic]) -> ArmRun | None:
         busy = sum(b - a for a, b in trajectory.moving(end_s))
         idle = max(end_s - busy, 0.0)
     scene = arm_scene(arm.model, arm.initial_joints, machine.main.globals if machine.main is not None else {})
-    tools = [ToolUse(*e, tcp_matrix=_matrix(e.tcp_in_flange)) for e in machine.recorder.tool_events]
+    poses: dict = {}  # one read-only matrix per distinct tool pose (a cyclic cell repeats a few)
+    tools = [ToolUse(*e, tcp_matrix=_shared_matrix(e.tcp_in_flange, poses)) for e in machine.recorder.tool_events]
     spread = None
     if getattr(arm.model, "accelerations_assumed", False):  # issue 23: the range if they are off
         spread = acceleration_range(machine, q, queue_records, diags)
@@ -211,6 +212,18 @@ def _trsf(m) -> tuple[float, ...]:
     r = tuple(float(m[i][j]) for i in range(3) for j in range(3))
     rx, ry, rz = angles_of(r)
     return (float(m[0][3]), float(m[1][3]), float(m[2][3]), rx, ry, rz)
+
+
+def _shared_matrix(trsf, poses: dict) -> Any:
+    """`_matrix(trsf)`, read-only, made once per pose in `poses` (keyed by its bits: -0.0 is not 0.0)."""
+    import numpy as np
+
+    key = np.asarray(trsf, dtype=float).tobytes()
+    m = poses.get(key)
+    if m is None:
+        m = poses[key] = _matrix(trsf)
+        m.flags.writeable = False
+    return m
 
 
 def _matrix(trsf) -> Any:

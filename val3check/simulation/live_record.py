@@ -10,8 +10,9 @@ there wholly behind the arm (resetMotion cuts the path where the arm stops). Com
 recording order: a cancelled command (its record reads the profile as the run ends) and everything
 after it wait for the end of the run, as do the commands not final by then. The records are made
 by the same `RecordMaker`, in the same order, as after the run; the blocks not full are evaluated
-and the near ties decided every RECORD_BLOCK commands (a record's figures do not depend on the
-commands evaluated with it): the same bits (tests/interpretation/test_live_record.py).
+every RECORD_BLOCK commands, the near ties decided once DECIDE_BLOCK of them wait (a record's
+figures do not depend on the commands evaluated with it): the same bits
+(tests/interpretation/test_live_record.py).
 
 Commands are released from the history only while nothing of chapter 11 reads it by index
 (arm_layers.Residuals, alteration.py, compliance.py): once one does, the history is kept whole
@@ -25,9 +26,11 @@ from then on.
 
 from __future__ import annotations
 
+import bisect
 from typing import Any
 
 from ..motion import trajectory
+from ..motion.history import History
 from ..motion.motion_records import RECORD_BLOCK, MotionRecord, RecordMaker
 
 RELEASE_AT = 256  # commands taken before the history is trimmed (a trim moves what is left)
@@ -73,6 +76,9 @@ class LiveRecord:
         self._wait = None
         prof, path = queue.planner.profile, queue.path
         S, T = prof.S, prof.T
+        # the chunk being written, read in place (History; T is chunked as S): the hot case
+        tail = S.tail if S.__class__ is History and S.tail_len else None
+        offsets, spans = path.offsets, path.spans
         behind = None  # where the arm is at `final` (found when first needed)
         while i < len(history):
             command = history[i]
@@ -81,20 +87,30 @@ class LiveRecord:
                 place = command.placement
                 if place.s_begin is not None:
                     s = max(place.s_begin, place.s_end)
-                    k = trajectory.bisect_right(S, s + 1e-9 * max(1.0, abs(s)))
-                    if k >= len(S):
-                        break
-                    if T[k] > final:
-                        self._wait = (command, T[k])  # (the breakpoint is there: only its time can come)
+                    x = s + 1e-9 * max(1.0, abs(s))
+                    if tail is not None and tail[0] <= x:  # (mostly)
+                        m = bisect.bisect_right(tail, x, 0, S.tail_len)
+                        if m >= S.tail_len:
+                            break
+                        t_k, s_k = T.tail[m], tail[m]
+                    else:
+                        k = trajectory.bisect_right(S, x)
+                        if k >= len(S):
+                            break
+                        t_k, s_k = T[k], S[k]
+                    if t_k > final:
+                        self._wait = (command, t_k)  # (the breakpoint is there: only its time can come)
                         break
                     if behind is None:
                         behind = prof.state(final)[0]
-                    j, _ = path.locate(S[k])
-                    if j >= 0 and path.offsets[j] + path.spans[j].length > behind:
-                        # a resetMotion could still cut that span: not before the arm leaves it
-                        t = prof.time_at(path.offsets[j] + path.spans[j].length)
-                        self._wait = None if t is None else (command, t)
-                        break
+                    if spans:  # (path.locate)
+                        j = min(max(bisect.bisect_right(offsets, s_k) - 1, 0), len(spans) - 1)
+                        end = offsets[j] + spans[j].length
+                        if end > behind:
+                            # a resetMotion could still cut that span: not before the arm leaves it
+                            t = prof.time_at(end)
+                            self._wait = None if t is None else (command, t)
+                            break
             elif state != "failed":
                 self.blocked = state == "cancelled"
                 break
@@ -102,7 +118,7 @@ class LiveRecord:
             i += 1
         self.cursor = i
         if len(self.kept) - self._flushed >= RECORD_BLOCK:  # their records made now, not after the run
-            self.maker.flush()
+            self.maker.flush(ties=False)
             self._flushed = len(self.kept)
         if i >= RELEASE_AT and self.releasing:
             # what chapter 11 does to the arm stays in its state (the layers, the alterable keys,
