@@ -243,7 +243,9 @@ class World:
         in force, the static set, the tool and the carried parts (each body by the solid of the cell
         it was made from and its pose), and the pairs allowed to touch."""
         links = getattr(self.arm.links, "current", self.arm.links)  # setDH (11.4): the geometry in force
-        scene = self.per_scene("key", self._scene_id)
+        version, scene = self._scene_cache.get("key", (-1, None))
+        if version != self.version:  # `per_scene`, inline: asked at every motion
+            scene = self.per_scene("key", self._scene_id)
         last = self._key
         stamp = self._allowed.stamp
         if last[0] is links and last[1] == scene and last[2] == stamp:
