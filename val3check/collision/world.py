@@ -92,7 +92,7 @@ class World:
         self.static_lo = np.zeros((0, 3))
         self.static_hi = np.zeros((0, 3))
         self._placed_obstacles: list[Body] = []
-        self._boxes: dict[int, tuple] = {}  # id of a static body -> (its pose then, its box): `_set_static`
+        self._boxes: dict[int, tuple] | tuple = {}  # id of a static body -> (its pose then, its box): `_set_static`
         self._frames_read: dict | None = None
         self.version = 0
         self._scene_cache: dict[str, tuple[int, Any]] = {}
@@ -189,10 +189,12 @@ class World:
         self.version += 1
         if given is not None:
             self.static_lo, self.static_hi = given
-            self._boxes = {id(b): (b.pose, lo, hi) for b, lo, hi in zip(bodies, *given)}
+            self._boxes = (bodies, [b.pose for b in bodies], given)  # made a dict when next asked (most are not)
         elif bodies:
             # a body's box is computed again only when it was placed again (each place() makes a new pose)
             known = self._boxes
+            if isinstance(known, tuple):
+                known = {id(b): (pose, lo, hi) for b, pose, lo, hi in zip(known[0], known[1], *known[2])}
             boxes = []
             for b in bodies:
                 hit = known.get(id(b))
