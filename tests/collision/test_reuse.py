@@ -196,6 +196,28 @@ def test_the_same_motion_at_another_time_and_path_position_has_the_same_key_and_
     assert mid.key != own[2].key
 
 
+def test_motions_keyed_in_blocks_are_those_keyed_one_by_one():
+    from val3check.simulation.own_clock import own_clocks
+
+    out_ = JointLine([0, 0, 90, 0, 45, 0], [40, 10, 80, 5, 50, 30])
+    back = JointLine(out_.q1, out_.q0)
+    moves = [(out_, 100.0), (back, 100.0), (out_, 100.0), (back, 60.0)] * 3
+    traj, spans = _run_of(moves, [0.3 + 1.9031 * k for k in range(len(moves))])
+    windows = [*spans, (spans[1][0] + 0.1, spans[1][1]), (spans[2][0], spans[2][0])]  # part of one; none
+    for block in (1, 3, 256):
+        with pytest.MonkeyPatch.context() as mp:
+            mp.setattr("val3check.simulation.own_clock.BLOCK", block)
+            keyed = list(own_clocks(traj, windows))
+        for own, (a, b) in zip(keyed, windows, strict=True):
+            one = own_clock(traj, a, b)
+            assert own.key == one.key and own.times.tobytes() == one.times.tobytes()
+            assert own.joints.tobytes() == one.joints.tobytes()
+            assert own.q_at(0.0123).tobytes() == one.q_at(0.0123).tobytes()
+    keys = [own.key for own in keyed]
+    assert keys[:4] == keys[4:8] and len(set(keys[:4])) == 3  # out, back, out, back slower: each cycle alike
+    assert len(set(keys[-2:]) | set(keys[:4])) == 5  # a part of a motion, an empty one: others
+
+
 def test_a_trajectory_the_layers_of_chapter_11_move_has_no_key_and_is_sampled_as_it_is():
     line = JointLine([0, 0, 90, 0, 45, 0], [40, 10, 80, 5, 50, 30])
     traj, spans = _run_of([(line, 100.0)], [0.3])
@@ -234,7 +256,7 @@ def test_the_bundled_pick_and_place_reuses_checks_and_finds_what_fresh_checks_fi
     import sys
     from pathlib import Path as FsPath
 
-    from val3check.simulation import collision_run
+    from val3check.simulation import collision_run, value_watch
 
     root = FsPath(__file__).resolve().parents[2]
     sys.path.insert(0, str(root / "tests"))
@@ -286,7 +308,7 @@ def test_the_bundled_pick_and_place_reuses_checks_and_finds_what_fresh_checks_fi
     monkeypatch.setattr(World, "_part_bodies", made_anew)
     monkeypatch.setattr(World, "_grip_key", lambda self, *a: object())
     monkeypatch.setattr(collision_run.ValueWatch, "reading", lambda self, t: None)
-    monkeypatch.setattr(collision_run, "_chain", lambda objects: None)
+    monkeypatch.setattr(value_watch, "_chain", lambda objects: None)
     fresh = sim()
     assert grips[-1].grips_reused == 0
     a, b = reused.collision, fresh.collision

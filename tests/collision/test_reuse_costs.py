@@ -247,3 +247,22 @@ def test_the_timelines_tool_matrix_is_converted_again_for_another_value():
     watch.value = moved
     log._take("brick", 1.0)
     assert np.array_equal(log.spans[-1]["pose"], log._matrix(moved))
+
+
+def test_the_gap_between_boxes_is_the_sum_of_squares_the_reduction_gave_bit_for_bit():
+    from val3check.collision.bodies import aabb_gap
+
+    def summed(lo_a, hi_a, lo_b, hi_b):  # as it was: numpy's reduction over the last axis
+        gap = np.maximum(0.0, np.maximum(lo_a - hi_b, lo_b - hi_a))
+        return np.sqrt((gap * gap).sum(axis=-1))
+
+    rng = np.random.default_rng(29)
+    for sa, sb in [((3,), (3,)), ((5, 3), (5, 3)), ((7, 1, 3), (1, 9, 3)), ((40, 12, 3), (1, 12, 3)), ((60, 20, 3), (60, 20, 3))]:
+        for _ in range(20):
+            lo_a, lo_b = rng.normal(0.0, 400.0, sa), rng.normal(0.0, 400.0, sb)
+            hi_a, hi_b = lo_a + rng.random(sa) * 300.0, lo_b + rng.random(sb) * 300.0
+            for a in (lo_a, np.moveaxis(np.ascontiguousarray(np.moveaxis(lo_a, -1, 0)), 0, -1)):  # strided too
+                assert aabb_gap(a, hi_a, lo_b, hi_b).tobytes() == summed(a, hi_a, lo_b, hi_b).tobytes()
+    one = np.zeros(3), np.ones(3)
+    assert aabb_gap(*one, np.array([0.5, 0.5, 0.5]), np.array([2.0, 2.0, 2.0])) == 0.0  # overlapping
+    assert aabb_gap(*one, np.array([4.0, 5.0, 0.0]), np.array([5.0, 6.0, 1.0])) == 5.0  # 3, 4 apart: 5

@@ -86,7 +86,8 @@ def _boxes(w) -> tuple:
 
 
 def test_a_replayed_open_or_close_leaves_the_static_boxes_a_fresh_computation_gives():
-    chk = checker(_grip_cell(), frames={"fBall": BALL}, tools={"tTool": TOOL, "tOther": TOOL})
+    frames = {"fBall": BALL}
+    chk = checker(_grip_cell(), frames=frames, tools={"tTool": TOOL, "tOther": TOOL})
     w = chk.world
     seen = []
     chk.gripper("tTool", "close", 0.5, joints=_q(PICK))
@@ -102,3 +103,9 @@ def test_a_replayed_open_or_close_leaves_the_static_boxes_a_fresh_computation_gi
     assert seen[0:4] == seen[4:8] == seen[12:16] and len(set(seen[:4])) == 3  # carried twice: the obstacles alone
     chk.clear_parts("brick")  # after replays, the boxes kept from them: the same numbers
     assert (w.static_lo.tobytes(), w.static_hi.tobytes()) == _boxes(w)
+    for cycle in range(2):  # after a replay, the obstacle placed again: its box made again, the part's kept
+        chk.gripper("tTool", "close", 100.0 + cycle, joints=_q(PICK))
+        chk.gripper("tTool", "open", 100.5 + cycle, joints=_q(PLACE))
+        frames["fBall"] = (BALL[0] + 40.0 * (cycle + 1), *BALL[1:])
+        chk.refresh(101.0 + cycle)
+        assert (w.static_lo.tobytes(), w.static_hi.tobytes()) == _boxes(w) and len(w.static) > 1

@@ -199,9 +199,14 @@ def test_the_memory_budget_counts_too():
 
 
 def test_the_collision_checks_stop_at_the_runs_budget(tmp_path):
-    # 1 ms per reading: the simulation ends at 3/4 of the 2 s budget (1,500 readings), then the
-    # checks read the clock once per motion and stop when the 2,000th reading spends the budget
-    clock = StepClock(0.001)
+    # 1 ms per reading: the simulation ends at 3/4 of the 2 s budget (1,500 readings); then 20 ms
+    # per reading: the checks read the budgets every BUDGET_EVERY motions (and before each sweep)
+    # and stop at about the 25th reading after the simulation, with about 800 of 1,500 motions checked
+    class Slower(StepClock):
+        def __call__(self) -> float:
+            return super().__call__() + max(self.reads - 1500, 0) * 0.019
+
+    clock = Slower(0.001)
     r = sim(tmp_path, LOOP, globals_=LOOP_GLOBALS, robot=TX2_60, duration=100_000, max_wall=2.0, wall_clock=clock,
             collisions=True)
     assert r.end_reason == "wall-clock"
@@ -210,6 +215,26 @@ def test_the_collision_checks_stop_at_the_runs_budget(tmp_path):
     done, total = (int(x) for x in cut[0].message.split(": ")[1].split(" motions")[0].split(" of "))
     assert 0 < done < total == len(r.motion.motions)
     assert len(r.collision.by_motion) == done
+
+
+def test_the_checks_read_the_budgets_before_each_sweep_and_every_few_reused_motions(loop_run):
+    from val3check.simulation.collision_run import BUDGET_EVERY, ValueWatch, check_run
+
+    asked = []
+    run, diags = check_run(loop_run.motion, None, ValueWatch(None), TX2_60, max_wall=3600.0, app_path="a.pjx",
+                           out_of_budget=lambda: asked.append(len(asked)))
+    n = len(loop_run.motion.motions)
+    swept = n - run.reused
+    assert not diags and n > BUDGET_EVERY and 0 < swept < n
+    # one before the arm's solids are read, one at each BUDGET_EVERY-th motion, one before each other
+    # sweep: at most those
+    assert 1 + -(-n // BUDGET_EVERY) <= len(asked) <= 1 + -(-n // BUDGET_EVERY) + swept
+    # spent at the first sweep after the first motion: the check stops before it
+    asked.clear()
+    run, diags = check_run(loop_run.motion, None, ValueWatch(None), TX2_60, max_wall=3600.0, app_path="a.pjx",
+                           out_of_budget=lambda: asked.append(0) or ("over" if len(asked) > 2 else None))
+    done = int(diags[0].message.split(": ")[1].split(" of ")[0])
+    assert [d.code for d in diags] == ["R037"] and 0 < done < BUDGET_EVERY and len(run.by_motion) == done
 
 
 def test_no_collision_check_starts_once_the_budget_is_spent(loop_run):

@@ -307,8 +307,13 @@ def _hull(v: np.ndarray, f: np.ndarray):
 
 def aabb_gap(lo_a: np.ndarray, hi_a: np.ndarray, lo_b: np.ndarray, hi_b: np.ndarray) -> np.ndarray:
     """Distance between world-aligned boxes (0 when they overlap), broadcast over leading axes."""
-    gap = np.maximum(0.0, np.maximum(lo_a - hi_b, lo_b - hi_a))
-    return np.sqrt((gap * gap).sum(axis=-1))
+    gap = np.maximum(lo_a - hi_b, lo_b - hi_a)
+    np.maximum(gap, 0.0, out=gap)
+    gap *= gap
+    # (x² + y²) + z²: the order `.sum(axis=-1)` adds three in (the same bits), without its reduction
+    d = gap[..., 0] + gap[..., 1]
+    d += gap[..., 2]
+    return np.sqrt(d, out=d) if d.ndim else np.sqrt(d)
 
 
 def local_samples(geometry: str, size: tuple[float, ...], vertices) -> np.ndarray:

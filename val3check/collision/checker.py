@@ -131,7 +131,7 @@ class CollisionChecker:
             left = set(self.world.allowed_names())
             if len(self._results) >= REUSE:
                 self._results.clear()  # bounded: a cyclic program fills it again within a cycle or two
-            self._results[full] = (own, [p for p in allowed if p not in left], last_q)
+            self._results[full] = (own, [p for p in allowed if p not in left], last_q, own.end)
         self.world.last_q = last_q
         self.world.time = start + float(T[-1])
         return shifted(own, motion, start)
@@ -144,12 +144,12 @@ class CollisionChecker:
         hit = None if full is None else self._results.get(full)
         if hit is None:
             return None
-        own, apart, last_q = hit
+        own, apart, last_q, end = hit
         world = self.world
         if apart:
             world.forget_allowed(apart)  # what the sweep ended in the scene
         world.last_q = last_q
-        world.time = start + own.end
+        world.time = start + end
         self.reused += 1
         return ShiftedReport(motion, own, start)
 

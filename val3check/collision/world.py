@@ -93,7 +93,7 @@ class World:
         self.static_lo = np.zeros((0, 3))
         self.static_hi = np.zeros((0, 3))
         self._placed_obstacles: list[Body] = []
-        self._boxes: dict[int, tuple] = {}  # id of a static body -> (its pose then, its box): `_set_static`
+        self._boxes: dict[int, tuple] | tuple = {}  # id of a static body -> (its pose then, its box): `_set_static`
         self._frames_read: dict | None = None
         self.version = 0
         self._scene_cache: dict[str, tuple[int, Any]] = {}
@@ -190,10 +190,12 @@ class World:
         self.version += 1
         if given is not None:
             self.static_lo, self.static_hi = given
-            self._boxes = {id(b): (b.pose, lo, hi) for b, lo, hi in zip(bodies, *given)}
+            self._boxes = (bodies, [b.pose for b in bodies], given)  # made a dict when next asked (most are not)
         elif bodies:
             # a body's box is computed again only when it was placed again (each place() makes a new pose)
             known = self._boxes
+            if isinstance(known, tuple):
+                known = {id(b): (pose, lo, hi) for b, pose, lo, hi in zip(known[0], known[1], *known[2])}
             boxes = []
             for b in bodies:
                 hit = known.get(id(b))
@@ -244,7 +246,9 @@ class World:
         in force, the static set, the tool and the carried parts (each body by the solid of the cell
         it was made from and its pose), and the pairs allowed to touch."""
         links = getattr(self.arm.links, "current", self.arm.links)  # setDH (11.4): the geometry in force
-        scene = self.per_scene("key", self._scene_id)
+        version, scene = self._scene_cache.get("key", (-1, None))
+        if version != self.version:  # `per_scene`, inline: asked at every motion
+            scene = self.per_scene("key", self._scene_id)
         last = self._key
         stamp = self._allowed.stamp
         if last[0] is links and last[1] == scene and last[2] == stamp:

@@ -27,6 +27,7 @@ too, from the trajectory itself, without a key.
 from __future__ import annotations
 
 import bisect
+import functools
 import itertools
 import math
 from collections.abc import Callable, Iterable, Iterator
@@ -151,10 +152,17 @@ def _block(traj: Trajectory, windows: list[tuple[float, float]]) -> Iterator[Own
     rows[0] -= starts[seg]
     rows[1] -= base[seg]
     rows /= _QUANTA
-    k = np.rint(rows, out=rows).astype(np.int64)
+    # a motion's rows end to end in one buffer (time, position, speed per breakpoint): its key is a
+    # slice of the bytes, made with none of the arrays of one motion
+    k = np.ascontiguousarray(np.rint(rows, out=rows).astype(np.int64).T)
+    raw = k.tobytes()
+    size = k.itemsize * 3
+    duration = (k[last, 0] * Q_T).tolist()
     spans = path.spans
-    for a, z, j0, j1 in zip(first.tolist(), last.tolist(), i0.tolist(), i1.tolist()):
-        yield _own(spans[j0:j1 + 1], k[:, a:z + 1])
+    for a, z, j0, j1, d in zip(first.tolist(), last.tolist(), i0.tolist(), i1.tolist(), duration):
+        sp = spans[j0:j1 + 1]
+        yield Own((tuple([(x.geom, x.a, x.b) for x in sp]), raw[a * size:(z + 1) * size]), d,
+                  make_q_at=functools.partial(_q_at_rows, sp, k, a, z + 1))
 
 
 def _states(T: np.ndarray, S: np.ndarray, SD: np.ndarray, t: np.ndarray, head: tuple | None = None,
@@ -218,9 +226,15 @@ def _keyed(traj: Trajectory, start: float, end: float) -> Own:
 
 def _own(spans: list, k: np.ndarray) -> Own:
     """The motion along `spans` (laid end to end from 0) by its profile `k` (3, N): times,
-    positions and speeds in Q_T, Q_S and Q_SD."""
-    key = (tuple([(sp.geom, sp.a, sp.b) for sp in spans]), k.tobytes())
+    positions and speeds in Q_T, Q_S and Q_SD (the key holds them breakpoint by breakpoint, as
+    `_block` makes it)."""
+    key = (tuple([(sp.geom, sp.a, sp.b) for sp in spans]), np.ascontiguousarray(k.T).tobytes())
     return Own(key, float(k[0, -1] * Q_T), make_q_at=lambda: _q_at(spans, k))
+
+
+def _q_at_rows(spans: list, k: np.ndarray, a: int, z: int) -> Callable:
+    """`_q_at` of the breakpoints a to z of `k` (N, 3), `_block`'s rows."""
+    return _q_at(spans, k[a:z].T)
 
 
 def _q_at(spans: list, k: np.ndarray) -> Callable:
