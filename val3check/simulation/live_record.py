@@ -136,6 +136,27 @@ class LiveRecord:
         self.kept.append((command.request, g.q_start, g.q_end, command.state))
         self.contexts.append(arm.contexts.pop(command.key, ()))
 
+    def settle(self, arm: Any, queue: Any, now_s: float) -> None:
+        """Before setDH changes the geometry (11.4): it "attend que le mouvement soit vide", so every
+        command recorded so far has ended and nothing can change what its record reads; their
+        records are made now, with the geometry they ran in (made later, they would read the new
+        one). No later command is taken for a repeat of them: repeats are keyed by the path's
+        geometry objects (record_repeats.py), which setDH makes anew (kin.Reuse cleared)."""
+        if queue is not self.queue:
+            self._bind(queue)
+        if self._records is not None:
+            return
+        self.take(arm, queue)
+        history = queue.history
+        reached = queue.trajectory.profile.state(now_s)[0]
+        for command in history[self.cursor:]:  # the last ones (no breakpoint after them yet), a cancelled one
+            self.maker.add(command, now_s, reached)
+            self.kept.append((command.request, command.geometry.q_start, command.geometry.q_end, command.state))
+            self.contexts.append(arm.contexts.pop(command.key, ()))
+        self.cursor, self.blocked, self._wait = len(history), False, None
+        self.maker.flush()
+        self._flushed = len(self.kept)
+
     def records(self, arm: Any, queue: Any, end_s: float) -> list[MotionRecord]:
         """Every command's record after the run (ended at queue time `end_s`): those taken, then the
         rest of the history made as `motion_records` makes them. Once: asked again with the same

@@ -163,6 +163,7 @@ class MovingArm(ModelArm):
         self._kin = {}
         q = self._queue
         if q is not None:
+            self.live.settle(self, q, self.queue_time(round(t * US)))  # the records so far: the old geometry
             q.model = model
             q.kin.use_geometry(model)
         self.geometries.append((t, model))
