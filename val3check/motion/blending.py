@@ -106,6 +106,11 @@ def candidate(kin, previous, command, limits_of) -> Candidate | None:
     curves = (pg.joint_curve, pg.tcp_curve, cg.joint_curve, cg.tcp_curve)
     # the limits choose between shapes only when there are several (`blend_time`)
     limits = (_limits_key(limits_of(previous)), _limits_key(limits_of(command))) if len(BLEND_SHAPES) > 1 else ()
+    if previous.cls is not None and command.cls is not None:
+        # the commands' classes (queued.QueuedCommand.cls) hold their curves, reach and tools
+        key = ("blend", previous.cls, command.cls, previous.placement.lam_leave, previous.placement.blend, limits)
+        hit = kin.reuse.get(key)
+        return hit[0] if hit is not None else kin.reuse.keep(key, (_candidate(kin, previous, command, limits_of),))[0]
     key = ("blend", *map(id, curves), previous.placement.lam_leave, previous.request.mdesc.reach,
            previous.placement.blend, _value(previous.tool), _value(command.tool), limits)
     hit = kin.reuse.get(key)

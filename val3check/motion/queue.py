@@ -102,6 +102,7 @@ class MotionQueue:
         self.completed = 0  # commands of the program done (a counter: the progress display asks often)
         self._keys = 0
         self._by_key: dict[int, QueuedCommand] = {}
+        self._classes: dict[tuple, tuple] = {}  # `_class_of`
         self._done: tuple = ()  # (planner.changes, command key, its end, when it gets there): `_done_time`
         self._next: tuple = ()  # (what next_event's answer depends on, the time asked, the answer): `next_event`
         self._told = 0.0  # the latest time the queue was advanced to (`final_before`)
@@ -189,9 +190,23 @@ class MotionQueue:
         """A command with the next key, its limits known by that key."""
         self._keys += 1
         command = QueuedCommand(self._keys, None, request, geometry)
+        command.cls = self._class_of(request, geometry)
         self._by_key[command.key] = command
         self.limits.register(command.key, request.mdesc, request.reduced)
         return command
+
+    def _class_of(self, request: Request, geometry: Geometry) -> int:
+        """The command's class (QueuedCommand.cls): one number per kind, curves (by the objects, kept
+        alive by the table so that their ids name them), start, end, tool, mdesc and reduced speed."""
+        tool = request.tool
+        values = (request.kind, id(geometry.joint_curve), id(geometry.tcp_curve), geometry.q_start.tobytes(),
+                  geometry.q_end.tobytes(), None if tool is None else tool.tobytes(), request.mdesc, request.reduced)
+        hit = self._classes.get(values)
+        if hit is None:
+            if len(self._classes) >= 4096:
+                self._classes.clear()
+            hit = self._classes[values] = (trial_memo.number(), geometry.joint_curve, geometry.tcp_curve)
+        return hit[0]
 
     def _add_connection(self, q_s, target, now, source) -> None:
         """resetMotion(jStart): a point-to-point move to jStart at reduced speed first (10.1.3)."""
@@ -247,11 +262,18 @@ class MotionQueue:
         not force the replan due (the profile up to now is the current one)."""
         if now > self._told:
             self._told = now
-        if self.planner.due is not None and not (lenient and self.planner.merges(now)):
-            self.planner.flush()
-        while self.pending:
-            command = self.pending[0]
-            t = self._done_time(command)
+        planner = self.planner
+        if planner.due is not None and not (lenient and planner.merges(now)):
+            planner.flush()
+        pending = self.pending
+        while pending:
+            command = pending[0]
+            done = self._done  # (most cycles: the first command's kept end time, still ahead)
+            if done and done[1] == command.key and done[0] == planner.changes and \
+                    done[2] == command.placement.s_end and trial_memo.REUSE:
+                t = done[3]
+            else:
+                t = self._done_time(command)
             if t is None or t > now + 1e-12:
                 break
             command.state = "done"
@@ -259,7 +281,7 @@ class MotionQueue:
             if command.id is not None:
                 self.pos_id = command.id + 1
                 self.completed += 1
-            self.pending.pop(0)
+            pending.pop(0)
             self._check_singularity(command)
 
     def _check_singularity(self, command: QueuedCommand) -> None:
