@@ -243,6 +243,13 @@ class History:
 
     def extend(self, values) -> None:
         """Add `values` (doubles) at the end."""
+        if values.__class__ is np.ndarray and values.dtype == _F8 and values.ndim == 1:
+            tl, total = self.tail_len, len(values)
+            if tl and tl + total <= len(self.tail):  # (most plans: room in the tail, copied in place)
+                self.tail[tl:tl + total] = array("d", values.tobytes())
+                self.tail_len = tl + total
+                self._len += total
+                return
         v = np.asarray(values if isinstance(values, (np.ndarray, array)) else list(values), dtype=float).ravel()
         at, total = 0, len(v)
         while at < total:
@@ -357,6 +364,9 @@ class History:
 
     def __repr__(self) -> str:
         return f"History({len(self)} doubles, {self._held} bytes in its file)"
+
+
+_F8 = np.dtype(float)  # native doubles: what `extend` copies as bytes
 
 
 def _new_chunk(n: int) -> array:

@@ -64,6 +64,7 @@ from .trajectory import Trajectory
 
 CAPACITY = 16  # commands recorded and not yet completed (10.2.1: the memory is limited)
 SETTLE_S = 0.05  # isSettled: at rest for 50 ms (perfect tracking: the commanded position)
+CLASSES = 4096  # command classes kept (`_class_of`); the table is emptied when full
 
 
 @dataclass
@@ -203,7 +204,7 @@ class MotionQueue:
                   geometry.q_end.tobytes(), None if tool is None else tool.tobytes(), request.mdesc, request.reduced)
         hit = self._classes.get(values)
         if hit is None:
-            if len(self._classes) >= 4096:
+            if len(self._classes) >= CLASSES:
                 self._classes.clear()
             hit = self._classes[values] = (trial_memo.number(), geometry.joint_curve, geometry.tcp_curve)
         return hit[0]
