@@ -278,6 +278,7 @@ class History:
 
     def _truncate(self, length: int) -> None:
         n, sh = self._n, self.shift
+        held = self._held
         keep = max((length + n - 1) >> sh, 1)  # chunks that still hold values (at least the tail)
         for c in range(keep, len(self._chunks)):
             if self._chunks[c] is None:
@@ -293,7 +294,7 @@ class History:
             self._release(n * 8)
         for c in [c for c in self._cache if c >= last]:  # their place in the file is written again
             del self._cache[c]
-        if self._file is not None:
+        if self._file is not None and self._held != held:  # (the file is `_held` long: shortened when chunks left it)
             self._file.truncate(self._held)
         self.tail = self._chunks[last]
         self.tail_start = last << sh
