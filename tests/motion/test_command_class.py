@@ -24,27 +24,32 @@ def _request(kind="movel", mdesc=BLEND, tool=None, reduced=False) -> Request:
     return Request(kind, None, 0.0, mdesc, tool, reduced=reduced)
 
 
+def _class(q, request: Request, geometry: Geometry) -> int:
+    """What MotionQueue._new_command gives a command of `request` and `geometry`."""
+    return q._class_of(request, geometry, q.limits.register(0, request.mdesc, request.reduced))
+
+
 def test_each_input_of_a_commands_class_changed_in_turn_gives_another_class():
     q = queue()
     line = JointLine(HOME, HOME + 30.0)
     tcp = object()
     geometry = Geometry(HOME.copy(), HOME + 30.0, line, tcp)
-    base = q._class_of(_request(), geometry)
-    assert q._class_of(_request(), Geometry(HOME.copy(), HOME + 30.0, line, tcp)) == base  # equal inputs
-    assert q._class_of(_request(mdesc=MDesc(blend="joint", leave=20.0, reach=20.0)), geometry) == base  # equal values
+    base = _class(q, _request(), geometry)
+    assert _class(q, _request(), Geometry(HOME.copy(), HOME + 30.0, line, tcp)) == base  # equal inputs
+    assert _class(q, _request(mdesc=MDesc(blend="joint", leave=20.0, reach=20.0)), geometry) == base  # equal values
     others = {
-        "kind": q._class_of(_request(kind="movec"), geometry),
-        "joint curve": q._class_of(_request(), Geometry(HOME.copy(), HOME + 30.0, JointLine(HOME, HOME + 30.0), tcp)),
-        "TCP curve": q._class_of(_request(), Geometry(HOME.copy(), HOME + 30.0, line, object())),
-        "start": q._class_of(_request(), Geometry(HOME + 1e-9, HOME + 30.0, line, tcp)),
-        "end": q._class_of(_request(), Geometry(HOME.copy(), HOME + 30.000001, line, tcp)),
-        "tool": q._class_of(_request(tool=TOOL), geometry),
-        "reduced": q._class_of(_request(reduced=True), geometry),
+        "kind": _class(q, _request(kind="movec"), geometry),
+        "joint curve": _class(q, _request(), Geometry(HOME.copy(), HOME + 30.0, JointLine(HOME, HOME + 30.0), tcp)),
+        "TCP curve": _class(q, _request(), Geometry(HOME.copy(), HOME + 30.0, line, object())),
+        "start": _class(q, _request(), Geometry(HOME + 1e-9, HOME + 30.0, line, tcp)),
+        "end": _class(q, _request(), Geometry(HOME.copy(), HOME + 30.000001, line, tcp)),
+        "tool": _class(q, _request(tool=TOOL), geometry),
+        "reduced": _class(q, _request(reduced=True), geometry),
     }
     for field in ("accel", "vel", "decel", "tvel", "rvel", "leave", "reach"):
-        others[field] = q._class_of(_request(mdesc=MDesc(**{"blend": "joint", "leave": 20.0, "reach": 20.0,
+        others[field] = _class(q, _request(mdesc=MDesc(**{"blend": "joint", "leave": 20.0, "reach": 20.0,
                                                                field: 7.0})), geometry)
-    others["blend"] = q._class_of(_request(mdesc=MDesc(blend="Cartesian", leave=20.0, reach=20.0)), geometry)
+    others["blend"] = _class(q, _request(mdesc=MDesc(blend="Cartesian", leave=20.0, reach=20.0)), geometry)
     for what, cls in others.items():
         assert cls != base, what
     assert len(set(others.values())) == len(others)
@@ -57,7 +62,7 @@ def test_class_numbers_are_never_given_twice_after_the_table_is_emptied(monkeypa
     seen, given, renumbered = {}, set(), 0
     for _ in range(3):  # 12 values through a table of 8: emptied; a value may get a new number, never an old one
         for k in range(12):
-            n = q._class_of(_request(), Geometry(HOME + k, HOME + 30.0, line, None))
+            n = _class(q, _request(), Geometry(HOME + k, HOME + 30.0, line, None))
             assert n == seen.get(k) or n not in given
             renumbered += k in seen and n != seen[k]
             seen[k] = n

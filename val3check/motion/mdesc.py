@@ -122,10 +122,12 @@ class CommandLimits:
         self._same: dict[tuple[MDesc, bool], tuple[MDesc, bool]] = {}
         self._limits: dict[int, Limits] = {}  # by id of the tuple `_same` keeps (never dropped)
 
-    def register(self, key: int, mdesc: MDesc, reduced: bool) -> None:
-        """A command's mdesc (`reduced`: a connection move, 10.1.3)."""
+    def register(self, key: int, mdesc: MDesc, reduced: bool) -> tuple:
+        """A command's mdesc (`reduced`: a connection move, 10.1.3); returns the one (mdesc, reduced)
+        tuple kept for these values (never dropped: its id names them, queue.MotionQueue._class_of)."""
         asked = (mdesc, reduced)
-        self._asked[key] = self._same.setdefault(asked, asked)
+        asked = self._asked[key] = self._same.setdefault(asked, asked)
+        return asked
 
     def of(self, key: int) -> Limits:
         """The limits of the command `key` at the current monitor speed."""

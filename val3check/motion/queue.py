@@ -104,6 +104,7 @@ class MotionQueue:
         self._keys = 0
         self._by_key: dict[int, QueuedCommand] = {}
         self._classes: dict[tuple, tuple] = {}  # `_class_of`
+        self._checked: dict[int, tuple] = {}  # id(mdesc) -> (it, MDesc.check's answer)
         self._done: tuple = ()  # (planner.changes, command key, its end, when it gets there): `_done_time`
         self._next: tuple = ()  # (what next_event's answer depends on, the time asked, the answer): `next_event`
         self._told = 0.0  # the latest time the queue was advanced to (`final_before`)
@@ -149,7 +150,13 @@ class MotionQueue:
         if self.failure is not None:
             raise MotionError(150, failure_text(self.failure))
         source = move.source
-        bad = move.mdesc.check()
+        md = move.mdesc
+        checked = self._checked.get(id(md))  # (a frozen value: checked once per object, kept alive here)
+        if checked is None or checked[0] is not md:
+            if len(self._checked) >= 64:
+                self._checked.clear()
+            checked = self._checked[id(md)] = (md, md.check())
+        bad = checked[1]
         if bad is not None:
             code, msg = bad
             f = Finding(F.MDESC, f"{move.kind}: {msg}", source, now, error=code,
@@ -191,17 +198,18 @@ class MotionQueue:
         """A command with the next key, its limits known by that key."""
         self._keys += 1
         command = QueuedCommand(self._keys, None, request, geometry)
-        command.cls = self._class_of(request, geometry)
         self._by_key[command.key] = command
-        self.limits.register(command.key, request.mdesc, request.reduced)
+        asked = self.limits.register(command.key, request.mdesc, request.reduced)
+        command.cls = self._class_of(request, geometry, asked)
         return command
 
-    def _class_of(self, request: Request, geometry: Geometry) -> int:
+    def _class_of(self, request: Request, geometry: Geometry, asked: tuple) -> int:
         """The command's class (QueuedCommand.cls): one number per kind, curves (by the objects, kept
-        alive by the table so that their ids name them), start, end, tool, mdesc and reduced speed."""
+        alive by the table so that their ids name them), start, end, tool, and mdesc and reduced speed
+        (`asked`: the one tuple CommandLimits keeps for their values, by its id)."""
         tool = request.tool
         values = (request.kind, id(geometry.joint_curve), id(geometry.tcp_curve), geometry.q_start.tobytes(),
-                  geometry.q_end.tobytes(), None if tool is None else tool.tobytes(), request.mdesc, request.reduced)
+                  geometry.q_end.tobytes(), None if tool is None else tool.tobytes(), id(asked))
         hit = self._classes.get(values)
         if hit is None:
             if len(self._classes) >= CLASSES:
