@@ -63,7 +63,10 @@ def distance_lambda(kin, command, d: float, from_end: bool) -> float | None:
     # a function of the command's curves (the same objects for a repeated motion), its tool, d
     # and the end it is measured from, on this geometry (kin.reuse)
     g = command.geometry
-    key = ("distance", id(g.joint_curve), id(curve), _value(command.tool), d, from_end)
+    if command.cls is not None:  # its class (queued.QueuedCommand.cls) holds its curves and tool
+        key = ("distance", command.cls, d, from_end)
+    else:
+        key = ("distance", id(g.joint_curve), id(curve), _value(command.tool), d, from_end)
     hit = kin.reuse.get(key) if trial_memo.REUSE else None
     if hit is not None and hit[0] is g.joint_curve and hit[1] is curve:
         return hit[2]
