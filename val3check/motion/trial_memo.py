@@ -2,7 +2,7 @@
 decides the same blend from the same state every cycle (issue 29).
 
     memo = TrialMemo(kin, timing, limits_of)
-    key = memo.key(spans, a, v0)          # None: reuse is off
+    key = memo.key(spans, a, v0, *named, owners=(k1, k2))   # None: reuse is off
     hit = memo.get(key, spans, check)     # the remembered answer, or None
     memo.keep(key, spans, calls, used, answer)
 
@@ -16,6 +16,11 @@ answer and a remembered one are the same bits; an answer is used only while the 
 it read are still remembered). The arm's geometry (setDH)
 clears kin.reuse, and this memo with it. Results are shared, never copied: their arrays are
 read-only.
+
+A span's part of a key is one number kept on the span (`Span.kpart`); a geometry is named by its
+id, which is safe because an entry holds the geometries of its key alive. Spans a trial adds may
+be named instead by what makes them (planner._trials: the two commands' classes, queued.py), with
+`owners` the keys of those commands, numbered with the owners of `spans`.
 """
 
 from __future__ import annotations
