@@ -33,6 +33,8 @@ def tiny(monkeypatch):
 
 def _same(h: History, ref: array) -> None:
     assert len(h) == len(ref)
+    if h._file is not None:  # (a cut shortens the file only when chunks leave it)
+        assert os.fstat(h._file.fileno()).st_size == h._held
     assert h[:].tobytes() == ref.tobytes()
     assert array("d", iter(h)).tobytes() == ref.tobytes()
     assert all(h[i] == ref[i] or (h[i] != h[i] and ref[i] != ref[i]) for i in range(-len(ref), len(ref)))
@@ -42,6 +44,7 @@ FLOATS = st.floats(allow_nan=False, width=64)
 OPS = st.lists(st.one_of(
     st.tuples(st.just("append"), FLOATS),
     st.tuples(st.just("extend"), st.lists(FLOATS, max_size=11)),
+    st.tuples(st.just("extend array"), st.lists(FLOATS, max_size=11), st.sampled_from([1, 2])),  # (in place)
     st.tuples(st.just("frombytes"), st.lists(FLOATS, max_size=9)),
     st.tuples(st.just("set"), st.integers(-60, 60), FLOATS),
     st.tuples(st.just("cut"), st.integers(-60, 60)),
@@ -66,6 +69,10 @@ def test_every_operation_as_a_plain_array(ops):
             elif kind == "extend":
                 h.extend(op[1])
                 ref.extend(op[1])
+            elif kind == "extend array":  # an array of doubles (strided too): copied into the tail's room
+                values = np.array(op[1], dtype=float)[::op[2]]
+                h.extend(values)
+                ref.extend(values.tolist())
             elif kind == "frombytes":
                 data = np.array(op[1], dtype=float).tobytes()
                 h.frombytes(data)

@@ -63,7 +63,10 @@ def distance_lambda(kin, command, d: float, from_end: bool) -> float | None:
     # a function of the command's curves (the same objects for a repeated motion), its tool, d
     # and the end it is measured from, on this geometry (kin.reuse)
     g = command.geometry
-    key = ("distance", id(g.joint_curve), id(curve), _value(command.tool), d, from_end)
+    if command.cls is not None:  # its class (queued.QueuedCommand.cls) holds its curves and tool
+        key = ("distance", command.cls, d, from_end)
+    else:
+        key = ("distance", id(g.joint_curve), id(curve), _value(command.tool), d, from_end)
     hit = kin.reuse.get(key) if trial_memo.REUSE else None
     if hit is not None and hit[0] is g.joint_curve and hit[1] is curve:
         return hit[2]
@@ -106,6 +109,11 @@ def candidate(kin, previous, command, limits_of) -> Candidate | None:
     curves = (pg.joint_curve, pg.tcp_curve, cg.joint_curve, cg.tcp_curve)
     # the limits choose between shapes only when there are several (`blend_time`)
     limits = (_limits_key(limits_of(previous)), _limits_key(limits_of(command))) if len(BLEND_SHAPES) > 1 else ()
+    if previous.cls is not None and command.cls is not None:
+        # the commands' classes (queued.QueuedCommand.cls) hold their curves, reach and tools
+        key = ("blend", previous.cls, command.cls, previous.placement.lam_leave, previous.placement.blend, limits)
+        hit = kin.reuse.get(key)
+        return hit[0] if hit is not None else kin.reuse.keep(key, (_candidate(kin, previous, command, limits_of),))[0]
     key = ("blend", *map(id, curves), previous.placement.lam_leave, previous.request.mdesc.reach,
            previous.placement.blend, _value(previous.tool), _value(command.tool), limits)
     hit = kin.reuse.get(key)

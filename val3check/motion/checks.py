@@ -92,9 +92,14 @@ def slowdown(kin, command, limits, profile) -> Finding | None:
     if g is None or not isinstance(g, JointSpline) or curve is None:
         return None
     sing = getattr(g, "sing", None)
-    if sing is None or (sing.wrist.min(initial=np.inf) >= THRESHOLDS["wrist"]
-                        and sing.elbow.min(initial=np.inf) >= THRESHOLDS["elbow"]
-                        and sing.shoulder.min(initial=np.inf) >= THRESHOLDS["shoulder"]):
+    if sing is None:
+        return None
+    far = g.__dict__.get("far_from_singularities")  # (asked per command: the spline's own answer, kept)
+    if far is None or far[0] is not sing:
+        far = g.far_from_singularities = (sing, bool(
+            sing.wrist.min(initial=np.inf) >= THRESHOLDS["wrist"] and sing.elbow.min(initial=np.inf) >= THRESHOLDS["elbow"]
+            and sing.shoulder.min(initial=np.inf) >= THRESHOLDS["shoulder"]))
+    if far[1]:
         return None
     q1 = g.q(g.lam, 1) / g.ell
     pt, _ = tcp_rates(kin, g.Q, q1, command.tool)

@@ -53,7 +53,7 @@ def construct(kin, move, q_start: np.ndarray, tool: np.ndarray | None, now: floa
     if move.kind == "movej":
         q_end = _movej_target(kin, move, q_start, tool, now)
         built.geometry.q_end = q_end
-        if np.max(np.abs(q_end - q_start)) <= JOINT_EQ:
+        if np.abs(q_end - q_start).max() <= JOINT_EQ:
             built.notes.append(Finding(
                 F.NO_OP, "movej: the target is the position the motion starts from: the arm does not move",
                 move.source, now, data={"joints": rounded(q_start)}))

@@ -243,6 +243,13 @@ class History:
 
     def extend(self, values) -> None:
         """Add `values` (doubles) at the end."""
+        if values.__class__ is np.ndarray and values.dtype == _F8 and values.ndim == 1:
+            tl, total = self.tail_len, len(values)
+            if tl and tl + total <= len(self.tail):  # (most plans: room in the tail, copied in place)
+                self.tail[tl:tl + total] = array("d", values.tobytes())
+                self.tail_len = tl + total
+                self._len += total
+                return
         v = np.asarray(values if isinstance(values, (np.ndarray, array)) else list(values), dtype=float).ravel()
         at, total = 0, len(v)
         while at < total:
@@ -271,6 +278,7 @@ class History:
 
     def _truncate(self, length: int) -> None:
         n, sh = self._n, self.shift
+        held = self._held
         keep = max((length + n - 1) >> sh, 1)  # chunks that still hold values (at least the tail)
         for c in range(keep, len(self._chunks)):
             if self._chunks[c] is None:
@@ -286,7 +294,7 @@ class History:
             self._release(n * 8)
         for c in [c for c in self._cache if c >= last]:  # their place in the file is written again
             del self._cache[c]
-        if self._file is not None:
+        if self._file is not None and self._held != held:  # (the file is `_held` long: shortened when chunks left it)
             self._file.truncate(self._held)
         self.tail = self._chunks[last]
         self.tail_start = last << sh
@@ -357,6 +365,9 @@ class History:
 
     def __repr__(self) -> str:
         return f"History({len(self)} doubles, {self._held} bytes in its file)"
+
+
+_F8 = np.dtype(float)  # native doubles: what `extend` copies as bytes
 
 
 def _new_chunk(n: int) -> array:

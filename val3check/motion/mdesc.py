@@ -120,22 +120,25 @@ class CommandLimits:
         self._asked: dict[int, tuple[MDesc, bool]] = {}
         # by what was asked, not by command: a long run asks the same few mdescs again and again
         self._same: dict[tuple[MDesc, bool], tuple[MDesc, bool]] = {}
-        self._limits: dict[tuple[MDesc, bool], Limits] = {}
+        self._limits: dict[int, Limits] = {}  # by id of the tuple `_same` keeps (never dropped)
 
-    def register(self, key: int, mdesc: MDesc, reduced: bool) -> None:
-        """A command's mdesc (`reduced`: a connection move, 10.1.3)."""
+    def register(self, key: int, mdesc: MDesc, reduced: bool) -> tuple:
+        """A command's mdesc (`reduced`: a connection move, 10.1.3); returns the one (mdesc, reduced)
+        tuple kept for these values (never dropped: its id names them, queue.MotionQueue._class_of)."""
         asked = (mdesc, reduced)
-        self._asked[key] = self._same.setdefault(asked, asked)
+        asked = self._asked[key] = self._same.setdefault(asked, asked)
+        return asked
 
     def of(self, key: int) -> Limits:
         """The limits of the command `key` at the current monitor speed."""
         asked = self._asked[key]
-        lim = self._limits.get(asked)
+        # by the id of the one tuple `_same` keeps for these values (hashing an MDesc costs more)
+        lim = self._limits.get(id(asked))
         if lim is None:
             mdesc, reduced = asked
             m = self.monitor / 100.0
             lim = Limits.reduced(self.kin, m) if reduced else Limits.of(self.kin, mdesc, m)
-            self._limits[asked] = lim
+            self._limits[id(asked)] = lim
         return lim
 
     def set_monitor(self, monitor: float) -> None:

@@ -239,6 +239,8 @@ class Span:
     tool: np.ndarray | None = None
     offset: float | None = None  # global s of its start, once in a Path
     _cache: dict | None = field(default=None, repr=False)
+    # its part of a trial memo key (trial_memo.TrialMemo.key): made once (a span never changes)
+    kpart: int | None = field(default=None, repr=False, compare=False)
 
     @property
     def ell(self) -> float:

@@ -182,33 +182,24 @@ class Planner:
         s0, v0, _ = prof.state(t0)
         if t0 >= prof.t_end:
             s0, v0 = prof.s_end, 0.0
-        blended = [self.span(cand.curve, 0.0, 1.0, [(previous.key, 0.0), (command.key, cand.split)], smooth=True,
-                             tool=previous.tool),
-                   self.span(command.geometry.joint_curve, cand.lam_reach, 1.0, [(command.key, 0.0)], smooth=True,
-                             tool=command.tool)]
-        tail = self.span(previous.geometry.joint_curve, previous.placement.lam_leave, 1.0, [(previous.key, 0.0)],
-                         smooth=True, tool=previous.tool)
-        alone = self.span(command.geometry.joint_curve, 0.0, 1.0, [(command.key, 0.0)], smooth=False,
-                          tool=command.tool)
-        t_blend, t_stop, rest = self._trials(s0, v0, blended, tail, alone, command.geometry.q_start)
+        t_blend, t_stop, rest = self._trials(s0, v0, previous, command, cand)
         if command.rest_time is None:
             command.rest_time = rest
         t_stop += command.rest_time
-        for sp in blended + [tail]:  # the one chosen is sampled once
-            self._remember(sp)
         if t_blend <= t_stop * (1.0 + 1e-9):
             return True
         self.stops_chosen += 1
         return False
 
-    def _trials(self, s0: float, v0: float, blended: list, tail: Span, alone: Span, q_start):
-        """What `blend_pays` compares, from path position s0 at speed v0: the blend trial's duration,
-        the stop trial's duration to the via point, and the time of the command alone from rest to
-        rest (its span `alone`, from q_start).
+    def _trials(self, s0: float, v0: float, previous, command, cand):
+        """What `blend_pays` compares, from path position s0 at speed v0: the blend trial's duration
+        (the blend `cand`, then `command` to its target), the stop trial's duration (`previous` to
+        its target), and the time of `command` alone from rest to rest.
         Trials are timed as `plan_from` times the path followed by their spans (not added to it).
         The three are remembered together (trial_memo.py): a cyclic program decides the same blend
-        from the same state every cycle, and one key and one check of the spans ahead and the plan's
-        speeds serve the three."""
+        from the same state every cycle. Their spans are a function of the two commands' classes
+        (queued.QueuedCommand.cls), `previous`'s blend and leave point (the blend too: blending.candidate),
+        so the key names them by those and they are built only when the trials are computed."""
         path = self.path
         ahead, shift = [], 0.0
         if path.spans:
@@ -217,11 +208,25 @@ class Planner:
         a = s0 - shift
 
         def trials(asked):
+            blended = [self.span(cand.curve, 0.0, 1.0, [(previous.key, 0.0), (command.key, cand.split)], smooth=True,
+                                 tool=previous.tool),
+                       self.span(command.geometry.joint_curve, cand.lam_reach, 1.0, [(command.key, 0.0)], smooth=True,
+                                 tool=command.tool)]
+            tail = self.span(previous.geometry.joint_curve, previous.placement.lam_leave, 1.0, [(previous.key, 0.0)],
+                             smooth=True, tool=previous.tool)
+            alone = self.span(command.geometry.joint_curve, 0.0, 1.0, [(command.key, 0.0)], smooth=False,
+                              tool=command.tool)
             t_blend = _duration(self._timed(ahead, a, v0, blended, asked))
             t_stop = _duration(self._timed(ahead, a, v0, [tail], asked))
-            return (t_blend, t_stop, self._rest_time(alone, q_start)), True
+            answer = (t_blend, t_stop, self._rest_time(alone, command.geometry.q_start))
+            for sp in blended + [tail]:  # the one chosen is sampled once
+                self._remember(sp)
+            return answer, True
 
-        return self._remembered(ahead + blended + [tail, alone], a, v0, "pays", shift, trials)
+        place = previous.placement
+        named = None if previous.cls is None or command.cls is None else \
+            (previous.cls, place.blend, place.lam_leave, command.cls, "pays")
+        return self._remembered(ahead, a, v0, named, shift, trials, (previous.key, command.key))
 
     def _rest_time(self, alone: Span, q_start) -> float:
         """The time of a command alone (its whole curve, the span `alone`, from joints q_start),
@@ -316,16 +321,18 @@ class Planner:
                     self.on_fallback(piece.owner)
             return _joined(pieces), not fell
 
-        return self._remembered(ahead, a, v0, "plan", shift, plan)
+        return self._remembered(ahead, a, v0, ("plan",), shift, plan)
 
-    def _remembered(self, spans: list, a: float, v0: float, kind: str, shift: float, compute):
-        """`compute(asked)`'s answer for `spans` from a at v0, remembered (trial_memo.py) with the
-        plan's speeds it asked: `asked(g, a)` reads them on the path, the spans being at `shift`.
-        `compute` returns (answer, whether it may be kept)."""
+    def _remembered(self, spans: list, a: float, v0: float, named: tuple | None, shift: float, compute, owners=()):
+        """`compute(asked)`'s answer for `spans` from a at v0 and what `named` names (trial_memo.py:
+        `owners` the keys of the commands it names; None: not remembered), remembered with the
+        plan's speeds it asked:
+        `asked(g, a)` reads them on the path, the spans being at `shift`. `compute` returns
+        (answer, whether it may be kept)."""
         def speed_at(g, a_):
             return self.profile.speed_at(g + shift, a_ + shift)
 
-        key = self.memo.key(spans, a, v0, kind)
+        key = None if named is None else self.memo.key(spans, a, v0, *named, owners=owners)
         hit = self.memo.get(key, spans, speed_at)
         if hit is not None:
             return hit

@@ -64,6 +64,7 @@ from .trajectory import Trajectory
 
 CAPACITY = 16  # commands recorded and not yet completed (10.2.1: the memory is limited)
 SETTLE_S = 0.05  # isSettled: at rest for 50 ms (perfect tracking: the commanded position)
+CLASSES = 4096  # command classes kept (`_class_of`); the table is emptied when full
 
 
 @dataclass
@@ -102,6 +103,8 @@ class MotionQueue:
         self.completed = 0  # commands of the program done (a counter: the progress display asks often)
         self._keys = 0
         self._by_key: dict[int, QueuedCommand] = {}
+        self._classes: dict[tuple, tuple] = {}  # `_class_of`
+        self._checked: dict[int, tuple] = {}  # id(mdesc) -> (it, MDesc.check's answer)
         self._done: tuple = ()  # (planner.changes, command key, its end, when it gets there): `_done_time`
         self._next: tuple = ()  # (what next_event's answer depends on, the time asked, the answer): `next_event`
         self._told = 0.0  # the latest time the queue was advanced to (`final_before`)
@@ -147,7 +150,13 @@ class MotionQueue:
         if self.failure is not None:
             raise MotionError(150, failure_text(self.failure))
         source = move.source
-        bad = move.mdesc.check()
+        md = move.mdesc
+        checked = self._checked.get(id(md))  # (a frozen value: checked once per object, kept alive here)
+        if checked is None or checked[0] is not md:
+            if len(self._checked) >= 64:
+                self._checked.clear()
+            checked = self._checked[id(md)] = (md, md.check())
+        bad = checked[1]
         if bad is not None:
             code, msg = bad
             f = Finding(F.MDESC, f"{move.kind}: {msg}", source, now, error=code,
@@ -190,8 +199,23 @@ class MotionQueue:
         self._keys += 1
         command = QueuedCommand(self._keys, None, request, geometry)
         self._by_key[command.key] = command
-        self.limits.register(command.key, request.mdesc, request.reduced)
+        asked = self.limits.register(command.key, request.mdesc, request.reduced)
+        command.cls = self._class_of(request, geometry, asked)
         return command
+
+    def _class_of(self, request: Request, geometry: Geometry, asked: tuple) -> int:
+        """The command's class (QueuedCommand.cls): one number per kind, curves (by the objects, kept
+        alive by the table so that their ids name them), start, end, tool, and mdesc and reduced speed
+        (`asked`: the one tuple CommandLimits keeps for their values, by its id)."""
+        tool = request.tool
+        values = (request.kind, id(geometry.joint_curve), id(geometry.tcp_curve), geometry.q_start.tobytes(),
+                  geometry.q_end.tobytes(), None if tool is None else tool.tobytes(), id(asked))
+        hit = self._classes.get(values)
+        if hit is None:
+            if len(self._classes) >= CLASSES:
+                self._classes.clear()
+            hit = self._classes[values] = (trial_memo.number(), geometry.joint_curve, geometry.tcp_curve)
+        return hit[0]
 
     def _add_connection(self, q_s, target, now, source) -> None:
         """resetMotion(jStart): a point-to-point move to jStart at reduced speed first (10.1.3)."""
@@ -247,11 +271,18 @@ class MotionQueue:
         not force the replan due (the profile up to now is the current one)."""
         if now > self._told:
             self._told = now
-        if self.planner.due is not None and not (lenient and self.planner.merges(now)):
-            self.planner.flush()
-        while self.pending:
-            command = self.pending[0]
-            t = self._done_time(command)
+        planner = self.planner
+        if planner.due is not None and not (lenient and planner.merges(now)):
+            planner.flush()
+        pending = self.pending
+        while pending:
+            command = pending[0]
+            done = self._done  # (most cycles: the first command's kept end time, still ahead)
+            if done and done[1] == command.key and done[0] == planner.changes and \
+                    done[2] == command.placement.s_end and trial_memo.REUSE:
+                t = done[3]
+            else:
+                t = self._done_time(command)
             if t is None or t > now + 1e-12:
                 break
             command.state = "done"
@@ -259,7 +290,7 @@ class MotionQueue:
             if command.id is not None:
                 self.pos_id = command.id + 1
                 self.completed += 1
-            self.pending.pop(0)
+            pending.pop(0)
             self._check_singularity(command)
 
     def _check_singularity(self, command: QueuedCommand) -> None:

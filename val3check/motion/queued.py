@@ -88,7 +88,13 @@ class QueuedCommand:
     identifier `id` is the program's, 10.6: it repeats after resetMotion, None for a connection
     move). `t_done`: when the commanded position reached its end. `checked`: its pass near a
     singularity was looked at (R014, once); `rest_time`: its time alone from rest to rest (the
-    blend decision, planner.py), once computed."""
+    blend decision, planner.py), once computed.
+
+    `cls` (issue 29, a hook for the record and the collision checks): a number equal for two
+    commands of one process only when their kind, joint and TCP curves (the same objects, so the
+    same start, end and path: construction.py reuses them), tool values, mdesc values and reduced
+    speed are equal: the same command from the same start. It says nothing of its neighbours'
+    blends or of when the arm runs it (MotionQueue assigns it; numbers are never given twice)."""
 
     key: int
     id: int | None
@@ -99,6 +105,7 @@ class QueuedCommand:
     t_done: float | None = None
     checked: bool = False
     rest_time: float | None = None
+    cls: int | None = None
 
     @property
     def kind(self) -> str:

@@ -2,7 +2,7 @@
 decides the same blend from the same state every cycle (issue 29).
 
     memo = TrialMemo(kin, timing, limits_of)
-    key = memo.key(spans, a, v0)          # None: reuse is off
+    key = memo.key(spans, a, v0, *named, owners=(k1, k2))   # None: reuse is off
     hit = memo.get(key, spans, check)     # the remembered answer, or None
     memo.keep(key, spans, calls, used, answer)
 
@@ -16,14 +16,27 @@ answer and a remembered one are the same bits; an answer is used only while the 
 it read are still remembered). The arm's geometry (setDH)
 clears kin.reuse, and this memo with it. Results are shared, never copied: their arrays are
 read-only.
+
+A span's part of a key is one number kept on the span (`Span.kpart`); a geometry is named by its
+id, which is safe because an entry holds the geometries of its key alive. Spans a trial adds may
+be named instead by what makes them (planner._trials: the two commands' classes, queued.py), with
+`owners` the keys of those commands, numbered with the owners of `spans`.
 """
 
 from __future__ import annotations
+
+import itertools
 
 import numpy as np
 
 REUSE = True  # off: every trial, command check and distance computed here and in construction.py, blending.py
 SIZE = 512  # answers remembered
+_numbers = itertools.count(1)  # spans' parts (`TrialMemo._part`), commands' classes: never given twice
+
+
+def number() -> int:
+    """A number never given before in this process (`_part`, queue.MotionQueue._class_of)."""
+    return next(_numbers)
 
 
 class TrialMemo:
@@ -36,6 +49,7 @@ class TrialMemo:
         self.limits_of = limits_of
         self._limit_keys: dict[int, tuple] = {}
         self._tools: dict[int, tuple] = {}
+        self._parts: dict[tuple, int] = {}  # `_part`
 
     def _store(self) -> dict:
         store = self.kin.reuse.get("trial-memo")
@@ -43,30 +57,47 @@ class TrialMemo:
             store = self.kin.reuse.keep("trial-memo", {})
         return store
 
-    def key(self, spans, *rest) -> tuple | None:
-        """The key of a trial of `spans` with the other inputs `rest` (floats), None when reuse is off."""
+    def key(self, spans, *rest, owners=()) -> tuple | None:
+        """The key of a trial of `spans` with the other inputs `rest` (floats, and what names the
+        spans the trial adds: planner._trials), None when reuse is off. `owners`: the keys of the
+        commands `rest` names, numbered with those of `spans` (which are the same, which new)."""
         if not REUSE:
             return None
         canon: dict[int, int] = {}
         parts = []
-        tool_key = self._tool_key
-        last_tool = last_key = None  # neighbouring spans mostly share their tool object: its key once
+        part_of = self._part
         for sp in spans:  # (loops, not generators: asked twice per motion command)
-            owners = sp.owners
-            if len(owners) == 1:
-                k, st = owners[0]
+            part = sp.kpart
+            if part is None:
+                part = part_of(sp)
+            own = sp.owners
+            if len(own) == 1:
+                k, st = own[0]
                 c = canon.get(k)
                 if c is None:
                     c = canon[k] = len(canon)
-                own: tuple = ((c, st),)
+                parts.append((part, c, st))
             else:
-                own = tuple([(canon.setdefault(k, len(canon)), st) for k, st in owners])
-            tool = sp.tool
-            if tool is not last_tool:
-                last_tool, last_key = tool, None if tool is None else tool_key(tool)
-            parts.append((id(sp.geom), sp.a, sp.b, sp.smooth, last_key, own))
+                parts.append((part, *[(canon.setdefault(k, len(canon)), st) for k, st in own]))
+        named = tuple([canon.setdefault(k, len(canon)) for k in owners])
         limits_key = self._limits_key
-        return (tuple(parts), tuple([limits_key(k) for k in canon]), *rest)
+        return (tuple(parts), named, tuple([limits_key(k) for k in canon]), *rest)
+
+    def _part(self, sp) -> int:
+        """A span's geometry (by the object), part, smoothness and tool as one number, the same for
+        the same values; kept on the span when its tool is read-only (a span never changes).
+        Numbers are never given twice, and the geometry's id is safe in them: an entry that holds
+        the number holds its geometries alive (`keep`), so no other object has that id meanwhile."""
+        tool = sp.tool
+        values = (id(sp.geom), sp.a, sp.b, sp.smooth, self._tool_key(tool))
+        n = self._parts.get(values)
+        if n is None:
+            if len(self._parts) >= 4096:
+                self._parts.clear()
+            n = self._parts[values] = number()
+        if tool is None or (getattr(tool, "flags", None) is not None and not tool.flags.writeable):
+            sp.kpart = n
+        return n
 
     def _tool_key(self, tool) -> bytes | None:
         """A tool's values; by the object when it is read-only (the run's tools are shared and never
@@ -102,12 +133,8 @@ class TrialMemo:
         hit = self._store().get(key)
         if hit is None:
             return None
-        geoms, calls, used, answer = hit
-        if len(geoms) != len(spans):
-            return None
-        for g, sp in zip(geoms, spans):
-            if g is not sp.geom:
-                return None
+        # (the key names each geometry by its id: the entry holds them, so they are the spans')
+        _, calls, used, answer = hit
         for g, a, v in calls:
             if speed_at(g, a) != v:
                 return None

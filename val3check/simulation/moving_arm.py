@@ -421,9 +421,10 @@ class MovingArm(ModelArm):
         """`tg` with its lengths (and a SCARA's axis 3) in mm: `s` millimetres per unit."""
         if tg.is_joint:
             return Target.joint(self.joints_in(tg.joints, s == 1.0), tg.name)
+        if s == 1.0:  # already in mm (x * 1.0 is x): the handlers make each target's pose afresh (ch10_motion._point)
+            return tg
         pose = np.array(tg.pose, dtype=float)
-        if s != 1.0:  # (x * 1.0 is x: skipped)
-            pose[:3, 3] *= s
+        pose[:3, 3] *= s
         return Target(pose=pose, config=tg.config, name=tg.name, frame=tg.frame, note=tg.note)
 
     def joints_in(self, joints: Sequence[float], millimeter_unit: bool) -> tuple[float, ...]:
