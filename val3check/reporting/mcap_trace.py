@@ -305,7 +305,7 @@ def _arm_ticks(scene, edges, tools, times, Q, V, idx):
     dump = _Messages.encode
     for b0 in range(0, len(times), BLOCK):
         sl = slice(b0, b0 + BLOCK)
-        poses = scene.kinematics.link_poses_many(Q[sl])
+        poses = scene.kinematics.link_poses_many(Q[sl], times=times[sl])  # (the geometry then: setDH)
         tool_at = np.stack([tools[j] if j >= 0 else np.eye(4) for j in idx[sl].tolist()])
         tcp_world = poses[flange] @ tool_at
         # each link in its URDF parent (the URDF's own tree, so that Foxglove's URDF layer agrees):

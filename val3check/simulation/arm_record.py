@@ -46,8 +46,11 @@ class ArmKinematics(Protocol):
     def chain(self) -> dict: ...  # the kinematic chain as plain data (robot/chain.py): the 3D view's
     def urdf(self) -> tuple[str, str]: ...  # (file name, text) of the arm's URDF
     def link_edges(self) -> list[tuple[str, str, bool]]: ...  # (parent, child, moves) below the root
-    def link_poses(self, joints) -> dict[str, np.ndarray]: ...  # {link: 4x4 in world} at one position
-    def link_poses_many(self, joints, links=None) -> dict[str, np.ndarray]: ...  # {link: (N, 4, 4)} at N positions
+    # {link: 4x4 in world} at one position (reached at `t`: the geometry then, setDH 11.4)
+    def link_poses(self, joints, t: float | None = None) -> dict[str, np.ndarray]: ...
+    # {link: (N, 4, 4)} at N positions (reached at `times`)
+    def link_poses_many(self, joints, links=None, times=None) -> dict[str, np.ndarray]: ...
+    def geometry_at(self, t: float) -> int: ...  # the number of the geometry in force at `t` (setDH)
 
 
 @dataclass(frozen=True)
@@ -306,7 +309,8 @@ def tcp_speed(kinematics: ArmKinematics, flange: str, tool_uses, times, position
     moving = np.flatnonzero(~np.all(ahead == positions, axis=1)) if len(times) else np.zeros(0, int)
     for b in range(0, len(moving), BLOCK):
         rows = moving[b:b + BLOCK]
-        P = kinematics.link_poses_many(np.concatenate([positions[rows], ahead[rows]]), (flange,))[flange]
+        P = kinematics.link_poses_many(np.concatenate([positions[rows], ahead[rows]]), (flange,),
+                                       times=np.concatenate([times[rows], times[rows]]))[flange]
         P0, P1 = P[:len(rows)], P[len(rows):]
         # each run of samples under one tool: one product
         at = same[idx[rows]] if len(same) else idx[rows]

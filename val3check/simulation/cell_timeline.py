@@ -107,11 +107,12 @@ class TimelineLog:
         span = next(s for s in reversed(self.spans) if s["carried"] and s["name"] == name and s["end"] is None)
         span["end"] = float(t)
         q = self.run.trajectory.position(t) if q is None else q
-        key = np.asarray(q, dtype=float).tobytes()
+        # (the geometry in force at t too, when setDH changed it: collect.ModelKinematics)
+        key = (np.asarray(q, dtype=float).tobytes(), self.run.scene.kinematics.geometry_at(t))
         F = self._flange.get(key)
         if F is None:  # a cyclic program leaves its parts from a few positions: computed once each
             scene = self.run.scene
-            F = scene.kinematics.link_poses(q)[scene.flange_frame]
+            F = scene.kinematics.link_poses(q, t)[scene.flange_frame]
             if len(self._flange) >= 1024:
                 self._flange.clear()
             self._flange[key] = F

@@ -9,6 +9,8 @@ reports anything of motion/, robot/ or geometry/.
 
 from __future__ import annotations
 
+import math
+
 from pathlib import Path
 from typing import Any
 
@@ -112,7 +114,8 @@ def arm_run(machine: Machine, diags: list[Diagnostic]) -> ArmRun | None:
     else:
         busy = sum(b - a for a, b in trajectory.moving(end_s))
         idle = max(end_s - busy, 0.0)
-    scene = arm_scene(arm.model, arm.initial_joints, machine.main.globals if machine.main is not None else {})
+    scene = arm_scene(arm.model, arm.initial_joints, machine.main.globals if machine.main is not None else {},
+                      geometries=getattr(arm, "geometries", ()), base=getattr(arm, "base_model", None))
     poses: dict = {}  # one read-only matrix per distinct tool pose (a cyclic cell repeats a few)
     tools = [ToolUse(*e, tcp_matrix=_shared_matrix(e.tcp_in_flange, poses)) for e in machine.recorder.tool_events]
     spread = None
@@ -237,14 +240,16 @@ def _matrix(trsf) -> Any:
     return T
 
 
-def arm_scene(model: Any, initial_joints, globals_: dict) -> ArmScene:
+def arm_scene(model: Any, initial_joints, globals_: dict, geometries=(), base: Any = None) -> ArmScene:
     """The scene of a run on `model` (robot.RobotModel): the arm, and the frame and tool variables
-    of the application (`globals_`: name -> Arr of run-time values) as the run left them."""
+    of the application (`globals_`: name -> Arr of run-time values) as the run left them.
+    `geometries`: (from time s, model) of each setDH of the run (11.4), `base` the geometry before."""
     axes = len(model.joint_limits)
     return ArmScene(model.name, axes, tuple(model.joint_names),
                     tuple(getattr(model, "joint_units", None) or ["deg"] * axes), tuple(model.joint_limits),
                     tuple(model.nominal_speeds), tuple(model.accelerations), tuple(initial_joints),
-                    model.world_frame, model.flange_frame, app_frames(globals_), ModelKinematics(model))
+                    model.world_frame, model.flange_frame, app_frames(globals_),
+                    ModelKinematics(model, [(-math.inf, base or model), *geometries] if geometries else ()))
 
 
 def app_frames(globals_: dict) -> dict[str, FramePose]:
@@ -280,10 +285,13 @@ class ModelKinematics:
     """The arm's links and their forward kinematics over a robot.RobotModel (the ArmKinematics port
     of arm_record.py): its URDF is read once, when first asked."""
 
-    def __init__(self, model: Any) -> None:
-        """Nothing is read yet."""
+    def __init__(self, model: Any, epochs=()) -> None:
+        """Nothing is read yet. `epochs`: [(from time s, model)] when setDH (11.4) changed the
+        geometry during the run, the first from -inf (the poses at a time are those of the geometry
+        in force then; `model`, the last, is what the chain and the URDF describe)."""
         self.model = model
         self._links: Any = None
+        self._epochs = [(t, ModelKinematics(m)) for t, m in epochs]
 
     def _arm_links(self):
         """robot.links.ArmLinks of the model, read once."""
@@ -314,10 +322,36 @@ class ModelKinematics:
         return [(links.edges[c].parent, c, links.edges[c].kind != "fixed" and links.edges[c].index >= 0)
                 for c in links.links[1:]]
 
-    def link_poses(self, joints) -> dict:
-        """{link: 4x4 pose in world (mm)} at one joint position."""
+    def link_poses(self, joints, t: float | None = None) -> dict:
+        """{link: 4x4 pose in world (mm)} at one joint position (reached at time `t`)."""
+        if self._epochs and t is not None:
+            return self._at([t])[0][1].link_poses(joints)
         return self._arm_links().poses(joints)
 
-    def link_poses_many(self, joints, links=None) -> dict:
-        """{link: (N, 4, 4) poses in world (mm)} at N joint positions (`links`: only those)."""
-        return self._arm_links().poses_many(joints, links)
+    def link_poses_many(self, joints, links=None, times=None) -> dict:
+        """{link: (N, 4, 4) poses in world (mm)} at N joint positions (`links`: only those), reached
+        at `times` (N,)."""
+        if not self._epochs or times is None:
+            return self._arm_links().poses_many(joints, links)
+        import numpy as np
+
+        joints = np.asarray(joints, dtype=float)
+        out: dict = {}
+        for rows, kin in self._at(times):
+            got = kin.link_poses_many(joints[rows], links)
+            for name, M in got.items():
+                out.setdefault(name, np.empty((len(joints), 4, 4)))[rows] = M
+        return out
+
+    def geometry_at(self, t: float) -> int:
+        """The number of the geometry in force at `t` (0 before any setDH)."""
+        return sum(1 for start, _ in self._epochs[1:] if start - 1e-9 <= t)
+
+    def _at(self, times) -> list:
+        """[(rows, the ModelKinematics in force)] of the samples at `times` (the first geometry
+        alone when every sample is in it)."""
+        import numpy as np
+
+        starts = np.array([t for t, _ in self._epochs[1:]])
+        k = np.searchsorted(starts - 1e-9, np.asarray(times, dtype=float), side="right")
+        return [(np.flatnonzero(k == j), self._epochs[j][1]) for j in np.unique(k).tolist()]
