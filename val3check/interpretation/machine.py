@@ -360,9 +360,9 @@ class Machine:
         """The loops the running line (or the suspended `task`) is in, outermost first, across the
         programs of its call stack: (compiled program, compiler.structures.LoopSite, the loop's
         pass counter: a list, new at each entry of the loop, whose [0] is the current pass)."""
-        frames = []
+        compiled = self.compiled
         if task is None:
-            compiled = self.compiled
+            frames = []
             f = _getframe(1)
             while f is not None and f.f_code is not _TURN:  # (below a task's turn: the scheduler, no program)
                 c = compiled.get(f.f_code.co_filename)
@@ -371,11 +371,11 @@ class Machine:
                 f = f.f_back
             frames.reverse()
         else:
-            frames = list(self._task_frames(task))
+            frames = self._task_frames(task)
         out = []
         for c, f in frames:
-            sites = c.loops_at(c.line_of(f))
-            if sites:
+            sites = c.at(f)[1]
+            if sites:  # (only then are the frame's locals read: they are a dict made for the asking)
                 local = f.f_locals
                 out.extend((c, site, local[site.var]) for site in sites if site.var in local)
         return tuple(out)
@@ -399,9 +399,9 @@ class Machine:
         while f is not None:
             c = compiled.get(f.f_code.co_filename)
             if c is not None:
-                lc = c.pos.get(c.line_of(f))
-                if lc is not None:
-                    return (c.path, lc[0], lc[1], c.name)
+                w = c.at(f)[0]
+                if w is not None:
+                    return w
             f = f.f_back
         return None
 
