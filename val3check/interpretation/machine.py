@@ -329,18 +329,9 @@ class Machine:
         """R005: a synchronous task used more than its period (5.6)."""
         w = self.where(task)
         path, line, col = (self.app.path, 0, 0) if w is None else w[:3]
-        self.diags.append(
-            Diagnostic(
-                codes.SYNC_OVERRUN,
-                f"synchronous task {task.name} overran its period of {task.period / 1e6:g} s",
-                path,
-                line,
-                col,
-                time_us=self.clock.now,
-                task=task.name,
-                program=task.program,
-            )
-        )
+        self.diags.append(Diagnostic(codes.SYNC_OVERRUN, f"synchronous task {task.name} overran its period of "
+                                     f"{task.period / 1e6:g} s", path, line, col, time_us=self.clock.now,
+                                     task=task.name, program=task.program))
 
     # ---- where a task is ------------------------------------------------------------------------
 
@@ -361,7 +352,9 @@ class Machine:
         programs of its call stack: (compiled program, compiler.structures.LoopSite, the loop's
         pass counter: a list, new at each entry of the loop, whose [0] is the current pass)."""
         compiled = self.compiled
-        if task is None:
+        if task is None and self.clock.current is not None:  # the running task's own list (Task.frames)
+            frames = [(compiled[f.f_code.co_filename], f) for f in self.clock.current.frames]
+        elif task is None:
             frames = []
             f = _getframe(1)
             while f is not None and f.f_code is not _TURN:  # (below a task's turn: the scheduler, no program)
@@ -395,6 +388,13 @@ class Machine:
         """The file position of the VAL 3 line being executed now, for an instruction handler
         (the innermost program on the Python stack; `where` only sees suspended tasks)."""
         compiled = self.compiled
+        running = self.clock.current
+        if running is not None:  # its programs' frames (Task.frames): no walk up the Python stack
+            for f in reversed(running.frames):
+                w = compiled[f.f_code.co_filename].at(f)[0]
+                if w is not None:
+                    return w
+            return None
         f = _getframe(1)
         while f is not None:
             c = compiled.get(f.f_code.co_filename)
