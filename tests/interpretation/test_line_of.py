@@ -51,17 +51,27 @@ def test_a_program_without_code_and_each_program_keep_their_own_lines():
     assert failing.line_of(frame) == 3 and failing._lines == {}
 
 
+def test_at_keeps_by_offset_the_position_and_loops_of_the_frames_line():
+    c = _program()
+    c.pos = {3: (10, 3), 5: (11, 3), 6: (12, 5)}
+    for _ in range(2):  # the second time from what was kept
+        assert [c.at(f)[0] for f in c.func(None)] == [("p.pgx", 10, 3, "p"), ("p.pgx", 11, 3, "p"),
+                                                      ("p.pgx", 12, 5, "p"), None]
+    assert len(c._at) == 3  # the lambda's frame (other code) is not kept
+
+
 def test_a_long_run_reads_the_same_lines_as_the_frames_give(tmp_path, monkeypatch):
-    """Every line read during a run with motions in nested loops and calls equals f_lineno."""
+    """Every position and loop read during a run with motions in nested loops and calls (kept by
+    offset) equals what the frame's f_lineno gives, computed afresh."""
     asked = []
-    kept = Compiled.line_of
+    kept = Compiled.at
 
     def checked(self, frame):
         got = kept(self, frame)
-        asked.append((got, frame.f_lineno))
+        asked.append((got, self._at_line(frame.f_lineno)))
         return got
 
-    monkeypatch.setattr(Compiled, "line_of", checked)
+    monkeypatch.setattr(Compiled, "at", checked)
     code = """begin
   for l_i = 1 to 40
     l_n = l_i % 3

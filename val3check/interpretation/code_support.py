@@ -8,6 +8,7 @@ line of the generated code. `register` puts them in the registry's namespace.
 
 from __future__ import annotations
 
+from sys import _getframe
 from typing import Any
 
 from ..geometry.trsf import Trsf
@@ -173,5 +174,5 @@ def BREF(b, *args: Any) -> Any:
 
 
 def register(registry) -> None:
-    registry.helpers(E=E, JUMP=JUMP, IX=IX, AI1=AI1, AI2=AI2, AI3=AI3, CK=CK, CKW=CKW, VIEW=VIEW, ELEMARR=ELEMARR,
+    registry.helpers(FRAME=_getframe, E=E, JUMP=JUMP, IX=IX, AI1=AI1, AI2=AI2, AI3=AI3, CK=CK, CKW=CKW, VIEW=VIEW, ELEMARR=ELEMARR,
                      ASG=ASG, CP=copy_value, DYN=DYN, FAIL=FAIL, BREF=BREF)

@@ -329,18 +329,9 @@ class Machine:
         """R005: a synchronous task used more than its period (5.6)."""
         w = self.where(task)
         path, line, col = (self.app.path, 0, 0) if w is None else w[:3]
-        self.diags.append(
-            Diagnostic(
-                codes.SYNC_OVERRUN,
-                f"synchronous task {task.name} overran its period of {task.period / 1e6:g} s",
-                path,
-                line,
-                col,
-                time_us=self.clock.now,
-                task=task.name,
-                program=task.program,
-            )
-        )
+        self.diags.append(Diagnostic(codes.SYNC_OVERRUN, f"synchronous task {task.name} overran its period of "
+                                     f"{task.period / 1e6:g} s", path, line, col, time_us=self.clock.now,
+                                     task=task.name, program=task.program))
 
     # ---- where a task is ------------------------------------------------------------------------
 
@@ -360,9 +351,11 @@ class Machine:
         """The loops the running line (or the suspended `task`) is in, outermost first, across the
         programs of its call stack: (compiled program, compiler.structures.LoopSite, the loop's
         pass counter: a list, new at each entry of the loop, whose [0] is the current pass)."""
-        frames = []
-        if task is None:
-            compiled = self.compiled
+        compiled = self.compiled
+        if task is None and self.clock.current is not None:  # the running task's own list (Task.frames)
+            frames = [(compiled[f.f_code.co_filename], f) for f in self.clock.current.frames]
+        elif task is None:
+            frames = []
             f = _getframe(1)
             while f is not None and f.f_code is not _TURN:  # (below a task's turn: the scheduler, no program)
                 c = compiled.get(f.f_code.co_filename)
@@ -371,11 +364,11 @@ class Machine:
                 f = f.f_back
             frames.reverse()
         else:
-            frames = list(self._task_frames(task))
+            frames = self._task_frames(task)
         out = []
         for c, f in frames:
-            sites = c.loops_at(c.line_of(f))
-            if sites:
+            sites = c.at(f)[1]
+            if sites:  # (only then are the frame's locals read: they are a dict made for the asking)
                 local = f.f_locals
                 out.extend((c, site, local[site.var]) for site in sites if site.var in local)
         return tuple(out)
@@ -395,13 +388,20 @@ class Machine:
         """The file position of the VAL 3 line being executed now, for an instruction handler
         (the innermost program on the Python stack; `where` only sees suspended tasks)."""
         compiled = self.compiled
+        running = self.clock.current
+        if running is not None:  # its programs' frames (Task.frames): no walk up the Python stack
+            for f in reversed(running.frames):
+                w = compiled[f.f_code.co_filename].at(f)[0]
+                if w is not None:
+                    return w
+            return None
         f = _getframe(1)
         while f is not None:
             c = compiled.get(f.f_code.co_filename)
             if c is not None:
-                lc = c.pos.get(c.line_of(f))
-                if lc is not None:
-                    return (c.path, lc[0], lc[1], c.name)
+                w = c.at(f)[0]
+                if w is not None:
+                    return w
             f = f.f_back
         return None
 

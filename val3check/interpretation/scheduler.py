@@ -87,7 +87,7 @@ class Task:
     __slots__ = ("name", "unit", "prio", "period", "gen", "state", "q", "stack", "smax", "wake", "tdep", "error",
                  "errdetail", "errpos", "program", "created", "ended", "machine", "jump", "skippable",
                  "overrun", "next_run", "overran", "limit", "end_state", "lines", "seq", "saved", "final",
-                 "jumpctx", "pending", "cond", "waiting_for", "clock")
+                 "jumpctx", "pending", "cond", "waiting_for", "clock", "frames")
 
     def __init__(self, machine, name: str, unit, program: str, prio: int, period: int = 0) -> None:
         self.machine = machine
@@ -124,6 +124,10 @@ class Task:
         self.pending: BaseException | None = None  # a taskResume jump to throw in at its next turn
         self.cond = None  # the condition of the wait it is in (evaluated by the scheduler)
         self.waiting_for = ""  # what it waits for, in words (waiting.py)
+        # the frames of the VAL 3 programs it is in, outermost first: each program pushes its own
+        # at its start and pops it at its end (compiler/program.py), so that the running line
+        # and its loops are read without walking the Python stack (machine.py)
+        self.frames: list = []
 
 
 class Scheduler:

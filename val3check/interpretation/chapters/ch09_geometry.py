@@ -304,10 +304,15 @@ def I_config(task, unit, j: dict) -> dict:
 def wait_end_of_motion(task, what: str):
     """waitEndMove() (10.6), and open()/close() before they act (9.5.4): the blend of the last
     command is cancelled (error 150 when a motion recorded before cannot be executed), then the
-    task waits on the arm's motion queue; the clock jumps to the end of the motion."""
+    task waits on the arm's motion queue; the clock jumps to the end of the motion. (A function
+    that returns the wait, called at the first step of its caller: one generator less to make
+    and to pass through at each resumption.)"""
     machine = task.machine
     machine.arm.end_motion(machine.clock.time_of(task))
-    yield from WAIT(task, machine.motion_done, False, f"{what} (end of motion)")
+    return WAIT(task, machine.motion_done, False, _END_OF_MOTION.get(what) or f"{what} (end of motion)")
+
+
+_END_OF_MOTION = {w: f"{w} (end of motion)" for w in ("open", "close", "waitEndMove")}
 
 
 def _tool_action(task, unit, tool: Tool, action: str, value: bool, seconds: float):
@@ -319,13 +324,14 @@ def _tool_action(task, unit, tool: Tool, action: str, value: bool, seconds: floa
 
 
 def I_open(task, unit, tool: Tool):
-    """9.5.4 open(tool): waitEndMove(), gripper = true, delay(otime)."""
-    yield from _tool_action(task, unit, tool, "open", True, tool.otime)
+    """9.5.4 open(tool): waitEndMove(), gripper = true, delay(otime). (Returns the action's
+    generator, for `yield from`: not a generator of its own.)"""
+    return _tool_action(task, unit, tool, "open", True, tool.otime)
 
 
 def I_close(task, unit, tool: Tool):
     """9.5.4 close(tool): waitEndMove(), gripper = false, delay(ctime)."""
-    yield from _tool_action(task, unit, tool, "close", False, tool.ctime)
+    return _tool_action(task, unit, tool, "close", False, tool.ctime)
 
 
 # ---- what s8 (CS9) adds, language/s8.toml ---------------------------------------------------------

@@ -133,6 +133,7 @@ class ProgramCompiler(StatementCompiler, CallCompiler, ExpressionCompiler, Varia
             self.guarded([line.strip() for line in init], False)
         if body is not None:
             self.cur = (body.line, body.col)
+        self.emit("T.frames.append(FRAME())")  # (popped by the `finally` below, however the program ends)
         self.emit("try:")
         self.ind += 1
 
@@ -147,6 +148,7 @@ class ProgramCompiler(StatementCompiler, CallCompiler, ExpressionCompiler, Varia
         self.emit("finally:")
         self.ind += 1
         self.emit(f"T.stack -= {fb}")
+        self.emit("T.frames.pop()")
         self.ind -= 1
         self.emit("if 0: yield")
         head = f"def P_{prog.name}(T{''.join(', ' + x for x in params)}):"
@@ -207,10 +209,12 @@ def _failing(unit, program: Program, exc: CompileError, namespace: dict) -> Comp
             params.append(f"v_{p.name}")
     # the task (or the caller's line) stops with R004 where the program starts
     src = (f"def P_{program.name}(T{''.join(', ' + x for x in params)}):\n"
-           f"    while 1:\n        try:\n            NOTSIM({str(exc)!r})\n"
-           f"        except Exception as _e:\n            yield from FAIL(T, _e, False, None)\n            continue\n"
+           f"    T.frames.append(FRAME())\n    try:\n"
+           f"        while 1:\n            try:\n                NOTSIM({str(exc)!r})\n"
+           f"            except Exception as _e:\n                yield from FAIL(T, _e, False, None)\n"
+           f"                continue\n    finally:\n        T.frames.pop()\n"
            f"    if 0: yield\n")
     filename = f"<val3 {unit.uid}:{program.name}>"
     exec(compile(src, filename, "exec"), namespace)
     return Compiled(program.name, namespace[f"P_{program.name}"], program.parameters,
-                    {i: (exc.line, exc.col) for i in range(2, 8)}, program.origin.path, filename, CALL_BYTES, src, exc)
+                    {i: (exc.line, exc.col) for i in range(2, 13)}, program.origin.path, filename, CALL_BYTES, src, exc)

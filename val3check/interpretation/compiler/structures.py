@@ -118,6 +118,7 @@ class Compiled:
     loops: list[LoopSite] = field(default_factory=list)  # in the order they are written
     _loops_at: dict = field(default_factory=dict, repr=False, compare=False)
     _lines: dict = field(default_factory=dict, repr=False, compare=False)
+    _at: dict = field(default_factory=dict, repr=False, compare=False)
 
     def line_of(self, frame) -> int:
         """The Python line a frame of this program is at. `f_lineno` scans the code's line table
@@ -132,6 +133,24 @@ class Compiled:
         if line is None:
             line = self._lines[at] = frame.f_lineno
         return line
+
+    def at(self, frame) -> tuple[tuple[str, int, int, str] | None, tuple[LoopSite, ...]]:
+        """What a frame of this program is at: the file position of its line (path, line,
+        column, program; None for a Python line without one) and the loops that line is in.
+        Kept by instruction offset for the program's own code, like `line_of` (each motion
+        command and tool action asks, from `Machine.line_running` and `loop_passes`)."""
+        func = self.func
+        if func is None or frame.f_code is not func.__code__:
+            return self._at_line(frame.f_lineno)
+        at = frame.f_lasti
+        found = self._at.get(at)
+        if found is None:
+            found = self._at[at] = self._at_line(self.line_of(frame))
+        return found
+
+    def _at_line(self, py_line: int) -> tuple[tuple[str, int, int, str] | None, tuple[LoopSite, ...]]:
+        lc = self.pos.get(py_line)
+        return (None if lc is None else (self.path, lc[0], lc[1], self.name)), self.loops_at(py_line)
 
     def loops_at(self, py_line: int) -> tuple[LoopSite, ...]:
         """The loops whose Python lines hold `py_line`, outermost first (memoised: a motion
