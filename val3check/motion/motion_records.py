@@ -309,6 +309,8 @@ def _evaluate(queue, prof, out: list, group: list, doubts: list) -> None:
     q = queue.path.q(allp)
     q1 = queue.path.q(allp, 1)
     q2 = queue.path.q(allp, 2)
+    last = np.cumsum([len(p) + len(m) for p, m, _ in where]) - np.array([len(m) + 1 for _, m, _ in where])
+    q[last], q1[last] = queue.path.q_end(allp[last]), queue.path.q_end(allp[last], 1)  # s1: its own span
     pt, rt = tcp_rates(queue.kin, q, q1, items[0][0][1].tool)
     at = 0
     for n_item, (((idx, command, s0, s1, start, end, _, k1, lim), slot), (pts, mids, lo)) in enumerate(zip(items, where)):

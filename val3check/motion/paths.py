@@ -445,6 +445,17 @@ class Path:
             out[rows] = d if order == 0 else d / geom.ell ** order
         return out
 
+    def q_end(self, s, order: int = 0) -> np.ndarray:
+        """`q` at positions s that end a motion: where a span starts at s, on the span ending there
+        (the motion's own end, not the start of the next one, whose rate in s is another)."""
+        s = np.atleast_1d(np.asarray(s, dtype=float))
+        out = self.q(s, order)
+        for k, x in enumerate(s.tolist()):
+            i = bisect.bisect_left(self.offsets, x) - 1  # the span with offset < x
+            if 0 <= i < len(self.spans) - 1 and self.offsets[i + 1] == x:
+                out[k] = self.spans[i].q(np.array([self.spans[i].length]), order)[0]
+        return out
+
     def stops_after(self, s: float) -> list[float]:
         """Global s of every junction after s where the arm must stop (not smooth)."""
         i = max(bisect.bisect_right(self.offsets, s) - 1, 0)
