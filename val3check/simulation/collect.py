@@ -345,13 +345,19 @@ class ModelKinematics:
 
     def geometry_at(self, t: float) -> int:
         """The number of the geometry in force at `t` (0 before any setDH)."""
-        return sum(1 for start, _ in self._epochs[1:] if start - 1e-9 <= t)
+        return int(self._numbers([t])[0]) if self._epochs else 0
+
+    def _numbers(self, times):
+        """The number of the geometry in force at each of `times` (a setDH at t: from t on)."""
+        import numpy as np
+
+        starts = np.array([t for t, _ in self._epochs[1:]])
+        return np.searchsorted(starts - 1e-9, np.asarray(times, dtype=float), side="right")
 
     def _at(self, times) -> list:
         """[(rows, the ModelKinematics in force)] of the samples at `times` (the first geometry
         alone when every sample is in it)."""
         import numpy as np
 
-        starts = np.array([t for t, _ in self._epochs[1:]])
-        k = np.searchsorted(starts - 1e-9, np.asarray(times, dtype=float), side="right")
+        k = self._numbers(times)
         return [(np.flatnonzero(k == j), self._epochs[j][1]) for j in np.unique(k).tolist()]

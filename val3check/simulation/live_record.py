@@ -129,9 +129,10 @@ class LiveRecord:
                 queue.release(i)
                 self.cursor = 0
 
-    def _take(self, arm: Any, command: Any) -> None:
-        """The record of a final command, and what the motion table and the cycles read of it."""
-        self.maker.add(command)
+    def _take(self, arm: Any, command: Any, end_s: float | None = None, reached: float | None = None) -> None:
+        """The record of a final command, and what the motion table and the cycles read of it
+        (`end_s`, `reached`: as `RecordMaker.add`)."""
+        self.maker.add(command, end_s, reached)
         g = command.geometry
         self.kept.append((command.request, g.q_start, g.q_end, command.state))
         self.contexts.append(arm.contexts.pop(command.key, ()))
@@ -150,9 +151,7 @@ class LiveRecord:
         history = queue.history
         reached = queue.trajectory.profile.state(now_s)[0]
         for command in history[self.cursor:]:  # the last ones (no breakpoint after them yet), a cancelled one
-            self.maker.add(command, now_s, reached)
-            self.kept.append((command.request, command.geometry.q_start, command.geometry.q_end, command.state))
-            self.contexts.append(arm.contexts.pop(command.key, ()))
+            self._take(arm, command, now_s, reached)
         self.cursor, self.blocked, self._wait = len(history), False, None
         self.maker.flush()
         self._flushed = len(self.kept)
