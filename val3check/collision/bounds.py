@@ -32,16 +32,19 @@ class Track:
     lower         per sample: the best lower bound of the distance known so far
     exact         per sample: `lower` is a measured, exact distance
     box_free      per step: the boxes alone keep the groups apart along it
+    gap_first, gap_last  box_gap at the first and the last sample (floats)
+    first_todo    the first step the boxes alone do not keep apart, or -1 when there is none
     landing       body pairs (id, id) touching at the motion's start or end, or allowed to touch
                   since a grasp or release: left out of the clearance
     in_contact    the last measurement found a contact
     first_contact the first contact of the watch in this motion (records.Contact) or None"""
 
-    __slots__ = ("box_free", "box_gap", "exact", "first_contact", "in_contact", "landing", "lower", "path_bound",
-                 "sample_bound", "watch")
+    __slots__ = ("box_free", "box_gap", "exact", "first_contact", "first_todo", "gap_first", "gap_last", "in_contact",
+                 "landing", "lower", "path_bound", "sample_bound", "watch")
 
     def __init__(self, watch: Watch, path_bound: np.ndarray, sample_bound: np.ndarray, box_gap: np.ndarray,
-                 lower: np.ndarray, exact: np.ndarray, box_free: np.ndarray) -> None:
+                 lower: np.ndarray, exact: np.ndarray, box_free: np.ndarray, gap_first: float, gap_last: float,
+                 first_todo: int) -> None:
         self.watch = watch
         self.path_bound = path_bound
         self.sample_bound = sample_bound
@@ -49,6 +52,7 @@ class Track:
         self.lower = lower
         self.exact = exact
         self.box_free = box_free
+        self.gap_first, self.gap_last, self.first_todo = gap_first, gap_last, first_todo
         self.landing: set[tuple[int, int]] = set()
         self.in_contact = False
         self.first_contact = None
@@ -185,11 +189,12 @@ def prepare(path: ArmPath, lay: Layout, watches: list[Watch], steps: np.ndarray,
     n = len(path.times)
     nw = len(watches)
     F = np.stack([path.poses[g.link] for g in lay.groups])  # (G, N, 4, 4)
+    rows = F[..., :3]  # (G, N, 4, 3): the rotation's rows (and a row of zeros) of every pose
     if n > 1:
         dC = steps @ lay.weights  # (N-1, watches)
         # how far each group's points move from a sample to the next: |ΔT·c| + ρ·2·sin(θ/2)
         R = F[:, :, :3, :3]
-        p = (R @ lay.sphere_center[:, None, :, None])[..., 0] + F[:, :, :3, 3]
+        p = rows_times(rows, lay.sphere_center, range(len(F)))[..., :3] + F[:, :, :3, 3]
         move = np.sqrt(((p[:, 1:] - p[:, :-1]) ** 2).sum(axis=2))
         cos = 0.5 * ((R[:, 1:] * R[:, :-1]).sum(axis=(2, 3)) - 1.0)
         moves = move + lay.sphere_radius[:, None] * np.sqrt(np.maximum(2.0 - 2.0 * np.clip(cos, -1.0, 1.0), 0.0))
@@ -203,10 +208,8 @@ def prepare(path: ArmPath, lay: Layout, watches: list[Watch], steps: np.ndarray,
         Cm = Sm = np.zeros((nw, 1))
     # each body's box: its centre carried by its group's frame; its half sizes through |R|
     # (|R_group·R_local| <= |R_group|·|R_local|: exact for solids square to their link)
-    Fb = F[lay.body_group]  # (B, N, 4, 4)
-    Rg = Fb[..., :3, :3]
-    c = (Rg @ lay.center_local[:, None, :, None])[..., 0] + Fb[..., :3, 3]
-    h = (np.abs(Rg) @ lay.half_local[:, None, :, None])[..., 0]
+    c = rows_times(rows, lay.center_local, lay.body_group)[..., :3] + F[lay.body_group, :, :3, 3]
+    h = rows_times(np.abs(rows), lay.half_local, lay.body_group)[..., :3]
     lo, hi = (c - h).transpose(1, 0, 2), (c + h).transpose(1, 0, 2)  # (N, B, 3)
     path.set_boxes(lo, hi, {id(b): i for i, b in enumerate(lay.bodies)})
     A = np.full((nw, n), np.inf)
@@ -229,4 +232,20 @@ def prepare(path: ArmPath, lay: Layout, watches: list[Watch], steps: np.ndarray,
     free = (A[:, :-1] + A[:, 1:] - dC.T) > 2.0 * touch
     L = A.copy()
     E = np.zeros((nw, n), dtype=bool)
-    return [Track(w, Cm[wi], Sm[wi], A[wi], L[wi], E[wi], free[wi]) for wi, w in enumerate(watches)]
+    # per watch, read as Python values once: the sweep decides from them which watches to look at
+    blocked = ~free
+    first = np.where(blocked.any(axis=1), blocked.argmax(axis=1), -1) if n > 1 else np.full(nw, -1)
+    return [Track(w, *rows, g0, g1, k) for w, rows, g0, g1, k in zip(
+        watches, zip(Cm, Sm, A, L, E, free), A[:, 0].tolist(), A[:, -1].tolist(), first.tolist())]
+
+
+def rows_times(rows: np.ndarray, vectors: np.ndarray, groups) -> np.ndarray:
+    """(len(vectors), N, 4): rows[g] @ vectors[i] for each vector i and its group g = groups[i],
+    rows (G, N, 4, 3) a view of contiguous poses. One matrix-vector product per vector over the
+    rows of all N poses, not one per pose: the same values (a row's product does not depend on the
+    rows around it; tests/collision/test_sweep_steps.py checks the bits), without a BLAS call per
+    pose."""
+    out = np.empty((len(vectors), rows.shape[1], 4))
+    for i, g in enumerate(groups):
+        np.matmul(rows[g].reshape(-1, 3), vectors[i], out=out[i].reshape(-1))
+    return out

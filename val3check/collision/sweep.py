@@ -190,8 +190,8 @@ class Sweep:
         out: set[tuple[int, int]] = set()
         w = tr.watch
         n = self.path.last
-        for u in ((0.0, float(n)) if n else (0.0,)):
-            if tr.box_gap[int(u)] > self.touch:
+        for u, gap in (((0.0, tr.gap_first), (float(n), tr.gap_last)) if n else ((0.0, tr.gap_first),)):
+            if gap > self.touch:
                 continue
             self.probe.place(w, u)
             for gap, ba, bb in self.probe.pairs(w, u):
@@ -211,16 +211,17 @@ class Sweep:
         two of its checks, nor in a step that the boxes alone keep apart."""
         path, probe = self.path, self.probe
         n = path.last
-        end = tr.path_bound[-1]
-        todo = np.nonzero(~tr.box_free)[0]  # the steps the boxes do not keep apart
-        if n == 0 or tr.box_gap[0] <= 0.0 or (len(todo) and todo[0] == 0):
+        first = tr.first_todo  # the first step the boxes do not keep apart (-1: none)
+        if n == 0 or tr.gap_first <= 0.0 or first == 0:
             u = 0.0
         elif self._may_be_inside_a_mesh(tr):
             u = 0.0  # a solid wholly inside a closed mesh is far from its pieces' boxes: look
-        elif len(todo) == 0:
+        elif first < 0:
             return
         else:
-            u = float(todo[0])
+            u = float(first)
+        end = tr.path_bound[-1]
+        todo = np.nonzero(~tr.box_free)[0]  # the steps the boxes do not keep apart
         while True:
             need = end - tr.bound_at(u)
             m = probe.measure(tr.watch, u, need if u > 0.0 else math.inf, landing=tr.landing)

@@ -1,0 +1,102 @@
+"""What makes a sweep cheaper (issue 29, ninth round) gives what the code it replaces gave, bit for
+bit: the boxes and motion bounds of `bounds.prepare` from one matrix-vector product per solid over
+all the poses' rows (`rows_times`), and the per-watch values the sweep decides from, read once for
+all watches."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from val3check.collision import Cell, Obstacle, Shape, ToolSolid  # noqa: E402
+from val3check.collision import sweep as sweep_module  # noqa: E402
+from val3check.collision.bounds import rows_times  # noqa: E402
+from val3check.collision.cellfile import trsf_matrix  # noqa: E402
+
+from .helpers import ROBOT, TOOL, MotionSpan, checker, joint_motion, line_motion
+
+
+def _poses(rng, g: int, n: int, kind: int) -> np.ndarray:
+    """(g, n, 4, 4) contiguous poses: random rotations and offsets at several scales, or rows
+    with zeros, -0.0, integers and huge or tiny values."""
+    F = np.zeros((g, n, 4, 4))
+    F[..., 3, 3] = 1.0
+    if kind == 0:
+        q, _ = np.linalg.qr(rng.normal(size=(g * n, 3, 3)))
+        F[..., :3, :3] = q.reshape(g, n, 3, 3)
+        F[..., :3, 3] = rng.normal(size=(g, n, 3)) * 500.0
+    elif kind == 1:
+        F[..., :3, :] = np.round(rng.normal(size=(g, n, 3, 4)) * 3.0)  # exact zeros and integers
+        F[..., 0, 0] = -0.0
+    else:
+        F[..., :3, :] = rng.normal(size=(g, n, 3, 4)) * rng.choice([1e-300, 1e-8, 1.0, 1e8, 1e300], size=(g, n, 3, 4))
+    return F
+
+
+def _per_pose(M: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """The formulation `rows_times` replaces: one 3x3 product per pose (M (.., N, 3, 3), v (.., 3))."""
+    return (M @ v[:, None, :, None])[..., 0]
+
+
+@pytest.mark.parametrize("kind", [0, 1, 2])
+def test_rows_times_gives_the_per_pose_products_bit_for_bit(kind):
+    rng = np.random.default_rng(29 + kind)
+    for _ in range(40):
+        g, n, b = int(rng.integers(1, 9)), int(rng.integers(1, 300)), int(rng.integers(1, 14))
+        F = _poses(rng, g, n, kind)
+        groups = rng.integers(0, g, size=b)
+        vec = rng.normal(size=(b, 3)) * rng.choice([1e-3, 1.0, 50.0, 1e4])
+        if kind == 1:
+            vec[0] = (0.0, -0.0, 2.0)
+        half = np.abs(rng.normal(size=(b, 3))) * 30.0
+        rows = F[..., :3]
+        R = F[groups][..., :3, :3]
+        got = rows_times(rows, vec, groups)[..., :3]
+        assert got.tobytes() == _per_pose(R, vec).tobytes()
+        got = rows_times(np.abs(rows), half, groups)[..., :3]
+        assert got.tobytes() == _per_pose(np.abs(R), half).tobytes()
+        spheres = rng.normal(size=(g, 3)) * 100.0
+        got = rows_times(rows, spheres, range(g))[..., :3]
+        assert got.tobytes() == _per_pose(F[:, :, :3, :3], spheres).tobytes()
+
+
+def _cell() -> Cell:
+    c = Cell(path="test", margin_mm=5.0)
+    c.obstacles.append(Obstacle("table", Shape("box", (400.0, 800.0, 40.0)), "world",
+                                trsf_matrix((500.0, 0.0, -120.0, 0, 0, 0))))
+    c.obstacles.append(Obstacle("ball", Shape("sphere", (20.0,)), "world", trsf_matrix((350.0, 30.0, 140.0, 0, 0, 0))))
+    c.tools.append(ToolSolid("tip", "tTool", Shape("sphere", (10.0,)), np.eye(4)))
+    return c
+
+
+def test_the_tracks_values_read_once_are_their_arrays(monkeypatch):
+    """gap_first, gap_last and first_todo, read for all watches at once, are each track's box gap
+    at its ends and its first step the boxes do not keep apart (-1: none), for motions of one,
+    two and many samples, near and far from the cell."""
+    seen = []
+    prepare = sweep_module.prepare
+
+    def keep(*a, **k):
+        tracks = prepare(*a, **k)
+        seen.append(tracks)
+        return tracks
+
+    monkeypatch.setattr(sweep_module, "prepare", keep)
+    chk = checker(_cell())
+    q = ROBOT.solve((350.0, -200.0, 100.0, 180.0, 0.0, 0.0), None, None, tool=TOOL)
+    chk.check_motion(MotionSpan(1), [0.0], [q])
+    chk.check_motion(MotionSpan(2), [0.0, 0.004], [q, q])
+    times, Q = line_motion((350.0, -200.0, 100.0), (350.0, 200.0, 100.0), 250.0)
+    chk.check_motion(MotionSpan(3), times, Q)
+    chk.check_motion(MotionSpan(4), *joint_motion([-25.0, 13.0, 90.0, 154.0, 73.0, -172.0],
+                                                   [-25.0, 13.0, 150.0, 154.0, 73.0, -172.0], 0.5))
+    assert [len(t[0].box_gap) for t in seen] == [1, 2, len(times), 126]
+    firsts = set()
+    for tracks in seen:
+        for tr in tracks:
+            assert tr.gap_first == tr.box_gap[0] and type(tr.gap_first) is float
+            assert tr.gap_last == tr.box_gap[-1] and type(tr.gap_last) is float
+            todo = np.nonzero(~tr.box_free)[0]
+            assert tr.first_todo == (int(todo[0]) if len(todo) else -1) and type(tr.first_todo) is int
+            firsts.add(min(tr.first_todo, 1))
+    assert firsts == {-1, 0, 1}  # watches kept apart all along, blocked at the start and later
