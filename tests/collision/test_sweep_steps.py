@@ -100,3 +100,58 @@ def test_the_tracks_values_read_once_are_their_arrays(monkeypatch):
             assert tr.first_todo == (int(todo[0]) if len(todo) else -1) and type(tr.first_todo) is int
             firsts.add(min(tr.first_todo, 1))
     assert firsts == {-1, 0, 1}  # watches kept apart all along, blocked at the start and later
+
+
+def _two_calls(q_at, times):
+    """The formulation `samples_and_mids` replaces: the samples, then the mid-steps."""
+    joints = np.asarray(q_at.many(times), dtype=float)
+    if len(times) < 2:  # no step (`step_travel` asks for no mid-step)
+        return joints, joints[:0]
+    return joints, np.asarray(q_at.many(0.5 * (times[:-1] + times[1:])), dtype=float)
+
+
+def test_samples_and_mids_in_one_evaluation_are_two_evaluations_bit_for_bit():
+    """On a long run of joint lines (motions over one and two spans, windows before, after and
+    across motions), and on every motion the bundled pick-and-place sweeps in its first 30 s
+    (Cartesian lines, joint moves, blends): the joints at the samples and halfway between them
+    from one `q_at.many` call are those of two calls."""
+    import sys
+    import tempfile
+    from pathlib import Path as FsPath
+
+    from val3check.collision.path import samples_and_mids
+    from val3check.simulation import collision_run
+    from val3check.simulation import own_clock as oc
+
+    from .test_reuse_costs import _long_run, _windows
+
+    traj, spans = _long_run()
+    owns = list(oc.own_clocks(traj, _windows(spans)))
+    for own in owns:
+        got, want = samples_and_mids(own.q_at, own.times), _two_calls(own.q_at, own.times)
+        assert got[0].tobytes() == want[0].tobytes() and got[1].tobytes() == want[1].tobytes()
+
+    root = FsPath(__file__).resolve().parents[2]
+    sys.path.insert(0, str(root / "tests"))
+    from interpretation.simsupport import run_folder
+
+    seen = []
+    real = collision_run.samples_and_mids
+
+    def kept(q_at, times):
+        seen.append((q_at, times, real(q_at, times)))
+        return seen[-1][2]
+
+    app = root / "fixtures" / "valid" / "PickPlace"
+    scenario = (root / "fixtures" / "scenarios" / "pickplace.toml").read_text(encoding="utf-8")
+    mp = pytest.MonkeyPatch()
+    mp.setattr(collision_run, "samples_and_mids", kept)
+    try:
+        run_folder(app, scenario=scenario, duration=30.0, robot=ROBOT, collisions=True,
+                   cell=str(app / "val3check-cell.toml"), tmp_path=FsPath(tempfile.mkdtemp()))
+    finally:
+        mp.undo()
+    assert len(seen) > 30
+    for q_at, times, (joints, mids) in seen:
+        want = _two_calls(q_at, times)
+        assert joints.tobytes() == want[0].tobytes() and mids.tobytes() == want[1].tobytes()

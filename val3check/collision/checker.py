@@ -111,20 +111,21 @@ class CollisionChecker:
         return report
 
     def check_own(self, motion: MotionSpan, start: float, times, joints, q_at: Callable[[float], Any] | None = None,
-                  key: Hashable = None) -> ShiftedReport:
+                  key: Hashable = None, mids=None) -> ShiftedReport:
         """Check one motion given on its own clock (docs/cell.md, "How checks are sampled"): it
         starts at `start` (s), `times` (N,) are from 0, `joints` and `q_at(t)` on that clock; the
         report is on the run's clock (start + its times). `key`: everything that determines times,
         joints and q_at (None: nothing is reused); the result of a motion with an equal key in an
         equal scene (`World.key`) with the same margin, touch and tolerance is computed once and
-        reused, shifted to the new start (`reuse` finds it without the samples)."""
+        reused, shifted to the new start (`reuse` finds it without the samples). `mids`: q_at halfway
+        between the samples, when the caller has them (`path.samples_and_mids`)."""
         T, Q = self._samples(times, joints)
         hit = self.reuse(motion, start, key)
         if hit is not None:
             return hit
         full = self._full_key(key)
         allowed = self.world.allowed_names()
-        own = self._sweep(motion, T, Q, q_at)
+        own = self._sweep(motion, T, Q, q_at, mids)
         last_q = Q[-1].copy()
         last_q.flags.writeable = False  # shared by every reuse (`reuse`): never changed in place
         if full is not None:
@@ -170,9 +171,9 @@ class CollisionChecker:
             raise ValueError("times and joints must be finite numbers")
         return T, Q
 
-    def _sweep(self, motion: MotionSpan, T: np.ndarray, Q: np.ndarray, q_at) -> MotionReport:
+    def _sweep(self, motion: MotionSpan, T: np.ndarray, Q: np.ndarray, q_at, mids=None) -> MotionReport:
         before = self.backend.measurements
-        path = ArmPath(self.arm, T, Q, q_at)
+        path = ArmPath(self.arm, T, Q, q_at, mids)
         report = MotionReport(motion, T, np.zeros(len(T)), np.zeros(len(T), dtype=bool), margin_mm=self.margin,
                               tolerance_mm=self.tol)
         Sweep(self.world, self.backend, path, self.margin, self.tol).run(report, self._per_unit)

@@ -26,11 +26,12 @@ class ArmPath:
     box_col      {id(body): its column in those boxes}"""
 
     def __init__(self, arm: ArmModel, times: np.ndarray, joints: np.ndarray,
-                 q_at: Callable[[float], Any] | None) -> None:
+                 q_at: Callable[[float], Any] | None, mids: np.ndarray | None = None) -> None:
         self.arm = arm
         self.times = times
         self.joints = joints
         self.q_at = q_at
+        self._mids = mids  # q_at at mid-step, when the caller has them (`step_travel`)
         self.poses: dict[str, np.ndarray] = arm.links.poses_many(joints)
         self._between_u = -1.0  # the last position between samples computed, and its link poses
         self._between: dict[str, np.ndarray] = {}
@@ -94,10 +95,12 @@ class ArmPath:
             return np.zeros((0, Q.shape[1]))
         dq = np.abs(np.diff(Q, axis=0))
         if q_at is not None:
-            many = getattr(q_at, "many", None)  # positions at many times in one call, when the caller has it
-            tm = 0.5 * (T[:-1] + T[1:])
-            mids = (np.asarray(many(tm), dtype=float) if many is not None
-                    else np.array([np.asarray(q_at(t), dtype=float) for t in tm]))
+            mids = self._mids
+            if mids is None:
+                many = getattr(q_at, "many", None)  # positions at many times in one call, when the caller has it
+                tm = mid_times(T)
+                mids = (np.asarray(many(tm), dtype=float) if many is not None
+                        else np.array([np.asarray(q_at(t), dtype=float) for t in tm]))
             dq = dq + 4.0 * np.abs(mids - 0.5 * (Q[:-1] + Q[1:]))
         return dq * per_unit
 
@@ -109,3 +112,17 @@ class ArmPath:
         """The box (low, high) of an arm-side body at sample k."""
         col = self.box_col[body_id]
         return self.box_lo[k, col], self.box_hi[k, col]  # type: ignore[index]
+
+
+def mid_times(times: np.ndarray) -> np.ndarray:
+    """The times halfway between two samples (`ArmPath.step_travel`)."""
+    return 0.5 * (times[:-1] + times[1:])
+
+
+def samples_and_mids(q_at, times: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(joints at `times`, joints halfway between them) from one `q_at.many` call: the path is
+    evaluated element by element, so each position has the bits two calls give (tests/collision/
+    test_sweep_steps.py), and the path's spans and profile are looked up once, not twice."""
+    n = len(times)
+    both = np.asarray(q_at.many(np.concatenate([times, mid_times(times)])), dtype=float)
+    return both[:n], both[n:]

@@ -23,6 +23,7 @@ import numpy as np
 
 from ..collision import CellError, CollisionChecker, arm_model, find_cell, read_cell
 from ..collision.cell import Cell
+from ..collision.path import samples_and_mids
 from ..collision.results import Contact, MotionReport, PartDrop
 from ..diagnostics import Diagnostic
 from ..light_dataclass import dataclass, field
@@ -206,7 +207,13 @@ def check_run(motion: Any, cell: Cell | None, watch: ValueWatch, model: Any, *, 
             if done % BUDGET_EVERY and cut(done, start):
                 events = events[:ev]
                 break
-            report = checker.check_own(span, start, own.times, own.joints, q_at=own.q_at, key=own.key)
+            q_at = own.q_at
+            if hasattr(q_at, "many"):  # the samples and the mid-steps (the motion bound) in one evaluation
+                T = own.times
+                joints, mids = samples_and_mids(q_at, T)
+                report = checker.check_own(span, start, T, joints, q_at=q_at, key=own.key, mids=mids)
+            else:
+                report = checker.check_own(span, start, own.times, own.joints, q_at=q_at, key=own.key)
         run.by_motion[index] = report
         own_report = getattr(report, "own", report)  # a ShiftedReport's fields are computed when read
         if not own_report.contacts and own_report.starts_in_collision is None and not own_report.too_close:
