@@ -210,33 +210,43 @@ def prepare(path: ArmPath, lay: Layout, watches: list[Watch], steps: np.ndarray,
     # (|R_group·R_local| <= |R_group|·|R_local|: exact for solids square to their link)
     c = rows_times(rows, lay.center_local, lay.body_group)[..., :3] + F[lay.body_group, :, :3, 3]
     h = rows_times(np.abs(rows), lay.half_local, lay.body_group)[..., :3]
-    lo, hi = (c - h).transpose(1, 0, 2), (c + h).transpose(1, 0, 2)  # (N, B, 3)
-    path.set_boxes(lo, hi, {id(b): i for i, b in enumerate(lay.bodies)})
-    A = np.full((nw, n), np.inf)
-    if len(static_lo) and lay.static_watches:
-        # boxes swept over the whole motion first: a far obstacle bounds every sample alike
-        far = aabb_gap(lo.min(axis=0)[:, None], hi.max(axis=0)[:, None], static_lo[None], static_hi[None])  # (B, S)
-        near = far < NEAR_MM
-        to_static = np.broadcast_to(np.where(near, np.inf, far).min(axis=1), (n, len(far))).copy()
-        bi, si = np.nonzero(near)
-        if len(bi):
-            g = aabb_gap(lo[:, bi], hi[:, bi], static_lo[si][None], static_hi[si][None])  # (N, pairs)
-            for j in range(len(bi)):
-                np.minimum(to_static[:, bi[j]], g[:, j], out=to_static[:, bi[j]])
-        for wi, cols in zip(lay.static_watches, lay.static_columns):
-            A[wi] = to_static[:, cols].min(axis=1)
-    if len(lay.pair_a):
-        ia, ib = lay.pair_a, lay.pair_b
-        pair = aabb_gap(lo[:, ia], hi[:, ia], lo[:, ib], hi[:, ib])  # (N, pairs)
-        A[lay.self_watches] = np.minimum.reduceat(pair, lay.pair_starts, axis=1).T
+    lo, hi = c - h, c + h  # (B, N, 3)
+    path.set_boxes(lo.transpose(1, 0, 2), hi.transpose(1, 0, 2), {id(b): i for i, b in enumerate(lay.bodies)})
+    A = box_gaps(lay, nw, lo, hi, static_lo, static_hi)
     free = (A[:, :-1] + A[:, 1:] - dC.T) > 2.0 * touch
     L = A.copy()
     E = np.zeros((nw, n), dtype=bool)
     # per watch, read as Python values once: the sweep decides from them which watches to look at
     blocked = ~free
     first = np.where(blocked.any(axis=1), blocked.argmax(axis=1), -1) if n > 1 else np.full(nw, -1)
-    return [Track(w, *rows, g0, g1, k) for w, rows, g0, g1, k in zip(
+    return [Track(w, *arrays, g0, g1, k) for w, arrays, g0, g1, k in zip(
         watches, zip(Cm, Sm, A, L, E, free), A[:, 0].tolist(), A[:, -1].tolist(), first.tolist())]
+
+
+def box_gaps(lay: Layout, nw: int, lo: np.ndarray, hi: np.ndarray, static_lo: np.ndarray,
+             static_hi: np.ndarray) -> np.ndarray:
+    """(W, N): per watch and sample, the gap between the boxes of its two sides (the arm-side boxes
+    lo, hi (B, N, 3), a body's samples contiguous; the static set's (S, 3)). Gaps are minima of
+    `aabb_gap`s (exact, and never -0.0), so their order and layout do not change a bit."""
+    n = lo.shape[1]
+    A = np.full((nw, n), np.inf)
+    if len(static_lo) and lay.static_watches:
+        # boxes swept over the whole motion first: a far obstacle bounds every sample alike
+        far = aabb_gap(lo.min(axis=1)[:, None], hi.max(axis=1)[:, None], static_lo[None], static_hi[None])  # (B, S)
+        near = far < NEAR_MM
+        to_static = np.repeat(np.where(near, np.inf, far).min(axis=1)[:, None], n, axis=1)  # (B, N)
+        bi, si = np.nonzero(near)
+        if len(bi):
+            g = aabb_gap(lo[bi], hi[bi], static_lo[si][:, None], static_hi[si][:, None])  # (pairs, N)
+            for j, b in enumerate(bi.tolist()):
+                np.minimum(to_static[b], g[j], out=to_static[b])
+        for wi, cols in zip(lay.static_watches, lay.static_columns):
+            A[wi] = to_static[cols].min(axis=0)
+    if len(lay.pair_a):
+        ia, ib = lay.pair_a, lay.pair_b
+        pair = aabb_gap(lo[ia], hi[ia], lo[ib], hi[ib])  # (pairs, N)
+        A[lay.self_watches] = np.minimum.reduceat(pair, lay.pair_starts, axis=0)
+    return A
 
 
 def rows_times(rows: np.ndarray, vectors: np.ndarray, groups) -> np.ndarray:
