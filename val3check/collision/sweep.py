@@ -190,8 +190,8 @@ class Sweep:
         out: set[tuple[int, int]] = set()
         w = tr.watch
         n = self.path.last
-        for u, gap in (((0.0, tr.gap_first), (float(n), tr.gap_last)) if n else ((0.0, tr.gap_first),)):
-            if gap > self.touch:
+        for u, end_gap in (((0.0, tr.gap_first), (float(n), tr.gap_last)) if n else ((0.0, tr.gap_first),)):
+            if end_gap > self.touch:
                 continue
             self.probe.place(w, u)
             for gap, ba, bb in self.probe.pairs(w, u):
