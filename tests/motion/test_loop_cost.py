@@ -161,8 +161,8 @@ def test_the_blend_decisions_timings_remembered_together_are_the_computed_ones(m
     hits, compared = [], []
     get = trial_memo.TrialMemo.get
 
-    def counted(self, key, spans, speed_at=None):
-        hit = get(self, key, spans, speed_at)
+    def counted(self, key, spans, speed_at=None, shift=None):
+        hit = get(self, key, spans, speed_at, shift)
         if key is not None and key[-1] == "pays":
             hits.append(hit is not None)
         return hit

@@ -78,8 +78,8 @@ def test_a_long_run_with_reuse_times_every_command_as_without(monkeypatch):
     hits = []
     get = trial_memo.TrialMemo.get
 
-    def counted(self, key, spans, speed_at=None):
-        hit = get(self, key, spans, speed_at)
+    def counted(self, key, spans, speed_at=None, shift=None):
+        hit = get(self, key, spans, speed_at, shift)
         hits.append(hit is not None)
         return hit
 

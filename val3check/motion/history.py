@@ -277,6 +277,12 @@ class History:
         self._truncate(start)
 
     def _truncate(self, length: int) -> None:
+        if length > self.tail_start:
+            # (most cuts, a replan near the end: inside the chunk being written, which stays the tail;
+            # no chunk leaves, none is read back or in the file at or after it)
+            self.tail_len = length - self.tail_start
+            self._len = length
+            return
         n, sh = self._n, self.shift
         held = self._held
         keep = max((length + n - 1) >> sh, 1)  # chunks that still hold values (at least the tail)

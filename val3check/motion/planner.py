@@ -206,6 +206,14 @@ class Planner:
             i0, _ = path.locate(s0)
             ahead, shift = path.spans[i0:], path.offsets[i0]
         a = s0 - shift
+        place = previous.placement
+        key = None
+        if previous.cls is not None and command.cls is not None:
+            key = self.memo.key(ahead, a, v0, previous.cls, place.blend, place.lam_leave, command.cls, "pays",
+                                owners=(previous.key, command.key))
+            hit = self.memo.get(key, ahead, self.profile.speed_at, shift)
+            if hit is not None:  # (the hit path: nothing else is built)
+                return hit
 
         def trials(asked):
             blended = [self.span(cand.curve, 0.0, 1.0, [(previous.key, 0.0), (command.key, cand.split)], smooth=True,
@@ -223,10 +231,7 @@ class Planner:
                 self._remember(sp)
             return answer, True
 
-        place = previous.placement
-        named = None if previous.cls is None or command.cls is None else \
-            (previous.cls, place.blend, place.lam_leave, command.cls, "pays")
-        return self._remembered(ahead, a, v0, named, shift, trials, (previous.key, command.key))
+        return self._computed(key, ahead, shift, trials)
 
     def _rest_time(self, alone: Span, q_start) -> float:
         """The time of a command alone (its whole curve, the span `alone`, from joints q_start),
@@ -311,6 +316,11 @@ class Planner:
         (times from the start, s relative to the first span, ṡ). Remembered (trial_memo.py) with
         the plan's speeds it asked: a cyclic program plans the same spans from the same state every
         cycle, and its plan is then one look-up (pieces that fell back, R019, are not kept)."""
+        key = self.memo.key(ahead, a, v0, "plan")
+        hit = self.memo.get(key, ahead, self.profile.speed_at, shift)
+        if hit is not None:
+            return hit
+
         def plan(asked):
             pieces = self._timed(ahead, a, v0, [], asked)
             fell = False
@@ -321,25 +331,18 @@ class Planner:
                     self.on_fallback(piece.owner)
             return _joined(pieces), not fell
 
-        return self._remembered(ahead, a, v0, ("plan",), shift, plan)
+        return self._computed(key, ahead, shift, plan)
 
-    def _remembered(self, spans: list, a: float, v0: float, named: tuple | None, shift: float, compute, owners=()):
-        """`compute(asked)`'s answer for `spans` from a at v0 and what `named` names (trial_memo.py:
-        `owners` the keys of the commands it names; None: not remembered), remembered with the
-        plan's speeds it asked:
-        `asked(g, a)` reads them on the path, the spans being at `shift`. `compute` returns
-        (answer, whether it may be kept)."""
-        def speed_at(g, a_):
-            return self.profile.speed_at(g + shift, a_ + shift)
-
-        key = None if named is None else self.memo.key(spans, a, v0, *named, owners=owners)
-        hit = self.memo.get(key, spans, speed_at)
-        if hit is not None:
-            return hit
+    def _computed(self, key, spans: list, shift: float, compute):
+        """`compute(asked)`'s answer, remembered under `key` (trial_memo.py; None: not remembered)
+        with the plan's speeds it asked: `asked(g, a)` reads them on the path, the spans being at
+        `shift`. `compute` returns (answer, whether it may be kept). The look-up comes first
+        (`TrialMemo.get`, the same speeds read): a hit builds nothing."""
+        speed_at = self.profile.speed_at
         calls = []
 
         def asked(g, a_):
-            v = speed_at(g, a_)
+            v = speed_at(g + shift, a_ + shift)
             calls.append((g, a_, v))
             return v
 

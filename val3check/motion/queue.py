@@ -264,6 +264,16 @@ class MotionQueue:
 
     def advance(self, now: float) -> None:
         """Complete the commands the arm has finished by `now` (the Subsystem's advance)."""
+        planner = self.planner
+        pending = self.pending
+        if planner.due is None and pending:
+            # (most calls: no replan due and the first command's kept end time still ahead, as `_advance` reads it)
+            done = self._done
+            if done and (done[3] is None or done[3] > now + 1e-12) and done[0] == planner.changes and \
+                    done[1] == pending[0].key and done[2] == pending[0].placement.s_end and trial_memo.REUSE:
+                if now > self._told:
+                    self._told = now
+                return
         self._advance(now)
 
     def _advance(self, now: float, lenient: bool = False) -> None:

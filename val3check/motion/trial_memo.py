@@ -80,8 +80,13 @@ class TrialMemo:
             else:
                 parts.append((part, *[(canon.setdefault(k, len(canon)), st) for k, st in own]))
         named = tuple([canon.setdefault(k, len(canon)) for k in owners])
-        limits_key = self._limits_key
-        return (tuple(parts), named, tuple([limits_key(k) for k in canon]), *rest)
+        limits_of, kept = self.limits_of, self._limit_keys
+        limits = []
+        for k in canon:  # (`_limits_key` inline: its kept values first)
+            lim = limits_of(k)
+            hit = kept.get(id(lim))
+            limits.append(hit[1] if hit is not None and hit[0] is lim else self._limits_key(k))
+        return (tuple(parts), named, tuple(limits), *rest)
 
     def _part(self, sp) -> int:
         """A span's geometry (by the object), part, smoothness and tool as one number, the same for
@@ -125,9 +130,10 @@ class TrialMemo:
             self._limit_keys[id(lim)] = hit
         return hit[1]
 
-    def get(self, key, spans, speed_at=None):
+    def get(self, key, spans, speed_at=None, shift=None):
         """The answer kept under `key` when it still holds: the same geometries, the same speeds
-        asked of the plan (`speed_at(g, a)`), the same remembered parameterisations."""
+        asked of the plan (`speed_at(g, a)`, or `speed_at(g + shift, a + shift)` with `shift`:
+        the path's positions of the spans' relative ones), the same remembered parameterisations."""
         if key is None:
             return None
         hit = self._store().get(key)
@@ -135,9 +141,14 @@ class TrialMemo:
             return None
         # (the key names each geometry by its id: the entry holds them, so they are the spans')
         _, calls, used, answer = hit
-        for g, a, v in calls:
-            if speed_at(g, a) != v:
-                return None
+        if shift is None:
+            for g, a, v in calls:
+                if speed_at(g, a) != v:
+                    return None
+        else:
+            for g, a, v in calls:
+                if speed_at(g + shift, a + shift) != v:
+                    return None
         if used and not self.timing.holds(used):
             return None
         return answer
