@@ -23,7 +23,8 @@ import math
 import numpy as np
 
 from ..light_dataclass import dataclass, field
-from . import trial_memo
+from . import path_batch, trial_memo
+from .curves import bezier, hermite
 
 TIMING_SPLIT = 4  # gridpoints of the timing per interval of a Cartesian path's knots (8 mm: one per 2 mm)
 H_FD = 1e-4  # path-units step of the finite differences of the TCP rates
@@ -135,16 +136,6 @@ class BlendParam:
         return self.c1 + 2.0 * self.c2 * sigma
 
 
-def bezier(u: np.ndarray, P0, P1, P2, P3, order: int = 0) -> np.ndarray:
-    """Cubic Bézier curve (or its derivatives in u)."""
-    v = 1.0 - u
-    if order == 0:
-        return v * v * v * P0 + 3 * v * v * u * P1 + 3 * v * u * u * P2 + u * u * u * P3
-    if order == 1:
-        return 3 * v * v * (P1 - P0) + 6 * v * u * (P2 - P1) + 3 * u * u * (P3 - P2)
-    return 6 * v * (P2 - 2 * P1 + P0) + 6 * u * (P3 - 2 * P2 + P1)
-
-
 def blend_controls(pL, vL, pR, vR, ell_l: float, ell_r: float):
     """Control points of the blend from (pL, vL) to (pR, vR): the corner of the two tangents, as a
     cubic (the degree-raised parabola with its control point at the via point when the
@@ -235,17 +226,6 @@ class JointBlend:
         """Gridpoints of λ in [a, b]: one per degree of joint motion (at least 24, at most 240)."""
         n = max(24, min(240, math.ceil(self.ell * (b - a))))
         return np.linspace(a, b, n + 1)
-
-
-def hermite(u: np.ndarray, p0, m0, p1, m1, order: int = 0) -> np.ndarray:
-    """Cubic Hermite curve (or its derivatives in u) with end points p0, p1 and tangents m0, m1."""
-    if order == 0:
-        u2, u3 = u * u, u * u * u
-        return (2 * u3 - 3 * u2 + 1) * p0 + (u3 - 2 * u2 + u) * m0 + (-2 * u3 + 3 * u2) * p1 + (u3 - u2) * m1
-    if order == 1:
-        u2 = u * u
-        return (6 * u2 - 6 * u) * p0 + (3 * u2 - 4 * u + 1) * m0 + (-6 * u2 + 6 * u) * p1 + (3 * u2 - 2 * u) * m1
-    return (12 * u - 6) * p0 + (6 * u - 4) * m0 + (-12 * u + 6) * p1 + (6 * u - 2) * m1
 
 
 @dataclass(slots=True)  # about 1.7 spans per motion held for the whole run: no __dict__ each
@@ -354,6 +334,19 @@ class Span:
             p, r = curve.rates(lam)
             return p / self.geom.ell, r / self.geom.ell
         return tcp_rates(kin, self.geom.q(lam, 0), q1, self.tool)
+
+
+def batch_kind(geom) -> str | None:
+    """The kind (path_batch.py) whose geometries Path.q evaluates together, None for one evaluated
+    alone (another class, or a blend whose shape is not the Bézier one)."""
+    cls = geom.__class__
+    if cls is JointSpline:
+        return path_batch.SPLINE
+    if cls is JointLine:
+        return path_batch.LINE
+    if cls is JointBlend and geom.shape.__class__ is BlendShape and geom.shape.shape == "bezier":
+        return path_batch.BLEND
+    return None
 
 
 def _evaluate(geom, lam: np.ndarray, orders: tuple):
@@ -494,11 +487,24 @@ class Path:
         row_label = label[idx]
         order_ = np.argsort(row_label, kind="stable")
         bounds = [0, *(np.flatnonzero(np.diff(row_label[order_])) + 1).tolist(), len(s)]
+        together: dict = {}  # the geometries of a kind evaluated together (path_batch.py), with their rows
         for lo, hi in zip(bounds[:-1], bounds[1:]):
             rows = order_[lo:hi]
             geom = geoms[int(row_label[rows[0]])]
+            cls = batch_kind(geom)
+            if cls is not None:
+                held = together.setdefault(cls, ([], []))
+                held[0].append(geom)
+                held[1].append(rows)
+                continue
             for out, order, d in zip(outs, orders, _evaluate(geom, lam[rows], orders)):
                 out[rows] = d if order == 0 else d / geom.ell ** order
+        for cls, (same, rows_of) in together.items():
+            rows = np.concatenate(rows_of)
+            g_of = np.repeat(np.arange(len(same)), [len(r) for r in rows_of])
+            for out, order, d in zip(outs, orders, path_batch.evaluate(cls, same, rows_of, lam, orders)):
+                # (as above: each geometry's ell ** order, a Python power)
+                out[rows] = d if order == 0 else d / np.array([g.ell ** order for g in same])[g_of][:, None]
         return outs
 
     def q_end(self, s, order: int = 0) -> np.ndarray:
