@@ -103,3 +103,22 @@ def test_a_path_of_every_kind_gives_the_bits_of_each_row_alone():
         assert _bits(path.q(s, order)) == _bits(_alone(path, s, order))
     q, q1 = path.q01(s)
     assert _bits(q) == _bits(_alone(path, s, 0)) and _bits(q1) == _bits(_alone(path, s, 1))
+
+
+def test_a_subclass_with_its_own_q_is_evaluated_by_it():
+    """Neither the batch of a kind nor `q01` bypasses a subclass's own `q`."""
+
+    class Shifted(JointSpline):
+        def q(self, lam, order: int = 0):
+            return super().q(lam, order) + 1.0
+
+    rng = np.random.default_rng(4)
+    lam = np.linspace(0.0, 1.0, 12)
+    path = Path(np.zeros(6))
+    for _ in range(2):
+        path.append(Span(Shifted(lam, rng.normal(size=(12, 6)) * 30, rng.normal(size=(12, 6)) * 50), 0.0, 1.0))
+        path.append(Span(_geometries(rng)[1], 0.0, 1.0))
+    s = rng.uniform(0.0, path.end, 300)
+    q, q1 = path.q01(s)
+    assert _bits(q) == _bits(_alone(path, s, 0)) and _bits(q1) == _bits(_alone(path, s, 1))
+    assert _bits(path.q(s)) == _bits(q)

@@ -350,12 +350,10 @@ def batch_kind(geom) -> str | None:
 
 
 def _evaluate(geom, lam: np.ndarray, orders: tuple):
-    """`geom.q(lam, order)` for each order of `orders`; orders 0 and 1 from the geometry's one
-    evaluation of both (`q01`) where it has one."""
-    if orders == (0, 1):
-        both = getattr(geom, "q01", None)
-        if both is not None:
-            return both(lam)
+    """`geom.q(lam, order)` for each order of `orders`; orders 0 and 1 from one evaluation of both
+    (`q01`) for the classes that have it (not a subclass: it may have its own `q`)."""
+    if orders == (0, 1) and (geom.__class__ is JointSpline or geom.__class__ is JointBlend):
+        return geom.q01(lam)
     return [geom.q(lam, order) for order in orders]
 
 
