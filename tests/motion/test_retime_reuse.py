@@ -289,3 +289,49 @@ def test_a_tool_pose_s_matrix_is_made_once_per_pose_and_each_component_changed_m
             o = collect_module._shared_matrix(other, poses)
             assert o is not m and o.tobytes() == collect_module._matrix(other).tobytes()
     assert len(poses) == 13
+
+
+def test_the_rounding_kept_gives_round_s_value_and_the_same_keys():
+    """piece_key keeps round(x, 9) by x: the value round gives, the second time too; a zero's sign
+    may come from the other zero's, which changes neither a key's equality nor its hash."""
+    import math
+
+    import numpy as np
+
+    from val3check.motion.retime import _round9
+
+    rng = np.random.default_rng(3)
+    xs = [*rng.uniform(-1e3, 1e3, 500).tolist(), *(rng.uniform(0, 1e-8, 200)).tolist(), 0.0, -0.0, 5e-10, 1.5e-9,
+          math.inf, -math.inf, math.nan, 123456789.123456789]
+    kept: dict = {}
+    for x in xs + xs[::-1]:
+        r = _round9(kept, x)
+        want = round(x, 9)
+        assert (r == want and math.copysign(1.0, r) == math.copysign(1.0, want)) or (r != r and want != want) \
+            or (r == 0.0 == want and hash((r,)) == hash((want,)))
+
+
+def test_the_limits_kept_by_mdesc_are_those_made_afresh():
+    """collect's motion rows share one MotionLimits per distinct value, kept by the mdesc object as
+    well: the same object for the same mdesc and for an equal one, another for each field changed
+    in turn (0.0 to -0.0 too), and every one equal to the limits made with nothing kept."""
+    from dataclasses import replace
+
+    from val3check.motion.mdesc import MDesc
+
+    same: dict = {}
+    base = MDesc(accel=80.0, vel=50.0, decel=70.0, tvel=250.0, rvel=90.0)
+    lim = collect_module._limits(base, same)
+    assert lim == collect_module._limits(base, None)
+    assert collect_module._limits(base, same) is lim
+    assert collect_module._limits(replace(base), same) is lim  # another object, the same values
+    assert collect_module._limits(replace(base, blend="joint"), same) is lim  # not a limit
+    made = [lim]
+    for name in ("accel", "vel", "decel", "tvel", "rvel"):
+        for v in (getattr(base, name) + 1.0, 0.0, -0.0):
+            md = replace(base, **{name: v})
+            got = collect_module._limits(md, same)
+            assert got == collect_module._limits(md, None) and repr(got) == repr(collect_module._limits(md, None))
+            assert all(got is not m for m in made)
+            made.append(got)
+            assert collect_module._limits(md, same) is got

@@ -276,3 +276,30 @@ def test_a_part_taken_again_where_it_was_left_leaves_the_cell(tmp_path):
     close1, open_, close2 = (e.time_us / 1e6 for e in result.motion.tool_events)
     spans = [(s.carried, s.start, s.end) for s in result.motion.cell_timeline.parts]
     assert spans == [(True, close1, open_), (False, open_, close2), (True, close2, None)]
+
+
+def test_the_rows_limits_and_clearances_rounded_once_per_object_are_each_row_s(run):
+    """The motion table rounds each limits and closest-approach object's numbers once (a cyclic run's
+    rows share a few objects): every row as if rounded alone, whichever objects repeat, another
+    object with other values (0.0 and -0.0 too) giving its own."""
+    from dataclasses import replace
+
+    from val3check.reporting.html.from_run import _motions, _r
+
+    result, report = run
+    base = next(mo for mo in result.motion.motions if mo.limits is not None and mo.start is not None)
+    one = base.limits
+    others = [replace(one, vel=one.vel + 0.0004), replace(one, tvel=None), replace(one, vel=0.0),
+              replace(one, vel=-0.0), replace(one, tvel=(one.tvel or 100.0) + 0.7)]
+    limits = [one, others[0], one, others[1], others[0], others[2], others[3], one, others[4], others[4]]
+    motions = [replace(base, limits=lim, start=base.start + k, end=base.start + k + 0.5) for k, lim in enumerate(limits)]
+    near = [Clearance(mm, 1.0, "tool tGripper 'jaws'", "obstacle 'table'", (0, 0, 0), (0, 0, 1))
+            for mm in (42.5004, 17.25, 0.0, -0.0)]
+    close = {k: MotionReport(MotionSpan(k), np.zeros(0), np.zeros(0), np.zeros(0, bool), min_clearance=near[k % 4])
+             for k in range(len(motions)) if k != 3}
+    rows = _motions(report, SimpleNamespace(motions=motions), 100.0, close)
+    assert len(rows) == len(motions)
+    for k, (row, mo) in enumerate(zip(rows, motions)):
+        want = (_r(mo.limits.vel, 3), _r(mo.limits.tvel, 3) if mo.limits.tvel is not None else None,
+                _r(near[k % 4].mm, 3) if k != 3 else None)
+        assert repr((row["vel"], row["tvel"], row["min_clearance"])) == repr(want)

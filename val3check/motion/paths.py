@@ -23,7 +23,8 @@ import math
 import numpy as np
 
 from ..light_dataclass import dataclass, field
-from . import trial_memo
+from . import path_batch, trial_memo
+from .curves import bezier, hermite
 
 TIMING_SPLIT = 4  # gridpoints of the timing per interval of a Cartesian path's knots (8 mm: one per 2 mm)
 H_FD = 1e-4  # path-units step of the finite differences of the TCP rates
@@ -79,15 +80,23 @@ class JointSpline:
 
     def q(self, lam, order: int = 0) -> np.ndarray:
         """Joint positions (order 0) or derivatives in λ, on the cubic Hermite pieces."""
+        h, u, p0, m0, p1, m1 = self._pieces(lam)
+        d = hermite(u, p0, m0, p1, m1, order)
+        return d if order == 0 else d / h ** order
+
+    def q01(self, lam) -> tuple[np.ndarray, np.ndarray]:
+        """(`q(lam)`, `q(lam, 1)`) from one search of the knots (Path.q01)."""
+        h, u, p0, m0, p1, m1 = self._pieces(lam)
+        return hermite(u, p0, m0, p1, m1, 0), hermite(u, p0, m0, p1, m1, 1) / h
+
+    def _pieces(self, lam) -> tuple:
+        """The Hermite piece of each λ: its width h, the fraction u across it, its ends and tangents."""
         x = np.atleast_1d(np.asarray(lam, dtype=float))
         knots = self.lam
         i = np.clip(np.searchsorted(knots, x, side="right") - 1, 0, len(knots) - 2)
         h = (knots[i + 1] - knots[i])[:, None]
         u = (x - knots[i])[:, None] / h
-        p0, p1 = self.Q[i], self.Q[i + 1]
-        m0, m1 = self.D[i] * h, self.D[i + 1] * h
-        d = hermite(u, p0, m0, p1, m1, order)
-        return d if order == 0 else d / h ** order
+        return h, u, self.Q[i], self.D[i] * h, self.Q[i + 1], self.D[i + 1] * h
 
     def grid(self, a: float, b: float) -> np.ndarray:
         """The time parameterisation's gridpoints in [a, b]: the knots inside, a and b, and
@@ -125,16 +134,6 @@ class BlendParam:
     def du(self, sigma):
         """du/dσ at σ."""
         return self.c1 + 2.0 * self.c2 * sigma
-
-
-def bezier(u: np.ndarray, P0, P1, P2, P3, order: int = 0) -> np.ndarray:
-    """Cubic Bézier curve (or its derivatives in u)."""
-    v = 1.0 - u
-    if order == 0:
-        return v * v * v * P0 + 3 * v * v * u * P1 + 3 * v * u * u * P2 + u * u * u * P3
-    if order == 1:
-        return 3 * v * v * (P1 - P0) + 6 * v * u * (P2 - P1) + 3 * u * u * (P3 - P2)
-    return 6 * v * (P2 - 2 * P1 + P0) + 6 * u * (P3 - 2 * P2 + P1)
 
 
 def blend_controls(pL, vL, pR, vR, ell_l: float, ell_r: float):
@@ -186,6 +185,16 @@ class BlendShape:
             return d1 * du
         return bezier(u, *self.P, order=2) * du * du + d1 * (2.0 * pr.c2)
 
+    def point01(self, sigma) -> tuple[np.ndarray, np.ndarray]:
+        """(`point(σ)`, `point(σ, 1)`) from one evaluation of the parameter (Path.q01)."""
+        sig = np.atleast_1d(np.asarray(sigma, dtype=float))
+        if self.shape != "bezier":
+            u = (sig / self.ell)[:, None]
+            return hermite(u, *self.P, order=0), hermite(u, *self.P, order=1) / self.ell
+        pr = self.param
+        u = pr.u(sig)[:, None]
+        return bezier(u, *self.P), bezier(u, *self.P, order=1) * pr.du(sig)[:, None]
+
 
 class JointBlend:
     """A joint blend (10.1.2.3): from the leave point (qL, velocity vL = dq/dσ of the first path)
@@ -207,21 +216,16 @@ class JointBlend:
         d = self.shape.point(sig, order)
         return d if order == 0 else d * self.ell ** order
 
+    def q01(self, lam) -> tuple[np.ndarray, np.ndarray]:
+        """(`q(lam)`, `q(lam, 1)`) from one evaluation of the shape (Path.q01)."""
+        sig = np.atleast_1d(np.asarray(lam, dtype=float)) * self.ell
+        d0, d1 = self.shape.point01(sig)
+        return d0, d1 * self.ell  # (x ** 1 is x)
+
     def grid(self, a: float, b: float) -> np.ndarray:
         """Gridpoints of λ in [a, b]: one per degree of joint motion (at least 24, at most 240)."""
         n = max(24, min(240, math.ceil(self.ell * (b - a))))
         return np.linspace(a, b, n + 1)
-
-
-def hermite(u: np.ndarray, p0, m0, p1, m1, order: int = 0) -> np.ndarray:
-    """Cubic Hermite curve (or its derivatives in u) with end points p0, p1 and tangents m0, m1."""
-    if order == 0:
-        u2, u3 = u * u, u * u * u
-        return (2 * u3 - 3 * u2 + 1) * p0 + (u3 - 2 * u2 + u) * m0 + (-2 * u3 + 3 * u2) * p1 + (u3 - u2) * m1
-    if order == 1:
-        u2 = u * u
-        return (6 * u2 - 6 * u) * p0 + (3 * u2 - 4 * u + 1) * m0 + (-6 * u2 + 6 * u) * p1 + (3 * u2 - 2 * u) * m1
-    return (12 * u - 6) * p0 + (6 * u - 4) * m0 + (-12 * u + 6) * p1 + (6 * u - 2) * m1
 
 
 @dataclass(slots=True)  # about 1.7 spans per motion held for the whole run: no __dict__ each
@@ -332,6 +336,27 @@ class Span:
         return tcp_rates(kin, self.geom.q(lam, 0), q1, self.tool)
 
 
+def batch_kind(geom) -> str | None:
+    """The kind (path_batch.py) whose geometries Path.q evaluates together, None for one evaluated
+    alone (another class, or a blend whose shape is not the Bézier one)."""
+    cls = geom.__class__
+    if cls is JointSpline:
+        return path_batch.SPLINE
+    if cls is JointLine:
+        return path_batch.LINE
+    if cls is JointBlend and geom.shape.__class__ is BlendShape and geom.shape.shape == "bezier":
+        return path_batch.BLEND
+    return None
+
+
+def _evaluate(geom, lam: np.ndarray, orders: tuple):
+    """`geom.q(lam, order)` for each order of `orders`; orders 0 and 1 from one evaluation of both
+    (`q01`) for the classes that have it (not a subclass: it may have its own `q`)."""
+    if orders == (0, 1) and (geom.__class__ is JointSpline or geom.__class__ is JointBlend):
+        return geom.q01(lam)
+    return [geom.q(lam, order) for order in orders]
+
+
 def tcp_rates(kin, q: np.ndarray, q1: np.ndarray, tool) -> tuple[np.ndarray, np.ndarray]:
     """|dp/dσ| (mm) and |dθ/dσ| (deg) of the TCP for joint derivatives q1, by central
     differences of the forward kinematics along q1."""
@@ -412,38 +437,73 @@ class Path:
 
     def q(self, s, order: int = 0) -> np.ndarray:
         """Joint positions (or derivatives) at global s values (array)."""
+        return self._at(s, (order,))[0]
+
+    def q01(self, s) -> tuple[np.ndarray, np.ndarray]:
+        """(`q(s)`, `q(s, 1)`) from one search of the spans and one evaluation per geometry: the
+        same bits as the two calls (a page samples both at every tick)."""
+        return self._at(s, (0, 1))
+
+    def _at(self, s, orders: tuple) -> tuple:
+        """`q(s, order)` for each order of `orders`."""
         s = np.atleast_1d(np.asarray(s, dtype=float))
         if not self.spans:
-            base = self.q_rest if order == 0 else np.zeros_like(self.q_rest)
-            return np.tile(base, (len(s), 1))
+            return tuple(np.tile(self.q_rest if order == 0 else np.zeros_like(self.q_rest), (len(s), 1))
+                         for order in orders)
         # only the spans between the smallest and the largest s (the path holds the whole run)
         last = len(self.spans) - 1
         i0 = min(max(bisect.bisect_right(self.offsets, float(s.min())) - 1, 0), last)
         i1 = min(max(bisect.bisect_right(self.offsets, float(s.max())) - 1, 0), last)
-        out = np.empty((len(s), len(self.q_rest)))
+        outs = tuple(np.empty((len(s), len(self.q_rest))) for _ in orders)
         if i0 == i1:
             sp = self.spans[i0]
-            out[:] = sp.q(np.clip(s - self.offsets[i0], 0.0, sp.length), order)
-            return out
+            geom = sp.geom
+            lam = sp.a + np.clip(s - self.offsets[i0], 0.0, sp.length) / geom.ell  # (Span.q)
+            for out, order, d in zip(outs, orders, _evaluate(geom, lam, orders)):
+                out[:] = d if order == 0 else d / geom.ell ** order
+            return outs
         offs = np.asarray(self.offsets[i0:i1 + 1])
         idx = np.clip(np.searchsorted(offs, s, side="right") - 1, 0, i1 - i0)
-        # one evaluation per geometry touched (a cyclic run's spans share a few): the same
-        # element-wise arithmetic as Span.q span by span, so the same bits
+        # one evaluation per geometry touched (a cyclic run's spans share a few), each row's λ
+        # found for all rows at once: the same element-wise arithmetic as Span.q span by span, so
+        # the same bits
         spans = self.spans[i0:i1 + 1]
         group: dict[int, int] = {}
-        label = np.array([group.setdefault(id(sp.geom), len(group)) for sp in spans])
-        a = np.array([sp.a for sp in spans])
-        length = np.array([sp.length for sp in spans])
+        n = len(spans)
+        label, a, b, ell = np.empty(n, dtype=np.intp), np.empty(n), np.empty(n), np.empty(n)
+        geoms = []
+        for k, sp in enumerate(spans):
+            geom = sp.geom
+            g = group.get(id(geom))
+            if g is None:
+                g = group[id(geom)] = len(geoms)
+                geoms.append(geom)
+            label[k], a[k], b[k], ell[k] = g, sp.a, sp.b, geom.ell
+        row_a, row_ell = a[idx], ell[idx]
+        sigma = np.clip(s - offs[idx], 0.0, (b[idx] - row_a) * row_ell)  # (Span.length)
+        lam = row_a + sigma / row_ell
         row_label = label[idx]
         order_ = np.argsort(row_label, kind="stable")
-        cuts = np.flatnonzero(np.diff(row_label[order_])) + 1
-        for rows in np.split(order_, cuts):
-            j = idx[rows]
-            geom = spans[int(j[0])].geom
-            sigma = np.clip(s[rows] - offs[j], 0.0, length[j])
-            d = geom.q(a[j] + sigma / geom.ell, order)
-            out[rows] = d if order == 0 else d / geom.ell ** order
-        return out
+        bounds = [0, *(np.flatnonzero(np.diff(row_label[order_])) + 1).tolist(), len(s)]
+        together: dict = {}  # the geometries of a kind evaluated together (path_batch.py), with their rows
+        for lo, hi in zip(bounds[:-1], bounds[1:]):
+            rows = order_[lo:hi]
+            geom = geoms[int(row_label[rows[0]])]
+            cls = batch_kind(geom)
+            if cls is not None:
+                held = together.setdefault(cls, ([], []))
+                held[0].append(geom)
+                held[1].append(rows)
+                continue
+            for out, order, d in zip(outs, orders, _evaluate(geom, lam[rows], orders)):
+                out[rows] = d if order == 0 else d / geom.ell ** order
+        for cls, (same, rows_of) in together.items():
+            rows = np.concatenate(rows_of)
+            g_of = np.repeat(np.arange(len(same)), [len(r) for r in rows_of])
+            for out, order, d in zip(outs, orders, path_batch.evaluate(cls, same, rows_of, lam, orders)):
+                # (as above: each geometry's ell ** order, a Python power)
+                out[rows] = d if order == 0 else d / np.array([g.ell ** order for g in same])[g_of][:, None]
+        return outs
 
     def q_end(self, s, order: int = 0) -> np.ndarray:
         """`q` at positions s that end a motion: where a span starts at s, on the span ending there

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import bisect
 from dataclasses import fields, replace
+from operator import attrgetter
 
 import numpy as np
 
@@ -39,27 +40,42 @@ def piece_key(path, a: float, b: float, limits, memo: dict | None = None) -> tup
     i0, _ = path.locate(a)
     if i0 < 0:
         return None
-    parts: list = [round(b - a, 9)]
-    i = i0
-    spans, offsets = path.spans, path.offsets
     if memo is None:
         memo = {}
+    rounded = memo.get(_ROUNDED)
+    if rounded is None:
+        rounded = memo[_ROUNDED] = {}
+    parts: list = [_round9(rounded, b - a)]
+    i = i0
+    spans, offsets = path.spans, path.offsets
     while i < len(spans):
         off = offsets[i]
         if off > b + 1e-12:
             break
         sp = spans[i]
-        lo, hi = max(a - off, 0.0), min(b - off, sp.length)
+        lo, hi = max(a - off, 0.0), min(b - off, (sp.b - sp.a) * sp.geom.ell)  # (Span.length)
         if hi < lo - 1e-12:
             break
-        owners = tuple([(round(k_start, 9), memo.get(key) or _owner_limits(memo, limits, key))
+        owners = tuple([(_round9(rounded, k_start), memo.get(key) or _owner_limits(memo, limits, key))
                         for key, k_start in sp.owners])
         tool = None if sp.tool is None else sp.tool.tobytes()
         # positions in the span to 1e-9 path units (1e-9 degrees of joint motion): the same stop of a
         # repeated motion lies at another global position, found by sums that differ in the last bits
-        parts.append((id(sp.geom), sp.a, sp.b, tool, sp.smooth, owners, round(lo, 9), round(hi, 9)))
+        parts.append((id(sp.geom), sp.a, sp.b, tool, sp.smooth, owners, _round9(rounded, lo), _round9(rounded, hi)))
         i += 1
     return tuple(parts)
+
+
+_ROUNDED = ("rounded",)  # piece_key's memo: round(x, 9) of the numbers already rounded
+
+
+def _round9(rounded: dict, x: float) -> float:
+    """round(x, 9), kept in `rounded` by x (a cyclic run's spans repeat their lengths and owners'
+    starts; round is slow). -0.0 may read 0.0's: equal in a key, and with the same hash."""
+    r = rounded.get(x)
+    if r is None:
+        r = rounded[x] = round(x, 9)
+    return r
 
 
 def _owner_limits(memo: dict, limits, key) -> tuple:
@@ -268,11 +284,17 @@ class Retiming:
         r, kr = live[rest], kk[rest]
         out[r] = t[r] + (new_starts[kr] - starts[kr]) + t_end[kr] - (ends[kr] - starts[kr])
         m, km = live[~rest], kk[~rest]
-        by_piece: dict = {}
-        for row, piece in zip(m.tolist(), km.tolist()):
-            by_piece.setdefault(id(self.pieces[piece]), (self.pieces[piece], []))[1].append(row)
-        for piece, rows in by_piece.values():
-            rows = np.array(rows)
+        # the rows of each distinct piece together, in their order (a stable sort by piece number)
+        number: dict = {}
+        pieces = self.pieces
+        of = np.array([number.setdefault(id(p), len(number)) for p in pieces], dtype=np.intp)
+        distinct = {n: p for p, n in zip(pieces, of.tolist())}
+        g = of[km]
+        order = np.argsort(g, kind="stable")
+        cuts = [0, *(np.flatnonzero(np.diff(g[order])) + 1).tolist(), len(m)] if len(m) else [0]
+        for lo, hi in zip(cuts[:-1], cuts[1:]):
+            rows = m[order[lo:hi]]
+            piece = distinct[int(g[order[lo]])]
             at = _piece_times(piece, rel[rows])
             out[rows] = new_starts[k[rows]] + np.where(np.isnan(at), piece.t_end, at)
         return out
@@ -342,7 +364,7 @@ def each_retimed(queue, records: list, factors, out_of_time=None, stretches: Str
         # each record's other fields read once for all the factors (what `replace` does per call)
         names = [f.name for f in fields(records[0])]
         i_start, i_end = names.index("start"), names.index("end")
-        values = [[getattr(r, n) for n in names] for r in records]
+        values = list(map(list, map(attrgetter(*names), records)))
         make = type(records[0])
     else:
         values = None

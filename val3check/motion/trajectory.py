@@ -310,6 +310,12 @@ def window(values, lo: int, hi: int) -> np.ndarray:
     return np.asarray(values[lo:hi], dtype=float)
 
 
+def _q01(path, s: np.ndarray) -> tuple:
+    """(`path.q(s)`, `path.q(s, 1)`), in one evaluation where the path has one (paths.Path.q01)."""
+    both = getattr(path, "q01", None)
+    return both(s) if both is not None else (path.q(s), path.q(s, 1))
+
+
 _MOVING_BLOCK = 1 << 16  # breakpoints per block in Trajectory.moving
 
 
@@ -353,9 +359,10 @@ class Trajectory:
         first[1:] = (s.view(np.int64)[1:] != s.view(np.int64)[:-1]) | (sd.view(np.int64)[1:] != sd.view(np.int64)[:-1])
         at = np.flatnonzero(first)
         if len(at) == len(s):
-            return times, self.path.q(s), self.path.q(s, 1) * sd[:, None]
-        q = self.path.q(s[at])
-        qd = self.path.q(s[at], 1) * sd[at][:, None]
+            q, q1 = _q01(self.path, s)
+            return times, q, q1 * sd[:, None]
+        q, q1 = _q01(self.path, s[at])
+        qd = q1 * sd[at][:, None]
         back = np.cumsum(first) - 1  # each sample's run
         return times, q[back], qd[back]
 

@@ -19,6 +19,7 @@ from ..geometry.frames import Frame, root_pose
 from ..geometry.rotation import angles_of, matrix
 from ..interpretation.machine import Machine
 from ..motion.cycle import cycle_stats
+from ..motion.mdesc import MDesc
 from ..motion.motion_records import busy_time
 from ..motion.retime import each_retimed
 from ..robot.models import ASSUMED_ACCELERATION_RANGE
@@ -179,8 +180,7 @@ def _entry(rec, asked: tuple, layers=None, same: dict | None = None) -> MotionEn
     already made, reused when equal."""
     req, q_start, q_end, state = asked
     connection = req.kind == "connection"
-    md = req.mdesc
-    limits = None if connection else MotionLimits(md.vel, md.accel, md.decel, md.tvel_limit, md.rvel_limit)
+    limits = None if connection else _limits(req.mdesc, same)
     trsf = None
     if not connection and req.tool is not None:
         import numpy as np
@@ -191,8 +191,6 @@ def _entry(rec, asked: tuple, layers=None, same: dict | None = None) -> MotionEn
             trsf = _trsf(req.tool)
             if same is not None:
                 same[key] = trsf
-    if same is not None:
-        limits = same.setdefault(("limits", repr(limits)), limits)
     return MotionEntry(
         rec.id, rec.kind, rec.source, rec.state, rec.recorded, rec.start, rec.end, rec.length_mm, rec.peak_tcp_mm_s,
         rec.dominant, rec.limit_share, rec.target, req.frame_name, rec.tool,
@@ -201,6 +199,22 @@ def _entry(rec, asked: tuple, layers=None, same: dict | None = None) -> MotionEn
         joints_start=_turned(q_start, rec.start, layers),
         joints_end=_turned(q_end, rec.end, layers) if state != "failed" else None,
         limits=limits)
+
+
+def _limits(md, same: dict | None) -> MotionLimits:
+    """The MotionLimits of the mdesc `md` (motion/mdesc.MDesc, frozen); `same`: one object per
+    distinct value (by its repr: -0.0 is not 0.0), kept by the mdesc object too (a cyclic program
+    passes the same few again and again; held with it, so that its id is not another's)."""
+    kept = same is not None and md.__class__ is MDesc  # (frozen: its limits never change)
+    held = same.get(("mdesc", id(md))) if kept else None
+    if held is not None and held[0] is md:
+        return held[1]
+    limits = MotionLimits(md.vel, md.accel, md.decel, md.tvel_limit, md.rvel_limit)
+    if same is not None:
+        limits = same.setdefault(("limits", repr(limits)), limits)
+        if kept:
+            same[("mdesc", id(md))] = (md, limits)
+    return limits
 
 
 def _turned(joints, t, layers):

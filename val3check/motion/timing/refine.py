@@ -85,21 +85,21 @@ def refine(grid: Grid, sd: np.ndarray, back: np.ndarray, fwd: np.ndarray,
     tau, env = _corners(x, cap, h, a, d)
     lin = x[:-1, None] + 2.0 * u_lin[:, None] * tau
     above = np.isfinite(env) & (env > lin + REL_TOL * np.maximum(1.0, np.maximum(x[:-1], x[1:]))[:, None])
-    rows = np.flatnonzero(above.any(axis=1))
-    if len(rows) == 0:
+    k, c = np.nonzero(above)  # the corners: interval k, in order
+    if len(k) == 0:
         return s.copy(), sd.copy()
-    out_s, out_x = [s[: rows[0] + 1]], [x[: rows[0] + 1]]
-    for j, k in enumerate(rows):
-        m = above[k]
-        order = np.argsort(tau[k][m])
-        out_s.append(s[k] + tau[k][m][order])
-        out_x.append(env[k][m][order])
-        end = rows[j + 1] + 1 if j + 1 < len(rows) else n
-        out_s.append(s[k + 1:end])
-        out_x.append(x[k + 1:end])
-    s_out = np.concatenate(out_s)
-    x_out = np.maximum(np.concatenate(out_x), 0.0)
-    return s_out, np.sqrt(x_out)
+    t = tau[k, c]
+    order = np.lexsort((t, k))  # by interval, then along it (equal τ: the same corner twice, either order)
+    k, t, e = k[order], t[order], env[k, c][order]
+    # each interval's corners between its two gridpoints: gridpoint i after the corners of the
+    # intervals before it, corner j after the gridpoints up to its interval's start and the corners before it
+    m = len(k)
+    s_out, x_out = np.empty(n + m), np.empty(n + m)
+    at = np.arange(n) + np.searchsorted(k, np.arange(n), side="left")
+    s_out[at], x_out[at] = s, x
+    at = k + 1 + np.arange(m)
+    s_out[at], x_out[at] = s[k] + t, e
+    return s_out, np.sqrt(np.maximum(x_out, 0.0))
 
 
 def _finite(u: np.ndarray) -> np.ndarray:

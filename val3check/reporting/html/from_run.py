@@ -66,6 +66,10 @@ def _motions(report: Any, m: Any, end: float, clearances: dict) -> list[dict]:
     shown: dict[str, Any] = {}  # the display path of each file, once (a cycle repeats its lines)
     to: dict[tuple, str] = {}  # the obstacle of each pair of bodies, once
     times: list[float] = []  # start, end, duration of each row: rounded at once below
+    # each limits and closest approach object's rounded numbers, once (a cyclic run's rows share a
+    # few: collect.py's one MotionLimits per mdesc, a repeated motion's first report); held with
+    # them, so that an id is not another object's
+    made: dict[int, tuple] = {}
     for k, motion in enumerate(m.motions):
         if motion.start is None or motion.start > end:
             continue  # failed before it moved (its diagnostic says why), or not started within the run
@@ -82,17 +86,25 @@ def _motions(report: Any, m: Any, end: float, clearances: dict) -> list[dict]:
             "id": len(out) + 1, "kind": motion.kind, "path": where[0] if where else None, "line": src.line or None,
             "column": src.col or None, "task": src.task or None, "target": motion.target or None,
             "start": None, "end": None, "duration": None, "dominant_limit": motion.dominant_limit or None,
-            "vel": _r(limits.vel, 3) if limits is not None else None,
-            "tvel": _r(limits.tvel, 3) if limits is not None and limits.tvel is not None else None,
+            "vel": None, "tvel": None,
             "min_clearance": None, "clearance_to": None,
             "state": motion.state, "motion_id": motion.id,
         }
+        if limits is not None:
+            held = made.get(id(limits))
+            if held is None or held[0] is not limits:
+                held = made[id(limits)] = (limits, _r(limits.vel, 3),
+                                           _r(limits.tvel, 3) if limits.tvel is not None else None)
+            entry["vel"], entry["tvel"] = held[1], held[2]
         mr = clearances.get(k)  # keyed by the position in m.motions (identifiers repeat, 10.6)
         # a repeated motion's report is a view shifting its first one's times (collision/results.py):
         # the first's closest approach read as it is, its time not used here
         c = getattr(getattr(mr, "own", mr), "min_clearance", None)
         if c is not None:
-            entry["min_clearance"] = _r(c.mm, 3)
+            held = made.get(id(c))
+            if held is None or held[0] is not c:
+                held = made[id(c)] = (c, _r(c.mm, 3))
+            entry["min_clearance"] = held[1]
             pair = (c.body_a, c.body_b)
             if pair not in to:
                 to[pair] = _obstacle_of(*pair)
