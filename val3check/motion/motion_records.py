@@ -338,7 +338,9 @@ def _evaluate(queue, prof, out: list, group: list, doubts: list) -> None:
         if slot is not None:
             # where it was evaluated: the near ties of its repeats are decided in that order
             # (all clear: its repeats' seconds summed a block at a time, `seconds_many`)
-            slot.figures = (length, peak, codes, clear, i, _order(codes, len(lim.V)), bool(clear.all()))
+            unclear = np.flatnonzero(~clear)
+            slot.figures = (length, peak, codes, clear, i, _order(codes, len(lim.V)), not len(unclear), unclear,
+                            i[unclear])
             slot.place = (number, done * RECORD_BLOCK + n_item)
             for item, dt in slot.items:
                 _repeat(prof, out, item, dt, slot, doubts)
@@ -350,7 +352,7 @@ def _repeat(prof, out: list, item: tuple, dt: np.ndarray, slot, doubts: list, S=
     peak, its limits per interval, its own seconds under each (`dt`: the durations of its intervals
     that count, record_repeats.Repeats.inputs); when a limit was a near tie, left to `_decide`
     (`doubts`). `S`: the profile's positions from breakpoint `base` (its window), else read there."""
-    length, peak, _, _, i, order, clear = slot.figures
+    length, peak, _, _, i, order, clear, _, _ = slot.figures
     idx, command, s0, s1, start, end, k0, k1, _ = item
     if clear:  # the earlier's intervals (the key holds where s0 and s1 fall) and limits
         share = _seconds_of(prof.S if S is None else S, max(k0 - 1, 0) - base, s0, s1, i, order, dt)
@@ -377,43 +379,41 @@ def _decide_block(queue, prof, out: list, doubts: list) -> None:
     """`_decide` of a block of doubts: only the intervals in doubt are read from the profile (as
     `_intervals` gives them), the seconds summed from the durations the repeat's key holds
     (`seconds_many`: the same arithmetic as `_seconds`)."""
-    doubt: dict = {}  # tool -> [(item, codes, unclear rows, their breakpoints, noise, figures, durations)]
+    doubt: dict = {}  # tool -> [(item, codes, unclear rows, their intervals, where its window starts, noise,
+    #                            length, peak, intervals, durations)]
     # the breakpoints the block reads, in one window from `base` (a History reads old ones one by one)
     base = min(max(d[1][6] - 1, 0) for d in doubts)
-    Sw, SD = (window(v, base, max(d[1][7] for d in doubts) + 2) for v in (prof.S, prof.SD))
-    S, SD = Sw.tolist(), SD.tolist()
+    Sw, SDw = (window(v, base, max(d[1][7] for d in doubts) + 2) for v in (prof.S, prof.SD))
+    S, SD = Sw.tolist(), SDw.tolist()
     last = len(prof.S) - 1
-    for _, item, (length, peak, codes, clear, i, _, _), dt in doubts:
+    for _, item, (length, peak, codes, _, i, _, _, j, at), dt in doubts:
         idx, command, s0, s1, start, end, k0, k1, lim = item
         lo = max(k0 - 1, 0)
-        j = np.nonzero(~clear)[0]
-        at = (i[j] + (lo - base)).tolist()
         tool = command.tool
         doubt.setdefault(None if tool is None else np.asarray(tool, dtype=float).tobytes(), []).append(
-            (item, codes.copy(), j, at, noise(prof, lo, k1, max(abs(S[min(k1, last) - base]), abs(s1)), SD, base),
-             length, peak, i, dt))
+            (item, codes.copy(), j, at, lo - base,
+             noise(prof, lo, k1, max(abs(S[min(k1, last) - base]), abs(s1)), SD, base), length, peak, i, dt))
     for items in doubt.values():
-        per_row: list = [[] for _ in range(11)]  # S at both ends, ṡ at both ends, V, A, D, tvel, rvel, e_s, e_v
-        for (*_, lim), _, j, at, (e_s, e_v), *_ in items:
-            m = len(j)
-            for values, more in zip(per_row, ([S[k] for k in at], [S[k + 1] for k in at], [SD[k] for k in at],
-                                              [SD[k + 1] for k in at])):
-                values.extend(more)
-            for values, more in zip(per_row[4:], (lim.V, lim.A, lim.D, lim.tvel, lim.rvel, e_s, e_v)):
-                values.extend([more] * m)
-        a, b, sd0, sd1 = (np.array(v, dtype=float) for v in per_row[:4])
-        V, A, D, tvel, rvel, e_s, e_v = (np.array(v) for v in per_row[4:])
+        # one row per interval in doubt: its breakpoints (the earlier's `at` moved to this one's
+        # window), its command's limits and noise
+        m = np.array([len(e[2]) for e in items])
+        k = np.concatenate([e[3] for e in items]) + np.repeat(np.array([e[4] for e in items]), m)
+        a, b, sd0, sd1 = Sw[k], Sw[k + 1], SDw[k], SDw[k + 1]
+        lims = [e[0][8] for e in items]
+        V, A, D = (np.repeat(np.array([getattr(lim, x) for lim in lims]), m, axis=0) for x in ("V", "A", "D"))
+        tvel, rvel = (np.repeat(np.array([getattr(lim, x) for lim in lims]), m) for x in ("tvel", "rvel"))
+        e_s, e_v = (np.repeat(np.array(v), m) for v in zip(*(e[5] for e in items)))
         q, q1, q2 = _path_at(queue.path, 0.5 * (a + b))
         pt, rt = tcp_rates(queue.kin, q, q1, items[0][0][1].tool)
         chosen = _choose(b - a, sd0 ** 2, sd1 ** 2, q1, q2, pt, rt, V, A, D, tvel, rvel, e_s, e_v)[0]
         n, rows = 0, []
-        for (idx, command, s0, s1, start, end, k0, k1, lim), codes, j, _, _, length, peak, i, dt in items:
+        for (idx, command, s0, s1, start, end, k0, k1, lim), codes, j, _, _, _, length, peak, i, dt in items:
             codes[j] = chosen[n:n + len(j)]
             n += len(j)
             rows.append((max(k0 - 1, 0) - base, s0, s1, i, _order(codes, len(lim.V)), dt))
         for (item, *_, length, peak, _, _), share in zip(items, seconds_many(Sw, rows)):
             out[item[0]] = _record(item[1], item[4], item[5], length, peak, share)
-    del Sw
+    del Sw, SDw
 
 
 def _solve_many(T, S, SD, k: np.ndarray, s: np.ndarray) -> np.ndarray:
