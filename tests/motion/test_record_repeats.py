@@ -14,7 +14,7 @@ from val3check.motion import motion_records as records_module
 from val3check.motion import record_seconds as seconds_module
 from val3check.motion.mdesc import Limits
 from val3check.motion.motion_records import motion_records
-from val3check.motion.record_repeats import Repeats
+from val3check.motion.record_repeats import Repeats, noise
 from val3check.motion.trajectory import Profile
 
 from .pick_place_run import TX, pick_place_machine
@@ -345,3 +345,22 @@ def test_the_order_of_limits_kept_is_the_order_made_afresh_and_each_input_change
     assert seconds_module._order(other, 6)[0] != base[0]  # a code
     assert seconds_module._order(codes, 7)[0] != base[0]  # the axes (the labels' numbering)
     assert seconds_module._order(codes.astype(np.int32), 6)[1] is base[1]  # the same codes in another integer type
+
+
+def test_noise_from_a_window_list_or_array_is_the_profiles(pick_place):
+    """record_repeats.noise read from a window of the profile's path speeds (a list, or an array as
+    _decide_block passes it) gives the bits read from the profile itself."""
+    q, _ = pick_place
+    prof = q.trajectory.profile
+    n = len(prof.S)
+    rng = np.random.default_rng(5)
+    for _ in range(300):
+        lo = int(rng.integers(0, n - 2))
+        k1 = int(rng.integers(lo + 1, n + 3))  # (past the last breakpoint: clipped to it)
+        base = int(rng.integers(0, lo + 1))
+        s_max = float(rng.random() * 1e4 * rng.choice([-1.0, 1.0]))
+        arr = np.asarray(prof.SD[base:n], dtype=float)
+        want = noise(prof, lo, k1, s_max)
+        for SD in (arr, arr.tolist()):
+            got = noise(prof, lo, k1, s_max, SD, base)
+            assert [float(x).hex() for x in got] == [float(x).hex() for x in want]

@@ -383,8 +383,8 @@ def _decide_block(queue, prof, out: list, doubts: list) -> None:
     #                            length, peak, intervals, durations)]
     # the breakpoints the block reads, in one window from `base` (a History reads old ones one by one)
     base = min(max(d[1][6] - 1, 0) for d in doubts)
+    # (no list of the window: it spans every breakpoint since the last decision, ~80,000 at 1 h)
     Sw, SDw = (window(v, base, max(d[1][7] for d in doubts) + 2) for v in (prof.S, prof.SD))
-    S, SD = Sw.tolist(), SDw.tolist()
     last = len(prof.S) - 1
     for _, item, (length, peak, codes, _, i, _, _, j, at), dt in doubts:
         idx, command, s0, s1, start, end, k0, k1, lim = item
@@ -392,7 +392,7 @@ def _decide_block(queue, prof, out: list, doubts: list) -> None:
         tool = command.tool
         doubt.setdefault(None if tool is None else np.asarray(tool, dtype=float).tobytes(), []).append(
             (item, codes.copy(), j, at, lo - base,
-             noise(prof, lo, k1, max(abs(S[min(k1, last) - base]), abs(s1)), SD, base), length, peak, i, dt))
+             noise(prof, lo, k1, max(abs(float(Sw[min(k1, last) - base])), abs(s1)), SDw, base), length, peak, i, dt))
     for items in doubt.values():
         # one row per interval in doubt: its breakpoints (the earlier's `at` moved to this one's
         # window), its command's limits and noise

@@ -245,7 +245,10 @@ class Slot:
 
 def noise(prof, lo: int, k1: int, s_max: float, SD=None, base: int = 0) -> tuple[float, float]:
     """(positions, path speeds): how far a repetition's inputs may lie from these (`Repeats`).
-    `SD`: the profile's path speeds from breakpoint `base` (a window of them), else its own."""
+    `SD`: the profile's path speeds from breakpoint `base` (a window of them, as a list or an
+    array), else its own."""
     hi = min(k1, len(prof.S) - 1)
     SD = prof.SD if SD is None else SD
-    return POS_TOL * max(1.0, abs(s_max)), SPEED_TOL * max(1.0, max(SD[lo - base:hi + 1 - base]))
+    seg = SD[lo - base:hi + 1 - base]
+    return POS_TOL * max(1.0, abs(s_max)), SPEED_TOL * max(1.0, float(seg.max()) if seg.__class__ is np.ndarray
+                                                              else max(seg))
