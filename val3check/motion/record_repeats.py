@@ -107,11 +107,12 @@ class Repeats:
         prof, offsets = self.prof, self.path.offsets
         lo_b, hi_b = min(a[4] for a in asks), max(a[5] for a in asks)
         S, T, SD = (window(v, lo_b, hi_b + 1) for v in (prof.S, prof.T, prof.SD))
-        s_at = S.tolist()
+        # (only the values read: the window holds some 70 breakpoints per command)
+        s_hi = S[[a[5] - lo_b for a in asks]].tolist()
         ib0, ib1 = min(a[6] for a in asks), max(a[7] for a in asks)
-        for a in asks:
+        for a, s in zip(asks, s_hi):
             i1 = a[7]
-            if i1 + 1 < len(offsets) and offsets[i1 + 1] <= max(s_at[a[5] - lo_b], a[3]):
+            if i1 + 1 < len(offsets) and offsets[i1 + 1] <= max(s, a[3]):
                 # a span appended since at the command's end: the key made then (`inputs`) differs
                 return [self._one(a) for a in asks]
         offs = np.asarray(offsets[ib0:ib1 + 1])
@@ -119,12 +120,12 @@ class Repeats:
         moved = moves.tobytes()
         dt_all = np.where(moves, T[1:] - T[:-1], 0.0)
         g = offs.searchsorted(S, "right")  # + ib0: offsets at or before each breakpoint
-        g_at = g.tolist()
         steps = (g[1:] - g[:-1]).tobytes()
         tools, lims, s0, s1, lo, hi, i0, i1 = zip(*asks)
         s0, s1 = np.array(s0, dtype=float), np.array(s1, dtype=float)
         lo, hi, i0, i1 = (np.array(v, dtype=np.intp) for v in (lo, hi, i0, i1))
         n, m, k = hi - lo + 1, i1 - i0 + 1, lo - lo_b
+        g_at = g[k].tolist()  # at each ask's first breakpoint
         # the searches in the window: the block's clamped to it (`inputs`); where s0 and s1 fall
         # among the spans' offsets: the block's offsets hold them (the spans hold the window)
         left0, right0 = np.clip(S.searchsorted(s0, "left") - k, 0, n), np.clip(S.searchsorted(s0, "right") - k, 0, n)
@@ -135,8 +136,9 @@ class Repeats:
         keys = []
         # each span's part of the exact key, made once for the block (neighbouring commands share spans)
         parts = [(id(sp.geom), sp.a, sp.b) for sp in self.path.spans[ib0:ib1 + 1]]
-        for tool, lim, i0_, i1_, n_, k_, where in zip(tools, lims, i0.tolist(), i1.tolist(), n.tolist(), k.tolist(),
-                                                     zip(*(v.tolist() for v in (left0, right0, left1, right1, o0, o1)))):
+        for tool, lim, i0_, i1_, n_, k_, g0, where in zip(tools, lims, i0.tolist(), i1.tolist(), n.tolist(), k.tolist(),
+                                                         g_at, zip(*(v.tolist() for v in (left0, right0, left1, right1,
+                                                                                          o0, o1)))):
             held = self._limits.get(id(lim))
             if held is None or held[0] is not lim:
                 held = self._limits[id(lim)] = (lim, (lim.V.tobytes(), lim.A.tobytes(), lim.D.tobytes(), lim.tvel,
@@ -145,7 +147,7 @@ class Repeats:
             # its first and its steps (it never leaves 0..m: the spans hold the window)
             keys.append((tuple(parts[i0_ - ib0:i1_ + 1 - ib0]),
                          None if tool is None else np.asarray(tool, dtype=float).tobytes(), held[1], n_, where,
-                         moved[k_:k_ + n_ - 1], (g_at[k_] + ib0 - i0_, steps[8 * k_:8 * (k_ + n_ - 1)])))
+                         moved[k_:k_ + n_ - 1], (g0 + ib0 - i0_, steps[8 * k_:8 * (k_ + n_ - 1)])))
         j0, low = i0 - ib0, np.maximum(right0 - 1, 0)
         mag_s = np.maximum(np.maximum(1.0, np.abs(S[k + n - 1])), np.abs(s1))
         mag_t = np.maximum(1.0, np.abs(T[k + n - 1]))
