@@ -364,3 +364,19 @@ def test_noise_from_a_window_list_or_array_is_the_profiles(pick_place):
         for SD in (arr, arr.tolist()):
             got = noise(prof, lo, k1, s_max, SD, base)
             assert [float(x).hex() for x in got] == [float(x).hex() for x in want]
+
+
+def test_where_the_offsets_fall_among_the_positions_is_searchsorted():
+    """record_repeats._at_or_before (the span each breakpoint of a block's window falls on, counted
+    from the offsets' places among the positions) is offs.searchsorted(S, "right"): rests (equal
+    positions), offsets on a position, before the first and past the last."""
+    from val3check.motion.record_repeats import _at_or_before
+
+    rng = np.random.default_rng(17)
+    for _ in range(500):
+        S = np.sort(rng.choice(rng.random(int(rng.integers(1, 60))) * 100, int(rng.integers(1, 200))))
+        offs = np.sort(np.concatenate([rng.choice(S, int(rng.integers(0, 5))), rng.random(int(rng.integers(0, 8))) * 120
+                                       - 10]))
+        got = _at_or_before(offs, S)
+        want = offs.searchsorted(S, "right")
+        assert got.dtype == want.dtype and got.tobytes() == want.tobytes()

@@ -119,7 +119,7 @@ class Repeats:
         moves = S[1:] > S[:-1]
         moved = moves.tobytes()
         dt_all = np.where(moves, T[1:] - T[:-1], 0.0)
-        g = offs.searchsorted(S, "right")  # + ib0: offsets at or before each breakpoint
+        g = _at_or_before(offs, S)  # + ib0: offsets at or before each breakpoint
         steps = (g[1:] - g[:-1]).tobytes()
         tools, lims, s0, s1, lo, hi, i0, i1 = zip(*asks)
         s0, s1 = np.array(s0, dtype=float), np.array(s1, dtype=float)
@@ -219,6 +219,13 @@ class Repeats:
         inputs = self.inputs(tool, lim, s0, s1, lo, hi)
         earlier, slot = self.find(inputs)
         return earlier, slot, inputs[3]
+
+
+def _at_or_before(offs: np.ndarray, S: np.ndarray) -> np.ndarray:
+    """offs.searchsorted(S, "right") for sorted S (a window of the profile's positions, some 70 per
+    command, against a few offsets per command): where each offset falls among the positions,
+    counted (S[k] >= offs[j] exactly when k >= the number of positions below offs[j])."""
+    return np.cumsum(np.bincount(S.searchsorted(offs, "left"), minlength=len(S) + 1)[:len(S)])
 
 
 _PATTERNS: dict = {}  # (breakpoints, offsets) -> which tolerance each compared value takes
