@@ -163,10 +163,12 @@ class Repeats:
         zero = np.zeros(b)
         got = src[np.repeat(starts - first, lens) + each] - np.repeat(np.column_stack((s0, s0, s0, zero, zero)).ravel(),
                                                                       lens)
-        # the durations of the intervals that do not count: 0
-        local = each - np.repeat(first, lens)
-        durations = np.repeat(np.tile(np.arange(5) == 3, b), lens)
-        got[durations & ((local < np.repeat(np.repeat(low, 5), lens)) | (local >= np.repeat(np.repeat(left1, 5), lens)))] = 0.0
+        # the durations of the intervals that do not count: 0 (found among the durations only)
+        nd = n - 1
+        d_first = np.cumsum(nd) - nd
+        d_local = np.arange(int(nd.sum())) - np.repeat(d_first, nd)
+        out = (d_local < np.repeat(low, nd)) | (d_local >= np.repeat(left1, nd))
+        got[(np.repeat(first[3::5], nd) + d_local)[out]] = 0.0
         sd_max = np.maximum.reduceat(got, first)[4::5]
         tol = np.repeat(np.column_stack((POS_TOL * mag_s, POS_TOL * mag_s, POS_TOL * mag_s, TIME_TOL * mag_t,
                                          SPEED_TOL * np.maximum(1.0, sd_max))).ravel(), lens)
