@@ -49,6 +49,8 @@ def test_seconds_many_is_seconds_of_each_bit_for_bit():
             want = _seconds_of(S_list, lo, s0, s1, i, order, dt.copy())
             assert list(got) == list(want)  # the same limits, in the same order
             assert [v.hex() for v in got.values()] == [v.hex() for v in want.values()]
+        empty = [id(d) for d in many if not d]
+        assert empty and len(set(empty)) == len(empty)  # each record its own dict, as `_seconds_of` makes
     assert seconds_many(S, []) == []
 
 

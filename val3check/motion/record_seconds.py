@@ -64,16 +64,16 @@ def _label(code: int, n: int) -> str:
     return f"j{k + 1} speed" if k < n else ("tvel" if k == n else "rvel")
 
 
-
-
 def seconds_many(S: np.ndarray, rows: list) -> list[dict]:
     """`_seconds_of(S, lo, s0, s1, i, order, dt)` of each row (lo, s0, s1, i, order, dt), S an
     array: the rows' weights gathered, their edges shared and summed in one pass (one `bincount`,
     each row's limits its own bins: each bin adds its row's weights in their order, as alone)."""
-    out: list = [{}] * len(rows)
+    out: list = [None] * len(rows)
     idx, ranks, dts, at, ends, made = [], [], [], [], [], []
     for n, (lo, s0, s1, i, order, dt) in enumerate(rows):
-        if order[0]:
+        if not order[0]:
+            out[n] = {}  # (each record its own)
+        else:
             idx.append(i)
             ranks.append(order[1])
             dts.append(dt)
