@@ -11,9 +11,10 @@ import numpy as np
 import pytest
 
 from val3check.motion import motion_records as records_module
+from val3check.motion import record_seconds as seconds_module
 from val3check.motion.mdesc import Limits
 from val3check.motion.motion_records import motion_records
-from val3check.motion.record_repeats import Repeats
+from val3check.motion.record_repeats import Repeats, noise
 from val3check.motion.trajectory import Profile
 
 from .pick_place_run import TX, pick_place_machine
@@ -232,16 +233,21 @@ def test_records_made_as_the_blocks_fill_are_the_fresh_ones(pick_place, monkeypa
     q, end = pick_place
     fresh = motion_records(q, end, reuse=False)
     monkeypatch.setattr(records_module, "RECORD_BLOCK", block)
-    waited = []
-    repeat = records_module._repeat
+    waited, at_once = [], []
+    repeat, many = records_module._repeat, records_module.seconds_many
 
     def spy(prof, out, item, dt, slot, doubts, *window):
         waited.append(out[item[0]] is None and slot.figures is not None)
         return repeat(prof, out, item, dt, slot, doubts, *window)
 
+    def spy_many(S, rows):
+        at_once.extend(rows)
+        return many(S, rows)
+
     monkeypatch.setattr(records_module, "_repeat", spy)
+    monkeypatch.setattr(records_module, "seconds_many", spy_many)
     reused = motion_records(q, end)
-    assert len(waited) > 100
+    assert len(waited) + len(at_once) > 100
     for a, b in zip(fresh, reused, strict=True):
         assert (a.id, a.start, a.end, a.dominant, a.limit_share) == (b.id, b.start, b.end, b.dominant, b.limit_share)
         assert (round(a.length_mm, 3), round(a.peak_tcp_mm_s, 3)) == (round(b.length_mm, 3), round(b.peak_tcp_mm_s, 3))
@@ -310,10 +316,10 @@ def test_the_order_of_limits_is_their_first_appearance_and_each_interval_s_place
     rng = np.random.default_rng(7)
     for _ in range(500):
         codes = rng.integers(0, 15, rng.integers(0, 60)).astype(np.intp)
-        labels, rank = records_module._order(codes, 6)
+        labels, rank = seconds_module._order(codes, 6)
         first = np.sort(np.unique(codes, return_index=True)[1])
-        assert labels == [records_module._label(int(codes[k]), 6) for k in first]
-        assert rank.dtype == np.intp and [labels[x] for x in rank.tolist()] == [records_module._label(int(c), 6)
+        assert labels == [seconds_module._label(int(codes[k]), 6) for k in first]
+        assert rank.dtype == np.intp and [labels[x] for x in rank.tolist()] == [seconds_module._label(int(c), 6)
                                                                                   for c in codes]
 
 
@@ -324,18 +330,53 @@ def test_the_order_of_limits_kept_is_the_order_made_afresh_and_each_input_change
     rng = np.random.default_rng(11)
     runs = [rng.integers(0, 15, rng.integers(1, 40)).astype(np.intp) for _ in range(200)]
     runs += [c.copy() for c in runs]  # every one asked twice: the second from what is kept
-    kept = [records_module._order(c, 6) for c in runs]
-    records_module._ORDERS.clear()
+    kept = [seconds_module._order(c, 6) for c in runs]
+    seconds_module._ORDERS.clear()
     for c, (labels, rank) in zip(runs, kept):
-        fresh = records_module._order(c, 6)
-        records_module._ORDERS.clear()
+        fresh = seconds_module._order(c, 6)
+        seconds_module._ORDERS.clear()
         assert labels == fresh[0] and rank.tobytes() == fresh[1].tobytes()
         with pytest.raises(ValueError):
             rank[0] = 0
     codes = np.array([13, 13, 2, 7], dtype=np.intp)
-    base = records_module._order(codes, 6)
+    base = seconds_module._order(codes, 6)
     other = codes.copy()
     other[2] = 3
-    assert records_module._order(other, 6)[0] != base[0]  # a code
-    assert records_module._order(codes, 7)[0] != base[0]  # the axes (the labels' numbering)
-    assert records_module._order(codes.astype(np.int32), 6)[1] is base[1]  # the same codes in another integer type
+    assert seconds_module._order(other, 6)[0] != base[0]  # a code
+    assert seconds_module._order(codes, 7)[0] != base[0]  # the axes (the labels' numbering)
+    assert seconds_module._order(codes.astype(np.int32), 6)[1] is base[1]  # the same codes in another integer type
+
+
+def test_noise_from_a_window_list_or_array_is_the_profiles(pick_place):
+    """record_repeats.noise read from a window of the profile's path speeds (a list, or an array as
+    _decide_block passes it) gives the bits read from the profile itself."""
+    q, _ = pick_place
+    prof = q.trajectory.profile
+    n = len(prof.S)
+    rng = np.random.default_rng(5)
+    for _ in range(300):
+        lo = int(rng.integers(0, n - 2))
+        k1 = int(rng.integers(lo + 1, n + 3))  # (past the last breakpoint: clipped to it)
+        base = int(rng.integers(0, lo + 1))
+        s_max = float(rng.random() * 1e4 * rng.choice([-1.0, 1.0]))
+        arr = np.asarray(prof.SD[base:n], dtype=float)
+        want = noise(prof, lo, k1, s_max)
+        for SD in (arr, arr.tolist()):
+            got = noise(prof, lo, k1, s_max, SD, base)
+            assert [float(x).hex() for x in got] == [float(x).hex() for x in want]
+
+
+def test_where_the_offsets_fall_among_the_positions_is_searchsorted():
+    """record_repeats._at_or_before (the span each breakpoint of a block's window falls on, counted
+    from the offsets' places among the positions) is offs.searchsorted(S, "right"): rests (equal
+    positions), offsets on a position, before the first and past the last."""
+    from val3check.motion.record_repeats import _at_or_before
+
+    rng = np.random.default_rng(17)
+    for _ in range(500):
+        S = np.sort(rng.choice(rng.random(int(rng.integers(1, 60))) * 100, int(rng.integers(1, 200))))
+        offs = np.sort(np.concatenate([rng.choice(S, int(rng.integers(0, 5))), rng.random(int(rng.integers(0, 8))) * 120
+                                       - 10]))
+        got = _at_or_before(offs, S)
+        want = offs.searchsorted(S, "right")
+        assert got.dtype == want.dtype and got.tobytes() == want.tobytes()

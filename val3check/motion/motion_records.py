@@ -22,6 +22,7 @@ from ..light_dataclass import dataclass
 from .findings import Source
 from .paths import tcp_rates
 from .record_repeats import Repeats, noise
+from .record_seconds import _order, _seconds, _seconds_of, seconds_many
 from . import trajectory
 from .trajectory import window
 
@@ -181,14 +182,24 @@ class RecordMaker:
         # the block's breakpoints read once (a History reads old ones through its chunk cache)
         prof = self.prof
         base = max(min(item[6] for item, _ in pending) - 1, 0)
-        S = window(prof.S, base, max(item[7] for item, _ in pending) + 2).tolist()
+        Sw = window(prof.S, base, max(item[7] for item, _ in pending) + 2)
+        clear = []  # the repeats whose limits were all clear: their seconds in one pass (`seconds_many`)
         for (item, _), (earlier, slot, dt) in zip(pending, self.repeats.find_block([a for _, a in pending])):
             if earlier is None:
                 self._first(item, slot)
             elif earlier.figures is None:  # given them when the first is evaluated (`_evaluate`)
                 earlier.items.append((item, dt))
+            elif earlier.figures[6]:
+                clear.append((item, earlier.figures, dt))
             else:
-                _repeat(prof, self.out, item, dt, earlier, self.doubts, S, base)
+                self.doubts.append((earlier.place + (item[0],), item, earlier.figures, dt))
+        if clear:
+            out = self.out
+            shares = seconds_many(Sw, [(max(item[6] - 1, 0) - base, item[2], item[3], f[4], f[5], dt)
+                                       for item, f, dt in clear])
+            for (item, f, _), share in zip(clear, shares):
+                out[item[0]] = _record(item[1], item[4], item[5], f[0], f[1], share)
+        del Sw
 
     def _place(self, pending: list) -> list:
         """`add`'s start (time_leaving), breakpoints and spans of the final commands it left to the
@@ -326,8 +337,11 @@ def _evaluate(queue, prof, out: list, group: list, doubts: list) -> None:
         out[idx] = _record(command, start, end, length, peak, share)
         if slot is not None:
             # where it was evaluated: the near ties of its repeats are decided in that order
-            slot.figures, slot.place = (length, peak, codes, clear, i, _order(codes, len(lim.V))), \
-                (number, done * RECORD_BLOCK + n_item)
+            # (all clear: its repeats' seconds summed a block at a time, `seconds_many`)
+            unclear = np.flatnonzero(~clear)
+            slot.figures = (length, peak, codes, clear, i, _order(codes, len(lim.V)), not len(unclear), unclear,
+                            i[unclear])
+            slot.place = (number, done * RECORD_BLOCK + n_item)
             for item, dt in slot.items:
                 _repeat(prof, out, item, dt, slot, doubts)
             slot.items = []
@@ -338,9 +352,9 @@ def _repeat(prof, out: list, item: tuple, dt: np.ndarray, slot, doubts: list, S=
     peak, its limits per interval, its own seconds under each (`dt`: the durations of its intervals
     that count, record_repeats.Repeats.inputs); when a limit was a near tie, left to `_decide`
     (`doubts`). `S`: the profile's positions from breakpoint `base` (its window), else read there."""
-    length, peak, _, clear, i, order = slot.figures
+    length, peak, _, _, i, order, clear, _, _ = slot.figures
     idx, command, s0, s1, start, end, k0, k1, _ = item
-    if clear.all():  # the earlier's intervals (the key holds where s0 and s1 fall) and limits
+    if clear:  # the earlier's intervals (the key holds where s0 and s1 fall) and limits
         share = _seconds_of(prof.S if S is None else S, max(k0 - 1, 0) - base, s0, s1, i, order, dt)
         out[idx] = _record(command, start, end, length, peak, share)
     else:
@@ -364,41 +378,42 @@ def _decide(queue, prof, out: list, doubts: list) -> None:
 def _decide_block(queue, prof, out: list, doubts: list) -> None:
     """`_decide` of a block of doubts: only the intervals in doubt are read from the profile (as
     `_intervals` gives them), the seconds summed from the durations the repeat's key holds
-    (`_seconds_of`: the same arithmetic as `_seconds`)."""
-    doubt: dict = {}  # tool -> [(item, codes, unclear rows, their breakpoints, noise, figures, durations)]
+    (`seconds_many`: the same arithmetic as `_seconds`)."""
+    doubt: dict = {}  # tool -> [(item, codes, unclear rows, their intervals, where its window starts, noise,
+    #                            length, peak, intervals, durations)]
     # the breakpoints the block reads, in one window from `base` (a History reads old ones one by one)
     base = min(max(d[1][6] - 1, 0) for d in doubts)
-    S, SD = (window(v, base, max(d[1][7] for d in doubts) + 2).tolist() for v in (prof.S, prof.SD))
+    # (no list of the window: it spans every breakpoint since the last decision, ~80,000 at 1 h)
+    Sw, SDw = (window(v, base, max(d[1][7] for d in doubts) + 2) for v in (prof.S, prof.SD))
     last = len(prof.S) - 1
-    for _, item, (length, peak, codes, clear, i, _), dt in doubts:
+    for _, item, (length, peak, codes, _, i, _, _, j, at), dt in doubts:
         idx, command, s0, s1, start, end, k0, k1, lim = item
         lo = max(k0 - 1, 0)
-        j = np.nonzero(~clear)[0]
-        at = (i[j] + (lo - base)).tolist()
         tool = command.tool
         doubt.setdefault(None if tool is None else np.asarray(tool, dtype=float).tobytes(), []).append(
-            (item, codes.copy(), j, at, noise(prof, lo, k1, max(abs(S[min(k1, last) - base]), abs(s1)), SD, base),
-             length, peak, i, dt))
+            (item, codes.copy(), j, at, lo - base,
+             noise(prof, lo, k1, max(abs(float(Sw[min(k1, last) - base])), abs(s1)), SDw, base), length, peak, i, dt))
     for items in doubt.values():
-        per_row: list = [[] for _ in range(11)]  # S at both ends, ṡ at both ends, V, A, D, tvel, rvel, e_s, e_v
-        for (*_, lim), _, j, at, (e_s, e_v), *_ in items:
-            m = len(j)
-            for values, more in zip(per_row, ([S[k] for k in at], [S[k + 1] for k in at], [SD[k] for k in at],
-                                              [SD[k + 1] for k in at])):
-                values.extend(more)
-            for values, more in zip(per_row[4:], (lim.V, lim.A, lim.D, lim.tvel, lim.rvel, e_s, e_v)):
-                values.extend([more] * m)
-        a, b, sd0, sd1 = (np.array(v, dtype=float) for v in per_row[:4])
-        V, A, D, tvel, rvel, e_s, e_v = (np.array(v) for v in per_row[4:])
+        # one row per interval in doubt: its breakpoints (the earlier's `at` moved to this one's
+        # window), its command's limits and noise
+        m = np.array([len(e[2]) for e in items])
+        k = np.concatenate([e[3] for e in items]) + np.repeat(np.array([e[4] for e in items]), m)
+        a, b, sd0, sd1 = Sw[k], Sw[k + 1], SDw[k], SDw[k + 1]
+        lims = [e[0][8] for e in items]
+        V, A, D = (np.repeat(np.array([getattr(lim, x) for lim in lims]), m, axis=0) for x in ("V", "A", "D"))
+        tvel, rvel = (np.repeat(np.array([getattr(lim, x) for lim in lims]), m) for x in ("tvel", "rvel"))
+        e_s, e_v = (np.repeat(np.array(v), m) for v in zip(*(e[5] for e in items)))
         q, q1, q2 = _path_at(queue.path, 0.5 * (a + b))
         pt, rt = tcp_rates(queue.kin, q, q1, items[0][0][1].tool)
         chosen = _choose(b - a, sd0 ** 2, sd1 ** 2, q1, q2, pt, rt, V, A, D, tvel, rvel, e_s, e_v)[0]
-        n = 0
-        for (idx, command, s0, s1, start, end, k0, k1, lim), codes, j, _, _, length, peak, i, dt in items:
+        n, rows = 0, []
+        for (idx, command, s0, s1, start, end, k0, k1, lim), codes, j, _, _, _, length, peak, i, dt in items:
             codes[j] = chosen[n:n + len(j)]
             n += len(j)
-            share = _seconds_of(S, max(k0 - 1, 0) - base, s0, s1, i, _order(codes, len(lim.V)), dt)
-            out[idx] = _record(command, start, end, length, peak, share)
+            rows.append((max(k0 - 1, 0) - base, s0, s1, i, _order(codes, len(lim.V)), dt))
+        for (item, *_, length, peak, _, _), share in zip(items, seconds_many(Sw, rows)):
+            out[item[0]] = _record(item[1], item[4], item[5], length, peak, share)
+    del Sw, SDw
 
 
 def _solve_many(T, S, SD, k: np.ndarray, s: np.ndarray) -> np.ndarray:
@@ -456,61 +471,6 @@ def _intervals(prof, lo: int, k1: int, s0: float, s1: float) -> tuple:
     ds = ds_all[i]
     frac = np.clip((np.minimum(S[i + 1], s1) - np.maximum(S[i], s0)) / ds, 0.0, 1.0)
     return S, SD[i] ** 2, SD[i + 1] ** 2, T[i + 1] - T[i], frac, i
-
-
-def _seconds(rows, codes: np.ndarray, n: int) -> dict:
-    """Seconds under each limit: each interval's duration × its share, summed per limit in the order
-    of the intervals (as a running sum would: bincount adds in that order)."""
-    dt, frac = rows[3], rows[4]
-    if not len(codes):
-        return {}
-    total = np.bincount(codes, weights=dt * frac)
-    first = np.unique(codes, return_index=True)[1]
-    return {_label(int(codes[k]), n): float(total[codes[k]]) for k in np.sort(first)}
-
-
-_ORDERS: dict = {}  # (codes' bytes, n) -> `_order` (a function of them only; a cyclic cell has a few)
-
-
-def _order(codes: np.ndarray, n: int) -> tuple[list, np.ndarray]:
-    """The limits of `codes` as `_seconds` lists them (in order of first appearance, labelled) and
-    each interval's place in that list (a dict: a command has a few dozen intervals). Read only."""
-    key = (codes.astype(np.intp, copy=False).tobytes(), n)
-    hit = _ORDERS.get(key)
-    if hit is None:
-        place: dict = {}
-        rank = np.array([place.setdefault(c, len(place)) for c in codes.tolist()], dtype=np.intp)
-        rank.flags.writeable = False
-        hit = ([_label(c, n) for c in place], rank)
-        if len(_ORDERS) >= 4096:
-            _ORDERS.clear()
-        _ORDERS[key] = hit
-    return hit
-
-
-def _seconds_of(S, lo: int, s0: float, s1: float, i: np.ndarray, order: tuple, dt: np.ndarray) -> dict:
-    """`_seconds(_intervals(...), codes, n)` of a repeat whose intervals `i` (from S[lo]: the
-    profile's positions, or a window of them) and limits (`order` of the codes) are the earlier
-    command's, `dt` its durations: the same arithmetic. Only the first and last intervals can lie
-    partly outside (s0, s1): the share of any other, (b - a) / (b - a), is exactly 1."""
-    labels, rank = order
-    if not labels:
-        return {}
-    w = dt[i]
-    last = len(i) - 1
-    for e in (0, last) if last else (0,):
-        k = int(i[e])
-        a, b = S[lo + k], S[lo + k + 1]
-        w[e] = float(dt[k]) * min(max((min(b, s1) - max(a, s0)) / (b - a), 0.0), 1.0)
-    return dict(zip(labels, np.bincount(rank, weights=w).tolist()))
-
-
-def _label(code: int, n: int) -> str:
-    """The name of a limit code (`_limits_on`) of an arm of n axes."""
-    if code < 2 * n:
-        return f"j{code // 2 + 1} {'accel' if code % 2 == 0 else 'decel'}"
-    k = code - 2 * n
-    return f"j{k + 1} speed" if k < n else ("tvel" if k == n else "rvel")
 
 
 def _limits_on(lim, rows, q1, q2, pt, rt, prof, lo: int, k1: int, s1: float) -> tuple[np.ndarray, np.ndarray]:

@@ -107,24 +107,25 @@ class Repeats:
         prof, offsets = self.prof, self.path.offsets
         lo_b, hi_b = min(a[4] for a in asks), max(a[5] for a in asks)
         S, T, SD = (window(v, lo_b, hi_b + 1) for v in (prof.S, prof.T, prof.SD))
-        s_at = S.tolist()
+        # (only the values read: the window holds some 70 breakpoints per command)
+        s_hi = S[[a[5] - lo_b for a in asks]].tolist()
         ib0, ib1 = min(a[6] for a in asks), max(a[7] for a in asks)
-        for a in asks:
+        for a, s in zip(asks, s_hi):
             i1 = a[7]
-            if i1 + 1 < len(offsets) and offsets[i1 + 1] <= max(s_at[a[5] - lo_b], a[3]):
+            if i1 + 1 < len(offsets) and offsets[i1 + 1] <= max(s, a[3]):
                 # a span appended since at the command's end: the key made then (`inputs`) differs
                 return [self._one(a) for a in asks]
         offs = np.asarray(offsets[ib0:ib1 + 1])
         moves = S[1:] > S[:-1]
         moved = moves.tobytes()
         dt_all = np.where(moves, T[1:] - T[:-1], 0.0)
-        g = offs.searchsorted(S, "right")  # + ib0: offsets at or before each breakpoint
-        g_at = g.tolist()
+        g = _at_or_before(offs, S)  # + ib0: offsets at or before each breakpoint
         steps = (g[1:] - g[:-1]).tobytes()
         tools, lims, s0, s1, lo, hi, i0, i1 = zip(*asks)
         s0, s1 = np.array(s0, dtype=float), np.array(s1, dtype=float)
         lo, hi, i0, i1 = (np.array(v, dtype=np.intp) for v in (lo, hi, i0, i1))
         n, m, k = hi - lo + 1, i1 - i0 + 1, lo - lo_b
+        g_at = g[k].tolist()  # at each ask's first breakpoint
         # the searches in the window: the block's clamped to it (`inputs`); where s0 and s1 fall
         # among the spans' offsets: the block's offsets hold them (the spans hold the window)
         left0, right0 = np.clip(S.searchsorted(s0, "left") - k, 0, n), np.clip(S.searchsorted(s0, "right") - k, 0, n)
@@ -135,8 +136,9 @@ class Repeats:
         keys = []
         # each span's part of the exact key, made once for the block (neighbouring commands share spans)
         parts = [(id(sp.geom), sp.a, sp.b) for sp in self.path.spans[ib0:ib1 + 1]]
-        for tool, lim, i0_, i1_, n_, k_, where in zip(tools, lims, i0.tolist(), i1.tolist(), n.tolist(), k.tolist(),
-                                                     zip(*(v.tolist() for v in (left0, right0, left1, right1, o0, o1)))):
+        for tool, lim, i0_, i1_, n_, k_, g0, where in zip(tools, lims, i0.tolist(), i1.tolist(), n.tolist(), k.tolist(),
+                                                         g_at, zip(*(v.tolist() for v in (left0, right0, left1, right1,
+                                                                                          o0, o1)))):
             held = self._limits.get(id(lim))
             if held is None or held[0] is not lim:
                 held = self._limits[id(lim)] = (lim, (lim.V.tobytes(), lim.A.tobytes(), lim.D.tobytes(), lim.tvel,
@@ -145,7 +147,7 @@ class Repeats:
             # its first and its steps (it never leaves 0..m: the spans hold the window)
             keys.append((tuple(parts[i0_ - ib0:i1_ + 1 - ib0]),
                          None if tool is None else np.asarray(tool, dtype=float).tobytes(), held[1], n_, where,
-                         moved[k_:k_ + n_ - 1], (g_at[k_] + ib0 - i0_, steps[8 * k_:8 * (k_ + n_ - 1)])))
+                         moved[k_:k_ + n_ - 1], (g0 + ib0 - i0_, steps[8 * k_:8 * (k_ + n_ - 1)])))
         j0, low = i0 - ib0, np.maximum(right0 - 1, 0)
         mag_s = np.maximum(np.maximum(1.0, np.abs(S[k + n - 1])), np.abs(s1))
         mag_t = np.maximum(1.0, np.abs(T[k + n - 1]))
@@ -161,10 +163,12 @@ class Repeats:
         zero = np.zeros(b)
         got = src[np.repeat(starts - first, lens) + each] - np.repeat(np.column_stack((s0, s0, s0, zero, zero)).ravel(),
                                                                       lens)
-        # the durations of the intervals that do not count: 0
-        local = each - np.repeat(first, lens)
-        durations = np.repeat(np.tile(np.arange(5) == 3, b), lens)
-        got[durations & ((local < np.repeat(np.repeat(low, 5), lens)) | (local >= np.repeat(np.repeat(left1, 5), lens)))] = 0.0
+        # the durations of the intervals that do not count: 0 (found among the durations only)
+        nd = n - 1
+        d_first = np.cumsum(nd) - nd
+        d_local = np.arange(int(nd.sum())) - np.repeat(d_first, nd)
+        out = (d_local < np.repeat(low, nd)) | (d_local >= np.repeat(left1, nd))
+        got[(np.repeat(first[3::5], nd) + d_local)[out]] = 0.0
         sd_max = np.maximum.reduceat(got, first)[4::5]
         tol = np.repeat(np.column_stack((POS_TOL * mag_s, POS_TOL * mag_s, POS_TOL * mag_s, TIME_TOL * mag_t,
                                          SPEED_TOL * np.maximum(1.0, sd_max))).ravel(), lens)
@@ -219,6 +223,13 @@ class Repeats:
         return earlier, slot, inputs[3]
 
 
+def _at_or_before(offs: np.ndarray, S: np.ndarray) -> np.ndarray:
+    """offs.searchsorted(S, "right") for sorted S (a window of the profile's positions, some 70 per
+    command, against a few offsets per command): where each offset falls among the positions,
+    counted (S[k] >= offs[j] exactly when k >= the number of positions below offs[j])."""
+    return np.cumsum(np.bincount(S.searchsorted(offs, "left"), minlength=len(S) + 1)[:len(S)])
+
+
 _PATTERNS: dict = {}  # (breakpoints, offsets) -> which tolerance each compared value takes
 
 
@@ -245,7 +256,10 @@ class Slot:
 
 def noise(prof, lo: int, k1: int, s_max: float, SD=None, base: int = 0) -> tuple[float, float]:
     """(positions, path speeds): how far a repetition's inputs may lie from these (`Repeats`).
-    `SD`: the profile's path speeds from breakpoint `base` (a window of them), else its own."""
+    `SD`: the profile's path speeds from breakpoint `base` (a window of them, as a list or an
+    array), else its own."""
     hi = min(k1, len(prof.S) - 1)
     SD = prof.SD if SD is None else SD
-    return POS_TOL * max(1.0, abs(s_max)), SPEED_TOL * max(1.0, max(SD[lo - base:hi + 1 - base]))
+    seg = SD[lo - base:hi + 1 - base]
+    return POS_TOL * max(1.0, abs(s_max)), SPEED_TOL * max(1.0, float(seg.max()) if seg.__class__ is np.ndarray
+                                                              else max(seg))
