@@ -128,6 +128,7 @@ class Machine:
         # function for the run, not one made at each wait
         self.motion_done = lambda: arm.motion_done(self.clock.now)
         self.motion_done.motion = True  # the deadlock report asks the arm why (deadlock.py)
+        self.scheduler.pure_cond = self.motion_done  # (it reads the arm and the clock only)
 
     def add_subsystem(self, subsystem: Any) -> None:
         """A `Subsystem` (subsystem.py) the scheduler advances and asks for its next event,
