@@ -24,7 +24,9 @@ stop the task with R002, saying how to name the arm.
 
 from __future__ import annotations
 
+import operator
 import re
+import struct
 
 import numpy as np
 
@@ -41,6 +43,7 @@ from ..loading.types import arm_family
 from ..motion.commands import Target
 from ..motion.findings import MotionError, Source
 from ..motion.queue import QueueFull
+from .value_watch import held_chain, same_chain
 
 E = Val3RuntimeError
 US = 1_000_000
@@ -98,13 +101,37 @@ def _check_family(arm, value, what: str) -> None:
         raise E(81, f"{what}: {value.name or 'the point'} is a point of an {fam} arm, not of the {arm.name}")
 
 
+_TARGETS: dict[tuple, tuple] = {}  # `_point`: its key -> (its frame's chain, held; the Target)
+_SIX = operator.attrgetter("x", "y", "z", "rx", "ry", "rz")
+_PACK6 = struct.Struct("6d")
+_FLOATS6 = (float,) * 6
+
+
 def _point(task, p: Point, what: str) -> Target:
-    """A point as the queue's target: its TCP pose in world through its frames, configuration and names."""
-    pose = geo_points.world_pose(p)  # (what check_defined raises: computed once)
+    """A point as the queue's target: its TCP pose in world through its frames, configuration and
+    names. One Target (its pose read-only) for a point of the same coordinates (their bits) in
+    the very same frame objects, with the same configuration and names: a cycle records the same
+    few targets again and again, most from points made anew (appro, compose)."""
     ref = p.ref
+    config, name = ct(p.config), p.name or ""
     frame = getattr(ref, "name", "") or ("world" if ref is not None and ref.is_root else "")
-    return Target.point(_matrix(pose), ct(p.config), p.name or "", frame,
-                        note=_other_family_note(task, p))
+    note = _other_family_note(task, p)
+    six = _SIX(p.trsf)
+    key = None
+    if tuple(map(type, six)) == _FLOATS6:
+        key = (id(ref), _PACK6.pack(*six), config, name, frame, note)
+        hit = _TARGETS.get(key)
+        if hit is not None and same_chain(ref, hit[0]):
+            return hit[1]
+    pose = geo_points.world_pose(p)  # (what check_defined raises: computed once)
+    target = Target.point(_matrix(pose), config, name, frame, note=note)
+    target.pose.flags.writeable = False  # (shared by the commands of the same target)
+    held = held_chain(ref)
+    if key is not None and held is not None:
+        if len(_TARGETS) >= 256:
+            _TARGETS.clear()
+        _TARGETS[key] = (held, target)
+    return target
 
 
 _ELEMENT = re.compile(r"^(\w+)(?:\[([^\]]*)\])?$")  # pPick (a one-element array), pSlot[2]
@@ -132,10 +159,28 @@ def _other_family_note(task, p: Point) -> str:
             f"{arm.name}'s points have a shoulder only (9.7.2); written for another arm family?")
 
 
+_TOOLS: dict[int, tuple] = {}  # `_tool`: id(tool) -> (what its pose was computed from, held; the matrix)
+
+
 def _tool(tool: Tool) -> np.ndarray | None:
-    """A tool as its TCP in the flange through its base tools (4x4), None for the flange."""
+    """A tool as its TCP in the flange through its base tools (4x4, read-only), None for the
+    flange. The same matrix object again while the tool and its base tools are the very objects
+    its pose was computed from (value_watch.same_chain: the same floats, so the same pose): a
+    program records most of its commands with one tool, and moving_arm.record then knows it."""
+    hit = _TOOLS.get(id(tool))
+    if hit is not None and same_chain(tool, hit[0]):
+        return hit[1]
     pose = geo_frames.root_pose(tool)
-    return None if tool.is_root else _matrix(pose)
+    if tool.is_root:
+        return None
+    m = _matrix(pose)
+    m.flags.writeable = False
+    held = held_chain(tool)
+    if held is not None:
+        if len(_TOOLS) >= 64:
+            _TOOLS.clear()
+        _TOOLS[id(tool)] = (held, m)
+    return m
 
 
 def _record(task, unit, kind: str, target: Target, via: Target | None, tool: Tool, tool_m, mdesc: dict):

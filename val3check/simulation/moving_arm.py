@@ -90,6 +90,7 @@ class MovingArm(ModelArm):
         self.shared = Shared()  # what every command keeps, one object per value (retention.py)
         self.live = LiveRecord()  # the run's records taken as commands become final (issue 29)
         self._mdescs: dict[tuple, MDesc] = {}  # `_mdesc`
+        self._tool_in_mm: tuple | None = None  # `record`: (the last read-only tool given, s, its shared array)
 
     def bind(self, controller: Any) -> None:
         """The controller whose power and monitor speed the arm follows (chapter 8)."""
@@ -323,12 +324,7 @@ class MovingArm(ModelArm):
         s = 1.0 if millimeter_unit else INCH_MM
         target = self._target_in_mm(target, s)
         via = None if via is None else self._target_in_mm(via, s)
-        tool = None
-        if tool_in_flange is not None:
-            tool = np.array(tool_in_flange, dtype=float)
-            if s != 1.0:
-                tool[:3, 3] *= s
-            tool = self.shared.tool(tool)
+        tool = None if tool_in_flange is None else self._tool_mm(tool_in_flange, s)
         move = MoveCommand(kind, target, self._mdesc(md, s), tool=tool, via=via,
                            source=self.shared.source(source), tool_name=tool_name)
         self.layers.before(time_us / US)
@@ -349,6 +345,22 @@ class MovingArm(ModelArm):
             for reader in self._readers:
                 reader(time_us, False)
         return r
+
+    def _tool_mm(self, tool_in_flange: Any, s: float) -> np.ndarray:
+        """The shared read-only TCP in the flange in mm (retention.Shared.tool) of `tool_in_flange`
+        (`s` mm per unit). The last answer again for the same read-only matrix and `s`
+        (ch10_motion._tool gives the same object while the tool is unchanged)."""
+        last = self._tool_in_mm
+        if last is not None and last[0] is tool_in_flange and last[1] == s:
+            return last[2]
+        made = np.array(tool_in_flange, dtype=float)
+        if s != 1.0:
+            made[:3, 3] *= s
+        tool = self.shared.tool(made)
+        # kept when it cannot change in place and the table already held its value (it stays there)
+        fixed = type(tool_in_flange) is np.ndarray and not tool_in_flange.flags.writeable
+        self._tool_in_mm = (tool_in_flange, s, tool) if fixed and tool is not made else None
+        return tool
 
     def _mdesc(self, md: dict, s: float) -> MDesc:
         """The shared MDesc of the program's mdesc value `md` (`s` mm per unit), kept by the

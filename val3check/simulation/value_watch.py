@@ -207,6 +207,27 @@ def _by_node(objects: tuple) -> tuple:
     return tuple((objects[k], objects[k + 1:k + 10]) for k in range(0, len(objects), 10))
 
 
+def held_chain(node: Any) -> tuple | None:
+    """What `geometry.frames.root_pose(node)` reads (`_objects`), as `same_chain` compares it
+    (None: no walk)."""
+    objects = _objects(node)
+    return _by_node(objects) if objects else None
+
+
+def same_chain(n: Any, held: tuple) -> bool:
+    """Whether `n` and the nodes it links to are the very objects of `held` (`held_chain`), with
+    the very same reference, root flag, trsf and six floats: then `root_pose(n)` is the same."""
+    is_ = operator.is_
+    try:
+        for node, objects in held:
+            if n is not node or not all(map(is_, _HELD(n), objects)):
+                return False
+            n = objects[0]
+    except AttributeError:
+        return False
+    return True
+
+
 @functools.lru_cache(maxsize=1024)
 def _parse(name: str) -> tuple[str | None, str, int] | None:
     """("lib", "fBase", 2) of "lib:fBase[2]"; None when it is not a name."""
