@@ -155,3 +155,29 @@ def test_a_point_of_the_same_values_in_the_same_frames_gives_the_same_target_and
         assert getattr(exc, "code", None) == 162
     else:
         raise AssertionError("162")
+
+
+def test_open_and_close_record_the_tool_s_centre_point_as_it_is_at_each_action(tmp_path):
+    """Machine.tool_action keeps the tool's TCP in the flange while the tool is the very same
+    objects (geometry.frames.kept): each change in place, by a new value, of its base, shows."""
+    from .simsupport import sim
+
+    r = sim(tmp_path, """begin
+  open(tT)
+  close(tT)
+  tT.trsf.z = 150
+  open(tT)
+  tT.trsf = {0, 0, 150, 0, 0, 0}
+  close(tT)
+  link(tT, tBase)
+  open(tT)
+  tBase.trsf.x = 5
+  close(tT)
+  tBase.trsf.rz = 90
+  open(tT)
+end
+""", globals_=["tool tT", "tool tBase"], duration=2)
+    tcps = [tuple(round(v, 9) + 0.0 for v in e.tcp_in_flange) for e in r.tool_events]
+    assert tcps == [(0.0,) * 6, (0.0,) * 6, (0.0, 0.0, 150.0, 0.0, 0.0, 0.0), (0.0, 0.0, 150.0, 0.0, 0.0, 0.0),
+                    (0.0, 0.0, 150.0, 0.0, 0.0, 0.0), (5.0, 0.0, 150.0, 0.0, 0.0, 0.0),
+                    (5.0, 0.0, 150.0, 0.0, 0.0, 90.0)]

@@ -24,6 +24,7 @@ for `=` and `==`: ``f = world`` makes `f` a copy of world linked to world, and `
 
 from __future__ import annotations
 
+import operator
 from typing import Any
 
 from ..language.runtime_errors import Val3RuntimeError
@@ -152,6 +153,60 @@ def root_pose(node: Frame) -> R.Pose:
     for m in reversed(chain[:-1]):
         p = R.pose_mul(p, m.trsf.pose())
     return p
+
+
+_HELD = operator.attrgetter("ref", "is_root", "trsf", "trsf.x", "trsf.y", "trsf.z", "trsf.rx", "trsf.ry", "trsf.rz")
+
+
+def held_chain(node: Any) -> tuple | None:
+    """What `root_pose(node)` reads, held: per node up to its root, (the node, its reference,
+    root flag, trsf and the trsf's six floats), for `same_chain`; None when there is no walk.
+    Floats are immutable: the very same objects again are the same values, bit for bit."""
+    out = []
+    n = node
+    try:
+        while n is not None and len(out) <= MAX_DEPTH + 1:
+            out.append((n, _HELD(n)))
+            if n.is_root:
+                break
+            n = n.ref
+    except AttributeError:
+        return None
+    return tuple(out) or None
+
+
+def same_chain(n: Any, held: tuple) -> bool:
+    """Whether `n` and the nodes it links to are the very objects `held_chain` held: then
+    `root_pose(n)` gives the same pose (and raises the same errors)."""
+    is_ = operator.is_
+    try:
+        for node, objects in held:
+            if n is not node or not all(map(is_, _HELD(n), objects)):
+                return False
+            n = objects[0]
+    except AttributeError:
+        return False
+    return True
+
+
+def kept(table: dict, node: Any, compute: Any) -> Any:
+    """`compute(node)` for a value `root_pose(node)` determines, kept in `table` (id(node) ->
+    (`held_chain`, the value)) and given again while `same_chain` holds. What raises is not kept."""
+    hit = table.get(id(node))
+    if hit is not None and same_chain(node, hit[0]):
+        return hit[1]
+    value = compute(node)
+    held = held_chain(node)
+    if held is not None:
+        if len(table) >= 64:
+            table.clear()
+        table[id(node)] = (held, value)
+    return value
+
+
+def pose_values(node: Frame) -> tuple[float, float, float, float, float, float]:
+    """The coordinates of `node` in its root (x, y, z, rx, ry, rz; canonical angles)."""
+    return Trsf.from_pose(root_pose(node)).as_tuple()
 
 
 def check_defined(node: Frame) -> None:

@@ -32,7 +32,7 @@ import numpy as np
 
 from ..geometry import frames as geo_frames
 from ..geometry import points as geo_points
-from ..geometry.frames import Tool
+from ..geometry.frames import Tool, held_chain, same_chain
 from ..geometry.points import Point
 from ..interpretation.chapters.ch09_geometry import ct, jd, jt, millimeter_unit, wait_end_of_motion
 from ..interpretation.not_simulated import ARM_LIMIT, NO_ARM, SimLimit
@@ -43,7 +43,6 @@ from ..loading.types import arm_family
 from ..motion.commands import Target
 from ..motion.findings import MotionError, Source
 from ..motion.queue import QueueFull
-from .value_watch import held_chain, same_chain
 
 E = Val3RuntimeError
 US = 1_000_000
@@ -165,21 +164,17 @@ _TOOLS: dict[int, tuple] = {}  # `_tool`: id(tool) -> (what its pose was compute
 def _tool(tool: Tool) -> np.ndarray | None:
     """A tool as its TCP in the flange through its base tools (4x4, read-only), None for the
     flange. The same matrix object again while the tool and its base tools are the very objects
-    its pose was computed from (value_watch.same_chain: the same floats, so the same pose): a
+    its pose was computed from (geometry.frames.kept: the same floats, so the same pose): a
     program records most of its commands with one tool, and moving_arm.record then knows it."""
-    hit = _TOOLS.get(id(tool))
-    if hit is not None and same_chain(tool, hit[0]):
-        return hit[1]
+    return geo_frames.kept(_TOOLS, tool, _tool_matrix)
+
+
+def _tool_matrix(tool: Tool) -> np.ndarray | None:
     pose = geo_frames.root_pose(tool)
     if tool.is_root:
         return None
     m = _matrix(pose)
     m.flags.writeable = False
-    held = held_chain(tool)
-    if held is not None:
-        if len(_TOOLS) >= 64:
-            _TOOLS.clear()
-        _TOOLS[id(tool)] = (held, m)
     return m
 
 

@@ -199,33 +199,13 @@ def _unchanged(unit: Any, where: list, held: list[tuple]) -> bool:
     return True
 
 
-_HELD = operator.attrgetter("ref", "is_root", "trsf", "trsf.x", "trsf.y", "trsf.z", "trsf.rx", "trsf.ry", "trsf.rz")
+_HELD = geo_frames._HELD  # (what `geo_frames.same_chain` compares, inlined in `_unchanged`)
 
 
 def _by_node(objects: tuple) -> tuple:
     """`_objects`' walk as `_unchanged` compares it: per node, (the node, `_HELD`'s objects of it)."""
     return tuple((objects[k], objects[k + 1:k + 10]) for k in range(0, len(objects), 10))
 
-
-def held_chain(node: Any) -> tuple | None:
-    """What `geometry.frames.root_pose(node)` reads (`_objects`), as `same_chain` compares it
-    (None: no walk)."""
-    objects = _objects(node)
-    return _by_node(objects) if objects else None
-
-
-def same_chain(n: Any, held: tuple) -> bool:
-    """Whether `n` and the nodes it links to are the very objects of `held` (`held_chain`), with
-    the very same reference, root flag, trsf and six floats: then `root_pose(n)` is the same."""
-    is_ = operator.is_
-    try:
-        for node, objects in held:
-            if n is not node or not all(map(is_, _HELD(n), objects)):
-                return False
-            n = objects[0]
-    except AttributeError:
-        return False
-    return True
 
 
 @functools.lru_cache(maxsize=1024)
