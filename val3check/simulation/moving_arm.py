@@ -133,7 +133,13 @@ class MovingArm(ModelArm):
     def queue_time(self, time_us: int) -> float:
         """The queue time (s) of real time `time_us` (arm_layers.Warp)."""
         t = time_us / US
-        return t if self.layers is None else self.layers.queue_time(t)
+        layers = self.layers
+        if layers is None:
+            return t
+        w = layers.warp  # (Warp.queue_time's identity, asked several times a cycle, without its two calls)
+        if len(w.T) == 1 and w.R[0] == 1 and w.TAU[0] == 0.0 and w.max_tau[0] <= t:
+            return t
+        return w.queue_time(t)
 
     def real_time(self, tau: float | None) -> float | None:
         """The first real time (s) the arm reaches queue time `tau`."""
@@ -147,9 +153,10 @@ class MovingArm(ModelArm):
         if q is None:
             q = self.queue
         ctl = self.controller
-        if q is not None and ctl is not None:
+        # (asked several times a cycle, mostly unchanged: equal as they are, they are equal converted)
+        if q is not None and ctl is not None and (ctl.powered != q.powered or ctl.monitor_speed != q.monitor):
             powered, monitor = bool(ctl.powered), float(ctl.monitor_speed)
-            if powered != q.powered or monitor != q.monitor:  # (asked several times a cycle: mostly unchanged)
+            if powered != q.powered or monitor != q.monitor:
                 t = self.queue_time(time_us)
                 if powered != q.powered:
                     q.set_power(powered, t)
