@@ -270,14 +270,15 @@ class MovingArm(ModelArm):
         if q is None:
             return None
         t = self._next_queue_event(q, now_us)
-        tc = self.compliance.next_time(q, self.layers, now_us / US)
+        # (what is off is not asked: no compliant move, no alter mode, no --cycles command: each cycle)
+        tc = self.compliance.next_time(q, self.layers, now_us / US) if self.compliance.moves else None
         if tc is not None:
             e = max(int(np.ceil(tc * US - 1e-6)), now_us + 1)
             t = e if t is None else min(t, e)
-        if self.alteration.needs_ticks(q, now_us / US):  # the 4 ms setpoints of ALTER
+        if self.alteration.state != "off" and self.alteration.needs_ticks(q, now_us / US):  # ALTER's 4 ms setpoints
             e = (now_us // TICK_US + 1) * TICK_US
             t = e if t is None else min(t, e)
-        end = self._cycles_end()
+        end = None if self._end_command is None else self._cycles_end()
         if end is not None:
             e = int(np.ceil(end * US - 1e-6))
             if e > now_us and (t is None or e < t):
@@ -292,10 +293,11 @@ class MovingArm(ModelArm):
         for reader in self._readers:
             reader(to_us, True)
         self.compliance.update(q, self.layers, to_us / US)
-        self.alteration.advance(q, to_us / US)
+        if self.alteration.state != "off":  # (off: its advance computes nothing)
+            self.alteration.advance(q, to_us / US)
         q.advance(self.queue_time(to_us))
         self.live.take(self, q)
-        end = self._cycles_end()
+        end = None if self._end_command is None else self._cycles_end()
         if end is not None and end * US <= to_us + 1e-6:
             self._end_command = None  # once: stop() then runs as after any end of a run
             self.cycles_goal = None
@@ -480,7 +482,8 @@ class _Hook:
         q = self.arm.queue_in_use
         if q is not None:
             self.arm.compliance.update(q, self.arm.layers, t)
-            self.arm.alteration.advance(q, t)
+            if self.arm.alteration.state != "off":  # (off: its advance computes nothing)
+                self.arm.alteration.advance(q, t)
 
     def after_reset(self, t: float) -> None:
         self.arm.alteration.after_reset(t)
