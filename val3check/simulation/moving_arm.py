@@ -90,6 +90,7 @@ class MovingArm(ModelArm):
         self.shared = Shared()  # what every command keeps, one object per value (retention.py)
         self.live = LiveRecord()  # the run's records taken as commands become final (issue 29)
         self._mdescs: dict[tuple, MDesc] = {}  # `_mdesc`
+        self._last_context: tuple | None = None  # `context`: the last loops, their passes and context
         self._tool_in_mm: tuple | None = None  # `record`: (the last read-only tool given, s, its shared array)
 
     def bind(self, controller: Any) -> None:
@@ -424,6 +425,13 @@ class MovingArm(ModelArm):
     def context(self, loops: tuple) -> Context:
         """The loops of Machine.loop_passes as motion.cycle passes: each loop statement with the
         number of its entry (the n-th pass counter seen for it) and the pass."""
+        last = self._last_context  # (the loops, their passes, the context): the commands of a pass share it
+        if last is not None and len(loops) == len(last[0]):
+            for (c, site, counter), (c0, site0, counter0), n in zip(loops, last[0], last[1]):
+                if c is not c0 or site is not site0 or counter is not counter0 or int(counter[0]) != n:
+                    break
+            else:
+                return last[2]
         out = []
         for compiled, site, counter in loops:
             known = self._loops.get(id(site))
@@ -436,7 +444,9 @@ class MovingArm(ModelArm):
                 n = self._entry_count[loop] = self._entry_count.get(loop, 0) + 1
                 seen = self._entries[id(counter)] = (counter, n)  # kept: its id is not reused
             out.append(Pass(loop, seen[1], int(counter[0])))
-        return self.shared.context(tuple(out))
+        context = self.shared.context(tuple(out))
+        self._last_context = (loops, tuple(p.iteration for p in out), context)
+        return context
 
     def _target_in_mm(self, tg: Target, s: float) -> Target:
         """`tg` with its lengths (and a SCARA's axis 3) in mm: `s` millimetres per unit."""
