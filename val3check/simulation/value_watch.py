@@ -46,7 +46,7 @@ class ValueWatch:
         self._reads = [*(("f:" + n, n, geo_frames.Frame) for n in self.frames),
                        *(("t:" + n, n, geo_frames.Tool) for n in self.tools)]
         self._held: list[tuple] | None = None  # per read, the objects the last call's value came from (`_unchanged`)
-        self._where = [(_parse(name), kind) for _, name, kind in self._reads]  # per read, where `_node` finds it
+        self._where = [_parse(name) for _, name, _kind in self._reads]  # per read, where `_node` finds it
         # the scheduler's count of VAL 3 code that may have run (Scheduler.runs) at the last call
         # between cycles (None: the last call was not): while it holds, no value can have changed
         self._scheduler = getattr(machine, "scheduler", None)
@@ -169,33 +169,23 @@ def _read_node(node: Any, name: str, cache: dict | None) -> tuple[np.ndarray | N
 
 
 def _unchanged(unit: Any, where: list, held: list[tuple]) -> bool:
-    """Whether every read (`where`: per read, `_parse`'s name and the kind) finds in the program
-    `unit` (the machine's main) the very objects of `held` (its last call's, `_by_node`): then
-    `_read` gives the same matrices again. `_node`'s look-up and `_objects`' walk, compared as
-    they go (the same objects end them alike), each node's nine objects in one C call."""
-    if unit is None:
-        return False
+    """Whether every read (`where`: per read, `_parse`'s name) finds in the program `unit` (the
+    machine's main) the very objects of `held` (its last call's, `_by_node`): then `_read` gives
+    the same matrices again. `_node`'s look-up and `_objects`' walk, compared as they go (the
+    same objects end them alike; the node found is the very one `_node` found of its kind),
+    each node's nine objects in one C call."""
     is_ = operator.is_
-    for ((alias, var, index), kind), last in zip(where, held):
-        u = unit
-        if alias is not None:
-            u = u.aliases.get(alias)
-            if u is None or not hasattr(u, "globals"):
-                return False
-        c = u.globals.get(var)
-        data = getattr(c, "data", None)
-        if data is None or not 0 <= index < len(data) - c.off:
-            return False
-        n = data[c.off + index]
-        if not isinstance(n, kind):
-            return False
-        try:
+    try:
+        for (alias, var, index), last in zip(where, held):
+            u = unit if alias is None else unit.aliases.get(alias)
+            c = u.globals.get(var)
+            n = c.data[c.off + index]  # (what `_node` finds, if it is the node held)
             for node, objects in last:
                 if n is not node or not all(map(is_, _HELD(n), objects)):
                     return False
                 n = objects[0]
-        except AttributeError:
-            return False
+    except (AttributeError, LookupError, TypeError):  # (no unit, library, variable or element)
+        return False
     return True
 
 
