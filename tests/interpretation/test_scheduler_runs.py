@@ -127,3 +127,38 @@ def test_the_bundled_pick_and_place_reads_at_every_call_what_a_fresh_read_gives(
                    cell=str(app / "val3check-cell.toml"), tmp_path=Path(tempfile.mkdtemp()))
     assert r.motion is not None
     assert calls["all"] > 300 and calls["skipped"] > 50  # the skip is taken, and every reading is right
+
+
+def test_the_watch_s_fast_check_finds_each_missing_or_replaced_piece_of_a_library_s_frame():
+    """`_unchanged` on "lib:fPart": the library, its variable, the element, the node replaced or
+    gone in turn; after each, the reading in force is what a fresh read gives."""
+    import numpy as np
+
+    from val3check.collision import Cell, Obstacle, Shape
+    from val3check.geometry.frames import Frame
+    from val3check.geometry.trsf import Trsf
+    from val3check.simulation.value_watch import ValueWatch, _read
+
+    world = Frame(is_root=True, name="world")
+    f = Frame(Trsf(1.0), world)
+    cont = SimpleNamespace(data=[Frame(Trsf(9.0), world), f], off=1)
+    lib = SimpleNamespace(globals={"fPart": cont}, aliases={})
+    main = SimpleNamespace(globals={}, aliases={"lib": lib})
+    machine = SimpleNamespace(main=main)  # (no scheduler: every call checks)
+    cell = Cell(path="test")
+    cell.obstacles.append(Obstacle("box", Shape("box", (10.0, 10.0, 10.0)), "lib:fPart", np.eye(4)))
+    watch = ValueWatch(cell, machine)
+    other = SimpleNamespace(globals={"fPart": SimpleNamespace(data=[Frame(Trsf(5.0), world)], off=0)}, aliases={})
+    changes = [lambda: setattr(cont, "off", 0), lambda: setattr(cont, "off", 1),
+               lambda: cont.data.__setitem__(1, Frame(Trsf(2.0), world)), lambda: cont.data.pop(),
+               lambda: cont.data.append(f), lambda: lib.globals.pop("fPart"),
+               lambda: lib.globals.__setitem__("fPart", cont), lambda: main.aliases.pop("lib"),
+               lambda: main.aliases.__setitem__("lib", other), lambda: main.aliases.__setitem__("lib", lib),
+               lambda: setattr(machine, "main", None), lambda: setattr(machine, "main", main),
+               lambda: setattr(cont, "data", None), lambda: setattr(cont, "data", [f, f])]
+    watch(0)
+    for k, change in enumerate(changes):
+        change()
+        watch(4000 * (k + 1))
+        a, b = watch.frame("lib:fPart", 1.0), _read(machine, "lib:fPart", Frame)
+        assert (a is None) == (b is None) and (a is None or np.array_equal(a, b)), k
