@@ -174,27 +174,29 @@ def _unchanged(unit: Any, where: list, held: list[tuple]) -> bool:
     the same matrices again. `_node`'s look-up and `_objects`' walk, compared as they go (the
     same objects end them alike; the node found is the very one `_node` found of its kind),
     each node's nine objects in one C call."""
-    is_ = operator.is_
     try:
         for (alias, var, index), last in zip(where, held):
             u = unit if alias is None else unit.aliases.get(alias)
             c = u.globals.get(var)
             n = c.data[c.off + index]  # (what `_node` finds, if it is the node held)
-            for node, objects in last:
-                if n is not node or not all(map(is_, _HELD(n), objects)):
+            for node, ref, root, t, (x, y, z, rx, ry, rz) in last:  # (geo_frames.same_chain, inlined)
+                if n is not node or n.ref is not ref or n.is_root is not root:
                     return False
-                n = objects[0]
+                t2 = n.trsf
+                if (t2 is not t or t2.x is not x or t2.y is not y or t2.z is not z or t2.rx is not rx
+                        or t2.ry is not ry or t2.rz is not rz):
+                    return False
+                n = ref
     except (AttributeError, LookupError, TypeError):  # (no unit, library, variable or element)
         return False
     return True
 
 
-_HELD = geo_frames._HELD  # (what `geo_frames.same_chain` compares, inlined in `_unchanged`)
-
-
 def _by_node(objects: tuple) -> tuple:
-    """`_objects`' walk as `_unchanged` compares it: per node, (the node, `_HELD`'s objects of it)."""
-    return tuple((objects[k], objects[k + 1:k + 10]) for k in range(0, len(objects), 10))
+    """`_objects`' walk as `_unchanged` compares it (geo_frames.held_chain's form): per node, (the
+    node, its reference, root flag, trsf, its six floats)."""
+    return tuple((objects[k], objects[k + 1], objects[k + 2], objects[k + 3], objects[k + 4:k + 10])
+                 for k in range(0, len(objects), 10))
 
 
 
