@@ -181,3 +181,16 @@ end
     assert tcps == [(0.0,) * 6, (0.0,) * 6, (0.0, 0.0, 150.0, 0.0, 0.0, 0.0), (0.0, 0.0, 150.0, 0.0, 0.0, 0.0),
                     (0.0, 0.0, 150.0, 0.0, 0.0, 0.0), (5.0, 0.0, 150.0, 0.0, 0.0, 0.0),
                     (5.0, 0.0, 150.0, 0.0, 0.0, 90.0)]
+
+
+def test_a_point_that_cannot_be_keyed_raises_what_it_raised_before_in_its_order():
+    from val3check.geometry.points import Point
+
+    p = Point(Trsf(1.0), ref=None, name="pA")
+    p.config = None  # (not a configuration: the key's part raises, the point's own error comes first)
+    try:
+        ch10_motion._point(_task(), p, "movel")
+    except Exception as exc:  # noqa: BLE001
+        assert getattr(exc, "code", None) == 162
+    else:
+        raise AssertionError("162")

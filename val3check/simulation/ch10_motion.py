@@ -112,17 +112,23 @@ def _point(task, p: Point, what: str) -> Target:
     the very same frame objects, with the same configuration and names: a cycle records the same
     few targets again and again, most from points made anew (appro, compose)."""
     ref = p.ref
-    config, name = ct(p.config), p.name or ""
-    frame = getattr(ref, "name", "") or ("world" if ref is not None and ref.is_root else "")
-    note = _other_family_note(task, p)
-    six = _SIX(p.trsf)
     key = None
-    if tuple(map(type, six)) == _FLOATS6:
-        key = (id(ref), _PACK6.pack(*six), config, name, frame, note)
-        hit = _TARGETS.get(key)
-        if hit is not None and same_chain(ref, hit[0]):
-            return hit[1]
+    try:  # (what cannot be keyed goes the plain way, in its order: the point's errors first)
+        config, name = ct(p.config), p.name or ""
+        frame = getattr(ref, "name", "") or ("world" if ref is not None and ref.is_root else "")
+        note = _other_family_note(task, p)
+        six = _SIX(p.trsf)
+        if tuple(map(type, six)) == _FLOATS6:
+            key = (id(ref), _PACK6.pack(*six), config, name, frame, note)
+            hit = _TARGETS.get(key)
+            if hit is not None and same_chain(ref, hit[0]):
+                return hit[1]
+    except Exception:  # noqa: BLE001
+        key = None
     pose = geo_points.world_pose(p)  # (what check_defined raises: computed once)
+    if key is None:
+        frame = getattr(ref, "name", "") or ("world" if ref is not None and ref.is_root else "")
+        config, name, note = ct(p.config), p.name or "", _other_family_note(task, p)
     target = Target.point(_matrix(pose), config, name, frame, note=note)
     target.pose.flags.writeable = False  # (shared by the commands of the same target)
     held = held_chain(ref)
