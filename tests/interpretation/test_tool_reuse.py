@@ -22,8 +22,10 @@ def test_the_same_tool_gives_the_same_matrix_and_each_change_a_fresh_one():
     flange = Tool(is_root=True, name="flange")
     base = Tool(Trsf(0.0, 0.0, 50.0), flange)
     t = Tool(Trsf(1.0, 2.0, 120.0, 0.0, 0.0, 30.0), base)
-    first = ch10_motion._tool(t)
-    assert ch10_motion._tool(t) is first and not first.flags.writeable
+    kept: dict = {}  # (the run's table: MovingArm.tools)
+    first = ch10_motion._tool(t, kept)
+    assert ch10_motion._tool(t, kept) is first and not first.flags.writeable
+    assert ch10_motion._tool(t) is not first  # without the run's table: nothing kept
     assert np.array_equal(first, _fresh(t))
     other_flange = Tool(is_root=True, name="flange")
     changes = [lambda: setattr(t.trsf, "x", 5.0), lambda: setattr(t.trsf, "y", -1.0),
@@ -33,17 +35,17 @@ def test_the_same_tool_gives_the_same_matrix_and_each_change_a_fresh_one():
                lambda: setattr(base, "trsf", Trsf(0.0, 9.0)), lambda: setattr(t, "ref", flange),
                lambda: setattr(t, "ref", base), lambda: setattr(base, "ref", other_flange)]
     for k, change in enumerate(changes):
-        before = ch10_motion._tool(t)
+        before = ch10_motion._tool(t, kept)
         change()
-        after = ch10_motion._tool(t)
+        after = ch10_motion._tool(t, kept)
         assert after is not before, k
         assert np.array_equal(after, _fresh(t)) and after.tobytes() == _fresh(t).tobytes(), k
-        assert ch10_motion._tool(t) is after, k
-    assert ch10_motion._tool(flange) is None
+        assert ch10_motion._tool(t, kept) is after, k
+    assert ch10_motion._tool(flange, kept) is None
     base.is_root = True  # a root with a reference: modified (160), raised every time
     for _ in range(2):
         try:
-            ch10_motion._tool(t)
+            ch10_motion._tool(t, kept)
         except Exception as exc:  # noqa: BLE001
             assert getattr(exc, "code", None) == 160
         else:
@@ -75,7 +77,7 @@ def _task(config_fields=("shoulder", "elbow", "wrist"), data=None):
     from types import SimpleNamespace
 
     model = SimpleNamespace(config_fields=config_fields)
-    return SimpleNamespace(machine=SimpleNamespace(arm=SimpleNamespace(model=model, name="TS2-60"),
+    return SimpleNamespace(machine=SimpleNamespace(arm=SimpleNamespace(model=model, name="TS2-60", targets={}),
                                                    app=SimpleNamespace(data=data or {})))
 
 

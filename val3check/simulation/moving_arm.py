@@ -90,6 +90,9 @@ class MovingArm(ModelArm):
         self.shared = Shared()  # what every command keeps, one object per value (retention.py)
         self.live = LiveRecord()  # the run's records taken as commands become final (issue 29)
         self._mdescs: dict[tuple, MDesc] = {}  # `_mdesc`
+        # chapter 10's tools and points as the queue takes them, kept per value (ch10_motion: _tool, _point)
+        self.tools: dict[int, tuple] = {}
+        self.targets: dict[tuple, tuple] = {}
         self._last_context: tuple | None = None  # `context`: the last loops, their passes and context
         self._tool_in_mm: tuple | None = None  # `record`: (the last read-only tool given, s, its shared array)
 
