@@ -269,3 +269,38 @@ def test_set_frame_return_codes(world):
 def test_set_frame_point_without_reference_is_162(world):
     f = Frame(Trsf(), world)
     assert code(points.set_frame, _pt(world, 0, 0, 0), _pt(None, 1, 0, 0), _pt(world, 0, 1, 0), f) == 162
+
+
+def test_kept_gives_the_value_again_only_while_the_chain_is_the_very_same_objects():
+    """geometry.frames.kept (issue 29): each input of root_pose changed in turn computes afresh."""
+    from val3check.geometry.frames import kept, pose_values
+
+    world = Frame(is_root=True, name="world")
+    other_world = Frame(is_root=True, name="world")
+    base = Frame(Trsf(100.0, 0.0, 0.0, 0.0, 0.0, 30.0), world)
+    f = Frame(Trsf(0.0, 50.0, 0.0, 90.0, 0.0, 0.0), base)
+    table: dict = {}
+    calls = []
+
+    def compute(node):
+        calls.append(node)
+        return pose_values(node)
+
+    first = kept(table, f, compute)
+    assert kept(table, f, compute) is first and len(calls) == 1
+    changes = [lambda: setattr(f.trsf, "x", 1.0), lambda: setattr(f.trsf, "y", 2.0), lambda: setattr(f.trsf, "z", 3.0),
+               lambda: setattr(f.trsf, "rx", 4.0), lambda: setattr(f.trsf, "ry", 5.0),
+               lambda: setattr(f.trsf, "rz", 6.0), lambda: setattr(f, "trsf", Trsf(7.0)),
+               lambda: setattr(base.trsf, "x", 8.0), lambda: setattr(base, "trsf", Trsf(9.0)),
+               lambda: setattr(f, "ref", world), lambda: setattr(f, "ref", base),
+               lambda: setattr(base, "ref", other_world), lambda: setattr(f.trsf, "x", f.trsf.x + 0.0)]
+    for k, change in enumerate(changes):
+        n = len(calls)
+        change()
+        assert kept(table, f, compute) == pose_values(f), k
+        assert len(calls) == n + 1, k  # computed afresh (the last: an equal float, another object)
+    base.is_root = True  # a root with a reference: 161 each time, nothing kept
+    for _ in range(2):
+        with pytest.raises(Val3RuntimeError) as e:
+            kept(table, f, compute)
+        assert e.value.code == 161

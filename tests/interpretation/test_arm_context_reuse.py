@@ -96,3 +96,43 @@ def test_a_long_run_has_the_contexts_made_fresh_for_every_command(tmp_path, monk
     assert {p.loop.kind for c in reused for p in c} == {"while", "for", "do"}
     assert max(p.entry for c in reused for p in c if p.loop.kind == "for") > 20  # entered again at each pass
     assert reused_cycles == fresh_cycles
+
+
+def test_the_last_context_is_given_again_only_for_the_same_loops_at_the_same_passes():
+    arm = MovingArm(None)
+    prog, site, counter = _program(), _site(), [1]
+    first = arm.context(((prog, site, counter),))
+    assert arm.context(((prog, site, counter),)) is first  # a new tuple of the same objects and passes
+    counter[0] = 2  # the next pass
+    second = arm.context(((prog, site, counter),))
+    assert second[0].iteration == 2 and second[0].entry == 1
+    again = arm.context(((prog, site, [2]),))  # a new entry of the loop (a new counter), at the same pass
+    assert again[0].entry == 2 and again[0].iteration == 2
+    other = arm.context(((prog, _site(line=8), [2]),))  # another loop
+    assert other[0].loop.line == 8
+    assert arm.context(((prog, site, counter),)) == second
+    other_prog = arm.context(((_program(name="pick"), site, counter),))  # another program, the same site object
+    assert other_prog[0].loop.program == "pick"
+    inner = arm.context(((prog, site, counter), (prog, _site(line=9, kind="for"), [1])))  # one loop more
+    assert len(inner) == 2 and arm.context(((prog, site, counter),)) == second
+    assert arm.context(()) == ()
+
+
+def test_a_long_run_has_the_contexts_computed_afresh_at_every_command(tmp_path, monkeypatch):
+    folder = build(tmp_path, NESTED, globals_=LOOP_GLOBALS, locals_=["num l_i"])
+    ws = run([str(folder)], Settings()).workspace
+    app = ws.apps[ws.targets[0]]
+
+    def contexts():
+        machine, result = run_machine(ws, app, SimOptions(duration=60.0, robot=TX2_60, wall_clock=frozen_clock))
+        return list(machine.arm.live.contexts), repr(result.motion.cycles)
+
+    kept = contexts()
+    made = MovingArm.context
+
+    def fresh(self, loops):
+        self._last_context = None
+        return made(self, loops)
+
+    monkeypatch.setattr(MovingArm, "context", fresh)
+    assert contexts() == kept and len(kept[0]) > 150

@@ -154,6 +154,62 @@ def root_pose(node: Frame) -> R.Pose:
     return p
 
 
+def held_chain(node: Any) -> tuple | None:
+    """What `root_pose(node)` reads, held: per node up to its root, (the node, its reference,
+    root flag, trsf, and the trsf's six floats), for `same_chain`; None when there is no walk.
+    Floats are immutable: the very same objects again are the same values, bit for bit."""
+    out = []
+    n = node
+    try:
+        while n is not None and len(out) <= MAX_DEPTH + 1:
+            t = n.trsf
+            out.append((n, n.ref, n.is_root, t, (t.x, t.y, t.z, t.rx, t.ry, t.rz)))
+            if n.is_root:
+                break
+            n = n.ref
+    except AttributeError:
+        return None
+    return tuple(out) or None
+
+
+def same_chain(n: Any, held: tuple) -> bool:
+    """Whether `n` and the nodes it links to are the very objects `held_chain` held: then
+    `root_pose(n)` gives the same pose (and raises the same errors). (Each attribute compared
+    in the bytecode: cheaper than a C call per node here.)"""
+    try:
+        for node, ref, root, t, (x, y, z, rx, ry, rz) in held:
+            if n is not node or n.ref is not ref or n.is_root is not root:
+                return False
+            t2 = n.trsf
+            if (t2 is not t or t2.x is not x or t2.y is not y or t2.z is not z or t2.rx is not rx or t2.ry is not ry
+                    or t2.rz is not rz):
+                return False
+            n = ref
+    except AttributeError:
+        return False
+    return True
+
+
+def kept(table: dict, node: Any, compute: Any) -> Any:
+    """`compute(node)` for a value `root_pose(node)` determines, kept in `table` (id(node) ->
+    (`held_chain`, the value)) and given again while `same_chain` holds. What raises is not kept."""
+    hit = table.get(id(node))
+    if hit is not None and same_chain(node, hit[0]):
+        return hit[1]
+    value = compute(node)
+    held = held_chain(node)
+    if held is not None:
+        if len(table) >= 64:
+            table.clear()
+        table[id(node)] = (held, value)
+    return value
+
+
+def pose_values(node: Frame) -> tuple[float, float, float, float, float, float]:
+    """The coordinates of `node` in its root (x, y, z, rx, ry, rz; canonical angles)."""
+    return Trsf.from_pose(root_pose(node)).as_tuple()
+
+
 def check_defined(node: Frame) -> None:
     """Raise what a geometric computation with `node` would raise (160/161/163/164)."""
     root_pose(node)

@@ -22,8 +22,7 @@ from sys import _getframe
 from typing import Any, Callable, NamedTuple
 
 from ..diagnostics import Diagnostic
-from ..geometry.frames import root_pose
-from ..geometry.trsf import Trsf
+from ..geometry.frames import kept, pose_values
 from ..language.runtime_errors import RUNTIME_CODES, Val3RuntimeError
 from ..lengths import app_mm
 from ..loading.model import Application, Workspace
@@ -123,11 +122,13 @@ class Machine:
         self.analysis_cache: dict[str, dict] = {}  # what the deadlock report computes from the code
         self._outside_seen: set[tuple] = set()  # the lines already reported R041
         self.files = VirtualDisk()  # the controller's disk of the system library's file instructions
+        self._tcps: dict[int, tuple] = {}  # `tool_action`: id(tool) -> (its chain, held; its TCP's six values)
         self.base_namespace = self._base_namespace()
         # the condition of every wait for the end of motion (waitEndMove, open, close): one
         # function for the run, not one made at each wait
         self.motion_done = lambda: arm.motion_done(self.clock.now)
         self.motion_done.motion = True  # the deadlock report asks the arm why (deadlock.py)
+        self.scheduler.pure_cond = self.motion_done  # (it reads the arm and the clock only)
 
     def add_subsystem(self, subsystem: Any) -> None:
         """A `Subsystem` (subsystem.py) the scheduler advances and asks for its next event,
@@ -214,7 +215,7 @@ class Machine:
         """open()/close() of `tool` (9.5.4), recorded with the tool's centre point in the flange."""
         if len(self.recorder.tool_events) >= self.recorder.max_io_log:
             return
-        x, y, z, rx, ry, rz = Trsf.from_pose(root_pose(tool)).as_tuple()
+        x, y, z, rx, ry, rz = kept(self._tcps, tool, pose_values)  # (computed again only when the tool changed)
         s = app_mm(millimeter_unit)
         grip = getattr(tool.gripper, "link", "") or ""
         where = self.line_running()

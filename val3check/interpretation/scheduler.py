@@ -152,6 +152,11 @@ class Scheduler:
         # state have changed (a wait's condition, evaluated by the cycle, changes none)
         self._changed = False
         self._periodic = False  # a synchronous task was ever added (else each cycle skips their turns)
+        # changes whenever VAL 3 code may have run (a turn, a wait's condition other than
+        # `pure_cond`, a task closed): what reads the program's values between cycles
+        # (simulation/value_watch.py) skips its check while it has not changed
+        self.runs = 0
+        self.pure_cond: Any = None  # a wait's condition known to change no value (Machine.motion_done)
 
     def add_subsystem(self, subsystem: Any) -> None:
         self.subsystems.append(subsystem)
@@ -242,6 +247,7 @@ class Scheduler:
             return
         task.state = KILLED
         task.end_state = "killed"
+        self.runs += 1
         task.ended = self.clock.time_of(by)
         if task in self.tasks:
             self.tasks.remove(task)
@@ -318,6 +324,7 @@ class Scheduler:
                 if task.period and now >= task.next_run and task in tasks:
                     self._sync_turn(task)
         created = self._created
+        pure = self.pure_cond
         while clock.cycle_lines < LINES_PER_CYCLE:
             progress = False
             if created:
@@ -332,6 +339,8 @@ class Scheduler:
                 if st is WAIT:
                     cond = task.cond
                     if cond is not None:
+                        if cond is not pure:
+                            self.runs += 1
                         # the wait's condition, evaluated once per turn here rather than by
                         # resuming the task: it is resumed when true (or at the watch timeout)
                         try:
@@ -428,6 +437,7 @@ class Scheduler:
         clock.current = task
         clock.turn_given = quantum
         self._changed = True
+        self.runs += 1
         before = task.state
         # a task preempted at the start of a line has already counted that line (task.q -= 1)
         task.q = quantum - 1 if before is PREEMPTED else quantum

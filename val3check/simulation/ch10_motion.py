@@ -24,13 +24,15 @@ stop the task with R002, saying how to name the arm.
 
 from __future__ import annotations
 
+import operator
 import re
+import struct
 
 import numpy as np
 
 from ..geometry import frames as geo_frames
 from ..geometry import points as geo_points
-from ..geometry.frames import Tool
+from ..geometry.frames import Tool, held_chain, same_chain
 from ..geometry.points import Point
 from ..interpretation.chapters.ch09_geometry import ct, jd, jt, millimeter_unit, wait_end_of_motion
 from ..interpretation.not_simulated import ARM_LIMIT, NO_ARM, SimLimit
@@ -98,13 +100,43 @@ def _check_family(arm, value, what: str) -> None:
         raise E(81, f"{what}: {value.name or 'the point'} is a point of an {fam} arm, not of the {arm.name}")
 
 
+_SIX = operator.attrgetter("x", "y", "z", "rx", "ry", "rz")
+_PACK6 = struct.Struct("6d")
+_FLOATS6 = (float,) * 6
+
+
 def _point(task, p: Point, what: str) -> Target:
-    """A point as the queue's target: its TCP pose in world through its frames, configuration and names."""
-    pose = geo_points.world_pose(p)  # (what check_defined raises: computed once)
+    """A point as the queue's target: its TCP pose in world through its frames, configuration and
+    names. One Target (its pose read-only) for a point of the same coordinates (their bits) in
+    the very same frame objects, with the same configuration and names: a cycle records the same
+    few targets again and again, most from points made anew (appro, compose)."""
     ref = p.ref
-    frame = getattr(ref, "name", "") or ("world" if ref is not None and ref.is_root else "")
-    return Target.point(_matrix(pose), ct(p.config), p.name or "", frame,
-                        note=_other_family_note(task, p))
+    key = None
+    kept = getattr(task.machine.arm, "targets", None)  # (the run's own: MovingArm.targets)
+    try:  # (what cannot be keyed goes the plain way, in its order: the point's errors first)
+        config, name = ct(p.config), p.name or ""
+        frame = getattr(ref, "name", "") or ("world" if ref is not None and ref.is_root else "")
+        note = _other_family_note(task, p)
+        six = _SIX(p.trsf)
+        if kept is not None and tuple(map(type, six)) == _FLOATS6:
+            key = (id(ref), _PACK6.pack(*six), config, name, frame, note)
+            hit = kept.get(key)
+            if hit is not None and same_chain(ref, hit[0]):
+                return hit[1]
+    except Exception:  # noqa: BLE001
+        key = None
+    pose = geo_points.world_pose(p)  # (what check_defined raises: computed once)
+    if key is None:
+        frame = getattr(ref, "name", "") or ("world" if ref is not None and ref.is_root else "")
+        config, name, note = ct(p.config), p.name or "", _other_family_note(task, p)
+    target = Target.point(_matrix(pose), config, name, frame, note=note)
+    target.pose.flags.writeable = False  # (shared by the commands of the same target)
+    held = held_chain(ref)
+    if key is not None and held is not None:
+        if len(kept) >= 256:
+            kept.clear()
+        kept[key] = (held, target)
+    return target
 
 
 _ELEMENT = re.compile(r"^(\w+)(?:\[([^\]]*)\])?$")  # pPick (a one-element array), pSlot[2]
@@ -132,10 +164,23 @@ def _other_family_note(task, p: Point) -> str:
             f"{arm.name}'s points have a shoulder only (9.7.2); written for another arm family?")
 
 
-def _tool(tool: Tool) -> np.ndarray | None:
-    """A tool as its TCP in the flange through its base tools (4x4), None for the flange."""
+def _tool(tool: Tool, kept: dict | None = None) -> np.ndarray | None:
+    """A tool as its TCP in the flange through its base tools (4x4, read-only), None for the
+    flange. The same matrix object again while the tool and its base tools are the very objects
+    its pose was computed from (geometry.frames.kept: the same floats, so the same pose): a
+    program records most of its commands with one tool, and moving_arm.record then knows it.
+    `kept`: the run's table (MovingArm.tools; a table of the module would hold a finished run's
+    tool, its gripper's output and what that links to)."""
+    return _tool_matrix(tool) if kept is None else geo_frames.kept(kept, tool, _tool_matrix)
+
+
+def _tool_matrix(tool: Tool) -> np.ndarray | None:
     pose = geo_frames.root_pose(tool)
-    return None if tool.is_root else _matrix(pose)
+    if tool.is_root:
+        return None
+    m = _matrix(pose)
+    m.flags.writeable = False
+    return m
 
 
 def _record(task, unit, kind: str, target: Target, via: Target | None, tool: Tool, tool_m, mdesc: dict):
@@ -167,7 +212,7 @@ def _record(task, unit, kind: str, target: Target, via: Target | None, tool: Too
 def I_movej(task, unit, target, tool: Tool, mdesc: dict):
     """10.6 movej(joint|point, tool, mdesc): records a joint move; returns its identifier."""
     arm = _arm(task, "movej")
-    tool_m = _tool(tool)  # (raises what check_defined would: the tool's pose computed once)
+    tool_m = _tool(tool, getattr(arm, "tools", None))  # (raises what check_defined would: the tool's pose computed once)
     _check_family(arm, target, "movej")
     if type(target) is dict:
         tg = Target.joint(jt(target))
@@ -179,7 +224,7 @@ def I_movej(task, unit, target, tool: Tool, mdesc: dict):
 def I_movel(task, unit, target: Point, tool: Tool, mdesc: dict):
     """10.6 movel(point, tool, mdesc): records a straight line of the tool centre point."""
     arm = _arm(task, "movel")
-    tool_m = _tool(tool)
+    tool_m = _tool(tool, getattr(arm, "tools", None))
     _check_family(arm, target, "movel")
     return (yield from _record(task, unit, "movel", _point(task, target, "movel"), None, tool, tool_m, mdesc))
 
@@ -187,7 +232,7 @@ def I_movel(task, unit, target: Point, tool: Tool, mdesc: dict):
 def I_movec(task, unit, via: Point, target: Point, tool: Tool, mdesc: dict):
     """10.6 movec(intermediate, target, tool, mdesc): records an arc."""
     arm = _arm(task, "movec")
-    tool_m = _tool(tool)
+    tool_m = _tool(tool, getattr(arm, "tools", None))
     _check_family(arm, via, "movec")
     _check_family(arm, target, "movec")
     tg = _point(task, target, "movec")

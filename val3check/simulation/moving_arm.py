@@ -90,6 +90,11 @@ class MovingArm(ModelArm):
         self.shared = Shared()  # what every command keeps, one object per value (retention.py)
         self.live = LiveRecord()  # the run's records taken as commands become final (issue 29)
         self._mdescs: dict[tuple, MDesc] = {}  # `_mdesc`
+        # chapter 10's tools and points as the queue takes them, kept per value (ch10_motion: _tool, _point)
+        self.tools: dict[int, tuple] = {}
+        self.targets: dict[tuple, tuple] = {}
+        self._last_context: tuple | None = None  # `context`: the last loops, their passes and context
+        self._tool_in_mm: tuple | None = None  # `record`: (the last read-only tool given, s, its shared array)
 
     def bind(self, controller: Any) -> None:
         """The controller whose power and monitor speed the arm follows (chapter 8)."""
@@ -132,7 +137,13 @@ class MovingArm(ModelArm):
     def queue_time(self, time_us: int) -> float:
         """The queue time (s) of real time `time_us` (arm_layers.Warp)."""
         t = time_us / US
-        return t if self.layers is None else self.layers.queue_time(t)
+        layers = self.layers
+        if layers is None:
+            return t
+        w = layers.warp  # (Warp.queue_time's identity, asked several times a cycle, without its two calls)
+        if len(w.T) == 1 and w.R[0] == 1 and w.TAU[0] == 0.0 and w.max_tau[0] <= t:
+            return t
+        return w.queue_time(t)
 
     def real_time(self, tau: float | None) -> float | None:
         """The first real time (s) the arm reaches queue time `tau`."""
@@ -146,9 +157,10 @@ class MovingArm(ModelArm):
         if q is None:
             q = self.queue
         ctl = self.controller
-        if q is not None and ctl is not None:
+        # (asked several times a cycle, mostly unchanged: equal as they are, they are equal converted)
+        if q is not None and ctl is not None and (ctl.powered != q.powered or ctl.monitor_speed != q.monitor):
             powered, monitor = bool(ctl.powered), float(ctl.monitor_speed)
-            if powered != q.powered or monitor != q.monitor:  # (asked several times a cycle: mostly unchanged)
+            if powered != q.powered or monitor != q.monitor:
                 t = self.queue_time(time_us)
                 if powered != q.powered:
                     q.set_power(powered, t)
@@ -262,14 +274,15 @@ class MovingArm(ModelArm):
         if q is None:
             return None
         t = self._next_queue_event(q, now_us)
-        tc = self.compliance.next_time(q, self.layers, now_us / US)
+        # (what is off is not asked: no compliant move, no alter mode, no --cycles command: each cycle)
+        tc = self.compliance.next_time(q, self.layers, now_us / US) if self.compliance.moves else None
         if tc is not None:
             e = max(int(np.ceil(tc * US - 1e-6)), now_us + 1)
             t = e if t is None else min(t, e)
-        if self.alteration.needs_ticks(q, now_us / US):  # the 4 ms setpoints of ALTER
+        if self.alteration.state != "off" and self.alteration.needs_ticks(q, now_us / US):  # ALTER's 4 ms setpoints
             e = (now_us // TICK_US + 1) * TICK_US
             t = e if t is None else min(t, e)
-        end = self._cycles_end()
+        end = None if self._end_command is None else self._cycles_end()
         if end is not None:
             e = int(np.ceil(end * US - 1e-6))
             if e > now_us and (t is None or e < t):
@@ -284,10 +297,11 @@ class MovingArm(ModelArm):
         for reader in self._readers:
             reader(to_us, True)
         self.compliance.update(q, self.layers, to_us / US)
-        self.alteration.advance(q, to_us / US)
+        if self.alteration.state != "off":  # (off: its advance computes nothing)
+            self.alteration.advance(q, to_us / US)
         q.advance(self.queue_time(to_us))
         self.live.take(self, q)
-        end = self._cycles_end()
+        end = None if self._end_command is None else self._cycles_end()
         if end is not None and end * US <= to_us + 1e-6:
             self._end_command = None  # once: stop() then runs as after any end of a run
             self.cycles_goal = None
@@ -323,12 +337,7 @@ class MovingArm(ModelArm):
         s = 1.0 if millimeter_unit else INCH_MM
         target = self._target_in_mm(target, s)
         via = None if via is None else self._target_in_mm(via, s)
-        tool = None
-        if tool_in_flange is not None:
-            tool = np.array(tool_in_flange, dtype=float)
-            if s != 1.0:
-                tool[:3, 3] *= s
-            tool = self.shared.tool(tool)
+        tool = None if tool_in_flange is None else self._tool_mm(tool_in_flange, s)
         move = MoveCommand(kind, target, self._mdesc(md, s), tool=tool, via=via,
                            source=self.shared.source(source), tool_name=tool_name)
         self.layers.before(time_us / US)
@@ -349,6 +358,22 @@ class MovingArm(ModelArm):
             for reader in self._readers:
                 reader(time_us, False)
         return r
+
+    def _tool_mm(self, tool_in_flange: Any, s: float) -> np.ndarray:
+        """The shared read-only TCP in the flange in mm (retention.Shared.tool) of `tool_in_flange`
+        (`s` mm per unit). The last answer again for the same read-only matrix and `s`
+        (ch10_motion._tool gives the same object while the tool is unchanged)."""
+        last = self._tool_in_mm
+        if last is not None and last[0] is tool_in_flange and last[1] == s:
+            return last[2]
+        made = np.array(tool_in_flange, dtype=float)
+        if s != 1.0:
+            made[:3, 3] *= s
+        tool = self.shared.tool(made)
+        # kept when it cannot change in place and the table already held its value (it stays there)
+        fixed = type(tool_in_flange) is np.ndarray and not tool_in_flange.flags.writeable
+        self._tool_in_mm = (tool_in_flange, s, tool) if fixed and tool is not made else None
+        return tool
 
     def _mdesc(self, md: dict, s: float) -> MDesc:
         """The shared MDesc of the program's mdesc value `md` (`s` mm per unit), kept by the
@@ -403,6 +428,13 @@ class MovingArm(ModelArm):
     def context(self, loops: tuple) -> Context:
         """The loops of Machine.loop_passes as motion.cycle passes: each loop statement with the
         number of its entry (the n-th pass counter seen for it) and the pass."""
+        last = self._last_context  # (the loops, their passes, the context): the commands of a pass share it
+        if last is not None and len(loops) == len(last[0]):
+            for (c, site, counter), (c0, site0, counter0), n in zip(loops, last[0], last[1]):
+                if c is not c0 or site is not site0 or counter is not counter0 or int(counter[0]) != n:
+                    break
+            else:
+                return last[2]
         out = []
         for compiled, site, counter in loops:
             known = self._loops.get(id(site))
@@ -415,7 +447,9 @@ class MovingArm(ModelArm):
                 n = self._entry_count[loop] = self._entry_count.get(loop, 0) + 1
                 seen = self._entries[id(counter)] = (counter, n)  # kept: its id is not reused
             out.append(Pass(loop, seen[1], int(counter[0])))
-        return self.shared.context(tuple(out))
+        context = self.shared.context(tuple(out))
+        self._last_context = (loops, tuple(p.iteration for p in out), context)
+        return context
 
     def _target_in_mm(self, tg: Target, s: float) -> Target:
         """`tg` with its lengths (and a SCARA's axis 3) in mm: `s` millimetres per unit."""
@@ -461,7 +495,8 @@ class _Hook:
         q = self.arm.queue_in_use
         if q is not None:
             self.arm.compliance.update(q, self.arm.layers, t)
-            self.arm.alteration.advance(q, t)
+            if self.arm.alteration.state != "off":  # (off: its advance computes nothing)
+                self.arm.alteration.advance(q, t)
 
     def after_reset(self, t: float) -> None:
         self.arm.alteration.after_reset(t)

@@ -46,6 +46,11 @@ class ValueWatch:
         self._reads = [*(("f:" + n, n, geo_frames.Frame) for n in self.frames),
                        *(("t:" + n, n, geo_frames.Tool) for n in self.tools)]
         self._held: list[tuple] | None = None  # per read, the objects the last call's value came from (`_unchanged`)
+        self._where = [_parse(name) for _, name, _kind in self._reads]  # per read, where `_node` finds it
+        # the scheduler's count of VAL 3 code that may have run (Scheduler.runs) at the last call
+        # between cycles (None: the last call was not): while it holds, no value can have changed
+        self._scheduler = getattr(machine, "scheduler", None)
+        self._runs: int | None = None
 
     def __call__(self, time_us: int, cycle: bool = False) -> None:
         """Read at `time_us`; `cycle`: at the start of a scheduler cycle, before any line of it ran:
@@ -53,14 +58,22 @@ class ValueWatch:
         machine = self.machine
         if machine is None or not self._reads:
             return
+        sched = self._scheduler
+        if cycle and sched is not None:
+            runs = sched.runs
+            if runs == self._runs:
+                return  # no VAL 3 code ran since the last call, between two cycles: the same values
+            self._runs = runs
+        else:
+            self._runs = None  # (called by a running line: lines may follow in the same turn)
         held = self._held
-        if held is not None and _unchanged(machine, self._reads, held):
+        if held is not None and _unchanged(machine.main, self._where, held):
             return  # the very objects the last reading came from: the same values (most cycles)
         now, used = {}, []
         for key, name, kind in self._reads:
             now[key], objects = _read_node(_node(machine, name, kind), name, self._cache)
             used.append(objects)
-        self._held = None if None in used else used
+        self._held = None if None in used else [_by_node(objects) for objects in used]
         if self.values and same_poses(now, self.values[-1]):
             return
         if cycle:
@@ -155,22 +168,36 @@ def _read_node(node: Any, name: str, cache: dict | None) -> tuple[np.ndarray | N
     return out, objects
 
 
-def _unchanged(machine: Any, reads: list, held: list[tuple]) -> bool:
-    """Whether every read of `reads` finds the very objects of `held` (its last call's): then `_read` gives
-    the same matrices again. `_objects`' walk, compared as it goes (the same objects end it alike)."""
-    for (_, name, kind), last in zip(reads, held):
-        n, k, m = _node(machine, name, kind), 0, len(last)
-        try:
-            while k < m:
-                t = n.trsf
-                if (n is not last[k] or n.ref is not last[k + 1] or n.is_root is not last[k + 2] or t is not last[k + 3]
-                        or t.x is not last[k + 4] or t.y is not last[k + 5] or t.z is not last[k + 6]
-                        or t.rx is not last[k + 7] or t.ry is not last[k + 8] or t.rz is not last[k + 9]):
+def _unchanged(unit: Any, where: list, held: list[tuple]) -> bool:
+    """Whether every read (`where`: per read, `_parse`'s name) finds in the program `unit` (the
+    machine's main) the very objects of `held` (its last call's, `_by_node`): then `_read` gives
+    the same matrices again. `_node`'s look-up and `_objects`' walk, compared as they go (the
+    same objects end them alike; the node found is the very one `_node` found of its kind),
+    each node's nine objects in one C call."""
+    try:
+        for (alias, var, index), last in zip(where, held):
+            u = unit if alias is None else unit.aliases.get(alias)
+            c = u.globals.get(var)
+            n = c.data[c.off + index]  # (what `_node` finds, if it is the node held)
+            for node, ref, root, t, (x, y, z, rx, ry, rz) in last:  # (geo_frames.same_chain, inlined)
+                if n is not node or n.ref is not ref or n.is_root is not root:
                     return False
-                k, n = k + 10, n.ref
-        except AttributeError:
-            return False
+                t2 = n.trsf
+                if (t2 is not t or t2.x is not x or t2.y is not y or t2.z is not z or t2.rx is not rx
+                        or t2.ry is not ry or t2.rz is not rz):
+                    return False
+                n = ref
+    except (AttributeError, LookupError, TypeError):  # (no unit, library, variable or element)
+        return False
     return True
+
+
+def _by_node(objects: tuple) -> tuple:
+    """`_objects`' walk as `_unchanged` compares it (geo_frames.held_chain's form): per node, (the
+    node, its reference, root flag, trsf, its six floats)."""
+    return tuple((objects[k], objects[k + 1], objects[k + 2], objects[k + 3], objects[k + 4:k + 10])
+                 for k in range(0, len(objects), 10))
+
 
 
 @functools.lru_cache(maxsize=1024)
