@@ -104,6 +104,17 @@ def _poses(P: np.ndarray, R: np.ndarray) -> np.ndarray:
     return T
 
 
+def _ending_at(T: np.ndarray, lam: np.ndarray, p1: np.ndarray, R1: np.ndarray) -> np.ndarray:
+    """T with the pose at λ = 1 the target's own bits: interpolated from the start, it differs in
+    the last bits with the start's, and the joints at the end would follow them, so that a
+    repeated cycle never repeated exactly on some CPUs (docs/performance.md)."""
+    end = lam == 1.0
+    if end.any():
+        T[end, :3, 3] = p1
+        T[end, :3, :3] = R1
+    return T
+
+
 class Curve:
     """A TCP curve over λ ∈ [0, 1]: poses(λ) → (N, 4, 4)."""
 
@@ -139,6 +150,7 @@ class Line(Curve):
         self.p0 = T0[:3, 3].copy()
         self.p1 = T1[:3, 3].copy()
         self.R0 = T0[:3, :3].copy()
+        self.R1 = T1[:3, :3].copy()
         self.ang, self.axis = smallest_rotation(T0[:3, :3], T1[:3, :3])
         self.length_mm = float(np.linalg.norm(self.p1 - self.p0))
         self.angle_deg = float(self.ang)
@@ -153,7 +165,7 @@ class Line(Curve):
         lam = np.atleast_1d(np.asarray(lam, dtype=float))
         P = self.p0 + lam[:, None] * (self.p1 - self.p0)
         R = self.R0 @ expmap(np.outer(lam * math.radians(self.ang), self.axis))
-        return _poses(P, R)
+        return _ending_at(_poses(P, R), lam, self.p1, self.R1)
 
 
 class Arc(Curve):
@@ -185,7 +197,8 @@ class Arc(Curve):
         self.e1, self.e2 = np.array(e1), np.array(e2)
         self.a3 = float(a3)
         self.u2 = float(a2 / a3)
-        self.R0, self.Rm = T0[:3, :3].copy(), Tm[:3, :3].copy()
+        self.R0, self.Rm, self.R1 = T0[:3, :3].copy(), Tm[:3, :3].copy(), T1[:3, :3].copy()
+        self.p3 = T1[:3, 3].copy()
         self.r12 = math.radians(ang12) * ax12
         self.r23 = math.radians(ang23) * ax23
         self.length_mm = self.radius * self.a3
@@ -211,7 +224,7 @@ class Arc(Curve):
         f2 = np.where(first, 0.0, (lam - self.u2) / (1.0 - self.u2))
         R = np.where(first[:, None, None], self.R0 @ expmap(np.outer(f1, self.r12)),
                      self.Rm @ expmap(np.outer(f2, self.r23)))
-        return _poses(P, R)
+        return _ending_at(_poses(P, R), lam, self.p3, self.R1)
 
 
 def smootherstep(u: np.ndarray) -> np.ndarray:
