@@ -357,9 +357,7 @@ def retimed_range(queue, records: list, factors, out_of_time=None,
 def each_retimed(queue, records: list, factors, out_of_time=None, stretches: Stretches | None = None):
     """`retimed_range` one factor at a time (a generator: a caller that takes what it needs of a
     factor's records holds one factor's at a time)."""
-    st = stretches if stretches is not None else Stretches(queue)
     n = len(records)
-    places = st.places([r.start for r in records] + [r.end for r in records])
     if records and all(f.init for f in fields(records[0])) and all(type(r) is type(records[0]) for r in records):
         # each record's other fields read once for all the factors (what `replace` does per call)
         names = [f.name for f in fields(records[0])]
@@ -368,9 +366,8 @@ def each_retimed(queue, records: list, factors, out_of_time=None, stretches: Str
         make = type(records[0])
     else:
         values = None
-    for factor in factors:
-        rt = Retiming(queue, factor, out_of_time, st)
-        at = [None if x != x else x for x in rt.times_at(*places).tolist()]  # (nan: None)
+    times = [r.start for r in records] + [r.end for r in records]
+    for at, rt in each_retimed_times(queue, times, factors, out_of_time, stretches):
         if values is None:
             moved = [replace(r, start=a, end=b) for r, a, b in zip(records, at[:n], at[n:])]
         else:
@@ -380,3 +377,15 @@ def each_retimed(queue, records: list, factors, out_of_time=None, stretches: Str
                 moved.append(make(*v))
         yield moved, rt
         del moved  # before the next factor's
+
+
+def each_retimed_times(queue, times: list, factors, out_of_time=None, stretches: Stretches | None = None):
+    """Times of the run (None: never) at the same points of each factor's re-timed run, a factor
+    at a time: (their list, None where the point was never reached or lies past the cut; the
+    Retiming). What `each_retimed` does to the records' starts and ends, for a caller that needs
+    only some of them (collect.acceleration_range: the first command of each pass)."""
+    st = stretches if stretches is not None else Stretches(queue)
+    places = st.places(times)
+    for factor in factors:
+        rt = Retiming(queue, factor, out_of_time, st)
+        yield [None if x != x else x for x in rt.times_at(*places).tolist()], rt  # (nan: None)

@@ -21,7 +21,7 @@ from ..interpretation.machine import Machine
 from ..motion.cycle import cycle_stats
 from ..motion.mdesc import MDesc
 from ..motion.motion_records import busy_time
-from ..motion.retime import each_retimed
+from ..motion.retime import each_retimed_times
 from ..robot.models import ASSUMED_ACCELERATION_RANGE
 from ..rules import codes
 from .arm_layers import ActualTrajectory
@@ -130,10 +130,16 @@ def acceleration_range(machine: Machine, q, queue_records, diags: list[Diagnosti
     (issue 23), within the run's wall-clock budget (budget.py): when it is spent the re-timing stops
     there, the range covers the run up to that time (`AccelerationRange.partial`) and an R006 says so."""
     out_of_time = RunBudget.of(machine).out_of_time
+    # each task's cycle loop, and the command that starts each of its passes, are the same for every
+    # factor (the same commands recorded in the same loops; only their times move): found once, by
+    # index, and each factor times only those commands' starts (not every record's start and end)
+    passes = task_cycles(machine, [_Indexed(r.id, r.source, i) for i, r in enumerate(queue_records)])
+    firsts = sorted({i for st in passes.values() for i in st.starts})
     cycles, cut = [], None
-    for records, rt in each_retimed(q, queue_records, ASSUMED_ACCELERATION_RANGE, out_of_time):  # one factor's at a time
-        cycles.append(_cycle_entries(machine, records))
-        del records  # before the next factor's
+    for at, rt in each_retimed_times(q, [queue_records[i].start for i in firsts], ASSUMED_ACCELERATION_RANGE,
+                                     out_of_time):  # one factor at a time
+        start = dict(zip(firsts, at))
+        cycles.append({task: _moved_entry(st, start) for task, st in passes.items()})
         if rt.cut is not None:
             cut = rt.cut if cut is None else min(cut, rt.cut)
     partial = None
@@ -161,6 +167,30 @@ def _cycle_entries(machine: Machine, records) -> dict[str, CycleEntry]:
     return {task: CycleEntry(st.task, st.marker, tuple(st.starts), st.loop and st.loop.program,
                              st.loop and st.loop.kind, st.why, st.passes)
             for task, st in task_cycles(machine, records).items()}
+
+
+class _Indexed:
+    """What cycle_stats reads of a motion record, its start being its index: the cycle's passes
+    found once for every factor of the acceleration range (`acceleration_range`)."""
+
+    __slots__ = ("id", "source", "start")
+
+    def __init__(self, id_: Any, source: Any, index: int) -> None:
+        self.id, self.source, self.start = id_, source, index
+
+
+def _moved_entry(st, start: dict) -> CycleEntry:
+    """The CycleEntry cycle_stats gives for re-timed records, from its CycleStats of `_Indexed`
+    records (the indices of each pass's first command) and those commands' re-timed starts
+    (`start`, None: never started, and neither is any pass after it)."""
+    starts = []
+    for i in st.starts:
+        t = start[i]
+        if t is None:
+            break
+        starts.append(t)
+    return CycleEntry(st.task, st.marker, tuple(starts), st.loop and st.loop.program, st.loop and st.loop.kind, st.why,
+                      st.passes)
 
 
 def task_cycles(machine: Machine, records) -> dict:
