@@ -109,7 +109,11 @@ def arm_run(machine: Machine, diags: list[Diagnostic]) -> ArmRun | None:
         records = [actual_record(rec, arm) for rec in records]
     same: dict = {}  # the limits and tool poses of the run's entries, one object each (a long run repeats them)
     motions = [_entry(rec, asked, layers, same) for rec, asked in zip(records, arm.live.kept)]
-    cycles = _cycle_entries(machine, records)
+    # each task's cycle loop and the first command of each of its passes (by index): the same for the
+    # run's records and for the acceleration range's re-timed ones
+    passes = task_cycles(machine, [_Indexed(r.id, r.source, i) for i, r in enumerate(records)])
+    starts = [r.start for r in records]
+    cycles = {task: _moved_entry(st, starts) for task, st in passes.items()}
     if trajectory is q.trajectory:
         busy, idle = busy_time(q.trajectory.profile, end_s)
     else:
@@ -121,24 +125,27 @@ def arm_run(machine: Machine, diags: list[Diagnostic]) -> ArmRun | None:
     tools = [ToolUse(*e, tcp_matrix=_shared_matrix(e.tcp_in_flange, poses)) for e in machine.recorder.tool_events]
     spread = None
     if getattr(arm.model, "accelerations_assumed", False):  # issue 23: the range if they are off
-        spread = acceleration_range(machine, q, queue_records, diags)
+        spread = acceleration_range(machine, q, queue_records, diags, passes)
     return ArmRun(scene, motions, cycles, trajectory, tools, busy, idle, end_s, spread)
 
 
-def acceleration_range(machine: Machine, q, queue_records, diags: list[Diagnostic]) -> AccelerationRange:
+def acceleration_range(machine: Machine, q, queue_records, diags: list[Diagnostic],
+                       passes: dict | None = None) -> AccelerationRange:
     """The cycles of the run re-timed with the accelerations × each factor of the assumed range
     (issue 23), within the run's wall-clock budget (budget.py): when it is spent the re-timing stops
-    there, the range covers the run up to that time (`AccelerationRange.partial`) and an R006 says so."""
+    there, the range covers the run up to that time (`AccelerationRange.partial`) and an R006 says so.
+    `passes`: `task_cycles` of the records as `_Indexed` (found here when not given)."""
     out_of_time = RunBudget.of(machine).out_of_time
     # each task's cycle loop, and the command that starts each of its passes, are the same for every
     # factor (the same commands recorded in the same loops; only their times move): found once, by
     # index, and each factor times only those commands' starts (not every record's start and end)
-    passes = task_cycles(machine, [_Indexed(r.id, r.source, i) for i, r in enumerate(queue_records)])
+    if passes is None:
+        passes = task_cycles(machine, [_Indexed(r.id, r.source, i) for i, r in enumerate(queue_records)])
     firsts = sorted({i for st in passes.values() for i in st.starts})
     cycles, cut = [], None
     for at, rt in each_retimed_times(q, [queue_records[i].start for i in firsts], ASSUMED_ACCELERATION_RANGE,
                                      out_of_time):  # one factor at a time
-        start = dict(zip(firsts, at))
+        start = dict(zip(firsts, at))  # (by index, as the records are)
         cycles.append({task: _moved_entry(st, start) for task, st in passes.items()})
         if rt.cut is not None:
             cut = rt.cut if cut is None else min(cut, rt.cut)
@@ -161,17 +168,10 @@ def actual_record(rec, arm):
     return replace(rec, start=start, end=end if end is not None or rec.end is None else None)
 
 
-def _cycle_entries(machine: Machine, records) -> dict[str, CycleEntry]:
-    """The cycles of the tasks that record motions, as the reports give them: the run's, and the
-    re-timed runs' of the acceleration range (the same commands, the same loops)."""
-    return {task: CycleEntry(st.task, st.marker, tuple(st.starts), st.loop and st.loop.program,
-                             st.loop and st.loop.kind, st.why, st.passes)
-            for task, st in task_cycles(machine, records).items()}
-
-
 class _Indexed:
-    """What cycle_stats reads of a motion record, its start being its index: the cycle's passes
-    found once for every factor of the acceleration range (`acceleration_range`)."""
+    """What cycle_stats reads of a motion record, its start being its index: each task's cycle loop
+    and the first command of its passes found once, for the run's records and for every factor of
+    the acceleration range (`arm_run`)."""
 
     __slots__ = ("id", "source", "start")
 
@@ -179,10 +179,11 @@ class _Indexed:
         self.id, self.source, self.start = id_, source, index
 
 
-def _moved_entry(st, start: dict) -> CycleEntry:
-    """The CycleEntry cycle_stats gives for re-timed records, from its CycleStats of `_Indexed`
-    records (the indices of each pass's first command) and those commands' re-timed starts
-    (`start`, None: never started, and neither is any pass after it)."""
+def _moved_entry(st, start) -> CycleEntry:
+    """The cycle of a task as the reports give it, the CycleEntry of cycle_stats on records (the
+    run's, or re-timed), from the CycleStats of the same records as `_Indexed` (the indices of each
+    pass's first command) and those commands' starts by index (`start[i]`: a list or a dict),
+    None: never started, and neither is any pass after it."""
     starts = []
     for i in st.starts:
         t = start[i]
