@@ -98,3 +98,54 @@ def test_advance_between_events_is_the_full_advance(monkeypatch):
     _cycles(queue(), 5, 0.0, 6, off)
     assert on == off  # floats compared exactly
     assert len(on) > 150 and short > len(on) // 3, (short, len(on))
+
+
+def test_the_limits_values_kept_by_command_key_follow_the_monitor_and_the_mdesc():
+    """`TrialMemo.key` with `CommandLimits.value_keys` (the limits' values by command key, one
+    look-up per owner) gives the key made from `limits_of` itself: after the values are kept, after
+    another monitor speed, another mdesc and the reduced speed registered for a command."""
+    from val3check.motion.mdesc import CommandLimits, MDesc
+
+    cl = CommandLimits(KIN, 100.0)
+    cl.register(1, MDesc(), False)
+    cl.register(2, MDesc(vel=50.0), False)
+    kept = trial_memo.TrialMemo(KIN, None, cl.of, cl.value_keys)
+    plain = trial_memo.TrialMemo(KIN, None, cl.of)
+    line = JointLine(HOME, HOME + 30.0)
+    spans = [Span(line, 0.0, 0.5, [(1, 0.0)]), Span(line, 0.5, 1.0, [(2, 0.0)])]
+    seen = []
+    for change in ("none", "kept", "monitor", "mdesc", "reduced"):
+        if change == "monitor":
+            cl.set_monitor(50.0)
+        elif change == "mdesc":
+            cl.register(2, MDesc(vel=20.0), False)
+        elif change == "reduced":
+            cl.register(1, MDesc(), True)
+        key = kept.key(spans, 0.5, 10.0)
+        assert key == plain.key(spans, 0.5, 10.0), change
+        assert set(cl.value_keys) == {1, 2}
+        seen.append(key)
+    assert seen[0] == seen[1]
+    assert len(set(seen)) == 4
+
+
+def test_a_registered_mdesc_object_is_not_hashed_again(monkeypatch):
+    """`CommandLimits.register` finds an MDesc object it saw by the object (no MDesc hash) and gives
+    the one tuple kept for its values: an equal object, the same tuple; another value or the
+    reduced speed, another."""
+    from val3check.motion.mdesc import CommandLimits, MDesc
+
+    hashes = []
+    plain = MDesc.__hash__
+    monkeypatch.setattr(MDesc, "__hash__", lambda self: hashes.append(1) or plain(self))
+    cl = CommandLimits(KIN, 100.0)
+    md = MDesc(vel=40.0)
+    first = cl.register(1, md, False)
+    n = len(hashes)
+    assert n >= 1
+    assert cl.register(2, md, False) is first and len(hashes) == n
+    assert cl.register(3, MDesc(vel=40.0), False) is first
+    assert cl.register(4, md, True) is not first and cl.register(4, md, True)[1] is True
+    other = cl.register(5, MDesc(vel=41.0), False)
+    assert other is not first and other[0] == MDesc(vel=41.0)
+    assert cl.of(2) is cl.of(1) and cl.of(5) is not cl.of(1)

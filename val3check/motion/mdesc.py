@@ -121,12 +121,26 @@ class CommandLimits:
         # by what was asked, not by command: a long run asks the same few mdescs again and again
         self._same: dict[tuple[MDesc, bool], tuple[MDesc, bool]] = {}
         self._limits: dict[int, Limits] = {}  # by id of the tuple `_same` keeps (never dropped)
+        self._objects: dict[tuple[int, bool], tuple] = {}  # (id(mdesc), reduced) -> (mdesc, kept tuple)
+        # trial_memo.TrialMemo's values of a command's limits, by command key: valid while `of(key)`
+        # gives the same Limits (cleared with `_limits`; a cache: dropping it only costs a recompute)
+        self.value_keys: dict[int, tuple] = {}
 
     def register(self, key: int, mdesc: MDesc, reduced: bool) -> tuple:
         """A command's mdesc (`reduced`: a connection move, 10.1.3); returns the one (mdesc, reduced)
         tuple kept for these values (never dropped: its id names them, queue.MotionQueue._class_of)."""
-        asked = (mdesc, reduced)
-        asked = self._asked[key] = self._same.setdefault(asked, asked)
+        # by the object first (hashing an MDesc is a Python call): a run shares its few mdescs
+        by = self._objects.get((id(mdesc), reduced))
+        if by is not None and by[0] is mdesc:
+            asked = by[1]
+        else:
+            asked = (mdesc, reduced)
+            asked = self._same.setdefault(asked, asked)
+            if len(self._objects) >= 64:
+                self._objects.clear()
+            self._objects[(id(mdesc), reduced)] = (mdesc, asked)  # (holds mdesc: its id stays its own)
+        self._asked[key] = asked
+        self.value_keys.pop(key, None)
         return asked
 
     def of(self, key: int) -> Limits:
@@ -145,3 +159,4 @@ class CommandLimits:
         """Another monitor speed (above 0, in %): every limit scales with it."""
         self.monitor = float(monitor)
         self._limits.clear()
+        self.value_keys.clear()

@@ -51,8 +51,8 @@ class Planner:
     `on_fallback(key)`: called when a planned piece of path that command starts fell back to the
     safe profile (R019)."""
 
-    def __init__(self, kin, q0: np.ndarray, limits_of, on_fallback) -> None:
-        """An arm at rest at joints q0, nothing planned."""
+    def __init__(self, kin, q0: np.ndarray, limits_of, on_fallback, value_keys: dict | None = None) -> None:
+        """An arm at rest at joints q0, nothing planned (`value_keys`: trial_memo.TrialMemo's)."""
         self.kin = kin
         self.limits_of = limits_of
         self.on_fallback = on_fallback
@@ -60,7 +60,7 @@ class Planner:
         self.profile = Profile(0.0, 0.0)
         self.trajectory = Trajectory(self.path, self.profile)
         self.timing = Timing(kin)
-        self.memo = TrialMemo(kin, self.timing, limits_of)  # a repeated blend decision's timings
+        self.memo = TrialMemo(kin, self.timing, limits_of, value_keys)  # a repeated blend decision's timings
         self.due: DueReplan | None = None
         self.changes = 0  # counts the changes of the profile (what is read from it is kept until it changes)
         self.fallbacks = 0  # pieces planned with the safe profile

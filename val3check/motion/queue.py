@@ -90,7 +90,7 @@ class MotionQueue:
         self.monitor = float(monitor)
         # the limits scale with the last monitor speed above 0 (at 0 the arm holds)
         self.limits = CommandLimits(self.kin, self.monitor if self.monitor > 0 else 100.0)
-        self.planner = Planner(self.kin, q0, self.limits.of, self._fell_back)
+        self.planner = Planner(self.kin, q0, self.limits.of, self._fell_back, self.limits.value_keys)
         self.next_id = 0
         self.pos_id = 0
         self.pending: list[QueuedCommand] = []  # recorded and not done, the one executed first
@@ -571,3 +571,4 @@ class MotionQueue:
         for it (the trajectory stays)."""
         self.history, self.pending, self.open, self._by_key = [], [], None, {}
         self.limits._asked.clear()
+        self.limits.value_keys.clear()

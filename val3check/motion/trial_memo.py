@@ -42,11 +42,14 @@ def number() -> int:
 class TrialMemo:
     """See the module docstring."""
 
-    def __init__(self, kin, timing, limits_of) -> None:
-        """Answers kept in `kin.reuse` (forgotten with the arm's geometry)."""
+    def __init__(self, kin, timing, limits_of, value_keys: dict | None = None) -> None:
+        """Answers kept in `kin.reuse` (forgotten with the arm's geometry). `value_keys`: where the
+        values of a command's limits are kept by command key, cleared by its owner whenever
+        `limits_of` may give another answer (mdesc.CommandLimits.value_keys); None: not kept."""
         self.kin = kin
         self.timing = timing
         self.limits_of = limits_of
+        self.value_keys = value_keys
         self._limit_keys: dict[int, tuple] = {}
         self._tools: dict[int, tuple] = {}
         self._parts: dict[tuple, int] = {}  # `_part`
@@ -80,6 +83,17 @@ class TrialMemo:
             else:
                 parts.append((part, *[(canon.setdefault(k, len(canon)), st) for k, st in own]))
         named = tuple([canon.setdefault(k, len(canon)) for k in owners])
+        vk = self.value_keys
+        if vk is not None:  # (by command key: one look-up per owner)
+            limits = []
+            for k in canon:
+                hit = vk.get(k)
+                if hit is None:
+                    hit = vk[k] = self._limits_key(k)
+                    if len(vk) > 4096:
+                        vk.clear()
+                limits.append(hit)
+            return (tuple(parts), named, tuple(limits), *rest)
         limits_of, kept = self.limits_of, self._limit_keys
         limits = []
         for k in canon:  # (`_limits_key` inline: its kept values first)
