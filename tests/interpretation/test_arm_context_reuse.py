@@ -71,7 +71,9 @@ def test_a_site_whose_id_is_reused_is_not_taken_for_the_old_one():
     assert _loop(arm, prog, new).program == "cycle"
 
 
-def test_a_long_run_has_the_contexts_made_fresh_for_every_command(tmp_path, monkeypatch):
+def _contexts_reused_and_afresh(tmp_path, monkeypatch, forget):
+    """Every command's context and the cycles of 60 s of NESTED, with the arm's reuse as it is and
+    with `forget(arm)` called before every context is made (the reference)."""
     folder = build(tmp_path, NESTED, globals_=LOOP_GLOBALS, locals_=["num l_i"])
     ws = run([str(folder)], Settings()).workspace
     app = ws.apps[ws.targets[0]]
@@ -82,15 +84,21 @@ def test_a_long_run_has_the_contexts_made_fresh_for_every_command(tmp_path, monk
         # (simulation/live_record.py: the commands themselves leave the queue's history)
         return list(machine.arm.live.contexts), repr(result.motion.cycles)
 
-    reused, reused_cycles = contexts()
+    reused = contexts()
     made = MovingArm.context
 
-    def fresh(self, loops):  # the Loops made again for every command
-        self._loops.clear()
+    def fresh(self, loops):
+        forget(self)
         return made(self, loops)
 
     monkeypatch.setattr(MovingArm, "context", fresh)
-    again, fresh_cycles = contexts()
+    return reused, contexts()
+
+
+def test_a_long_run_has_the_contexts_made_fresh_for_every_command(tmp_path, monkeypatch):
+    # the Loops made again for every command
+    (reused, reused_cycles), (again, fresh_cycles) = _contexts_reused_and_afresh(
+        tmp_path, monkeypatch, lambda arm: arm._loops.clear())
     assert len(reused) > 150
     assert reused == again
     assert {p.loop.kind for c in reused for p in c} == {"while", "for", "do"}
@@ -119,20 +127,8 @@ def test_the_last_context_is_given_again_only_for_the_same_loops_at_the_same_pas
 
 
 def test_a_long_run_has_the_contexts_computed_afresh_at_every_command(tmp_path, monkeypatch):
-    folder = build(tmp_path, NESTED, globals_=LOOP_GLOBALS, locals_=["num l_i"])
-    ws = run([str(folder)], Settings()).workspace
-    app = ws.apps[ws.targets[0]]
+    def forget(arm):
+        arm._last_context = None
 
-    def contexts():
-        machine, result = run_machine(ws, app, SimOptions(duration=60.0, robot=TX2_60, wall_clock=frozen_clock))
-        return list(machine.arm.live.contexts), repr(result.motion.cycles)
-
-    kept = contexts()
-    made = MovingArm.context
-
-    def fresh(self, loops):
-        self._last_context = None
-        return made(self, loops)
-
-    monkeypatch.setattr(MovingArm, "context", fresh)
-    assert contexts() == kept and len(kept[0]) > 150
+    kept, afresh = _contexts_reused_and_afresh(tmp_path, monkeypatch, forget)
+    assert afresh == kept and len(kept[0]) > 150
